@@ -1,0 +1,25 @@
+// The `skewbridge` program: parses the command line and hands over to the libraries.
+// Bad input surfaces here as one line on stderr and exit status 2.
+#include <cstdio>
+#include <exception>
+
+#include "jobs/app/commands.h"
+#include "solver/common/error.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"skewbridge: seismic response of skew bridges with pounding deck-abutment joints"};
+  app.require_subcommand(1);
+  skewbridge::app::AddVersionCommand(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const skewbridge::InputError& e) {
+    std::fprintf(stderr, "skewbridge: error: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "skewbridge: error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,97 @@
+#include "records/excitations.h"
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "solver/common/error.h"
+
+namespace skewbridge::records {
+
+PulseExcitation::PulseExcitation(PulseShape shape, double amplitude_mps2, double omega_radps,
+                                 Eigen::Vector2d direction)
+    : shape_(shape),
+      amplitude_mps2_(amplitude_mps2),
+      omega_radps_(omega_radps),
+      period_s_(0.0),
+      direction_(direction) {
+  if (!std::isfinite(amplitude_mps2)) {
+    throw InputError::AtField("pulse", "a_g", "must be finite");
+  }
+  if (!std::isfinite(omega_radps) || omega_radps <= 0.0) {
+    throw InputError::AtField("pulse", "w_g",
+                              "must be > 0 rad/s (got " + std::to_string(omega_radps) + ")");
+  }
+  if (!direction.allFinite() || std::abs(direction.norm() - 1.0) > 1e-12) {
+    throw InputError::AtField("pulse", "direction", "must be a unit vector");
+  }
+  period_s_ = 2.0 * std::numbers::pi / omega_radps;
+}
+
+ExcitationPiece PulseExcitation::PieceAt(double t) const {
+  ExcitationPiece piece;
+  if (t >= period_s_) {
+    piece.t_begin = period_s_;
+    return piece;  // at rest
+  }
+  piece.t_begin = 0.0;
+  piece.t_end = period_s_;
+  piece.omega = omega_radps_;
+  const Eigen::Vector2d a = amplitude_mps2_ * direction_;
+  if (shape_ == PulseShape::kCosine) {
+    piece.cos_amplitude = a;
+  } else {
+    piece.sin_amplitude = a;
+  }
+  return piece;
+}
+
+SampledExcitation::SampledExcitation(double dt_s, std::vector<double> ax_mps2,
+                                     std::vector<double> ay_mps2)
+    : dt_s_(dt_s), ax_(std::move(ax_mps2)), ay_(std::move(ay_mps2)) {
+  if (!std::isfinite(dt_s) || dt_s <= 0.0) {
+    throw InputError::AtField("sampled excitation", "dt", "must be > 0 s");
+  }
+  if (ax_.empty()) {
+    throw InputError::AtField("sampled excitation", "values", "must not be empty");
+  }
+  if (!ay_.empty() && ay_.size() != ax_.size()) {
+    throw InputError::AtField("sampled excitation", "y values",
+                              "must have as many samples as x (" + std::to_string(ax_.size()) +
+                                  "), got " + std::to_string(ay_.size()));
+  }
+  for (std::size_t k = 0; k < ax_.size(); ++k) {
+    if (!std::isfinite(ax_[k]) || (!ay_.empty() && !std::isfinite(ay_[k]))) {
+      throw InputError::AtField("sampled excitation", "sample " + std::to_string(k),
+                                "must be finite");
+    }
+  }
+}
+
+double SampledExcitation::Duration() const { return dt_s_ * static_cast<double>(ax_.size() - 1); }
+
+Eigen::Vector2d SampledExcitation::Sample(std::size_t k) const {
+  return {ax_[k], ay_.empty() ? 0.0 : ay_[k]};
+}
+
+ExcitationPiece SampledExcitation::PieceAt(double t) const {
+  ExcitationPiece piece;
+  const std::size_t n = ax_.size();
+  const double k_real = std::floor(t / dt_s_);
+  if (n < 2 || k_real >= static_cast<double>(n - 1)) {
+    piece.t_begin = Duration();
+    return piece;  // at rest after the last sample
+  }
+  auto k = static_cast<std::size_t>(k_real < 0.0 ? 0.0 : k_real);
+  // Guard the floor against rounding: t exactly on a kink belongs to the piece starting there.
+  if (static_cast<double>(k + 1) * dt_s_ <= t && k + 1 < n - 1) {
+    ++k;
+  }
+  piece.t_begin = static_cast<double>(k) * dt_s_;
+  piece.t_end = static_cast<double>(k + 1) * dt_s_;
+  piece.a_begin = Sample(k);
+  piece.slope = (Sample(k + 1) - Sample(k)) / dt_s_;
+  return piece;
+}
+
+}  // namespace skewbridge::records

@@ -1,0 +1,51 @@
+#pragma once
+/// @file
+/// The ground-acceleration interface the integrators consume.
+///
+/// A ground motion is a sequence of smooth pieces separated by kinks (a pulse's end, each
+/// sample of a record). On a piece [t_begin, t_end) the two horizontal components are
+///
+///     a_g(t) = a_begin + slope (t - t_begin) + c cos(omega (t - t_begin)) + s sin(omega (t -
+///     t_begin))
+///
+/// which covers the piecewise-linear interpolation of a sampled record (c = s = 0) and the
+/// one-cycle pulses of Makris and Black (2004) (a_begin = slope = 0) exactly, so the
+/// contact-free state transition can be exact on every piece ([method.md §3, smooth phases]).
+
+#include <Eigen/Core>
+#include <limits>
+
+namespace skewbridge {
+
+/// One smooth piece of a ground motion; components are (x, y) in m/s^2, times in s.
+struct ExcitationPiece {
+  double t_begin = 0.0;                                     ///< s
+  double t_end = std::numeric_limits<double>::infinity();   ///< s (kink or +inf)
+  Eigen::Vector2d a_begin = Eigen::Vector2d::Zero();        ///< m/s^2 at t_begin (linear part)
+  Eigen::Vector2d slope = Eigen::Vector2d::Zero();          ///< m/s^3
+  double omega = 0.0;                                       ///< rad/s of the harmonic part
+  Eigen::Vector2d cos_amplitude = Eigen::Vector2d::Zero();  ///< m/s^2
+  Eigen::Vector2d sin_amplitude = Eigen::Vector2d::Zero();  ///< m/s^2
+
+  /// Ground acceleration (x, y) in m/s^2 at time t (s) inside the piece.
+  Eigen::Vector2d At(double t) const;
+};
+
+/// A horizontal ground motion, the same for every support (uniform excitation).
+/// Implementations are immutable and thread-compatible: the integrators only call const methods.
+class Excitation {
+ public:
+  virtual ~Excitation() = default;
+
+  /// The smooth piece containing t (s); for t at a kink, the piece that starts there.
+  /// @pre t >= 0.
+  virtual ExcitationPiece PieceAt(double t) const = 0;
+
+  /// Ground acceleration (x, y) in m/s^2 at t (s); zero after Duration().
+  Eigen::Vector2d At(double t) const { return PieceAt(t).At(t); }
+
+  /// Time (s) after which the ground is at rest.
+  virtual double Duration() const = 0;
+};
+
+}  // namespace skewbridge

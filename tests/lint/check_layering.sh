@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Fails when a module includes a header it must not see (docs/architecture.md, "Layers"):
+#   solver/common  <- solver/{lcp,model,contact,dynamics}, records
+#   solver, records <- spectra <- jobs <- jobs/app
+# <mpi.h> only in jobs/mpi (and the MPI test main), <hdf5.h> only in jobs/h5.
+set -u
+root=${1:?usage: check_layering.sh SOURCE_ROOT}
+cd "$root" || exit 2
+status=0
+forbid() {  # forbid FOLDER PATTERN WHY
+  local hits
+  hits=$(grep -rnE --include='*.h' --include='*.cpp' "$2" "$1" 2>/dev/null)
+  if [ -n "$hits" ]; then
+    echo "layering: $1 must not include $3:"; echo "$hits"; status=1
+  fi
+}
+forbid solver/common '#include "(solver/(lcp|model|contact|dynamics)|records|spectra|jobs)/' "modules above it"
+forbid solver/lcp '#include "(solver/(model|contact|dynamics)|records|spectra|jobs)/' "model, contact, dynamics, records, spectra or jobs"
+forbid solver '#include "(records|spectra|jobs)/' "records, spectra or jobs"
+forbid records '#include "(solver/(lcp|model|contact|dynamics)|spectra|jobs)/' "the solver, spectra or jobs"
+forbid spectra '#include "jobs/' "jobs"
+forbid solver '#include <(mpi|hdf5)\.h>' "MPI or HDF5"
+forbid records '#include <(mpi|hdf5)\.h>' "MPI or HDF5"
+forbid spectra '#include <(mpi|hdf5)\.h>' "MPI or HDF5"
+hits=$(grep -rlE '#include <mpi\.h>' jobs --include='*.h' --include='*.cpp' | grep -v '^jobs/mpi/')
+[ -z "$hits" ] || { echo "layering: <mpi.h> outside jobs/mpi: $hits"; status=1; }
+hits=$(grep -rlE '#include <hdf5\.h>' jobs --include='*.h' --include='*.cpp' | grep -v '^jobs/h5/')
+[ -z "$hits" ] || { echo "layering: <hdf5.h> outside jobs/h5: $hits"; status=1; }
+# Libraries never print: the program and tests do.
+hits=$(grep -rnE 'std::(cout|cerr)|printf\(' solver records spectra --include='*.cpp' --include='*.h' | grep -v 'fprintf(stderr, "skewbridge: internal error')
+[ -z "$hits" ] || { echo "layering: libraries must not print:"; echo "$hits"; status=1; }
+[ $status -eq 0 ] && echo "layering: ok"
+exit $status
