@@ -1,0 +1,119 @@
+#pragma once
+/// @file
+/// The exact contact-free state transition of the linear system
+///
+///     M du/dt = -C u - K q - M r a_g(t),   s = (q, u)
+///
+/// over one smooth piece of the excitation ([method.md §3, smooth phases]). The piece's ground
+/// acceleration a_g = a + p is produced by a forcing generator appended to the state: the linear
+/// part (a, slope) with da/dt = slope, and the harmonic part as a rotating pair (p, k) with
+/// dp/dt = omega k, dk/dt = -omega p. The augmented state z = (q, u, a, slope, p, k) of size
+/// 2 n + 8 obeys dz/dt = A_hat z, so z(t + tau) = e^{A_hat tau} z(t) exactly: the matrix
+/// exponential carries the forcing terms Gamma0, Gamma1 of the Nigam-Jennings scheme and their
+/// harmonic counterparts in its last columns [Van Loan 1978]. The energy integrals of a step are
+/// quadratic forms of z(t) whose matrices follow from a second Van Loan exponential [Van Loan 1978,
+/// §4].
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "solver/common/excitation.h"
+
+namespace skewbridge::dynamics {
+
+/// Size of the forcing generator appended to (q, u): (a, slope, p, k), two components each.
+inline constexpr int kGeneratorSize = 8;
+
+/// The exact transition over one step of length tau_s with harmonic rate omega_radps.
+struct FreePropagator {
+  double tau_s = 0.0;            ///< step length (s)
+  double omega_radps = 0.0;      ///< harmonic rate of the excitation piece (rad/s)
+  Eigen::MatrixXd phi;           ///< e^{A_hat tau}, (2n+8) x (2n+8)
+  Eigen::MatrixXd input_gram;    ///< z0^T G z0 = -int_0^tau u^T M r a_g dt (J), symmetric
+  Eigen::MatrixXd damping_gram;  ///< z0^T G z0 = int_0^tau u^T C u dt (J), symmetric
+};
+
+/// The contact-free linear flow of a model: matrices, generator bookkeeping and a cache of
+/// propagators keyed by (tau, omega). A record with a fixed sample interval needs one propagator;
+/// a pulse two. The cache is a pure function of (model, tau, omega): reusing it across runs never
+/// changes a result.
+class LinearFlow {
+ public:
+  /// @param M, K, C n x n mass (kg, kg m^2), stiffness and damping matrices;
+  /// @param r n x 2 ground-influence matrix mapping (a_gx, a_gy) to the DOFs.
+  /// @pre M symmetric positive definite; sizes consistent (checked by SB_DEMAND).
+  LinearFlow(const Eigen::Ref<const Eigen::MatrixXd>& M, const Eigen::Ref<const Eigen::MatrixXd>& K,
+             const Eigen::Ref<const Eigen::MatrixXd>& C,
+             const Eigen::Ref<const Eigen::MatrixXd>& r);
+
+  int n_dof() const { return n_; }
+  /// 2 n + 8.
+  int augmented_size() const { return 2 * n_ + kGeneratorSize; }
+
+  /// A_hat for the harmonic rate omega (rad/s): dz/dt = A_hat z.
+  Eigen::MatrixXd AugmentedMatrix(double omega_radps) const;
+
+  /// Writes the generator part of z (entries 2n .. 2n+7) for time t_s inside piece.
+  void SetGenerator(const ExcitationPiece& piece, double t_s, Eigen::Ref<Eigen::VectorXd> z) const;
+
+  /// The propagator of a step tau_s (> 0) at rate omega_radps, from the cache or computed once.
+  /// The reference stays valid until the next call.
+  const FreePropagator& Propagator(double tau_s, double omega_radps);
+
+  /// dz/dt = A_hat z (no allocation).
+  void Derivative(double omega_radps, const Eigen::Ref<const Eigen::VectorXd>& z,
+                  Eigen::Ref<Eigen::VectorXd> dz) const;
+
+  /// Kinetic 1/2 u^T M u plus strain 1/2 q^T K q (J) of the (q, u) part of z.
+  double MechanicalEnergy(const Eigen::Ref<const Eigen::VectorXd>& z) const;
+
+  /// Power of the ground -u^T M r a_g (W) and of damping u^T C u (W) at the augmented state z.
+  void Powers(const Eigen::Ref<const Eigen::VectorXd>& z, double& input_W, double& damping_W) const;
+
+  const Eigen::MatrixXd& M() const { return M_; }
+  const Eigen::MatrixXd& K() const { return K_; }
+  const Eigen::MatrixXd& C() const { return C_; }
+  const Eigen::MatrixXd& r() const { return r_; }
+
+ private:
+  void Compute(double tau_s, double omega_radps, FreePropagator& out) const;
+
+  int n_;
+  Eigen::MatrixXd M_, K_, C_, r_;
+  Eigen::MatrixXd Mr_;         // M r, n x 2
+  Eigen::MatrixXd A_base_;     // A_hat without the omega entries
+  Eigen::MatrixXd Q_input_;    // quadratic form of the ground's power on z
+  Eigen::MatrixXd Q_damping_;  // quadratic form of the damping power on z
+  std::vector<FreePropagator> cache_;
+  std::size_t next_slot_ = 0;
+};
+
+/// The exact solution inside one step as a Taylor series z(tau) = sum_k c_k tau^k, c_k = A_hat^k
+/// z0 / k!, truncated where the terms fall below round-off for |tau| <= tau_max. Used to locate
+/// events and to sample output inside a step; e^{A_hat tau} itself is never formed for these.
+class FreeDenseOutput {
+ public:
+  /// Storage for a flow of augmented size n_aug, at most max_terms Taylor terms.
+  explicit FreeDenseOutput(int n_aug = 0, int max_terms = 48);
+
+  /// Builds the series from z0 for |tau| <= tau_max_s.
+  /// @pre omega_radps * tau_max and the flow's rates times tau_max are O(1) (steps bounded by a
+  /// fraction of the shortest period).
+  void Build(const LinearFlow& flow, double omega_radps,
+             const Eigen::Ref<const Eigen::VectorXd>& z0, double tau_max_s);
+
+  /// z(tau) (s since the step start).
+  void Evaluate(double tau_s, Eigen::Ref<Eigen::VectorXd> z) const;
+
+  /// dz/dtau at tau.
+  void EvaluateDerivative(double tau_s, Eigen::Ref<Eigen::VectorXd> dz) const;
+
+  int terms() const { return terms_; }
+
+ private:
+  Eigen::MatrixXd coefficients_;  // column k = c_k
+  Eigen::VectorXd largest_;       // per component, the largest term so far
+  int terms_ = 0;
+};
+
+}  // namespace skewbridge::dynamics
