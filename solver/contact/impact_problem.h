@@ -1,0 +1,74 @@
+#pragma once
+/// @file
+/// The velocity-level impact problem of [method.md §3, impact problem; Pfeiffer and Glocker
+/// 1996, §7; Dimitrakopoulos 2011, eq. 11] over an index set of k contacts:
+///
+///     w = A z + b,  w >= 0, z >= 0, w^T z = 0
+///     z = (Lambda_N, Lambda_R, gamma_TL),  w = (gamma_N,E + eps gamma_N,A, gamma_TR, Lambda_L)
+///     A = [ W_N^T M^-1 (W_N - W_T mu)   W_N^T M^-1 W_T   0
+///           W_T^T M^-1 (W_N - W_T mu)   W_T^T M^-1 W_T   E
+///           2 mu                        -E               0 ]
+///     b = ((E + eps) gamma_N,A, gamma_T,A, 0)
+///     u_E = u_A + M^-1 (W_N Lambda_N + W_T Lambda_T),  Lambda_T = Lambda_R - mu Lambda_N
+///
+/// solved with Lemke's algorithm (solver/lcp/lemke.h).
+
+#include <Eigen/Core>
+#include <span>
+
+#include "solver/contact/kinematics.h"
+#include "solver/lcp/lemke.h"
+#include "solver/model/model.h"
+
+namespace skewbridge::contact {
+
+/// Outcome of an impact; vectors indexed like the index set (entry j = contact index_set[j]),
+/// sized for all contacts of the model, only the first k entries meaningful.
+struct ImpactResult {
+  lcp::LcpStatus status = lcp::LcpStatus::kInvalidInput;
+  int k = 0;                  ///< contacts in the index set
+  Eigen::VectorXd u_E;        ///< post-impact velocities (n_dof)
+  Eigen::VectorXd Lambda_N;   ///< normal impulses (N s) >= 0
+  Eigen::VectorXd Lambda_T;   ///< tangential impulses (N s), |Lambda_T| <= mu Lambda_N
+  Eigen::VectorXd gamma_N_A;  ///< normal relative velocity before (m/s), as used
+  Eigen::VectorXd gamma_N_E;  ///< normal relative velocity after (m/s)
+  Eigen::VectorXd gamma_T_E;  ///< slip velocity after (m/s)
+  int pivots = 0;             ///< Lemke pivots
+};
+
+/// The impact problem with its workspace (sized once per model: no allocation per impact).
+class ImpactProblem {
+ public:
+  /// Sizes the workspace for up to model.n_contacts() contacts. Keeps a reference to `model`.
+  explicit ImpactProblem(const model::Model& model, lcp::LemkeOptions options = {});
+
+  /// Solves the impact of the contacts in `index_set` at the pre-impact velocity u_A, with the
+  /// Jacobians of `kinematics` (evaluated at the impact configuration). gamma_N,A = w_N^T u_A,
+  /// except for contacts listed in `persistent` (closed, in persistent contact), which take
+  /// part with gamma_N,A = 0 [method.md §3].
+  /// @pre index_set entries distinct and valid; u_A of size n_dof (SB_ASSERT).
+  /// @return result.status; when not kSolved, u_E = u_A and the impulses are zero.
+  lcp::LcpStatus Solve(const ContactKinematics& kinematics, std::span<const int> index_set,
+                       const Eigen::Ref<const Eigen::VectorXd>& u_A, ImpactResult& result,
+                       std::span<const int> persistent = {});
+
+  /// A result sized for this model (so Solve does not allocate).
+  ImpactResult MakeResult() const;
+
+  /// The LCP matrix and vector of the last Solve (3k x 3k and 3k), for inspection and tests.
+  Eigen::Ref<const Eigen::MatrixXd> last_A() const;
+  Eigen::Ref<const Eigen::VectorXd> last_b() const;
+
+ private:
+  const model::Model& model_;
+  lcp::LemkeSolver solver_;
+  lcp::LcpSolution solution_;
+  int k_ = 0;
+  Eigen::MatrixXd WN_, WT_;          // n_dof x k columns of the index set
+  Eigen::MatrixXd MinvWN_, MinvWT_;  // M^-1 W_N, M^-1 W_T
+  Eigen::VectorXd mu_, eps_;         // per index-set entry
+  Eigen::MatrixXd A_;                // 3 n_c x 3 n_c, top-left 3k x 3k used
+  Eigen::VectorXd b_;
+};
+
+}  // namespace skewbridge::contact

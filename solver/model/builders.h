@@ -1,0 +1,107 @@
+#pragma once
+/// @file
+/// Builders of the substructure matrices and abutment contacts, and the plain-data description
+/// of a single-deck bridge (DeckSpec) that the model file and the spectra both turn into a Model
+/// [method.md §2, §6].
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "solver/model/model.h"
+
+namespace skewbridge::model {
+
+/// K = diag(m w0x^2, m w0y^2, I_m W0^2) (N/m, N/m, N m/rad) [method.md §6, subsystem].
+Eigen::Matrix3d UncoupledStiffness(const Body& body, double w0x_radps, double w0y_radps,
+                                   double W0_radps);
+
+/// The pilot bridge's stiffness K = T^T K_cr T [method.md §6] with
+/// K_cr = blockdiag(R(phi) diag(m w1^2, m w2^2) R(phi)^T, I_m w_theta^2) about the centre of
+/// rigidity (e_x, e_y) and T = [[1, 0, -e_y], [0, 1, e_x], [0, 0, 1]].
+/// @param axis_rad phi, the angle of principal axis 1 from x (CCW positive).
+Eigen::Matrix3d PrincipalAxesStiffness(const Body& body, double w1_radps, double w2_radps,
+                                       double w_theta_radps, double axis_rad,
+                                       const Eigen::Vector2d& centre_of_rigidity_m);
+
+/// M = blockdiag(m, m, I_m) over the bodies.
+Eigen::MatrixXd MassMatrix(const std::vector<Body>& bodies);
+
+/// Ground influence r (n_dof x 2): unit entries mapping (a_gx, a_gy) to each body's (x, y).
+Eigen::MatrixXd GroundInfluence(int n_bodies);
+
+/// Natural frequencies w_k (rad/s, ascending) and mass-normalised modes Phi (columns,
+/// Phi^T M Phi = E) of K Phi = M Phi diag(w^2).
+/// @pre M symmetric positive definite, K symmetric positive semi-definite.
+struct Modes {
+  Eigen::VectorXd omega_radps;
+  Eigen::MatrixXd phi;
+};
+
+/// Solves the generalised eigenproblem K phi = w^2 M phi.
+Modes ComputeModes(const Eigen::Ref<const Eigen::MatrixXd>& M,
+                   const Eigen::Ref<const Eigen::MatrixXd>& K);
+
+/// Classical damping with ratio xi in every mode: C = M Phi diag(2 xi w_k) Phi^T M
+/// [method.md §2, damping].
+/// @throws InputError (field "substructure.xi") when xi is outside [0, 1).
+Eigen::MatrixXd ClassicalDamping(const Eigen::Ref<const Eigen::MatrixXd>& M,
+                                 const Eigen::Ref<const Eigen::MatrixXd>& K, double xi);
+
+/// Which abutments a deck can strike: "+x" only (contacts P1, P2: the single-abutment
+/// subsystem of method.md §6) or "both" (P1..P4).
+enum class AbutmentSet { kPlusX, kBoth };
+
+/// Contacts of deck `body_index` against ground-fixed abutments: P1, P2 against the +x face
+/// with gap gap_plus_m, and for kBoth P3, P4 against the -x face with gap gap_minus_m (gaps
+/// measured along x; the gap at rest is delta cos a). All get eps_N and mu.
+std::vector<Contact> AbutmentContacts(const Body& body, int body_index, AbutmentSet set,
+                                      double gap_plus_m, double gap_minus_m, double restitution,
+                                      double friction);
+
+/// Per-contact overrides of the abutment defaults.
+struct ContactOverride {
+  std::string name;                   ///< "P1".."P4"
+  std::optional<double> restitution;  ///< eps_N
+  std::optional<double> friction;     ///< mu
+};
+
+/// Plain data describing one deck on its substructure between abutments: everything the model
+/// file's [deck], [substructure] and [abutments] sections say, in SI units.
+struct DeckSpec {
+  // [deck]
+  double mass_kg = 0.0;                ///< deck.m
+  std::optional<double> inertia_kgm2;  ///< deck.I_m; empty = uniform-deck rule
+  DeckGeometry geometry;               ///< deck.L, deck.W (or eta0), deck.skew_deg
+
+  // [substructure]
+  enum class StiffnessKind { kUncoupled, kPrincipal, kMatrix };
+  StiffnessKind stiffness = StiffnessKind::kUncoupled;
+  double w0x_radps = 0.0;      ///< uncoupled: substructure.w0x
+  double w0y_radps = 0.0;      ///< uncoupled: substructure.w0y
+  double W0_radps = 0.0;       ///< uncoupled: substructure.W0 (torsion)
+  double w1_radps = 0.0;       ///< principal: substructure.w1
+  double w2_radps = 0.0;       ///< principal: substructure.w2
+  double w_theta_radps = 0.0;  ///< principal: substructure.w_theta
+  double axis_rad = 0.0;       ///< principal: substructure.axis_deg
+  Eigen::Vector2d centre_of_rigidity_m = Eigen::Vector2d::Zero();  ///< substructure.e_x, e_y
+  Eigen::Matrix3d K = Eigen::Matrix3d::Zero();                     ///< matrix: substructure.K
+  std::optional<Eigen::Matrix3d> C;  ///< substructure.C; empty = classical from xi
+  double xi = 0.05;                  ///< substructure.xi
+
+  // [abutments]
+  AbutmentSet abutments = AbutmentSet::kPlusX;  ///< abutments.set
+  double gap_plus_m = 0.0;                      ///< abutments.gap_m ("+x")
+  double gap_minus_m = 0.0;                     ///< abutments.gap_m ("-x")
+  double restitution = 0.5;                     ///< abutments.eps_N
+  double friction = 0.0;                        ///< abutments.mu
+  std::vector<ContactOverride> overrides;       ///< abutments.contacts.<name>
+};
+
+/// Builds and validates the Model described by a DeckSpec.
+/// @throws InputError naming the model-file key (e.g. "deck.W: must be > 0 (got -1)") for any
+/// value outside its range; `source` prefixes the message.
+Model BuildDeckModel(const DeckSpec& spec, const std::string& source = "model");
+
+}  // namespace skewbridge::model

@@ -1,0 +1,65 @@
+#pragma once
+/// @file
+/// The plan geometry of a skew deck (a parallelogram) and its rigid-body properties
+/// [method.md §2, deck geometry; Dimitrakopoulos 2011, Fig. 1]. Body frame: origin at the mass
+/// centre, x along the deck axis, y transverse, corners numbered as in NOTATION.md.
+
+#include <Eigen/Core>
+#include <string>
+
+namespace skewbridge::model {
+
+/// Plan geometry of a parallelogram deck spanned by (L, 0) and W (tan a, 1).
+struct DeckGeometry {
+  double length_m = 0.0;  ///< L: distance between the mid-points of the two end edges (m)
+  double width_m = 0.0;   ///< W: width perpendicular to the deck axis (m)
+  double skew_rad = 0.0;  ///< a: skew angle, 0 <= a < pi/2 (rad)
+};
+
+/// Corner P_k (k = 1..4) in the body frame (m) [method.md §2]:
+/// P1 = (L/2 + (W/2) tan a, W/2), P2 = (L/2 - (W/2) tan a, -W/2),
+/// P3 = (-L/2 - (W/2) tan a, -W/2), P4 = (-L/2 + (W/2) tan a, W/2).
+/// P1, P3 are the acute corners, P2, P4 the obtuse ones.
+/// @pre 1 <= k <= 4 (SB_DEMAND).
+Eigen::Vector2d Corner(const DeckGeometry& deck, int k);
+
+/// Radius of gyration squared of a uniform deck (m^2): rho^2 = (L^2 + W^2 / cos^2 a) / 12
+/// [method.md §2].
+double UniformRadiusOfGyrationSquared(const DeckGeometry& deck);
+
+/// Polar mass moment of inertia of a uniform deck (kg m^2): I_m = m rho^2 [method.md §2].
+double UniformDeckInertia(double mass_kg, const DeckGeometry& deck);
+
+/// The frictionless skew ratio eta0 = sin 2a / (2 W / L) [Dimitrakopoulos 2011, eq. 14;
+/// method.md §4 fact 1]. eta0 <= 1 iff the obtuse-corner lever arm r_2 <= 0.
+double Eta0(const DeckGeometry& deck);
+
+/// The width that gives a skew ratio: W = L sin 2a / (2 eta0) (m), the inverse of Eta0.
+/// @pre eta0 > 0, 0 < a < pi/2.
+double WidthFromEta0(double eta0, double skew_rad, double length_m);
+
+/// The frictional skew ratio eta1 = eta0 (1 + mu / tan a) [Dimitrakopoulos 2011, eq. 20;
+/// method.md §4 fact 2, sigma = +1].
+double Eta1(const DeckGeometry& deck, double mu);
+
+/// Lever arms of the +x abutment's closed forms (m) [method.md §2]:
+/// r_1 = (L sin a + W / cos a) / 2, r_2 = (L sin a - W / cos a) / 2, r_T = L cos a / 2.
+struct LeverArms {
+  double r1_m = 0.0;
+  double r2_m = 0.0;
+  double rT_m = 0.0;
+};
+
+/// The lever arms r_1, r_2, r_T of a deck [method.md §2].
+LeverArms ComputeLeverArms(const DeckGeometry& deck);
+
+/// One planar rigid body (a deck): its generalised coordinates (x, y, theta) relative to the
+/// ground occupy DOFs 3 i .. 3 i + 2 of the model, i its index.
+struct Body {
+  std::string name = "deck";
+  double mass_kg = 0.0;       ///< m (kg) > 0
+  double inertia_kgm2 = 0.0;  ///< I_m (kg m^2) > 0, about the mass centre
+  DeckGeometry geometry;      ///< plan shape in the body frame
+};
+
+}  // namespace skewbridge::model

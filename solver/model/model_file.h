@@ -1,0 +1,85 @@
+#pragma once
+/// @file
+/// The model file (TOML, docs/model-format.md): [deck], [substructure], [abutments],
+/// [excitation], [run]. The parser returns plain data: the Model, an ExcitationSpec (turned into
+/// a records:: excitation by the program, since the solver does not see records/) and the
+/// RunControl of the integrator.
+
+#include <Eigen/Core>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "solver/model/builders.h"
+#include "solver/model/model.h"
+
+namespace skewbridge::model {
+
+/// Standard gravity (m/s^2), for accelerations given in g.
+inline constexpr double kStandardGravity_mps2 = 9.80665;
+
+/// The ground motion a model file asks for, as pure data (SI units).
+struct ExcitationSpec {
+  enum class Kind { kPulse, kSampled };
+  enum class PulseShape { kCosine, kSine };
+
+  Kind kind = Kind::kPulse;
+  /// Unit direction (x, y) of the ground motion (excitation.direction or angle_deg).
+  Eigen::Vector2d direction = Eigen::Vector2d::UnitX();
+
+  // kind = "pulse": one cycle of a_g cos(w_g t) or a_g sin(w_g t) [method.md §5].
+  PulseShape shape = PulseShape::kCosine;
+  double amplitude_mps2 = 0.0;  ///< a_g (m/s^2; the file may give a_g_g in g)
+  double omega_radps = 0.0;     ///< w_g (rad/s; the file may give T_g = 2 pi / w_g in s)
+
+  // kind = "sampled": from `file` (resolved against the model file's folder) or inline values.
+  std::filesystem::path file;  ///< empty when the values are inline
+  std::optional<double> dt_s;  ///< sample interval; empty = from the file's time column
+  double to_mps2 = 1.0;        ///< factor from the file's numbers to m/s^2 (units x scale)
+  std::vector<double> values;  ///< inline samples, already multiplied by to_mps2
+
+  /// Duration (s) of a pulse, 2 pi / w_g; for inline samples (n - 1) dt; for a file, empty
+  /// (the program knows it after reading the file).
+  std::optional<double> Duration() const;
+};
+
+/// Integration controls from the [run] section (the integrator defines their precise use).
+struct RunControl {
+  std::optional<double> end_time_s;        ///< run.end_time_s; empty = excitation + tail
+  double tail_s = 2.0;                     ///< run.tail_s: free vibration after the excitation
+  double output_interval_s = 0.0;          ///< run.output_interval_s; 0 = no histories
+  double relative_tolerance = 1e-10;       ///< run.rel_tol of the adaptive steps
+  double absolute_tolerance = 1e-12;       ///< run.abs_tol (state units)
+  double accumulation_threshold = 1e-6;    ///< run.accumulation_threshold (scaled, see the format)
+  double simultaneity_tolerance_s = 1e-9;  ///< run.simultaneity_tol_s for simultaneous impacts
+  std::string method = "event-driven";     ///< run.method: "event-driven" | "time-stepping"
+  double time_step_s = 1e-4;               ///< run.time_step_s (time-stepping only)
+  long max_steps = 10'000'000;             ///< run.max_steps
+
+  /// The end time (s): end_time_s if given, else excitation_duration_s + tail_s.
+  double EndTime(double excitation_duration_s) const;
+};
+
+/// A parsed model file.
+struct ModelFile {
+  std::filesystem::path path;  ///< the file read ("" for a string)
+  DeckSpec deck;               ///< the plain-data description the model was built from
+  Model model;
+  ExcitationSpec excitation;
+  RunControl run;
+};
+
+/// Reads and validates a model file.
+/// @throws InputError "FILE:LINE: KEY: problem (allowed ...)" for a syntax error, an unknown or
+/// missing key, a wrong type or a value outside its range; "FILE: cannot open" if unreadable.
+ModelFile ParseModelFile(const std::filesystem::path& path);
+
+/// Parses model-file text; `source_name` is used in messages and `base_dir` resolves relative
+/// paths (excitation.file).
+/// @throws InputError as ParseModelFile.
+ModelFile ParseModelString(std::string_view text, std::string_view source_name,
+                           const std::filesystem::path& base_dir = {});
+
+}  // namespace skewbridge::model
