@@ -1,0 +1,148 @@
+#include "solver/contact/kinematics.h"
+
+#include <cmath>
+
+#include "solver/common/error.h"
+
+namespace skewbridge::contact {
+
+namespace {
+
+// J v: v rotated by +90 deg, so that R'(theta) = J R(theta) and d(R v)/dt = thetadot J R v.
+Eigen::Vector2d Perp(const Eigen::Vector2d& v) { return {-v.y(), v.x()}; }
+
+// The world-frame quantities of one contact at q: P, the arm R_i p, n, t, and the face body's
+// origin (zero for the ground).
+struct Geometry {
+  Eigen::Vector2d P;       // world position of the point (m)
+  Eigen::Vector2d arm;     // R(theta_i) p (m)
+  Eigen::Vector2d n;       // face normal, world
+  Eigen::Vector2d t;       // face tangent, world
+  Eigen::Vector2d A;       // face point, world (m)
+  Eigen::Vector2d origin;  // face body's mass centre, world (m); zero for the ground
+};
+
+Geometry Compute(const model::Model& model, int c, const Eigen::Ref<const Eigen::VectorXd>& q) {
+  const model::Contact& contact = model.contact(c);
+  const int i = 3 * contact.body;
+  Geometry g;
+  g.arm = Rotation(q(i + 2)) * contact.point_m;
+  g.P = q.segment<2>(i) + g.arm;
+  if (contact.face.body == model::kGround) {
+    g.n = contact.face.normal;
+    g.t = contact.face.tangent;
+    g.A = contact.face.point_m;
+    g.origin.setZero();
+  } else {
+    const int j = 3 * contact.face.body;
+    const Eigen::Matrix2d R_j = Rotation(q(j + 2));
+    g.n = R_j * contact.face.normal;
+    g.t = R_j * contact.face.tangent;
+    g.origin = q.segment<2>(j);
+    g.A = g.origin + R_j * contact.face.point_m;
+  }
+  return g;
+}
+
+}  // namespace
+
+void ContactKinematics::Resize(const model::Model& model) {
+  const int n = model.n_dof();
+  const int k = model.n_contacts();
+  gap_m.setZero(k);
+  W_N.setZero(n, k);
+  W_T.setZero(n, k);
+  gamma_N.setZero(k);
+  gamma_T.setZero(k);
+  what_N.setZero(k);
+  what_T.setZero(k);
+}
+
+Eigen::Matrix2d Rotation(double theta_rad) {
+  const double c = std::cos(theta_rad);
+  const double s = std::sin(theta_rad);
+  Eigen::Matrix2d R;
+  R << c, -s, s, c;
+  return R;
+}
+
+double Gap(const model::Model& model, int c, const Eigen::Ref<const Eigen::VectorXd>& q) {
+  const Geometry g = Compute(model, c, q);
+  return g.n.dot(g.P - g.A);
+}
+
+Eigen::Vector2d PointPosition(const model::Model& model, int c,
+                              const Eigen::Ref<const Eigen::VectorXd>& q) {
+  return Compute(model, c, q).P;
+}
+
+void FaceDirections(const model::Model& model, int c, const Eigen::Ref<const Eigen::VectorXd>& q,
+                    Eigen::Vector2d& n, Eigen::Vector2d& t) {
+  const Geometry g = Compute(model, c, q);
+  n = g.n;
+  t = g.t;
+}
+
+void Jacobians(const model::Model& model, int c, const Eigen::Ref<const Eigen::VectorXd>& q,
+               Eigen::Ref<Eigen::VectorXd> w_N, Eigen::Ref<Eigen::VectorXd> w_T) {
+  const model::Contact& contact = model.contact(c);
+  const Geometry g = Compute(model, c, q);
+  w_N.setZero();
+  w_T.setZero();
+  const int i = 3 * contact.body;
+  // Velocity of P: v_i + thetadot_i J R_i p [method.md §2: R'(theta) p = J R(theta) p].
+  const Eigen::Vector2d lever_i = Perp(g.arm);
+  w_N.segment<2>(i) = g.n;
+  w_N(i + 2) = g.n.dot(lever_i);
+  w_T.segment<2>(i) = g.t;
+  w_T(i + 2) = g.t.dot(lever_i);
+  if (contact.face.body != model::kGround) {
+    // The face's material point at P moves with v_j + thetadot_j J (P - x_j).
+    const int j = 3 * contact.face.body;
+    const Eigen::Vector2d lever_j = Perp(g.P - g.origin);
+    w_N.segment<2>(j) = -g.n;
+    w_N(j + 2) = -g.n.dot(lever_j);
+    w_T.segment<2>(j) = -g.t;
+    w_T(j + 2) = -g.t.dot(lever_j);
+  }
+}
+
+void VelocityTerms(const model::Model& model, int c, const Eigen::Ref<const Eigen::VectorXd>& q,
+                   const Eigen::Ref<const Eigen::VectorXd>& u, double& what_N, double& what_T) {
+  const model::Contact& contact = model.contact(c);
+  const Geometry g = Compute(model, c, q);
+  const int i = 3 * contact.body;
+  const double thetadot_i = u(i + 2);
+  // d/dt (thetadot_i J R_i p) = thetadot_ddot J R_i p - thetadot_i^2 R_i p: the second term.
+  const Eigen::Vector2d centripetal = -thetadot_i * thetadot_i * g.arm;
+  if (contact.face.body == model::kGround) {
+    what_N = g.n.dot(centripetal);
+    what_T = g.t.dot(centripetal);
+    return;
+  }
+  // Body face: gamma = n_w . (v_P - v_Q) with n_w, t_w turning at thetadot_j and
+  // v_Q = v_j + thetadot_j J (P - x_j), whose arm changes at v_P - v_j.
+  const int j = 3 * contact.face.body;
+  const double thetadot_j = u(j + 2);
+  const Eigen::Vector2d v_P = u.segment<2>(i) + thetadot_i * Perp(g.arm);
+  const Eigen::Vector2d v_Q = u.segment<2>(j) + thetadot_j * Perp(g.P - g.origin);
+  const Eigen::Vector2d relative = v_P - v_Q;
+  const Eigen::Vector2d face_turn = -thetadot_j * Perp(v_P - u.segment<2>(j));
+  what_N = thetadot_j * Perp(g.n).dot(relative) + g.n.dot(centripetal + face_turn);
+  what_T = thetadot_j * Perp(g.t).dot(relative) + g.t.dot(centripetal + face_turn);
+}
+
+void Evaluate(const model::Model& model, const Eigen::Ref<const Eigen::VectorXd>& q,
+              const Eigen::Ref<const Eigen::VectorXd>& u, ContactKinematics& out) {
+  SB_ASSERT(out.W_N.rows() == model.n_dof() && out.W_N.cols() == model.n_contacts(),
+            "ContactKinematics not sized for this model");
+  for (int c = 0; c < model.n_contacts(); ++c) {
+    out.gap_m(c) = Gap(model, c, q);
+    Jacobians(model, c, q, out.W_N.col(c), out.W_T.col(c));
+    out.gamma_N(c) = out.W_N.col(c).dot(u);
+    out.gamma_T(c) = out.W_T.col(c).dot(u);
+    VelocityTerms(model, c, q, u, out.what_N(c), out.what_T(c));
+  }
+}
+
+}  // namespace skewbridge::contact

@@ -1,0 +1,195 @@
+#include "solver/model/builders.h"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <numbers>
+
+#include "solver/common/error.h"
+#include "solver/model/checks.h"
+
+namespace skewbridge::model {
+
+using detail::CheckNonNegative;
+using detail::CheckPositive;
+using detail::CheckRange;
+using detail::Fail;
+using detail::Where;
+
+Eigen::Matrix3d UncoupledStiffness(const Body& body, double w0x_radps, double w0y_radps,
+                                   double W0_radps) {
+  Eigen::Matrix3d K = Eigen::Matrix3d::Zero();
+  K(0, 0) = body.mass_kg * w0x_radps * w0x_radps;
+  K(1, 1) = body.mass_kg * w0y_radps * w0y_radps;
+  K(2, 2) = body.inertia_kgm2 * W0_radps * W0_radps;
+  return K;
+}
+
+Eigen::Matrix3d PrincipalAxesStiffness(const Body& body, double w1_radps, double w2_radps,
+                                       double w_theta_radps, double axis_rad,
+                                       const Eigen::Vector2d& centre_of_rigidity_m) {
+  const double c = std::cos(axis_rad);
+  const double s = std::sin(axis_rad);
+  Eigen::Matrix2d R;
+  R << c, -s, s, c;
+  const Eigen::Vector2d principal(body.mass_kg * w1_radps * w1_radps,
+                                  body.mass_kg * w2_radps * w2_radps);
+  Eigen::Matrix3d K_cr = Eigen::Matrix3d::Zero();
+  K_cr.topLeftCorner<2, 2>() = R * principal.asDiagonal() * R.transpose();
+  K_cr(2, 2) = body.inertia_kgm2 * w_theta_radps * w_theta_radps;
+  // Displacements of the centre of rigidity: (x - e_y theta, y + e_x theta, theta) = T q.
+  Eigen::Matrix3d T = Eigen::Matrix3d::Identity();
+  T(0, 2) = -centre_of_rigidity_m.y();
+  T(1, 2) = centre_of_rigidity_m.x();
+  const Eigen::Matrix3d K = T.transpose() * K_cr * T;
+  return 0.5 * (K + K.transpose());
+}
+
+Eigen::MatrixXd MassMatrix(const std::vector<Body>& bodies) {
+  const int n = 3 * static_cast<int>(bodies.size());
+  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n, n);
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const int k = 3 * static_cast<int>(i);
+    M(k, k) = bodies[i].mass_kg;
+    M(k + 1, k + 1) = bodies[i].mass_kg;
+    M(k + 2, k + 2) = bodies[i].inertia_kgm2;
+  }
+  return M;
+}
+
+Eigen::MatrixXd GroundInfluence(int n_bodies) {
+  Eigen::MatrixXd r = Eigen::MatrixXd::Zero(3 * n_bodies, 2);
+  for (int i = 0; i < n_bodies; ++i) {
+    r(3 * i, 0) = 1.0;
+    r(3 * i + 1, 1) = 1.0;
+  }
+  return r;
+}
+
+Modes ComputeModes(const Eigen::Ref<const Eigen::MatrixXd>& M,
+                   const Eigen::Ref<const Eigen::MatrixXd>& K) {
+  // The generalised solver returns M-orthonormal eigenvectors, ascending eigenvalues.
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(K, M);
+  SB_DEMAND(eig.info() == Eigen::Success, "generalised eigenproblem failed");
+  Modes modes;
+  modes.omega_radps = eig.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+  modes.phi = eig.eigenvectors();
+  return modes;
+}
+
+Eigen::MatrixXd ClassicalDamping(const Eigen::Ref<const Eigen::MatrixXd>& M,
+                                 const Eigen::Ref<const Eigen::MatrixXd>& K, double xi) {
+  CheckRange(xi, 0.0, 1.0, true, "substructure.xi", Where{"model", 0});
+  const Modes modes = ComputeModes(M, K);
+  const Eigen::MatrixXd MPhi = M * modes.phi;
+  const Eigen::VectorXd modal = 2.0 * xi * modes.omega_radps;
+  const Eigen::MatrixXd C = MPhi * modal.asDiagonal() * MPhi.transpose();
+  return 0.5 * (C + C.transpose());
+}
+
+std::vector<Contact> AbutmentContacts(const Body& body, int body_index, AbutmentSet set,
+                                      double gap_plus_m, double gap_minus_m, double restitution,
+                                      double friction) {
+  std::vector<Contact> contacts;
+  const Face plus = PlusXAbutmentFace(body.geometry, gap_plus_m);
+  const Face minus = MinusXAbutmentFace(body.geometry, gap_minus_m);
+  for (int k = 1; k <= (set == AbutmentSet::kBoth ? 4 : 2); ++k) {
+    Contact c;
+    c.name = std::string("P").append(std::to_string(k));
+    c.body = body_index;
+    c.point_m = Corner(body.geometry, k);
+    c.face = k <= 2 ? plus : minus;
+    c.restitution = restitution;
+    c.friction = friction;
+    contacts.push_back(c);
+  }
+  return contacts;
+}
+
+Model BuildDeckModel(const DeckSpec& spec, const std::string& source) {
+  const Where where{source, 0};
+  CheckPositive(spec.mass_kg, "deck.m", where);
+  CheckPositive(spec.geometry.length_m, "deck.L", where);
+  CheckPositive(spec.geometry.width_m, "deck.W", where);
+  CheckRange(spec.geometry.skew_rad * 180.0 / std::numbers::pi, 0.0, 90.0, true, "deck.skew_deg",
+             where, "deg");
+  Body body;
+  body.mass_kg = spec.mass_kg;
+  body.geometry = spec.geometry;
+  if (spec.inertia_kgm2) {
+    CheckPositive(*spec.inertia_kgm2, "deck.I_m", where);
+    body.inertia_kgm2 = *spec.inertia_kgm2;
+  } else {
+    body.inertia_kgm2 = UniformDeckInertia(spec.mass_kg, spec.geometry);
+  }
+
+  Eigen::Matrix3d K;
+  switch (spec.stiffness) {
+    case DeckSpec::StiffnessKind::kUncoupled:
+      CheckNonNegative(spec.w0x_radps, "substructure.w0x", where);
+      CheckNonNegative(spec.w0y_radps, "substructure.w0y", where);
+      CheckNonNegative(spec.W0_radps, "substructure.W0", where);
+      K = UncoupledStiffness(body, spec.w0x_radps, spec.w0y_radps, spec.W0_radps);
+      break;
+    case DeckSpec::StiffnessKind::kPrincipal:
+      CheckNonNegative(spec.w1_radps, "substructure.w1", where);
+      CheckNonNegative(spec.w2_radps, "substructure.w2", where);
+      CheckNonNegative(spec.w_theta_radps, "substructure.w_theta", where);
+      detail::CheckFinite(spec.axis_rad, "substructure.axis_deg", where);
+      detail::CheckFinite(spec.centre_of_rigidity_m.x(), "substructure.e_x", where);
+      detail::CheckFinite(spec.centre_of_rigidity_m.y(), "substructure.e_y", where);
+      K = PrincipalAxesStiffness(body, spec.w1_radps, spec.w2_radps, spec.w_theta_radps,
+                                 spec.axis_rad, spec.centre_of_rigidity_m);
+      break;
+    case DeckSpec::StiffnessKind::kMatrix:
+    default:
+      K = spec.K;
+      break;
+  }
+  std::vector<Body> bodies{body};
+  const Eigen::MatrixXd M = MassMatrix(bodies);
+  Eigen::MatrixXd C;
+  if (spec.C) {
+    C = *spec.C;
+  } else {
+    CheckRange(spec.xi, 0.0, 1.0, true, "substructure.xi", where);
+    if (!K.allFinite()) {
+      Fail(where, "substructure.K", "must contain finite numbers only (got NaN or Inf)");
+    }
+    // Damping needs a valid K: the Model checks it again, but an asymmetric K would make
+    // the modes meaningless, so report it here first.
+    Model check_k(bodies, K, Eigen::Matrix3d::Zero(), GroundInfluence(1), {}, source);
+    C = ClassicalDamping(M, K, spec.xi);
+  }
+
+  CheckNonNegative(spec.gap_plus_m, "abutments.gap_m", where);
+  CheckNonNegative(spec.gap_minus_m, "abutments.gap_m", where);
+  CheckRange(spec.restitution, 0.0, 1.0, false, "abutments.eps_N", where);
+  CheckNonNegative(spec.friction, "abutments.mu", where);
+  std::vector<Contact> contacts = AbutmentContacts(
+      body, 0, spec.abutments, spec.gap_plus_m, spec.gap_minus_m, spec.restitution, spec.friction);
+  for (const ContactOverride& o : spec.overrides) {
+    Contact* target = nullptr;
+    for (Contact& c : contacts) {
+      if (c.name == o.name) {
+        target = &c;
+      }
+    }
+    if (target == nullptr) {
+      Fail(where, "abutments.contacts." + o.name,
+           spec.abutments == AbutmentSet::kBoth
+               ? "unknown contact (allowed: P1, P2, P3, P4)"
+               : "unknown contact (allowed with set = \"+x\": P1, P2)");
+    }
+    if (o.restitution) {
+      CheckRange(*o.restitution, 0.0, 1.0, false, "abutments.contacts." + o.name + ".eps_N", where);
+      target->restitution = *o.restitution;
+    }
+    if (o.friction) {
+      CheckNonNegative(*o.friction, "abutments.contacts." + o.name + ".mu", where);
+      target->friction = *o.friction;
+    }
+  }
+  return Model(std::move(bodies), K, C, GroundInfluence(1), std::move(contacts), source);
+}
+
+}  // namespace skewbridge::model

@@ -1,0 +1,176 @@
+#include "solver/model/model.h"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <numbers>
+
+#include "solver/common/error.h"
+#include "solver/model/checks.h"
+
+namespace skewbridge::model {
+
+using detail::CheckFinite;
+using detail::CheckNonNegative;
+using detail::CheckPositive;
+using detail::CheckRange;
+using detail::Fail;
+using detail::Show;
+using detail::Where;
+
+Face PlusXAbutmentFace(const DeckGeometry& deck, double gap_m) {
+  const double s = std::sin(deck.skew_rad);
+  const double c = std::cos(deck.skew_rad);
+  Face face;
+  face.body = kGround;
+  face.point_m = {0.5 * deck.length_m + gap_m, 0.0};
+  face.normal = {-c, s};
+  face.tangent = {s, c};
+  return face;
+}
+
+Face MinusXAbutmentFace(const DeckGeometry& deck, double gap_m) {
+  const double s = std::sin(deck.skew_rad);
+  const double c = std::cos(deck.skew_rad);
+  Face face;
+  face.body = kGround;
+  face.point_m = {-0.5 * deck.length_m - gap_m, 0.0};
+  face.normal = {c, -s};
+  face.tangent = {-s, -c};
+  return face;
+}
+
+namespace {
+
+// Symmetric and positive semi-definite within a relative 1e-9 of the largest entry.
+void CheckSymmetricPsd(const Eigen::MatrixXd& A, int n, std::string_view field, const Where& where,
+                       bool require_psd) {
+  if (A.rows() != n || A.cols() != n) {
+    Fail(where, field,
+         "must be " + std::to_string(n) + " x " + std::to_string(n) + " (got " +
+             std::to_string(A.rows()) + " x " + std::to_string(A.cols()) + ")");
+  }
+  if (!A.allFinite()) {
+    Fail(where, field, "must contain finite numbers only (got NaN or Inf)");
+  }
+  const double scale = A.cwiseAbs().maxCoeff();
+  const double asymmetry = (A - A.transpose()).cwiseAbs().maxCoeff();
+  if (asymmetry > 1e-9 * scale) {
+    Fail(where, field,
+         "must be symmetric (max |A - A^T| = " + Show(asymmetry) + ", allowed 1e-9 max|A|)");
+  }
+  if (require_psd && scale > 0.0) {
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(0.5 * (A + A.transpose()),
+                                                             Eigen::EigenvaluesOnly);
+    const double smallest = eig.eigenvalues().minCoeff();
+    if (smallest < -1e-9 * scale) {
+      Fail(where, field,
+           "must be positive semi-definite (smallest eigenvalue " + Show(smallest) + ")");
+    }
+  }
+}
+
+std::string BodyField(int n_bodies, int i, std::string_view key) {
+  std::string prefix = n_bodies == 1 ? "deck" : "decks[" + std::to_string(i) + "]";
+  return prefix + "." + std::string(key);
+}
+
+}  // namespace
+
+Model::Model(std::vector<Body> bodies, Eigen::MatrixXd K, Eigen::MatrixXd C, Eigen::MatrixXd r,
+             std::vector<Contact> contacts, std::string source)
+    : bodies_(std::move(bodies)),
+      K_(std::move(K)),
+      C_(std::move(C)),
+      r_(std::move(r)),
+      contacts_(std::move(contacts)),
+      source_(std::move(source)) {
+  const Where where{source_, 0};
+  const int nb = n_bodies();
+  if (nb == 0) {
+    Fail(where, "deck", "at least one deck is required");
+  }
+  for (int i = 0; i < nb; ++i) {
+    const Body& b = bodies_[static_cast<std::size_t>(i)];
+    CheckPositive(b.mass_kg, BodyField(nb, i, "m"), where);
+    CheckPositive(b.inertia_kgm2, BodyField(nb, i, "I_m"), where);
+    CheckPositive(b.geometry.length_m, BodyField(nb, i, "L"), where);
+    CheckPositive(b.geometry.width_m, BodyField(nb, i, "W"), where);
+    CheckRange(b.geometry.skew_rad * 180.0 / std::numbers::pi, 0.0, 90.0, true,
+               BodyField(nb, i, "skew_deg"), where, "deg");
+  }
+  const int n = n_dof();
+  mass_diagonal_.resize(n);
+  for (int i = 0; i < nb; ++i) {
+    const Body& b = bodies_[static_cast<std::size_t>(i)];
+    mass_diagonal_.segment<3>(3 * i) << b.mass_kg, b.mass_kg, b.inertia_kgm2;
+  }
+  inverse_mass_diagonal_ = mass_diagonal_.cwiseInverse();
+  M_ = mass_diagonal_.asDiagonal();
+
+  CheckSymmetricPsd(K_, n, "substructure.K", where, true);
+  CheckSymmetricPsd(C_, n, "substructure.C", where, true);
+  if (r_.rows() != n || r_.cols() != 2 || !r_.allFinite()) {
+    Fail(where, "r", "must be a finite " + std::to_string(n) + " x 2 ground-influence matrix");
+  }
+
+  for (const Contact& c : contacts_) {
+    const std::string field = "abutments.contacts." + c.name;
+    if (c.body < 0 || c.body >= nb) {
+      Fail(where, field + ".body", "must be a deck index in [0, " + std::to_string(nb) + ")");
+    }
+    if (c.face.body != kGround && (c.face.body < 0 || c.face.body >= nb || c.face.body == c.body)) {
+      Fail(where, field + ".face", "must be on the ground or on another deck");
+    }
+    if (!c.point_m.allFinite() || !c.face.point_m.allFinite() || !c.face.normal.allFinite() ||
+        !c.face.tangent.allFinite()) {
+      Fail(where, field, "must have finite geometry (got NaN or Inf)");
+    }
+    if (std::abs(c.face.normal.norm() - 1.0) > 1e-12 ||
+        std::abs(c.face.tangent.norm() - 1.0) > 1e-12 ||
+        std::abs(c.face.normal.dot(c.face.tangent)) > 1e-12) {
+      Fail(where, field + ".face", "n and t must be orthogonal unit vectors");
+    }
+    CheckRange(c.restitution, 0.0, 1.0, false, field + ".eps_N", where);
+    CheckNonNegative(c.friction, field + ".mu", where);
+    // The gap at rest (q = 0), by the general form g = n . (R p - A) for ground faces.
+    if (c.face.body == kGround) {
+      const double gap = c.face.normal.dot(c.point_m - c.face.point_m);
+      if (gap < -1e-12 * bodies_[static_cast<std::size_t>(c.body)].geometry.length_m) {
+        Fail(where, "abutments.gap_m",
+             "must be >= 0: contact " + c.name + " has gap " + Show(gap) + " m at rest");
+      }
+    }
+  }
+}
+
+int Model::FindContact(const std::string& name) const {
+  for (int c = 0; c < n_contacts(); ++c) {
+    if (contacts_[static_cast<std::size_t>(c)].name == name) {
+      return c;
+    }
+  }
+  return -1;
+}
+
+void Model::AppliedForces(const Eigen::Ref<const Eigen::VectorXd>& q,
+                          const Eigen::Ref<const Eigen::VectorXd>& u,
+                          const Eigen::Vector2d& a_g_mps2, Eigen::Ref<Eigen::VectorXd> h) const {
+  h.noalias() = -C_ * u;
+  h.noalias() -= K_ * q;
+  // M r a_g column by column, M diagonal: no temporary.
+  for (int j = 0; j < 2; ++j) {
+    h.noalias() -= a_g_mps2(j) * mass_diagonal_.cwiseProduct(r_.col(j));
+  }
+}
+
+double Model::MechanicalEnergy(const Eigen::Ref<const Eigen::VectorXd>& q,
+                               const Eigen::Ref<const Eigen::VectorXd>& u) const {
+  const double kinetic = 0.5 * u.dot(mass_diagonal_.asDiagonal() * u);
+  double strain = 0.0;
+  for (int i = 0; i < K_.cols(); ++i) {
+    strain += 0.5 * q(i) * K_.col(i).dot(q);
+  }
+  return kinetic + strain;
+}
+
+}  // namespace skewbridge::model

@@ -1,0 +1,543 @@
+#include "solver/model/model_file.h"
+
+#include <toml++/toml.h>
+
+#include <cctype>
+#include <cmath>
+#include <fstream>
+#include <initializer_list>
+#include <numbers>
+#include <set>
+#include <sstream>
+
+#include "solver/common/error.h"
+#include "solver/model/checks.h"
+
+namespace skewbridge::model {
+
+using detail::CheckFinite;
+using detail::CheckNonNegative;
+using detail::CheckPositive;
+using detail::CheckRange;
+using detail::Fail;
+using detail::Where;
+
+std::optional<double> ExcitationSpec::Duration() const {
+  if (kind == Kind::kPulse) {
+    return 2.0 * std::numbers::pi / omega_radps;
+  }
+  if (file.empty() && dt_s && !values.empty()) {
+    return *dt_s * static_cast<double>(values.size() - 1);
+  }
+  return std::nullopt;
+}
+
+double RunControl::EndTime(double excitation_duration_s) const {
+  return end_time_s ? *end_time_s : excitation_duration_s + tail_s;
+}
+
+namespace {
+
+constexpr double kDegToRad = std::numbers::pi / 180.0;
+
+long LineOf(const toml::node& node) { return static_cast<long>(node.source().begin.line); }
+
+std::string Join(std::initializer_list<std::string_view> names) {
+  std::string out;
+  for (std::string_view n : names) {
+    if (!out.empty()) {
+      out += ", ";
+    }
+    out += n;
+  }
+  return out;
+}
+
+// One TOML table being read: remembers which keys were used so that any other key is reported
+// as unknown, with the key path and line.
+class Section {
+ public:
+  Section(const toml::table& table, std::string path, std::string_view source)
+      : table_(table), path_(std::move(path)), source_(source) {}
+
+  // The TOML key path; keys that are not bare TOML keys ("+x") are quoted.
+  std::string Field(std::string_view key) const {
+    bool bare = !key.empty();
+    for (char c : key) {
+      bare = bare && (std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_' || c == '-');
+    }
+    const std::string shown = bare ? std::string(key) : "\"" + std::string(key) + "\"";
+    return path_.empty() ? shown : path_ + "." + shown;
+  }
+  Where At(std::string_view key) const {
+    const toml::node* node = table_.get(key);
+    return Where{source_, node != nullptr ? LineOf(*node) : TableLine()};
+  }
+  long TableLine() const { return LineOf(table_); }
+  bool Has(std::string_view key) const { return table_.contains(key); }
+  const toml::node* Get(std::string_view key) {
+    used_.insert(std::string(key));
+    return table_.get(key);
+  }
+
+  [[noreturn]] void Missing(std::string_view key, std::string_view what) const {
+    Fail(Where{source_, TableLine()}, Field(key),
+         std::string("missing required key (").append(what).append(")"));
+  }
+
+  std::optional<double> Number(std::string_view key) {
+    const toml::node* node = Get(key);
+    if (node == nullptr) {
+      return std::nullopt;
+    }
+    if (!node->is_number()) {
+      Fail(At(key), Field(key), "must be a number");
+    }
+    const double value =
+        node->is_integer() ? static_cast<double>(*node->value<int64_t>()) : *node->value<double>();
+    CheckFinite(value, Field(key), At(key));
+    return value;
+  }
+
+  double RequiredNumber(std::string_view key, std::string_view what) {
+    const std::optional<double> value = Number(key);
+    if (!value) {
+      Missing(key, what);
+    }
+    return *value;
+  }
+
+  std::optional<std::string> String(std::string_view key,
+                                    std::initializer_list<std::string_view> allowed) {
+    const toml::node* node = Get(key);
+    if (node == nullptr) {
+      return std::nullopt;
+    }
+    const std::string allowed_text = Join(allowed);
+    if (!node->is_string()) {
+      Fail(At(key), Field(key), "must be a string (allowed: " + allowed_text + ")");
+    }
+    std::string value = *node->value<std::string>();
+    if (allowed.size() > 0) {
+      bool ok = false;
+      for (std::string_view a : allowed) {
+        ok = ok || value == a;
+      }
+      if (!ok) {
+        Fail(At(key), Field(key), "must be one of " + allowed_text + " (got \"" + value + "\")");
+      }
+    }
+    return value;
+  }
+
+  // A sub-table, or nullopt.
+  const toml::table* Table(std::string_view key) {
+    const toml::node* node = Get(key);
+    if (node == nullptr) {
+      return nullptr;
+    }
+    if (!node->is_table()) {
+      Fail(At(key), Field(key), "must be a table");
+    }
+    return node->as_table();
+  }
+
+  // Every key not read is unknown.
+  void Finish(std::string_view allowed) const {
+    for (auto&& [key, node] : table_) {
+      if (used_.count(std::string(key.str())) == 0) {
+        Fail(Where{source_, LineOf(node)}, Field(key.str()),
+             std::string("unknown key (allowed: ").append(allowed).append(")"));
+      }
+    }
+  }
+
+  // A key read only to be rejected in this context.
+  void Reject(std::string_view key, std::string_view why) {
+    if (Has(key)) {
+      Fail(At(key), Field(key), why);
+    }
+  }
+
+  std::string_view source() const { return source_; }
+
+ private:
+  const toml::table& table_;
+  std::string path_;
+  std::string_view source_;
+  std::set<std::string> used_;
+};
+
+Eigen::Matrix3d Matrix3(Section& s, std::string_view key) {
+  const toml::node* node = s.Get(key);
+  const std::string problem = "must be a 3 x 3 array of numbers, row by row";
+  if (node == nullptr || !node->is_array() || node->as_array()->size() != 3) {
+    Fail(s.At(key), s.Field(key), problem);
+  }
+  Eigen::Matrix3d A;
+  const toml::array& rows = *node->as_array();
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (!rows[i].is_array() || rows[i].as_array()->size() != 3) {
+      Fail(s.At(key), s.Field(key), problem);
+    }
+    const toml::array& row = *rows[i].as_array();
+    for (std::size_t j = 0; j < 3; ++j) {
+      if (!row[j].is_number()) {
+        Fail(s.At(key), s.Field(key), problem);
+      }
+      A(static_cast<int>(i), static_cast<int>(j)) =
+          row[j].is_integer() ? static_cast<double>(*row[j].value<int64_t>())
+                              : *row[j].value<double>();
+    }
+  }
+  if (!A.allFinite()) {
+    Fail(s.At(key), s.Field(key), "must contain finite numbers only (got NaN or Inf)");
+  }
+  return A;
+}
+
+void ReadDeck(Section& s, DeckSpec& spec) {
+  const double m = s.RequiredNumber("m", "deck mass, kg");
+  CheckPositive(m, s.Field("m"), s.At("m"));
+  spec.mass_kg = m;
+  const double L = s.RequiredNumber("L", "deck length, m");
+  CheckPositive(L, s.Field("L"), s.At("L"));
+  const double skew_deg = s.RequiredNumber("skew_deg", "skew angle, deg");
+  CheckRange(skew_deg, 0.0, 90.0, true, s.Field("skew_deg"), s.At("skew_deg"), "deg");
+  spec.geometry.length_m = L;
+  spec.geometry.skew_rad = skew_deg * kDegToRad;
+  const std::optional<double> W = s.Number("W");
+  const std::optional<double> eta0 = s.Number("eta0");
+  if (W && eta0) {
+    Fail(s.At("eta0"), s.Field("eta0"), "give either W or eta0, not both");
+  }
+  if (W) {
+    CheckPositive(*W, s.Field("W"), s.At("W"));
+    spec.geometry.width_m = *W;
+  } else if (eta0) {
+    CheckPositive(*eta0, s.Field("eta0"), s.At("eta0"));
+    if (!(skew_deg > 0.0)) {
+      Fail(s.At("eta0"), s.Field("eta0"),
+           "needs skew_deg in (0, 90) deg (W is then L sin 2a / (2 eta0))");
+    }
+    spec.geometry.width_m = WidthFromEta0(*eta0, spec.geometry.skew_rad, L);
+  } else {
+    s.Missing("W", "deck width, m, or eta0");
+  }
+  if (s.Has("I_m")) {
+    const toml::node* node = s.Get("I_m");
+    if (node->is_string()) {
+      s.String("I_m", {"uniform"});
+      spec.inertia_kgm2.reset();
+    } else {
+      const double I_m = s.RequiredNumber("I_m", "");
+      CheckPositive(I_m, s.Field("I_m"), s.At("I_m"));
+      spec.inertia_kgm2 = I_m;
+    }
+  }
+  s.Finish("m, I_m, L, W, eta0, skew_deg");
+}
+
+void ReadSubstructure(Section& s, DeckSpec& spec) {
+  const std::string kind =
+      s.String("kind", {"uncoupled", "principal", "matrix"}).value_or("uncoupled");
+  if (kind == "uncoupled") {
+    spec.stiffness = DeckSpec::StiffnessKind::kUncoupled;
+    const std::optional<double> w0 = s.Number("w0");
+    if (w0) {
+      s.Reject("w0x", "give either w0 or w0x and w0y, not both");
+      s.Reject("w0y", "give either w0 or w0x and w0y, not both");
+      CheckNonNegative(*w0, s.Field("w0"), s.At("w0"));
+      spec.w0x_radps = *w0;
+      spec.w0y_radps = *w0;
+    } else {
+      spec.w0x_radps = s.RequiredNumber("w0x", "rad/s, or w0 for both x and y");
+      CheckNonNegative(spec.w0x_radps, s.Field("w0x"), s.At("w0x"));
+      spec.w0y_radps = s.RequiredNumber("w0y", "rad/s, or w0 for both x and y");
+      CheckNonNegative(spec.w0y_radps, s.Field("w0y"), s.At("w0y"));
+    }
+    spec.W0_radps = s.RequiredNumber("W0", "torsional frequency, rad/s");
+    CheckNonNegative(spec.W0_radps, s.Field("W0"), s.At("W0"));
+  } else if (kind == "principal") {
+    spec.stiffness = DeckSpec::StiffnessKind::kPrincipal;
+    spec.w1_radps = s.RequiredNumber("w1", "rad/s along principal axis 1");
+    CheckNonNegative(spec.w1_radps, s.Field("w1"), s.At("w1"));
+    spec.w2_radps = s.RequiredNumber("w2", "rad/s along principal axis 2");
+    CheckNonNegative(spec.w2_radps, s.Field("w2"), s.At("w2"));
+    spec.w_theta_radps =
+        s.RequiredNumber("w_theta", "torsional rad/s about the centre of rigidity");
+    CheckNonNegative(spec.w_theta_radps, s.Field("w_theta"), s.At("w_theta"));
+    spec.axis_rad = s.Number("axis_deg").value_or(0.0) * kDegToRad;
+    spec.centre_of_rigidity_m = {s.Number("e_x").value_or(0.0), s.Number("e_y").value_or(0.0)};
+  } else {
+    spec.stiffness = DeckSpec::StiffnessKind::kMatrix;
+    if (!s.Has("K")) {
+      s.Missing("K", "3 x 3 stiffness matrix");
+    }
+    spec.K = Matrix3(s, "K");
+  }
+  if (s.Has("C")) {
+    s.Reject("xi", "give either xi or C, not both");
+    spec.C = Matrix3(s, "C");
+  } else {
+    spec.C.reset();
+    spec.xi = s.Number("xi").value_or(0.05);
+    CheckRange(spec.xi, 0.0, 1.0, true, s.Field("xi"), s.At("xi"));
+  }
+  if (kind == "uncoupled") {
+    s.Finish("kind, w0, w0x, w0y, W0, xi, C (with kind = \"uncoupled\")");
+  } else if (kind == "principal") {
+    s.Finish("kind, w1, w2, w_theta, axis_deg, e_x, e_y, xi, C (with kind = \"principal\")");
+  } else {
+    s.Finish("kind, K, xi, C (with kind = \"matrix\")");
+  }
+}
+
+void ReadAbutments(Section& s, DeckSpec& spec) {
+  const std::optional<std::string> set = s.String("set", {"+x", "both"});
+  if (!set) {
+    s.Missing("set", "\"+x\" or \"both\"");
+  }
+  spec.abutments = *set == "both" ? AbutmentSet::kBoth : AbutmentSet::kPlusX;
+  if (!s.Has("gap_m")) {
+    s.Missing("gap_m", "joint gap along x, m, or a table { \"+x\" = ..., \"-x\" = ... }");
+  }
+  if (const toml::node* gap_node = s.Get("gap_m"); gap_node->is_table()) {
+    Section g(*gap_node->as_table(), s.Field("gap_m"), s.source());
+    spec.gap_plus_m = g.RequiredNumber("+x", "gap of the +x abutment, m");
+    CheckNonNegative(spec.gap_plus_m, g.Field("+x"), g.At("+x"));
+    if (spec.abutments == AbutmentSet::kBoth) {
+      spec.gap_minus_m = g.RequiredNumber("-x", "gap of the -x abutment, m");
+      CheckNonNegative(spec.gap_minus_m, g.Field("-x"), g.At("-x"));
+      g.Finish("\"+x\", \"-x\"");
+    } else {
+      g.Finish("\"+x\" (with set = \"+x\")");
+    }
+  } else {
+    const double gap = s.RequiredNumber("gap_m", "");
+    CheckNonNegative(gap, s.Field("gap_m"), s.At("gap_m"));
+    spec.gap_plus_m = gap;
+    spec.gap_minus_m = gap;
+  }
+  spec.restitution = s.Number("eps_N").value_or(0.5);
+  CheckRange(spec.restitution, 0.0, 1.0, false, s.Field("eps_N"), s.At("eps_N"));
+  spec.friction = s.Number("mu").value_or(0.0);
+  CheckNonNegative(spec.friction, s.Field("mu"), s.At("mu"));
+  spec.overrides.clear();
+  if (const toml::table* contacts = s.Table("contacts")) {
+    Section cs(*contacts, s.Field("contacts"), s.source());
+    const bool both = spec.abutments == AbutmentSet::kBoth;
+    for (std::string_view name : {"P1", "P2", "P3", "P4"}) {
+      if (!both && (name == "P3" || name == "P4")) {
+        continue;
+      }
+      if (const toml::table* t = cs.Table(name)) {
+        Section c(*t, cs.Field(name), s.source());
+        ContactOverride o;
+        o.name = std::string(name);
+        o.restitution = c.Number("eps_N");
+        if (o.restitution) {
+          CheckRange(*o.restitution, 0.0, 1.0, false, c.Field("eps_N"), c.At("eps_N"));
+        }
+        o.friction = c.Number("mu");
+        if (o.friction) {
+          CheckNonNegative(*o.friction, c.Field("mu"), c.At("mu"));
+        }
+        c.Finish("eps_N, mu");
+        spec.overrides.push_back(o);
+      }
+    }
+    cs.Finish(both ? "P1, P2, P3, P4" : "P1, P2 (with set = \"+x\")");
+  }
+  s.Finish("set, gap_m, eps_N, mu, contacts");
+}
+
+void ReadExcitation(Section& s, const std::filesystem::path& base_dir, ExcitationSpec& spec) {
+  const std::optional<std::string> kind = s.String("kind", {"pulse", "sampled"});
+  if (!kind) {
+    s.Missing("kind", "\"pulse\" or \"sampled\"");
+  }
+  // Direction: "x", "y" or an angle from x (CCW, deg).
+  if (s.Has("direction")) {
+    s.Reject("angle_deg", "give either direction or angle_deg, not both");
+    const std::string d = *s.String("direction", {"x", "y"});
+    spec.direction = d == "x" ? Eigen::Vector2d::UnitX() : Eigen::Vector2d::UnitY();
+  } else if (const std::optional<double> angle = s.Number("angle_deg")) {
+    spec.direction = {std::cos(*angle * kDegToRad), std::sin(*angle * kDegToRad)};
+  }
+  if (*kind == "pulse") {
+    spec.kind = ExcitationSpec::Kind::kPulse;
+    const std::optional<std::string> shape = s.String("shape", {"cosine", "sine"});
+    if (!shape) {
+      s.Missing("shape", "\"cosine\" or \"sine\"");
+    }
+    spec.shape = *shape == "cosine" ? ExcitationSpec::PulseShape::kCosine
+                                    : ExcitationSpec::PulseShape::kSine;
+    if (s.Has("a_g")) {
+      s.Reject("a_g_g", "give either a_g (m/s^2) or a_g_g (g), not both");
+      spec.amplitude_mps2 = *s.Number("a_g");
+    } else if (s.Has("a_g_g")) {
+      spec.amplitude_mps2 = *s.Number("a_g_g") * kStandardGravity_mps2;
+    } else {
+      s.Missing("a_g", "pulse amplitude in m/s^2, or a_g_g in g");
+    }
+    if (s.Has("w_g")) {
+      s.Reject("T_g", "give either w_g (rad/s) or T_g (s), not both");
+      spec.omega_radps = *s.Number("w_g");
+      CheckPositive(spec.omega_radps, s.Field("w_g"), s.At("w_g"));
+    } else if (s.Has("T_g")) {
+      const double T_g = *s.Number("T_g");
+      CheckPositive(T_g, s.Field("T_g"), s.At("T_g"));
+      spec.omega_radps = 2.0 * std::numbers::pi / T_g;
+    } else {
+      s.Missing("w_g", "pulse frequency in rad/s, or T_g in s");
+    }
+    s.Finish("kind, shape, a_g, a_g_g, w_g, T_g, direction, angle_deg (with kind = \"pulse\")");
+    return;
+  }
+  spec.kind = ExcitationSpec::Kind::kSampled;
+  const std::string units = s.String("units", {"mps2", "g", "cmps2"}).value_or("mps2");
+  const double scale = s.Number("scale").value_or(1.0);
+  const double unit_factor = units == "g" ? kStandardGravity_mps2 : (units == "cmps2" ? 0.01 : 1.0);
+  spec.to_mps2 = unit_factor * scale;
+  if (const std::optional<double> dt = s.Number("dt_s")) {
+    CheckPositive(*dt, s.Field("dt_s"), s.At("dt_s"));
+    spec.dt_s = dt;
+  }
+  if (s.Has("file")) {
+    s.Reject("values", "give either file or values, not both");
+    const std::string file = *s.String("file", {});
+    if (file.empty()) {
+      Fail(s.At("file"), s.Field("file"), "must name a file");
+    }
+    const std::filesystem::path p(file);
+    spec.file = p.is_absolute() ? p : base_dir / p;
+  } else if (s.Has("values")) {
+    const toml::node* node = s.Get("values");
+    const toml::array* values = node->as_array();
+    if (values == nullptr || values->empty()) {
+      Fail(s.At("values"), s.Field("values"), "must be a non-empty array of numbers");
+    }
+    spec.values.clear();
+    for (const toml::node& v : *values) {
+      if (!v.is_number()) {
+        Fail(Where{s.source(), LineOf(v)}, s.Field("values"),
+             "must be a non-empty array of numbers");
+      }
+      const double a =
+          v.is_integer() ? static_cast<double>(*v.value<int64_t>()) : *v.value<double>();
+      CheckFinite(a, s.Field("values"), Where{s.source(), LineOf(v)});
+      spec.values.push_back(a * spec.to_mps2);
+    }
+    if (!spec.dt_s) {
+      s.Missing("dt_s", "sample interval in s, required with values");
+    }
+  } else {
+    s.Missing("file", "a two-column (time, acceleration) file, or inline values with dt_s");
+  }
+  s.Finish(
+      "kind, file, values, dt_s, units, scale, direction, angle_deg (with kind = \"sampled\")");
+}
+
+void ReadRun(Section& s, RunControl& run) {
+  if (const std::optional<double> v = s.Number("end_time_s")) {
+    CheckPositive(*v, s.Field("end_time_s"), s.At("end_time_s"));
+    run.end_time_s = v;
+  }
+  run.tail_s = s.Number("tail_s").value_or(run.tail_s);
+  CheckNonNegative(run.tail_s, s.Field("tail_s"), s.At("tail_s"));
+  run.output_interval_s = s.Number("output_interval_s").value_or(run.output_interval_s);
+  CheckNonNegative(run.output_interval_s, s.Field("output_interval_s"), s.At("output_interval_s"));
+  run.relative_tolerance = s.Number("rel_tol").value_or(run.relative_tolerance);
+  CheckRange(run.relative_tolerance, 1e-15, 1e-2, false, s.Field("rel_tol"), s.At("rel_tol"));
+  run.absolute_tolerance = s.Number("abs_tol").value_or(run.absolute_tolerance);
+  CheckPositive(run.absolute_tolerance, s.Field("abs_tol"), s.At("abs_tol"));
+  run.accumulation_threshold =
+      s.Number("accumulation_threshold").value_or(run.accumulation_threshold);
+  CheckRange(run.accumulation_threshold, 0.0, 1.0, true, s.Field("accumulation_threshold"),
+             s.At("accumulation_threshold"));
+  run.simultaneity_tolerance_s =
+      s.Number("simultaneity_tol_s").value_or(run.simultaneity_tolerance_s);
+  CheckNonNegative(run.simultaneity_tolerance_s, s.Field("simultaneity_tol_s"),
+                   s.At("simultaneity_tol_s"));
+  run.method = s.String("method", {"event-driven", "time-stepping"}).value_or(run.method);
+  run.time_step_s = s.Number("time_step_s").value_or(run.time_step_s);
+  CheckPositive(run.time_step_s, s.Field("time_step_s"), s.At("time_step_s"));
+  if (const std::optional<double> v = s.Number("max_steps")) {
+    if (!(*v >= 1.0) || *v != std::floor(*v) || *v > 1e15) {
+      Fail(s.At("max_steps"), s.Field("max_steps"),
+           "must be a whole number >= 1 (got " + detail::Show(*v) + ")");
+    }
+    run.max_steps = static_cast<long>(*v);
+  }
+  s.Finish(
+      "end_time_s, tail_s, output_interval_s, rel_tol, abs_tol, accumulation_threshold, "
+      "simultaneity_tol_s, method, time_step_s, max_steps");
+}
+
+ModelFile Parse(const toml::table& root, std::string_view source,
+                const std::filesystem::path& base_dir, const std::filesystem::path& path) {
+  Section top(root, "", source);
+  DeckSpec deck;
+  ExcitationSpec excitation;
+  RunControl run;
+  const auto required = [&](std::string_view name) -> const toml::table& {
+    const toml::table* t = top.Table(name);
+    if (t == nullptr) {
+      Fail(Where{source, 0}, name, "missing required section [" + std::string(name) + "]");
+    }
+    return *t;
+  };
+  {
+    Section s(required("deck"), "deck", source);
+    ReadDeck(s, deck);
+  }
+  {
+    Section s(required("substructure"), "substructure", source);
+    ReadSubstructure(s, deck);
+  }
+  {
+    Section s(required("abutments"), "abutments", source);
+    ReadAbutments(s, deck);
+  }
+  {
+    Section s(required("excitation"), "excitation", source);
+    ReadExcitation(s, base_dir, excitation);
+  }
+  if (const toml::table* t = top.Table("run")) {
+    Section s(*t, "run", source);
+    ReadRun(s, run);
+  }
+  top.Finish("sections deck, substructure, abutments, excitation, run");
+  Model model = BuildDeckModel(deck, std::string(source));
+  return ModelFile{path, deck, std::move(model), excitation, run};
+}
+
+}  // namespace
+
+ModelFile ParseModelString(std::string_view text, std::string_view source_name,
+                           const std::filesystem::path& base_dir) {
+  toml::table root;
+  try {
+    root = toml::parse(text, source_name);
+  } catch (const toml::parse_error& e) {
+    throw InputError::AtLine(source_name, static_cast<long>(e.source().begin.line),
+                             std::string("syntax error: ").append(e.description()));
+  }
+  return Parse(root, source_name, base_dir, {});
+}
+
+ModelFile ParseModelFile(const std::filesystem::path& path) {
+  const std::string source = path.string();
+  std::ifstream in(path);
+  if (!in) {
+    throw InputError::AtLine(source, 0, "cannot open the model file");
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  ModelFile file = ParseModelString(text.str(), source, path.parent_path());
+  file.path = path;
+  return file;
+}
+
+}  // namespace skewbridge::model
