@@ -1,0 +1,188 @@
+#include "records/measures.h"
+
+#include <fftw3.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <complex>
+#include <memory>
+#include <numbers>
+#include <string>
+
+#include "solver/common/error.h"
+
+namespace skewbridge::records {
+namespace {
+
+void RequireRecord(std::span<const double> acc, double dt_s, std::string_view what) {
+  if (acc.empty()) throw InputError::AtField(what, "acceleration", "must not be empty");
+  if (!(std::isfinite(dt_s) && dt_s > 0.0)) {
+    throw InputError::AtField(what, "dt", "must be > 0 s (got " + std::to_string(dt_s) + ")");
+  }
+}
+
+struct FftwFree {
+  void operator()(void* p) const { fftw_free(p); }
+};
+struct PlanDestroy {
+  void operator()(fftw_plan_s* p) const { fftw_destroy_plan(p); }
+};
+
+// Cumulative int_0^{t_k} a^2 dt at the samples, exact for linear a.
+std::vector<double> CumulativeSquare(std::span<const double> acc, double dt_s) {
+  std::vector<double> cumulative(acc.size(), 0.0);
+  for (std::size_t k = 1; k < acc.size(); ++k) {
+    const double a0 = acc[k - 1];
+    const double a1 = acc[k];
+    cumulative[k] = cumulative[k - 1] + dt_s * (a0 * a0 + a0 * a1 + a1 * a1) / 3.0;
+  }
+  return cumulative;
+}
+
+double CrossingTime(const std::vector<double>& cumulative, double level, double dt_s) {
+  const auto it = std::lower_bound(cumulative.begin(), cumulative.end(), level);
+  const auto k = static_cast<std::size_t>(it - cumulative.begin());
+  if (k == 0) return 0.0;
+  const double c0 = cumulative[k - 1];
+  const double c1 = cumulative[k];
+  const double fraction = c1 > c0 ? (level - c0) / (c1 - c0) : 0.0;
+  return (static_cast<double>(k - 1) + fraction) * dt_s;
+}
+
+}  // namespace
+
+void IntegrateMotion(std::span<const double> acc, double dt_s, std::vector<double>& vel,
+                     std::vector<double>& disp) {
+  RequireRecord(acc, dt_s, "integration");
+  vel.assign(acc.size(), 0.0);
+  disp.assign(acc.size(), 0.0);
+  for (std::size_t k = 1; k < acc.size(); ++k) {
+    vel[k] = vel[k - 1] + dt_s * (acc[k - 1] + acc[k]) / 2.0;
+    disp[k] = disp[k - 1] + dt_s * vel[k - 1] + dt_s * dt_s * (2.0 * acc[k - 1] + acc[k]) / 6.0;
+  }
+}
+
+std::size_t MeanPeriodDftLength(std::size_t n) {
+  return std::bit_ceil(std::max<std::size_t>(n, 1));
+}
+
+double MeanPeriod(std::span<const double> acc, double dt_s) {
+  RequireRecord(acc, dt_s, "mean period");
+  const std::size_t n = MeanPeriodDftLength(acc.size());
+  const std::size_t bins = n / 2 + 1;
+  std::unique_ptr<double, FftwFree> in(static_cast<double*>(fftw_malloc(sizeof(double) * n)));
+  std::unique_ptr<fftw_complex, FftwFree> out(
+      static_cast<fftw_complex*>(fftw_malloc(sizeof(fftw_complex) * bins)));
+  SB_DEMAND(in && out, "fftw_malloc failed");
+  // FFTW_ESTIMATE does not touch the arrays while planning; planning is not thread-safe, so
+  // callers running measures on several threads must serialise (the sweep does not).
+  std::unique_ptr<fftw_plan_s, PlanDestroy> plan(
+      fftw_plan_dft_r2c_1d(static_cast<int>(n), in.get(), out.get(), FFTW_ESTIMATE));
+  SB_DEMAND(plan != nullptr, "fftw_plan_dft_r2c_1d failed");
+  std::copy(acc.begin(), acc.end(), in.get());
+  std::fill(in.get() + acc.size(), in.get() + n, 0.0);
+  fftw_execute(plan.get());
+  const double df_hz = 1.0 / (static_cast<double>(n) * dt_s);
+  double weighted = 0.0;
+  double total = 0.0;
+  for (std::size_t i = 1; i < bins; ++i) {
+    const double f = static_cast<double>(i) * df_hz;
+    if (f < kMeanPeriodMinFrequency_hz || f > kMeanPeriodMaxFrequency_hz) continue;
+    const double c2 = out.get()[i][0] * out.get()[i][0] + out.get()[i][1] * out.get()[i][1];
+    weighted += c2 / f;
+    total += c2;
+  }
+  if (!(total > 0.0)) {
+    throw InputError::AtField("mean period", "record",
+                              "has no Fourier amplitude in 0.25-20 Hz: T_m is undefined");
+  }
+  return weighted / total;
+}
+
+double AriasIntensity(std::span<const double> acc, double dt_s) {
+  RequireRecord(acc, dt_s, "Arias intensity");
+  return std::numbers::pi / (2.0 * kStandardGravity_mps2) * CumulativeSquare(acc, dt_s).back();
+}
+
+double SignificantDuration(std::span<const double> acc, double dt_s, double from, double to) {
+  RequireRecord(acc, dt_s, "significant duration");
+  if (!(0.0 <= from && from < to && to <= 1.0)) {
+    throw InputError::AtField("significant duration", "fractions", "need 0 <= from < to <= 1");
+  }
+  const std::vector<double> cumulative = CumulativeSquare(acc, dt_s);
+  const double total = cumulative.back();
+  if (!(total > 0.0)) return 0.0;
+  return CrossingTime(cumulative, to * total, dt_s) - CrossingTime(cumulative, from * total, dt_s);
+}
+
+std::vector<double> PseudoAccelerationSpectrum(std::span<const double> acc, double dt_s,
+                                               std::span<const double> periods_s, double xi) {
+  RequireRecord(acc, dt_s, "response spectrum");
+  if (!(xi >= 0.0 && xi < 1.0)) {
+    throw InputError::AtField("response spectrum", "xi", "must be in [0, 1)");
+  }
+  std::vector<double> sa;
+  sa.reserve(periods_s.size());
+  const double h = dt_s;
+  for (const double period : periods_s) {
+    if (!(std::isfinite(period) && period > 0.0)) {
+      throw InputError::AtField("response spectrum", "period",
+                                "must be > 0 s (got " + std::to_string(period) + ")");
+    }
+    // [Nigam and Jennings 1969]: [u, v]_{k+1} = A [u, v]_k + B [a_k, a_{k+1}] for
+    // u'' + 2 xi w u' + w^2 u = -a(t) with a linear on [t_k, t_{k+1}].
+    const double w = 2.0 * std::numbers::pi / period;
+    const double root = std::sqrt(1.0 - xi * xi);
+    const double wd = w * root;
+    const double e = std::exp(-xi * w * h);
+    const double s = std::sin(wd * h);
+    const double c = std::cos(wd * h);
+    const double r = xi / root;
+    const double a11 = e * (r * s + c);
+    const double a12 = e * s / wd;
+    const double a21 = -w / root * e * s;
+    const double a22 = e * (c - r * s);
+    const double k1 = (2.0 * xi * xi - 1.0) / (w * w * h);
+    const double k2 = 2.0 * xi / (w * w * w * h);
+    const double b11 = e * ((k1 + xi / w) * s / wd + (k2 + 1.0 / (w * w)) * c) - k2;
+    const double b12 = -e * (k1 * s / wd + k2 * c) - 1.0 / (w * w) + k2;
+    const double b21 =
+        e * ((k1 + xi / w) * (c - r * s) - (k2 + 1.0 / (w * w)) * (wd * s + xi * w * c)) +
+        1.0 / (w * w * h);
+    const double b22 = -e * (k1 * (c - r * s) - k2 * (wd * s + xi * w * c)) - 1.0 / (w * w * h);
+    double u = 0.0;
+    double v = 0.0;
+    double peak = 0.0;
+    for (std::size_t k = 0; k + 1 < acc.size(); ++k) {
+      const double u_next = a11 * u + a12 * v + b11 * acc[k] + b12 * acc[k + 1];
+      const double v_next = a21 * u + a22 * v + b21 * acc[k] + b22 * acc[k + 1];
+      u = u_next;
+      v = v_next;
+      peak = std::max(peak, std::abs(u));
+    }
+    sa.push_back(w * w * peak);
+  }
+  return sa;
+}
+
+IntensityMeasures ComputeMeasures(const GroundMotion& motion) {
+  const std::span<const double> acc(motion.acc_mps2);
+  IntensityMeasures m;
+  for (const double a : acc) m.pga_mps2 = std::max(m.pga_mps2, std::abs(a));
+  std::vector<double> vel;
+  std::vector<double> disp;
+  IntegrateMotion(acc, motion.dt_s, vel, disp);
+  for (std::size_t k = 0; k < acc.size(); ++k) {
+    m.pgv_mps = std::max(m.pgv_mps, std::abs(vel[k]));
+    m.pgd_m = std::max(m.pgd_m, std::abs(disp[k]));
+  }
+  m.mean_period_s = MeanPeriod(acc, motion.dt_s);
+  m.omega_g_radps = 2.0 * std::numbers::pi / m.mean_period_s;
+  m.persistency_m = m.pga_mps2 / (m.omega_g_radps * m.omega_g_radps);
+  m.arias_mps = AriasIntensity(acc, motion.dt_s);
+  m.significant_duration_s = SignificantDuration(acc, motion.dt_s);
+  return m;
+}
+
+}  // namespace skewbridge::records

@@ -1,0 +1,55 @@
+#pragma once
+/// @file
+/// Record sets: a TOML manifest that names a suite of records as one thing ("the 62-record
+/// set"), with per-record component, scale factor, label and the dt/units that headerless files
+/// need. Paths are relative to the manifest.
+///
+///     name = "greek-62"
+///     [[record]]
+///     file = "records/A299_T"   # required
+///     label = "Athens 1999 T"   # default: the file name
+///     component = "T"           # default: the header's
+///     scale = 1.0               # default 1; multiplies the accelerations
+///     units = "g"               # g | m/s^2 | cm/s^2; required where the file states none
+///     dt = 0.005                # s; required for headerless one- or multi-value files
+///     format = "itsak"          # default: detected by content
+///     channel = 1               # CSMIP V2 channel
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "records/ground_motion.h"
+
+namespace skewbridge::records {
+
+/// One record of a set, as the manifest gives it.
+struct RecordEntry {
+  std::filesystem::path file;  ///< resolved against the manifest's folder
+  std::string label;           ///< user label (default: the file name)
+  std::string component;       ///< overrides the header's component when not empty
+  double scale = 1.0;          ///< factor applied to the accelerations
+  ReadOptions options;         ///< format, dt, units, channel
+  long line = 0;               ///< line of the [[record]] table in the manifest
+};
+
+/// A named list of records.
+struct RecordSet {
+  std::string name;                  ///< `name` key, default the manifest's stem
+  std::filesystem::path manifest;    ///< where it was read from
+  std::vector<RecordEntry> records;  ///< in manifest order, at least one
+};
+
+/// Reads a record-set manifest (TOML).
+/// @throws InputError "MANIFEST:LINE: problem" for a syntax error, an unknown key, a missing or
+/// mistyped field, a non-positive scale or dt, unknown units or format, or no [[record]].
+RecordSet LoadRecordSet(const std::filesystem::path& manifest);
+
+/// Reads one entry: ReadRecord with the entry's options, then scale, label and component.
+/// @throws InputError from the reader (naming the record file and line).
+GroundMotion LoadRecord(const RecordEntry& entry);
+
+/// A display label for a record: the entry label, else the file name.
+std::string RecordLabel(const RecordEntry& entry);
+
+}  // namespace skewbridge::records

@@ -1,0 +1,184 @@
+// Intensity measures against independent oracles: a plain O(N^2) DFT for T_m, closed forms for
+// pulses and sinusoids, and a fine-step Runge-Kutta integration for the elastic spectrum.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <complex>
+#include <filesystem>
+#include <numbers>
+#include <vector>
+
+#include "records/ground_motion.h"
+#include "records/measures.h"
+#include "solver/common/error.h"
+
+namespace skewbridge::records {
+namespace {
+
+using std::numbers::pi;
+
+const std::filesystem::path kData = std::filesystem::path(SKEWBRIDGE_TEST_DATA_DIR) / "records";
+
+// T_m from the definition, with a direct DFT of the zero-padded record of length n_dft.
+double MeanPeriodByDirectDft(const std::vector<double>& acc, double dt, std::size_t n_dft) {
+  std::vector<std::complex<double>> twiddle(n_dft);
+  for (std::size_t j = 0; j < n_dft; ++j) {
+    twiddle[j] = std::polar(1.0, -2.0 * pi * static_cast<double>(j) / static_cast<double>(n_dft));
+  }
+  double weighted = 0.0;
+  double total = 0.0;
+  for (std::size_t i = 1; i <= n_dft / 2; ++i) {
+    const double f = static_cast<double>(i) / (static_cast<double>(n_dft) * dt);
+    if (f < 0.25 || f > 20.0) continue;
+    std::complex<double> x = 0.0;
+    for (std::size_t k = 0; k < acc.size(); ++k) x += acc[k] * twiddle[(i * k) % n_dft];
+    weighted += std::norm(x) / f;
+    total += std::norm(x);
+  }
+  return weighted / total;
+}
+
+TEST(MeanPeriod, FftEqualsDirectDftOnARecord) {
+  const GroundMotion m = ReadRecord(kData / "NIS090.AT2");
+  const double tm = MeanPeriod(m.acc_mps2, m.dt_s);
+  EXPECT_NEAR(tm, MeanPeriodByDirectDft(m.acc_mps2, m.dt_s, 4096), 1e-10 * tm);
+}
+
+TEST(MeanPeriod, FftEqualsDirectDftWithZeroPadding) {
+  const GroundMotion m = ReadRecord(kData / "RSN763_LOMAP_GIL067.AT2");
+  const std::vector<double> head(m.acc_mps2.begin(), m.acc_mps2.begin() + 3001);
+  ASSERT_EQ(MeanPeriodDftLength(head.size()), 4096u);
+  const double tm = MeanPeriod(head, m.dt_s);
+  EXPECT_NEAR(tm, MeanPeriodByDirectDft(head, m.dt_s, 4096), 1e-10 * tm);
+}
+
+TEST(MeanPeriod, PureSinusoidInsideTheBandHasPeriodOneOverF) {
+  const double dt = 0.01;
+  const std::size_t n = 4096;  // 800 cycles: 19.5 Hz, inside the band
+  for (const int cycles : {20, 41, 200, 800}) {
+    const double f = cycles / (static_cast<double>(n) * dt);  // on the DFT grid: no leakage
+    std::vector<double> acc(n);
+    for (std::size_t k = 0; k < n; ++k) acc[k] = 3.0 * std::sin(2.0 * pi * f * k * dt + 0.3);
+    EXPECT_NEAR(MeanPeriod(acc, dt), 1.0 / f, 1e-9 / f) << f;
+  }
+}
+
+TEST(MeanPeriod, RecordWithoutEnergyInTheBandIsAnInputError) {
+  EXPECT_THROW(MeanPeriod(std::vector<double>(100, 0.0), 0.01), InputError);
+}
+
+// A sampled one-cycle sine pulse a_p sin(w t), 0 <= t <= 2 pi / w.
+std::vector<double> SinePulse(double a_p, double w, std::size_t steps) {
+  const double dt = 2.0 * pi / w / static_cast<double>(steps);
+  std::vector<double> acc(steps + 1);
+  for (std::size_t k = 0; k <= steps; ++k) acc[k] = a_p * std::sin(w * dt * k);
+  return acc;
+}
+
+TEST(IntegrateMotion, SinePulsePeaksEqualTheirClosedForms) {
+  // v = a_p / w (1 - cos w t) peaks at 2 a_p / w; d = a_p / w (t - sin(w t) / w) ends at
+  // 2 pi a_p / w^2, its maximum.
+  const double a_p = 4.0;
+  const double w = 2.0 * pi * 1.5;
+  const std::size_t steps = 4000;
+  GroundMotion m;
+  m.dt_s = 2.0 * pi / w / steps;
+  m.acc_mps2 = SinePulse(a_p, w, steps);
+  const IntensityMeasures im = ComputeMeasures(m);
+  EXPECT_NEAR(im.pgv_mps, 2.0 * a_p / w, 1e-6 * 2.0 * a_p / w);
+  EXPECT_NEAR(im.pgd_m, 2.0 * pi * a_p / (w * w), 1e-6 * 2.0 * pi * a_p / (w * w));
+  EXPECT_NEAR(im.pga_mps2, a_p, 1e-6);
+}
+
+TEST(IntegrateMotion, IsExactForPiecewiseLinearAcceleration) {
+  // a = t on [0, 1]: v = t^2 / 2, d = t^3 / 6, exactly at every sample.
+  const double dt = 0.1;
+  std::vector<double> acc;
+  for (int k = 0; k <= 10; ++k) acc.push_back(k * dt);
+  std::vector<double> v;
+  std::vector<double> d;
+  IntegrateMotion(acc, dt, v, d);
+  EXPECT_NEAR(v.back(), 0.5, 1e-14);
+  EXPECT_NEAR(d.back(), 1.0 / 6.0, 1e-14);
+}
+
+TEST(AriasIntensity, ConstantAccelerationHasClosedFormsForIaAndD595) {
+  // a = c over T: I_a = pi c^2 T / (2 g); the Husid curve is linear, so D5-95 = 0.9 T.
+  const double c = 2.0;
+  const double dt = 0.01;
+  const std::vector<double> acc(1001, c);
+  const double duration = 10.0;
+  EXPECT_NEAR(AriasIntensity(acc, dt), pi * c * c * duration / (2.0 * kStandardGravity_mps2),
+              1e-12);
+  EXPECT_NEAR(SignificantDuration(acc, dt), 0.9 * duration, 1e-9);
+}
+
+// u'' + 2 xi w u' + w^2 u = -a(t), a linear between samples, by RK4 with `sub` steps per sample;
+// returns w^2 max |u(t_k)| over the samples.
+double PseudoAccelerationByRk4(const std::vector<double>& acc, double dt, double period, double xi,
+                               int sub) {
+  const double w = 2.0 * pi / period;
+  const double h = dt / sub;
+  double u = 0.0;
+  double v = 0.0;
+  double peak = 0.0;
+  for (std::size_t k = 0; k + 1 < acc.size(); ++k) {
+    const double slope = (acc[k + 1] - acc[k]) / dt;
+    const auto a = [&](double tau) { return acc[k] + slope * tau; };
+    const auto f = [&](double tau, double uu, double vv) {
+      return -a(tau) - 2.0 * xi * w * vv - w * w * uu;
+    };
+    for (int s = 0; s < sub; ++s) {
+      const double t = s * h;
+      const double k1u = v;
+      const double k1v = f(t, u, v);
+      const double k2u = v + 0.5 * h * k1v;
+      const double k2v = f(t + 0.5 * h, u + 0.5 * h * k1u, v + 0.5 * h * k1v);
+      const double k3u = v + 0.5 * h * k2v;
+      const double k3v = f(t + 0.5 * h, u + 0.5 * h * k2u, v + 0.5 * h * k2v);
+      const double k4u = v + h * k3v;
+      const double k4v = f(t + h, u + h * k3u, v + h * k3v);
+      u += h / 6.0 * (k1u + 2.0 * k2u + 2.0 * k3u + k4u);
+      v += h / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
+    }
+    peak = std::max(peak, std::abs(u));
+  }
+  return w * w * peak;
+}
+
+TEST(PseudoAccelerationSpectrum, EqualsFineStepDirectIntegrationOfARecord) {
+  const GroundMotion m = ReadRecord(kData / "NIS090.AT2");
+  const std::vector<double> periods = {0.05, 0.1, 0.3, 1.0, 3.0};
+  const std::vector<double> sa = PseudoAccelerationSpectrum(m.acc_mps2, m.dt_s, periods);
+  for (std::size_t i = 0; i < periods.size(); ++i) {
+    const double oracle = PseudoAccelerationByRk4(m.acc_mps2, m.dt_s, periods[i], 0.05, 40);
+    EXPECT_NEAR(sa[i], oracle, 1e-6 * oracle) << periods[i];
+  }
+}
+
+TEST(PseudoAccelerationSpectrum, UndampedShortRecordAgainstRk4WithOtherDamping) {
+  const std::vector<double> acc = {0.0, 1.0, -2.0, 0.5, 3.0, 0.0, 0.0, -1.0, 0.0};
+  for (const double xi : {0.0, 0.02, 0.2}) {
+    const std::vector<double> period = {0.07};
+    const double sa = PseudoAccelerationSpectrum(acc, 0.02, period, xi)[0];
+    EXPECT_NEAR(sa, PseudoAccelerationByRk4(acc, 0.02, 0.07, xi, 2000), 1e-8 * sa) << xi;
+  }
+}
+
+TEST(PseudoAccelerationSpectrum, RejectsNonPositivePeriod) {
+  const std::vector<double> acc = {0.0, 1.0};
+  const std::vector<double> period = {0.0};
+  EXPECT_THROW(PseudoAccelerationSpectrum(acc, 0.01, period), InputError);
+}
+
+TEST(ComputeMeasures, DerivedQuantitiesFollowFromTm) {
+  const GroundMotion m = ReadRecord(kData / "NIS090.AT2");
+  const IntensityMeasures im = ComputeMeasures(m);
+  EXPECT_DOUBLE_EQ(im.omega_g_radps, 2.0 * pi / im.mean_period_s);
+  EXPECT_DOUBLE_EQ(im.persistency_m, im.pga_mps2 / (im.omega_g_radps * im.omega_g_radps));
+  EXPECT_GT(im.significant_duration_s, 0.0);
+  EXPECT_LT(im.significant_duration_s, (m.npts() - 1) * m.dt_s);
+}
+
+}  // namespace
+}  // namespace skewbridge::records
