@@ -94,4 +94,18 @@ ExcitationPiece SampledExcitation::PieceAt(double t) const {
   return piece;
 }
 
+SampledExcitation ToExcitation(const GroundMotion& motion, Eigen::Vector2d direction) {
+  if (!direction.allFinite() || std::abs(direction.norm() - 1.0) > 1e-12) {
+    throw InputError::AtField(motion.file, "direction", "must be a unit vector");
+  }
+  std::vector<double> ax(motion.acc_mps2.size());
+  std::vector<double> ay;
+  for (std::size_t k = 0; k < ax.size(); ++k) ax[k] = direction.x() * motion.acc_mps2[k];
+  if (direction.y() != 0.0) {
+    ay.resize(ax.size());
+    for (std::size_t k = 0; k < ay.size(); ++k) ay[k] = direction.y() * motion.acc_mps2[k];
+  }
+  return SampledExcitation(motion.dt_s, std::move(ax), std::move(ay));
+}
+
 }  // namespace skewbridge::records

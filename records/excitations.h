@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "records/ground_motion.h"
 #include "solver/common/excitation.h"
 
 namespace skewbridge::records {
@@ -61,5 +62,10 @@ class SampledExcitation final : public Excitation {
   std::vector<double> ax_;
   std::vector<double> ay_;
 };
+
+/// The record as the solver's excitation along `direction` (unit (x, y)), each sample a kink.
+/// @throws InputError when the direction is not a unit vector (see SampledExcitation).
+SampledExcitation ToExcitation(const GroundMotion& motion,
+                               Eigen::Vector2d direction = Eigen::Vector2d::UnitX());
 
 }  // namespace skewbridge::records
