@@ -1,0 +1,112 @@
+#pragma once
+/// @file
+/// One point of a dimensionless response spectrum [method.md §5]: the mapping from the
+/// dimensionless groups to a dimensional deck model and excitation, the run, and the
+/// normalisation of the maxima. This is the only place where normalisations live.
+///
+/// The maxima depend on nine groups (Buckingham) [Dimitrakopoulos 2011, §5]:
+///
+///     x_m w_g^2/a_g, y_m w_g^2/a_g, theta_m rho w_g^2/a_g
+///         = Phi(w0/w_g, W0/w0, xi, Pi_delta = delta w_g^2/a_g, eps_N, mu, W/L, delta/L, a)
+///
+/// The length scale is the persistency L_e = a_g / w_g^2. The deck length follows from
+/// delta/L (L = delta / (delta/L), which needs Pi_delta > 0) or, when delta/L is not given,
+/// from L/L_e. Every dimensional choice left (the mass, the pulse's a_g and w_g) cancels from
+/// the dimensionless results, exactly so in the small-rotation limit [method.md §4 fact 4].
+
+#include <optional>
+#include <string>
+
+#include "records/excitations.h"
+#include "solver/dynamics/run_result.h"
+#include "solver/model/builders.h"
+
+namespace skewbridge::spectra {
+
+/// The model family of a sweep.
+enum class Family {
+  kSubsystem,    ///< single-abutment subsystem: contacts P1, P2, uncoupled K [method.md §6]
+  kPilotBridge,  ///< the two-span pilot bridge of [method.md §6], both abutments
+};
+
+/// The dimensionless coordinates of one point, with the defaults of the studies of
+/// [method.md §6] (xi = 5 %, eps_N = 0.5).
+struct PointParameters {
+  Family family = Family::kSubsystem;
+  /// w0/w_g. Subsystem: w0 = w0x = w0y. Pilot bridge under a pulse: w0x/w_g with
+  /// w0x = sqrt(K_xx / m), which sets w_g; under a record it is an output.
+  double w0_over_wg = 1.0;
+  double Pi_delta = 1.0;               ///< delta w_g^2 / a_g >= 0
+  double skew_deg = 30.0;              ///< a in [0, 90) deg (subsystem)
+  std::optional<double> eta0;          ///< sin 2a / (2 W/L) > 0 (subsystem; needs a > 0)
+  std::optional<double> W_over_L;      ///< used when eta0 is not given (subsystem)
+  double W0_over_w0 = 1.0;             ///< torsional over translational frequency (subsystem)
+  double xi = 0.05;                    ///< damping ratio in every mode
+  double eps_N = 0.5;                  ///< coefficient of restitution
+  double mu = 0.0;                     ///< Coulomb friction coefficient
+  std::optional<double> delta_over_L;  ///< gap over deck length (needs Pi_delta > 0)
+  double L_over_Le = 250.0;  ///< deck length over the persistency, when delta/L is not given
+  records::PulseShape pulse = records::PulseShape::kCosine;  ///< when there is no record
+  double pulse_a_g_mps2 = 0.5 * 9.80665;       ///< pulse amplitude a_g (m/s^2), cancels out
+  double pulse_w_g_radps = 6.283185307179586;  ///< pulse w_g (rad/s), subsystem; cancels out
+  double mass_kg = 1.0e6;                      ///< deck mass (subsystem), cancels out
+};
+
+/// The excitation scales of a point: a_g and w_g (for a record, PGA and 2 pi / T_m).
+struct ExcitationScales {
+  double a_g_mps2 = 0.0;   ///< a_g > 0 (m/s^2)
+  double w_g_radps = 0.0;  ///< w_g > 0 (rad/s)
+};
+
+/// A point made dimensional: the deck description and the scales that normalise its results.
+struct DimensionalPoint {
+  model::DeckSpec deck;        ///< builds the Model (BuildDeckModel)
+  ExcitationScales scales;     ///< a_g, w_g
+  double delta_m = 0.0;        ///< joint gap along x (both abutments for the pilot bridge)
+  double rho_m = 0.0;          ///< radius of gyration sqrt(I_m / m)
+  double persistency_m = 0.0;  ///< L_e = a_g / w_g^2
+  double w0x_radps = 0.0;      ///< sqrt(K_xx / m)
+};
+
+/// The pilot bridge of [method.md §6; Dimitrakopoulos 2011, §6]: m = 1547 t,
+/// I_m = 1 079 100 t m^2, a = 20 deg, L = 89.14 m, W = 19.36 m (eta0 = 1.48), principal axes
+/// at +20 deg with 18 and 19 rad/s, torsion 26 rad/s about the centre of rigidity
+/// (-0.24, 0.01) m, xi = 5 %, eps_N = 0.5, mu = 0.3, both abutments, gaps 0 (set per point).
+model::DeckSpec PilotBridgeDeck();
+
+/// The scales of a pulse point: (pulse_a_g, pulse_w_g) for the subsystem; for the pilot
+/// bridge w_g = w0x / (w0/w_g).
+/// @throws InputError when w0/w_g <= 0.
+ExcitationScales PulseScales(const PointParameters& p);
+
+/// Maps a point to its dimensional model [method.md §5].
+/// @throws InputError naming the parameter ("eta0", "Pi_delta", ...) and its allowed range
+/// when a value or a combination is impossible (eta0 with a = 0, delta/L with Pi_delta = 0, a
+/// deck whose geometry is not a parallelogram, ...).
+DimensionalPoint ToDimensional(const PointParameters& p, const ExcitationScales& scales);
+
+/// The responses of one point, dimensional and normalised as in [method.md §5].
+struct PointResult {
+  dynamics::RunStatus status = dynamics::RunStatus::kOk;
+  std::string message;                   ///< empty when ok
+  double x_m = 0.0;                      ///< max |x| (m)
+  double y_m = 0.0;                      ///< max |y| (m)
+  double theta_rad = 0.0;                ///< max |theta| (rad)
+  double theta_end_rad = 0.0;            ///< residual rotation theta(t_end) (rad)
+  double x_norm = 0.0;                   ///< x_m w_g^2 / a_g
+  double y_norm = 0.0;                   ///< y_m w_g^2 / a_g
+  double theta_norm = 0.0;               ///< theta_m rho w_g^2 / a_g
+  double theta_end_norm = 0.0;           ///< theta(t_end) rho w_g^2 / a_g
+  long impacts = 0;                      ///< impact events
+  long events = 0;                       ///< impacts + plastic closures + detachments + stick/slip
+  long steps = 0;                        ///< integration steps (exact + Runge-Kutta)
+  double min_impact_separation_s = 0.0;  ///< smallest separation of distinct impacts (s)
+};
+
+/// Runs the point under `excitation` (the pulse of PulseScales or a record whose scales are
+/// given) and normalises the maxima. The end time is the excitation's duration plus two of
+/// the longer of 2 pi / w_g and the longest natural period, so it scales with 1 / w_g.
+/// @throws InputError as ToDimensional.
+PointResult EvaluatePoint(const DimensionalPoint& point, const Excitation& excitation);
+
+}  // namespace skewbridge::spectra

@@ -1,0 +1,174 @@
+// The dimensionless mapping of method.md §5 against its definitions, and the normalised
+// responses against an independent integration of the contact-free oscillator.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "solver/common/error.h"
+#include "solver/model/deck.h"
+#include "spectra/point.h"
+
+namespace skewbridge::spectra {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+PointParameters Subsystem(double w0_over_wg, double Pi_delta, double skew_deg, double eta0) {
+  PointParameters p;
+  p.w0_over_wg = w0_over_wg;
+  p.Pi_delta = Pi_delta;
+  p.skew_deg = skew_deg;
+  p.eta0 = eta0;
+  return p;
+}
+
+TEST(ToDimensional, BuildsExactlyTheRequestedGroups) {
+  PointParameters p = Subsystem(0.7, 1.5, 35.0, 2.0);
+  p.W0_over_w0 = 1.3;
+  p.delta_over_L = 0.002;
+  const ExcitationScales scales{3.1, 5.0};
+  const DimensionalPoint d = ToDimensional(p, scales);
+  const double a_g = scales.a_g_mps2;
+  const double w_g = scales.w_g_radps;
+  EXPECT_NEAR(d.delta_m * w_g * w_g / a_g, 1.5, 1e-14);
+  EXPECT_NEAR(model::Eta0(d.deck.geometry), 2.0, 1e-14);
+  EXPECT_NEAR(d.deck.gap_plus_m / d.deck.geometry.length_m, 0.002, 1e-16);
+  EXPECT_NEAR(d.deck.geometry.skew_rad, 35.0 * kPi / 180.0, 1e-15);
+  EXPECT_NEAR(d.deck.w0x_radps / w_g, 0.7, 1e-15);
+  EXPECT_NEAR(d.deck.w0y_radps / w_g, 0.7, 1e-15);
+  EXPECT_NEAR(d.deck.W0_radps / d.deck.w0x_radps, 1.3, 1e-15);
+  EXPECT_NEAR(d.persistency_m, a_g / (w_g * w_g), 1e-16);
+  // rho of the uniform deck: 12 rho^2 = L^2 + W^2 / cos^2 a [method.md §2].
+  const double L = d.deck.geometry.length_m;
+  const double W = d.deck.geometry.width_m;
+  const double c = std::cos(d.deck.geometry.skew_rad);
+  EXPECT_NEAR(d.rho_m * d.rho_m * 12.0, L * L + W * W / (c * c), 1e-9 * L * L);
+  EXPECT_EQ(d.deck.abutments, model::AbutmentSet::kPlusX);
+}
+
+TEST(ToDimensional, LengthFromPersistencyWhenNoGapRatio) {
+  PointParameters p = Subsystem(1.0, 0.0, 30.0, 1.0);
+  p.L_over_Le = 400.0;
+  const DimensionalPoint d = ToDimensional(p, {2.0, 4.0});
+  EXPECT_NEAR(d.deck.geometry.length_m, 400.0 * 2.0 / 16.0, 1e-12);
+  EXPECT_EQ(d.delta_m, 0.0);
+}
+
+TEST(ToDimensional, RejectsImpossibleCombinationsNamingTheParameter) {
+  auto message = [](const PointParameters& p) {
+    try {
+      ToDimensional(p, {1.0, 1.0});
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message(Subsystem(1.0, 1.0, 0.0, 1.0)).find("eta0"), std::string::npos);
+  EXPECT_NE(message(Subsystem(1.0, -1.0, 30.0, 1.0)).find("Pi_delta"), std::string::npos);
+  EXPECT_NE(message(Subsystem(0.0, 1.0, 30.0, 1.0)).find("w0_over_wg"), std::string::npos);
+  EXPECT_NE(message(Subsystem(1.0, 1.0, 95.0, 1.0)).find("skew_deg"), std::string::npos);
+  PointParameters gapless = Subsystem(1.0, 0.0, 30.0, 1.0);
+  gapless.delta_over_L = 0.01;
+  EXPECT_NE(message(gapless).find("delta_over_L"), std::string::npos);
+  PointParameters bad_eps = Subsystem(1.0, 1.0, 30.0, 1.0);
+  bad_eps.eps_N = 1.5;
+  EXPECT_NE(message(bad_eps).find("eps_N"), std::string::npos);
+}
+
+TEST(PilotBridge, HasThePublishedSkewRatioAndSetsBothGaps) {
+  PointParameters p;
+  p.family = Family::kPilotBridge;
+  p.Pi_delta = 2.0;
+  p.w0_over_wg = 0.8;
+  const ExcitationScales scales = PulseScales(p);
+  const DimensionalPoint d = ToDimensional(p, scales);
+  EXPECT_NEAR(model::Eta0(d.deck.geometry), 1.48, 0.005);  // [method.md §6]
+  EXPECT_NEAR(d.w0x_radps / scales.w_g_radps, 0.8, 1e-14);
+  EXPECT_EQ(d.deck.abutments, model::AbutmentSet::kBoth);
+  EXPECT_DOUBLE_EQ(d.deck.gap_plus_m, d.deck.gap_minus_m);
+  EXPECT_NEAR(d.deck.gap_plus_m * scales.w_g_radps * scales.w_g_radps / scales.a_g_mps2, 2.0,
+              1e-13);
+  // rho = sqrt(I_m / m) of the published deck.
+  EXPECT_NEAR(d.rho_m, std::sqrt(1'079'100.0 / 1547.0), 1e-9);
+  // w0x lies between the two translational principal frequencies (18 and 19 rad/s).
+  EXPECT_GT(d.w0x_radps, 18.0);
+  EXPECT_LT(d.w0x_radps, 19.0);
+}
+
+// x'' + 2 xi w0 x' + w0^2 x = -a_g(t), integrated with classical RK4 on a fine grid: an
+// oracle independent of the solver's exact transition.
+double OscillatorPeak(double w0, double xi, double a_g, double w_g, double end_s) {
+  const double T = 2.0 * kPi / w_g;
+  auto ag = [&](double t) { return t < T ? a_g * std::cos(w_g * t) : 0.0; };
+  auto f = [&](double t, double x, double v, double& dx, double& dv) {
+    dx = v;
+    dv = -2.0 * xi * w0 * v - w0 * w0 * x - ag(t);
+  };
+  const int n_per_period = 20000;
+  const double h = T / n_per_period;
+  double x = 0.0;
+  double v = 0.0;
+  double t = 0.0;
+  double peak = 0.0;
+  while (t < end_s - 0.5 * h) {
+    double k1x, k1v, k2x, k2v, k3x, k3v, k4x, k4v;
+    f(t, x, v, k1x, k1v);
+    f(t + h / 2, x + h / 2 * k1x, v + h / 2 * k1v, k2x, k2v);
+    f(t + h / 2, x + h / 2 * k2x, v + h / 2 * k2v, k3x, k3v);
+    f(t + h, x + h * k3x, v + h * k3v, k4x, k4v);
+    x += h / 6 * (k1x + 2 * k2x + 2 * k3x + k4x);
+    v += h / 6 * (k1v + 2 * k2v + 2 * k3v + k4v);
+    t += h;
+    peak = std::max(peak, std::abs(x));
+  }
+  return peak;
+}
+
+TEST(EvaluatePoint, ContactFreeSpectrumOrdinateEqualsTheLinearOscillator) {
+  // Gaps far too wide to close: the deck is a linear oscillator along x, y = theta = 0.
+  PointParameters p = Subsystem(0.8, 1e6, 30.0, 1.0);
+  const ExcitationScales scales = PulseScales(p);
+  const DimensionalPoint d = ToDimensional(p, scales);
+  const records::PulseExcitation pulse(records::PulseShape::kCosine, scales.a_g_mps2,
+                                       scales.w_g_radps);
+  const PointResult r = EvaluatePoint(d, pulse);
+  ASSERT_EQ(r.status, dynamics::RunStatus::kOk) << r.message;
+  EXPECT_EQ(r.impacts, 0);
+  const double w0 = 0.8 * scales.w_g_radps;
+  const double T = 2.0 * kPi / scales.w_g_radps;
+  const double end_s = T + 2.0 * std::max(T, 2.0 * kPi / w0);
+  const double oracle = OscillatorPeak(w0, 0.05, scales.a_g_mps2, scales.w_g_radps, end_s);
+  EXPECT_NEAR(r.x_m, oracle, 1e-6 * oracle);
+  EXPECT_NEAR(r.x_norm, oracle * scales.w_g_radps * scales.w_g_radps / scales.a_g_mps2,
+              1e-6 * r.x_norm);
+  EXPECT_EQ(r.y_m, 0.0);
+  EXPECT_EQ(r.theta_rad, 0.0);
+}
+
+TEST(EvaluatePoint, DimensionlessMaximaAreIndependentOfIntensity) {
+  // [method.md §4 fact 4]: at fixed Pi_delta the dimensionless maxima do not depend on a_g;
+  // exactly so while rotations are small, which eta0 = 2 at a = 30 deg keeps them here.
+  PointParameters p = Subsystem(0.5, 0.5, 30.0, 2.0);
+  p.delta_over_L = 0.002;
+  const double w_g = 2.0 * kPi;
+  PointResult reference;
+  for (double a_g : {0.49, 4.9, 49.0}) {
+    const DimensionalPoint d = ToDimensional(p, {a_g, w_g});
+    const records::PulseExcitation pulse(records::PulseShape::kCosine, a_g, w_g);
+    const PointResult r = EvaluatePoint(d, pulse);
+    ASSERT_EQ(r.status, dynamics::RunStatus::kOk) << r.message;
+    EXPECT_GT(r.impacts, 0);
+    if (a_g == 0.49) {
+      reference = r;
+      continue;
+    }
+    EXPECT_NEAR(r.x_norm, reference.x_norm, 1e-6 * reference.x_norm);
+    EXPECT_NEAR(r.y_norm, reference.y_norm, 1e-6 * reference.y_norm + 1e-12);
+    EXPECT_NEAR(r.theta_norm, reference.theta_norm, 1e-6 * reference.theta_norm + 1e-12);
+    EXPECT_EQ(r.impacts, reference.impacts);
+  }
+}
+
+}  // namespace
+}  // namespace skewbridge::spectra
