@@ -64,7 +64,7 @@ class Section {
   std::string Field(std::string_view key) const {
     bool bare = !key.empty();
     for (char c : key) {
-      bare = bare && (std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_' || c == '-');
+      bare = bare && (std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_');
     }
     const std::string shown = bare ? std::string(key) : "\"" + std::string(key) + "\"";
     return path_.empty() ? shown : path_ + "." + shown;

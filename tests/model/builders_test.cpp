@@ -1,0 +1,227 @@
+// Substructure builders and the Model's validation: the pilot bridge's modes against bounds
+// derived from Ostrowski's theorem, classical damping against its modal definition, and every
+// rejected field against the words of its message.
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <functional>
+#include <iostream>
+#include <limits>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "solver/common/error.h"
+#include "solver/model/builders.h"
+
+namespace skewbridge::model {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+// The pilot bridge of [method.md §6].
+DeckSpec PilotSpec() {
+  DeckSpec spec;
+  spec.mass_kg = 1547e3;
+  spec.inertia_kgm2 = 1079100e3;
+  spec.geometry = {89.14, 19.36, 20.0 * kDeg};
+  spec.stiffness = DeckSpec::StiffnessKind::kPrincipal;
+  spec.w1_radps = 18.0;
+  spec.w2_radps = 19.0;
+  spec.w_theta_radps = 26.0;
+  spec.axis_rad = 20.0 * kDeg;
+  spec.centre_of_rigidity_m = {-0.24, 0.01};
+  spec.xi = 0.05;
+  spec.abutments = AbutmentSet::kBoth;
+  spec.gap_plus_m = spec.gap_minus_m = 0.05;
+  spec.restitution = 0.5;
+  spec.friction = 0.3;
+  return spec;
+}
+
+TEST(Builders, UncoupledStiffnessIsDiagonalMassTimesSquaredFrequencies) {
+  Body body;
+  body.mass_kg = 2.0;
+  body.inertia_kgm2 = 7.0;
+  const Eigen::Matrix3d K = UncoupledStiffness(body, 3.0, 4.0, 5.0);
+  Eigen::Matrix3d expected = Eigen::Vector3d(18.0, 32.0, 175.0).asDiagonal();
+  EXPECT_EQ(K, expected);
+}
+
+TEST(Builders, PrincipalAxesStiffnessWithoutEccentricityHasItsAxesAtTheGivenAngle) {
+  Body body;
+  body.mass_kg = 3.0;
+  body.inertia_kgm2 = 11.0;
+  const double phi = 20.0 * kDeg;
+  const Eigen::Matrix3d K = PrincipalAxesStiffness(body, 18.0, 19.0, 26.0, phi, {0.0, 0.0});
+  const Eigen::Vector3d axis1(std::cos(phi), std::sin(phi), 0.0);
+  const Eigen::Vector3d axis2(-std::sin(phi), std::cos(phi), 0.0);
+  EXPECT_LT((K * axis1 - 3.0 * 18.0 * 18.0 * axis1).norm(), 1e-10 * K.norm());
+  EXPECT_LT((K * axis2 - 3.0 * 19.0 * 19.0 * axis2).norm(), 1e-10 * K.norm());
+  EXPECT_NEAR(K(2, 2), 11.0 * 26.0 * 26.0, 1e-12 * K(2, 2));
+  EXPECT_EQ(K(0, 2), 0.0);
+}
+
+TEST(Builders, PilotBridgeFrequenciesAreEighteenNineteenTwentySixWithinTheEccentricityBound) {
+  const Model model = BuildDeckModel(PilotSpec());
+  const Modes modes = ComputeModes(model.M(), model.K());
+  // In mass-scaled coordinates (x, y, rho theta), K~ = T~^T Omega T~ with Omega's eigenvalues
+  // 18^2, 19^2, 26^2 and T~ = [[1, 0, -e_y/rho], [0, 1, e_x/rho], [0, 0, 1]]. Ostrowski's
+  // theorem bounds each eigenvalue by sigma_min(T~)^2 and sigma_max(T~)^2 times the unperturbed
+  // one: sigma^2 = 1 + e^2/2 -+ e sqrt(1 + e^2/4), e = |e| / rho.
+  const double rho = std::sqrt(1079100e3 / 1547e3);
+  const double e = Eigen::Vector2d(-0.24, 0.01).norm() / rho;
+  const double s_max2 = 1.0 + 0.5 * e * e + e * std::sqrt(1.0 + 0.25 * e * e);
+  const double s_min2 = 1.0 + 0.5 * e * e - e * std::sqrt(1.0 + 0.25 * e * e);
+  const double nominal[3] = {18.0, 19.0, 26.0};
+  std::cout << "pilot bridge frequencies (rad/s): " << modes.omega_radps.transpose()
+            << "; eccentricity bound +-" << 0.5 * e << " relative\n";
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_GE(modes.omega_radps(k), nominal[k] * std::sqrt(s_min2));
+    EXPECT_LE(modes.omega_radps(k), nominal[k] * std::sqrt(s_max2));
+  }
+  // The shifts are of second order in e (no first-order term: Omega's eigenvectors are
+  // translations or a rotation and T~ - E only couples them), so they are far inside the bound.
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(modes.omega_radps(k), nominal[k],
+                nominal[k] * 2.0 * e * e * 26.0 * 26.0 / (26.0 * 26.0 - 19.0 * 19.0));
+  }
+}
+
+TEST(Builders, ClassicalDampingGivesTheSameRatioInEveryMode) {
+  for (const DeckSpec& spec : {PilotSpec()}) {
+    const Model model = BuildDeckModel(spec);
+    const Modes modes = ComputeModes(model.M(), model.K());
+    const Eigen::MatrixXd modal_C = modes.phi.transpose() * model.C() * modes.phi;
+    const Eigen::MatrixXd expected = (2.0 * 0.05 * modes.omega_radps).asDiagonal();
+    EXPECT_LT((modal_C - expected).cwiseAbs().maxCoeff(), 1e-10 * expected.maxCoeff());
+    // The modes are M-orthonormal.
+    EXPECT_LT((modes.phi.transpose() * model.M() * modes.phi - Eigen::MatrixXd::Identity(3, 3))
+                  .cwiseAbs()
+                  .maxCoeff(),
+              1e-12);
+  }
+}
+
+TEST(Builders, AbutmentSetsCarryTheNamedCornersAgainstTheirFaces) {
+  DeckSpec spec = PilotSpec();
+  spec.abutments = AbutmentSet::kPlusX;
+  const Model plus = BuildDeckModel(spec);
+  ASSERT_EQ(plus.n_contacts(), 2);
+  EXPECT_EQ(plus.contact(0).name, "P1");
+  EXPECT_EQ(plus.contact(1).name, "P2");
+  spec.abutments = AbutmentSet::kBoth;
+  spec.gap_plus_m = 0.03;
+  spec.gap_minus_m = 0.07;
+  spec.overrides = {{"P3", 0.9, 0.1}};
+  const Model both = BuildDeckModel(spec);
+  ASSERT_EQ(both.n_contacts(), 4);
+  EXPECT_EQ(both.FindContact("P3"), 2);
+  EXPECT_EQ(both.contact(2).restitution, 0.9);
+  EXPECT_EQ(both.contact(2).friction, 0.1);
+  EXPECT_EQ(both.contact(3).restitution, 0.5);
+  // At rest every gap is delta cos a [method.md §2].
+  for (int c = 0; c < 4; ++c) {
+    const Contact& k = both.contact(c);
+    const double gap = k.face.normal.dot(k.point_m - k.face.point_m);
+    EXPECT_NEAR(gap, (c < 2 ? 0.03 : 0.07) * std::cos(20.0 * kDeg), 1e-12);
+  }
+}
+
+void ExpectMessage(const std::function<void()>& build, const std::vector<std::string>& words) {
+  try {
+    build();
+    ADD_FAILURE() << "no InputError; expected one mentioning " << words.front();
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+    for (const std::string& w : words) {
+      EXPECT_NE(what.find(w), std::string::npos) << "'" << w << "' not in: " << what;
+    }
+  }
+}
+
+TEST(Builders, EveryInvalidSpecFieldIsNamedWithItsAllowedRange) {
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  const auto with = [](const std::function<void(DeckSpec&)>& change) {
+    return [change] {
+      DeckSpec spec = PilotSpec();
+      change(spec);
+      BuildDeckModel(spec, "bridge.toml");
+    };
+  };
+  ExpectMessage(with([](DeckSpec& s) { s.geometry.width_m = 0.0; }),
+                {"bridge.toml", "deck.W", "must be > 0", "got 0"});
+  ExpectMessage(with([](DeckSpec& s) { s.geometry.length_m = -3.0; }),
+                {"deck.L", "must be > 0", "got -3"});
+  ExpectMessage(with([](DeckSpec& s) { s.mass_kg = 0.0; }), {"deck.m", "must be > 0"});
+  ExpectMessage(with([](DeckSpec& s) { s.inertia_kgm2 = -1.0; }), {"deck.I_m", "must be > 0"});
+  ExpectMessage(with([](DeckSpec& s) { s.geometry.skew_rad = 90.0 * kDeg; }),
+                {"deck.skew_deg", "[0, 90) deg", "got 90"});
+  ExpectMessage(with([](DeckSpec& s) { s.geometry.skew_rad = -1.0 * kDeg; }),
+                {"deck.skew_deg", "[0, 90) deg"});
+  ExpectMessage(with([](DeckSpec& s) { s.restitution = 1.5; }),
+                {"abutments.eps_N", "[0, 1]", "got 1.5"});
+  ExpectMessage(with([](DeckSpec& s) { s.friction = -0.1; }), {"abutments.mu", "must be >= 0"});
+  ExpectMessage(with([](DeckSpec& s) {
+                  s.overrides = {{"P2", -0.5, std::nullopt}};
+                }),
+                {"abutments.contacts.P2.eps_N", "[0, 1]"});
+  ExpectMessage(with([](DeckSpec& s) {
+                  s.overrides = {{"P7", 0.5, std::nullopt}};
+                }),
+                {"abutments.contacts.P7", "unknown contact", "P1, P2, P3, P4"});
+  ExpectMessage(with([](DeckSpec& s) { s.gap_minus_m = -0.01; }),
+                {"abutments.gap_m", "must be >= 0"});
+  ExpectMessage(with([](DeckSpec& s) { s.xi = 1.0; }), {"substructure.xi", "[0, 1)", "got 1"});
+  ExpectMessage(with([](DeckSpec& s) { s.w1_radps = nan; }), {"substructure.w1", "finite"});
+  ExpectMessage(with([](DeckSpec& s) { s.geometry.width_m = nan; }), {"deck.W", "finite"});
+  ExpectMessage(with([](DeckSpec& s) {
+                  s.stiffness = DeckSpec::StiffnessKind::kMatrix;
+                  s.K = Eigen::Matrix3d::Identity();
+                  s.K(0, 1) = 0.5;
+                }),
+                {"substructure.K", "symmetric"});
+  ExpectMessage(with([](DeckSpec& s) {
+                  s.stiffness = DeckSpec::StiffnessKind::kMatrix;
+                  s.K = Eigen::Vector3d(1.0, -1.0, 1.0).asDiagonal();
+                }),
+                {"substructure.K", "positive semi-definite"});
+  ExpectMessage(with([](DeckSpec& s) {
+                  Eigen::Matrix3d C = Eigen::Matrix3d::Identity();
+                  C(2, 0) = 3.0;
+                  s.C = C;
+                }),
+                {"substructure.C", "symmetric"});
+}
+
+TEST(Builders, ModelRejectsBrokenContactsAndMatrices) {
+  Body body;
+  body.mass_kg = 1.0;
+  body.inertia_kgm2 = 1.0;
+  body.geometry = {10.0, 2.0, 0.3};
+  std::vector<Contact> contacts =
+      AbutmentContacts(body, 0, AbutmentSet::kPlusX, 0.1, 0.1, 0.5, 0.2);
+  contacts[0].face.point_m.x() = 0.0;  // the face inside the deck: a negative gap at rest
+  ExpectMessage(
+      [&] {
+        Model({body}, Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero(), GroundInfluence(1),
+              contacts, "m.toml");
+      },
+      {"m.toml", "abutments.gap_m", "must be >= 0", "P1"});
+  ExpectMessage(
+      [&] {
+        Model({body}, Eigen::Matrix2d::Identity(), Eigen::Matrix3d::Zero(), GroundInfluence(1), {},
+              "m.toml");
+      },
+      {"substructure.K", "must be 3 x 3", "got 2 x 2"});
+  Eigen::Matrix3d K = Eigen::Matrix3d::Identity();
+  K(1, 1) = std::numeric_limits<double>::quiet_NaN();
+  ExpectMessage(
+      [&] { Model({body}, K, Eigen::Matrix3d::Zero(), GroundInfluence(1), {}, "m.toml"); },
+      {"substructure.K", "finite"});
+}
+
+}  // namespace
+}  // namespace skewbridge::model
