@@ -13,3 +13,15 @@ cmake --workflow --preset release
 
 echo "== asan-ubsan: build and test (MPI off; see docs/architecture.md)"
 cmake --workflow --preset asan-ubsan
+
+echo "== fuzz: each record reader under libFuzzer + ASan + UBSan for 12 s (docs/records.md)"
+cmake --preset fuzz
+cmake --build --preset fuzz
+fuzz_work=$(mktemp -d)
+for fuzzer in build/fuzz/records/fuzz_records_*; do
+  corpus="$fuzz_work/$(basename "$fuzzer")"
+  mkdir -p "$corpus"
+  find tests/data/records -type f ! -name '*.md' -exec cp {} "$corpus" \;
+  "$fuzzer" -max_total_time=12 -timeout=10 -max_len=8192 -artifact_prefix="$fuzz_work/" "$corpus"
+done
+rm -rf "$fuzz_work"
