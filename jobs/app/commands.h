@@ -8,5 +8,9 @@ namespace skewbridge::app {
 
 /// `skewbridge version`: prints the version and source revision.
 void AddVersionCommand(CLI::App& app);
+/// `skewbridge sweep SPEC.toml --out FILE.h5`: runs a sweep (MPI inside), jobs/sweep_command.h.
+void AddSweepCommand(CLI::App& app);
+/// `skewbridge inspect FILE.h5`: prints the sweeps, axes, responses and completion of a cube.
+void AddInspectCommand(CLI::App& app);
 
 }  // namespace skewbridge::app

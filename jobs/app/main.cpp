@@ -10,6 +10,8 @@ int main(int argc, char** argv) {
   CLI::App app{"skewbridge: seismic response of skew bridges with pounding deck-abutment joints"};
   app.require_subcommand(1);
   skewbridge::app::AddVersionCommand(app);
+  skewbridge::app::AddSweepCommand(app);
+  skewbridge::app::AddInspectCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

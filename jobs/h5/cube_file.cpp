@@ -1,0 +1,419 @@
+#include "jobs/h5/cube_file.h"
+
+#include <algorithm>
+#include <cmath>
+#include <ctime>
+#include <limits>
+
+#include "jobs/h5/h5.h"
+#include "solver/common/error.h"
+
+namespace skewbridge::jobs::h5 {
+namespace {
+
+// Chunks hold whole rows along the last axis (w0/w_g in the canonical order, so a spectrum is
+// one contiguous read) and grow over the preceding axes up to about this many elements.
+constexpr hsize_t kChunkTargetElements = 8192;
+constexpr int kDeflateLevel = 4;
+
+std::string GroupPath(const std::string& sweep) { return "sweeps/" + sweep; }
+
+std::vector<hsize_t> ShapeOf(const SweepSpec& spec) {
+  std::vector<hsize_t> shape;
+  for (std::size_t n : spec.Shape()) {
+    shape.push_back(n);
+  }
+  return shape;
+}
+
+std::vector<hsize_t> ChunkOf(const std::vector<hsize_t>& shape) {
+  std::vector<hsize_t> chunk(shape.size(), 1);
+  hsize_t elements = 1;
+  for (std::size_t k = shape.size(); k-- > 0;) {
+    const hsize_t room = std::max<hsize_t>(1, kChunkTargetElements / elements);
+    chunk[k] = k + 1 == shape.size() ? shape[k] : std::min(shape[k], room);
+    elements *= chunk[k];
+  }
+  return chunk;
+}
+
+// The datasets of one sweep group, opened or created.
+struct Datasets {
+  Id file;
+  Id group;
+  std::vector<Id> responses;
+  Id status, done, run, events, steps, wall_s;
+};
+
+struct Writable {
+  hid_t dataset;
+  hid_t mem_type;
+  std::size_t size;
+  const void* data;
+};
+
+std::vector<Writable> DataOf(const Datasets& d, const CubeData& data) {
+  std::vector<Writable> out;
+  for (std::size_t r = 0; r < d.responses.size(); ++r) {
+    out.push_back(
+        {d.responses[r].get(), H5T_NATIVE_DOUBLE, sizeof(double), data.responses[r].data()});
+  }
+  out.push_back({d.status.get(), H5T_NATIVE_INT32, sizeof(std::int32_t), data.status.data()});
+  out.push_back({d.run.get(), H5T_NATIVE_INT32, sizeof(std::int32_t), data.run.data()});
+  out.push_back({d.events.get(), H5T_NATIVE_INT64, sizeof(std::int64_t), data.events.data()});
+  out.push_back({d.steps.get(), H5T_NATIVE_INT64, sizeof(std::int64_t), data.steps.data()});
+  out.push_back({d.wall_s.get(), H5T_NATIVE_DOUBLE, sizeof(double), data.wall_s.data()});
+  return out;
+}
+
+Datasets CreateLayout(const std::string& path, const SweepSpec& spec, const CubeLayout& layout,
+                      bool final, std::int32_t runs, const std::string& created_utc) {
+  Datasets d;
+  d.file = CreateFile(path);
+  SetAttr(d.file.get(), "format", std::string(kCubeFormat));
+  SetAttr(d.file.get(), "format_version", kCubeFormatVersion);
+  d.group = CreateGroup(d.file.get(), GroupPath(spec.name));
+  const hid_t g = d.group.get();
+  SetAttr(g, "family", spec.family);
+  SetAttr(g, "spec_text", spec.text);
+  SetAttr(g, "spec_source", spec.source);
+  SetAttr(g, "spec_canonical", spec.CanonicalText());
+  SetAttr(g, "spec_hash", spec.Hash());
+  SetAttr(g, "program_version", std::string(SKEWBRIDGE_VERSION));
+  SetAttr(g, "source_revision", std::string(SKEWBRIDGE_GIT_REVISION));
+  SetAttr(g, "created_utc", created_utc);
+  SetAttr(g, "runs", static_cast<std::int64_t>(runs));
+  SetAttr(g, "cells", static_cast<std::int64_t>(spec.CellCount()));
+  SetAttr(g, "complete", static_cast<std::int64_t>(0));
+  std::vector<std::string> axis_order;
+  for (const Axis& axis : spec.axes) {
+    axis_order.push_back(axis.key);
+  }
+  SetAttr(g, "axis_order", axis_order);
+  std::vector<std::string> response_order;
+  for (const ResponseInfo& r : layout.responses) {
+    response_order.push_back(r.name);
+  }
+  SetAttr(g, "response_order", response_order);
+
+  Id fixed = CreateGroup(g, "fixed");
+  for (const FixedValue& f : spec.fixed) {
+    if (f.kind == ParameterKind::kNumber) {
+      SetAttr(fixed.get(), f.key, f.value);
+    } else {
+      SetAttr(fixed.get(), f.key, f.label);
+    }
+  }
+
+  Id axes_group = CreateGroup(g, "axes");
+  std::vector<Id> scales;
+  for (const Axis& axis : spec.axes) {
+    const ParameterInfo* info = FindParameter(axis.key);
+    if (axis.kind == ParameterKind::kNumber) {
+      const hsize_t n = axis.values.size();
+      Id ds = CreateDataset(axes_group.get(), axis.key, H5T_IEEE_F64LE,
+                            std::span<const hsize_t>(&n, 1), {}, 0, nullptr);
+      WriteAll(ds.get(), H5T_NATIVE_DOUBLE, axis.values.data());
+      scales.push_back(std::move(ds));
+    } else {
+      WriteStrings(axes_group.get(), axis.key, axis.labels);
+      scales.push_back(OpenDataset(axes_group.get(), axis.key));
+    }
+    const hid_t s = scales.back().get();
+    SetAttr(s, "units", std::string(info->unit));
+    SetAttr(s, "description", std::string(info->description));
+    SetAttr(s, "symbol", std::string(info->symbol));
+    SetAttr(s, "spacing", axis.spacing);
+    SetScale(s, axis.key);
+  }
+
+  const std::vector<hsize_t> shape = ShapeOf(spec);
+  const std::vector<hsize_t> chunk = final ? ChunkOf(shape) : std::vector<hsize_t>{};
+  const int level = final ? kDeflateLevel : 0;
+  auto make = [&](hid_t parent, const std::string& name, hid_t type, const void* fill,
+                  const std::string& units, const std::string& description) {
+    Id ds = CreateDataset(parent, name, type, shape, chunk, level, fill);
+    SetAttr(ds.get(), "units", units);
+    SetAttr(ds.get(), "description", description);
+    for (std::size_t k = 0; k < scales.size(); ++k) {
+      AttachScale(ds.get(), scales[k].get(), static_cast<unsigned>(k), spec.axes[k].key);
+    }
+    return ds;
+  };
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const std::int32_t not_done = kStatusNotDone;
+  const std::int32_t zero32 = 0;
+  const std::int64_t zero64 = 0;
+  const std::uint8_t zero8 = 0;
+  const double zero = 0.0;
+  Id responses = CreateGroup(g, "responses");
+  for (const ResponseInfo& r : layout.responses) {
+    d.responses.push_back(
+        make(responses.get(), r.name, H5T_IEEE_F64LE, &nan, r.unit, r.description));
+  }
+  d.status = make(g, "status", H5T_STD_I32LE, &not_done, "1",
+                  "cell status code; names in the attributes status_codes / status_names");
+  std::vector<std::int32_t> codes;
+  std::vector<std::string> names;
+  for (const auto& [code, name] : layout.status_names) {
+    codes.push_back(code);
+    names.push_back(name);
+  }
+  SetAttr(d.status.get(), "status_codes", codes);
+  SetAttr(d.status.get(), "status_names", names);
+  d.done = make(g, "done", H5T_STD_U8LE, &zero8, "1",
+                "1 when the cell's data is in the file (written after the data it covers)");
+  Id stats = CreateGroup(g, "stats");
+  d.run = make(stats.get(), "run", H5T_STD_I32LE, &zero32, "1",
+               "the run (1 = first, 2.. = resumes) that computed the cell; 0 = not computed");
+  d.events = make(stats.get(), "events", H5T_STD_I64LE, &zero64, "1",
+                  "contact events of the cell's solver run");
+  d.steps = make(stats.get(), "steps", H5T_STD_I64LE, &zero64, "1",
+                 "integration steps of the cell's solver run");
+  d.wall_s = make(stats.get(), "wall_s", H5T_IEEE_F64LE, &zero, "s",
+                  "wall-clock time of the cell's evaluation");
+  return d;
+}
+
+Datasets OpenLayout(const std::string& path, const std::string& sweep, bool writable,
+                    std::vector<std::string>* response_names) {
+  Datasets d;
+  try {
+    d.file = OpenFile(path, writable);
+  } catch (const H5Error&) {
+    throw InputError::AtLine(path, 0, "cannot open as an HDF5 file");
+  }
+  if (!HasAttr(d.file.get(), "format") || GetStringAttr(d.file.get(), "format") != kCubeFormat) {
+    throw InputError::AtLine(path, 0, "not a skewbridge cube (root attribute format)");
+  }
+  if (!Exists(d.file.get(), "sweeps") || !Exists(OpenGroup(d.file.get(), "sweeps").get(), sweep)) {
+    throw InputError::AtLine(path, 0, "holds no sweep named '" + sweep + "'");
+  }
+  d.group = OpenGroup(d.file.get(), GroupPath(sweep));
+  const hid_t g = d.group.get();
+  const std::vector<std::string> order = GetStringListAttr(g, "response_order");
+  Id responses = OpenGroup(g, "responses");
+  for (const std::string& name : order) {
+    d.responses.push_back(OpenDataset(responses.get(), name));
+  }
+  if (response_names != nullptr) {
+    *response_names = order;
+  }
+  d.status = OpenDataset(g, "status");
+  d.done = OpenDataset(g, "done");
+  d.run = OpenDataset(g, "stats/run");
+  d.events = OpenDataset(g, "stats/events");
+  d.steps = OpenDataset(g, "stats/steps");
+  d.wall_s = OpenDataset(g, "stats/wall_s");
+  return d;
+}
+
+std::uint64_t CellsOf(hid_t dataset) {
+  std::uint64_t n = 1;
+  for (hsize_t s : Shape(dataset)) {
+    n *= s;
+  }
+  return n;
+}
+
+void ReadData(const Datasets& d, CubeData& data) {
+  data.Reset(CellsOf(d.status.get()), d.responses.size());
+  for (std::size_t r = 0; r < d.responses.size(); ++r) {
+    ReadAll(d.responses[r].get(), H5T_NATIVE_DOUBLE, data.responses[r].data());
+  }
+  ReadAll(d.status.get(), H5T_NATIVE_INT32, data.status.data());
+  ReadAll(d.done.get(), H5T_NATIVE_UINT8, data.done.data());
+  ReadAll(d.run.get(), H5T_NATIVE_INT32, data.run.data());
+  ReadAll(d.events.get(), H5T_NATIVE_INT64, data.events.data());
+  ReadAll(d.steps.get(), H5T_NATIVE_INT64, data.steps.data());
+  ReadAll(d.wall_s.get(), H5T_NATIVE_DOUBLE, data.wall_s.data());
+}
+
+}  // namespace
+
+struct CheckpointFile::Impl {
+  Datasets d;
+  std::int32_t run = 1;
+  std::string created_utc;
+};
+
+CheckpointFile::CheckpointFile(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+CheckpointFile::CheckpointFile(CheckpointFile&&) noexcept = default;
+CheckpointFile& CheckpointFile::operator=(CheckpointFile&&) noexcept = default;
+CheckpointFile::~CheckpointFile() = default;
+
+CheckpointFile CheckpointFile::Create(const std::filesystem::path& path, const SweepSpec& spec,
+                                      const CubeLayout& layout) {
+  auto impl = std::make_unique<Impl>();
+  impl->created_utc = UtcNow();
+  impl->d = CreateLayout(path.string(), spec, layout, false, 1, impl->created_utc);
+  FlushToDisk(impl->d.file.get());
+  return CheckpointFile(std::move(impl));
+}
+
+CheckpointFile CheckpointFile::Resume(const std::filesystem::path& path, const SweepSpec& spec,
+                                      const CubeLayout& layout, CubeData& data) {
+  auto impl = std::make_unique<Impl>();
+  std::vector<std::string> names;
+  impl->d = OpenLayout(path.string(), spec.name, true, &names);
+  const hid_t g = impl->d.group.get();
+  const std::string hash = GetStringAttr(g, "spec_hash");
+  if (hash != spec.Hash()) {
+    throw InputError::AtLine(
+        path.string(), 0,
+        "cannot resume: it was written by a different sweep specification (hash " + hash + ", " +
+            spec.source + " has " + spec.Hash() +
+            "); use the original specification, a new output file, or --force to start over");
+  }
+  std::vector<std::string> expected;
+  for (const ResponseInfo& r : layout.responses) {
+    expected.push_back(r.name);
+  }
+  if (names != expected) {
+    throw InputError::AtLine(path.string(), 0,
+                             "cannot resume: its responses differ from this program's evaluator");
+  }
+  ReadData(impl->d, data);
+  // Bytes of cells without a done flag may be half-written: forget them.
+  for (std::uint64_t c = 0; c < data.Cells(); ++c) {
+    if (data.done[c] == 0) {
+      data.Store(c, kStatusNotDone, {}, CellStats{}, 0);
+    }
+  }
+  impl->run = static_cast<std::int32_t>(GetIntAttr(g, "runs")) + 1;
+  impl->created_utc = GetStringAttr(g, "created_utc");
+  SetAttr(g, "runs", static_cast<std::int64_t>(impl->run));
+  FlushToDisk(impl->d.file.get());
+  return CheckpointFile(std::move(impl));
+}
+
+std::int32_t CheckpointFile::Run() const { return impl_->run; }
+
+std::string CheckpointFile::CreatedUtc() const { return impl_->created_utc; }
+
+void CheckpointFile::Write(const CubeData& data, std::span<const std::uint64_t> cells) {
+  SB_DEMAND(impl_ != nullptr, "checkpoint file is closed");
+  if (cells.empty()) {
+    return;
+  }
+  for (const Writable& w : DataOf(impl_->d, data)) {
+    WriteCells(w.dataset, w.mem_type, w.size, w.data, cells);
+  }
+  FlushToDisk(impl_->d.file.get());
+  WriteCells(impl_->d.done.get(), H5T_NATIVE_UINT8, 1, data.done.data(), cells);
+  FlushToDisk(impl_->d.file.get());
+}
+
+void CheckpointFile::Close() { impl_.reset(); }
+
+void WriteFinalCube(const std::filesystem::path& path, const SweepSpec& spec,
+                    const CubeLayout& layout, const CubeData& data, std::int32_t runs,
+                    const std::string& created_utc) {
+  const std::filesystem::path tmp = path.string() + ".tmp";
+  {
+    Datasets d = CreateLayout(tmp.string(), spec, layout, true, runs, created_utc);
+    for (const Writable& w : DataOf(d, data)) {
+      WriteAll(w.dataset, w.mem_type, w.data);
+    }
+    WriteAll(d.done.get(), H5T_NATIVE_UINT8, data.done.data());
+    const bool all_done =
+        std::all_of(data.done.begin(), data.done.end(), [](std::uint8_t v) { return v != 0; });
+    SetAttr(d.group.get(), "completed_utc", UtcNow());
+    SetAttr(d.group.get(), "complete", static_cast<std::int64_t>(all_done ? 1 : 0));
+    FlushToDisk(d.file.get());
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    throw H5Error("rename " + tmp.string() + " to " + path.string() + ": " + ec.message());
+  }
+}
+
+std::vector<SweepSummary> SummarizeCube(const std::filesystem::path& path) {
+  Id file;
+  try {
+    file = OpenFile(path.string(), false);
+  } catch (const H5Error&) {
+    throw InputError::AtLine(path.string(), 0, "cannot open as an HDF5 file");
+  }
+  if (!HasAttr(file.get(), "format") || GetStringAttr(file.get(), "format") != kCubeFormat ||
+      !Exists(file.get(), "sweeps")) {
+    throw InputError::AtLine(path.string(), 0, "not a skewbridge cube (root attribute format)");
+  }
+  std::vector<SweepSummary> out;
+  Id sweeps = OpenGroup(file.get(), "sweeps");
+  for (const std::string& name : ListChildren(sweeps.get())) {
+    Id g = OpenGroup(sweeps.get(), name);
+    SweepSummary s;
+    s.name = name;
+    s.family = GetStringAttr(g.get(), "family");
+    s.spec_hash = GetStringAttr(g.get(), "spec_hash");
+    s.created_utc = GetStringAttr(g.get(), "created_utc");
+    s.program_version = GetStringAttr(g.get(), "program_version");
+    s.complete = GetIntAttr(g.get(), "complete") != 0;
+    s.runs = GetIntAttr(g.get(), "runs");
+    Id axes = OpenGroup(g.get(), "axes");
+    for (const std::string& key : GetStringListAttr(g.get(), "axis_order")) {
+      Id ds = OpenDataset(axes.get(), key);
+      AxisSummary a;
+      a.name = key;
+      a.unit = GetStringAttr(ds.get(), "units");
+      a.size = static_cast<std::size_t>(Shape(ds.get()).at(0));
+      Id type(H5Dget_type(ds.get()), H5Tclose, "H5Dget_type " + key);
+      if (H5Tget_class(type.get()) == H5T_STRING) {
+        a.labels = ReadStrings(ds.get());
+      } else {
+        a.values.resize(a.size);
+        ReadAll(ds.get(), H5T_NATIVE_DOUBLE, a.values.data());
+      }
+      s.axes.push_back(std::move(a));
+    }
+    Id responses = OpenGroup(g.get(), "responses");
+    for (const std::string& r : GetStringListAttr(g.get(), "response_order")) {
+      Id ds = OpenDataset(responses.get(), r);
+      s.responses.push_back(
+          {r, GetStringAttr(ds.get(), "units"), GetStringAttr(ds.get(), "description")});
+    }
+    Id status_ds = OpenDataset(g.get(), "status");
+    Id done_ds = OpenDataset(g.get(), "done");
+    s.cells = CellsOf(status_ds.get());
+    std::vector<std::int32_t> status(s.cells);
+    std::vector<std::uint8_t> done(s.cells);
+    ReadAll(status_ds.get(), H5T_NATIVE_INT32, status.data());
+    ReadAll(done_ds.get(), H5T_NATIVE_UINT8, done.data());
+    const std::vector<std::int32_t> codes = GetIntListAttr(status_ds.get(), "status_codes");
+    const std::vector<std::string> names = GetStringListAttr(status_ds.get(), "status_names");
+    for (std::uint64_t c = 0; c < s.cells; ++c) {
+      if (done[c] == 0) {
+        continue;
+      }
+      ++s.done;
+      const auto it = std::find(codes.begin(), codes.end(), status[c]);
+      const std::string label = it == codes.end() || names.size() != codes.size()
+                                    ? "code " + std::to_string(status[c])
+                                    : names[static_cast<std::size_t>(it - codes.begin())];
+      ++s.done_by_status[label];
+    }
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+CubeData ReadCubeData(const std::filesystem::path& path, const std::string& sweep,
+                      std::vector<std::string>* response_names) {
+  Datasets d = OpenLayout(path.string(), sweep, false, response_names);
+  CubeData data;
+  ReadData(d, data);
+  return data;
+}
+
+std::string UtcNow() {
+  const std::time_t now = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&now, &tm);
+  char buffer[32];
+  std::strftime(buffer, sizeof buffer, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buffer;
+}
+
+}  // namespace skewbridge::jobs::h5

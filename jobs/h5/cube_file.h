@@ -1,0 +1,105 @@
+#pragma once
+/// @file
+/// Sweep cubes in HDF5 (docs/hdf5-layout.md): the checkpoint file FILE.partial that a running
+/// sweep fills cell by cell, the final compressed FILE, and readers for inspect and tests.
+/// Free of <hdf5.h>; failures of HDF5 calls throw h5::H5Error.
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "jobs/cube.h"
+#include "jobs/h5/h5_error.h"
+#include "jobs/sweep_spec.h"
+
+namespace skewbridge::jobs::h5 {
+
+/// The format name stored in the root attribute "format".
+inline constexpr const char* kCubeFormat = "skewbridge-cube";
+/// The version stored in the root attribute "format_version".
+inline constexpr std::int64_t kCubeFormatVersion = 1;
+
+/// The checkpoint file of a running sweep: uncompressed, contiguous, every dataset allocated
+/// at creation, so that after creation only raw bytes change and a process killed at any
+/// moment leaves a readable file whose done mask never covers missing data.
+class CheckpointFile {
+ public:
+  /// Creates (truncating) the file with all metadata, axes and fill values, and flushes it.
+  /// @throws H5Error on I/O failure.
+  static CheckpointFile Create(const std::filesystem::path& path, const SweepSpec& spec,
+                               const CubeLayout& layout);
+  /// Opens an existing checkpoint for resume, refusing a different specification, reads
+  /// its cells into `data` (not-done cells reset to fill values) and starts run number
+  /// runs + 1. @throws InputError for a foreign file or a different spec hash.
+  static CheckpointFile Resume(const std::filesystem::path& path, const SweepSpec& spec,
+                               const CubeLayout& layout, CubeData& data);
+
+  CheckpointFile(CheckpointFile&&) noexcept;
+  CheckpointFile& operator=(CheckpointFile&&) noexcept;
+  ~CheckpointFile();
+
+  /// The number of this run (1 for a fresh sweep).
+  std::int32_t Run() const;
+  /// The creation time of the sweep (UTC, ISO 8601), kept across resumes.
+  std::string CreatedUtc() const;
+  /// Writes the listed cells: data, flush + fsync, then their done flags, flush + fsync
+  /// (a crash in between loses those cells, never marks missing ones as done).
+  void Write(const CubeData& data, std::span<const std::uint64_t> cells);
+  /// Closes the file.
+  void Close();
+
+ private:
+  struct Impl;
+  explicit CheckpointFile(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Writes the final cube: chunked (contiguous along the last axis), shuffle + deflate, the
+/// attribute complete = 1 written last. Writes path + ".tmp" and renames it to path.
+/// @throws H5Error on I/O failure.
+void WriteFinalCube(const std::filesystem::path& path, const SweepSpec& spec,
+                    const CubeLayout& layout, const CubeData& data, std::int32_t runs,
+                    const std::string& created_utc);
+
+/// One axis as stored in a cube.
+struct AxisSummary {
+  std::string name;
+  std::string unit;
+  std::size_t size = 0;
+  std::vector<double> values;       ///< Numeric axes.
+  std::vector<std::string> labels;  ///< Label axes.
+};
+
+/// A sweep group as `skewbridge inspect` reports it.
+struct SweepSummary {
+  std::string name;
+  std::string family;
+  std::string spec_hash;
+  std::string created_utc;
+  std::string program_version;
+  bool complete = false;
+  std::int64_t runs = 0;
+  std::vector<AxisSummary> axes;
+  std::vector<ResponseInfo> responses;
+  std::uint64_t cells = 0;
+  std::uint64_t done = 0;
+  std::map<std::string, std::uint64_t> done_by_status;  ///< Status name -> done cells.
+};
+
+/// Reads the summary of every sweep in a cube (final or checkpoint).
+/// @throws InputError when the file is not a skewbridge cube.
+std::vector<SweepSummary> SummarizeCube(const std::filesystem::path& path);
+
+/// Reads the per-cell arrays of one sweep, with the response names in stored order.
+/// @throws InputError when the file or sweep is absent.
+CubeData ReadCubeData(const std::filesystem::path& path, const std::string& sweep,
+                      std::vector<std::string>* response_names);
+
+/// Current UTC time as "YYYY-MM-DDTHH:MM:SSZ".
+std::string UtcNow();
+
+}  // namespace skewbridge::jobs::h5

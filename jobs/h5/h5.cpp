@@ -1,0 +1,323 @@
+#include "jobs/h5/h5.h"
+
+#include <H5DSpublic.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstring>
+
+namespace skewbridge::jobs::h5 {
+
+static_assert(sizeof(hid_t) == sizeof(std::int64_t), "hid_t is 64-bit since HDF5 1.10");
+
+herr_t Check(herr_t status, std::string_view what) {
+  if (status < 0) {
+    throw H5Error(std::string(what) + ": HDF5 call failed");
+  }
+  return status;
+}
+
+hid_t CheckId(hid_t id, std::string_view what) {
+  if (id < 0) {
+    throw H5Error(std::string(what) + ": HDF5 call failed");
+  }
+  return id;
+}
+
+Id& Id::operator=(Id&& other) noexcept {
+  if (this != &other) {
+    if (id_ >= 0 && closer_ != nullptr) {
+      closer_(id_);
+    }
+    id_ = other.id_;
+    closer_ = other.closer_;
+    other.id_ = -1;
+  }
+  return *this;
+}
+
+Id::~Id() {
+  if (id_ >= 0 && closer_ != nullptr) {
+    closer_(id_);  // a close failure cannot be reported from a destructor
+  }
+}
+
+void SilenceErrorStack() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+
+Id CreateFile(const std::string& path) {
+  SilenceErrorStack();
+  return Id(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
+            "create file " + path);
+}
+
+Id OpenFile(const std::string& path, bool writable) {
+  SilenceErrorStack();
+  return Id(H5Fopen(path.c_str(), writable ? H5F_ACC_RDWR : H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose,
+            "open file " + path);
+}
+
+Id CreateGroup(hid_t parent, const std::string& name) {
+  Id lcpl(H5Pcreate(H5P_LINK_CREATE), H5Pclose, "H5Pcreate(link)");
+  Check(H5Pset_create_intermediate_group(lcpl.get(), 1), "H5Pset_create_intermediate_group");
+  return Id(H5Gcreate2(parent, name.c_str(), lcpl.get(), H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+            "create group " + name);
+}
+
+Id OpenGroup(hid_t parent, const std::string& name) {
+  return Id(H5Gopen2(parent, name.c_str(), H5P_DEFAULT), H5Gclose, "open group " + name);
+}
+
+bool Exists(hid_t parent, const std::string& name) {
+  return Check(H5Lexists(parent, name.c_str(), H5P_DEFAULT), "H5Lexists " + name) > 0;
+}
+
+std::vector<std::string> ListChildren(hid_t group) {
+  H5G_info_t info;
+  Check(H5Gget_info(group, &info), "H5Gget_info");
+  std::vector<std::string> names;
+  for (hsize_t i = 0; i < info.nlinks; ++i) {
+    const ssize_t n =
+        H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, nullptr, 0, H5P_DEFAULT);
+    Check(static_cast<herr_t>(n < 0 ? -1 : 0), "H5Lget_name_by_idx");
+    std::string name(static_cast<std::size_t>(n), '\0');
+    Check(static_cast<herr_t>(H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i,
+                                                 name.data(), name.size() + 1, H5P_DEFAULT) < 0
+                                  ? -1
+                                  : 0),
+          "H5Lget_name_by_idx");
+    names.push_back(name);
+  }
+  return names;
+}
+
+Id Dataspace(std::span<const hsize_t> shape) {
+  return Id(H5Screate_simple(static_cast<int>(shape.size()), shape.data(), nullptr), H5Sclose,
+            "H5Screate_simple");
+}
+
+Id StringType() {
+  Id type(H5Tcopy(H5T_C_S1), H5Tclose, "H5Tcopy(string)");
+  Check(H5Tset_size(type.get(), H5T_VARIABLE), "H5Tset_size(variable)");
+  Check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "H5Tset_cset(utf8)");
+  return type;
+}
+
+Id CreateDataset(hid_t parent, const std::string& name, hid_t type, std::span<const hsize_t> shape,
+                 std::span<const hsize_t> chunk, int deflate_level, const void* fill) {
+  Id space = Dataspace(shape);
+  Id dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "H5Pcreate(dataset) " + name);
+  if (chunk.empty()) {
+    Check(H5Pset_layout(dcpl.get(), H5D_CONTIGUOUS), "H5Pset_layout " + name);
+    Check(H5Pset_alloc_time(dcpl.get(), H5D_ALLOC_TIME_EARLY), "H5Pset_alloc_time " + name);
+  } else {
+    Check(H5Pset_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()),
+          "H5Pset_chunk " + name);
+    if (deflate_level > 0) {
+      Check(H5Pset_shuffle(dcpl.get()), "H5Pset_shuffle " + name);
+      Check(H5Pset_deflate(dcpl.get(), static_cast<unsigned>(deflate_level)),
+            "H5Pset_deflate " + name);
+    }
+  }
+  if (fill != nullptr) {
+    Check(H5Pset_fill_value(dcpl.get(), type, fill), "H5Pset_fill_value " + name);
+    Check(H5Pset_fill_time(dcpl.get(), H5D_FILL_TIME_ALLOC), "H5Pset_fill_time " + name);
+  }
+  return Id(
+      H5Dcreate2(parent, name.c_str(), type, space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
+      H5Dclose, "create dataset " + name);
+}
+
+Id OpenDataset(hid_t parent, const std::string& name) {
+  return Id(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), H5Dclose, "open dataset " + name);
+}
+
+std::vector<hsize_t> Shape(hid_t dataset) {
+  Id space(H5Dget_space(dataset), H5Sclose, "H5Dget_space");
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  Check(rank, "H5Sget_simple_extent_ndims");
+  std::vector<hsize_t> shape(static_cast<std::size_t>(rank));
+  Check(H5Sget_simple_extent_dims(space.get(), shape.data(), nullptr), "H5Sget_simple_extent");
+  return shape;
+}
+
+void WriteAll(hid_t dataset, hid_t mem_type, const void* data) {
+  Check(H5Dwrite(dataset, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "H5Dwrite");
+}
+
+void ReadAll(hid_t dataset, hid_t mem_type, void* data) {
+  Check(H5Dread(dataset, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "H5Dread");
+}
+
+void WriteCells(hid_t dataset, hid_t mem_type, std::size_t elem_size, const void* full,
+                std::span<const std::uint64_t> cells) {
+  if (cells.empty()) {
+    return;
+  }
+  const std::vector<hsize_t> shape = Shape(dataset);
+  const std::size_t rank = shape.size();
+  std::vector<hsize_t> coords(cells.size() * rank);
+  std::vector<unsigned char> gathered(cells.size() * elem_size);
+  const auto* bytes = static_cast<const unsigned char*>(full);
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    std::uint64_t rest = cells[i];
+    for (std::size_t k = rank; k-- > 0;) {
+      coords[i * rank + k] = rest % shape[k];
+      rest /= shape[k];
+    }
+    std::memcpy(&gathered[i * elem_size], bytes + cells[i] * elem_size, elem_size);
+  }
+  Id file_space(H5Dget_space(dataset), H5Sclose, "H5Dget_space");
+  Check(H5Sselect_elements(file_space.get(), H5S_SELECT_SET, cells.size(), coords.data()),
+        "H5Sselect_elements");
+  const hsize_t n = cells.size();
+  Id mem_space = Dataspace(std::span<const hsize_t>(&n, 1));
+  Check(
+      H5Dwrite(dataset, mem_type, mem_space.get(), file_space.get(), H5P_DEFAULT, gathered.data()),
+      "H5Dwrite(cells)");
+}
+
+void WriteStrings(hid_t parent, const std::string& name, const std::vector<std::string>& v) {
+  Id type = StringType();
+  const hsize_t n = v.size();
+  std::vector<const char*> ptrs;
+  for (const std::string& s : v) {
+    ptrs.push_back(s.c_str());
+  }
+  Id ds = CreateDataset(parent, name, type.get(), std::span<const hsize_t>(&n, 1), {}, 0, nullptr);
+  WriteAll(ds.get(), type.get(), ptrs.data());
+}
+
+std::vector<std::string> ReadStrings(hid_t dataset) {
+  const std::vector<hsize_t> shape = Shape(dataset);
+  const std::size_t n = shape.empty() ? 1 : static_cast<std::size_t>(shape[0]);
+  Id type = StringType();
+  std::vector<char*> ptrs(n, nullptr);
+  ReadAll(dataset, type.get(), ptrs.data());
+  std::vector<std::string> out;
+  for (char* p : ptrs) {
+    out.emplace_back(p != nullptr ? p : "");
+  }
+  Id space(H5Dget_space(dataset), H5Sclose, "H5Dget_space");
+  H5Dvlen_reclaim(type.get(), space.get(), H5P_DEFAULT, ptrs.data());
+  return out;
+}
+
+namespace {
+
+Id CreateAttr(hid_t obj, const std::string& name, hid_t type, hid_t space) {
+  if (Check(H5Aexists(obj, name.c_str()), "H5Aexists " + name) > 0) {
+    Check(H5Adelete(obj, name.c_str()), "H5Adelete " + name);
+  }
+  return Id(H5Acreate2(obj, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+            "create attribute " + name);
+}
+
+Id Scalar() { return Id(H5Screate(H5S_SCALAR), H5Sclose, "H5Screate(scalar)"); }
+
+Id OpenAttr(hid_t obj, const std::string& name) {
+  return Id(H5Aopen(obj, name.c_str(), H5P_DEFAULT), H5Aclose, "open attribute " + name);
+}
+
+std::size_t AttrCount(hid_t attr) {
+  Id space(H5Aget_space(attr), H5Sclose, "H5Aget_space");
+  const hssize_t n = H5Sget_simple_extent_npoints(space.get());
+  Check(n < 0 ? -1 : 0, "H5Sget_simple_extent_npoints");
+  return static_cast<std::size_t>(n);
+}
+
+}  // namespace
+
+void SetAttr(hid_t obj, const std::string& name, const std::string& value) {
+  Id type = StringType();
+  Id attr = CreateAttr(obj, name, type.get(), Scalar().get());
+  const char* p = value.c_str();
+  Check(H5Awrite(attr.get(), type.get(), &p), "write attribute " + name);
+}
+
+void SetAttr(hid_t obj, const std::string& name, std::int64_t value) {
+  Id attr = CreateAttr(obj, name, H5T_STD_I64LE, Scalar().get());
+  Check(H5Awrite(attr.get(), H5T_NATIVE_INT64, &value), "write attribute " + name);
+}
+
+void SetAttr(hid_t obj, const std::string& name, double value) {
+  Id attr = CreateAttr(obj, name, H5T_IEEE_F64LE, Scalar().get());
+  Check(H5Awrite(attr.get(), H5T_NATIVE_DOUBLE, &value), "write attribute " + name);
+}
+
+void SetAttr(hid_t obj, const std::string& name, const std::vector<std::string>& values) {
+  Id type = StringType();
+  const hsize_t n = values.size();
+  Id attr = CreateAttr(obj, name, type.get(), Dataspace(std::span<const hsize_t>(&n, 1)).get());
+  std::vector<const char*> ptrs;
+  for (const std::string& s : values) {
+    ptrs.push_back(s.c_str());
+  }
+  Check(H5Awrite(attr.get(), type.get(), ptrs.data()), "write attribute " + name);
+}
+
+void SetAttr(hid_t obj, const std::string& name, const std::vector<std::int32_t>& values) {
+  const hsize_t n = values.size();
+  Id attr = CreateAttr(obj, name, H5T_STD_I32LE, Dataspace(std::span<const hsize_t>(&n, 1)).get());
+  Check(H5Awrite(attr.get(), H5T_NATIVE_INT32, values.data()), "write attribute " + name);
+}
+
+std::string GetStringAttr(hid_t obj, const std::string& name) {
+  Id attr = OpenAttr(obj, name);
+  Id type = StringType();
+  char* p = nullptr;
+  Check(H5Aread(attr.get(), type.get(), &p), "read attribute " + name);
+  std::string out = p != nullptr ? p : "";
+  H5free_memory(p);
+  return out;
+}
+
+std::int64_t GetIntAttr(hid_t obj, const std::string& name) {
+  Id attr = OpenAttr(obj, name);
+  std::int64_t v = 0;
+  Check(H5Aread(attr.get(), H5T_NATIVE_INT64, &v), "read attribute " + name);
+  return v;
+}
+
+std::vector<std::string> GetStringListAttr(hid_t obj, const std::string& name) {
+  Id attr = OpenAttr(obj, name);
+  Id type = StringType();
+  std::vector<char*> ptrs(AttrCount(attr.get()), nullptr);
+  Check(H5Aread(attr.get(), type.get(), ptrs.data()), "read attribute " + name);
+  std::vector<std::string> out;
+  for (char* p : ptrs) {
+    out.emplace_back(p != nullptr ? p : "");
+    H5free_memory(p);
+  }
+  return out;
+}
+
+std::vector<std::int32_t> GetIntListAttr(hid_t obj, const std::string& name) {
+  Id attr = OpenAttr(obj, name);
+  std::vector<std::int32_t> out(AttrCount(attr.get()));
+  Check(H5Aread(attr.get(), H5T_NATIVE_INT32, out.data()), "read attribute " + name);
+  return out;
+}
+
+bool HasAttr(hid_t obj, const std::string& name) {
+  return Check(H5Aexists(obj, name.c_str()), "H5Aexists " + name) > 0;
+}
+
+void SetScale(hid_t scale, const std::string& name) {
+  Check(H5DSset_scale(scale, name.c_str()), "H5DSset_scale " + name);
+}
+
+void AttachScale(hid_t dataset, hid_t scale, unsigned dim, const std::string& label) {
+  Check(H5DSattach_scale(dataset, scale, dim), "H5DSattach_scale " + label);
+  Check(H5DSset_label(dataset, dim, label.c_str()), "H5DSset_label " + label);
+}
+
+void FlushToDisk(hid_t file) {
+  Check(H5Fflush(file, H5F_SCOPE_GLOBAL), "H5Fflush");
+  void* handle = nullptr;
+  Check(H5Fget_vfd_handle(file, H5P_DEFAULT, &handle), "H5Fget_vfd_handle");
+  if (handle != nullptr && ::fsync(*static_cast<int*>(handle)) != 0) {
+    throw H5Error("fsync of the HDF5 file failed");
+  }
+}
+
+}  // namespace skewbridge::jobs::h5

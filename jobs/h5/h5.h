@@ -1,0 +1,108 @@
+#pragma once
+/// @file
+/// A thin RAII layer over the HDF5 C API, private to jobs/h5: every call is checked and a
+/// failure throws H5Error naming the call and the object. Only jobs/h5/*.cpp include it.
+
+#include <hdf5.h>
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "jobs/h5/h5_error.h"
+
+namespace skewbridge::jobs::h5 {
+
+/// Throws H5Error("what: HDF5 call failed") when status < 0; returns status otherwise.
+herr_t Check(herr_t status, std::string_view what);
+/// Throws when id < 0 (an invalid identifier); returns id otherwise.
+hid_t CheckId(hid_t id, std::string_view what);
+
+/// Owns one HDF5 identifier and closes it with the matching H5?close.
+class Id {
+ public:
+  using Closer = herr_t (*)(hid_t);
+  Id() = default;
+  /// Takes ownership of a checked identifier. @throws H5Error when id < 0.
+  Id(hid_t id, Closer closer, std::string_view what) : id_(CheckId(id, what)), closer_(closer) {}
+  Id(const Id&) = delete;
+  Id& operator=(const Id&) = delete;
+  Id(Id&& other) noexcept : id_(other.id_), closer_(other.closer_) { other.id_ = -1; }
+  Id& operator=(Id&& other) noexcept;
+  ~Id();
+  /// The raw identifier for C API calls.
+  hid_t get() const { return id_; }
+
+ private:
+  hid_t id_ = -1;
+  Closer closer_ = nullptr;
+};
+
+/// Silences HDF5's automatic error stack printing (libraries never print); errors are thrown.
+void SilenceErrorStack();
+
+/// A file created (truncating) or opened; @throws H5Error.
+Id CreateFile(const std::string& path);
+/// Opens an existing file read-only or read-write; @throws H5Error when not an HDF5 file.
+Id OpenFile(const std::string& path, bool writable);
+/// Creates a group (intermediate groups too).
+Id CreateGroup(hid_t parent, const std::string& name);
+/// Opens a group. @throws H5Error when absent.
+Id OpenGroup(hid_t parent, const std::string& name);
+/// Whether a link of this name exists directly under parent.
+bool Exists(hid_t parent, const std::string& name);
+/// Names of the links directly under a group, in name order.
+std::vector<std::string> ListChildren(hid_t group);
+
+/// A simple dataspace of the given shape.
+Id Dataspace(std::span<const hsize_t> shape);
+/// A variable-length UTF-8 string type.
+Id StringType();
+
+/// Creates a dataset; chunk empty = contiguous layout with early allocation (raw writes only
+/// after creation), otherwise chunked with shuffle + deflate(level). fill may be nullptr.
+Id CreateDataset(hid_t parent, const std::string& name, hid_t type, std::span<const hsize_t> shape,
+                 std::span<const hsize_t> chunk, int deflate_level, const void* fill);
+/// Opens a dataset. @throws H5Error when absent.
+Id OpenDataset(hid_t parent, const std::string& name);
+/// The shape of a dataset.
+std::vector<hsize_t> Shape(hid_t dataset);
+/// Writes a whole dataset from memory of the given type.
+void WriteAll(hid_t dataset, hid_t mem_type, const void* data);
+/// Reads a whole dataset into memory of the given type.
+void ReadAll(hid_t dataset, hid_t mem_type, void* data);
+/// Writes the listed cells (row-major linear indices into the dataset) from a full-size
+/// in-memory array of element size `elem_size`.
+void WriteCells(hid_t dataset, hid_t mem_type, std::size_t elem_size, const void* full,
+                std::span<const std::uint64_t> cells);
+/// A 1-D dataset of strings.
+void WriteStrings(hid_t parent, const std::string& name, const std::vector<std::string>& v);
+/// Reads a 1-D dataset of variable-length strings.
+std::vector<std::string> ReadStrings(hid_t dataset);
+
+/// Attribute writers (create or replace).
+void SetAttr(hid_t obj, const std::string& name, const std::string& value);
+void SetAttr(hid_t obj, const std::string& name, std::int64_t value);
+void SetAttr(hid_t obj, const std::string& name, double value);
+void SetAttr(hid_t obj, const std::string& name, const std::vector<std::string>& values);
+void SetAttr(hid_t obj, const std::string& name, const std::vector<std::int32_t>& values);
+/// Attribute readers. @throws H5Error when absent or of another class.
+std::string GetStringAttr(hid_t obj, const std::string& name);
+std::int64_t GetIntAttr(hid_t obj, const std::string& name);
+std::vector<std::string> GetStringListAttr(hid_t obj, const std::string& name);
+std::vector<std::int32_t> GetIntListAttr(hid_t obj, const std::string& name);
+/// Whether obj has an attribute of this name.
+bool HasAttr(hid_t obj, const std::string& name);
+
+/// Makes `scale` a dimension scale named `name` and attaches it to dimension dim of dataset.
+void AttachScale(hid_t dataset, hid_t scale, unsigned dim, const std::string& label);
+/// Marks a dataset as a dimension scale.
+void SetScale(hid_t scale, const std::string& name);
+
+/// H5Fflush, then fsync of the file descriptor, so the bytes survive a crash of the process
+/// and of the machine.
+void FlushToDisk(hid_t file);
+
+}  // namespace skewbridge::jobs::h5

@@ -1,0 +1,193 @@
+#include "jobs/mpi/mpi_transport.h"
+
+#include <mpi.h>
+
+#include <algorithm>
+#include <chrono>
+#include <list>
+#include <thread>
+
+#include "solver/common/error.h"
+
+namespace skewbridge::jobs {
+namespace {
+
+constexpr int kRecordTag = 7101;
+
+void CheckMpi(int code, const char* what) { SB_DEMAND(code == MPI_SUCCESS, what); }
+
+class MpiTransport final : public Transport {
+ public:
+  MpiTransport() {
+    CheckMpi(MPI_Comm_dup(MPI_COMM_WORLD, &comm_), "MPI_Comm_dup");
+    CheckMpi(MPI_Comm_rank(comm_, &rank_), "MPI_Comm_rank");
+    CheckMpi(MPI_Comm_size(comm_, &size_), "MPI_Comm_size");
+    const MPI_Aint bytes = rank_ == 0 ? static_cast<MPI_Aint>(sizeof(std::uint64_t)) : 0;
+    CheckMpi(
+        MPI_Win_allocate(bytes, sizeof(std::uint64_t), MPI_INFO_NULL, comm_, &counter_, &window_),
+        "MPI_Win_allocate");
+    if (rank_ == 0) {
+      CheckMpi(MPI_Win_lock(MPI_LOCK_EXCLUSIVE, 0, 0, window_), "MPI_Win_lock");
+      *counter_ = 0;
+      CheckMpi(MPI_Win_unlock(0, window_), "MPI_Win_unlock");
+    }
+    CheckMpi(MPI_Barrier(comm_), "MPI_Barrier");
+  }
+
+  ~MpiTransport() override {
+    if (window_ != MPI_WIN_NULL) {
+      MPI_Win_free(&window_);
+    }
+    if (comm_ != MPI_COMM_NULL) {
+      MPI_Comm_free(&comm_);
+    }
+  }
+
+  int Rank() const override { return rank_; }
+  int Size() const override { return size_; }
+
+  std::string BroadcastText(const std::string& text) override {
+    std::uint64_t n = text.size();
+    CheckMpi(MPI_Bcast(&n, 1, MPI_UINT64_T, 0, comm_), "MPI_Bcast");
+    std::string out = rank_ == 0 ? text : std::string(n, '\0');
+    CheckMpi(MPI_Bcast(out.data(), static_cast<int>(n), MPI_CHAR, 0, comm_), "MPI_Bcast");
+    return out;
+  }
+
+  void BroadcastPending(std::vector<std::uint64_t>& pending) override {
+    std::uint64_t n = pending.size();
+    CheckMpi(MPI_Bcast(&n, 1, MPI_UINT64_T, 0, comm_), "MPI_Bcast");
+    pending.resize(n);
+    constexpr std::uint64_t kPiece = 1 << 26;  // MPI counts are int
+    for (std::uint64_t at = 0; at < n; at += kPiece) {
+      CheckMpi(MPI_Bcast(pending.data() + at, static_cast<int>(std::min(kPiece, n - at)),
+                         MPI_UINT64_T, 0, comm_),
+               "MPI_Bcast");
+    }
+    total_ = n;
+    if (rank_ == 0) {
+      CheckMpi(MPI_Win_lock(MPI_LOCK_EXCLUSIVE, 0, 0, window_), "MPI_Win_lock");
+      *counter_ = 0;
+      CheckMpi(MPI_Win_unlock(0, window_), "MPI_Win_unlock");
+    }
+    CheckMpi(MPI_Barrier(comm_), "MPI_Barrier");
+  }
+
+  std::pair<std::uint64_t, std::uint64_t> Claim(std::uint64_t count) override {
+    const std::uint64_t old = FetchAdd(count);
+    const std::uint64_t begin = std::min(old, total_);
+    return {begin, std::min(total_, begin + count)};
+  }
+
+  void StopClaims() override { FetchAdd(total_ + 1); }
+
+  void Send(std::span<const CellRecord> records, bool last) override {
+    SB_DEMAND(rank_ != 0, "rank 0 never sends");
+    Reap(false);
+    pending_sends_.push_back({PackRecords(records, last), MPI_REQUEST_NULL});
+    Outgoing& msg = pending_sends_.back();
+    CheckMpi(MPI_Isend(msg.bytes.data(), static_cast<int>(msg.bytes.size()), MPI_BYTE, 0,
+                       kRecordTag, comm_, &msg.request),
+             "MPI_Isend");
+  }
+
+  bool Receive(std::vector<CellRecord>& out, double wait_s) override {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(wait_s);
+    bool got_any = false;
+    while (finished_ < size_ - 1) {
+      int flag = 0;
+      MPI_Status status;
+      CheckMpi(MPI_Iprobe(MPI_ANY_SOURCE, kRecordTag, comm_, &flag, &status), "MPI_Iprobe");
+      if (flag) {
+        int bytes = 0;
+        CheckMpi(MPI_Get_count(&status, MPI_BYTE, &bytes), "MPI_Get_count");
+        std::vector<char> buffer(static_cast<std::size_t>(bytes));
+        CheckMpi(MPI_Recv(buffer.data(), bytes, MPI_BYTE, status.MPI_SOURCE, kRecordTag, comm_,
+                          MPI_STATUS_IGNORE),
+                 "MPI_Recv");
+        if (UnpackRecords(buffer, out)) {
+          ++finished_;
+        }
+        got_any = true;
+        continue;
+      }
+      if (got_any || std::chrono::steady_clock::now() >= deadline) {
+        break;
+      }
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
+    return finished_ == size_ - 1;
+  }
+
+  void Finish() override {
+    Reap(true);
+    CheckMpi(MPI_Barrier(comm_), "MPI_Barrier");
+  }
+
+ private:
+  struct Outgoing {
+    std::vector<char> bytes;
+    MPI_Request request;
+  };
+
+  std::uint64_t FetchAdd(std::uint64_t add) {
+    std::uint64_t old = 0;
+    CheckMpi(MPI_Win_lock(MPI_LOCK_SHARED, 0, 0, window_), "MPI_Win_lock");
+    CheckMpi(MPI_Fetch_and_op(&add, &old, MPI_UINT64_T, 0, 0, MPI_SUM, window_),
+             "MPI_Fetch_and_op");
+    CheckMpi(MPI_Win_unlock(0, window_), "MPI_Win_unlock");
+    return old;
+  }
+
+  // Frees the buffers of completed sends (all of them when `wait`).
+  void Reap(bool wait) {
+    for (auto it = pending_sends_.begin(); it != pending_sends_.end();) {
+      int done = 0;
+      if (wait) {
+        CheckMpi(MPI_Wait(&it->request, MPI_STATUS_IGNORE), "MPI_Wait");
+        done = 1;
+      } else {
+        CheckMpi(MPI_Test(&it->request, &done, MPI_STATUS_IGNORE), "MPI_Test");
+      }
+      it = done ? pending_sends_.erase(it) : std::next(it);
+    }
+  }
+
+  MPI_Comm comm_ = MPI_COMM_NULL;
+  MPI_Win window_ = MPI_WIN_NULL;
+  std::uint64_t* counter_ = nullptr;
+  int rank_ = 0;
+  int size_ = 1;
+  std::uint64_t total_ = 0;
+  int finished_ = 0;
+  std::list<Outgoing> pending_sends_;  // a list: Isend buffers must not move
+};
+
+}  // namespace
+
+MpiSession::MpiSession() {
+  int initialized = 0;
+  MPI_Initialized(&initialized);
+  SB_DEMAND(!initialized, "MPI initialised twice");
+  CheckMpi(MPI_Init(nullptr, nullptr), "MPI_Init");
+}
+
+MpiSession::~MpiSession() { MPI_Finalize(); }
+
+int MpiSession::Rank() const {
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  return rank;
+}
+
+int MpiSession::Size() const {
+  int size = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  return size;
+}
+
+void AbortAll(int code) { MPI_Abort(MPI_COMM_WORLD, code); }
+
+std::unique_ptr<Transport> MakeMpiTransport() { return std::make_unique<MpiTransport>(); }
+
+}  // namespace skewbridge::jobs

@@ -1,0 +1,393 @@
+#include "jobs/sweep_runner.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <optional>
+
+#include "jobs/cube.h"
+#include "jobs/h5/cube_file.h"
+#include "solver/common/error.h"
+
+namespace skewbridge::jobs {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double Seconds(Clock::time_point since) {
+  return std::chrono::duration<double>(Clock::now() - since).count();
+}
+
+bool StopRequested(const SweepOptions& options) {
+  return options.stop != nullptr && *options.stop != 0;
+}
+
+// One cell, with every failure turned into data.
+CellRecord EvaluateCell(const SweepSpec& spec, const CellEvaluator& evaluator,
+                        const CubeLayout& layout, std::uint64_t cell) {
+  CellRecord record;
+  record.cell = cell;
+  const std::vector<std::size_t> index = spec.AxisIndex(cell);
+  const Clock::time_point start = Clock::now();
+  try {
+    CellOutcome outcome = evaluator.Evaluate(index);
+    record.status = outcome.status;
+    record.stats = outcome.stats;
+    record.values.reserve(layout.source_index.size());
+    for (std::size_t source : layout.source_index) {
+      record.values.push_back(source < outcome.responses.size()
+                                  ? outcome.responses[source]
+                                  : std::numeric_limits<double>::quiet_NaN());
+    }
+  } catch (const std::exception&) {
+    record.status = kStatusException;
+    record.values.assign(layout.source_index.size(), std::numeric_limits<double>::quiet_NaN());
+  }
+  record.stats.wall_s = Seconds(start);
+  return record;
+}
+
+// Rank 0's side: the cube image, the checkpoint file and the bookkeeping of the run.
+class Writer {
+ public:
+  Writer(const SweepSpec& spec, const CubeLayout& layout, const SweepOptions& options)
+      : spec_(spec), layout_(layout), options_(options) {}
+
+  // Opens or resumes; returns false when --resume finds the sweep already complete.
+  bool Open() {
+    const std::filesystem::path partial = PartialPath(options_.out);
+    std::error_code ec;
+    const bool out_exists = std::filesystem::exists(options_.out, ec);
+    const bool partial_exists = std::filesystem::exists(partial, ec);
+    if (!options_.resume || options_.force) {
+      if ((out_exists || partial_exists) && !options_.force) {
+        throw InputError::AtLine((out_exists ? options_.out : partial).string(), 0,
+                                 "already exists; use --resume to continue it or --force to "
+                                 "replace it");
+      }
+      std::filesystem::remove(options_.out, ec);
+      std::filesystem::remove(partial, ec);
+    } else if (!partial_exists && out_exists) {
+      for (const h5::SweepSummary& s : h5::SummarizeCube(options_.out)) {
+        if (s.name == spec_.name && s.spec_hash == spec_.Hash() && s.complete) {
+          data_.Reset(spec_.CellCount(), layout_.responses.size());
+          return false;
+        }
+      }
+      throw InputError::AtLine(options_.out.string(), 0,
+                               "cannot resume: it holds no complete sweep of this specification "
+                               "(hash " +
+                                   spec_.Hash() + "); use --force to replace it");
+    }
+    if (options_.resume && partial_exists && !options_.force) {
+      file_.emplace(h5::CheckpointFile::Resume(partial, spec_, layout_, data_));
+      if (data_.Cells() != spec_.CellCount()) {
+        throw InputError::AtLine(partial.string(), 0, "cannot resume: its shape differs");
+      }
+    } else {
+      data_.Reset(spec_.CellCount(), layout_.responses.size());
+      file_.emplace(h5::CheckpointFile::Create(partial, spec_, layout_));
+    }
+    run_ = file_->Run();
+    return true;
+  }
+
+  std::vector<std::uint64_t> Pending() const {
+    std::vector<std::uint64_t> pending;
+    for (std::uint64_t c = 0; c < data_.Cells(); ++c) {
+      if (data_.done[c] == 0) {
+        pending.push_back(c);
+      }
+    }
+    return pending;
+  }
+
+  void Store(const CellRecord& record) {
+    SB_DEMAND(record.cell < data_.Cells() && data_.done[record.cell] == 0,
+              "a cell was delivered twice");
+    data_.Store(record.cell, record.status, record.values, record.stats, run_);
+    unwritten_.push_back(record.cell);
+    ++computed_;
+    if (record.status != kStatusOk) {
+      ++failed_;
+    }
+  }
+
+  bool CheckpointDue() const {
+    if (unwritten_.empty()) {
+      return false;
+    }
+    return Seconds(last_checkpoint_) >= options_.checkpoint_seconds ||
+           (options_.checkpoint_cells > 0 && unwritten_.size() >= options_.checkpoint_cells);
+  }
+
+  void Checkpoint() {
+    if (unwritten_.empty()) {
+      return;
+    }
+    std::sort(unwritten_.begin(), unwritten_.end());
+    for (std::uint64_t c : unwritten_) {
+      data_.done[c] = 1;  // in memory only; the file gets the flags after the data
+    }
+    file_->Write(data_, unwritten_);
+    unwritten_.clear();
+    last_checkpoint_ = Clock::now();
+    ++checkpoints_;
+  }
+
+  bool AllDone() const {
+    return std::all_of(data_.done.begin(), data_.done.end(), [](std::uint8_t d) { return d; });
+  }
+
+  void Finalize() {
+    const std::string created = file_->CreatedUtc();
+    file_->Close();
+    file_.reset();
+    h5::WriteFinalCube(options_.out, spec_, layout_, data_, run_, created);
+    std::error_code ec;
+    std::filesystem::remove(PartialPath(options_.out), ec);
+  }
+
+  void FillReport(SweepReport& report) const {
+    report.run = run_;
+    report.cells_total = data_.Cells();
+    report.cells_computed = computed_;
+    report.checkpoints = checkpoints_;
+    for (std::uint64_t c = 0; c < data_.Cells(); ++c) {
+      if (data_.done[c] == 0) {
+        continue;
+      }
+      ++report.cells_done;
+      if (data_.status[c] != kStatusOk) {
+        ++report.cells_failed;
+        std::string name = "code " + std::to_string(data_.status[c]);
+        for (const auto& [code, label] : layout_.status_names) {
+          if (code == data_.status[c]) {
+            name = label;
+          }
+        }
+        ++report.failed_by_status[name];
+      }
+    }
+  }
+
+  std::uint64_t computed() const { return computed_; }
+  std::uint64_t failed() const { return failed_; }
+  std::uint64_t done_before() const { return done_before_; }
+  void set_done_before(std::uint64_t n) { done_before_ = n; }
+
+ private:
+  const SweepSpec& spec_;
+  const CubeLayout& layout_;
+  const SweepOptions& options_;
+  CubeData data_;
+  std::optional<h5::CheckpointFile> file_;
+  std::vector<std::uint64_t> unwritten_;
+  Clock::time_point last_checkpoint_ = Clock::now();
+  std::uint64_t computed_ = 0;
+  std::uint64_t failed_ = 0;
+  std::uint64_t checkpoints_ = 0;
+  std::uint64_t done_before_ = 0;
+  std::int32_t run_ = 1;
+};
+
+// Guided self-scheduling: claim a share of what is left, smaller near the end.
+std::uint64_t ChunkSize(std::uint64_t total, std::uint64_t seen, int ranks,
+                        std::uint64_t max_chunk) {
+  const std::uint64_t left = total > seen ? total - seen : 0;
+  const std::uint64_t share = left / (2 * static_cast<std::uint64_t>(ranks));
+  return std::clamp<std::uint64_t>(share, 1, std::max<std::uint64_t>(1, max_chunk));
+}
+
+}  // namespace
+
+std::filesystem::path PartialPath(const std::filesystem::path& out) {
+  return std::filesystem::path(out.string() + ".partial");
+}
+
+SweepReport RunSweep(const SweepSpec& spec, const CellEvaluator& evaluator, Transport& transport,
+                     const SweepOptions& options) {
+  SweepReport report;
+  report.rank = transport.Rank();
+  report.ranks = transport.Size();
+  const bool root = transport.Rank() == 0;
+  const CubeLayout layout = MakeCubeLayout(evaluator, spec.responses, spec.source);
+
+  // Setup errors surface on every rank before any work.
+  std::optional<Writer> writer;
+  std::string setup = "run";
+  if (root) {
+    writer.emplace(spec, layout, options);
+    try {
+      setup = writer->Open() ? "run" : "complete";
+    } catch (const InputError& e) {
+      setup = std::string("error:") + e.what();
+    } catch (const h5::H5Error& e) {
+      setup = std::string("error:") + options.out.string() + ".partial: " + e.what();
+    }
+  }
+  setup = transport.BroadcastText(setup);
+  if (setup.rfind("error:", 0) == 0) {
+    throw InputError(setup.substr(6));
+  }
+  if (setup == "complete") {
+    report.already_complete = true;
+    report.complete = true;
+    if (root) {
+      report.cells_total = spec.CellCount();
+      report.cells_done = spec.CellCount();
+    }
+    return report;
+  }
+
+  std::vector<std::uint64_t> pending;
+  if (root) {
+    pending = writer->Pending();
+    writer->set_done_before(spec.CellCount() - pending.size());
+  }
+  transport.BroadcastPending(pending);
+  const std::uint64_t total = pending.size();
+  const Clock::time_point start = Clock::now();
+  Clock::time_point last_progress = start;
+  Clock::time_point last_send = start;
+
+  auto progress = [&](bool force) {
+    if (!root || !options.progress) {
+      return;
+    }
+    if (!force && Seconds(last_progress) < options.progress_seconds) {
+      return;
+    }
+    last_progress = Clock::now();
+    SweepProgress p;
+    p.cells_total = spec.CellCount();
+    p.run_total = total;
+    p.run_done = writer->computed();
+    p.run_failed = writer->failed();
+    p.cells_done = writer->done_before() + p.run_done;
+    p.elapsed_s = Seconds(start);
+    p.cells_per_s = p.elapsed_s > 0 ? static_cast<double>(p.run_done) / p.elapsed_s : 0.0;
+    p.eta_s = p.cells_per_s > 0
+                  ? static_cast<double>(total - std::min(total, p.run_done)) / p.cells_per_s
+                  : 0.0;
+    options.progress(p);
+  };
+
+  std::vector<CellRecord> inbox;
+  bool all_finished = transport.Size() == 1;
+  auto service = [&](double wait_s) {
+    if (!all_finished) {
+      inbox.clear();
+      all_finished = transport.Receive(inbox, wait_s);
+      for (const CellRecord& r : inbox) {
+        writer->Store(r);
+      }
+    }
+    if (writer->CheckpointDue()) {
+      writer->Checkpoint();
+    }
+    progress(false);
+  };
+
+  std::vector<CellRecord> outbox;
+  bool stopping = false;
+  std::uint64_t seen = 0;
+  while (!stopping) {
+    if (StopRequested(options)) {
+      stopping = true;
+      break;
+    }
+    const auto [begin, end] =
+        transport.Claim(ChunkSize(total, seen, transport.Size(), options.max_chunk));
+    seen = end;
+    if (begin >= end) {
+      break;
+    }
+    for (std::uint64_t pos = begin; pos < end; ++pos) {
+      if (StopRequested(options)) {
+        stopping = true;
+        break;
+      }
+      CellRecord record = EvaluateCell(spec, evaluator, layout, pending[pos]);
+      ++report.cells_this_rank;
+      if (root) {
+        writer->Store(record);
+        service(0.0);
+      } else {
+        outbox.push_back(std::move(record));
+        if (Seconds(last_send) >= options.send_seconds) {
+          transport.Send(outbox, false);
+          outbox.clear();
+          last_send = Clock::now();
+        }
+      }
+    }
+  }
+
+  if (root) {
+    if (stopping) {
+      transport.StopClaims();
+      if (writer->computed() > 0) {
+        writer->Checkpoint();  // secure what is here before waiting for the others
+      }
+    }
+    const Clock::time_point drain_start = Clock::now();
+    while (!all_finished) {
+      service(0.05);
+      if (StopRequested(options) && Seconds(drain_start) > 10.0) {
+        break;  // a rank that does not answer within the grace period loses its cells
+      }
+    }
+    report.interrupted = StopRequested(options);
+    writer->Checkpoint();
+  } else {
+    transport.Send(outbox, true);
+    report.interrupted = stopping;
+  }
+  transport.Finish();
+  report.wall_s = Seconds(start);
+
+  if (root) {
+    progress(true);
+    if (!report.interrupted && writer->AllDone()) {
+      writer->Finalize();
+      report.complete = true;
+    }
+    writer->FillReport(report);
+  }
+  return report;
+}
+
+std::string FormatProgress(const SweepProgress& p) {
+  const double percent =
+      p.cells_total ? 100.0 * static_cast<double>(p.cells_done) / static_cast<double>(p.cells_total)
+                    : 100.0;
+  return fmt::format("sweep: {}/{} cells ({:.1f}%), {} failed, {:.1f} cells/s, ETA {:.0f} s",
+                     p.cells_done, p.cells_total, percent, p.run_failed, p.cells_per_s, p.eta_s);
+}
+
+std::string FormatSummary(const SweepReport& r) {
+  if (r.already_complete) {
+    return fmt::format("sweep: already complete ({} cells); nothing to do", r.cells_total);
+  }
+  const double rate = r.wall_s > 0 ? static_cast<double>(r.cells_computed) / r.wall_s : 0.0;
+  std::string failures;
+  for (const auto& [name, count] : r.failed_by_status) {
+    failures += fmt::format("{}{} {}", failures.empty() ? " (" : ", ", count, name);
+  }
+  if (!failures.empty()) {
+    failures += ")";
+  }
+  const char* state = r.complete ? "complete" : (r.interrupted ? "interrupted" : "incomplete");
+  return fmt::format(
+      "sweep {}: run {}, {}/{} cells done, {} computed on {} ranks in {:.2f} s ({:.1f} cells/s), "
+      "{} failed{}, {} checkpoints",
+      state, r.run, r.cells_done, r.cells_total, r.cells_computed, r.ranks, r.wall_s, rate,
+      r.cells_failed, failures, r.checkpoints);
+}
+
+}  // namespace skewbridge::jobs

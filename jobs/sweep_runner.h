@@ -1,0 +1,85 @@
+#pragma once
+/// @file
+/// Runs a sweep: opens or resumes the cube on rank 0, distributes the pending cells over the
+/// ranks of a Transport, gathers the outcomes to rank 0, checkpoints them into FILE.partial
+/// and, when every cell is done, writes the compressed FILE (docs/hdf5-layout.md).
+
+#include <csignal>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <string>
+
+#include "jobs/cell.h"
+#include "jobs/sweep_spec.h"
+#include "jobs/transport.h"
+
+namespace skewbridge::jobs {
+
+/// Progress of a running sweep, as rank 0 sees it.
+struct SweepProgress {
+  std::uint64_t cells_total = 0;  ///< Cells in the cube.
+  std::uint64_t cells_done = 0;   ///< Cells finished (this run and earlier runs).
+  std::uint64_t run_total = 0;    ///< Cells this run has to compute.
+  std::uint64_t run_done = 0;     ///< Cells this run has computed so far.
+  std::uint64_t run_failed = 0;   ///< Of those, cells with a status other than ok.
+  double elapsed_s = 0.0;         ///< Since this run started its cells [s].
+  double cells_per_s = 0.0;       ///< run_done / elapsed_s.
+  double eta_s = 0.0;             ///< Remaining time at the current rate [s].
+};
+
+/// How a sweep runs.
+struct SweepOptions {
+  std::filesystem::path out;           ///< The final cube FILE; checkpoints go to FILE.partial.
+  bool resume = false;                 ///< Continue FILE.partial (or start if none exists).
+  bool force = false;                  ///< Replace an existing FILE / FILE.partial.
+  double checkpoint_seconds = 60.0;    ///< Checkpoint at least this often [s].
+  std::uint64_t checkpoint_cells = 0;  ///< Also checkpoint every this many cells (0 = off).
+  double progress_seconds = 1.0;       ///< Minimum interval between progress reports [s].
+  std::uint64_t max_chunk = 64;        ///< Largest number of cells claimed at once.
+  double send_seconds = 0.5;           ///< A rank sends its finished cells at least this often [s].
+  /// Set asynchronously (a signal handler) to stop: the run checkpoints and returns
+  /// interrupted. May be nullptr.
+  const volatile std::sig_atomic_t* stop = nullptr;
+  /// Called on rank 0 at most every progress_seconds, and once at the end. May be empty.
+  std::function<void(const SweepProgress&)> progress;
+};
+
+/// What a run did (filled on rank 0; other ranks fill rank and cells_this_rank).
+struct SweepReport {
+  int rank = 0;
+  int ranks = 1;
+  std::int32_t run = 1;  ///< 1 for a fresh sweep, 2.. after resumes.
+  std::uint64_t cells_total = 0;
+  std::uint64_t cells_done = 0;       ///< Done in the file at the end.
+  std::uint64_t cells_computed = 0;   ///< Computed in this run, all ranks.
+  std::uint64_t cells_this_rank = 0;  ///< Computed in this run by this rank.
+  std::uint64_t cells_failed = 0;     ///< Done cells with a status other than ok, all runs.
+  std::map<std::string, std::uint64_t> failed_by_status;  ///< Status name -> count.
+  std::uint64_t checkpoints = 0;                          ///< Checkpoints written in this run.
+  double wall_s = 0.0;                                    ///< Wall time of this run's cells [s].
+  bool interrupted = false;                               ///< A stop request ended the run early.
+  bool complete = false;                                  ///< Every cell done and FILE written.
+  bool already_complete = false;  ///< --resume found a complete FILE: nothing to do.
+};
+
+/// Runs (or resumes) a sweep on every rank of `transport`. Collective.
+/// The evaluator must be pure (CellEvaluator); an exception from Evaluate is recorded as
+/// kStatusException and never stops the sweep.
+/// @throws InputError before any work, on every rank, for an unusable output file (exists
+///         without --resume/--force, a different specification on resume), and for
+///         responses the evaluator does not know.
+SweepReport RunSweep(const SweepSpec& spec, const CellEvaluator& evaluator, Transport& transport,
+                     const SweepOptions& options);
+
+/// One line of progress, e.g. "sweep: 1200/5000 cells (24.0%), 350 cells/s, ETA 11 s".
+std::string FormatProgress(const SweepProgress& progress);
+
+/// The one-line summary printed at the end of a run.
+std::string FormatSummary(const SweepReport& report);
+
+/// The path of the checkpoint file of `out`: out + ".partial".
+std::filesystem::path PartialPath(const std::filesystem::path& out);
+
+}  // namespace skewbridge::jobs

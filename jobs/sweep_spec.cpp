@@ -1,0 +1,552 @@
+#include "jobs/sweep_spec.h"
+
+#include <fmt/format.h>
+
+#include <toml++/toml.h>
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include "solver/common/error.h"
+
+namespace skewbridge::jobs {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// The one table of parameter names. The spectra mapping extends it here (and in
+// docs/sweep-format.md); the order is the canonical axis order of every cube.
+// clang-format off
+constexpr std::array<ParameterInfo, 13> kParameters{{
+  {"record", "record", "", "ground-motion record, by its label in the [records] set",
+   ParameterKind::kLabel, 0, true, 0, true, false, ""},
+  {"pulse", "pulse", "", "one cycle of a_g cos(w_g t) or a_g sin(w_g t) [method.md §5]",
+   ParameterKind::kLabel, 0, true, 0, true, false, "cosine|sine"},
+  {"spans", "spans", "1", "number of deck spans", ParameterKind::kNumber, 1, true, 64, true,
+   true, ""},
+  {"a_deg", "a", "deg", "skew angle a", ParameterKind::kNumber, 0, true, 90, false, false, ""},
+  {"eta0", "eta0", "1", "skew ratio eta0 = sin 2a / (2 W/L)", ParameterKind::kNumber, 0, false,
+   kInf, false, false, ""},
+  {"W_over_L", "W/L", "1", "deck width over length", ParameterKind::kNumber, 0, false, kInf,
+   false, false, ""},
+  {"delta_over_L", "delta/L", "1", "joint gap over deck length", ParameterKind::kNumber, 0,
+   true, kInf, false, false, ""},
+  {"W0_over_w0", "W0/w0", "1", "torsional over translational frequency of the substructure",
+   ParameterKind::kNumber, 0, false, kInf, false, false, ""},
+  {"xi", "xi", "1", "modal damping ratio", ParameterKind::kNumber, 0, true, 1, false, false,
+   ""},
+  {"eps_N", "eps_N", "1", "normal coefficient of restitution", ParameterKind::kNumber, 0, true,
+   1, true, false, ""},
+  {"mu", "mu", "1", "Coulomb friction coefficient", ParameterKind::kNumber, 0, true, kInf,
+   false, false, ""},
+  {"Pi_delta", "Pi_delta", "1", "gap over persistency: delta w_g^2 / a_g",
+   ParameterKind::kNumber, 0, true, kInf, false, false, ""},
+  {"w0_over_wg", "w0/w_g", "1", "substructure over excitation frequency w0 / w_g",
+   ParameterKind::kNumber, 0, false, kInf, false, false, ""},
+}};
+// clang-format on
+
+constexpr std::array<std::string_view, 3> kFamilies{"subsystem", "pilot-bridge", "model-file"};
+
+// "file:line" when the node has a position, for InputError::AtField.
+std::string Where(std::string_view source, const toml::source_region& region) {
+  if (region.begin.line == 0) {
+    return std::string(source);
+  }
+  return fmt::format("{}:{}", source, region.begin.line);
+}
+
+std::string Fmt(double v) { return fmt::format("{}", v); }
+
+std::string AllowedRange(const ParameterInfo& p) {
+  std::string lo = p.min_inclusive ? ">= " + Fmt(p.min) : "> " + Fmt(p.min);
+  if (std::isinf(p.max)) {
+    return "a number " + lo;
+  }
+  std::string hi = p.max_inclusive ? "<= " + Fmt(p.max) : "< " + Fmt(p.max);
+  return "a number " + lo + " and " + hi;
+}
+
+class Parser {
+ public:
+  Parser(std::string_view source, std::filesystem::path base_dir)
+      : source_(source), base_dir_(std::move(base_dir)) {}
+
+  SweepSpec Parse(std::string_view text) {
+    toml::table root;
+    try {
+      root = toml::parse(text, source_);
+    } catch (const toml::parse_error& e) {
+      throw InputError::AtLine(source_, static_cast<long>(e.source().begin.line),
+                               std::string(e.description()));
+    }
+    SweepSpec spec;
+    spec.source = source_;
+    spec.text = std::string(text);
+    for (auto&& [key, node] : root) {
+      const std::string k(key.str());
+      if (k != "sweep" && k != "axes" && k != "fixed" && k != "records") {
+        throw Error(key.source(), k, "unknown table; allowed: [sweep], [axes], [fixed], [records]");
+      }
+      if (!node.is_table()) {
+        throw Error(node.source(), k, "must be a table [" + k + "]");
+      }
+    }
+    const toml::table* sweep = root["sweep"].as_table();
+    if (sweep == nullptr) {
+      throw InputError::AtField(source_, "sweep", "missing table [sweep] (name, family)");
+    }
+    ParseSweepTable(*sweep, spec);
+    if (const toml::table* records = root["records"].as_table()) {
+      ParseRecordsTable(*records, spec);
+    }
+    if (const toml::table* axes = root["axes"].as_table()) {
+      for (auto&& [key, node] : *axes) {
+        spec.axes.push_back(ParseAxis(std::string(key.str()), key.source(), node));
+      }
+    }
+    if (spec.axes.empty()) {
+      throw InputError::AtField(source_, "axes",
+                                "give at least one axis (a single cell is `skewbridge run`)");
+    }
+    if (const toml::table* fixed = root["fixed"].as_table()) {
+      for (auto&& [key, node] : *fixed) {
+        spec.fixed.push_back(ParseFixed(std::string(key.str()), key.source(), node, spec));
+      }
+    }
+    CheckCrossFields(spec);
+    SortCanonically(spec);
+    return spec;
+  }
+
+ private:
+  InputError Error(const toml::source_region& where, std::string_view field,
+                   std::string_view problem) const {
+    return InputError::AtField(Where(source_, where), field, problem);
+  }
+
+  std::string RequireString(const toml::table& table, std::string_view table_name,
+                            std::string_view key) const {
+    const toml::node* node = table.get(key);
+    const std::string field = std::string(table_name) + "." + std::string(key);
+    if (node == nullptr) {
+      throw InputError::AtField(source_, field, "missing (a string is required)");
+    }
+    const auto value = node->value<std::string>();
+    if (!node->is_string() || !value || value->empty()) {
+      throw Error(node->source(), field, "must be a non-empty string");
+    }
+    return *value;
+  }
+
+  std::filesystem::path ExistingFile(const toml::table& table, std::string_view table_name,
+                                     std::string_view key, const std::string& value) const {
+    std::filesystem::path path(value);
+    if (path.is_relative()) {
+      path = base_dir_ / path;
+    }
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) {
+      throw Error(table.get(key)->source(), std::string(table_name) + "." + std::string(key),
+                  "file not found: " + path.string());
+    }
+    return path;
+  }
+
+  void ParseSweepTable(const toml::table& sweep, SweepSpec& spec) const {
+    for (auto&& [key, node] : sweep) {
+      const std::string_view k = key.str();
+      if (k != "name" && k != "family" && k != "model" && k != "responses" && k != "description") {
+        throw Error(key.source(), "sweep." + std::string(k),
+                    "unknown key; allowed: name, family, model, responses, description");
+      }
+    }
+    spec.name = RequireString(sweep, "sweep", "name");
+    const bool name_ok = std::all_of(spec.name.begin(), spec.name.end(), [](char c) {
+      return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+    });
+    if (!name_ok || spec.name == "." || spec.name == "..") {
+      throw Error(sweep.get("name")->source(), "sweep.name",
+                  "use letters, digits, '_', '-' and '.' only (it names an HDF5 group)");
+    }
+    spec.family = RequireString(sweep, "sweep", "family");
+    if (std::find(kFamilies.begin(), kFamilies.end(), spec.family) == kFamilies.end()) {
+      throw Error(
+          sweep.get("family")->source(), "sweep.family",
+          "unknown family '" + spec.family + "'; allowed: subsystem, pilot-bridge, model-file");
+    }
+    if (spec.family == "model-file") {
+      spec.model_file = RequireString(sweep, "sweep", "model");
+      spec.model_path = ExistingFile(sweep, "sweep", "model", spec.model_file);
+    } else if (sweep.contains("model")) {
+      throw Error(sweep.get("model")->source(), "sweep.model",
+                  "only allowed with family = \"model-file\"");
+    }
+    if (const toml::node* node = sweep.get("description"); node && !node->is_string()) {
+      throw Error(node->source(), "sweep.description", "must be a string");
+    }
+    if (const toml::node* node = sweep.get("responses")) {
+      const toml::array* list = node->as_array();
+      if (list == nullptr || list->empty()) {
+        throw Error(node->source(), "sweep.responses",
+                    "must be a non-empty list of response names");
+      }
+      for (const toml::node& item : *list) {
+        const auto name = item.value<std::string>();
+        if (!item.is_string() || !name || name->empty()) {
+          throw Error(item.source(), "sweep.responses", "entries must be non-empty strings");
+        }
+        if (std::find(spec.responses.begin(), spec.responses.end(), *name) !=
+            spec.responses.end()) {
+          throw Error(item.source(), "sweep.responses", "duplicate response '" + *name + "'");
+        }
+        spec.responses.push_back(*name);
+      }
+    }
+  }
+
+  void ParseRecordsTable(const toml::table& records, SweepSpec& spec) const {
+    for (auto&& [key, node] : records) {
+      if (key.str() != "set") {
+        throw Error(key.source(), "records." + std::string(key.str()), "unknown key; allowed: set");
+      }
+    }
+    spec.record_set = RequireString(records, "records", "set");
+    spec.record_set_path = ExistingFile(records, "records", "set", spec.record_set);
+  }
+
+  const ParameterInfo& Known(const std::string& field, const std::string& key,
+                             const toml::source_region& where) const {
+    const ParameterInfo* info = FindParameter(key);
+    if (info == nullptr) {
+      std::string allowed;
+      for (const ParameterInfo& p : kParameters) {
+        allowed += (allowed.empty() ? "" : ", ") + std::string(p.key);
+      }
+      throw Error(where, field, "unknown parameter; allowed: " + allowed);
+    }
+    return *info;
+  }
+
+  void CheckNumber(const ParameterInfo& p, double v, const std::string& field,
+                   const toml::source_region& where) const {
+    const bool low_ok = p.min_inclusive ? v >= p.min : v > p.min;
+    const bool high_ok = p.max_inclusive ? v <= p.max : v < p.max;
+    if (!std::isfinite(v) || !low_ok || !high_ok) {
+      throw Error(where, field, "must be " + AllowedRange(p) + " (got " + Fmt(v) + ")");
+    }
+    if (p.integer && v != std::floor(v)) {
+      throw Error(where, field, "must be a whole number (got " + Fmt(v) + ")");
+    }
+  }
+
+  void CheckLabel(const ParameterInfo& p, const std::string& v, const std::string& field,
+                  const toml::source_region& where) const {
+    if (v.empty()) {
+      throw Error(where, field, "labels must be non-empty strings");
+    }
+    if (p.choices.empty()) {
+      return;
+    }
+    std::string_view rest = p.choices;
+    while (!rest.empty()) {
+      const std::size_t bar = rest.find('|');
+      if (rest.substr(0, bar) == v) {
+        return;
+      }
+      rest = bar == std::string_view::npos ? std::string_view() : rest.substr(bar + 1);
+    }
+    throw Error(where, field, "must be one of " + std::string(p.choices) + " (got '" + v + "')");
+  }
+
+  double Number(const toml::node& node, const std::string& field) const {
+    const auto v = node.value<double>();
+    if (!node.is_number() || !v) {
+      throw Error(node.source(), field, "must be a number");
+    }
+    return *v;
+  }
+
+  Axis ParseAxis(const std::string& key, const toml::source_region& key_where,
+                 const toml::node& node) const {
+    const std::string field = "axes." + key;
+    const ParameterInfo& p = Known(field, key, key_where);
+    Axis axis;
+    axis.key = std::string(p.key);
+    axis.kind = p.kind;
+    if (const toml::array* list = node.as_array()) {
+      if (list->empty()) {
+        throw Error(node.source(), field, "empty axis: give at least one value");
+      }
+      axis.spacing = "list";
+      for (const toml::node& item : *list) {
+        if (p.kind == ParameterKind::kLabel) {
+          const auto label = item.value<std::string>();
+          if (!item.is_string() || !label) {
+            throw Error(item.source(), field, "entries must be strings");
+          }
+          CheckLabel(p, *label, field, item.source());
+          axis.labels.push_back(*label);
+        } else {
+          const double v = Number(item, field);
+          CheckNumber(p, v, field, item.source());
+          axis.values.push_back(v);
+        }
+      }
+    } else if (const toml::table* gen = node.as_table()) {
+      if (p.kind == ParameterKind::kLabel) {
+        throw Error(node.source(), field, "a label axis must be a list of strings");
+      }
+      if (gen->size() != 1 || !(gen->contains("linspace") || gen->contains("logspace"))) {
+        throw Error(node.source(), field,
+                    "must be a list, {linspace = [a, b, n]} or {logspace = [a, b, n]}");
+      }
+      axis.spacing = gen->contains("linspace") ? "linspace" : "logspace";
+      const toml::node& args_node = *gen->get(axis.spacing);
+      const toml::array* args = args_node.as_array();
+      if (args == nullptr || args->size() != 3) {
+        throw Error(args_node.source(), field + "." + axis.spacing, "must be [a, b, n]");
+      }
+      const double a = Number(*args->get(0), field + "." + axis.spacing);
+      const double b = Number(*args->get(1), field + "." + axis.spacing);
+      const toml::node& n_node = *args->get(2);
+      const auto n = n_node.value<std::int64_t>();
+      if (!n_node.is_integer() || !n || *n < 1) {
+        throw Error(n_node.source(), field + "." + axis.spacing, "n must be a whole number >= 1");
+      }
+      if (*n > 100'000'000) {
+        throw Error(n_node.source(), field + "." + axis.spacing, "n must be <= 100000000");
+      }
+      if (axis.spacing == "logspace" && !(a > 0 && b > 0)) {
+        throw Error(args_node.source(), field + ".logspace",
+                    "a and b are values (not decades) and must be > 0");
+      }
+      axis.values = axis.spacing == "linspace" ? Linspace(a, b, static_cast<std::size_t>(*n))
+                                               : Logspace(a, b, static_cast<std::size_t>(*n));
+      for (double v : axis.values) {
+        CheckNumber(p, v, field, node.source());
+      }
+    } else {
+      throw Error(node.source(), field,
+                  "must be a list, {linspace = [a, b, n]} or {logspace = [a, b, n]}");
+    }
+    std::vector<double> sorted = axis.values;
+    std::sort(sorted.begin(), sorted.end());
+    std::vector<std::string> sorted_labels = axis.labels;
+    std::sort(sorted_labels.begin(), sorted_labels.end());
+    if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end() ||
+        std::adjacent_find(sorted_labels.begin(), sorted_labels.end()) != sorted_labels.end()) {
+      throw Error(node.source(), field, "duplicate coordinate (each value must appear once)");
+    }
+    return axis;
+  }
+
+  FixedValue ParseFixed(const std::string& key, const toml::source_region& key_where,
+                        const toml::node& node, const SweepSpec& spec) const {
+    const std::string field = "fixed." + key;
+    const ParameterInfo& p = Known(field, key, key_where);
+    if (spec.FindAxis(p.key) != nullptr) {
+      throw Error(key_where, field, "is also an axis; give it in [axes] or [fixed], not both");
+    }
+    FixedValue fixed;
+    fixed.key = std::string(p.key);
+    fixed.kind = p.kind;
+    if (p.kind == ParameterKind::kLabel) {
+      const auto label = node.value<std::string>();
+      if (!node.is_string() || !label) {
+        throw Error(node.source(), field, "must be a string");
+      }
+      CheckLabel(p, *label, field, node.source());
+      fixed.label = *label;
+    } else {
+      fixed.value = Number(node, field);
+      CheckNumber(p, fixed.value, field, node.source());
+    }
+    return fixed;
+  }
+
+  void CheckCrossFields(const SweepSpec& spec) const {
+    auto given = [&spec](std::string_view key) {
+      return spec.FindAxis(key) != nullptr || spec.FindFixed(key) != nullptr;
+    };
+    for (const Axis& axis : spec.axes) {
+      if (spec.FindFixed(axis.key) != nullptr) {
+        throw InputError::AtField(source_, "fixed." + axis.key, "is also an axis");
+      }
+    }
+    if (given("eta0") && given("W_over_L")) {
+      throw InputError::AtField(source_, "eta0",
+                                "give eta0 or W_over_L, not both (eta0 = sin 2a / (2 W/L))");
+    }
+    if (given("pulse") && given("record")) {
+      throw InputError::AtField(source_, "record",
+                                "give pulse or record, not both (one excitation per cell)");
+    }
+    if (given("record") && spec.record_set.empty()) {
+      throw InputError::AtField(source_, "records.set",
+                                "missing: a record axis or value needs [records] set = \"FILE\"");
+    }
+  }
+
+  static void SortCanonically(SweepSpec& spec) {
+    auto rank = [](std::string_view key) { return FindParameter(key) - kParameters.data(); };
+    std::stable_sort(spec.axes.begin(), spec.axes.end(),
+                     [&](const Axis& x, const Axis& y) { return rank(x.key) < rank(y.key); });
+    std::stable_sort(spec.fixed.begin(), spec.fixed.end(),
+                     [&](const auto& x, const auto& y) { return rank(x.key) < rank(y.key); });
+  }
+
+  std::string source_;
+  std::filesystem::path base_dir_;
+};
+
+}  // namespace
+
+std::span<const ParameterInfo> KnownParameters() { return kParameters; }
+
+const ParameterInfo* FindParameter(std::string_view name) {
+  for (const ParameterInfo& p : kParameters) {
+    if (p.key == name || p.symbol == name) {
+      return &p;
+    }
+  }
+  return nullptr;
+}
+
+std::span<const std::string_view> KnownFamilies() { return kFamilies; }
+
+std::vector<std::size_t> SweepSpec::Shape() const {
+  std::vector<std::size_t> shape;
+  for (const Axis& axis : axes) {
+    shape.push_back(axis.Size());
+  }
+  return shape;
+}
+
+std::uint64_t SweepSpec::CellCount() const {
+  std::uint64_t n = 1;
+  for (const Axis& axis : axes) {
+    n *= axis.Size();
+  }
+  return n;
+}
+
+std::vector<std::size_t> SweepSpec::AxisIndex(std::uint64_t cell) const {
+  SB_DEMAND(cell < CellCount(), "cell index out of range");
+  std::vector<std::size_t> index(axes.size());
+  for (std::size_t k = axes.size(); k-- > 0;) {
+    index[k] = static_cast<std::size_t>(cell % axes[k].Size());
+    cell /= axes[k].Size();
+  }
+  return index;
+}
+
+const Axis* SweepSpec::FindAxis(std::string_view key) const {
+  for (const Axis& axis : axes) {
+    if (axis.key == key) {
+      return &axis;
+    }
+  }
+  return nullptr;
+}
+
+const FixedValue* SweepSpec::FindFixed(std::string_view key) const {
+  for (const FixedValue& f : fixed) {
+    if (f.key == key) {
+      return &f;
+    }
+  }
+  return nullptr;
+}
+
+std::string SweepSpec::CanonicalText() const {
+  std::ostringstream out;
+  auto str = [](const std::string& s) {
+    std::string q = "\"";
+    for (char c : s) {
+      if (c == '"' || c == '\\') {
+        q += '\\';
+      }
+      q += c;
+    }
+    return q + "\"";
+  };
+  out << "sweep.name = " << str(name) << "\n";
+  out << "sweep.family = " << str(family) << "\n";
+  if (!model_file.empty()) {
+    out << "sweep.model = " << str(model_file) << "\n";
+  }
+  if (!record_set.empty()) {
+    out << "records.set = " << str(record_set) << "\n";
+  }
+  for (const Axis& axis : axes) {
+    out << "axes." << axis.key << " = [";
+    for (std::size_t i = 0; i < axis.Size(); ++i) {
+      out << (i ? ", " : "")
+          << (axis.kind == ParameterKind::kNumber ? Fmt(axis.values[i]) : str(axis.labels[i]));
+    }
+    out << "]\n";
+  }
+  for (const FixedValue& f : fixed) {
+    out << "fixed." << f.key << " = "
+        << (f.kind == ParameterKind::kNumber ? Fmt(f.value) : str(f.label)) << "\n";
+  }
+  out << "sweep.responses = [";
+  for (std::size_t i = 0; i < responses.size(); ++i) {
+    out << (i ? ", " : "") << str(responses[i]);
+  }
+  out << "]\n";
+  return out.str();
+}
+
+std::string SweepSpec::Hash() const {
+  std::uint64_t h = 0xcbf29ce484222325ULL;  // FNV-1a 64 offset basis
+  for (unsigned char c : CanonicalText()) {
+    h ^= c;
+    h *= 0x100000001b3ULL;
+  }
+  return fmt::format("{:016x}", h);
+}
+
+SweepSpec ParseSweepSpec(std::string_view text, std::string_view source,
+                         const std::filesystem::path& base_dir) {
+  return Parser(source, base_dir).Parse(text);
+}
+
+SweepSpec LoadSweepSpec(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) {
+    throw InputError::AtLine(file.string(), 0, "cannot read the sweep specification");
+  }
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return ParseSweepSpec(buffer.str(), file.string(), file.parent_path());
+}
+
+std::vector<double> Linspace(double a, double b, std::size_t n) {
+  SB_DEMAND(n >= 1, "linspace needs n >= 1");
+  std::vector<double> v(n, a);
+  for (std::size_t i = 1; i < n; ++i) {
+    v[i] = i + 1 == n ? b : a + (b - a) * static_cast<double>(i) / static_cast<double>(n - 1);
+  }
+  return v;
+}
+
+std::vector<double> Logspace(double a, double b, std::size_t n) {
+  SB_DEMAND(n >= 1 && a > 0 && b > 0, "logspace needs n >= 1 and a, b > 0");
+  std::vector<double> v(n, a);
+  const double la = std::log(a);
+  const double lb = std::log(b);
+  for (std::size_t i = 1; i < n; ++i) {
+    v[i] = i + 1 == n
+               ? b
+               : std::exp(la + (lb - la) * static_cast<double>(i) / static_cast<double>(n - 1));
+  }
+  return v;
+}
+
+}  // namespace skewbridge::jobs

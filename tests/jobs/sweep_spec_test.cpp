@@ -1,0 +1,179 @@
+// Sweep specification parsing: values against their definitions, every bad input refused with
+// the key named, and the canonical text / hash as the identity of a sweep.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "jobs/sweep_spec.h"
+#include "solver/common/error.h"
+
+namespace skewbridge::jobs {
+namespace {
+
+using ::testing::HasSubstr;
+
+const char* kGood = R"(
+[sweep]
+name = "subsystem-eta1"
+family = "subsystem"
+
+[axes]
+w0_over_wg = {logspace = [0.1, 10.0, 5]}
+a_deg = [15, 30, 45]
+pulse = ["cosine", "sine"]
+Pi_delta = {linspace = [0.0, 2.0, 3]}
+
+[fixed]
+eta0 = 1.0
+xi = 0.05
+eps_N = 0.5
+mu = 0.0
+W0_over_w0 = 1.0
+)";
+
+SweepSpec Parse(const std::string& text) { return ParseSweepSpec(text, "spec.toml", "."); }
+
+std::string ErrorOf(const std::string& text) {
+  try {
+    Parse(text);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+std::string Replace(std::string text, const std::string& from, const std::string& to) {
+  const std::size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return text.replace(at, from.size(), to);
+}
+
+TEST(SweepSpec, AxesFollowTheCanonicalOrderWithW0OverWgLast) {
+  const SweepSpec spec = Parse(kGood);
+  ASSERT_EQ(spec.axes.size(), 4u);
+  EXPECT_EQ(spec.axes[0].key, "pulse");
+  EXPECT_EQ(spec.axes[1].key, "a_deg");
+  EXPECT_EQ(spec.axes[2].key, "Pi_delta");
+  EXPECT_EQ(spec.axes[3].key, "w0_over_wg");
+  EXPECT_EQ(spec.Shape(), (std::vector<std::size_t>{2, 3, 3, 5}));
+  EXPECT_EQ(spec.CellCount(), 90u);
+}
+
+TEST(SweepSpec, LogspaceIsGeometricInValuesWithExactEndPoints) {
+  const SweepSpec spec = Parse(kGood);
+  const std::vector<double>& v = spec.FindAxis("w0_over_wg")->values;
+  ASSERT_EQ(v.size(), 5u);
+  EXPECT_EQ(v.front(), 0.1);
+  EXPECT_EQ(v.back(), 10.0);
+  for (std::size_t i = 1; i < v.size(); ++i) {
+    EXPECT_NEAR(v[i] / v[i - 1], std::sqrt(10.0), 1e-12);  // 100x over 4 steps
+  }
+  EXPECT_EQ(spec.FindAxis("Pi_delta")->values, (std::vector<double>{0.0, 1.0, 2.0}));
+}
+
+TEST(SweepSpec, AxisIndexIsRowMajorWithLastAxisFastest) {
+  const SweepSpec spec = Parse(kGood);
+  for (std::uint64_t cell = 0; cell < spec.CellCount(); ++cell) {
+    const std::vector<std::size_t> idx = spec.AxisIndex(cell);
+    const std::uint64_t back = ((idx[0] * 3 + idx[1]) * 3 + idx[2]) * 5 + idx[3];
+    EXPECT_EQ(back, cell);
+  }
+}
+
+TEST(SweepSpec, SymbolsAreAcceptedAsQuotedKeys) {
+  const SweepSpec spec = Parse(Replace(kGood, "w0_over_wg =", "\"w0/w_g\" ="));
+  EXPECT_NE(spec.FindAxis("w0_over_wg"), nullptr);
+}
+
+TEST(SweepSpec, HashIgnoresKeyOrderAndSpellingButNotValues) {
+  const SweepSpec a = Parse(kGood);
+  const std::string moved = Replace(Replace(kGood, "a_deg = [15, 30, 45]\n", ""),
+                                    "pulse =", "a_deg = [15.0, 30, 45]\npulse =");
+  EXPECT_EQ(Parse(moved).Hash(), a.Hash());
+  EXPECT_NE(Parse(Replace(kGood, "xi = 0.05", "xi = 0.02")).Hash(), a.Hash());
+  EXPECT_NE(Parse(Replace(kGood, "[15, 30, 45]", "[15, 30, 40]")).Hash(), a.Hash());
+  EXPECT_EQ(a.Hash().size(), 16u);
+}
+
+TEST(SweepSpec, RefusesUnknownAxisNamingTheKey) {
+  EXPECT_THAT(ErrorOf(Replace(kGood, "a_deg =", "skew =")),
+              HasSubstr("spec.toml:8: axes.skew: unknown parameter; allowed:"));
+}
+
+TEST(SweepSpec, RefusesEmptyAxis) {
+  EXPECT_THAT(ErrorOf(Replace(kGood, "[15, 30, 45]", "[]")), HasSubstr("axes.a_deg: empty axis"));
+}
+
+TEST(SweepSpec, RefusesNegativePiDelta) {
+  EXPECT_THAT(ErrorOf(Replace(kGood, "linspace = [0.0, 2.0, 3]", "linspace = [-1.0, 2.0, 3]")),
+              HasSubstr("axes.Pi_delta: must be a number >= 0 (got -1)"));
+}
+
+TEST(SweepSpec, RefusesZeroPoints) {
+  EXPECT_THAT(ErrorOf(Replace(kGood, "[0.1, 10.0, 5]", "[0.1, 10.0, 0]")),
+              HasSubstr("axes.w0_over_wg.logspace: n must be a whole number >= 1"));
+}
+
+TEST(SweepSpec, RefusesUnknownFamily) {
+  EXPECT_THAT(ErrorOf(Replace(kGood, "\"subsystem\"", "\"tower\"")),
+              HasSubstr("sweep.family: unknown family 'tower'; allowed: subsystem"));
+}
+
+TEST(SweepSpec, RefusesMissingRecordSetFile) {
+  std::string text = Replace(kGood, "pulse = [\"cosine\", \"sine\"]", "record = [\"A\", \"B\"]");
+  text += "\n[records]\nset = \"no-such-set.toml\"\n";
+  EXPECT_THAT(ErrorOf(text), HasSubstr("records.set: file not found"));
+}
+
+TEST(SweepSpec, RefusesRecordAxisWithoutRecordSet) {
+  EXPECT_THAT(ErrorOf(Replace(kGood, "pulse = [\"cosine\", \"sine\"]", "record = [\"A\"]")),
+              HasSubstr("records.set: missing"));
+}
+
+TEST(SweepSpec, RefusesOutOfRangeAndWrongTypes) {
+  EXPECT_THAT(ErrorOf(Replace(kGood, "eps_N = 0.5", "eps_N = 1.5")),
+              HasSubstr("fixed.eps_N: must be a number >= 0 and <= 1 (got 1.5)"));
+  EXPECT_THAT(ErrorOf(Replace(kGood, "\"sine\"]", "\"square\"]")),
+              HasSubstr("axes.pulse: must be one of cosine|sine (got 'square')"));
+  EXPECT_THAT(ErrorOf(Replace(kGood, "xi = 0.05", "xi = \"low\"")),
+              HasSubstr("fixed.xi: must be a number"));
+  EXPECT_THAT(ErrorOf(Replace(kGood, "mu = 0.0", "mu = 0.0\nWL = 1")),
+              HasSubstr("fixed.WL: unknown parameter"));
+  EXPECT_THAT(ErrorOf(Replace(kGood, "[15, 30, 45]", "[15, 30, 15]")),
+              HasSubstr("axes.a_deg: duplicate coordinate"));
+  EXPECT_THAT(ErrorOf(Replace(kGood, "[0.1, 10.0, 5]", "[0.0, 10.0, 5]")),
+              HasSubstr("axes.w0_over_wg.logspace: a and b are values (not decades)"));
+}
+
+TEST(SweepSpec, RefusesContradictoryCombinations) {
+  EXPECT_THAT(ErrorOf(Replace(kGood, "eta0 = 1.0", "eta0 = 1.0\nW_over_L = 0.2")),
+              HasSubstr("eta0: give eta0 or W_over_L, not both"));
+  EXPECT_THAT(ErrorOf(Replace(kGood, "xi = 0.05", "xi = 0.05\na_deg = 10")),
+              HasSubstr("fixed.a_deg: is also an axis"));
+  EXPECT_THAT(ErrorOf("[sweep]\nname = \"x\"\nfamily = \"subsystem\"\n"),
+              HasSubstr("axes: give at least one axis"));
+}
+
+TEST(SweepSpec, ReportsTomlSyntaxErrorsWithTheLine) {
+  EXPECT_THAT(ErrorOf("[sweep]\nname = \n"), HasSubstr("spec.toml:2:"));
+}
+
+TEST(SweepSpec, LoadsAFileAndResolvesRecordSetRelativeToIt) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "sb_spec_test";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "set.toml") << "# a record set\n";
+  std::string text = Replace(kGood, "pulse = [\"cosine\", \"sine\"]", "record = [\"A\", \"B\"]");
+  text += "\n[records]\nset = \"set.toml\"\n";
+  std::ofstream(dir / "spec.toml") << text;
+  const SweepSpec spec = LoadSweepSpec(dir / "spec.toml");
+  EXPECT_EQ(spec.record_set_path, dir / "set.toml");
+  EXPECT_EQ(spec.FindAxis("record")->labels, (std::vector<std::string>{"A", "B"}));
+  EXPECT_EQ(spec.text, text);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace skewbridge::jobs
