@@ -12,5 +12,7 @@ void AddVersionCommand(CLI::App& app);
 void AddSweepCommand(CLI::App& app);
 /// `skewbridge inspect FILE.h5`: prints the sweeps, axes, responses and completion of a cube.
 void AddInspectCommand(CLI::App& app);
+/// `skewbridge records info FILE|SET.toml`, `records synth`: record measures, synthetic suites.
+void AddRecordsCommand(CLI::App& app);
 
 }  // namespace skewbridge::app

@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   skewbridge::app::AddVersionCommand(app);
   skewbridge::app::AddSweepCommand(app);
   skewbridge::app::AddInspectCommand(app);
+  skewbridge::app::AddRecordsCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
