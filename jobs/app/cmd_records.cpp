@@ -115,19 +115,19 @@ void PrintInfo(const InfoArgs& args) {
       const Row& r = rows[i];
       const IntensityMeasures& m = r.measures;
       std::printf(
-          "%s", fmt::format("  {{\"label\": {}, \"file\": {}, \"format\": {}, \"event\": {}, "
-                            "\"station\": {}, \"component\": {}, \"units_in_file\": {}, "
-                            "\"npts\": {}, \"dt_s\": {}, \"pga_g\": {}, \"pga_mps2\": {}, "
-                            "\"pgv_mps\": {}, \"pgd_m\": {}, \"tm_s\": {}, \"omega_g_radps\": {}, "
-                            "\"persistency_m\": {}, \"arias_mps\": {}, \"d5_95_s\": {}}}{}\n",
-                            JsonString(r.label), JsonString(r.motion.file),
-                            JsonString(r.motion.format), JsonString(r.motion.event),
-                            JsonString(r.motion.station), JsonString(r.motion.component),
-                            JsonString(r.motion.original_units), r.motion.npts(), r.motion.dt_s,
-                            m.pga_mps2 / g, m.pga_mps2, m.pgv_mps, m.pgd_m, m.mean_period_s,
-                            m.omega_g_radps, m.persistency_m, m.arias_mps,
-                            m.significant_duration_s, i + 1 < rows.size() ? "," : "")
-                    .c_str());
+          "%s",
+          fmt::format("  {{\"label\": {}, \"file\": {}, \"format\": {}, \"event\": {}, "
+                      "\"station\": {}, \"component\": {}, \"units_in_file\": {}, "
+                      "\"npts\": {}, \"dt_s\": {}, \"pga_g\": {}, \"pga_mps2\": {}, "
+                      "\"pgv_mps\": {}, \"pgd_m\": {}, \"tm_s\": {}, \"omega_g_radps\": {}, "
+                      "\"persistency_m\": {}, \"arias_mps\": {}, \"d5_95_s\": {}}}{}\n",
+                      JsonString(r.label), JsonString(r.motion.file), JsonString(r.motion.format),
+                      JsonString(r.motion.event), JsonString(r.motion.station),
+                      JsonString(r.motion.component), JsonString(r.motion.original_units),
+                      r.motion.npts(), r.motion.dt_s, m.pga_mps2 / g, m.pga_mps2, m.pgv_mps,
+                      m.pgd_m, m.mean_period_s, m.omega_g_radps, m.persistency_m, m.arias_mps,
+                      m.significant_duration_s, i + 1 < rows.size() ? "," : "")
+              .c_str());
     }
     std::printf("]\n");
     return;
@@ -138,32 +138,31 @@ void PrintInfo(const InfoArgs& args) {
         "arias_mps,d5_95_s\n");
     for (const Row& r : rows) {
       const IntensityMeasures& m = r.measures;
-      std::printf("%s",
-                  fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{}\n", CsvField(r.label),
-                              CsvField(r.motion.file), r.motion.format, r.motion.npts(),
-                              r.motion.dt_s, m.pga_mps2 / g, m.pgv_mps, m.pgd_m, m.mean_period_s,
-                              m.omega_g_radps, m.persistency_m, m.arias_mps,
-                              m.significant_duration_s)
-                      .c_str());
+      std::printf(
+          "%s", fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{}\n", CsvField(r.label),
+                            CsvField(r.motion.file), r.motion.format, r.motion.npts(),
+                            r.motion.dt_s, m.pga_mps2 / g, m.pgv_mps, m.pgd_m, m.mean_period_s,
+                            m.omega_g_radps, m.persistency_m, m.arias_mps, m.significant_duration_s)
+                    .c_str());
     }
     return;
   }
   std::printf("%s", fmt::format("{:<36} {:<8} {:>7} {:>8} {:>7} {:>8} {:>8} {:>7} {:>8} {:>8} "
                                 "{:>8} {:>7}\n",
-                                "record", "format", "npts", "dt[s]", "PGA[g]", "PGV[m/s]",
-                                "PGD[m]", "Tm[s]", "wg[r/s]", "Le[m]", "Ia[m/s]", "D5-95")
+                                "record", "format", "npts", "dt[s]", "PGA[g]", "PGV[m/s]", "PGD[m]",
+                                "Tm[s]", "wg[r/s]", "Le[m]", "Ia[m/s]", "D5-95")
                         .c_str());
   for (const Row& r : rows) {
     const IntensityMeasures& m = r.measures;
     std::string label = r.label;
     if (label.size() > 36) label = "..." + label.substr(label.size() - 33);
-    std::printf("%s", fmt::format("{:<36} {:<8} {:>7} {:>8.5g} {:>7.4f} {:>8.4f} {:>8.4f} "
-                                  "{:>7.4f} {:>8.3f} {:>8.5f} {:>8.4f} {:>7.2f}\n",
-                                  label, r.motion.format, r.motion.npts(), r.motion.dt_s,
-                                  m.pga_mps2 / g, m.pgv_mps, m.pgd_m, m.mean_period_s,
-                                  m.omega_g_radps, m.persistency_m, m.arias_mps,
-                                  m.significant_duration_s)
-                          .c_str());
+    std::printf("%s",
+                fmt::format("{:<36} {:<8} {:>7} {:>8.5g} {:>7.4f} {:>8.4f} {:>8.4f} "
+                            "{:>7.4f} {:>8.3f} {:>8.5f} {:>8.4f} {:>7.2f}\n",
+                            label, r.motion.format, r.motion.npts(), r.motion.dt_s, m.pga_mps2 / g,
+                            m.pgv_mps, m.pgd_m, m.mean_period_s, m.omega_g_radps, m.persistency_m,
+                            m.arias_mps, m.significant_duration_s)
+                    .c_str());
   }
 }
 
