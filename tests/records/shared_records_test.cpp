@@ -20,6 +20,19 @@ const std::filesystem::path kShared = std::filesystem::path(SKEWBRIDGE_SHARED_DI
 const std::filesystem::path kSetManifest = std::filesystem::path(SKEWBRIDGE_TEST_DATA_DIR) / ".." /
                                            ".." / "records" / "sets" / "shared.toml";
 
+// The reader each collection folder needs, detected by content.
+const std::map<std::string, std::string> kFormatOf = {{"at2_nga_west2", "at2"},
+                                                      {"at2_peer_legacy", "at2"},
+                                                      {"esm_ascii", "esm"},
+                                                      {"itsak", "itsak"},
+                                                      {"cosmos_v2c", "cosmos"},
+                                                      {"csmip_v2", "csmip"},
+                                                      {"usgs_smc", "smc"},
+                                                      {"smtk_cor_acc", "smtk"},
+                                                      {"single_column", "plain"},
+                                                      {"multi_value_no_header", "plain"},
+                                                      {"two_column_time_acc", "time-acc"}};
+
 // Fields of one CSV line, with RFC 4180 quoting.
 std::vector<std::string> CsvFields(const std::string& line) {
   std::vector<std::string> fields(1);
@@ -86,6 +99,7 @@ TEST(SharedRecords, EveryFileLoadsAndMatchesTheManifest) {
     for (double a : m.acc_mps2) pga = std::max(pga, std::abs(a));
     EXPECT_NEAR(pga / kStandardGravity_mps2, std::stod(row.at("pga_g")), 0.5e-4 + 1e-9);
     EXPECT_EQ(m.original_units, row.at("units_in_file"));
+    EXPECT_EQ(m.format, kFormatOf.at(row.at("format")));
   }
 }
 
