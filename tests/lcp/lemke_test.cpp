@@ -1,0 +1,351 @@
+#include <gtest/gtest.h>
+
+#include <Eigen/Core>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "solver/lcp/lcp_check.h"
+#include "solver/lcp/lemke.h"
+#include "tests/lcp/lcp_oracles.h"
+
+namespace skewbridge::lcp {
+namespace {
+
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+using testing::EnumerateSolutions;
+
+/// Asserts the three LCP conditions directly (not through CheckSolution), with the scale of
+/// the brief: z >= 0, w >= -tol s, |z^T w| <= tol |z| s, s = |M| |z| + |q| (2-norms).
+void ExpectSolves(const MatrixXd& M, const VectorXd& q, const LcpSolution& s, double tol) {
+  ASSERT_EQ(s.status, LcpStatus::kSolved) << s.message;
+  const VectorXd w = M * s.z + q;
+  const double scale = M.norm() * s.z.norm() + q.norm();
+  EXPECT_GE(s.z.minCoeff(), 0.0);
+  EXPECT_GE(w.minCoeff(), -tol * scale);
+  EXPECT_LE(std::abs(s.z.dot(w)), tol * std::max(s.z.norm(), 1.0) * scale);
+  EXPECT_LE((s.w - w).norm(), 1e-14 * scale) << "solution.w must be M z + q";
+}
+
+TEST(LemkeSolver, ReturnsZeroWithoutPivotsWhenQIsNonnegative) {
+  LemkeSolver solver;
+  LcpSolution s;
+  const MatrixXd M = MatrixXd::Random(3, 3);
+  const VectorXd q = (VectorXd(3) << 1.0, 0.0, 2.5).finished();
+  EXPECT_EQ(solver.Solve(M, q, s), LcpStatus::kSolved);
+  EXPECT_EQ(s.pivots, 0);
+  EXPECT_EQ(s.z, VectorXd::Zero(3));
+  EXPECT_EQ(s.w, q);
+  EXPECT_TRUE(s.message.empty());
+}
+
+TEST(LemkeSolver, SolvesOneDimensionalProblemExactly) {
+  // w = 4 z - 2: z = 1/2, w = 0.
+  LemkeSolver solver;
+  LcpSolution s;
+  EXPECT_EQ(solver.Solve(MatrixXd::Constant(1, 1, 4.0), VectorXd::Constant(1, -2.0), s),
+            LcpStatus::kSolved);
+  EXPECT_EQ(s.z(0), 0.5);
+  EXPECT_EQ(s.w(0), 0.0);
+  EXPECT_EQ(s.pivots, 2);  // z0 in, then z_1 in and z0 out
+}
+
+TEST(LemkeSolver, SolvesRandomSymmetricPositiveDefiniteProblems) {
+  std::mt19937 rng(20110301);
+  LemkeSolver solver;  // reused across sizes: the workspace grows and is reused
+  LcpSolution s;
+  for (int n = 1; n <= 30; ++n) {
+    const MatrixXd M = testing::RandomSpd(n, rng);
+    for (int trial = 0; trial < 6; ++trial) {
+      const VectorXd q = testing::RandomVector(n, rng);
+      SCOPED_TRACE(::testing::Message() << "n = " << n << ", trial " << trial);
+      solver.Solve(M, q, s);
+      ExpectSolves(M, q, s, 1e-10);
+      EXPECT_LE(s.worst_violation, 1e-12);
+    }
+  }
+}
+
+/// Lemke's result against the unique solution found by enumerating all 2^n bases.
+void ExpectMatchesEnumeration(const MatrixXd& M, const VectorXd& q, LemkeSolver& solver) {
+  const std::vector<VectorXd> all = EnumerateSolutions(M, q, 1e-12);
+  ASSERT_EQ(all.size(), 1u) << "a P-matrix LCP has exactly one solution";
+  LcpSolution s;
+  ASSERT_EQ(solver.Solve(M, q, s), LcpStatus::kSolved) << s.message;
+  EXPECT_LE((s.z - all[0]).cwiseAbs().maxCoeff(), 1e-10 * (1.0 + all[0].cwiseAbs().maxCoeff()))
+      << "lemke z = " << s.z.transpose() << "\nenumerated z = " << all[0].transpose();
+}
+
+TEST(LemkeSolver, MatchesBruteForceEnumerationOnRandomPMatrices) {
+  std::mt19937 rng(813);
+  LemkeSolver solver;
+  for (int n = 1; n <= 8; ++n) {
+    for (int trial = 0; trial < 8; ++trial) {
+      SCOPED_TRACE(::testing::Message() << "n = " << n << ", trial " << trial);
+      ExpectMatchesEnumeration(testing::RandomSpd(n, rng), testing::RandomVector(n, rng), solver);
+      ExpectMatchesEnumeration(testing::RandomDiagonallyDominant(n, rng),
+                               testing::RandomVector(n, rng), solver);
+      ExpectMatchesEnumeration(testing::RandomPositiveDefiniteNonsymmetric(n, rng),
+                               testing::RandomVector(n, rng), solver);
+    }
+  }
+}
+
+TEST(LemkeSolver, MatchesBruteForceOnDegenerateIntegerProblems) {
+  // Small-integer P-matrices and q in {-1, 0, 1}: many zero basic values, many equal ratios
+  // and many equal entries of the inverse basis, the situation where the lexicographic rule
+  // decides every pivot.
+  std::mt19937 rng(575);
+  std::uniform_int_distribution<int> entry(-1, 1);
+  LemkeSolver solver;
+  for (int n = 2; n <= 8; ++n) {
+    for (int trial = 0; trial < 20; ++trial) {
+      MatrixXd M(n, n);
+      VectorXd q(n);
+      for (int i = 0; i < n; ++i) {
+        for (int j = 0; j < n; ++j) M(i, j) = entry(rng);
+        M(i, i) = 0.0;
+        M(i, i) = M.row(i).cwiseAbs().sum() + 1.0;  // integer, strictly dominant: P-matrix
+        q(i) = entry(rng);
+      }
+      if (q.minCoeff() >= 0.0) q(trial % n) = -1.0;
+      SCOPED_TRACE(::testing::Message() << "n = " << n << ", trial " << trial << "\nM =\n"
+                                        << M << "\nq = " << q.transpose());
+      ExpectMatchesEnumeration(M, q, solver);
+    }
+  }
+}
+
+TEST(LemkeSolver, SolvesMurtyTriangularMatrixWithAllRatiosTied) {
+  // Murty's upper-triangular P-matrix (1 on the diagonal, 2 above), with q = -e as in the
+  // Handbook of Test Problems in Local and Global Optimization (Floudas et al. 1999), problem
+  // 10.2.1, n = 16: every row ties in the first ratio test. Unique solution z = e_16:
+  // w_i = 2 - 1 = 1 for i < 16 and w_16 = 1 - 1 = 0.
+  const int n = 16;
+  MatrixXd M = MatrixXd::Identity(n, n);
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 1; j < n; ++j) M(i, j) = 2.0;
+  }
+  const VectorXd q = VectorXd::Constant(n, -1.0);
+  LemkeSolver solver;
+  LcpSolution s;
+  ASSERT_EQ(solver.Solve(M, q, s), LcpStatus::kSolved) << s.message;
+  VectorXd expected = VectorXd::Zero(n);
+  expected(n - 1) = 1.0;
+  EXPECT_EQ(s.z, expected);
+  ExpectSolves(M, q, s, 1e-14);
+}
+
+TEST(LemkeSolver, SolvesHandbookProblems) {
+  LemkeSolver solver;
+  LcpSolution s;
+  {
+    // Floudas et al. (1999) 10.2.3: a copositive-plus (skew-symmetric part plus PSD) 3 x 3
+    // problem with the solution z = (0, 1, 3) given there.
+    MatrixXd M(3, 3);
+    // clang-format off
+    M <<  0, -1,  2,
+          2,  0, -2,
+         -1,  1,  0;
+    // clang-format on
+    const VectorXd q = (VectorXd(3) << -3, 6, -1).finished();
+    ASSERT_EQ(solver.Solve(M, q, s), LcpStatus::kSolved) << s.message;
+    EXPECT_LE((s.z - VectorXd((VectorXd(3) << 0, 1, 3).finished())).norm(), 1e-12);
+    ExpectSolves(M, q, s, 1e-12);
+  }
+  {
+    // Floudas et al. (1999) 10.2.9 with q = (50, 50, l, -6), l in [0, 23]: the book's solution
+    // z = ((l + 16)/13, (l + 16)/13, 2 (23 - l)/13, (1286 - 9 l)/13). (The book misprints
+    // M(3, 3) as 1; it is 0, as in Drake's test of the same problem.)
+    MatrixXd M(4, 4);
+    // clang-format off
+    M << 11,  0, 10, -1,
+          0, 11, 10, -1,
+         10, 10, 21, -1,
+          1,  1,  1,  0;
+    // clang-format on
+    for (double l : {1.0, 16.0}) {
+      const VectorXd q = (VectorXd(4) << 50, 50, l, -6).finished();
+      const VectorXd expected =
+          (VectorXd(4) << (l + 16) / 13, (l + 16) / 13, 2 * (23 - l) / 13, (1286 - 9 * l) / 13)
+              .finished();
+      ASSERT_EQ(solver.Solve(M, q, s), LcpStatus::kSolved) << s.message;
+      EXPECT_LE((s.z - expected).norm(), 1e-11 * expected.norm()) << s.z.transpose();
+    }
+  }
+}
+
+TEST(LemkeSolver, SolvesFullyDegenerateRankOneProblems) {
+  // M = e e^T (PSD, rank one), q = -e: every ratio ties at every pivot and the solutions form
+  // the simplex {z >= 0, sum z = 1} (Floudas et al. 1999, 10.2.2 is n = 2). Termination and
+  // the simplex condition are checked.
+  LemkeSolver solver;
+  LcpSolution s;
+  for (int n = 1; n <= 12; ++n) {
+    const MatrixXd M = MatrixXd::Ones(n, n);
+    const VectorXd q = VectorXd::Constant(n, -1.0);
+    ASSERT_EQ(solver.Solve(M, q, s), LcpStatus::kSolved) << "n = " << n << ": " << s.message;
+    EXPECT_NEAR(s.z.sum(), 1.0, 1e-14);
+    ExpectSolves(M, q, s, 1e-14);
+  }
+}
+
+TEST(LemkeSolver, SolvesProblemsWithZeroEntriesInQ) {
+  // q with zero entries makes the starting basis degenerate; P-matrices keep the answer unique.
+  std::mt19937 rng(44);
+  LemkeSolver solver;
+  for (int n = 2; n <= 8; ++n) {
+    for (int trial = 0; trial < 10; ++trial) {
+      VectorXd q = testing::RandomVector(n, rng);
+      for (int i = 0; i < n; i += 2) q(i) = 0.0;
+      q(1) = -std::abs(q(1)) - 0.1;
+      SCOPED_TRACE(::testing::Message() << "n = " << n << ", trial " << trial);
+      ExpectMatchesEnumeration(testing::RandomSpd(n, rng), q, solver);
+    }
+  }
+}
+
+TEST(LemkeSolver, ReportsRayForUnsolvableScalarProblem) {
+  // w = -z - 1 < 0 for every z >= 0: no solution.
+  LemkeSolver solver;
+  LcpSolution s;
+  EXPECT_EQ(solver.Solve(MatrixXd::Constant(1, 1, -1.0), VectorXd::Constant(1, -1.0), s),
+            LcpStatus::kSecondaryRay);
+  EXPECT_FALSE(s.message.empty());
+}
+
+TEST(LemkeSolver, ReportsRayForCopositivePlusProblemWithInfeasibleQ) {
+  // M = [[0, 1], [-1, 0]] is skew-symmetric, so z^T M z = 0 >= 0 and (M + M^T) z = 0: it is
+  // copositive-plus, and for such M Lemke's method ends on a secondary ray exactly when
+  // {z >= 0 : M z + q >= 0} is empty [Cottle, Pang and Stone 1992, §4.4]. With q = (-1, -1),
+  // w_2 = -z_1 - 1 < 0 for every z_1 >= 0: infeasible, so a ray and never a "solution".
+  LemkeSolver solver;
+  LcpSolution s;
+  MatrixXd M(2, 2);
+  M << 0, 1, -1, 0;
+  EXPECT_EQ(solver.Solve(M, VectorXd::Constant(2, -1.0), s), LcpStatus::kSecondaryRay);
+
+  // The PSD (hence copositive-plus) M = [[1, -1], [-1, 1]] with q = (-1, -1):
+  // w_1 + w_2 = -2 < 0 for every z, infeasible.
+  M << 1, -1, -1, 1;
+  EXPECT_EQ(solver.Solve(M, VectorXd::Constant(2, -1.0), s), LcpStatus::kSecondaryRay);
+}
+
+TEST(LemkeSolver, SolvesFeasibleCopositivePlusProblem) {
+  // Same skew-symmetric M with q = (-1, 1): w_1 = z_2 - 1, w_2 = 1 - z_1. z_2 >= 1 > 0 forces
+  // w_2 = 0, so z_1 = 1 > 0 forces w_1 = 0, so z_2 = 1: the unique solution z = (1, 1), w = 0.
+  LemkeSolver solver;
+  LcpSolution s;
+  MatrixXd M(2, 2);
+  M << 0, 1, -1, 0;
+  const VectorXd q = (VectorXd(2) << -1, 1).finished();
+  ASSERT_EQ(solver.Solve(M, q, s), LcpStatus::kSolved) << s.message;
+  EXPECT_EQ(s.z, VectorXd::Ones(2));
+  EXPECT_EQ(s.w, VectorXd::Zero(2));
+}
+
+TEST(LemkeSolver, StopsAtThePivotLimit) {
+  std::mt19937 rng(7);
+  const int n = 12;
+  const MatrixXd M = testing::RandomSpd(n, rng);
+  const VectorXd q = VectorXd::Constant(n, -1.0);
+  LemkeSolver solver;
+  LcpSolution s;
+  ASSERT_EQ(solver.Solve(M, q, s), LcpStatus::kSolved);
+  const int needed = s.pivots;
+  ASSERT_GT(needed, 2);
+  // A budget of (n + 1) * per_unknown pivots below what the solve needs.
+  LemkeOptions tight;
+  tight.max_pivots_per_unknown = 0;
+  LemkeSolver limited(tight);
+  EXPECT_EQ(limited.Solve(M, q, s), LcpStatus::kPivotLimit);
+  EXPECT_EQ(s.pivots, 1);
+  EXPECT_NE(s.message.find("pivot limit"), std::string::npos) << s.message;
+}
+
+TEST(LemkeSolver, ScalingByPowersOfTwoIsExact) {
+  // (2^20 M, 2^-10 q) has the solution 2^-30 z; the solver scales by powers of two, so the
+  // pivots see the same numbers and the answer is bit-identical after rescaling.
+  std::mt19937 rng(99);
+  LemkeSolver solver;
+  LcpSolution a;
+  LcpSolution b;
+  for (int n : {3, 7, 15}) {
+    const MatrixXd M = testing::RandomDiagonallyDominant(n, rng);
+    const VectorXd q = testing::RandomVector(n, rng);
+    ASSERT_EQ(solver.Solve(M, q, a), LcpStatus::kSolved);
+    ASSERT_EQ(solver.Solve(std::ldexp(1.0, 20) * M, std::ldexp(1.0, -10) * q, b),
+              LcpStatus::kSolved);
+    EXPECT_EQ(std::ldexp(1.0, -30) * a.z, b.z);
+    EXPECT_EQ(a.pivots, b.pivots);
+  }
+}
+
+TEST(LemkeSolver, SolutionIsInvariantUnderGeneralScaling) {
+  // Scaling by non-powers of two changes rounding only: z scales as q / M.
+  std::mt19937 rng(100);
+  LemkeSolver solver;
+  LcpSolution a;
+  LcpSolution b;
+  const MatrixXd M = testing::RandomSpd(10, rng);
+  const VectorXd q = testing::RandomVector(10, rng);
+  ASSERT_EQ(solver.Solve(M, q, a), LcpStatus::kSolved);
+  ASSERT_EQ(solver.Solve(3.7e-7 * M, 0.31 * q, b), LcpStatus::kSolved);
+  EXPECT_LE((b.z - (0.31 / 3.7e-7) * a.z).norm(), 1e-12 * b.z.norm());
+}
+
+TEST(LemkeSolver, RejectsInvalidInputWithAMessage) {
+  LemkeSolver solver;
+  LcpSolution s;
+  auto expect_invalid = [&](const MatrixXd& M, const VectorXd& q, const std::string& needle) {
+    EXPECT_EQ(solver.Solve(M, q, s), LcpStatus::kInvalidInput);
+    EXPECT_EQ(s.status, LcpStatus::kInvalidInput);
+    EXPECT_NE(s.message.find(needle), std::string::npos) << "message: " << s.message;
+  };
+  expect_invalid(MatrixXd::Identity(2, 3), VectorXd::Ones(2), "square");
+  expect_invalid(MatrixXd::Identity(3, 3), VectorXd::Ones(2), "size");
+  expect_invalid(MatrixXd(0, 0), VectorXd(0), "empty");
+  MatrixXd M = MatrixXd::Identity(3, 3);
+  M(1, 2) = std::numeric_limits<double>::quiet_NaN();
+  expect_invalid(M, -VectorXd::Ones(3), "M(1, 2) is not finite");
+  M(1, 2) = std::numeric_limits<double>::infinity();
+  expect_invalid(M, -VectorXd::Ones(3), "M(1, 2) is not finite");
+  VectorXd q = -VectorXd::Ones(3);
+  q(2) = -std::numeric_limits<double>::infinity();
+  expect_invalid(MatrixXd::Identity(3, 3), q, "q(2) is not finite");
+  q(2) = std::numeric_limits<double>::quiet_NaN();
+  expect_invalid(MatrixXd::Identity(3, 3), q, "q(2) is not finite");
+}
+
+TEST(LemkeSolver, StatusNamesAreDistinct) {
+  EXPECT_STREQ(ToString(LcpStatus::kSolved), "solved");
+  EXPECT_STREQ(ToString(LcpStatus::kSecondaryRay), "secondary-ray");
+  EXPECT_STREQ(ToString(LcpStatus::kPivotLimit), "pivot-limit");
+  EXPECT_STREQ(ToString(LcpStatus::kInvalidInput), "invalid-input");
+  EXPECT_STREQ(ToString(LcpStatus::kInaccurate), "inaccurate");
+}
+
+TEST(CheckSolution, MeasuresEachViolationOnItsOwnScale) {
+  // M = I, q = (-1, 2): the solution is z = (1, 0), w = (0, 2).
+  const MatrixXd M = MatrixXd::Identity(2, 2);
+  const VectorXd q = (VectorXd(2) << -1, 2).finished();
+  EXPECT_EQ(CheckSolution(M, q, (VectorXd(2) << 1, 0).finished(), 0.0).worst_violation, 0.0);
+  // z = (1.5, 0): w = (0.5, 2), s_z = 1.5, s_w = 1.5 + 2; complementarity 0.75 / (1.5 * 3.5).
+  const LcpCheck off = CheckSolution(M, q, (VectorXd(2) << 1.5, 0).finished(), 0.1);
+  EXPECT_DOUBLE_EQ(off.worst_violation, 0.75 / (1.5 * 3.5));
+  EXPECT_FALSE(off.is_solution);
+  // z = (0.5, 0): w_1 = -0.5, scaled by s_w = 0.5 + 2.
+  EXPECT_DOUBLE_EQ(CheckSolution(M, q, (VectorXd(2) << 0.5, 0).finished(), 0.1).worst_violation,
+                   0.5 / 2.5);
+  // z = (1, -0.25): z negative by 0.25 / s_z.
+  EXPECT_DOUBLE_EQ(CheckSolution(M, q, (VectorXd(2) << 1, -0.25).finished(), 0.1).worst_violation,
+                   0.25);
+  VectorXd nan_z = VectorXd::Zero(2);
+  nan_z(0) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(CheckSolution(M, q, nan_z, 1.0).is_solution);
+}
+
+}  // namespace
+}  // namespace skewbridge::lcp
