@@ -46,10 +46,11 @@ int RunSweepCommand(const SweepCommandArgs& args, const EvaluatorFactory& factor
     if (root) {
       log(FormatSummary(report));
     }
-    if (report.complete) {
-      return 0;
+    if (stop.Received() != 0 && !report.complete) {
+      return 128 + stop.Received();
     }
-    return stop.Received() != 0 ? 128 + stop.Received() : 3;
+    // Only rank 0 knows whether the cube is complete; mpiexec reports its status.
+    return report.complete || !root ? 0 : 3;
   } catch (const InputError&) {
     if (root) {
       throw;

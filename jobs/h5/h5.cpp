@@ -44,16 +44,29 @@ Id::~Id() {
 
 void SilenceErrorStack() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
 
+namespace {
+
+// Without file locks: the single writer of a cube holds no lock, so that readers (inspect,
+// h5py, a progress check) can open FILE.partial while the sweep runs; the checkpoint file is
+// safe to read at any moment because after creation only raw bytes change.
+Id UnlockedAccess() {
+  Id fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "H5Pcreate(file access)");
+  Check(H5Pset_file_locking(fapl.get(), false, true), "H5Pset_file_locking");
+  return fapl;
+}
+
+}  // namespace
+
 Id CreateFile(const std::string& path) {
   SilenceErrorStack();
-  return Id(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
+  return Id(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, UnlockedAccess().get()), H5Fclose,
             "create file " + path);
 }
 
 Id OpenFile(const std::string& path, bool writable) {
   SilenceErrorStack();
-  return Id(H5Fopen(path.c_str(), writable ? H5F_ACC_RDWR : H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose,
-            "open file " + path);
+  return Id(H5Fopen(path.c_str(), writable ? H5F_ACC_RDWR : H5F_ACC_RDONLY, UnlockedAccess().get()),
+            H5Fclose, "open file " + path);
 }
 
 Id CreateGroup(hid_t parent, const std::string& name) {
