@@ -207,6 +207,43 @@ TEST(LemkeSolver, SolvesProblemsWithZeroEntriesInQ) {
   }
 }
 
+TEST(LemkeSolver, TerminatesWhereIndexTieBreakingCycles) {
+  // Two degenerate problems on which Lemke's method with a naive tie-break of the ratio test
+  // cycles forever in exact arithmetic: the path revisits a basis with the same entering
+  // variable after 7 (resp. 5) pivots. Found and checked by tests/lcp/cycling_search.py
+  // (seeded search, exact rationals). The lexicographic rule must end each of them.
+  LemkeSolver solver;
+  LcpSolution s;
+  {
+    // Cycles with "last tied row"; solutions (enumerated) include z = (0, 0, 1, 0).
+    MatrixXd M(4, 4);
+    // clang-format off
+    M <<  1,  2,  2,  2,
+         -1, -1,  1,  2,
+          1,  1,  1,  0,
+          2,  1,  2,  1;
+    // clang-format on
+    const VectorXd q = (VectorXd(4) << -1, 0, -1, -1).finished();
+    ASSERT_FALSE(EnumerateSolutions(M, q, 1e-12).empty());
+    ASSERT_EQ(solver.Solve(M, q, s), LcpStatus::kSolved) << s.message;
+    EXPECT_LE(CheckSolution(M, q, s.z, 0.0).worst_violation, 1e-15);
+  }
+  {
+    // Cycles with "first tied row"; enumeration of all 16 complementary bases finds no
+    // solution, so the only correct outcome is a secondary ray.
+    MatrixXd M(4, 4);
+    // clang-format off
+    M <<  1,  1,  1,  2,
+          1,  1,  1,  1,
+         -1,  2,  2,  1,
+         -1,  0, -1, -1;
+    // clang-format on
+    const VectorXd q = (VectorXd(4) << 0, -1, -1, -1).finished();
+    ASSERT_TRUE(EnumerateSolutions(M, q, 1e-12).empty());
+    EXPECT_EQ(solver.Solve(M, q, s), LcpStatus::kSecondaryRay) << s.message;
+  }
+}
+
 TEST(LemkeSolver, ReportsRayForUnsolvableScalarProblem) {
   // w = -z - 1 < 0 for every z >= 0: no solution.
   LemkeSolver solver;
