@@ -21,13 +21,15 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // The one table of parameter names. The spectra mapping extends it here (and in
 // docs/sweep-format.md); the order is the canonical axis order of every cube.
 // clang-format off
-constexpr std::array<ParameterInfo, 13> kParameters{{
+constexpr std::array<ParameterInfo, 15> kParameters{{
   {"record", "record", "", "ground-motion record, by its label in the [records] set",
    ParameterKind::kLabel, 0, true, 0, true, false, ""},
   {"pulse", "pulse", "", "one cycle of a_g cos(w_g t) or a_g sin(w_g t) [method.md §5]",
    ParameterKind::kLabel, 0, true, 0, true, false, "cosine|sine"},
   {"spans", "spans", "1", "number of deck spans", ParameterKind::kNumber, 1, true, 64, true,
    true, ""},
+  {"a_g_g", "a_g", "g", "pulse amplitude a_g (cancels out of the dimensionless responses)",
+   ParameterKind::kNumber, 0, false, kInf, false, false, ""},
   {"a_deg", "a", "deg", "skew angle a", ParameterKind::kNumber, 0, true, 90, false, false, ""},
   {"eta0", "eta0", "1", "skew ratio eta0 = sin 2a / (2 W/L)", ParameterKind::kNumber, 0, false,
    kInf, false, false, ""},
@@ -35,6 +37,8 @@ constexpr std::array<ParameterInfo, 13> kParameters{{
    false, false, ""},
   {"delta_over_L", "delta/L", "1", "joint gap over deck length", ParameterKind::kNumber, 0,
    true, kInf, false, false, ""},
+  {"L_over_Le", "L/L_e", "1", "deck length over the persistency a_g / w_g^2 (when delta/L is not given)",
+   ParameterKind::kNumber, 0, false, kInf, false, false, ""},
   {"W0_over_w0", "W0/w0", "1", "torsional over translational frequency of the substructure",
    ParameterKind::kNumber, 0, false, kInf, false, false, ""},
   {"xi", "xi", "1", "modal damping ratio", ParameterKind::kNumber, 0, true, 1, false, false,

@@ -1,5 +1,7 @@
 #include "spectra/point.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -18,11 +20,7 @@ constexpr double kDegree = std::numbers::pi / 180.0;
   throw InputError::AtField("point", parameter, problem);
 }
 
-std::string Show(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.17g", value);
-  return buffer;
-}
+std::string Show(double value) { return fmt::format("{}", value); }
 
 void RequirePositive(double value, std::string_view parameter) {
   if (!std::isfinite(value) || value <= 0.0) {

@@ -1,0 +1,244 @@
+#include "jobs/spectra_evaluator.h"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "records/record_set.h"
+#include "solver/common/error.h"
+
+namespace skewbridge::jobs {
+namespace {
+
+constexpr double kStandardGravity_mps2 = 9.80665;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// The responses, in the order Evaluate fills them [method.md §5].
+const std::vector<ResponseInfo>& ResponseTable() {
+  static const std::vector<ResponseInfo> table{
+      {"x_m", "m", "maximum |x|, longitudinal deck displacement relative to the ground"},
+      {"y_m", "m", "maximum |y|, transverse deck displacement relative to the ground"},
+      {"theta_m", "rad", "maximum |theta|, deck rotation in plan"},
+      {"theta_end", "rad", "residual rotation theta at the end of the run"},
+      {"x_norm", "1", "x_m w_g^2 / a_g"},
+      {"y_norm", "1", "y_m w_g^2 / a_g"},
+      {"theta_norm", "1", "theta_m rho w_g^2 / a_g, rho the radius of gyration"},
+      {"theta_end_norm", "1", "theta_end rho w_g^2 / a_g"},
+      {"impacts", "1", "number of impact events (a multi-contact impact counts once)"},
+      {"min_impact_separation", "s",
+       "smallest time between distinct impact instants (inf with fewer than two)"},
+      {"a_g", "m/s^2", "excitation amplitude a_g (pulse) or PGA (record)"},
+      {"w_g", "rad/s", "excitation frequency w_g (pulse) or 2 pi / T_m (record)"},
+      {"L_e", "m", "persistency a_g / w_g^2"},
+      {"delta", "m", "joint gap along x, Pi_delta L_e"},
+      {"w0x_over_wg", "1", "sqrt(K_xx / m) / w_g"},
+  };
+  return table;
+}
+
+double NumberOf(const SweepSpec& spec, std::span<const std::size_t> index, std::string_view key,
+                double fallback, bool* given = nullptr) {
+  for (std::size_t k = 0; k < spec.axes.size(); ++k) {
+    if (spec.axes[k].key == key) {
+      if (given != nullptr) *given = true;
+      return spec.axes[k].values[index[k]];
+    }
+  }
+  if (const FixedValue* fixed = spec.FindFixed(key)) {
+    if (given != nullptr) *given = true;
+    return fixed->value;
+  }
+  if (given != nullptr) *given = false;
+  return fallback;
+}
+
+std::string LabelOf(const SweepSpec& spec, std::span<const std::size_t> index,
+                    std::string_view key) {
+  for (std::size_t k = 0; k < spec.axes.size(); ++k) {
+    if (spec.axes[k].key == key) return spec.axes[k].labels[index[k]];
+  }
+  if (const FixedValue* fixed = spec.FindFixed(key)) return fixed->label;
+  return {};
+}
+
+bool Mentions(const SweepSpec& spec, std::string_view key) {
+  return spec.FindAxis(key) != nullptr || spec.FindFixed(key) != nullptr;
+}
+
+}  // namespace
+
+SpectraEvaluator::SpectraEvaluator(const SweepSpec& spec) : spec_(spec) {
+  if (spec.family == "subsystem") {
+    family_ = spectra::Family::kSubsystem;
+  } else if (spec.family == "pilot-bridge") {
+    family_ = spectra::Family::kPilotBridge;
+    // The pilot bridge's deck and substructure are the published ones [method.md §6].
+    for (std::string_view key :
+         {"a_deg", "eta0", "W_over_L", "W0_over_w0", "delta_over_L", "L_over_Le", "spans"}) {
+      if (Mentions(spec, key)) {
+        throw InputError::AtField(spec.source, key,
+                                  "not a parameter of family 'pilot-bridge' (its deck is fixed)");
+      }
+    }
+  } else {
+    throw InputError::AtField(spec.source, "sweep.family",
+                              "family '" + spec.family +
+                                  "' cannot be swept by this build (allowed: subsystem, "
+                                  "pilot-bridge)");
+  }
+  if (Mentions(spec, "spans") && NumberOf(spec, {}, "spans", 1.0) != 1.0) {
+    throw InputError::AtField(spec.source, "spans", "only single-span decks are supported (1)");
+  }
+  if (Mentions(spec, "record") && Mentions(spec, "pulse")) {
+    throw InputError::AtField(spec.source, "pulse",
+                              "a sweep is driven by pulses or by records, not both");
+  }
+  if (Mentions(spec, "record")) {
+    if (spec.record_set_path.empty()) {
+      throw InputError::AtField(spec.source, "records.set",
+                                "missing: a record axis needs a record set");
+    }
+    const records::RecordSet set = records::LoadRecordSet(spec.record_set_path);
+    std::vector<std::string> wanted;
+    if (const Axis* axis = spec.FindAxis("record")) {
+      wanted = axis->labels;
+    } else {
+      wanted.push_back(spec.FindFixed("record")->label);
+    }
+    for (const std::string& label : wanted) {
+      const records::RecordEntry* found = nullptr;
+      for (const records::RecordEntry& entry : set.records) {
+        if (records::RecordLabel(entry) == label) found = &entry;
+      }
+      if (found == nullptr) {
+        throw InputError::AtField(
+            spec.source, "record",
+            "label '" + label + "' is not in the record set " + spec.record_set_path.string());
+      }
+      SweepRecord record;
+      record.label = label;
+      record.motion = records::LoadRecord(*found);
+      record.measures = records::ComputeMeasures(record.motion);
+      records_.push_back(std::move(record));
+    }
+  }
+  // Every cell's mapping is checked now, so a bad combination fails before the file is touched.
+  std::vector<std::size_t> index(spec.axes.size(), 0);
+  for (std::uint64_t cell = 0; cell < spec.CellCount(); ++cell) {
+    index = spec.AxisIndex(cell);
+    const SweepRecord* record = nullptr;
+    const spectra::PointParameters p = Parameters(index, &record);
+    try {
+      spectra::ToDimensional(
+          p, record != nullptr ? spectra::ExcitationScales{1.0, 1.0} : spectra::PulseScales(p));
+    } catch (const InputError& e) {
+      throw InputError(spec.source + ": " + e.what());
+    }
+  }
+}
+
+spectra::PointParameters SpectraEvaluator::Parameters(std::span<const std::size_t> index,
+                                                      const SweepRecord** record) const {
+  spectra::PointParameters p;
+  p.family = family_;
+  if (family_ == spectra::Family::kPilotBridge) {
+    p.mu = 0.3;  // the published pilot bridge [method.md §6]
+  }
+  p.w0_over_wg = NumberOf(spec_, index, "w0_over_wg", p.w0_over_wg);
+  p.Pi_delta = NumberOf(spec_, index, "Pi_delta", p.Pi_delta);
+  p.skew_deg = NumberOf(spec_, index, "a_deg", p.skew_deg);
+  bool given = false;
+  const double eta0 = NumberOf(spec_, index, "eta0", 0.0, &given);
+  if (given) p.eta0 = eta0;
+  const double w_over_l = NumberOf(spec_, index, "W_over_L", 0.0, &given);
+  if (given) p.W_over_L = w_over_l;
+  if (!p.eta0 && !p.W_over_L) p.eta0 = 1.0;
+  p.W0_over_w0 = NumberOf(spec_, index, "W0_over_w0", p.W0_over_w0);
+  p.xi = NumberOf(spec_, index, "xi", p.xi);
+  p.eps_N = NumberOf(spec_, index, "eps_N", p.eps_N);
+  p.mu = NumberOf(spec_, index, "mu", p.mu);
+  const double delta_over_l = NumberOf(spec_, index, "delta_over_L", 0.0, &given);
+  if (given) p.delta_over_L = delta_over_l;
+  p.L_over_Le = NumberOf(spec_, index, "L_over_Le", p.L_over_Le);
+  p.pulse_a_g_mps2 = NumberOf(spec_, index, "a_g_g", 0.5) * kStandardGravity_mps2;
+  p.pulse = LabelOf(spec_, index, "pulse") == "sine" ? records::PulseShape::kSine
+                                                     : records::PulseShape::kCosine;
+  *record = nullptr;
+  if (!records_.empty()) {
+    const std::string label = LabelOf(spec_, index, "record");
+    for (const SweepRecord& r : records_) {
+      if (r.label == label) *record = &r;
+    }
+  }
+  return p;
+}
+
+std::vector<ResponseInfo> SpectraEvaluator::Responses() const { return ResponseTable(); }
+
+std::vector<std::pair<std::int32_t, std::string>> SpectraEvaluator::StatusNames() const {
+  return {{kSpectraPainleve, "painleve"},
+          {kSpectraLcpFailure, "lcp-failure"},
+          {kSpectraStepLimit, "step-limit"}};
+}
+
+CellOutcome SpectraEvaluator::Evaluate(std::span<const std::size_t> axis_index) const {
+  const auto start = std::chrono::steady_clock::now();
+  const SweepRecord* record = nullptr;
+  const spectra::PointParameters p = Parameters(axis_index, &record);
+
+  spectra::PointResult r;
+  spectra::DimensionalPoint point;
+  if (record != nullptr) {
+    const spectra::ExcitationScales scales{record->measures.pga_mps2,
+                                           record->measures.omega_g_radps};
+    point = spectra::ToDimensional(p, scales);
+    r = spectra::EvaluatePoint(point, records::ToExcitation(record->motion));
+  } else {
+    const spectra::ExcitationScales scales = spectra::PulseScales(p);
+    point = spectra::ToDimensional(p, scales);
+    const records::PulseExcitation pulse(p.pulse, scales.a_g_mps2, scales.w_g_radps);
+    r = spectra::EvaluatePoint(point, pulse);
+  }
+
+  CellOutcome out;
+  switch (r.status) {
+    case dynamics::RunStatus::kOk:
+      out.status = kStatusOk;
+      break;
+    case dynamics::RunStatus::kPainleve:
+      out.status = kSpectraPainleve;
+      break;
+    case dynamics::RunStatus::kLcpFailure:
+      out.status = kSpectraLcpFailure;
+      break;
+    case dynamics::RunStatus::kStepLimit:
+      out.status = kSpectraStepLimit;
+      break;
+  }
+  out.status_text = r.message;
+  const bool ok = out.status == kStatusOk;
+  auto value = [ok](double v) { return ok ? v : kNaN; };
+  const spectra::ExcitationScales& s = point.scales;
+  out.responses = {value(r.x_m),
+                   value(r.y_m),
+                   value(r.theta_rad),
+                   value(r.theta_end_rad),
+                   value(r.x_norm),
+                   value(r.y_norm),
+                   value(r.theta_norm),
+                   value(r.theta_end_norm),
+                   value(static_cast<double>(r.impacts)),
+                   value(r.min_impact_separation_s),
+                   s.a_g_mps2,
+                   s.w_g_radps,
+                   point.persistency_m,
+                   point.delta_m,
+                   point.w0x_radps / s.w_g_radps};
+  out.stats.events = r.events;
+  out.stats.steps = r.steps;
+  out.stats.wall_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace skewbridge::jobs

@@ -1,0 +1,58 @@
+#pragma once
+/// @file
+/// The physics behind a sweep: evaluates a cell of a "subsystem" or "pilot-bridge" sweep by
+/// mapping its coordinates to a spectra::PointParameters, running the deck solver under the
+/// cell's pulse or record, and returning the dimensional and dimensionless maxima
+/// (docs/sweep-format.md lists the responses).
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "jobs/cell.h"
+#include "jobs/sweep_spec.h"
+#include "records/excitations.h"
+#include "records/measures.h"
+#include "spectra/point.h"
+
+namespace skewbridge::jobs {
+
+/// A record of the sweep's record set, read and measured once at construction.
+struct SweepRecord {
+  std::string label;                    ///< label in the record set
+  records::GroundMotion motion;         ///< accelerations (m/s^2), scaled as the set says
+  records::IntensityMeasures measures;  ///< PGA, T_m, w_g, L_e, ...
+};
+
+/// Cell status codes of the spectra evaluator (0 is ok).
+enum SpectraStatus : std::int32_t {
+  kSpectraPainleve = 1,    ///< the contact problem had no consistent forces
+  kSpectraLcpFailure = 2,  ///< an LCP hit its pivot limit or had invalid input
+  kSpectraStepLimit = 3,   ///< the run did not reach its end time within the step budget
+};
+
+/// Evaluates the cells of a subsystem or pilot-bridge sweep. Immutable after construction, so
+/// Evaluate is a pure function of the cell index.
+class SpectraEvaluator final : public CellEvaluator {
+ public:
+  /// Reads the record set (if any), then checks every cell's parameters before any work.
+  /// @throws InputError naming the key for a family it cannot evaluate, a parameter this family
+  /// does not take, a record label missing from the set, or an impossible combination (eta0 with
+  /// a = 0, delta/L with Pi_delta = 0, ...).
+  explicit SpectraEvaluator(const SweepSpec& spec);
+
+  std::vector<ResponseInfo> Responses() const override;
+  std::vector<std::pair<std::int32_t, std::string>> StatusNames() const override;
+  CellOutcome Evaluate(std::span<const std::size_t> axis_index) const override;
+
+  /// The point parameters of a cell, and the record it uses (nullptr for a pulse).
+  spectra::PointParameters Parameters(std::span<const std::size_t> axis_index,
+                                      const SweepRecord** record) const;
+
+ private:
+  SweepSpec spec_;
+  spectra::Family family_;
+  std::vector<SweepRecord> records_;
+};
+
+}  // namespace skewbridge::jobs
