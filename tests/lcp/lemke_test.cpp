@@ -302,6 +302,23 @@ TEST(LemkeSolver, StopsAtThePivotLimit) {
   EXPECT_NE(s.message.find("pivot limit"), std::string::npos) << s.message;
 }
 
+TEST(LemkeSolver, ReportsInaccurateWhenTheFinalCheckFails) {
+  // With a zero acceptance tolerance any rounding in the terminal basis fails the independent
+  // check: the status says so, and z, w are still the (rounded) solution.
+  std::mt19937 rng(21);
+  const MatrixXd M = testing::RandomSpd(20, rng);
+  const VectorXd q = testing::RandomVector(20, rng);
+  LemkeOptions strict;
+  strict.acceptance_tolerance = 0.0;
+  LemkeSolver solver(strict);
+  LcpSolution s;
+  ASSERT_EQ(solver.Solve(M, q, s), LcpStatus::kInaccurate);
+  EXPECT_GT(s.worst_violation, 0.0);
+  EXPECT_LE(s.worst_violation, 1e-12);
+  EXPECT_NE(s.message.find("inaccurate"), std::string::npos) << s.message;
+  EXPECT_LE(CheckSolution(M, q, s.z, 1e-12).worst_violation, 1e-12);
+}
+
 TEST(LemkeSolver, ScalingByPowersOfTwoIsExact) {
   // (2^20 M, 2^-10 q) has the solution 2^-30 z; the solver scales by powers of two, so the
   // pivots see the same numbers and the answer is bit-identical after rescaling.
