@@ -1,0 +1,194 @@
+// Contact kinematics against the paper's closed forms [method.md §2] at random states, against
+// finite differences of the gap (Jacobians) and of gamma along a trajectory (velocity terms).
+#include "solver/contact/kinematics.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "tests/contact/test_models.h"
+
+namespace skewbridge::contact {
+namespace {
+
+using testing::kDeg;
+
+// The closed forms for corner i with lever arm r_i at the +x abutment [method.md §2]:
+//   g_i = (delta - x) cos a + y sin a + (1/2)[L cos a (1 - cos theta) + 2 r_i sin theta]
+//   w_N,i = (-cos a, sin a, (1/2)[L cos a sin theta + 2 r_i cos theta])
+//   w_T,i = (sin a, cos a, -r_i sin theta + r_T cos theta).
+// The -x abutment is the +x one turned by 180 deg (P3 = -P1, P4 = -P2, n and A negated), so
+// g_3(x, y, theta) = g_1(-x, -y, theta), and its Jacobians are those of P1 with the translational
+// entries negated.
+struct ClosedForm {
+  double g;
+  Eigen::Vector3d w_N, w_T;
+};
+
+ClosedForm PaperClosedForm(double a, double L, double delta, double r, double r_T,
+                           const Eigen::Vector3d& q, bool minus_x) {
+  const double x = minus_x ? -q(0) : q(0);
+  const double y = minus_x ? -q(1) : q(1);
+  const double th = q(2);
+  const double sgn = minus_x ? -1.0 : 1.0;
+  ClosedForm f;
+  f.g = (delta - x) * std::cos(a) + y * std::sin(a) +
+        0.5 * (L * std::cos(a) * (1.0 - std::cos(th)) + 2.0 * r * std::sin(th));
+  f.w_N << -sgn * std::cos(a), sgn * std::sin(a),
+      0.5 * (L * std::cos(a) * std::sin(th) + 2.0 * r * std::cos(th));
+  f.w_T << sgn * std::sin(a), sgn * std::cos(a), -r * std::sin(th) + r_T * std::cos(th);
+  return f;
+}
+
+TEST(ContactKinematics, GapsAndJacobiansEqualThePaperClosedFormsAtRandomStates) {
+  std::mt19937_64 rng(20110813);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (double a_deg : {5.0, 20.0, 30.0, 45.0, 70.0}) {
+    for (double eta0 : {0.5, 1.48, 3.0}) {
+      const double L = 89.14;
+      const double delta = 0.05;
+      const model::Model model =
+          testing::FreeDeck(a_deg, eta0, L, delta, 0.5, 0.3, model::AbutmentSet::kBoth);
+      const model::DeckGeometry& deck = model.body(0).geometry;
+      const model::LeverArms arms = model::ComputeLeverArms(deck);
+      const double arm[4] = {arms.r1_m, arms.r2_m, arms.r1_m, arms.r2_m};
+      ContactKinematics kin;
+      kin.Resize(model);
+      for (int trial = 0; trial < 50; ++trial) {
+        const Eigen::Vector3d q(0.5 * unit(rng), 0.5 * unit(rng), 0.3 * unit(rng));
+        const Eigen::Vector3d u(unit(rng), unit(rng), 0.1 * unit(rng));
+        Evaluate(model, q, u, kin);
+        for (int c = 0; c < 4; ++c) {
+          const ClosedForm f =
+              PaperClosedForm(deck.skew_rad, L, delta, arm[c], arms.rT_m, q, c >= 2);
+          const double scale = L;
+          EXPECT_NEAR(kin.gap_m(c), f.g, 1e-12 * scale) << "contact " << c;
+          EXPECT_LT((kin.W_N.col(c) - f.w_N).norm(), 1e-12 * scale) << "contact " << c;
+          EXPECT_LT((kin.W_T.col(c) - f.w_T).norm(), 1e-12 * scale) << "contact " << c;
+          EXPECT_NEAR(kin.gamma_N(c), f.w_N.dot(u), 1e-12 * scale);
+          EXPECT_NEAR(kin.gamma_T(c), f.w_T.dot(u), 1e-12 * scale);
+        }
+      }
+    }
+  }
+}
+
+TEST(ContactKinematics, GapAtRestIsDeltaCosA) {
+  const model::Model model =
+      testing::FreeDeck(35.0, 1.2, 40.0, 0.08, 0.5, 0.0, model::AbutmentSet::kBoth);
+  for (int c = 0; c < 4; ++c) {
+    EXPECT_NEAR(Gap(model, c, Eigen::Vector3d::Zero()), 0.08 * std::cos(35.0 * kDeg), 1e-14);
+  }
+}
+
+// The normal Jacobian is the gradient of the gap (central differences, O(h^2)); the tangential
+// Jacobian is the gradient of the tangential displacement of P relative to the face's material
+// point that coincides with P at q0.
+void CheckJacobiansByFiniteDifferences(const model::Model& model, const Eigen::VectorXd& q0) {
+  const int n = model.n_dof();
+  Eigen::VectorXd w_N(n), w_T(n);
+  for (int c = 0; c < model.n_contacts(); ++c) {
+    Jacobians(model, c, q0, w_N, w_T);
+    const model::Contact& contact = model.contact(c);
+    Eigen::Vector2d n0, t0;
+    FaceDirections(model, c, q0, n0, t0);
+    const Eigen::Vector2d P0 = PointPosition(model, c, q0);
+    // The face material point at P0 as a function of q (fixed for the ground).
+    const auto material = [&](const Eigen::VectorXd& q) -> Eigen::Vector2d {
+      if (contact.face.body == model::kGround) {
+        return P0;
+      }
+      const int j = 3 * contact.face.body;
+      const Eigen::Vector2d local = Rotation(q0(j + 2)).transpose() * (P0 - q0.segment<2>(j));
+      return q.segment<2>(j) + Rotation(q(j + 2)) * local;
+    };
+    const double h = 1e-6;
+    for (int k = 0; k < n; ++k) {
+      Eigen::VectorXd qp = q0, qm = q0;
+      qp(k) += h;
+      qm(k) -= h;
+      const double dg = (Gap(model, c, qp) - Gap(model, c, qm)) / (2 * h);
+      const double dt = t0.dot((PointPosition(model, c, qp) - material(qp)) -
+                               (PointPosition(model, c, qm) - material(qm))) /
+                        (2 * h);
+      EXPECT_NEAR(w_N(k), dg, 1e-7 * (1.0 + std::abs(dg))) << "contact " << c << " dof " << k;
+      EXPECT_NEAR(w_T(k), dt, 1e-7 * (1.0 + std::abs(dt))) << "contact " << c << " dof " << k;
+    }
+  }
+}
+
+TEST(ContactKinematics, JacobiansAreGradientsOfTheGapForGroundAndBodyFaces) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const model::Model deck =
+      testing::FreeDeck(30.0, 1.3, 20.0, 0.02, 0.5, 0.2, model::AbutmentSet::kBoth);
+  const model::Model two = testing::TwoDecks();
+  for (int trial = 0; trial < 20; ++trial) {
+    Eigen::VectorXd q(3);
+    q << unit(rng), unit(rng), 0.5 * unit(rng);
+    CheckJacobiansByFiniteDifferences(deck, q);
+    Eigen::VectorXd q2(6);
+    q2 << unit(rng), unit(rng), 0.5 * unit(rng), unit(rng), unit(rng), 0.5 * unit(rng);
+    CheckJacobiansByFiniteDifferences(two, q2);
+  }
+}
+
+// Along q(t) = q0 + u0 t + a t^2 / 2 the rate of gamma = w(q)^T u is w^T a + what at t = 0.
+void CheckVelocityTermsAlongTrajectory(const model::Model& model, const Eigen::VectorXd& q0,
+                                       const Eigen::VectorXd& u0, const Eigen::VectorXd& acc) {
+  const int n = model.n_dof();
+  Eigen::VectorXd w_N(n), w_T(n);
+  const auto gammas = [&](int c, double t, double& gN, double& gT) {
+    const Eigen::VectorXd q = q0 + u0 * t + 0.5 * acc * t * t;
+    const Eigen::VectorXd u = u0 + acc * t;
+    Jacobians(model, c, q, w_N, w_T);
+    gN = w_N.dot(u);
+    gT = w_T.dot(u);
+  };
+  for (int c = 0; c < model.n_contacts(); ++c) {
+    const double h = 1e-5;
+    double gNp, gTp, gNm, gTm;
+    gammas(c, h, gNp, gTp);
+    gammas(c, -h, gNm, gTm);
+    double what_N, what_T;
+    VelocityTerms(model, c, q0, u0, what_N, what_T);
+    Jacobians(model, c, q0, w_N, w_T);
+    const double dN = (gNp - gNm) / (2 * h);
+    const double dT = (gTp - gTm) / (2 * h);
+    EXPECT_NEAR(w_N.dot(acc) + what_N, dN, 1e-6 * (1.0 + std::abs(dN))) << "contact " << c;
+    EXPECT_NEAR(w_T.dot(acc) + what_T, dT, 1e-6 * (1.0 + std::abs(dT))) << "contact " << c;
+  }
+}
+
+TEST(ContactKinematics, VelocityTermsMatchTheRateOfGammaAlongATrajectory) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const model::Model deck =
+      testing::FreeDeck(20.0, 1.48, 89.14, 0.03, 0.5, 0.3, model::AbutmentSet::kBoth);
+  const model::Model two = testing::TwoDecks();
+  for (int trial = 0; trial < 20; ++trial) {
+    Eigen::VectorXd q(3), u(3), a(3);
+    q << unit(rng), unit(rng), 0.2 * unit(rng);
+    u << unit(rng), unit(rng), 0.5 * unit(rng);
+    a << unit(rng), unit(rng), 0.5 * unit(rng);
+    CheckVelocityTermsAlongTrajectory(deck, q, u, a);
+    Eigen::VectorXd q2(6), u2(6), a2(6);
+    for (int k = 0; k < 6; ++k) {
+      q2(k) = unit(rng);
+      u2(k) = unit(rng);
+      a2(k) = unit(rng);
+    }
+    CheckVelocityTermsAlongTrajectory(two, q2, u2, a2);
+  }
+  // For a ground face what_N = -thetadot^2 n . R(theta) p exactly [method.md §2].
+  const Eigen::Vector3d q(0.1, -0.2, 0.05), u(0.3, 0.1, 0.7);
+  double what_N, what_T;
+  VelocityTerms(deck, 0, q, u, what_N, what_T);
+  const model::Contact& c = deck.contact(0);
+  EXPECT_NEAR(what_N, -0.49 * c.face.normal.dot(Rotation(0.05) * c.point_m), 1e-13 * 89.14);
+  EXPECT_NEAR(what_T, -0.49 * c.face.tangent.dot(Rotation(0.05) * c.point_m), 1e-13 * 89.14);
+}
+
+}  // namespace
+}  // namespace skewbridge::contact
