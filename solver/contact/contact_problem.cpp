@@ -32,8 +32,17 @@ ContactProblem::ContactProblem(const model::Model& model, lcp::LemkeOptions opti
   mu_H_.setZero(nc);
   A_.setZero(3 * nc, 3 * nc);
   b_.setZero(3 * nc);
-  solution_.z.setZero(3 * nc);
-  solution_.w.setZero(3 * nc);
+  solutions_.resize(static_cast<std::size_t>(3 * nc + 1));
+  for (std::size_t n_lcp = 0; n_lcp < solutions_.size(); ++n_lcp) {
+    solutions_[n_lcp].z.setZero(static_cast<Eigen::Index>(n_lcp));
+    solutions_[n_lcp].w.setZero(static_cast<Eigen::Index>(n_lcp));
+    solutions_[n_lcp].message.reserve(128);
+  }
+  // A trivial solve of the largest size sizes the solver's workspace now, not in the time loop.
+  if (nc > 0) {
+    solver_.Solve(Eigen::MatrixXd::Identity(3 * nc, 3 * nc), Eigen::VectorXd::Ones(3 * nc),
+                  solutions_.back());
+  }
 }
 
 ContactResult ContactProblem::MakeResult() const {
@@ -123,8 +132,9 @@ ContactStatus ContactProblem::Solve(const ContactKinematics& kinematics,
     }
   }
 
-  result.lcp_status = solver_.Solve(A, b, solution_);
-  result.pivots = solution_.pivots;
+  result.lcp_status = solver_.Solve(A, b, solutions_[static_cast<std::size_t>(A.rows())]);
+  const lcp::LcpSolution& solution = solutions_[static_cast<std::size_t>(A.rows())];
+  result.pivots = solution.pivots;
   if (result.lcp_status != lcp::LcpStatus::kSolved) {
     result.status = result.lcp_status == lcp::LcpStatus::kSecondaryRay ? ContactStatus::kPainleve
                                                                        : ContactStatus::kLcpFailure;
@@ -135,8 +145,8 @@ ContactStatus ContactProblem::Solve(const ContactKinematics& kinematics,
   }
 
   // Forces: lambda_T = -mu s lambda_N on G, lambda_R - mu lambda_N on H.
-  const Eigen::VectorXd& z = solution_.z;
-  const Eigen::VectorXd& w = solution_.w;
+  const Eigen::VectorXd& z = solution.z;
+  const Eigen::VectorXd& w = solution.w;
   result.du_dt = Minvh_;
   // Complementary pairs with both members at round-off are ties: keep the contact's mode.
   const double scale_b = b.cwiseAbs().maxCoeff();

@@ -90,7 +90,9 @@ class ContactProblem {
  private:
   const model::Model& model_;
   lcp::LemkeSolver solver_;
-  lcp::LcpSolution solution_;
+  // One solution per LCP size: LcpSolution resizes when n changes, so each size keeps its own
+  // and a change of the index set does not allocate.
+  std::vector<lcp::LcpSolution> solutions_;
   int n_lcp_ = 0;
   Eigen::MatrixXd WN_, WQ_, WH_;     // columns of the closed set; W_H of its H part
   Eigen::MatrixXd MinvWQ_, MinvWH_;  // M^-1 W_Q, M^-1 W_H

@@ -18,8 +18,17 @@ ImpactProblem::ImpactProblem(const model::Model& model, lcp::LemkeOptions option
   eps_.setZero(nc);
   A_.setZero(3 * nc, 3 * nc);
   b_.setZero(3 * nc);
-  solution_.z.setZero(3 * nc);
-  solution_.w.setZero(3 * nc);
+  solutions_.resize(static_cast<std::size_t>(3 * nc + 1));
+  for (std::size_t n_lcp = 0; n_lcp < solutions_.size(); ++n_lcp) {
+    solutions_[n_lcp].z.setZero(static_cast<Eigen::Index>(n_lcp));
+    solutions_[n_lcp].w.setZero(static_cast<Eigen::Index>(n_lcp));
+    solutions_[n_lcp].message.reserve(128);
+  }
+  // A trivial solve of the largest size sizes the solver's workspace now, not in the time loop.
+  if (nc > 0) {
+    solver_.Solve(Eigen::MatrixXd::Identity(3 * nc, 3 * nc), Eigen::VectorXd::Ones(3 * nc),
+                  solutions_.back());
+  }
 }
 
 ImpactResult ImpactProblem::MakeResult() const {
@@ -100,15 +109,16 @@ lcp::LcpStatus ImpactProblem::Solve(const ContactKinematics& kinematics,
   b.segment(k, k).noalias() = WT.transpose() * u_A;
   b.tail(k).setZero();
 
-  result.status = solver_.Solve(A, b, solution_);
-  result.pivots = solution_.pivots;
+  result.status = solver_.Solve(A, b, solutions_[static_cast<std::size_t>(A.rows())]);
+  const lcp::LcpSolution& solution = solutions_[static_cast<std::size_t>(A.rows())];
+  result.pivots = solution.pivots;
   if (result.status != lcp::LcpStatus::kSolved) {
     return result.status;
   }
   // Lambda_T = Lambda_R - mu Lambda_N; u_E = u_A + M^-1 (W_N Lambda_N + W_T Lambda_T).
-  result.Lambda_N.head(k) = solution_.z.head(k);
+  result.Lambda_N.head(k) = solution.z.head(k);
   result.Lambda_T.head(k) =
-      solution_.z.segment(k, k).array() - mu.array() * solution_.z.head(k).array();
+      solution.z.segment(k, k).array() - mu.array() * solution.z.head(k).array();
   result.u_E.noalias() += MinvWN * result.Lambda_N.head(k);
   result.u_E.noalias() += MinvWT * result.Lambda_T.head(k);
   result.gamma_N_E.head(k).noalias() = WN.transpose() * result.u_E;

@@ -15,6 +15,7 @@
 
 #include <Eigen/Core>
 #include <span>
+#include <vector>
 
 #include "solver/contact/kinematics.h"
 #include "solver/lcp/lemke.h"
@@ -62,7 +63,9 @@ class ImpactProblem {
  private:
   const model::Model& model_;
   lcp::LemkeSolver solver_;
-  lcp::LcpSolution solution_;
+  // One solution per LCP size: LcpSolution resizes when n changes, so each size keeps its own
+  // and a change of the index set does not allocate.
+  std::vector<lcp::LcpSolution> solutions_;
   int k_ = 0;
   Eigen::MatrixXd WN_, WT_;          // n_dof x k columns of the index set
   Eigen::MatrixXd MinvWN_, MinvWT_;  // M^-1 W_N, M^-1 W_T
