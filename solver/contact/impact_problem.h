@@ -12,6 +12,12 @@
 ///     u_E = u_A + M^-1 (W_N Lambda_N + W_T Lambda_T),  Lambda_T = Lambda_R - mu Lambda_N
 ///
 /// solved with Lemke's algorithm (solver/lcp/lemke.h).
+///
+/// Energy: without friction, or with eps_N = 0, an impact never creates kinetic energy. With
+/// both eps_N > 0 and friction, Newton's kinematic restitution can create energy when the
+/// normal impulse drives the slip (Kane and Levinson 1985; Stronge 2000): the law above is
+/// assembled exactly as written, so such gains are a property of the law, reported by the
+/// energy ledger, not a fault of the solve (tests/contact/impact_test.cpp counts them).
 
 #include <Eigen/Core>
 #include <span>

@@ -66,8 +66,18 @@ class Section {
     for (char c : key) {
       bare = bare && (std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_');
     }
-    const std::string shown = bare ? std::string(key) : "\"" + std::string(key) + "\"";
-    return path_.empty() ? shown : path_ + "." + shown;
+    std::string path = path_;
+    if (!path.empty()) {
+      path += '.';
+    }
+    if (!bare) {
+      path += '"';
+    }
+    path += key;
+    if (!bare) {
+      path += '"';
+    }
+    return path;
   }
   Where At(std::string_view key) const {
     const toml::node* node = table_.get(key);
