@@ -296,7 +296,9 @@ SweepReport RunSweep(const SweepSpec& spec, const CellEvaluator& evaluator, Tran
   std::vector<CellRecord> outbox;
   bool stopping = false;
   std::uint64_t seen = 0;
-  while (!stopping) {
+  const bool computes =
+      !root || transport.Size() <= options.root_computes_up_to_ranks || transport.Size() == 1;
+  while (computes && !stopping) {
     if (StopRequested(options)) {
       stopping = true;
       break;
@@ -335,9 +337,16 @@ SweepReport RunSweep(const SweepSpec& spec, const CellEvaluator& evaluator, Tran
         writer->Checkpoint();  // secure what is here before waiting for the others
       }
     }
-    const Clock::time_point drain_start = Clock::now();
+    Clock::time_point drain_start = Clock::now();
+    bool stop_seen = stopping;
     while (!all_finished) {
       service(0.05);
+      if (StopRequested(options) && !stop_seen) {
+        stop_seen = true;  // rank 0 that only gathers learns of the stop here
+        transport.StopClaims();
+        writer->Checkpoint();
+        drain_start = Clock::now();
+      }
       if (StopRequested(options) && Seconds(drain_start) > 10.0) {
         break;  // a rank that does not answer within the grace period loses its cells
       }

@@ -39,6 +39,9 @@ struct SweepOptions {
   double progress_seconds = 1.0;       ///< Minimum interval between progress reports [s].
   std::uint64_t max_chunk = 64;        ///< Largest number of cells claimed at once.
   double send_seconds = 0.5;           ///< A rank sends its finished cells at least this often [s].
+  /// Rank 0 computes cells too when there are at most this many ranks; above, it only
+  /// gathers and writes, so that results and progress never wait for one of its own cells.
+  int root_computes_up_to_ranks = 64;
   /// Set asynchronously (a signal handler) to stop: the run checkpoints and returns
   /// interrupted. May be nullptr.
   const volatile std::sig_atomic_t* stop = nullptr;

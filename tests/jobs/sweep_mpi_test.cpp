@@ -75,5 +75,35 @@ TEST(MpiSweep, EveryCellComputedOnceAndCubeEqualsSerialEvaluation) {
   std::filesystem::remove(options.out);
 }
 
+TEST(MpiSweep, RankZeroOnlyGathersAboveTheThresholdAndTheCubeIsUnchanged) {
+  const SweepSpec spec = ParseSweepSpec(kSpec, "spec.toml", ".");
+  const testing::TestEvaluator evaluator(spec, 100, 0);
+  SweepOptions options;
+  options.out = std::filesystem::temp_directory_path() /
+                ("sb_mpi_gather_" + std::to_string(WorldSize()) + ".h5");
+  options.force = true;
+  options.root_computes_up_to_ranks = 1;
+  auto transport = MakeMpiTransport();
+  const SweepReport report = RunSweep(spec, evaluator, *transport, options);
+  const std::uint64_t mine = report.cells_this_rank;
+  std::uint64_t sum = 0;
+  MPI_Allreduce(&mine, &sum, 1, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
+  EXPECT_EQ(sum, spec.CellCount());
+  if (transport->Rank() != 0) {
+    return;
+  }
+  EXPECT_EQ(mine, 0u);
+  EXPECT_TRUE(report.complete);
+  const CubeData data = h5::ReadCubeData(options.out, "mpi", nullptr);
+  for (std::uint64_t c = 0; c < spec.CellCount(); ++c) {
+    ASSERT_EQ(data.done[c], 1);
+    if (!testing::TestEvaluator::Throws(c)) {
+      const CellOutcome o = evaluator.Evaluate(spec.AxisIndex(c));
+      EXPECT_EQ(std::memcmp(&data.responses[0][c], &o.responses[0], sizeof(double)), 0);
+    }
+  }
+  std::filesystem::remove(options.out);
+}
+
 }  // namespace
 }  // namespace skewbridge::jobs

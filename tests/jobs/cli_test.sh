@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# The sweep and inspect commands from the outside: bad specifications and unusable output files
+# fail with exit status 2 and one line naming the key, before any file is written; a resume
+# with another specification is refused; inspect reports axes, responses and completion.
+# usage: cli_test.sh SKEWBRIDGE SWEEP_DRIVER WORK_DIR
+set -euo pipefail
+skewbridge=$1 driver=$2 work=$3
+rm -rf "$work" && mkdir -p "$work" && cd "$work"
+fail() { echo "cli_test: FAIL: $*" >&2; exit 1; }
+spec() {  # spec FILE EXTRA_AXIS_LINE
+  cat > "$1" <<TOML
+[sweep]
+name = "cli"
+family = "subsystem"
+[axes]
+pulse = ["cosine", "sine"]
+$2
+w0_over_wg = {logspace = [0.5, 2.0, 4]}
+[fixed]
+eta0 = 1.5
+TOML
+}
+expect_error() {  # expect_error PATTERN COMMAND...
+  local pattern=$1; shift
+  local status=0
+  "$@" > out.txt 2> err.txt || status=$?
+  [ "$status" -eq 2 ] || fail "$* exited with $status, expected 2"
+  grep -q -- "$pattern" err.txt || fail "$*: message '$(cat err.txt)' lacks '$pattern'"
+  [ "$(wc -l < err.txt)" -eq 1 ] || fail "$*: more than one line on stderr"
+}
+
+spec bad_axis.toml 'skew = [10, 20]'
+expect_error "bad_axis.toml:6: axes.skew: unknown parameter" "$driver" bad_axis.toml --out a.h5
+spec bad_pi.toml 'Pi_delta = [1.0, -0.5]'
+expect_error "axes.Pi_delta: must be a number >= 0 (got -0.5)" "$driver" bad_pi.toml --out a.h5
+spec bad_n.toml 'a_deg = {linspace = [10, 50, 0]}'
+expect_error "axes.a_deg.linspace: n must be a whole number >= 1" "$driver" bad_n.toml --out a.h5
+ls a.h5* >/dev/null 2>&1 && fail "a bad specification left an output file"
+# The program itself: same parser, and a clear refusal for a family it cannot evaluate.
+expect_error "axes.skew: unknown parameter" "$skewbridge" sweep bad_axis.toml --out a.h5
+
+spec good.toml 'a_deg = [10, 40]'
+"$driver" good.toml --out cube.h5 --quiet --work 10 2> /dev/null
+expect_error "cube.h5: already exists; use --resume to continue it or --force" \
+  "$driver" good.toml --out cube.h5
+spec other.toml 'a_deg = [10, 45]'
+expect_error "cube.h5: cannot resume: it holds no complete sweep of this specification" \
+  "$driver" other.toml --out cube.h5 --resume
+cp cube.h5 copy.h5
+"$driver" good.toml --out cube.h5 --resume --quiet 2> err.txt
+grep -q "already complete" err.txt || fail "resume of a complete cube: $(cat err.txt)"
+
+"$skewbridge" inspect cube.h5 > inspect.txt
+grep -q "sweep cli (family subsystem" inspect.txt || fail "inspect: no sweep line"
+grep -Eq "w0_over_wg +4  0.5 .. 2" inspect.txt || fail "inspect: w0_over_wg axis"
+grep -Eq "pulse +2  cosine, sine" inspect.txt || fail "inspect: pulse axis"
+grep -q "x_peak" inspect.txt || fail "inspect: responses"
+grep -q "completion: 16/16 cells done (100.0%), complete" inspect.txt || fail "inspect: completion"
+expect_error "nothing.h5: cannot open as an HDF5 file" "$skewbridge" inspect nothing.h5
+echo "cli_test: ok"
