@@ -83,10 +83,10 @@ void FaceDirections(const model::Model& model, int c, const Eigen::Ref<const Eig
   t = g.t;
 }
 
-void Jacobians(const model::Model& model, int c, const Eigen::Ref<const Eigen::VectorXd>& q,
-               Eigen::Ref<Eigen::VectorXd> w_N, Eigen::Ref<Eigen::VectorXd> w_T) {
-  const model::Contact& contact = model.contact(c);
-  const Geometry g = Compute(model, c, q);
+namespace {
+
+void JacobiansAt(const model::Contact& contact, const Geometry& g, Eigen::Ref<Eigen::VectorXd> w_N,
+                 Eigen::Ref<Eigen::VectorXd> w_T) {
   w_N.setZero();
   w_T.setZero();
   const int i = 3 * contact.body;
@@ -107,10 +107,17 @@ void Jacobians(const model::Model& model, int c, const Eigen::Ref<const Eigen::V
   }
 }
 
-void VelocityTerms(const model::Model& model, int c, const Eigen::Ref<const Eigen::VectorXd>& q,
-                   const Eigen::Ref<const Eigen::VectorXd>& u, double& what_N, double& what_T) {
-  const model::Contact& contact = model.contact(c);
-  const Geometry g = Compute(model, c, q);
+}  // namespace
+
+void Jacobians(const model::Model& model, int c, const Eigen::Ref<const Eigen::VectorXd>& q,
+               Eigen::Ref<Eigen::VectorXd> w_N, Eigen::Ref<Eigen::VectorXd> w_T) {
+  JacobiansAt(model.contact(c), Compute(model, c, q), w_N, w_T);
+}
+
+namespace {
+
+void VelocityTermsAt(const model::Contact& contact, const Geometry& g,
+                     const Eigen::Ref<const Eigen::VectorXd>& u, double& what_N, double& what_T) {
   const int i = 3 * contact.body;
   const double thetadot_i = u(i + 2);
   // d/dt (thetadot_i J R_i p) = thetadot_ddot J R_i p - thetadot_i^2 R_i p: the second term.
@@ -132,16 +139,26 @@ void VelocityTerms(const model::Model& model, int c, const Eigen::Ref<const Eige
   what_T = thetadot_j * Perp(g.t).dot(relative) + g.t.dot(centripetal + face_turn);
 }
 
+}  // namespace
+
+void VelocityTerms(const model::Model& model, int c, const Eigen::Ref<const Eigen::VectorXd>& q,
+                   const Eigen::Ref<const Eigen::VectorXd>& u, double& what_N, double& what_T) {
+  VelocityTermsAt(model.contact(c), Compute(model, c, q), u, what_N, what_T);
+}
+
 void Evaluate(const model::Model& model, const Eigen::Ref<const Eigen::VectorXd>& q,
               const Eigen::Ref<const Eigen::VectorXd>& u, ContactKinematics& out) {
   SB_ASSERT(out.W_N.rows() == model.n_dof() && out.W_N.cols() == model.n_contacts(),
             "ContactKinematics not sized for this model");
   for (int c = 0; c < model.n_contacts(); ++c) {
-    out.gap_m(c) = Gap(model, c, q);
-    Jacobians(model, c, q, out.W_N.col(c), out.W_T.col(c));
+    // One evaluation of the geometry (and its sines and cosines) per contact.
+    const model::Contact& contact = model.contact(c);
+    const Geometry g = Compute(model, c, q);
+    out.gap_m(c) = g.n.dot(g.P - g.A);
+    JacobiansAt(contact, g, out.W_N.col(c), out.W_T.col(c));
     out.gamma_N(c) = out.W_N.col(c).dot(u);
     out.gamma_T(c) = out.W_T.col(c).dot(u);
-    VelocityTerms(model, c, q, u, out.what_N(c), out.what_T(c));
+    VelocityTermsAt(contact, g, u, out.what_N(c), out.what_T(c));
   }
 }
 
