@@ -1,0 +1,948 @@
+#include "solver/dynamics/simulate.h"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/QR>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <string>
+
+#include "solver/common/error.h"
+#include "solver/dynamics/root_finding.h"
+
+namespace skewbridge::dynamics {
+
+const char* ToString(RunStatus status) {
+  switch (status) {
+    case RunStatus::kOk:
+      return "ok";
+    case RunStatus::kPainleve:
+      return "painleve";
+    case RunStatus::kLcpFailure:
+      return "lcp-failure";
+    case RunStatus::kStepLimit:
+      return "step-limit";
+  }
+  return "unknown";
+}
+
+const char* ToString(EventKind kind) {
+  switch (kind) {
+    case EventKind::kImpact:
+      return "impact";
+    case EventKind::kPlasticClosure:
+      return "plastic-closure";
+    case EventKind::kDetachment:
+      return "detachment";
+    case EventKind::kStick:
+      return "stick";
+    case EventKind::kSlip:
+      return "slip";
+  }
+  return "unknown";
+}
+
+namespace {
+
+constexpr double kStepsPerPeriod = 20.0;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr int kMaxEventsAtOneInstant = 64;
+// Gauss-Legendre nodes and weights on [0, 1] (8 points: exact to degree 15).
+constexpr double kGaussNode[8] = {0.019855071751231856, 0.10166676129318664, 0.2372337950418355,
+                                  0.4082826787521751,   0.5917173212478249,  0.7627662049581645,
+                                  0.8983332387068134,   0.9801449282487681};
+constexpr double kGaussWeight[8] = {0.05061426814518813, 0.11119051722668724, 0.15685332293894363,
+                                    0.18134189168918100, 0.18134189168918100, 0.15685332293894363,
+                                    0.11119051722668724, 0.05061426814518813};
+
+}  // namespace
+
+/// The state machine of one run (see simulate.h); lives for one Simulate call.
+class Integrator {
+ public:
+  Integrator(const model::Model& model, const Excitation& excitation,
+             const model::RunControl& control, SimulationWorkspace& ws,
+             const InitialState& initial);
+
+  RunResult Run();
+
+ private:
+  using Vec = Eigen::VectorXd;
+
+  auto q() { return z_.head(n_); }
+  auto u() { return z_.segment(n_, n_); }
+  bool AnyClosed() const { return closed_count_ > 0; }
+  bool Failed() const { return result_.status != RunStatus::kOk; }
+  void Fail(RunStatus status, const std::string& message) {
+    result_.status = status;
+    result_.message = message;
+  }
+
+  // Contact-free phase: one exact step (or up to an impact).
+  void FreeStep();
+  // Constrained phase: one Runge-Kutta step (or up to an event).
+  void ConstrainedStep();
+
+  // Forces of the active set at (t, q, u): du/dt, lambda per contact, the energy powers.
+  void ActiveForces(double t, const Eigen::Ref<const Vec>& q, const Eigen::Ref<const Vec>& u,
+                    Eigen::Ref<Vec> du);
+  void Rhs(double t, const Eigen::Ref<const Vec>& y, Eigen::Ref<Vec> dy);
+  // Event-function values of the closed contacts at the last ActiveForces call.
+  void ClosedEventValues(Eigen::Ref<Vec> values) const;
+
+  // Impacts, plastic closures and the contact LCP at the current state; sets the active set.
+  void ResolveContacts(const std::vector<int>& forced);
+  void Project();
+
+  template <class StateAt>
+  double GapRoot(int c, double t0, double t1, double g0, double gN0, double g1, double gN1,
+                 StateAt&& at);
+  template <class StateAt>
+  void ScanMaxima(double t0, const Vec& q0, const Vec& u0, double t1, const Vec& q1, const Vec& u1,
+                  StateAt&& at);
+  template <class StateAt>
+  void RecordOutputs(double t0, double t1, StateAt&& at);
+  void RecordSample(double t, const Eigen::Ref<const Vec>& q, const Eigen::Ref<const Vec>& u);
+  void RefreshGaps();
+  double FreeStepSize(const ExcitationPiece& piece) const;
+  Eigen::Vector2d GroundAcceleration(double t) const { return excitation_.At(t); }
+
+  const model::Model& model_;
+  const Excitation& excitation_;
+  const model::RunControl& control_;
+  SimulationWorkspace& ws_;
+  int n_, nc_;
+  double t_ = 0.0, t_end_ = 0.0;
+  long steps_ = 0;
+  Vec z_, z_new_, z_eval_, dz_;
+  Vec y_, dy_, y_eval_, atol_;
+  Vec q_a_, u_a_, q_b_, u_b_, q_e_, u_e_, q_r_, u_r_, h_, du_, w_N_, w_T_;
+  Vec gap0_, gN0_, gap1_, gN1_;
+  Vec f0_, f1_, f_eval_;   // closed-contact event functions: step start, end, trial
+  std::vector<int> mode_;  // -1 open, else ClosedMode
+  int closed_count_ = 0;
+  std::vector<contact::ClosedContact> closed_list_;
+  std::vector<int> index_set_, persistent_, forced_;
+  Vec lambda_N_, lambda_T_;  // per contact, from the last ActiveForces
+  double friction_power_ = 0.0;
+  double h_rk_ = 0.0;
+  double v_tol_ = 0.0, v_acc_ = 0.0, gap_tol_ = 0.0;
+  double next_output_t_ = kInf;
+  double last_impact_t_ = -kInf;
+  int events_here_ = 0;
+  double last_event_t_ = -kInf;
+  RunResult result_;
+  // Active-set linear algebra, fixed capacity so the time loop never touches the heap.
+  static constexpr int kMaxActive = 24;
+  using SmallMatrix =
+      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxActive, kMaxActive>;
+  using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxActive, 1>;
+  SmallMatrix A_;
+  SmallVector rhs_, x_;
+  Eigen::CompleteOrthogonalDecomposition<SmallMatrix> cod_;
+  Eigen::MatrixXd rows_, cols_;  // n x kMaxActive constraint rows / force directions
+};
+
+SimulationWorkspace::SimulationWorkspace(const model::Model& model)
+    : model_(model),
+      flow_(model.M(), model.K(), model.C(), model.r()),
+      free_dense_(flow_.augmented_size()),
+      rk_(2 * model.n_dof() + 3),
+      impact_(model),
+      contact_problem_(model),
+      impact_result_(impact_.MakeResult()),
+      contact_result_(contact_problem_.MakeResult()) {
+  kin_.Resize(model);
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(model.K(), model.M(),
+                                                                      Eigen::EigenvaluesOnly);
+  const Eigen::VectorXd w2 = eig.eigenvalues();
+  omega_max_radps_ = std::sqrt(std::max(w2.maxCoeff(), 0.0));
+  omega_min_radps_ = std::sqrt(std::max(w2.minCoeff(), 0.0));
+  for (const model::Body& body : model.bodies()) {
+    length_scale_m_ = std::max({length_scale_m_, body.geometry.length_m, body.geometry.width_m});
+  }
+}
+
+Integrator::Integrator(const model::Model& model, const Excitation& excitation,
+                       const model::RunControl& control, SimulationWorkspace& ws,
+                       const InitialState& initial)
+    : model_(model),
+      excitation_(excitation),
+      control_(control),
+      ws_(ws),
+      n_(model.n_dof()),
+      nc_(model.n_contacts()) {
+  SB_DEMAND(&ws.model() == &model, "Simulate: workspace built for another model");
+  SB_DEMAND(2 * nc_ <= kMaxActive, "Simulate: too many contacts for the active-set capacity");
+  const int naug = ws.flow_.augmented_size();
+  z_ = Vec::Zero(naug);
+  z_new_ = z_eval_ = dz_ = z_;
+  if (initial.q.size() != 0) {
+    if (initial.q.size() != n_) {
+      throw InputError::AtField("initial state", "q", "must have n_dof entries");
+    }
+    z_.head(n_) = initial.q;
+  }
+  if (initial.u.size() != 0) {
+    if (initial.u.size() != n_) {
+      throw InputError::AtField("initial state", "u", "must have n_dof entries");
+    }
+    z_.segment(n_, n_) = initial.u;
+  }
+  y_ = Vec::Zero(2 * n_ + 3);
+  dy_ = y_eval_ = y_;
+  atol_ = Vec::Constant(2 * n_ + 3, kInf);
+  q_a_ = u_a_ = q_b_ = u_b_ = q_e_ = u_e_ = q_r_ = u_r_ = h_ = du_ = w_N_ = w_T_ = Vec::Zero(n_);
+  gap0_ = gN0_ = gap1_ = gN1_ = Vec::Zero(nc_);
+  f0_ = f1_ = f_eval_ = Vec::Zero(2 * nc_);
+  lambda_N_ = lambda_T_ = Vec::Zero(nc_);
+  mode_.assign(static_cast<std::size_t>(nc_), -1);
+  closed_list_.reserve(static_cast<std::size_t>(nc_));
+  index_set_.reserve(static_cast<std::size_t>(nc_));
+  persistent_.reserve(static_cast<std::size_t>(nc_));
+  forced_.reserve(static_cast<std::size_t>(nc_));
+  rows_ = cols_ = Eigen::MatrixXd::Zero(n_, kMaxActive);
+  A_.resize(kMaxActive, kMaxActive);
+  rhs_.resize(kMaxActive);
+  x_.resize(kMaxActive);
+  cod_.setThreshold(1e-10);
+
+  t_end_ = control.EndTime(excitation.Duration());
+  // The excitation's peak from its pieces (kinks and harmonic amplitudes) sets the scales.
+  double a_peak = 0.0;
+  for (double t = 0.0; t < excitation.Duration();) {
+    const ExcitationPiece piece = excitation.PieceAt(t);
+    a_peak =
+        std::max({a_peak, piece.a_begin.norm(),
+                  (piece.a_begin + piece.slope * std::min(piece.t_end - t, 1e3)).norm(),
+                  piece.a_begin.norm() + piece.cos_amplitude.norm() + piece.sin_amplitude.norm()});
+    if (!(piece.t_end > t)) {
+      break;
+    }
+    t = piece.t_end;
+  }
+  const double omega_ref = ws.omega_min_radps_ > 0.0 ? ws.omega_min_radps_ : 1.0;
+  double v_ref = a_peak / omega_ref;
+  v_ref = std::max(v_ref, z_.segment(n_, n_).cwiseAbs().maxCoeff());
+  if (v_ref == 0.0) {
+    v_ref = 1.0;
+  }
+  v_acc_ = control.accumulation_threshold * v_ref;
+  v_tol_ = 1e-10 * v_ref;
+  // Gap tolerance from the response's own length scale, so that it scales with the excitation.
+  gap_tol_ = 1e-12 * std::min(v_ref / omega_ref, ws.length_scale_m_);
+  const double omega_top = std::max(ws.omega_max_radps_, 1e-3);
+  atol_.head(n_).setConstant(control.absolute_tolerance);
+  atol_.segment(n_, n_).setConstant(control.absolute_tolerance * omega_top);
+  h_rk_ = 2.0 * std::numbers::pi / omega_top / kStepsPerPeriod / 4.0;
+
+  result_.max_abs_q = z_.head(n_).cwiseAbs();
+  result_.time_of_max_s = Vec::Zero(n_);
+  result_.events.reserve(1024);
+  if (control.output_interval_s > 0.0) {
+    const auto samples = static_cast<std::size_t>(t_end_ / control.output_interval_s) + 2;
+    Histories& hist = result_.histories;
+    hist.n_dof = n_;
+    hist.n_contacts = nc_;
+    hist.t_s.reserve(samples);
+    hist.q.reserve(samples * n_);
+    hist.u.reserve(samples * n_);
+    hist.gap_m.reserve(samples * nc_);
+    hist.lambda_N.reserve(samples * nc_);
+    hist.lambda_T.reserve(samples * nc_);
+    hist.state.reserve(samples * nc_);
+    next_output_t_ = 0.0;
+  }
+}
+
+double Integrator::FreeStepSize(const ExcitationPiece& piece) const {
+  const double omega = std::max({ws_.omega_max_radps_, std::abs(piece.omega), 1e-3});
+  const double h_max = 2.0 * std::numbers::pi / omega / kStepsPerPeriod;
+  if (std::isfinite(piece.t_end)) {
+    const double length = piece.t_end - piece.t_begin;
+    return length / std::ceil(length / h_max);
+  }
+  return h_max;
+}
+
+void Integrator::RefreshGaps() {
+  contact::Evaluate(model_, q(), u(), ws_.kin_);
+  gap0_ = ws_.kin_.gap_m;
+  gN0_ = ws_.kin_.gamma_N;
+}
+
+RunResult Integrator::Run() {
+  ws_.flow_.SetGenerator(excitation_.PieceAt(0.0), 0.0, z_);
+  result_.energy.initial_J = ws_.flow_.MechanicalEnergy(z_);
+  RecordOutputs(0.0, 0.0, [&](double, Vec& qq, Vec& uu) {
+    qq = q();
+    uu = u();
+  });
+  forced_.clear();
+  ResolveContacts(forced_);
+  while (!Failed() && t_ < t_end_) {
+    if (++steps_ > control_.max_steps) {
+      Fail(RunStatus::kStepLimit, "step limit of " + std::to_string(control_.max_steps) +
+                                      " reached at t = " + std::to_string(t_) + " s");
+      break;
+    }
+    if (AnyClosed()) {
+      ConstrainedStep();
+    } else {
+      FreeStep();
+    }
+  }
+  result_.end_time_s = t_;
+  result_.q_end = q();
+  result_.u_end = u();
+  EnergyLedger& e = result_.energy;
+  e.kinetic_J = 0.5 * u().dot(model_.M() * u());
+  e.strain_J = 0.5 * q().dot(model_.K() * q());
+  e.balance_error_J = (e.kinetic_J + e.strain_J) -
+                      (e.initial_J + e.input_J - e.damping_J - e.impact_J - e.friction_J);
+  return std::move(result_);
+}
+
+void Integrator::FreeStep() {
+  LinearFlow& flow = ws_.flow_;
+  const ExcitationPiece piece = excitation_.PieceAt(t_);
+  const double t_stop = std::min(piece.t_end, t_end_);
+  const double h = FreeStepSize(piece);
+  const double s = (t_ - piece.t_begin) / h;
+  const double k = std::floor(s + 1e-9);
+  double t_next = piece.t_begin + (k + 1.0) * h;
+  if (t_next > t_stop - 1e-9 * h) {
+    t_next = t_stop;
+  }
+  const double tau = t_next - t_;
+  const bool full = std::abs(tau - h) <= 1e-9 * h;
+  flow.SetGenerator(piece, t_, z_);
+  bool dense_built = false;
+  auto ensure_dense = [&]() {
+    if (!dense_built) {
+      ws_.free_dense_.Build(flow, piece.omega, z_, tau);
+      dense_built = true;
+    }
+  };
+  double input = 0.0, damping = 0.0;
+  if (full) {
+    const FreePropagator& p = flow.Propagator(h, piece.omega);
+    z_new_.noalias() = p.phi * z_;
+    input = z_.dot(p.input_gram * z_);
+    damping = z_.dot(p.damping_gram * z_);
+  } else {
+    ensure_dense();
+    ws_.free_dense_.Evaluate(tau, z_new_);
+  }
+  ++result_.free_steps;
+
+  // Gap events: an open gap ending below zero, or a dip (gamma_N from - to +) deep enough that
+  // the cubic Hermite model of g, with a margin for its error, reaches zero.
+  contact::Evaluate(model_, z_new_.head(n_), z_new_.segment(n_, n_), ws_.kin_);
+  gap1_ = ws_.kin_.gap_m;
+  gN1_ = ws_.kin_.gamma_N;
+  const auto at = [&](double t, Vec& qq, Vec& uu) {
+    ensure_dense();
+    ws_.free_dense_.Evaluate(t - t_, z_eval_);
+    qq = z_eval_.head(n_);
+    uu = z_eval_.segment(n_, n_);
+  };
+  double t_event = kInf;
+  for (int c = 0; c < nc_; ++c) {
+    bool suspect = gap1_[c] < 0.0;
+    if (!suspect && gN0_[c] < 0.0 && gN1_[c] > 0.0) {
+      // Hermite minimum bound: the gap cannot dip by more than |gN0| tau / 2 below a line.
+      const double dip = 0.5 * std::max(-gN0_[c], gN1_[c]) * tau;
+      suspect = std::min(gap0_[c], gap1_[c]) <= 2.0 * dip;
+    }
+    if (suspect) {
+      ensure_dense();
+      const double tc = GapRoot(c, t_, t_next, gap0_[c], gN0_[c], gap1_[c], gN1_[c], at);
+      t_event = std::min(t_event, tc);
+    }
+  }
+  forced_.clear();
+  if (t_event < kInf) {
+    // Near-simultaneous: contacts closed within the tolerance after the first are one impact.
+    at(std::min(t_event + control_.simultaneity_tolerance_s, t_next), q_b_, u_b_);
+    for (int c = 0; c < nc_; ++c) {
+      if (contact::Gap(model_, c, q_b_) <= gap_tol_) {
+        forced_.push_back(c);
+      }
+    }
+    t_next = t_event;
+    at(t_next, q_b_, u_b_);
+    z_new_.head(n_) = q_b_;
+    z_new_.segment(n_, n_) = u_b_;
+  }
+  if (!full || t_event < kInf) {
+    // Energy of a partial step by Gauss-Legendre quadrature of the exact (Taylor) solution.
+    ensure_dense();
+    input = damping = 0.0;
+    const double len = t_next - t_;
+    for (int i = 0; i < 8; ++i) {
+      ws_.free_dense_.Evaluate(kGaussNode[i] * len, z_eval_);
+      double p_in, p_d;
+      flow.Powers(z_eval_, p_in, p_d);
+      input += kGaussWeight[i] * len * p_in;
+      damping += kGaussWeight[i] * len * p_d;
+    }
+  }
+  result_.energy.input_J += input;
+  result_.energy.damping_J += damping;
+  q_a_ = q();
+  u_a_ = u();
+  q_b_ = z_new_.head(n_);
+  u_b_ = z_new_.segment(n_, n_);
+  ScanMaxima(t_, q_a_, u_a_, t_next, q_b_, u_b_, at);
+  RecordOutputs(t_, t_next, at);
+  z_.head(2 * n_) = z_new_.head(2 * n_);
+  t_ = t_next;
+  if (t_event < kInf) {
+    ResolveContacts(forced_);
+  } else {
+    gap0_ = gap1_;
+    gN0_ = gN1_;
+  }
+}
+
+template <class StateAt>
+double Integrator::GapRoot(int c, double t0, double t1, double g0, double gN0, double g1,
+                           double gN1, StateAt&& at) {
+  const auto gap = [&](double t) {
+    at(t, q_e_, u_e_);
+    return contact::Gap(model_, c, q_e_);
+  };
+  const auto gamma_N = [&](double t) {
+    at(t, q_e_, u_e_);
+    contact::Jacobians(model_, c, q_e_, w_N_, w_T_);
+    return w_N_.dot(u_e_);
+  };
+  const double x_tol = 1e-15 * std::max(1.0, std::abs(t1)) + 1e-16;
+  double a = t0, ga = g0, gNa = gN0;
+  if (ga <= gap_tol_) {
+    // Starting in touch (just separated): search from the gap's maximum inside the step.
+    if (gNa > 0.0 && gN1 < 0.0) {
+      const RootResult top = FindRootBrent(gamma_N, t0, t1, gNa, gN1, x_tol);
+      a = top.x;
+      ga = gap(a);
+      gNa = 0.0;
+    }
+    if (ga <= 0.0) {
+      return g1 < 0.0 && gNa <= 0.0 && gN1 < 0.0 ? a : kInf;
+    }
+  }
+  double b = t1, gb = g1;
+  if (gb >= 0.0) {
+    if (!(gNa < 0.0 && gN1 > 0.0)) {
+      return kInf;
+    }
+    const RootResult bottom = FindRootBrent(gamma_N, a, t1, gNa, gN1, x_tol);
+    const double gm = gap(bottom.x);
+    if (gm >= 0.0) {
+      return kInf;
+    }
+    b = bottom.x;
+    gb = gm;
+  }
+  const RootResult root = FindRootBrent(gap, a, b, ga, gb, x_tol);
+  // The side where the gap has closed, so the impact sees g <= 0.
+  return root.fx <= 0.0 ? root.x : root.upper;
+}
+
+template <class StateAt>
+void Integrator::ScanMaxima(double t0, const Vec& q0, const Vec& u0, double t1, const Vec& q1,
+                            const Vec& u1, StateAt&& at) {
+  for (int i = 0; i < n_; ++i) {
+    if (std::abs(q1[i]) > result_.max_abs_q[i]) {
+      result_.max_abs_q[i] = std::abs(q1[i]);
+      result_.time_of_max_s[i] = t1;
+    }
+    if (u0[i] * u1[i] < 0.0) {
+      const double bound = std::max(std::abs(q0[i]), std::abs(q1[i])) +
+                           0.5 * (t1 - t0) * std::max(std::abs(u0[i]), std::abs(u1[i]));
+      if (bound > result_.max_abs_q[i]) {
+        const auto velocity = [&](double t) {
+          at(t, q_e_, u_e_);
+          return u_e_[i];
+        };
+        const RootResult peak = FindRootBrent(velocity, t0, t1, u0[i], u1[i],
+                                              1e-15 * std::max(1.0, std::abs(t1)) + 1e-16);
+        at(peak.x, q_e_, u_e_);
+        if (std::abs(q_e_[i]) > result_.max_abs_q[i]) {
+          result_.max_abs_q[i] = std::abs(q_e_[i]);
+          result_.time_of_max_s[i] = peak.x;
+        }
+      }
+    }
+  }
+}
+
+template <class StateAt>
+void Integrator::RecordOutputs(double t0, double t1, StateAt&& at) {
+  while (next_output_t_ <= t1 + 1e-12 * std::max(1.0, t1) && next_output_t_ <= t_end_ + 1e-12) {
+    const double t = std::max(t0, std::min(next_output_t_, t1));
+    at(t, q_r_, u_r_);
+    RecordSample(next_output_t_, q_r_, u_r_);
+    next_output_t_ = control_.output_interval_s * static_cast<double>(result_.histories.t_s.size());
+  }
+}
+
+void Integrator::RecordSample(double t, const Eigen::Ref<const Vec>& qq,
+                              const Eigen::Ref<const Vec>& uu) {
+  Histories& hist = result_.histories;
+  if (AnyClosed()) {
+    ActiveForces(t, qq, uu, du_);
+  }
+  hist.t_s.push_back(t);
+  for (int i = 0; i < n_; ++i) {
+    hist.q.push_back(qq[i]);
+    hist.u.push_back(uu[i]);
+  }
+  for (int c = 0; c < nc_; ++c) {
+    hist.gap_m.push_back(contact::Gap(model_, c, qq));
+    const int m = mode_[static_cast<std::size_t>(c)];
+    const bool closed = m >= 0;
+    hist.lambda_N.push_back(closed ? lambda_N_[c] : 0.0);
+    hist.lambda_T.push_back(closed ? lambda_T_[c] : 0.0);
+    ContactState state = ContactState::kOpen;
+    if (m == static_cast<int>(ClosedMode::kStick)) {
+      state = ContactState::kStick;
+    } else if (m == static_cast<int>(ClosedMode::kSlidePositive)) {
+      state = ContactState::kSlidePositive;
+    } else if (m == static_cast<int>(ClosedMode::kSlideNegative)) {
+      state = ContactState::kSlideNegative;
+    } else if (m == static_cast<int>(ClosedMode::kFrictionless)) {
+      state = ContactState::kSlidePositive;
+    }
+    hist.state.push_back(static_cast<int>(state));
+  }
+}
+
+void Integrator::ActiveForces(double t, const Eigen::Ref<const Vec>& qq,
+                              const Eigen::Ref<const Vec>& uu, Eigen::Ref<Vec> du) {
+  model_.AppliedForces(qq, uu, GroundAcceleration(t), h_);
+  contact::Evaluate(model_, qq, uu, ws_.kin_);
+  const contact::ContactKinematics& kin = ws_.kin_;
+  const Vec& inv_m = model_.inverse_mass_diagonal();
+  // Unknowns: lambda_N of every closed contact, then lambda_T of every sticking one; rows: the
+  // matching d gamma_N/dt = 0 and d gamma_T/dt = 0 [method.md §3, contact problem, with the
+  // active set fixed].
+  int m = 0;
+  for (int c = 0; c < nc_; ++c) {
+    const int mode = mode_[static_cast<std::size_t>(c)];
+    if (mode < 0) {
+      continue;
+    }
+    const double mu = model_.contact(c).friction;
+    rows_.col(m) = kin.W_N.col(c);
+    rhs_[m] = -(kin.W_N.col(c).dot(inv_m.cwiseProduct(h_)) + kin.what_N[c]);
+    if (mode == static_cast<int>(ClosedMode::kSlidePositive)) {
+      cols_.col(m) = kin.W_N.col(c) - mu * kin.W_T.col(c);
+    } else if (mode == static_cast<int>(ClosedMode::kSlideNegative)) {
+      cols_.col(m) = kin.W_N.col(c) + mu * kin.W_T.col(c);
+    } else {
+      cols_.col(m) = kin.W_N.col(c);
+    }
+    ++m;
+  }
+  const int k = m;
+  for (int c = 0; c < nc_; ++c) {
+    if (mode_[static_cast<std::size_t>(c)] == static_cast<int>(ClosedMode::kStick)) {
+      rows_.col(m) = kin.W_T.col(c);
+      cols_.col(m) = kin.W_T.col(c);
+      rhs_[m] = -(kin.W_T.col(c).dot(inv_m.cwiseProduct(h_)) + kin.what_T[c]);
+      ++m;
+    }
+  }
+  A_.resize(m, m);
+  for (int i = 0; i < m; ++i) {
+    for (int j = 0; j < m; ++j) {
+      A_(i, j) = rows_.col(i).dot(inv_m.cwiseProduct(cols_.col(j)));
+    }
+  }
+  rhs_.conservativeResize(m);
+  cod_.compute(A_);
+  x_ = cod_.solve(rhs_);
+  du = h_;
+  for (int j = 0; j < m; ++j) {
+    du += cols_.col(j) * x_[j];
+  }
+  du = inv_m.cwiseProduct(du);
+  // Forces per contact and the friction power.
+  friction_power_ = 0.0;
+  int j = 0, js = k;
+  for (int c = 0; c < nc_; ++c) {
+    const int mode = mode_[static_cast<std::size_t>(c)];
+    if (mode < 0) {
+      lambda_N_[c] = lambda_T_[c] = 0.0;
+      continue;
+    }
+    const double mu = model_.contact(c).friction;
+    lambda_N_[c] = x_[j];
+    if (mode == static_cast<int>(ClosedMode::kSlidePositive)) {
+      lambda_T_[c] = -mu * x_[j];
+    } else if (mode == static_cast<int>(ClosedMode::kSlideNegative)) {
+      lambda_T_[c] = mu * x_[j];
+    } else if (mode == static_cast<int>(ClosedMode::kStick)) {
+      lambda_T_[c] = x_[js++];
+    } else {
+      lambda_T_[c] = 0.0;
+    }
+    friction_power_ -= lambda_T_[c] * kin.gamma_T[c];
+    ++j;
+  }
+  rhs_.resize(kMaxActive);
+}
+
+void Integrator::Rhs(double t, const Eigen::Ref<const Vec>& y, Eigen::Ref<Vec> dy) {
+  const auto qq = y.head(n_);
+  const auto uu = y.segment(n_, n_);
+  ActiveForces(t, qq, uu, du_);
+  dy.head(n_) = uu;
+  dy.segment(n_, n_) = du_;
+  const Eigen::Vector2d ag = GroundAcceleration(t);
+  dy[2 * n_] = -uu.dot(model_.M() * (model_.r() * ag));
+  dy[2 * n_ + 1] = uu.dot(model_.C() * uu);
+  dy[2 * n_ + 2] = friction_power_;
+}
+
+void Integrator::ClosedEventValues(Eigen::Ref<Vec> values) const {
+  // Per closed contact: lambda_N (detachment when it falls below zero) and a friction function
+  // (s gamma_T while sliding, mu lambda_N - |lambda_T| while sticking). Open contacts: +1.
+  for (int c = 0; c < nc_; ++c) {
+    const int mode = mode_[static_cast<std::size_t>(c)];
+    values[2 * c] = mode < 0 ? 1.0 : lambda_N_[c];
+    double f = 1.0;
+    if (mode == static_cast<int>(ClosedMode::kSlidePositive)) {
+      f = ws_.kin_.gamma_T[c];
+    } else if (mode == static_cast<int>(ClosedMode::kSlideNegative)) {
+      f = -ws_.kin_.gamma_T[c];
+    } else if (mode == static_cast<int>(ClosedMode::kStick)) {
+      f = model_.contact(c).friction * lambda_N_[c] - std::abs(lambda_T_[c]);
+    }
+    values[2 * c + 1] = f;
+  }
+}
+
+void Integrator::ConstrainedStep() {
+  const ExcitationPiece piece = excitation_.PieceAt(t_);
+  const double t_stop = std::min(piece.t_end, t_end_);
+  double h = std::min(h_rk_, t_stop - t_);
+  if (t_stop - t_ - h < 1e-9 * h) {
+    h = t_stop - t_;
+  }
+  y_.head(2 * n_) = z_.head(2 * n_);
+  y_.tail(3).setZero();
+  const auto rhs = [this](double t, const Eigen::Ref<const Vec>& y, Eigen::Ref<Vec> dy) {
+    Rhs(t, y, dy);
+  };
+  Rhs(t_, y_, dy_);
+  ClosedEventValues(f0_);
+  gap0_ = ws_.kin_.gap_m;
+  gN0_ = ws_.kin_.gamma_N;
+  DormandPrince45& rk = ws_.rk_;
+  rk.Step(rhs, t_, y_, dy_, h);
+  const double err = rk.ErrorNorm(atol_, control_.relative_tolerance);
+  if (!(err <= 1.0)) {
+    ++result_.rk_rejected;
+    h_rk_ = h * DormandPrince45::StepFactor(std::isfinite(err) ? err : 1e10);
+    return;
+  }
+  ++result_.rk_steps;
+  const double t1 = t_ + h;
+  const Vec& y1 = rk.y_end();
+  ActiveForces(t1, y1.head(n_), y1.segment(n_, n_), du_);
+  ClosedEventValues(f1_);
+  gap1_ = ws_.kin_.gap_m;
+  gN1_ = ws_.kin_.gamma_N;
+  const auto at = [&](double t, Vec& qq, Vec& uu) {
+    rk.DenseAt(t, y_eval_);
+    qq = y_eval_.head(n_);
+    uu = y_eval_.segment(n_, n_);
+  };
+  double t_event = kInf;
+  const double x_tol = 1e-15 * std::max(1.0, std::abs(t1)) + 1e-16;
+  for (int c = 0; c < nc_; ++c) {
+    if (mode_[static_cast<std::size_t>(c)] < 0) {
+      const bool suspect = gap1_[c] < 0.0 || (gN0_[c] < 0.0 && gN1_[c] > 0.0);
+      if (suspect) {
+        t_event = std::min(t_event, GapRoot(c, t_, t1, gap0_[c], gN0_[c], gap1_[c], gN1_[c], at));
+      }
+      continue;
+    }
+    for (int e = 2 * c; e <= 2 * c + 1; ++e) {
+      if (f1_[e] < 0.0 && f0_[e] >= 0.0) {
+        const auto fe = [&](double t) {
+          at(t, q_e_, u_e_);
+          ActiveForces(t, q_e_, u_e_, du_);
+          ClosedEventValues(f_eval_);
+          return f_eval_[e];
+        };
+        const RootResult root = FindRootBrent(fe, t_, t1, f0_[e], f1_[e], x_tol);
+        t_event = std::min(t_event, root.fx < 0.0 ? root.x : root.upper);
+      } else if (f1_[e] < 0.0) {
+        t_event = std::min(t_event, t_);
+      }
+    }
+  }
+  const double t_new = t_event < kInf ? std::max(t_event, t_) : t1;
+  rk.DenseAt(t_new, y_eval_);
+  if (t_event == kInf) {
+    y_eval_ = y1;
+  }
+  result_.energy.input_J += y_eval_[2 * n_];
+  result_.energy.damping_J += y_eval_[2 * n_ + 1];
+  result_.energy.friction_J += y_eval_[2 * n_ + 2];
+  q_a_ = z_.head(n_);
+  u_a_ = z_.segment(n_, n_);
+  q_b_ = y_eval_.head(n_);
+  u_b_ = y_eval_.segment(n_, n_);
+  ScanMaxima(t_, q_a_, u_a_, t_new, q_b_, u_b_, at);
+  RecordOutputs(t_, t_new, at);
+  z_.head(n_) = q_b_;
+  z_.segment(n_, n_) = u_b_;
+  t_ = t_new;
+  h_rk_ = t_event < kInf ? h : h * DormandPrince45::StepFactor(err);
+  if (t_event < kInf) {
+    forced_.clear();
+    ResolveContacts(forced_);
+  } else {
+    Project();
+  }
+}
+
+void Integrator::Project() {
+  // Gauss-Newton in the M^-1 metric: positions onto g = 0 of the closed contacts, velocities
+  // onto gamma_N = 0 (and gamma_T = 0 when sticking) [method.md §3, smooth phases].
+  const Vec& inv_m = model_.inverse_mass_diagonal();
+  for (int pass = 0; pass < 2; ++pass) {
+    contact::Evaluate(model_, q(), u(), ws_.kin_);
+    int m = 0;
+    for (int c = 0; c < nc_; ++c) {
+      if (mode_[static_cast<std::size_t>(c)] >= 0) {
+        rows_.col(m) = ws_.kin_.W_N.col(c);
+        rhs_[m] = -ws_.kin_.gap_m[c];
+        ++m;
+      }
+    }
+    if (m == 0) {
+      return;
+    }
+    A_.resize(m, m);
+    for (int i = 0; i < m; ++i) {
+      for (int j = 0; j < m; ++j) {
+        A_(i, j) = rows_.col(i).dot(inv_m.cwiseProduct(rows_.col(j)));
+      }
+    }
+    rhs_.conservativeResize(m);
+    cod_.compute(A_);
+    x_ = cod_.solve(rhs_);
+    for (int j = 0; j < m; ++j) {
+      z_.head(n_) += inv_m.cwiseProduct(rows_.col(j)) * x_[j];
+    }
+    rhs_.resize(kMaxActive);
+  }
+  contact::Evaluate(model_, q(), u(), ws_.kin_);
+  int m = 0;
+  for (int c = 0; c < nc_; ++c) {
+    const int mode = mode_[static_cast<std::size_t>(c)];
+    if (mode >= 0) {
+      rows_.col(m++) = ws_.kin_.W_N.col(c);
+      if (mode == static_cast<int>(ClosedMode::kStick)) {
+        rows_.col(m++) = ws_.kin_.W_T.col(c);
+      }
+    }
+  }
+  A_.resize(m, m);
+  rhs_.conservativeResize(m);
+  for (int i = 0; i < m; ++i) {
+    rhs_[i] = -rows_.col(i).dot(u());
+    for (int j = 0; j < m; ++j) {
+      A_(i, j) = rows_.col(i).dot(inv_m.cwiseProduct(rows_.col(j)));
+    }
+  }
+  cod_.compute(A_);
+  x_ = cod_.solve(rhs_);
+  for (int j = 0; j < m; ++j) {
+    z_.segment(n_, n_) += inv_m.cwiseProduct(rows_.col(j)) * x_[j];
+  }
+  rhs_.resize(kMaxActive);
+}
+
+void Integrator::ResolveContacts(const std::vector<int>& forced) {
+  if (t_ == last_event_t_) {
+    if (++events_here_ > kMaxEventsAtOneInstant) {
+      Fail(RunStatus::kStepLimit, "event cascade: more than " +
+                                      std::to_string(kMaxEventsAtOneInstant) +
+                                      " events at t = " + std::to_string(t_) + " s");
+      return;
+    }
+  } else {
+    last_event_t_ = t_;
+    events_here_ = 0;
+  }
+  const double kinetic_before = 0.5 * u().dot(model_.M() * u());
+  contact::Evaluate(model_, q(), u(), ws_.kin_);
+  const contact::ContactKinematics& kin = ws_.kin_;
+  // Candidates: closed contacts, touching ones not separating, and the simultaneous ones.
+  index_set_.clear();
+  persistent_.clear();
+  bool impact = false, plastic = false;
+  for (int c = 0; c < nc_; ++c) {
+    const bool closed = mode_[static_cast<std::size_t>(c)] >= 0;
+    const bool touching = kin.gap_m[c] <= gap_tol_ && kin.gamma_N[c] <= v_tol_;
+    const bool listed = std::find(forced.begin(), forced.end(), c) != forced.end();
+    if (!(closed || touching || listed)) {
+      continue;
+    }
+    index_set_.push_back(c);
+    if (kin.gamma_N[c] < -v_acc_) {
+      impact = true;
+    } else {
+      persistent_.push_back(c);
+      plastic = plastic || kin.gamma_N[c] < -v_tol_;
+    }
+  }
+  if (impact) {
+    const lcp::LcpStatus status =
+        ws_.impact_.Solve(kin, index_set_, u(), ws_.impact_result_, persistent_);
+    if (status != lcp::LcpStatus::kSolved) {
+      Fail(RunStatus::kLcpFailure, std::string("impact LCP: ") + lcp::ToString(status) +
+                                       " at t = " + std::to_string(t_) + " s");
+      return;
+    }
+    const contact::ImpactResult& ir = ws_.impact_result_;
+    z_.segment(n_, n_) = ir.u_E;
+    ++result_.impacts;
+    if (t_ - last_impact_t_ > control_.simultaneity_tolerance_s) {
+      if (std::isfinite(last_impact_t_)) {
+        result_.min_impact_separation_s =
+            std::min(result_.min_impact_separation_s, t_ - last_impact_t_);
+      }
+    }
+    last_impact_t_ = t_;
+    const double loss = kinetic_before - 0.5 * u().dot(model_.M() * u());
+    for (int j = 0; j < ir.k; ++j) {
+      if (ir.Lambda_N[j] > 0.0) {
+        result_.events.push_back({t_, EventKind::kImpact, index_set_[static_cast<std::size_t>(j)],
+                                  ir.Lambda_N[j], ir.Lambda_T[j], ir.gamma_N_A[j], ir.gamma_N_E[j],
+                                  loss});
+      }
+    }
+  } else if (plastic) {
+    ++result_.plastic_closures;
+    for (int c : index_set_) {
+      if (kin.gamma_N[c] < -v_tol_) {
+        result_.events.push_back(
+            {t_, EventKind::kPlasticClosure, c, 0.0, 0.0, kin.gamma_N[c], 0.0});
+      }
+    }
+  }
+  // Which candidates stay in contact: those not separating after the impact.
+  contact::Evaluate(model_, q(), u(), ws_.kin_);
+  closed_list_.clear();
+  for (int c : index_set_) {
+    if (kin.gamma_N[c] > std::max(v_tol_, v_acc_)) {
+      if (mode_[static_cast<std::size_t>(c)] >= 0) {
+        ++result_.detachments;
+        result_.events.push_back({t_, EventKind::kDetachment, c, 0.0, 0.0, 0.0, 0.0});
+      }
+      mode_[static_cast<std::size_t>(c)] = -1;
+      continue;
+    }
+    const double mu = model_.contact(c).friction;
+    int sign = 0;
+    if (mu == 0.0) {
+      sign = 1;
+    } else if (std::abs(kin.gamma_T[c]) > v_tol_) {
+      sign = kin.gamma_T[c] > 0.0 ? 1 : -1;
+    }
+    closed_list_.push_back({c, sign});
+  }
+  std::vector<int>& previous = persistent_;  // reuse: previous modes of the candidates
+  previous.clear();
+  for (const contact::ClosedContact& cc : closed_list_) {
+    previous.push_back(mode_[static_cast<std::size_t>(cc.contact)]);
+    mode_[static_cast<std::size_t>(cc.contact)] = -1;
+  }
+  closed_count_ = 0;
+  for (int c = 0; c < nc_; ++c) {
+    closed_count_ += mode_[static_cast<std::size_t>(c)] >= 0 ? 1 : 0;
+  }
+  if (!closed_list_.empty()) {
+    model_.AppliedForces(q(), u(), GroundAcceleration(t_), h_);
+    const contact::ContactStatus status =
+        ws_.contact_problem_.Solve(kin, closed_list_, h_, ws_.contact_result_);
+    if (status == contact::ContactStatus::kPainleve) {
+      Fail(RunStatus::kPainleve, "Painleve situation (contact LCP on a secondary ray) at t = " +
+                                     std::to_string(t_) + " s");
+      return;
+    }
+    if (status != contact::ContactStatus::kSolved) {
+      Fail(RunStatus::kLcpFailure, std::string("contact LCP: ") + contact::ToString(status) +
+                                       " at t = " + std::to_string(t_) + " s");
+      return;
+    }
+    const contact::ContactResult& cr = ws_.contact_result_;
+    for (std::size_t j = 0; j < closed_list_.size(); ++j) {
+      const int c = closed_list_[j].contact;
+      const int before = previous[j];
+      const bool frictionless = model_.contact(c).friction == 0.0;
+      int mode = -1;
+      switch (cr.outcome[j]) {
+        case contact::ContactOutcome::kDetaches:
+          mode = -1;
+          break;
+        case contact::ContactOutcome::kSticks:
+          mode = static_cast<int>(ClosedMode::kStick);
+          break;
+        case contact::ContactOutcome::kStartsSlipPositive:
+          mode = static_cast<int>(ClosedMode::kSlidePositive);
+          break;
+        case contact::ContactOutcome::kStartsSlipNegative:
+          mode = static_cast<int>(ClosedMode::kSlideNegative);
+          break;
+        case contact::ContactOutcome::kSlides:
+        case contact::ContactOutcome::kStaysClosed:
+          mode = closed_list_[j].slip_sign > 0   ? static_cast<int>(ClosedMode::kSlidePositive)
+                 : closed_list_[j].slip_sign < 0 ? static_cast<int>(ClosedMode::kSlideNegative)
+                                                 : static_cast<int>(ClosedMode::kStick);
+          break;
+      }
+      if (frictionless && mode >= 0) {
+        mode = static_cast<int>(ClosedMode::kFrictionless);
+      }
+      if (mode < 0 && before >= 0) {
+        ++result_.detachments;
+        result_.events.push_back({t_, EventKind::kDetachment, c, 0.0, 0.0, 0.0, 0.0});
+      } else if (mode == static_cast<int>(ClosedMode::kStick) && before >= 0 && before != mode) {
+        ++result_.stick_transitions;
+        result_.events.push_back({t_, EventKind::kStick, c, 0.0, 0.0, 0.0, 0.0});
+      } else if (mode >= 0 && mode != static_cast<int>(ClosedMode::kStick) &&
+                 mode != static_cast<int>(ClosedMode::kFrictionless) && before >= 0 &&
+                 before != mode) {
+        ++result_.slip_transitions;
+        result_.events.push_back({t_, EventKind::kSlip, c, 0.0, 0.0, 0.0, 0.0});
+      }
+      mode_[static_cast<std::size_t>(c)] = mode;
+      closed_count_ += mode >= 0 ? 1 : 0;
+    }
+  }
+  if (AnyClosed()) {
+    Project();
+  }
+  const double kinetic_after = 0.5 * u().dot(model_.M() * u());
+  result_.energy.impact_J += kinetic_before - kinetic_after;
+  RefreshGaps();
+}
+
+RunResult Simulate(const model::Model& model, const Excitation& excitation,
+                   const model::RunControl& control, SimulationWorkspace& workspace,
+                   const InitialState& initial) {
+  Integrator integrator(model, excitation, control, workspace, initial);
+  return integrator.Run();
+}
+
+}  // namespace skewbridge::dynamics

@@ -1,0 +1,85 @@
+#pragma once
+/// @file
+/// The event-driven integrator of [method.md §3; Pfeiffer and Glocker 1996, ch. 6-7;
+/// Dimitrakopoulos 2011, §3]:
+/// - no closed contact: the exact transition of the linear flow (solver/dynamics/linear_flow.h)
+///   on a grid aligned with each excitation piece, steps at most 1/20 of the shortest natural
+///   or excitation period, partial steps by the flow's Taylor dense output;
+/// - closed contacts: Dormand-Prince 5(4) with the forces of the active set (each closed contact
+///   sticking, sliding with a sign, or frictionless) and projection onto g = 0, gamma_N = 0
+///   (gamma_T = 0 when sticking) after each step;
+/// - events located by Brent's method on the dense output: a gap reaching zero (impact),
+///   lambda_N reaching zero (detachment), a slip velocity reaching zero (stick or reversal),
+///   friction reaching the cone (slip); excitation kinks are step boundaries;
+/// - at impacts the velocity-level LCP, at every change of the active set the acceleration-level
+///   LCP (Lemke); a secondary ray there is a Painleve situation, returned as a status.
+///
+/// Accumulation threshold: an impact with approach speed |gamma_N,A| below
+/// v_acc = accumulation_threshold * a_peak / omega_1 (a_peak the largest |a_g| of the excitation,
+/// omega_1 the lowest natural frequency, or 1 rad/s for a free body) is plastic: the contact
+/// closes. v_acc scales with the excitation, so it keeps the self-similarity of [method.md §4
+/// fact 4].
+///
+/// Simultaneity: impacts whose roots lie within RunControl::simultaneity_tolerance_s of the
+/// first are one multi-contact impact; RunResult::min_impact_separation_s reports how close
+/// distinct impacts came.
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "solver/common/excitation.h"
+#include "solver/contact/contact_problem.h"
+#include "solver/contact/impact_problem.h"
+#include "solver/contact/kinematics.h"
+#include "solver/dynamics/linear_flow.h"
+#include "solver/dynamics/run_result.h"
+#include "solver/dynamics/runge_kutta.h"
+#include "solver/model/model.h"
+#include "solver/model/model_file.h"
+
+namespace skewbridge::dynamics {
+
+/// The state at t = 0 (relative to the ground); the default is rest.
+struct InitialState {
+  Eigen::VectorXd q;  ///< n_dof, empty = zero
+  Eigen::VectorXd u;  ///< n_dof, empty = zero
+};
+
+/// Mode of a closed contact in a constrained phase.
+enum class ClosedMode { kStick, kSlidePositive, kSlideNegative, kFrictionless };
+
+/// Scratch memory and caches of one model: build once, reuse for every run of that model (a
+/// sweep does thousands). Results never depend on what ran before (the caches are pure
+/// functions of the model). Keeps a reference to the model.
+class SimulationWorkspace {
+ public:
+  /// Sizes everything for `model`.
+  explicit SimulationWorkspace(const model::Model& model);
+
+  const model::Model& model() const { return model_; }
+
+ private:
+  friend class Integrator;
+
+  const model::Model& model_;
+  LinearFlow flow_;
+  FreeDenseOutput free_dense_;
+  DormandPrince45 rk_;
+  contact::ContactKinematics kin_;
+  contact::ImpactProblem impact_;
+  contact::ContactProblem contact_problem_;
+  contact::ImpactResult impact_result_;
+  contact::ContactResult contact_result_;
+  double omega_min_radps_ = 0.0;  // lowest natural frequency (0 for a free body)
+  double omega_max_radps_ = 0.0;  // highest natural frequency
+  double length_scale_m_ = 1.0;   // largest deck dimension
+};
+
+/// Integrates one run of `model` under `excitation` with `control` from `initial`.
+/// @pre workspace built for `model`; excitation duration finite.
+/// @throws InputError when the initial state has the wrong size.
+RunResult Simulate(const model::Model& model, const Excitation& excitation,
+                   const model::RunControl& control, SimulationWorkspace& workspace,
+                   const InitialState& initial = {});
+
+}  // namespace skewbridge::dynamics
