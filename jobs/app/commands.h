@@ -8,6 +8,8 @@ namespace skewbridge::app {
 
 /// `skewbridge version`: prints the version and source revision.
 void AddVersionCommand(CLI::App& app);
+/// `skewbridge run MODEL.toml [--csv run.csv]`: one event-driven run and its summary.
+void AddRunCommand(CLI::App& app);
 /// `skewbridge sweep SPEC.toml --out FILE.h5`: runs a sweep (MPI inside), jobs/sweep_command.h.
 void AddSweepCommand(CLI::App& app);
 /// `skewbridge inspect FILE.h5`: prints the sweeps, axes, responses and completion of a cube.

@@ -10,6 +10,7 @@ int main(int argc, char** argv) {
   CLI::App app{"skewbridge: seismic response of skew bridges with pounding deck-abutment joints"};
   app.require_subcommand(1);
   skewbridge::app::AddVersionCommand(app);
+  skewbridge::app::AddRunCommand(app);
   skewbridge::app::AddSweepCommand(app);
   skewbridge::app::AddInspectCommand(app);
   skewbridge::app::AddRecordsCommand(app);

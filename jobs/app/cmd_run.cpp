@@ -1,0 +1,164 @@
+// `skewbridge run MODEL.toml [--csv run.csv]`: one event-driven run of a model file; prints a
+// summary and writes the time histories as CSV (written to a temporary name, renamed on success).
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "jobs/app/commands.h"
+#include "records/excitations.h"
+#include "solver/common/error.h"
+#include "solver/dynamics/simulate.h"
+#include "solver/model/model_file.h"
+
+namespace skewbridge::app {
+namespace {
+
+// Samples of a plain text file: one column (acc) with excitation.dt_s, or two (time, acc).
+std::vector<double> ReadSamples(const std::filesystem::path& path, double& dt_s, bool has_dt) {
+  std::ifstream in(path);
+  if (!in) {
+    throw InputError::AtLine(path.string(), 0, "cannot open the excitation file");
+  }
+  std::vector<double> t, a;
+  std::string line;
+  long number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    if (line.empty() || line[0] == '#') {
+      continue;
+    }
+    std::istringstream fields(line);
+    double x = 0.0, y = 0.0;
+    if (!(fields >> x)) {
+      throw InputError::AtLine(path.string(), number, "expected numbers (time acc, or acc)");
+    }
+    if (fields >> y) {
+      t.push_back(x);
+      a.push_back(y);
+    } else {
+      a.push_back(x);
+    }
+  }
+  if (a.size() < 2) {
+    throw InputError::AtLine(path.string(), 0, "needs at least two samples");
+  }
+  if (!has_dt) {
+    if (t.size() != a.size()) {
+      throw InputError::AtLine(path.string(), 0,
+                               "one-column files need excitation.dt_s in the model file");
+    }
+    dt_s = t[1] - t[0];
+  }
+  return a;
+}
+
+std::unique_ptr<Excitation> MakeExcitation(const model::ExcitationSpec& spec) {
+  if (spec.kind == model::ExcitationSpec::Kind::kPulse) {
+    const auto shape = spec.shape == model::ExcitationSpec::PulseShape::kCosine
+                           ? records::PulseShape::kCosine
+                           : records::PulseShape::kSine;
+    return std::make_unique<records::PulseExcitation>(shape, spec.amplitude_mps2, spec.omega_radps,
+                                                      spec.direction);
+  }
+  double dt = spec.dt_s.value_or(0.0);
+  std::vector<double> values = spec.values;
+  if (!spec.file.empty()) {
+    values = ReadSamples(spec.file, dt, spec.dt_s.has_value());
+    for (double& v : values) {
+      v *= spec.to_mps2;
+    }
+  }
+  std::vector<double> ax(values.size()), ay(values.size());
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    ax[i] = values[i] * spec.direction.x();
+    ay[i] = values[i] * spec.direction.y();
+  }
+  return std::make_unique<records::SampledExcitation>(dt, std::move(ax), std::move(ay));
+}
+
+void WriteCsv(const std::filesystem::path& path, const model::Model& model,
+              const dynamics::Histories& h) {
+  const std::filesystem::path temporary = path.string() + ".partial";
+  {
+    std::ofstream out(temporary);
+    if (!out) {
+      throw InputError::AtField("--csv", path.string(), "cannot write");
+    }
+    out << "t_s";
+    for (int b = 0; b < model.n_bodies(); ++b) {
+      out << ",x" << b << "_m,y" << b << "_m,theta" << b << "_rad";
+    }
+    for (int b = 0; b < model.n_bodies(); ++b) {
+      out << ",vx" << b << "_mps,vy" << b << "_mps,omega" << b << "_radps";
+    }
+    for (const model::Contact& c : model.contacts()) {
+      out << ",gap_" << c.name << "_m,lambdaN_" << c.name << "_N,lambdaT_" << c.name << "_N,state_"
+          << c.name;
+    }
+    out << "\n";
+    out.precision(12);
+    const std::size_t n = static_cast<std::size_t>(h.n_dof),
+                      nc = static_cast<std::size_t>(h.n_contacts);
+    for (std::size_t s = 0; s < h.t_s.size(); ++s) {
+      out << h.t_s[s];
+      for (std::size_t i = 0; i < n; ++i) out << "," << h.q[s * n + i];
+      for (std::size_t i = 0; i < n; ++i) out << "," << h.u[s * n + i];
+      for (std::size_t c = 0; c < nc; ++c) {
+        out << "," << h.gap_m[s * nc + c] << "," << h.lambda_N[s * nc + c] << ","
+            << h.lambda_T[s * nc + c] << "," << h.state[s * nc + c];
+      }
+      out << "\n";
+    }
+  }
+  std::filesystem::rename(temporary, path);
+}
+
+}  // namespace
+
+void AddRunCommand(CLI::App& app) {
+  CLI::App* cmd = app.add_subcommand("run", "Integrate one model file and summarise the response");
+  auto model_path = std::make_shared<std::string>();
+  auto csv_path = std::make_shared<std::string>();
+  cmd->add_option("MODEL", *model_path, "Model file (TOML, docs/model-format.md)")->required();
+  cmd->add_option("--csv", *csv_path, "Write the time histories as CSV");
+  cmd->callback([model_path, csv_path] {
+    const model::ModelFile file = model::ParseModelFile(*model_path);
+    const std::unique_ptr<Excitation> excitation = MakeExcitation(file.excitation);
+    model::RunControl control = file.run;
+    if (!csv_path->empty() && control.output_interval_s <= 0.0) {
+      control.output_interval_s = 0.01;
+    }
+    dynamics::SimulationWorkspace workspace(file.model);
+    const dynamics::RunResult r = dynamics::Simulate(file.model, *excitation, control, workspace);
+    std::printf("model %s: status %s%s%s, t_end %.6g s\n", model_path->c_str(),
+                dynamics::ToString(r.status), r.message.empty() ? "" : " - ", r.message.c_str(),
+                r.end_time_s);
+    const char* names[3] = {"x", "y", "theta"};
+    for (int i = 0; i < file.model.n_dof(); ++i) {
+      std::printf("  max|%s%d| = %.6e at %.6f s, residual %.6e\n", names[i % 3], i / 3,
+                  r.max_abs_q[i], r.time_of_max_s[i], r.q_end[i]);
+    }
+    std::printf("  impacts %ld, plastic closures %ld, detachments %ld, stick %ld, slip %ld\n",
+                r.impacts, r.plastic_closures, r.detachments, r.stick_transitions,
+                r.slip_transitions);
+    std::printf(
+        "  steps: exact %ld, Runge-Kutta %ld (+%ld rejected); smallest impact "
+        "separation %.3e s\n",
+        r.free_steps, r.rk_steps, r.rk_rejected, r.min_impact_separation_s);
+    const dynamics::EnergyLedger& e = r.energy;
+    std::printf(
+        "  energy (J): input %.6e, damping %.6e, impacts %.6e, friction %.6e, now %.6e, "
+        "balance error %.3e\n",
+        e.input_J, e.damping_J, e.impact_J, e.friction_J, e.kinetic_J + e.strain_J,
+        e.balance_error_J);
+    if (!csv_path->empty()) {
+      WriteCsv(*csv_path, file.model, r.histories);
+    }
+  });
+}
+
+}  // namespace skewbridge::app
