@@ -30,7 +30,9 @@ class Id {
   Id(const Id&) = delete;
   Id& operator=(const Id&) = delete;
   Id(Id&& other) noexcept : id_(other.id_), closer_(other.closer_) { other.id_ = -1; }
+  /// Closes the identifier held, then takes over other's.
   Id& operator=(Id&& other) noexcept;
+  /// Closes the identifier (a close failure cannot be reported from a destructor).
   ~Id();
   /// The raw identifier for C API calls.
   hid_t get() const { return id_; }
@@ -82,16 +84,23 @@ void WriteStrings(hid_t parent, const std::string& name, const std::vector<std::
 /// Reads a 1-D dataset of variable-length strings.
 std::vector<std::string> ReadStrings(hid_t dataset);
 
-/// Attribute writers (create or replace).
+/// Writes a scalar UTF-8 string attribute (replacing one of the same name).
 void SetAttr(hid_t obj, const std::string& name, const std::string& value);
+/// Writes a scalar int64 attribute (replacing one of the same name).
 void SetAttr(hid_t obj, const std::string& name, std::int64_t value);
+/// Writes a scalar float64 attribute (replacing one of the same name).
 void SetAttr(hid_t obj, const std::string& name, double value);
+/// Writes a 1-D attribute of UTF-8 strings (replacing one of the same name).
 void SetAttr(hid_t obj, const std::string& name, const std::vector<std::string>& values);
+/// Writes a 1-D int32 attribute (replacing one of the same name).
 void SetAttr(hid_t obj, const std::string& name, const std::vector<std::int32_t>& values);
-/// Attribute readers. @throws H5Error when absent or of another class.
+/// Reads a scalar string attribute. @throws H5Error when absent or not a string.
 std::string GetStringAttr(hid_t obj, const std::string& name);
+/// Reads a scalar integer attribute. @throws H5Error when absent or not convertible.
 std::int64_t GetIntAttr(hid_t obj, const std::string& name);
+/// Reads a 1-D string attribute. @throws H5Error when absent or not strings.
 std::vector<std::string> GetStringListAttr(hid_t obj, const std::string& name);
+/// Reads a 1-D integer attribute as int32. @throws H5Error when absent or not convertible.
 std::vector<std::int32_t> GetIntListAttr(hid_t obj, const std::string& name);
 /// Whether obj has an attribute of this name.
 bool HasAttr(hid_t obj, const std::string& name);
