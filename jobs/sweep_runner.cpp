@@ -37,14 +37,18 @@ CellRecord EvaluateCell(const SweepSpec& spec, const CellEvaluator& evaluator,
     CellOutcome outcome = evaluator.Evaluate(index);
     record.status = outcome.status;
     record.stats = outcome.stats;
+    if (outcome.status != kStatusOk) {
+      record.text = std::move(outcome.status_text);
+    }
     record.values.reserve(layout.source_index.size());
     for (std::size_t source : layout.source_index) {
       record.values.push_back(source < outcome.responses.size()
                                   ? outcome.responses[source]
                                   : std::numeric_limits<double>::quiet_NaN());
     }
-  } catch (const std::exception&) {
+  } catch (const std::exception& e) {
     record.status = kStatusException;
+    record.text = e.what();
     record.values.assign(layout.source_index.size(), std::numeric_limits<double>::quiet_NaN());
   }
   record.stats.wall_s = Seconds(start);
@@ -114,6 +118,12 @@ class Writer {
     ++computed_;
     if (record.status != kStatusOk) {
       ++failed_;
+      // The lowest failed cell of each status, whatever the order of arrival.
+      const auto it = example_cells_.find(record.status);
+      if (it == example_cells_.end() || record.cell < it->second) {
+        example_cells_[record.status] = record.cell;
+        examples_[record.status] = "cell " + std::to_string(record.cell) + ": " + record.text;
+      }
     }
   }
 
@@ -147,7 +157,7 @@ class Writer {
     const std::string created = file_->CreatedUtc();
     file_->Close();
     file_.reset();
-    h5::WriteFinalCube(options_.out, spec_, layout_, data_, run_, created);
+    h5::WriteFinalCube(options_.out, spec_, layout_, data_, run_, created, examples_);
     std::error_code ec;
     std::filesystem::remove(PartialPath(options_.out), ec);
   }
@@ -193,6 +203,8 @@ class Writer {
   std::uint64_t checkpoints_ = 0;
   std::uint64_t done_before_ = 0;
   std::int32_t run_ = 1;
+  std::map<std::int32_t, std::string> examples_;  // one failure per status in this run
+  std::map<std::int32_t, std::uint64_t> example_cells_;
 };
 
 // Guided self-scheduling: claim a share of what is left, smaller near the end.

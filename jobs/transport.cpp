@@ -66,6 +66,10 @@ std::vector<char> PackRecords(std::span<const CellRecord> records, bool last) {
     for (double v : r.values) {
       Put(out, v);
     }
+    Put<std::uint64_t>(out, r.text.size());
+    const std::size_t at = out.size();
+    out.resize(at + r.text.size());
+    std::memcpy(out.data() + at, r.text.data(), r.text.size());
   }
   return out;
 }
@@ -88,6 +92,12 @@ bool UnpackRecords(std::span<const char> bytes, std::vector<CellRecord>& out) {
     for (std::uint64_t j = 0; j < k; ++j) {
       r.values.push_back(Take<double>(bytes, at));
     }
+    const auto length = Take<std::uint64_t>(bytes, at);
+    if (length > bytes.size() - at) {
+      throw std::runtime_error("truncated cell record message");
+    }
+    r.text.assign(bytes.data() + at, length);
+    at += length;
     out.push_back(std::move(r));
   }
   return last;

@@ -21,6 +21,7 @@ struct CellRecord {
   std::int32_t status = kStatusOk;
   CellStats stats;
   std::vector<double> values;
+  std::string text;  ///< CellOutcome::status_text or the exception's message (failed cells).
 };
 
 /// Serialises records into bytes (host byte order; all ranks run the same build).

@@ -43,7 +43,9 @@ void PrintCube(const std::string& path) {
                 static_cast<unsigned long long>(s.done), static_cast<unsigned long long>(s.cells),
                 percent, s.complete ? "complete" : "NOT complete", static_cast<long long>(s.runs));
     for (const auto& [status, count] : s.done_by_status) {
-      std::printf("    %-14s %llu\n", status.c_str(), static_cast<unsigned long long>(count));
+      const auto example = s.status_examples.find(status);
+      std::printf("    %-14s %llu%s\n", status.c_str(), static_cast<unsigned long long>(count),
+                  example == s.status_examples.end() ? "" : ("  e.g. " + example->second).c_str());
     }
   }
 }

@@ -308,7 +308,8 @@ void CheckpointFile::Close() { impl_.reset(); }
 
 void WriteFinalCube(const std::filesystem::path& path, const SweepSpec& spec,
                     const CubeLayout& layout, const CubeData& data, std::int32_t runs,
-                    const std::string& created_utc) {
+                    const std::string& created_utc,
+                    const std::map<std::int32_t, std::string>& examples) {
   const std::filesystem::path tmp = path.string() + ".tmp";
   {
     Datasets d = CreateLayout(tmp.string(), spec, layout, true, runs, created_utc);
@@ -316,6 +317,12 @@ void WriteFinalCube(const std::filesystem::path& path, const SweepSpec& spec,
       WriteAll(w.dataset, w.mem_type, w.data);
     }
     WriteAll(d.done.get(), H5T_NATIVE_UINT8, data.done.data());
+    std::vector<std::string> example_column;
+    for (const auto& entry : layout.status_names) {
+      const auto it = examples.find(entry.first);
+      example_column.push_back(it == examples.end() ? "" : it->second);
+    }
+    SetAttr(d.group.get(), "status_examples", example_column);
     const bool all_done =
         std::all_of(data.done.begin(), data.done.end(), [](std::uint8_t v) { return v != 0; });
     SetAttr(d.group.get(), "completed_utc", UtcNow());
@@ -393,6 +400,14 @@ std::vector<SweepSummary> SummarizeCube(const std::filesystem::path& path) {
                                     ? "code " + std::to_string(status[c])
                                     : names[static_cast<std::size_t>(it - codes.begin())];
       ++s.done_by_status[label];
+    }
+    if (HasAttr(g.get(), "status_examples")) {
+      const std::vector<std::string> examples = GetStringListAttr(g.get(), "status_examples");
+      for (std::size_t i = 0; i < examples.size() && i < names.size(); ++i) {
+        if (!examples[i].empty()) {
+          s.status_examples[names[i]] = examples[i];
+        }
+      }
     }
     out.push_back(std::move(s));
   }

@@ -60,10 +60,13 @@ class CheckpointFile {
 
 /// Writes the final cube: chunked (contiguous along the last axis), shuffle + deflate, the
 /// attribute complete = 1 written last. Writes path + ".tmp" and renames it to path.
+/// examples: one message per failure status (status -> "cell N: text"), stored as the sweep
+/// group's attribute status_examples, aligned with the status dataset's status_codes.
 /// @throws H5Error on I/O failure.
 void WriteFinalCube(const std::filesystem::path& path, const SweepSpec& spec,
                     const CubeLayout& layout, const CubeData& data, std::int32_t runs,
-                    const std::string& created_utc);
+                    const std::string& created_utc,
+                    const std::map<std::int32_t, std::string>& examples = {});
 
 /// One axis as stored in a cube.
 struct AxisSummary {
@@ -88,6 +91,7 @@ struct SweepSummary {
   std::uint64_t cells = 0;
   std::uint64_t done = 0;
   std::map<std::string, std::uint64_t> done_by_status;  ///< Status name -> done cells.
+  std::map<std::string, std::string> status_examples;   ///< Status name -> one message.
 };
 
 /// Reads the summary of every sweep in a cube (final or checkpoint).

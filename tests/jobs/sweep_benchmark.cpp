@@ -40,7 +40,7 @@ BENCHMARK(BM_InProcessSweepPerCell)->Arg(100)->Arg(10000)->Unit(benchmark::kMill
 void BM_PackUnpackRecords(benchmark::State& state) {
   std::vector<CellRecord> records(64);
   for (std::size_t i = 0; i < records.size(); ++i) {
-    records[i] = {i, 0, {3, 1000, 0.01}, {1.0, 2.0, 3.0}};
+    records[i] = {i, 0, {3, 1000, 0.01}, {1.0, 2.0, 3.0}, ""};
   }
   std::vector<CellRecord> out;
   for (auto _ : state) {

@@ -126,6 +126,13 @@ TEST_F(SweepRunnerTest, CubeEqualsDirectEvaluationAndRecordsFailures) {
   EXPECT_EQ(summary[0].done, 42u);
   EXPECT_EQ(summary[0].done_by_status.at("ok"), 42u - ray - thrown);
   EXPECT_EQ(summary[0].done_by_status.at("exception"), thrown);
+  for (const auto& [name, count] : summary[0].done_by_status) {
+    if (name == "ok") {
+      EXPECT_EQ(summary[0].status_examples.count(name), 0u);
+    } else {  // one message per failure status, from the evaluator
+      EXPECT_THAT(summary[0].status_examples.at(name), HasSubstr("test evaluator: injected"));
+    }
+  }
   EXPECT_EQ(summary[0].axes.at(0).labels, (std::vector<std::string>{"cosine", "sine"}));
   EXPECT_EQ(summary[0].axes.at(2).values.back(), 4.0);
 }
@@ -243,8 +250,8 @@ TEST_F(SweepRunnerTest, RequestedResponsesAreStoredInTheirOrder) {
 
 TEST(CellRecords, PackAndUnpackRoundTrip) {
   std::vector<CellRecord> in(2);
-  in[0] = {7, 1, {3, 400, 0.25}, {1.5, -2.0}};
-  in[1] = {123456789012ULL, kStatusException, {0, 0, 0.0}, {}};
+  in[0] = {7, 1, {3, 400, 0.25}, {1.5, -2.0}, "ray"};
+  in[1] = {123456789012ULL, kStatusException, {0, 0, 0.0}, {}, ""};
   const std::vector<char> bytes = PackRecords(in, true);
   std::vector<CellRecord> out;
   EXPECT_TRUE(UnpackRecords(bytes, out));
@@ -253,6 +260,7 @@ TEST(CellRecords, PackAndUnpackRoundTrip) {
   EXPECT_EQ(out[0].values, in[0].values);
   EXPECT_EQ(out[0].stats.steps, 400);
   EXPECT_EQ(out[1].status, kStatusException);
+  EXPECT_EQ(out[0].text, "ray");
   EXPECT_THROW(UnpackRecords(std::span<const char>(bytes.data(), bytes.size() - 3), out),
                std::runtime_error);
 }
