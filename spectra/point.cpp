@@ -161,6 +161,9 @@ PointResult EvaluatePoint(const DimensionalPoint& point, const Excitation& excit
   const double natural_period_s = w_min > 0.0 ? 2.0 * std::numbers::pi / w_min : 0.0;
 
   model::RunControl control;
+  // The absolute tolerance is in state units: tie it to the persistency so that the run is
+  // self-similar in a_g [method.md §4 fact 4].
+  control.absolute_tolerance = 1e-11 * point.persistency_m;
   control.end_time_s =
       excitation.Duration() + 2.0 * std::max(excitation_period_s, natural_period_s);
 
