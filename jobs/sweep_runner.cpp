@@ -349,7 +349,9 @@ SweepReport RunSweep(const SweepSpec& spec, const CellEvaluator& evaluator, Tran
         writer->Checkpoint();  // secure what is here before waiting for the others
       }
     }
-    Clock::time_point drain_start = Clock::now();
+    // Rank 0 drains until every rank has ended its stream, even after a stop request (what is
+    // here is already checkpointed): a rank whose last message found no receiver would wait
+    // in Finish forever.
     bool stop_seen = stopping;
     while (!all_finished) {
       service(0.05);
@@ -357,10 +359,6 @@ SweepReport RunSweep(const SweepSpec& spec, const CellEvaluator& evaluator, Tran
         stop_seen = true;  // rank 0 that only gathers learns of the stop here
         transport.StopClaims();
         writer->Checkpoint();
-        drain_start = Clock::now();
-      }
-      if (StopRequested(options) && Seconds(drain_start) > 10.0) {
-        break;  // a rank that does not answer within the grace period loses its cells
       }
     }
     report.interrupted = StopRequested(options);

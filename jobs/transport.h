@@ -54,7 +54,8 @@ class Transport {
   /// Rank 0: appends the records that have arrived (waiting up to wait_s for one message) and
   /// returns true once every other rank has ended its stream.
   virtual bool Receive(std::vector<CellRecord>& out, double wait_s) = 0;
-  /// Collective: ends the sweep's communication (every pending send completed).
+  /// Collective: ends the sweep's communication (every pending send completed, shared
+  /// resources freed); the last call on a transport.
   virtual void Finish() = 0;
 };
 

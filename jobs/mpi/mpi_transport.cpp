@@ -34,14 +34,9 @@ class MpiTransport final : public Transport {
     CheckMpi(MPI_Barrier(comm_), "MPI_Barrier");
   }
 
-  ~MpiTransport() override {
-    if (window_ != MPI_WIN_NULL) {
-      MPI_Win_free(&window_);
-    }
-    if (comm_ != MPI_COMM_NULL) {
-      MPI_Comm_free(&comm_);
-    }
-  }
+  // Freeing the window and the communicator is collective, so it happens in Finish(); after
+  // an error on one rank they are left to MPI_Finalize or MPI_Abort rather than risk a hang.
+  ~MpiTransport() override = default;
 
   int Rank() const override { return rank_; }
   int Size() const override { return size_; }
@@ -122,6 +117,8 @@ class MpiTransport final : public Transport {
   void Finish() override {
     Reap(true);
     CheckMpi(MPI_Barrier(comm_), "MPI_Barrier");
+    CheckMpi(MPI_Win_free(&window_), "MPI_Win_free");
+    CheckMpi(MPI_Comm_free(&comm_), "MPI_Comm_free");
   }
 
  private:

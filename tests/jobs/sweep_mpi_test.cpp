@@ -105,5 +105,58 @@ TEST(MpiSweep, RankZeroOnlyGathersAboveTheThresholdAndTheCubeIsUnchanged) {
   std::filesystem::remove(options.out);
 }
 
+TEST(MpiSweep, StopOnRankZeroAloneCheckpointsEveryComputedCellAndResumes) {
+  const SweepSpec spec = ParseSweepSpec(kSpec, "spec.toml", ".");
+  // 2 ms per cell: the other ranks cannot finish the 240 cells while rank 0 does its 3.
+  const testing::TestEvaluator evaluator(spec, 100, 2.0);
+  volatile std::sig_atomic_t flag = 0;  // per process: only rank 0's evaluator sets it
+  const testing::StoppingEvaluator stopping(evaluator, 3, &flag);
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  SweepOptions options;
+  options.out = std::filesystem::temp_directory_path() /
+                ("sb_mpi_stop_" + std::to_string(WorldSize()) + ".h5");
+  options.force = true;
+  options.stop = &flag;
+  options.max_chunk = 4;
+  std::uint64_t computed_everywhere = 0;
+  {
+    auto transport = MakeMpiTransport();
+    const SweepReport first =
+        RunSweep(spec, rank == 0 ? static_cast<const CellEvaluator&>(stopping) : evaluator,
+                 *transport, options);
+    const std::uint64_t mine = first.cells_this_rank;
+    MPI_Allreduce(&mine, &computed_everywhere, 1, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
+    if (rank == 0) {
+      EXPECT_TRUE(first.interrupted);
+      EXPECT_FALSE(first.complete);
+      // Everything any rank computed before it heard of the stop reached the file.
+      EXPECT_EQ(first.cells_done, computed_everywhere);
+      EXPECT_LT(first.cells_done, spec.CellCount());
+    }
+  }
+  options.force = false;
+  options.resume = true;
+  flag = 0;
+  auto transport = MakeMpiTransport();
+  const SweepReport second = RunSweep(spec, evaluator, *transport, options);
+  if (rank != 0) {
+    return;
+  }
+  EXPECT_TRUE(second.complete);
+  EXPECT_EQ(second.cells_computed, spec.CellCount() - computed_everywhere);
+  const CubeData data = h5::ReadCubeData(options.out, "mpi", nullptr);
+  std::uint64_t first_run = 0;
+  for (std::uint64_t c = 0; c < spec.CellCount(); ++c) {
+    first_run += data.run[c] == 1;
+    if (!testing::TestEvaluator::Throws(c)) {
+      const CellOutcome o = evaluator.Evaluate(spec.AxisIndex(c));
+      EXPECT_EQ(std::memcmp(&data.responses[1][c], &o.responses[1], sizeof(double)), 0);
+    }
+  }
+  EXPECT_EQ(first_run, computed_everywhere);
+  std::filesystem::remove(options.out);
+}
+
 }  // namespace
 }  // namespace skewbridge::jobs

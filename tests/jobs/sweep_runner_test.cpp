@@ -16,6 +16,7 @@ namespace skewbridge::jobs {
 namespace {
 
 using ::testing::HasSubstr;
+using testing::StoppingEvaluator;
 using testing::TestEvaluator;
 
 const char* kSpec = R"(
@@ -32,29 +33,6 @@ xi = 0.05
 )";
 
 bool SameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
-
-// Sets the stop flag after a given number of evaluations, as a signal would.
-class StoppingEvaluator final : public CellEvaluator {
- public:
-  StoppingEvaluator(const CellEvaluator& inner, int stop_after, volatile std::sig_atomic_t* flag)
-      : inner_(inner), stop_after_(stop_after), flag_(flag) {}
-  std::vector<ResponseInfo> Responses() const override { return inner_.Responses(); }
-  std::vector<std::pair<std::int32_t, std::string>> StatusNames() const override {
-    return inner_.StatusNames();
-  }
-  CellOutcome Evaluate(std::span<const std::size_t> index) const override {
-    if (++count_ >= stop_after_) {
-      *flag_ = 15;
-    }
-    return inner_.Evaluate(index);
-  }
-
- private:
-  const CellEvaluator& inner_;
-  int stop_after_;
-  volatile std::sig_atomic_t* flag_;
-  mutable int count_ = 0;
-};
 
 class SweepRunnerTest : public ::testing::Test {
  protected:

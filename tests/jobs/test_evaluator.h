@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdint>
 #include <stdexcept>
 #include <thread>
@@ -81,6 +82,30 @@ class TestEvaluator final : public CellEvaluator {
   std::vector<std::size_t> shape_;
   std::int64_t work_;
   double sleep_ms_;
+};
+
+/// Wraps an evaluator and sets a stop flag after a given number of evaluations, as a signal
+/// would.
+class StoppingEvaluator final : public CellEvaluator {
+ public:
+  StoppingEvaluator(const CellEvaluator& inner, int stop_after, volatile std::sig_atomic_t* flag)
+      : inner_(inner), stop_after_(stop_after), flag_(flag) {}
+  std::vector<ResponseInfo> Responses() const override { return inner_.Responses(); }
+  std::vector<std::pair<std::int32_t, std::string>> StatusNames() const override {
+    return inner_.StatusNames();
+  }
+  CellOutcome Evaluate(std::span<const std::size_t> index) const override {
+    if (++count_ >= stop_after_) {
+      *flag_ = 15;
+    }
+    return inner_.Evaluate(index);
+  }
+
+ private:
+  const CellEvaluator& inner_;
+  int stop_after_;
+  volatile std::sig_atomic_t* flag_;
+  mutable int count_ = 0;
 };
 
 }  // namespace skewbridge::jobs::testing
