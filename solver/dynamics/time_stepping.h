@@ -1,0 +1,102 @@
+#pragma once
+/// @file
+/// The Moreau-Jean time-stepping scheme [Acary and Brogliato 2008, ch. 10 (§10.1); Moreau 1988;
+/// Jean 1999], the independent check of the event-driven integrator [method.md §3, independent
+/// check]. On a fixed grid t_k = k h (the last step shortened to reach the end time):
+///
+///     W = M + h theta C + h^2 theta^2 K                      (factorised once per step size)
+///     u_free = u_k + W^-1 h ( -C u_k - K (q_k + h theta u_k) - M r abar_g )
+///     u_k+1  = u_free + W^-1 ( W_N P_N + W_T P_T )
+///     q_k+1  = q_k + h ( theta u_k+1 + (1 - theta) u_k )
+///
+/// with abar_g the exact mean of the ground acceleration over the step (so a kink inside a step
+/// costs no order), W_N, W_T at q_k, and the impulses P from the velocity-level LCP of
+/// [method.md §3, impact problem] over the active index set with W in place of M:
+///
+///     z = (P_N, P_R, gamma_TL),  w = (gamma_N,k+1 + eps gamma_N,k, gamma_TR, P_L)
+///     b = (gamma_N,free + eps gamma_N,k, gamma_T,free, 0),  gamma_free = w^T u_free
+///
+/// (Newton's law at velocity level, Coulomb's law in the split form of method.md §3). A contact
+/// is active when its predicted gap g_k + (h / 2) gamma_N,k <= 0 [Acary and Brogliato 2008,
+/// §10.1.2, the index set I_1 with gamma = 1/2]. Solved with the same Lemke solver
+/// (solver/lcp/lemke.h). With theta = 1/2 the contact-free scheme is the trapezoidal rule:
+/// second order without contacts, first order with impacts.
+///
+/// The RunResult is filled as by the event-driven integrator, with these readings:
+/// - maxima over the grid points (q is piecewise linear in t, so they are its true maxima);
+/// - impacts: steps in which a contact has a positive P_N while it had none in the previous
+///   step (one event entry per such contact); detachments: the reverse; stick / slip
+///   transitions: changes of a loaded contact between |gamma_T,k+1| <= v_tol and above;
+/// - free_steps counts steps without an active contact, rk_steps steps with an LCP solve;
+///   plastic_closures is 0 (the scheme needs no accumulation threshold);
+/// - min_impact_separation_s: the smallest time between two impact steps (a multiple of h);
+/// - energy ledger with the theta-point velocity u_theta: damping h u_theta^T C u_theta, input
+///   -h u_theta^T M r abar_g, impact -u_theta^T W_N P_N, friction -u_theta^T W_T P_T; exact
+///   (balance error at rounding level) for theta = 1/2;
+/// - histories linear in t between grid points; the contact forces are P / h of the step.
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <Eigen/Eigenvalues>
+#include <vector>
+
+#include "solver/common/excitation.h"
+#include "solver/contact/kinematics.h"
+#include "solver/dynamics/run_result.h"
+#include "solver/dynamics/simulate.h"
+#include "solver/lcp/lemke.h"
+#include "solver/model/model.h"
+#include "solver/model/model_file.h"
+
+namespace skewbridge::dynamics {
+
+/// Scratch memory of the time-stepping scheme for one model: build once, reuse for every run of
+/// that model; results never depend on what ran before. Keeps a reference to the model.
+class TimeSteppingWorkspace {
+ public:
+  /// Sizes everything for `model`; theta in (0, 1] of the theta-method (1/2: trapezoidal).
+  /// @throws InputError when theta is outside (0, 1].
+  explicit TimeSteppingWorkspace(const model::Model& model, double theta = 0.5);
+
+  const model::Model& model() const { return model_; }
+  double theta() const { return theta_; }
+
+ private:
+  friend RunResult SimulateTimeStepping(const model::Model&, const Excitation&,
+                                        const model::RunControl&, TimeSteppingWorkspace&,
+                                        const InitialState&);
+
+  /// Factorises W for step h (no-op when h is the factorised step).
+  void Factorise(double h_s);
+
+  const model::Model& model_;
+  double theta_;
+  double factorised_h_s_ = -1.0;
+  Eigen::LLT<Eigen::MatrixXd> llt_;
+  Eigen::MatrixXd W_inverse_;  // n_dof x n_dof
+  contact::ContactKinematics kin_;
+  lcp::LemkeSolver lemke_;
+  std::vector<lcp::LcpSolution> solutions_;  // one per LCP size: no allocation per step
+  std::vector<int> active_;
+  Eigen::MatrixXd WN_, WT_, WinvWN_, WinvWT_, A_;
+  Eigen::VectorXd b_, mu_, eps_;
+  Eigen::VectorXd P_N_, P_T_, P_N_previous_;  // per model contact
+  std::vector<int> state_, state_previous_;   // ContactState per contact
+  Eigen::VectorXd rhs_, u_free_, u1_, q1_, u_theta_, work_;
+};
+
+/// One Moreau-Jean run of `model` under `excitation` with step control.time_step_s up to
+/// control.EndTime(excitation.Duration()) from `initial`.
+/// @pre workspace built for `model`.
+/// @throws InputError when time_step_s <= 0 or the initial state has the wrong size.
+/// @return status kLcpFailure (with the LCP status and time in the message) when Lemke fails,
+/// kStepLimit when more than control.max_steps steps would be needed (run stops there).
+RunResult SimulateTimeStepping(const model::Model& model, const Excitation& excitation,
+                               const model::RunControl& control, TimeSteppingWorkspace& workspace,
+                               const InitialState& initial = {});
+
+/// The mean ground acceleration (m/s^2) over [t0_s, t1_s], exact for the excitation's pieces.
+/// @pre t1_s > t0_s >= 0.
+Eigen::Vector2d MeanAcceleration(const Excitation& excitation, double t0_s, double t1_s);
+
+}  // namespace skewbridge::dynamics
