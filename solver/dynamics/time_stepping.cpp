@@ -217,7 +217,8 @@ RunResult SimulateTimeStepping(const model::Model& model, const Excitation& exci
     ws.work_ = q + (hk * theta) * u;
     ws.rhs_.noalias() = -model.C() * u;
     ws.rhs_.noalias() -= model.K() * ws.work_;
-    ws.rhs_ -= mass.cwiseProduct(model.r() * a_mean);
+    ws.work_.noalias() = model.r() * a_mean;
+    ws.rhs_ -= mass.cwiseProduct(ws.work_);
     ws.rhs_ *= hk;
     ws.u_free_ = u;
     ws.u_free_.noalias() += ws.W_inverse_ * ws.rhs_;
