@@ -46,6 +46,16 @@ long long StatedCellCount(const std::string& text) {
   return stated;
 }
 
+// The position of a response in CellOutcome::responses.
+std::size_t Column(const CellEvaluator& evaluator, const std::string& name) {
+  const std::vector<ResponseInfo> responses = evaluator.Responses();
+  for (std::size_t k = 0; k < responses.size(); ++k) {
+    if (responses[k].name == name) return k;
+  }
+  ADD_FAILURE() << "no response " << name;
+  return 0;
+}
+
 fs::path FreshDirectory(const std::string& name) {
   const fs::path dir = fs::temp_directory_path() / ("skewbridge_sweeps_test_" + name);
   fs::remove_all(dir);
@@ -111,6 +121,52 @@ TEST(ExampleSpecs, SubsystemStudiesHoldTheGroupsOfTheirHeaders) {
   EXPECT_GE(rotation.FindAxis("W0_over_w0")->values.size(), 3u);
 }
 
+// [method.md §4 fact 1] over a whole sweep: a frictionless deck with eta0 <= 1 leaves every
+// impact without rotating, so theta stays at round-off level in every cell, while eta0 > 1
+// rotates the deck in the cells that pound.
+TEST(SubsystemSweep, RotatesOnlyAboveEta0OfOneWithoutFriction) {
+  const SweepSpec spec = ParseSweepSpec(R"([sweep]
+name = "eta0-threshold"
+family = "subsystem"
+[axes]
+pulse = ["cosine", "sine"]
+a_deg = [15, 45, 75]
+eta0 = [0.5, 1.0, 1.5, 3.0]
+w0_over_wg = [0.2, 0.5, 1.0]
+[fixed]
+Pi_delta = 0.5
+mu = 0.0
+delta_over_L = 0.002
+)",
+                                        "eta0-threshold.toml", fs::temp_directory_path());
+  const SpectraEvaluator evaluator(spec);
+  const Axis* eta0 = spec.FindAxis("eta0");
+  const std::size_t eta0_dim = static_cast<std::size_t>(eta0 - spec.axes.data());
+  int rotating_above = 0;
+  int pounding_below = 0;
+  for (std::uint64_t cell = 0; cell < spec.CellCount(); ++cell) {
+    const std::vector<std::size_t> index = spec.AxisIndex(cell);
+    const CellOutcome out = evaluator.Evaluate(index);
+    ASSERT_EQ(out.status, kStatusOk) << out.status_text;
+    const double x_m = out.responses[Column(evaluator, "x_m")];
+    const double theta_m = out.responses[Column(evaluator, "theta_m")];
+    const double impacts = out.responses[Column(evaluator, "impacts")];
+    const spectra::PointParameters p = [&] {
+      const SweepRecord* record = nullptr;
+      return evaluator.Parameters(index, &record);
+    }();
+    const double rho_m = spectra::ToDimensional(p, spectra::PulseScales(p)).rho_m;
+    if (eta0->values[index[eta0_dim]] <= 1.0) {
+      EXPECT_LE(theta_m * rho_m, 1e-12 * x_m) << "cell " << cell;
+      if (impacts > 0) ++pounding_below;
+    } else if (impacts > 0 && theta_m * rho_m > 1e-3 * x_m) {
+      ++rotating_above;
+    }
+  }
+  EXPECT_GE(pounding_below, 10);
+  EXPECT_GE(rotating_above, 10);
+}
+
 // With Pi_delta = 1e6 the gaps are a million persistencies wide, so no contact can close and
 // the sweep's cell is the linear response of the eccentric substructure. The reference run is
 // the same deck with no contacts at all, integrated over the same time.
@@ -126,20 +182,12 @@ Pi_delta = 1e6
 )",
                                         "pilot-open.toml", fs::temp_directory_path());
   const SpectraEvaluator evaluator(spec);
-  const std::vector<ResponseInfo> responses = evaluator.Responses();
-  auto column = [&](const std::string& name) {
-    for (std::size_t k = 0; k < responses.size(); ++k) {
-      if (responses[k].name == name) return k;
-    }
-    ADD_FAILURE() << "no response " << name;
-    return std::size_t{0};
-  };
   for (std::uint64_t cell = 0; cell < spec.CellCount(); ++cell) {
     SCOPED_TRACE("cell " + std::to_string(cell));
     const std::vector<std::size_t> index = spec.AxisIndex(cell);
     const CellOutcome swept = evaluator.Evaluate(index);
     ASSERT_EQ(swept.status, kStatusOk) << swept.status_text;
-    EXPECT_EQ(swept.responses[column("impacts")], 0.0);
+    EXPECT_EQ(swept.responses[Column(evaluator, "impacts")], 0.0);
 
     const SweepRecord* record = nullptr;
     const spectra::PointParameters p = evaluator.Parameters(index, &record);
@@ -160,8 +208,8 @@ Pi_delta = 1e6
     const dynamics::RunResult free_run = dynamics::Simulate(free_deck, pulse, control, workspace);
     ASSERT_EQ(free_run.status, dynamics::RunStatus::kOk);
 
-    const double theta_m = swept.responses[column("theta_m")];
-    const double x_m = swept.responses[column("x_m")];
+    const double theta_m = swept.responses[Column(evaluator, "theta_m")];
+    const double x_m = swept.responses[Column(evaluator, "x_m")];
     EXPECT_NEAR(theta_m, free_run.max_abs_q(2), 1e-9 * free_run.max_abs_q(2));
     EXPECT_NEAR(x_m, free_run.max_abs_q(0), 1e-9 * free_run.max_abs_q(0));
     // The eccentricity (0.24 m against rho = 26.4 m) couples little: the rotation moves the
