@@ -94,6 +94,18 @@ SpectraEvaluator::SpectraEvaluator(const SweepSpec& spec) : spec_(spec) {
                               "a sweep is driven by pulses or by records, not both");
   }
   if (Mentions(spec, "record")) {
+    // A record fixes a_g (its PGA) and w_g (2 pi / T_m); a swept value that the mapping would
+    // ignore would only repeat cells.
+    if (Mentions(spec, "a_g_g")) {
+      throw InputError::AtField(spec.source, "a_g_g",
+                                "not a parameter of a record-driven sweep (a_g is each record's "
+                                "PGA)");
+    }
+    if (family_ == spectra::Family::kPilotBridge && Mentions(spec, "w0_over_wg")) {
+      throw InputError::AtField(spec.source, "w0_over_wg",
+                                "not a parameter of the pilot bridge under records (its w0x is "
+                                "fixed and w_g is each record's; see the response w0x_over_wg)");
+    }
     if (spec.record_set_path.empty()) {
       throw InputError::AtField(spec.source, "records.set",
                                 "missing: a record axis needs a record set");

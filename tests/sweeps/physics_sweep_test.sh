@@ -193,6 +193,11 @@ name = "bad"'
   expect_refused pilot-skew "a_deg"
   printf '%s\nfamily = "pilot-bridge"\n[axes]\nw0_over_wg = [0.5, 1.0]\n[fixed]\neta0 = 1.2\n' "$head" >pilot-eta0.toml
   expect_refused pilot-eta0 "eta0"
+  # Under records the pilot bridge's w0x/w_g is an output, and a_g is each record's PGA.
+  printf '%s\nfamily = "pilot-bridge"\n[records]\nset = "set/set.toml"\n[axes]\nrecord = ["synth-3-000"]\nw0_over_wg = [0.5, 1.0]\n' "$head" >pilot-record-w0.toml
+  expect_refused pilot-record-w0 "w0_over_wg"
+  printf '%s\nfamily = "subsystem"\n[records]\nset = "set/set.toml"\n[axes]\nrecord = ["synth-3-000"]\n[fixed]\na_g_g = 0.3\n' "$head" >record-a-g.toml
+  expect_refused record-a-g "a_g_g"
   ;;
 records)
   "$exe" records synth --count 3 --seed 11 --duration-s 10 --out set >/dev/null
