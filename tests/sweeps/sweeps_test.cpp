@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include "jobs/evaluator_factory.h"
 #include "jobs/spectra_evaluator.h"
 #include "jobs/sweep_spec.h"
@@ -57,7 +59,9 @@ std::size_t Column(const CellEvaluator& evaluator, const std::string& name) {
 }
 
 fs::path FreshDirectory(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("skewbridge_sweeps_test_" + name);
+  // The process id keeps concurrent runs of this test (several build trees) apart.
+  const fs::path dir = fs::temp_directory_path() /
+                       ("skewbridge_sweeps_test_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
@@ -90,6 +94,7 @@ TEST(ExampleSpecs, EveryFileBuildsItsEvaluatorWithTheCellCountItsHeaderStates) {
     const std::unique_ptr<CellEvaluator> evaluator = MakeEvaluator(spec);
     EXPECT_FALSE(evaluator->Responses().empty());
     EXPECT_EQ(static_cast<long long>(spec.CellCount()), StatedCellCount(text));
+    if (load != file) fs::remove_all(load.parent_path());
   }
 }
 
