@@ -12,14 +12,15 @@ namespace skewbridge::dynamics {
 using Vec = Eigen::VectorXd;
 
 TimeSteppingWorkspace::TimeSteppingWorkspace(const model::Model& model, double theta)
-    : model_(model), theta_(theta) {
+    // LLT(n) sizes the factor; a default-constructed LLT moved in would copy an uninitialised
+    // status (UBSan reports it).
+    : model_(model), theta_(theta), llt_(model.n_dof()) {
   if (!(theta > 0.0 && theta <= 1.0)) {
     throw InputError::AtField(model.source(), "theta", "must lie in (0, 1] (1/2: trapezoidal)");
   }
   const int n = model.n_dof();
   const int nc = model.n_contacts();
   W_inverse_.resize(n, n);
-  llt_ = Eigen::LLT<Eigen::MatrixXd>(n);
   kin_.Resize(model);
   solutions_.resize(static_cast<std::size_t>(3 * nc + 1));
   for (int size = 1; size <= 3 * nc; ++size) {
