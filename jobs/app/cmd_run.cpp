@@ -1,5 +1,6 @@
-// `skewbridge run MODEL.toml [--csv run.csv]`: one event-driven run of a model file; prints a
-// summary and writes the time histories as CSV (written to a temporary name, renamed on success).
+// `skewbridge run MODEL.toml [--csv run.csv] [--out run.h5]`: one event-driven run of a model
+// file; prints a summary, writes the time histories as CSV and the whole run as HDF5
+// (docs/run-output.md), each to a temporary name renamed on success.
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -9,6 +10,8 @@
 #include <vector>
 
 #include "jobs/app/commands.h"
+#include "jobs/h5/h5_error.h"
+#include "jobs/run_output.h"
 #include "records/excitations.h"
 #include "solver/common/error.h"
 #include "solver/dynamics/simulate.h"
@@ -117,18 +120,47 @@ void WriteCsv(const std::filesystem::path& path, const model::Model& model,
   std::filesystem::rename(temporary, path);
 }
 
+// The whole run as HDF5; a failed write removes the temporary file and names --out.
+void WriteHdf5(const std::filesystem::path& path, const model::ModelFile& file,
+               const dynamics::RunResult& r) {
+  std::ifstream in(file.path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  const std::filesystem::path temporary = path.string() + ".partial";
+  try {
+    jobs::WriteRunHdf5(temporary, file.model, r, text.str());
+  } catch (const jobs::h5::H5Error& e) {
+    std::error_code ignored;
+    std::filesystem::remove(temporary, ignored);
+    throw InputError::AtField("--out", path.string(), std::string("cannot write: ") + e.what());
+  }
+  std::filesystem::rename(temporary, path);
+}
+
 }  // namespace
 
 void AddRunCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("run", "Integrate one model file and summarise the response");
   auto model_path = std::make_shared<std::string>();
   auto csv_path = std::make_shared<std::string>();
+  auto out_path = std::make_shared<std::string>();
+  auto output_interval_s = std::make_shared<double>(0.0);
   cmd->add_option("MODEL", *model_path, "Model file (TOML, docs/model-format.md)")->required();
   cmd->add_option("--csv", *csv_path, "Write the time histories as CSV");
-  cmd->callback([model_path, csv_path] {
+  cmd->add_option("--out", *out_path, "Write the run as HDF5 (docs/run-output.md)");
+  cmd->add_option("--output-interval", *output_interval_s,
+                  "History sample interval in s (> 0), overriding run.output_interval_s");
+  cmd->callback([model_path, csv_path, out_path, output_interval_s] {
     const model::ModelFile file = model::ParseModelFile(*model_path);
     const std::unique_ptr<Excitation> excitation = MakeExcitation(file.excitation);
     model::RunControl control = file.run;
+    if (*output_interval_s < 0.0) {
+      throw InputError::AtField("--output-interval", std::to_string(*output_interval_s),
+                                "must be > 0 s");
+    }
+    if (*output_interval_s > 0.0) {
+      control.output_interval_s = *output_interval_s;
+    }
     if (!csv_path->empty() && control.output_interval_s <= 0.0) {
       control.output_interval_s = 0.01;
     }
@@ -157,6 +189,9 @@ void AddRunCommand(CLI::App& app) {
         e.balance_error_J);
     if (!csv_path->empty()) {
       WriteCsv(*csv_path, file.model, r.histories);
+    }
+    if (!out_path->empty()) {
+      WriteHdf5(*out_path, file, r);
     }
   });
 }

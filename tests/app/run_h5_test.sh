@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# `skewbridge run --out`: the HDF5 file has the layout of docs/run-output.md and agrees with the
+# CSV text and the printed summary (run_h5_check.py); histories only when requested; a bad model
+# or an unwritable path leaves neither FILE.h5 nor FILE.h5.partial.
+set -u
+exe=${1:?usage: run_h5_test.sh SKEWBRIDGE SOURCE_ROOT}
+root=${2:?}
+python=/usr/bin/python3
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fail() { echo "FAIL: $*"; exit 1; }
+model="$root/docs/examples/subsystem.toml"
+
+"$exe" run "$model" --out "$work/X.h5" --csv "$work/X.csv" >"$work/summary" 2>"$work/err" ||
+  fail "good model: exit status $? ($(cat "$work/err"))"
+[ ! -e "$work/X.h5.partial" ] || fail "good model: temporary file left behind"
+"$python" "$root/tests/app/run_h5_check.py" "$work/X.h5" "$work/X.csv" "$model" "$work/summary" ||
+  fail "layout or values"
+
+sed 's/^output_interval_s.*/output_interval_s = 0.0/' "$model" >"$work/nohist.toml"
+"$exe" run "$work/nohist.toml" --out "$work/N.h5" >/dev/null 2>&1 || fail "no histories: exit $?"
+"$exe" run "$work/nohist.toml" --out "$work/O.h5" --output-interval 0.01 >/dev/null 2>&1 ||
+  fail "--output-interval: exit $?"
+"$python" - "$work/N.h5" "$work/O.h5" <<'PY' || fail "histories presence"
+import sys, h5py
+without, with_interval = (h5py.File(p, "r") for p in sys.argv[1:3])
+assert "histories" not in without, "histories written though none were requested"
+n = with_interval["histories/t_s"].shape[0]
+assert n == 251, "--output-interval 0.01 over 2.5 s gave %d samples, expected 251" % n
+PY
+
+sed 's/^\(m *= *\).*/\1-5.0/' "$model" >"$work/bad.toml"
+"$exe" run "$work/bad.toml" --out "$work/bad.h5" >/dev/null 2>"$work/err3"
+status=$?
+[ $status -eq 2 ] || fail "bad model: exit status $status, expected 2"
+grep -q "deck.m" "$work/err3" || fail "bad model: message does not name deck.m: $(cat "$work/err3")"
+[ ! -e "$work/bad.h5" ] && [ ! -e "$work/bad.h5.partial" ] || fail "bad model: output file left"
+
+"$exe" run "$model" --out "$work/missing/dir/Y.h5" >/dev/null 2>"$work/err4"
+status=$?
+[ $status -eq 2 ] || fail "unwritable --out: exit status $status, expected 2"
+[ "$(wc -l <"$work/err4")" -eq 1 ] || fail "unwritable --out: not one line: $(cat "$work/err4")"
+grep -q -- "--out" "$work/err4" || fail "unwritable --out: message does not name --out"
+[ ! -e "$work/missing/dir/Y.h5.partial" ] || fail "unwritable --out: temporary file left"
+echo "ok"
