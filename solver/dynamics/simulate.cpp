@@ -124,7 +124,8 @@ class Integrator {
   int closed_count_ = 0;
   std::vector<contact::ClosedContact> closed_list_;
   std::vector<int> index_set_, persistent_, forced_;
-  Vec lambda_N_, lambda_T_;  // per contact, from the last ActiveForces
+  std::vector<int> cone_sign_;  // per contact: slip sign of a sticking contact at the cone, or 0
+  Vec lambda_N_, lambda_T_;     // per contact, from the last ActiveForces
   double friction_power_ = 0.0;
   double h_rk_ = 0.0;
   double v_tol_ = 0.0, v_acc_ = 0.0, gap_tol_ = 0.0;
@@ -202,6 +203,7 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   index_set_.reserve(static_cast<std::size_t>(nc_));
   persistent_.reserve(static_cast<std::size_t>(nc_));
   forced_.reserve(static_cast<std::size_t>(nc_));
+  cone_sign_.assign(static_cast<std::size_t>(nc_), 0);
   rows_ = cols_ = Eigen::MatrixXd::Zero(n_, kMaxActive);
   A_.resize(kMaxActive, kMaxActive);
   rhs_.resize(kMaxActive);
@@ -784,6 +786,22 @@ void Integrator::ResolveContacts(const std::vector<int>& forced) {
     events_here_ = 0;
   }
   const double kinetic_before = 0.5 * u().dot(model_.M() * u());
+  // A sticking contact whose friction has reached the cone (the stick-slip event) is degenerate
+  // for the contact problem: at the cone both sticking (a_T = 0, |lambda_T| = mu lambda_N) and
+  // slipping solve it, Lemke returns sticking, and the friction event fires again at the same
+  // instant. The event itself says which way: slip against the saturated friction force
+  // [Pfeiffer and Glocker 1996, ch. 6], so such a contact enters the contact problem as sliding.
+  std::fill(cone_sign_.begin(), cone_sign_.end(), 0);
+  if (AnyClosed()) {
+    ActiveForces(t_, q(), u(), du_);
+    for (int c = 0; c < nc_; ++c) {
+      if (mode_[static_cast<std::size_t>(c)] == static_cast<int>(ClosedMode::kStick) &&
+          lambda_T_[c] != 0.0 &&
+          model_.contact(c).friction * lambda_N_[c] - std::abs(lambda_T_[c]) <= 0.0) {
+        cone_sign_[static_cast<std::size_t>(c)] = lambda_T_[c] > 0.0 ? -1 : 1;
+      }
+    }
+  }
   contact::Evaluate(model_, q(), u(), ws_.kin_);
   const contact::ContactKinematics& kin = ws_.kin_;
   // Candidates: closed contacts, touching ones not separating, and the simultaneous ones.
@@ -858,6 +876,8 @@ void Integrator::ResolveContacts(const std::vector<int>& forced) {
       sign = 1;
     } else if (std::abs(kin.gamma_T[c]) > v_tol_) {
       sign = kin.gamma_T[c] > 0.0 ? 1 : -1;
+    } else if (!impact) {
+      sign = cone_sign_[static_cast<std::size_t>(c)];
     }
     closed_list_.push_back({c, sign});
   }
