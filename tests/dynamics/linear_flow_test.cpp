@@ -1,5 +1,7 @@
 #include "solver/dynamics/linear_flow.h"
 
+#include "tests/dynamics/modal_oracle.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
@@ -36,21 +38,9 @@ struct TestSystem {
 struct ModalClosedForm {
   double w, xi, F0, F1, Fc, Fs, W, eta0, deta0;
 
+  // The closed form lives in modal_oracle.h, shared with the integrator tests.
   void Evaluate(double t, double& eta, double& deta) const {
-    const double B = F1 / (w * w), A = (F0 - 2.0 * xi * w * B) / (w * w);
-    double P = 0.0, Q = 0.0;
-    if (W != 0.0) {
-      const double a = w * w - W * W, b = 2.0 * xi * w * W, det = a * a + b * b;
-      P = (a * Fc - b * Fs) / det;
-      Q = (b * Fc + a * Fs) / det;
-    }
-    const double wd = w * std::sqrt(1.0 - xi * xi);
-    const double h0 = eta0 - (A + P), dh0 = deta0 - (B + W * Q);
-    const double c1 = h0, c2 = (dh0 + xi * w * h0) / wd;
-    const double decay = std::exp(-xi * w * t), cs = std::cos(wd * t), sn = std::sin(wd * t);
-    eta = decay * (c1 * cs + c2 * sn) + A + B * t + P * std::cos(W * t) + Q * std::sin(W * t);
-    deta = decay * ((-xi * w * c1 + wd * c2) * cs + (-xi * w * c2 - wd * c1) * sn) + B -
-           W * P * std::sin(W * t) + W * Q * std::cos(W * t);
+    testing::ModalResponse(w, xi, F0, F1, Fc, Fs, W, eta0, deta0, t, eta, deta);
   }
 };
 
