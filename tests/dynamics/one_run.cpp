@@ -1,0 +1,33 @@
+// Runs one benchmark case exactly N times (after one warm-up run), so that an instruction count
+// under callgrind divided by N + 1 is the cost of one run:
+//   valgrind --tool=callgrind build/perf/tests/dynamics/simulate_one_run pilot 1 10
+// Arguments: subsystem|pilot, contacts 0|1, N. Prints the run's status, counts and maxima.
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "solver/dynamics/simulate.h"
+#include "tests/dynamics/benchmark_cases.h"
+
+int main(int argc, char** argv) {
+  using namespace skewbridge::dynamics;
+  if (argc != 4) {
+    std::fprintf(stderr, "usage: %s subsystem|pilot 0|1 N\n", argv[0]);
+    return 2;
+  }
+  const std::string which = argv[1];
+  const bool contacts = std::atoi(argv[2]) != 0;
+  const int n = std::atoi(argv[3]);
+  const bench::Case c =
+      which == "pilot" ? bench::PilotBridgeRecord(contacts) : bench::SubsystemCosinePulse(contacts);
+  SimulationWorkspace ws(c.model);
+  RunResult r = Simulate(c.model, *c.excitation, c.control, ws);
+  for (int i = 0; i < n; ++i) {
+    r = Simulate(c.model, *c.excitation, c.control, ws);
+  }
+  std::printf("%s contacts=%d: %s, free steps %ld, rk steps %ld (+%ld rejected), impacts %ld\n",
+              which.c_str(), contacts ? 1 : 0, ToString(r.status), r.free_steps, r.rk_steps,
+              r.rk_rejected, r.impacts);
+  std::printf("max |q| = %.12e %.12e %.12e\n", r.max_abs_q[0], r.max_abs_q[1], r.max_abs_q[2]);
+  return 0;
+}
