@@ -12,7 +12,8 @@ namespace {
 Eigen::Vector2d Perp(const Eigen::Vector2d& v) { return {-v.y(), v.x()}; }
 
 // The world-frame quantities of one contact at q: P, the arm R_i p, n, t, and the face body's
-// origin (zero for the ground).
+// mass centre (zero for the ground). World = ground frame; a body's mass centre is at
+// X + (x, y) with X its rest position.
 struct Geometry {
   Eigen::Vector2d P;       // world position of the point (m)
   Eigen::Vector2d arm;     // R(theta_i) p (m)
@@ -27,7 +28,8 @@ Geometry Compute(const model::Model& model, int c, const Eigen::Ref<const Eigen:
   const int i = 3 * contact.body;
   Geometry g;
   g.arm = Rotation(q(i + 2)) * contact.point_m;
-  g.P = q.segment<2>(i) + g.arm;
+  // X_i + (x_i, y_i): exact for a single deck, whose X is zero.
+  g.P = (model.body(contact.body).rest_position_m + q.segment<2>(i)) + g.arm;
   if (contact.face.body == model::kGround) {
     g.n = contact.face.normal;
     g.t = contact.face.tangent;
@@ -38,7 +40,7 @@ Geometry Compute(const model::Model& model, int c, const Eigen::Ref<const Eigen:
     const Eigen::Matrix2d R_j = Rotation(q(j + 2));
     g.n = R_j * contact.face.normal;
     g.t = R_j * contact.face.tangent;
-    g.origin = q.segment<2>(j);
+    g.origin = model.body(contact.face.body).rest_position_m + q.segment<2>(j);
     g.A = g.origin + R_j * contact.face.point_m;
   }
   return g;

@@ -3,11 +3,13 @@
 /// Contact kinematics in the general form of [method.md §2, contacts (general form)]: for a
 /// body-fixed point p (on body i) against a face (A, n, t), ground-fixed or on body j,
 ///
-///     g      = n . ((x_i, y_i) + R(theta_i) p - A_world)
+///     g      = n . (X_i + (x_i, y_i) + R(theta_i) p - A_world)
 ///     w_N    = d gamma_N / d u,  gamma_N = n . (v_P - v_Q),  gamma_T = t . (v_P - v_Q)
 ///     what_N = d gamma_N / dt - w_N^T du/dt   (the velocity-dependent part)
 ///
-/// with P the point's world position and Q the face's material point at P. For a ground face
+/// with X_i the body's rest position (Body::rest_position_m), A_world = X_j + (x_j, y_j) +
+/// R(theta_j) A for a face on body j, P the point's world position and Q the face's material
+/// point at P. For a ground face
 /// w_N = (n, n . R'(theta) p), w_T = (t, t . R'(theta) p), what_N = -thetadot^2 n . R(theta) p,
 /// what_T = -thetadot^2 t . R(theta) p, and for the +x abutment these equal the closed forms
 /// of [Dimitrakopoulos 2011, eqs. 5-8]. For a body face the Jacobians have entries for both

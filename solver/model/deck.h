@@ -54,12 +54,15 @@ struct LeverArms {
 LeverArms ComputeLeverArms(const DeckGeometry& deck);
 
 /// One planar rigid body (a deck): its generalised coordinates (x, y, theta) relative to the
-/// ground occupy DOFs 3 i .. 3 i + 2 of the model, i its index.
+/// ground occupy DOFs 3 i .. 3 i + 2 of the model, i its index. Its mass centre sits at
+/// rest_position_m when q = 0, so that the mass centre is at rest_position_m + (x, y); a single
+/// deck sits at the origin, the decks of a multi-span bridge one after the other along x.
 struct Body {
   std::string name = "deck";
   double mass_kg = 0.0;       ///< m (kg) > 0
   double inertia_kgm2 = 0.0;  ///< I_m (kg m^2) > 0, about the mass centre
   DeckGeometry geometry;      ///< plan shape in the body frame
+  Eigen::Vector2d rest_position_m = Eigen::Vector2d::Zero();  ///< X: mass centre at q = 0 (m)
 };
 
 }  // namespace skewbridge::model

@@ -70,7 +70,7 @@ void CheckSymmetricPsd(const Eigen::MatrixXd& A, int n, std::string_view field, 
 }
 
 std::string BodyField(int n_bodies, int i, std::string_view key) {
-  std::string prefix = n_bodies == 1 ? "deck" : "decks[" + std::to_string(i) + "]";
+  std::string prefix = n_bodies == 1 ? "deck" : "deck[" + std::to_string(i) + "]";
   return prefix + "." + std::string(key);
 }
 
@@ -97,6 +97,9 @@ Model::Model(std::vector<Body> bodies, Eigen::MatrixXd K, Eigen::MatrixXd C, Eig
     CheckPositive(b.geometry.width_m, BodyField(nb, i, "W"), where);
     CheckRange(b.geometry.skew_rad * 180.0 / std::numbers::pi, 0.0, 90.0, true,
                BodyField(nb, i, "skew_deg"), where, "deg");
+    if (!b.rest_position_m.allFinite()) {
+      Fail(where, BodyField(nb, i, "rest_position"), "must be finite (got NaN or Inf)");
+    }
   }
   const int n = n_dof();
   mass_diagonal_.resize(n);
@@ -132,13 +135,17 @@ Model::Model(std::vector<Body> bodies, Eigen::MatrixXd K, Eigen::MatrixXd C, Eig
     }
     CheckRange(c.restitution, 0.0, 1.0, false, field + ".eps_N", where);
     CheckNonNegative(c.friction, field + ".mu", where);
-    // The gap at rest (q = 0), by the general form g = n . (R p - A) for ground faces.
-    if (c.face.body == kGround) {
-      const double gap = c.face.normal.dot(c.point_m - c.face.point_m);
-      if (gap < -1e-12 * bodies_[static_cast<std::size_t>(c.body)].geometry.length_m) {
-        Fail(where, "abutments.gap_m",
-             "must be >= 0: contact " + c.name + " has gap " + Show(gap) + " m at rest");
-      }
+    // The gap at rest (q = 0): g = n . (X_i + p - A) for ground faces and
+    // g = n . (X_i + p - X_j - A) for a face on body j, whose frame is not turned at rest.
+    const Body& carrier = bodies_[static_cast<std::size_t>(c.body)];
+    Eigen::Vector2d face_point = c.face.point_m;
+    if (c.face.body != kGround) {
+      face_point += bodies_[static_cast<std::size_t>(c.face.body)].rest_position_m;
+    }
+    const double gap = c.face.normal.dot(carrier.rest_position_m + c.point_m - face_point);
+    if (gap < -1e-12 * carrier.geometry.length_m) {
+      Fail(where, c.face.body == kGround ? "abutments.gap_m" : "joint.gap_m",
+           "must be >= 0: contact " + c.name + " has gap " + Show(gap) + " m at rest");
     }
   }
 }

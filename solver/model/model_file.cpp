@@ -471,6 +471,8 @@ void ReadRun(Section& s, RunControl& run) {
   CheckNonNegative(run.simultaneity_tolerance_s, s.Field("simultaneity_tol_s"),
                    s.At("simultaneity_tol_s"));
   run.method = s.String("method", {"event-driven", "time-stepping"}).value_or(run.method);
+  run.linear_algebra =
+      s.String("linear_algebra", {"auto", "dense", "sparse"}).value_or(run.linear_algebra);
   run.time_step_s = s.Number("time_step_s").value_or(run.time_step_s);
   CheckPositive(run.time_step_s, s.Field("time_step_s"), s.At("time_step_s"));
   if (const std::optional<double> v = s.Number("max_steps")) {
@@ -482,7 +484,176 @@ void ReadRun(Section& s, RunControl& run) {
   }
   s.Finish(
       "end_time_s, tail_s, output_interval_s, rel_tol, abs_tol, accumulation_threshold, "
-      "simultaneity_tol_s, method, time_step_s, max_steps");
+      "simultaneity_tol_s, method, time_step_s, max_steps, linear_algebra");
+}
+
+// The tables of a TOML array of tables ([[name]]), each with its line.
+std::vector<const toml::table*> ArrayOfTables(Section& top, std::string_view name) {
+  std::vector<const toml::table*> tables;
+  const toml::node* node = top.Get(name);
+  if (node == nullptr) {
+    return tables;
+  }
+  const toml::array* array = node->as_array();
+  if (array == nullptr) {
+    Fail(top.At(name), name, "must be an array of tables [[" + std::string(name) + "]]");
+  }
+  for (const toml::node& entry : *array) {
+    if (!entry.is_table()) {
+      Fail(Where{top.source(), LineOf(entry)}, name,
+           "must be an array of tables [[" + std::string(name) + "]]");
+    }
+    tables.push_back(entry.as_table());
+  }
+  return tables;
+}
+
+std::string Indexed(std::string_view name, std::size_t i) {
+  return std::string(name) + "[" + std::to_string(i) + "]";
+}
+
+// A deck index: a whole number in [0, n_decks).
+int DeckIndex(Section& s, std::string_view key, double value, std::size_t n_decks) {
+  if (!(value >= 0.0) || value != std::floor(value) || value >= static_cast<double>(n_decks)) {
+    Fail(s.At(key), s.Field(key),
+         "must be a deck index, a whole number in [0, " + std::to_string(n_decks) + ") (got " +
+             detail::Show(value) + ")");
+  }
+  return static_cast<int>(value);
+}
+
+void ReadSupport(Section& s, std::size_t n_decks, SupportSpec& support) {
+  if (s.Has("between")) {
+    s.Reject("deck", "give either deck (to the ground) or between = [i, j] (a link), not both");
+    const toml::node* node = s.Get("between");
+    const toml::array* pair = node->as_array();
+    if (pair == nullptr || pair->size() != 2 || !(*pair)[0].is_number() ||
+        !(*pair)[1].is_number()) {
+      Fail(s.At("between"), s.Field("between"), "must be two deck indices [i, j]");
+    }
+    const auto value = [](const toml::node& v) {
+      return v.is_integer() ? static_cast<double>(*v.value<int64_t>()) : *v.value<double>();
+    };
+    support.deck = DeckIndex(s, "between", value((*pair)[0]), n_decks);
+    support.other = DeckIndex(s, "between", value((*pair)[1]), n_decks);
+    if (support.deck == support.other) {
+      Fail(s.At("between"), s.Field("between"), "must name two different decks");
+    }
+  } else {
+    support.deck = DeckIndex(s, "deck", s.RequiredNumber("deck", "deck index from 0"), n_decks);
+    support.other = kGround;
+  }
+  const char* keys[] = {"k_x", "k_y", "k_theta"};
+  const char* damping_keys[] = {"c_x", "c_y", "c_theta"};
+  bool any_damping = false;
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (int d = 0; d < 3; ++d) {
+    support.stiffness(d) = s.Number(keys[d]).value_or(0.0);
+    CheckNonNegative(support.stiffness(d), s.Field(keys[d]), s.At(keys[d]));
+    if (const std::optional<double> v = s.Number(damping_keys[d])) {
+      CheckNonNegative(*v, s.Field(damping_keys[d]), s.At(damping_keys[d]));
+      c(d) = *v;
+      any_damping = true;
+    }
+  }
+  if (any_damping) {
+    s.Reject("xi", "give either xi or c_x, c_y, c_theta, not both");
+    support.damping = c;
+  } else if (support.other != kGround) {
+    s.Reject("xi", "a link between decks takes c_x, c_y, c_theta (xi is for ground supports)");
+    support.damping = c;
+  } else {
+    support.xi = s.Number("xi").value_or(0.05);
+    CheckRange(support.xi, 0.0, 1.0, true, s.Field("xi"), s.At("xi"));
+  }
+  s.Finish("deck, between, k_x, k_y, k_theta, c_x, c_y, c_theta, xi");
+}
+
+void ReadMultiAbutments(Section& s, MultiDeckSpec& spec) {
+  s.String("set", {"both"});
+  if (!s.Has("gap_m")) {
+    s.Missing("gap_m", "joint gap along x, m, or a table { \"+x\" = ..., \"-x\" = ... }");
+  }
+  if (const toml::node* gap_node = s.Get("gap_m"); gap_node->is_table()) {
+    Section g(*gap_node->as_table(), s.Field("gap_m"), s.source());
+    spec.gap_plus_m = g.RequiredNumber("+x", "gap of the +x abutment, m");
+    CheckNonNegative(spec.gap_plus_m, g.Field("+x"), g.At("+x"));
+    spec.gap_minus_m = g.RequiredNumber("-x", "gap of the -x abutment, m");
+    CheckNonNegative(spec.gap_minus_m, g.Field("-x"), g.At("-x"));
+    g.Finish("\"+x\", \"-x\"");
+  } else {
+    const double gap = s.RequiredNumber("gap_m", "");
+    CheckNonNegative(gap, s.Field("gap_m"), s.At("gap_m"));
+    spec.gap_plus_m = gap;
+    spec.gap_minus_m = gap;
+  }
+  spec.restitution = s.Number("eps_N").value_or(0.5);
+  CheckRange(spec.restitution, 0.0, 1.0, false, s.Field("eps_N"), s.At("eps_N"));
+  spec.friction = s.Number("mu").value_or(0.0);
+  CheckNonNegative(spec.friction, s.Field("mu"), s.At("mu"));
+  s.Finish("set, gap_m, eps_N, mu (with [[deck]] tables)");
+}
+
+// The [[deck]] form: decks in a row along x, joints between consecutive decks, supports.
+MultiDeckSpec ReadMultiDeck(Section& top, std::string_view source) {
+  MultiDeckSpec spec;
+  const std::vector<const toml::table*> decks = ArrayOfTables(top, "deck");
+  if (decks.empty()) {
+    Fail(Where{source, top.TableLine()}, "deck", "at least one [[deck]] table is required");
+  }
+  for (std::size_t i = 0; i < decks.size(); ++i) {
+    Section s(*decks[i], Indexed("deck", i), source);
+    DeckSpec d;
+    ReadDeck(s, d);
+    Body b;
+    b.mass_kg = d.mass_kg;
+    b.geometry = d.geometry;
+    b.inertia_kgm2 = d.inertia_kgm2 ? *d.inertia_kgm2 : UniformDeckInertia(d.mass_kg, d.geometry);
+    spec.decks.push_back(b);
+  }
+  const std::vector<const toml::table*> joints = ArrayOfTables(top, "joint");
+  if (joints.size() + 1 != decks.size()) {
+    const long line = joints.empty() ? 0 : LineOf(*joints.back());
+    Fail(Where{source, line}, "joint",
+         "needs " + std::to_string(decks.size() - 1) + " [[joint]] tables for " +
+             std::to_string(decks.size()) +
+             " [[deck]] tables, one after each deck but the last (got " +
+             std::to_string(joints.size()) + ")");
+  }
+  for (std::size_t i = 0; i < joints.size(); ++i) {
+    Section s(*joints[i], Indexed("joint", i), source);
+    JointSpec j;
+    j.gap_m = s.RequiredNumber("gap_m", "joint gap along x, m");
+    CheckNonNegative(j.gap_m, s.Field("gap_m"), s.At("gap_m"));
+    j.restitution = s.Number("eps_N").value_or(0.5);
+    CheckRange(j.restitution, 0.0, 1.0, false, s.Field("eps_N"), s.At("eps_N"));
+    j.friction = s.Number("mu").value_or(0.0);
+    CheckNonNegative(j.friction, s.Field("mu"), s.At("mu"));
+    if (spec.decks[i].geometry.skew_rad != spec.decks[i + 1].geometry.skew_rad) {
+      Fail(s.At("gap_m"), s.Field("gap_m"),
+           "decks " + std::to_string(i) + " and " + std::to_string(i + 1) +
+               " must have the same skew_deg (their end faces are parallel)");
+    }
+    s.Finish("gap_m, eps_N, mu");
+    spec.joints.push_back(j);
+  }
+  const toml::table* abutments = top.Table("abutments");
+  if (abutments == nullptr) {
+    Fail(Where{source, 0}, "abutments", "missing required section [abutments]");
+  }
+  {
+    Section s(*abutments, "abutments", source);
+    ReadMultiAbutments(s, spec);
+  }
+  const std::vector<const toml::table*> supports = ArrayOfTables(top, "support");
+  for (std::size_t i = 0; i < supports.size(); ++i) {
+    Section s(*supports[i], Indexed("support", i), source);
+    SupportSpec support;
+    ReadSupport(s, decks.size(), support);
+    spec.supports.push_back(support);
+  }
+  top.Reject("substructure", "not used with [[deck]] tables: give [[support]] tables instead");
+  return spec;
 }
 
 ModelFile Parse(const toml::table& root, std::string_view source,
@@ -498,6 +669,21 @@ ModelFile Parse(const toml::table& root, std::string_view source,
     }
     return *t;
   };
+  if (const toml::node* deck_node = root.get("deck");
+      deck_node != nullptr && deck_node->is_array()) {
+    MultiDeckSpec decks = ReadMultiDeck(top, source);
+    {
+      Section s(required("excitation"), "excitation", source);
+      ReadExcitation(s, base_dir, excitation);
+    }
+    if (const toml::table* t = top.Table("run")) {
+      Section s(*t, "run", source);
+      ReadRun(s, run);
+    }
+    top.Finish("sections [[deck]], [[joint]], abutments, [[support]], excitation, run");
+    Model model = BuildMultiDeckModel(decks, std::string(source));
+    return ModelFile{path, deck, std::move(model), excitation, run, std::move(decks)};
+  }
   {
     Section s(required("deck"), "deck", source);
     ReadDeck(s, deck);
@@ -520,7 +706,7 @@ ModelFile Parse(const toml::table& root, std::string_view source,
   }
   top.Finish("sections deck, substructure, abutments, excitation, run");
   Model model = BuildDeckModel(deck, std::string(source));
-  return ModelFile{path, deck, std::move(model), excitation, run};
+  return ModelFile{path, deck, std::move(model), excitation, run, std::nullopt};
 }
 
 }  // namespace

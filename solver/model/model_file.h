@@ -1,9 +1,10 @@
 #pragma once
 /// @file
 /// The model file (TOML, docs/model-format.md): [deck], [substructure], [abutments],
-/// [excitation], [run]. The parser returns plain data: the Model, an ExcitationSpec (turned into
-/// a records:: excitation by the program, since the solver does not see records/) and the
-/// RunControl of the integrator.
+/// [excitation], [run] for one deck, or [[deck]], [[joint]], [abutments], [[support]],
+/// [excitation], [run] for several decks in a row (docs/multispan.md). The parser returns plain
+/// data: the Model, an ExcitationSpec (turned into a records:: excitation by the program, since the
+/// solver does not see records/) and the RunControl of the integrator.
 
 #include <Eigen/Core>
 #include <filesystem>
@@ -14,6 +15,7 @@
 
 #include "solver/model/builders.h"
 #include "solver/model/model.h"
+#include "solver/model/multispan.h"
 
 namespace skewbridge::model {
 
@@ -57,6 +59,9 @@ struct RunControl {
   std::string method = "event-driven";     ///< run.method: "event-driven" | "time-stepping"
   double time_step_s = 1e-4;               ///< run.time_step_s (time-stepping only)
   long max_steps = 10'000'000;             ///< run.max_steps
+  /// run.linear_algebra: "auto" | "dense" | "sparse", the time-stepping integrator's
+  /// factorisation and contact assembly (auto: sparse from kSparseThresholdDof DOFs on).
+  std::string linear_algebra = "auto";
 
   /// The end time (s): end_time_s if given, else excitation_duration_s + tail_s.
   double EndTime(double excitation_duration_s) const;
@@ -65,10 +70,11 @@ struct RunControl {
 /// A parsed model file.
 struct ModelFile {
   std::filesystem::path path;  ///< the file read ("" for a string)
-  DeckSpec deck;               ///< the plain-data description the model was built from
+  DeckSpec deck;               ///< the single-deck description the model was built from
   Model model;
   ExcitationSpec excitation;
   RunControl run;
+  std::optional<MultiDeckSpec> decks;  ///< the [[deck]] form's description (then `deck` unused)
 };
 
 /// Reads and validates a model file.

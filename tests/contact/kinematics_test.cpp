@@ -100,8 +100,9 @@ void CheckJacobiansByFiniteDifferences(const model::Model& model, const Eigen::V
         return P0;
       }
       const int j = 3 * contact.face.body;
-      const Eigen::Vector2d local = Rotation(q0(j + 2)).transpose() * (P0 - q0.segment<2>(j));
-      return q.segment<2>(j) + Rotation(q(j + 2)) * local;
+      const Eigen::Vector2d X_j = model.body(contact.face.body).rest_position_m;
+      const Eigen::Vector2d local = Rotation(q0(j + 2)).transpose() * (P0 - X_j - q0.segment<2>(j));
+      return X_j + q.segment<2>(j) + Rotation(q(j + 2)) * local;
     };
     const double h = 1e-6;
     for (int k = 0; k < n; ++k) {

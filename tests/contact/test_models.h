@@ -28,8 +28,8 @@ inline model::Model FreeDeck(double a_deg, double eta0, double L_m, double delta
   return model::BuildDeckModel(spec);
 }
 
-/// Two decks: corner P1 of deck 0 against a face of deck 1 (a deck-to-deck joint), plus a
-/// ground contact for deck 1. K = C = 0.
+/// Two decks: corner P1 of deck 0 against the -x end face of deck 1 (a deck-to-deck joint),
+/// deck 1 resting 12 m further along x (a gap of about 1.8 m at rest). K = C = 0.
 inline model::Model TwoDecks() {
   model::Body a;
   a.name = "span1";
@@ -40,6 +40,7 @@ inline model::Model TwoDecks() {
   b.name = "span2";
   b.mass_kg = 1.5;
   b.inertia_kgm2 = 2.5;
+  b.rest_position_m = {12.0, 0.0};
   model::Contact joint;
   joint.name = "J1";
   joint.body = 0;
