@@ -1,0 +1,222 @@
+"""The `scripts/report` command: read cubes and run files, decide which figures each sweep
+supports from its axes, write them and a Markdown summary (summary.md) with the tables."""
+import argparse
+import os
+import re
+import sys
+
+import numpy as np
+
+from . import figures
+from .data import ReportError, load_cube, load_run
+
+# Axes that are not curve parameters of a spectrum: the pulse is the column, w0/w_g the
+# abscissa, a record axis a sample of the suite.
+NON_CURVE_AXES = ("pulse", "w0_over_wg", "record")
+
+
+def _safe(name):
+    return re.sub(r"[^A-Za-z0-9_.-]", "_", name)
+
+
+def _curve_axes(sweep, exclude=()):
+    return [k for k in sweep.axis_order
+            if k not in NON_CURVE_AXES and k not in exclude and len(sweep.axes[k]) > 1]
+
+
+def plan(sweep):
+    """The figures a sweep supports as (kind, curve_key) and the ones it does not, as
+    (kind, reason). Pure: decided from axes, family and responses alone."""
+    todo, skipped = [], []
+    resp = sweep.responses
+    curves = _curve_axes(sweep)
+    spectra_ok = all(r in resp for r in ("x_norm", "y_norm", "theta_norm"))
+    if not sweep.has_axis("w0_over_wg", 2):
+        skipped.append(("spectra", "no w0_over_wg axis with two or more values"))
+    elif sweep.has_axis("record", 2):
+        skipped.append(("spectra", "a record axis: one spectrum per record is not plotted"))
+    elif not spectra_ok:
+        skipped.append(("spectra", "the cube lacks x_norm, y_norm or theta_norm"))
+    elif len(curves) > 1:
+        skipped.append(("spectra", f"{len(curves)} curve axes ({', '.join(curves)}); a spectrum "
+                        "figure takes one besides pulse and w0_over_wg"))
+    else:
+        key = curves[0] if curves else None
+        todo.append(("pi_delta_family" if key == "Pi_delta" else "spectra", key))
+    if not sweep.has_axis("eta0", 2):
+        skipped.append(("rotation_vs_eta0", "no eta0 axis with two or more values"))
+    elif "theta_norm" not in resp:
+        skipped.append(("rotation_vs_eta0", "the cube lacks theta_norm"))
+    else:
+        others = _curve_axes(sweep, exclude=("eta0",))
+        if len(others) > 1:
+            skipped.append(("rotation_vs_eta0", f"{len(others)} curve axes besides eta0 "
+                            f"({', '.join(others)}); the figure takes one"))
+        else:
+            todo.append(("rotation_vs_eta0", others[0] if others else None))
+    if not sweep.has_axis("record", 2):
+        skipped.append(("correlation", "no record axis with two or more records"))
+    else:
+        extra = [k for k in _curve_axes(sweep) if k != "Pi_delta"]
+        if extra:
+            skipped.append(("correlation", f"axes besides record and Pi_delta: {', '.join(extra)}"))
+        else:
+            if all(r in resp for r in ("theta_m", "L_e")):
+                todo.append(("correlation_theta_vs_Le", None))
+            else:
+                skipped.append(("correlation_theta_vs_Le", "the cube lacks theta_m or L_e"))
+            if all(r in resp for r in ("theta_norm", "w0x_over_wg")):
+                todo.append(("correlation_rotation_vs_w0x", None))
+            else:
+                skipped.append(("correlation_rotation_vs_w0x",
+                                "the cube lacks theta_norm or w0x_over_wg"))
+    return todo, skipped
+
+
+def _fmt(v):
+    if isinstance(v, str):
+        return v
+    if v is None or (isinstance(v, float) and not np.isfinite(v)):
+        return "–"
+    if isinstance(v, (int, np.integer)):
+        return str(int(v))
+    return f"{v:.4g}"
+
+
+def _table(header, rows):
+    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    lines += ["| " + " | ".join(_fmt(v) for v in row) + " |" for row in rows]
+    return "\n".join(lines)
+
+
+def _status_counts(sweep):
+    codes, counts = np.unique(sweep.status, return_counts=True)
+    return ", ".join(f"{sweep.status_names.get(int(c), str(int(c)))} {int(n)}"
+                     for c, n in zip(codes, counts))
+
+
+def _tables_for(kind, sweep, rows, curve_key):
+    curve = figures.AXIS_LABEL.get(curve_key, curve_key or "")
+    w_label = "w0x/w_g" if sweep.family == "pilot-bridge" else "w0/w_g"
+    if kind in ("spectra", "pi_delta_family"):
+        by_key = {}
+        for pulse, value, resp, peak, w in rows:
+            by_key.setdefault((pulse, value), {})[resp] = (peak, w)
+        out = []
+        for (pulse, value), d in by_key.items():
+            row = [pulse, value]
+            for resp in ("x_norm", "y_norm", "theta_norm"):
+                row += list(d.get(resp, (None, None)))
+            out.append(row)
+        header = ["pulse", curve or "-"]
+        for resp in ("x", "y", "θ"):
+            header += [f"peak {resp}", f"{w_label} at peak"]
+        return _table(header, out)
+    if kind == "rotation_vs_eta0":
+        return _table(["pulse", curve or "-", "η0", "max θm ρ ωg²/ag", f"{w_label} at max",
+                       "impacts at max"], rows)
+    if kind == "correlation_theta_vs_Le":
+        out = []
+        stored_any = False
+        for pi, own, stored in rows:
+            row = [pi, own["n"], own["pearson"], own["spearman"], own["slope"], own["intercept"],
+                   own["r2"], own["n_log"]]
+            if stored:
+                stored_any = True
+                row.append(", ".join(f"{k} {v:.4g}" for k, v in sorted(stored.items())))
+            out.append(row)
+        header = ["Π_δ", "records", "Pearson", "Spearman", "log-log slope", "intercept", "R²",
+                  "pairs with θm > 0"]
+        if stored_any:
+            header.append("stored in the cube (correlation/)")
+        return _table(header, out)
+    if kind == "correlation_rotation_vs_w0x":
+        return _table(["Π_δ", "group", "records", "median θm ρ ωg²/ag", "max"], rows)
+    return ""
+
+
+def main(argv):
+    parser = argparse.ArgumentParser(
+        prog="report", description="Figures and a Markdown summary from skewbridge cubes "
+        "(skewbridge sweep) and run files (skewbridge run --out).")
+    parser.add_argument("cubes", nargs="*", metavar="CUBE.h5")
+    parser.add_argument("--run", action="append", default=[], metavar="RUN.h5",
+                        help="a run file with histories (repeatable)")
+    parser.add_argument("--out", required=True, metavar="DIR", help="output folder")
+    parser.add_argument("--pdf", action="store_true", help="also write each figure as PDF")
+    parser.add_argument("--allow-partial", action="store_true",
+                        help="accept incomplete cubes (complete = 0); missing cells are NaN")
+    args = parser.parse_args(argv)
+    try:
+        return run(args)
+    except ReportError as err:
+        print(f"report: error: {err}", file=sys.stderr)
+        return 2
+
+
+def run(args):
+    if not args.cubes and not args.run:
+        raise ReportError("nothing to do: give at least one CUBE.h5 or --run RUN.h5")
+    sweeps = [s for path in args.cubes for s in load_cube(path, args.allow_partial)]
+    runs = [load_run(path) for path in args.run]
+    if os.path.exists(args.out) and not os.path.isdir(args.out):
+        raise ReportError(f"--out {args.out}: exists and is not a folder")
+    os.makedirs(args.out, exist_ok=True)
+
+    md = ["# skewbridge report", ""]
+    if sweeps:
+        md += ["## Sweeps", "", _table(
+            ["file", "sweep", "family", "axes", "cells", "complete", "status"],
+            [(os.path.basename(s.path), s.name, s.family,
+              " × ".join(f"{k} ({len(s.axes[k])})" for k in s.axis_order), s.cells(),
+              "yes" if s.complete else "no", _status_counts(s)) for s in sweeps]), ""]
+    written, skipped_all, used = [], [], set()
+    for sweep in sweeps:
+        todo, skipped = plan(sweep)
+        for kind, reason in skipped:
+            skipped_all.append((sweep.name, kind, reason))
+        for kind, curve_key in todo:
+            name = f"{kind}_{_safe(sweep.name)}"
+            while name in used:
+                name += "_"
+            used.add(name)
+            if kind in ("spectra", "pi_delta_family"):
+                path, rows = figures.spectra(sweep, curve_key, args.out, name, args.pdf)
+            elif kind == "rotation_vs_eta0":
+                path, rows = figures.rotation_vs_eta0(sweep, curve_key, args.out, name, args.pdf)
+            elif kind == "correlation_theta_vs_Le":
+                path, rows = figures.correlation_theta_vs_le(sweep, args.out, name, args.pdf)
+            else:
+                path, rows = figures.correlation_rotation_vs_w0x(sweep, args.out, name, args.pdf)
+            written.append(path)
+            md += [f"## {sweep.name}: {kind.replace('_', ' ')}", "",
+                   f"![{name}]({os.path.basename(path)})", "",
+                   _tables_for(kind, sweep, rows, curve_key), ""]
+    for r in runs:
+        name = "history_" + _safe(os.path.splitext(os.path.basename(r.path))[0])
+        while name in used:
+            name += "_"
+        used.add(name)
+        path, rows = figures.history(r, args.out, name, args.pdf)
+        written.append(path)
+        energy = [(k, v) for k, v in sorted(r.energy.items())]
+        md += [f"## Run {os.path.basename(r.path)}: time histories", "",
+               f"![{name}]({os.path.basename(path)})", "",
+               _table(["quantity", "max abs (integrator)", "t of the sampled max [s]"], rows), "",
+               _table(["impacts", "plastic closures", "min impact separation [s]"],
+                      [(int(r.summary_attrs.get("impacts", 0)),
+                        int(r.summary_attrs.get("plastic_closures", 0)),
+                        float(r.summary_attrs.get("min_impact_separation_s", np.inf)))]), "",
+               _table(["energy term", "J"], energy), ""]
+    if skipped_all:
+        md += ["## Figures not made", "",
+               _table(["sweep", "figure", "why"], skipped_all), ""]
+    summary = os.path.join(args.out, "summary.md")
+    with open(summary, "w", encoding="utf-8") as f:
+        f.write("\n".join(md))
+    for path in written:
+        print(f"wrote {path}")
+    print(f"wrote {summary}")
+    for name, kind, reason in skipped_all:
+        print(f"skipped {kind} for {name}: {reason}")
+    return 0

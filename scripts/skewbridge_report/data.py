@@ -1,0 +1,182 @@
+"""Reading skewbridge cubes (docs/hdf5-layout.md) and run files (docs/run-output.md) with h5py.
+
+Every problem with an input file is raised as ReportError with one line naming the file."""
+import os
+from dataclasses import dataclass, field
+
+import h5py
+import numpy as np
+
+
+class ReportError(Exception):
+    """Bad input: a missing, foreign or incomplete file; the message is one line."""
+
+
+def _text(value):
+    """An attribute or label as str (h5py gives bytes for some variable-length strings)."""
+    if isinstance(value, bytes):
+        return value.decode("utf-8")
+    if isinstance(value, np.ndarray) and value.shape == ():
+        return _text(value[()])
+    return str(value)
+
+
+@dataclass
+class Sweep:
+    """One /sweeps/<name> group read into memory: axes, responses and per-cell status."""
+
+    path: str
+    name: str
+    family: str
+    complete: bool
+    axis_order: list
+    axes: dict  # key -> np.ndarray of float, or list of str for label axes
+    responses: dict  # name -> ndarray of shape = axis sizes in axis_order
+    status: np.ndarray
+    status_names: dict  # code -> name
+    fixed: dict
+    spec_text: str
+    response_attrs: dict  # name -> {attribute: value} of responses/<name>
+    extra: dict = field(default_factory=dict)  # optional groups (records/, correlation/)
+
+    def shape(self):
+        return tuple(len(self.axes[k]) for k in self.axis_order)
+
+    def has_axis(self, key, min_size=1):
+        return key in self.axes and len(self.axes[key]) >= min_size
+
+    def cells(self):
+        return int(np.prod(self.shape()))
+
+    def param(self, key):
+        """The value of a parameter fixed over the sweep, or None."""
+        return self.fixed.get(key)
+
+
+def _open_h5(path):
+    if not os.path.exists(path):
+        raise ReportError(f"{path}: no such file")
+    if os.path.isdir(path):
+        raise ReportError(f"{path}: is a directory, expected an HDF5 file")
+    try:
+        return h5py.File(path, "r", locking=False)
+    except OSError:
+        raise ReportError(f"{path}: not an HDF5 file") from None
+
+
+def _read_group_tree(group):
+    """Every dataset and attribute below a group, as a nested dict of numpy values."""
+    out = {"attrs": {k: group.attrs[k] for k in group.attrs}}
+    for key, item in group.items():
+        if isinstance(item, h5py.Dataset):
+            out[key] = item[()]
+            out[key + "@attrs"] = {k: item.attrs[k] for k in item.attrs}
+        else:
+            out[key] = _read_group_tree(item)
+    return out
+
+
+def load_cube(path, allow_partial=False):
+    """All sweeps of a cube file. @throws ReportError on a missing, foreign or incomplete file."""
+    with _open_h5(path) as f:
+        fmt = _text(f.attrs.get("format", ""))
+        if fmt == "skewbridge-run":
+            raise ReportError(f"{path}: is a skewbridge run file; pass it with --run")
+        if fmt != "skewbridge-cube":
+            raise ReportError(f"{path}: not a skewbridge cube (root attribute format is "
+                              f"'{fmt}', expected 'skewbridge-cube')")
+        if "sweeps" not in f or len(f["sweeps"]) == 0:
+            raise ReportError(f"{path}: a skewbridge cube without sweeps")
+        sweeps = []
+        for name, g in f["sweeps"].items():
+            complete = int(g.attrs.get("complete", 0)) == 1
+            if not complete and not allow_partial:
+                raise ReportError(f"{path}: sweep '{name}' is incomplete (complete = 0); "
+                                  "finish it with --resume or pass --allow-partial")
+            axis_order = [_text(k) for k in g.attrs["axis_order"]]
+            axes = {}
+            for key in axis_order:
+                values = g["axes"][key][()]
+                if values.dtype.kind in "OSU":
+                    axes[key] = [_text(v) for v in values]
+                else:
+                    axes[key] = np.asarray(values, dtype=float)
+            responses = {_text(r): np.asarray(g["responses"][_text(r)][()], dtype=float)
+                         for r in g.attrs["response_order"]}
+            status = np.asarray(g["status"][()])
+            names = dict(zip((int(c) for c in g["status"].attrs["status_codes"]),
+                             (_text(n) for n in g["status"].attrs["status_names"])))
+            if "done" in g:
+                not_done = np.asarray(g["done"][()]) == 0
+                for values in responses.values():
+                    values[not_done] = np.nan
+            fixed = {}
+            if "fixed" in g:
+                for k in g["fixed"].attrs:
+                    v = g["fixed"].attrs[k]
+                    fixed[k] = _text(v) if isinstance(v, (str, bytes)) else float(v)
+            extra = {key: _read_group_tree(g[key]) for key in ("records", "correlation")
+                     if key in g}
+            for key in g["responses"]:
+                if key not in responses:
+                    responses[key] = np.asarray(g["responses"][key][()], dtype=float)
+            response_attrs = {key: dict(g["responses"][key].attrs) for key in g["responses"]}
+            sweeps.append(Sweep(path=path, name=name, family=_text(g.attrs.get("family", "")),
+                                complete=complete, axis_order=axis_order, axes=axes,
+                                responses=responses, status=status, status_names=names,
+                                fixed=fixed, spec_text=_text(g.attrs.get("spec_text", "")),
+                                response_attrs=response_attrs,
+                                extra=extra))
+        return sweeps
+
+
+@dataclass
+class Run:
+    """One run file: histories, events and summary (docs/run-output.md)."""
+
+    path: str
+    status: str
+    n_bodies: int
+    contact_names: list
+    t_s: np.ndarray
+    q: np.ndarray  # [n, n_dof]
+    state: np.ndarray  # [n, n_contacts], 0 open
+    event_t_s: np.ndarray
+    event_kind: np.ndarray
+    event_contact: np.ndarray
+    kind_names: dict  # code -> name
+    max_abs_q: np.ndarray
+    summary_attrs: dict
+    energy: dict
+
+    def kind_code(self, name):
+        for code, n in self.kind_names.items():
+            if n == name:
+                return code
+        return None
+
+
+def load_run(path):
+    """A run file written by `skewbridge run --out`. @throws ReportError without histories."""
+    with _open_h5(path) as f:
+        fmt = _text(f.attrs.get("format", ""))
+        if fmt == "skewbridge-cube":
+            raise ReportError(f"{path}: is a skewbridge cube; pass it without --run")
+        if fmt != "skewbridge-run":
+            raise ReportError(f"{path}: not a skewbridge run file (root attribute format is "
+                              f"'{fmt}', expected 'skewbridge-run')")
+        if "histories" not in f:
+            raise ReportError(f"{path}: the run file has no histories; rerun with "
+                              "--output-interval S")
+        ev = f["events"]
+        kinds = dict(zip((int(c) for c in ev["kind"].attrs["kind_codes"]),
+                         (_text(n) for n in ev["kind"].attrs["kind_names"])))
+        return Run(path=path, status=_text(f.attrs["status"]), n_bodies=int(f.attrs["n_bodies"]),
+                   contact_names=[_text(n) for n in f.attrs["contact_names"]],
+                   t_s=f["histories/t_s"][()], q=f["histories/q"][()],
+                   state=f["histories/state"][()], event_t_s=ev["t_s"][()],
+                   event_kind=ev["kind"][()], event_contact=ev["contact"][()],
+                   kind_names=kinds, max_abs_q=f["summary/max_abs_q"][()],
+                   summary_attrs={k: f["summary"].attrs[k] for k in f["summary"].attrs},
+                   energy={k: f["energy"].attrs[k] for k in f["energy"].attrs
+                           if k.endswith("_J")})
