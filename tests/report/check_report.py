@@ -1,0 +1,172 @@
+#!/usr/bin/python3
+"""Checks the output of scripts/report on the cubes and run file made by report_test.sh:
+
+- every expected figure exists as PNG and PDF, has the pixel size the figure kind fixes, and is
+  not blank (grey-level variance above 1e-3, more than 2 % of pixels not white); no other PNG;
+- the sweeps that cannot support a figure are listed with the reason;
+- the summary's tables agree with the cube read directly by h5py (spectrum peaks, the maximum
+  rotation over w0/w_g per eta0);
+- the correlation statistics (Pearson, Spearman, log-log slope, intercept, R^2) agree with
+  scipy.stats, an implementation independent of the report's own numpy code, and with the
+  statistics stored in the cube when it has a correlation/ group.
+
+usage: check_report.py OUT_DIR REPORT_LOG SPECTRA.h5 PIDELTA.h5 ETA0.h5 RECORDS.h5 RUN.h5"""
+import os
+import sys
+
+import h5py
+import matplotlib.image
+import numpy as np
+import scipy.stats
+
+EXPECTED = {  # file -> (width, height) in pixels
+    "spectra_spectra.png": (1000, 900),
+    "pi_delta_family_pidelta.png": (1000, 900),
+    "rotation_vs_eta0_eta0.png": (1000, 900),
+    "correlation_theta_vs_Le_records.png": (1200, 480),
+    "correlation_rotation_vs_w0x_records.png": (1200, 480),
+    "history_run.png": (1000, 900),
+}
+EXPECTED_SKIPS = [
+    "skipped spectra for eta0: 2 curve axes (eta0, W0_over_w0)",
+    "skipped correlation for spectra: no record axis",
+    "skipped rotation_vs_eta0 for spectra: no eta0 axis",
+    "skipped spectra for records: no w0_over_wg axis",
+]
+
+
+def check_images(out):
+    pngs = sorted(f for f in os.listdir(out) if f.endswith(".png"))
+    assert pngs == sorted(EXPECTED), f"PNG files {pngs}, expected {sorted(EXPECTED)}"
+    for name, (width, height) in EXPECTED.items():
+        img = matplotlib.image.imread(os.path.join(out, name))
+        assert img.shape[:2] == (height, width), f"{name}: {img.shape[1]}x{img.shape[0]} px"
+        grey = img[..., :3].mean(axis=2)
+        variance = float(grey.var())
+        inked = float(np.mean(grey < 0.95))
+        assert variance > 1e-3, f"{name}: blank (grey variance {variance:.2e})"
+        assert inked > 0.02, f"{name}: blank ({inked:.1%} of pixels not white)"
+        pdf = os.path.join(out, name[:-4] + ".pdf")
+        assert os.path.getsize(pdf) > 1000, f"{pdf} missing or empty"
+        print(f"{name}: {width}x{height} px, grey variance {variance:.3f}, {inked:.1%} inked")
+
+
+def table_rows(summary, heading):
+    """The data rows (lists of cells) of the first table after a heading."""
+    lines = summary.splitlines()
+    start = next(i for i, line in enumerate(lines) if line.startswith("## " + heading))
+    rows, seen = [], False
+    for line in lines[start + 1:]:
+        if line.startswith("|"):
+            seen = True
+            cells = [c.strip() for c in line.strip("|").split("|")]
+            if not cells[0].startswith("---") and not line.startswith("|---"):
+                rows.append(cells)
+        elif seen:
+            break
+    return rows[1:]  # without the header
+
+
+def close(a, b, rel=2e-3):
+    return abs(a - b) <= rel * max(abs(a), abs(b), 1e-300)
+
+
+def check_spectra_table(summary, path):
+    g = h5py.File(path, "r")["sweeps/spectra"]
+    assert list(g.attrs["axis_order"]) == ["pulse", "a_deg", "w0_over_wg"]
+    a = g["axes/a_deg"][()]
+    w = g["axes/w0_over_wg"][()]
+    theta = g["responses/theta_norm"][()]
+    rows = table_rows(summary, "spectra: spectra")
+    assert len(rows) == 4, rows
+    for row in rows:
+        ip = ["cosine", "sine"].index(row[0])
+        ia = int(np.argmin(abs(a - float(row[1]))))
+        k = int(np.nanargmax(theta[ip, ia]))
+        assert close(float(row[6]), theta[ip, ia, k]), (row, theta[ip, ia, k])
+        assert close(float(row[7]), w[k]), (row, w[k])
+
+
+def check_eta0_table(summary, path):
+    g = h5py.File(path, "r")["sweeps/eta0"]
+    assert list(g.attrs["axis_order"]) == ["eta0", "W0_over_w0", "w0_over_wg"]
+    theta = g["responses/theta_norm"][()]
+    peak = np.nanmax(theta, axis=2)
+    rows = table_rows(summary, "eta0: rotation vs eta0")
+    assert len(rows) == 6, rows
+    for row in rows:
+        iw = [1.0, 2.0].index(float(row[1]))
+        ie = [0.5, 1.5, 3.0].index(float(row[2]))
+        assert close(float(row[3]), peak[ie, iw]) or peak[ie, iw] < 1e-12, (row, peak[ie, iw])
+
+
+def check_correlation(summary, path):
+    sys.dont_write_bytecode = True
+    sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "scripts"))
+    from skewbridge_report import stats
+    g = h5py.File(path, "r")["sweeps/records"]
+    order = list(g.attrs["axis_order"])
+    assert order == ["record", "Pi_delta"], order
+    le = g["responses/L_e"][()]
+    theta = g["responses/theta_m"][()]
+    rows = table_rows(summary, "records: correlation theta vs Le")
+    assert len(rows) == 3, rows
+    for ipi, row in enumerate(rows):
+        x, y = le[:, ipi], theta[:, ipi]
+        own = stats.correlation_row(x, y)
+        ref_p = scipy.stats.pearsonr(x, y)[0]
+        ref_s = scipy.stats.spearmanr(x, y)[0]
+        pos = y > 0
+        fit = scipy.stats.linregress(np.log10(x[pos]), np.log10(y[pos]))
+        for key, ref in (("pearson", ref_p), ("spearman", ref_s), ("slope", fit.slope),
+                         ("intercept", fit.intercept), ("r2", fit.rvalue ** 2)):
+            assert abs(own[key] - ref) < 1e-10, (ipi, key, own[key], ref)
+        assert close(float(row[2]), ref_p) and close(float(row[3]), ref_s), (row, ref_p, ref_s)
+        print(f"Pi_delta index {ipi}: Pearson {ref_p:.4f}, Spearman {ref_s:.4f}, "
+              f"slope {fit.slope:.4f}, R^2 {fit.rvalue ** 2:.4f} (scipy agrees)")
+    if "correlation" in g:
+        check_stored_correlation(g, le, theta)
+
+
+def check_stored_correlation(g, le, theta):
+    """The cube's own statistics against scipy, matched by dataset name."""
+    corr = g["correlation"]
+    refs = {}
+    for ipi in range(le.shape[1]):
+        x, y = le[:, ipi], theta[:, ipi]
+        pos = y > 0
+        fit = scipy.stats.linregress(np.log10(x[pos]), np.log10(y[pos]))
+        refs.setdefault("pearson", []).append(scipy.stats.pearsonr(x, y)[0])
+        refs.setdefault("spearman", []).append(scipy.stats.spearmanr(x, y)[0])
+        refs.setdefault("slope", []).append(fit.slope)
+        refs.setdefault("intercept", []).append(fit.intercept)
+        refs.setdefault("r2", []).append(fit.rvalue ** 2)
+    matched = 0
+    for name, ds in corr.items():
+        if not isinstance(ds, h5py.Dataset):
+            continue
+        key = next((k for k in refs if k in name.lower()), None)
+        if key is None or ds.shape != (le.shape[1],):
+            continue
+        assert np.allclose(ds[()], refs[key], rtol=1e-6, atol=1e-9), (name, ds[()], refs[key])
+        matched += 1
+    print(f"stored correlation/: {matched} statistics agree with scipy")
+
+
+def main(out, log, spectra, pidelta, eta0, records, run):
+    check_images(out)
+    text = open(log).read()
+    for line in EXPECTED_SKIPS:
+        assert line in text, f"report log lacks '{line}':\n{text}"
+    summary = open(os.path.join(out, "summary.md"), encoding="utf-8").read()
+    for name in EXPECTED:
+        assert f"]({name})" in summary, f"summary.md does not show {name}"
+    check_spectra_table(summary, spectra)
+    check_eta0_table(summary, eta0)
+    check_correlation(summary, records)
+    del pidelta, run
+    print("check_report: ok")
+
+
+if __name__ == "__main__":
+    main(*sys.argv[1:8])
