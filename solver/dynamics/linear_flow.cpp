@@ -34,6 +34,7 @@ LinearFlow::LinearFlow(const Eigen::Ref<const Eigen::MatrixXd>& M,
   A_base_.block(n_, ia, n_, 2) = -r_;
   A_base_.block(n_, ip, n_, 2) = -r_;
   A_base_.block(ia, is, 2, 2).setIdentity();
+  A_u_ = A_base_.middleRows(n_, n_);
 
   // Ground power -u^T M r (a + p) and damping power u^T C u as symmetric forms on z.
   Q_input_ = Eigen::MatrixXd::Zero(N, N);
@@ -99,26 +100,37 @@ void LinearFlow::Compute(double tau_s, double omega_radps, FreePropagator& out) 
 
 const FreePropagator& LinearFlow::Propagator(double tau_s, double omega_radps) {
   SB_DEMAND(tau_s > 0.0 && std::isfinite(tau_s), "LinearFlow: step must be positive");
-  for (const FreePropagator& p : cache_) {
-    if (p.tau_s == tau_s && p.omega_radps == omega_radps) {
-      return p;
+  ++clock_;
+  for (std::size_t i = 0; i < cache_.size(); ++i) {
+    if (cache_[i].tau_s == tau_s && cache_[i].omega_radps == omega_radps) {
+      last_use_[i] = clock_;
+      return cache_[i];
     }
   }
   if (cache_.size() < kCacheCapacity) {
     cache_.emplace_back();
+    last_use_.push_back(clock_);
     Compute(tau_s, omega_radps, cache_.back());
     return cache_.back();
   }
-  FreePropagator& slot = cache_[next_slot_];
-  next_slot_ = (next_slot_ + 1) % kCacheCapacity;
-  Compute(tau_s, omega_radps, slot);
-  return slot;
+  // Least recently used: a record's nominal step and a pulse's pieces stay while the odd step
+  // sizes (a piece's last step) come and go.
+  const std::size_t slot = static_cast<std::size_t>(
+      std::min_element(last_use_.begin(), last_use_.end()) - last_use_.begin());
+  last_use_[slot] = clock_;
+  Compute(tau_s, omega_radps, cache_[slot]);
+  return cache_[slot];
 }
 
 void LinearFlow::Derivative(double omega_radps, const Eigen::Ref<const Eigen::VectorXd>& z,
                             Eigen::Ref<Eigen::VectorXd> dz) const {
-  dz.noalias() = A_base_ * z;
-  const int ip = 2 * n_ + 4, ik = 2 * n_ + 6;
+  // A_hat is sparse by blocks: dq = u, du from the n dense rows, and the generator's own rows
+  // (da = slope, dslope = 0, dp = omega k, dk = -omega p).
+  const int ia = 2 * n_, is = ia + 2, ip = ia + 4, ik = ia + 6;
+  dz.head(n_) = z.segment(n_, n_);
+  dz.segment(n_, n_) = A_u_.lazyProduct(z);
+  dz.segment<2>(ia) = z.segment<2>(is);
+  dz.segment<2>(is).setZero();
   dz.segment<2>(ip) = omega_radps * z.segment<2>(ik);
   dz.segment<2>(ik) = -omega_radps * z.segment<2>(ip);
 }
@@ -133,8 +145,9 @@ void LinearFlow::Powers(const Eigen::Ref<const Eigen::VectorXd>& z, double& inpu
                         double& damping_W) const {
   const auto u = z.segment(n_, n_);
   const Eigen::Vector2d ag = z.segment<2>(2 * n_) + z.segment<2>(2 * n_ + 4);
-  input_W = -u.dot(Mr_ * ag);
-  damping_W = u.dot(C_ * u);
+  // Coefficient-wise products: no temporary in the quadrature of every partial step.
+  input_W = -(ag(0) * u.dot(Mr_.col(0)) + ag(1) * u.dot(Mr_.col(1)));
+  damping_W = u.dot(C_.lazyProduct(u));
 }
 
 FreeDenseOutput::FreeDenseOutput(int n_aug, int max_terms)
@@ -170,9 +183,21 @@ void FreeDenseOutput::Build(const LinearFlow& flow, double omega_radps,
 }
 
 void FreeDenseOutput::Evaluate(double tau_s, Eigen::Ref<Eigen::VectorXd> z) const {
-  z = coefficients_.col(terms_ - 1);
+  EvaluateHead(tau_s, static_cast<int>(coefficients_.rows()), z);
+}
+
+void FreeDenseOutput::EvaluateHead(double tau_s, int count, Eigen::Ref<Eigen::VectorXd> z) const {
+  SB_ASSERT(count <= coefficients_.rows() && z.size() >= count, "FreeDenseOutput: bad count");
+  // Horner on the raw columns: the hot path of event location and partial steps.
+  const Eigen::Index n = count;
+  const Eigen::Index stride = coefficients_.rows();
+  const double* c = coefficients_.data();
+  double* out = z.data();
+  const double* last = c + (terms_ - 1) * stride;
+  for (Eigen::Index i = 0; i < n; ++i) out[i] = last[i];
   for (int k = terms_ - 2; k >= 0; --k) {
-    z = z * tau_s + coefficients_.col(k);
+    const double* ck = c + k * stride;
+    for (Eigen::Index i = 0; i < n; ++i) out[i] = out[i] * tau_s + ck[i];
   }
 }
 

@@ -34,9 +34,9 @@ struct FreePropagator {
 };
 
 /// The contact-free linear flow of a model: matrices, generator bookkeeping and a cache of
-/// propagators keyed by (tau, omega). A record with a fixed sample interval needs one propagator;
-/// a pulse two. The cache is a pure function of (model, tau, omega): reusing it across runs never
-/// changes a result.
+/// propagators keyed by the exact (tau, omega), least recently used out. A record with a fixed
+/// sample interval needs one propagator; a pulse two. The cache is a pure function of (model, tau,
+/// omega): reusing it across runs never changes a result.
 class LinearFlow {
  public:
   /// @param M, K, C n x n mass (kg, kg m^2), stiffness and damping matrices;
@@ -82,10 +82,12 @@ class LinearFlow {
   Eigen::MatrixXd M_, K_, C_, r_;
   Eigen::MatrixXd Mr_;         // M r, n x 2
   Eigen::MatrixXd A_base_;     // A_hat without the omega entries
+  Eigen::MatrixXd A_u_;        // its n rows of du/dt
   Eigen::MatrixXd Q_input_;    // quadratic form of the ground's power on z
   Eigen::MatrixXd Q_damping_;  // quadratic form of the damping power on z
   std::vector<FreePropagator> cache_;
-  std::size_t next_slot_ = 0;
+  std::vector<unsigned long> last_use_;  // per cache entry, the clock of its last use (LRU)
+  unsigned long clock_ = 0;
 };
 
 /// The exact solution inside one step as a Taylor series z(tau) = sum_k c_k tau^k, c_k = A_hat^k
@@ -104,6 +106,10 @@ class FreeDenseOutput {
 
   /// z(tau) (s since the step start).
   void Evaluate(double tau_s, Eigen::Ref<Eigen::VectorXd> z) const;
+
+  /// The first `count` components of z(tau) (the rest of z untouched).
+  /// @pre count <= the augmented size, z.size() >= count.
+  void EvaluateHead(double tau_s, int count, Eigen::Ref<Eigen::VectorXd> z) const;
 
   /// dz/dtau at tau.
   void EvaluateDerivative(double tau_s, Eigen::Ref<Eigen::VectorXd> dz) const;

@@ -105,6 +105,11 @@ class Integrator {
   void RecordOutputs(double t0, double t1, StateAt&& at);
   void RecordSample(double t, const Eigen::Ref<const Vec>& q, const Eigen::Ref<const Vec>& u);
   void RefreshGaps();
+  // 1/2 u^T M u (J), M diagonal.
+  double Kinetic() { return 0.5 * u().dot(model_.mass_diagonal().cwiseProduct(u())); }
+  // Gaps and normal rates of every contact at (q, u), without the rest of the kinematics.
+  void GapsAndRates(const Eigen::Ref<const Vec>& q, const Eigen::Ref<const Vec>& u, Vec& gap,
+                    Vec& gamma_N);
   double FreeStepSize(const ExcitationPiece& piece) const;
   Eigen::Vector2d GroundAcceleration(double t) const { return excitation_.At(t); }
 
@@ -117,10 +122,12 @@ class Integrator {
   long steps_ = 0;
   Vec z_, z_new_, z_eval_, dz_;
   Vec y_, dy_, y_eval_, atol_;
+  Vec cu_;  // C u
   Vec q_a_, u_a_, q_b_, u_b_, q_e_, u_e_, q_r_, u_r_, h_, du_, w_N_, w_T_;
   Vec gap0_, gN0_, gap1_, gN1_;
-  Vec f0_, f1_, f_eval_;   // closed-contact event functions: step start, end, trial
-  std::vector<int> mode_;  // -1 open, else ClosedMode
+  std::vector<double> cos_, sin_;  // per body, of theta at the last GapsAndRates
+  Vec f0_, f1_, f_eval_;           // closed-contact event functions: step start, end, trial
+  std::vector<int> mode_;          // -1 open, else ClosedMode
   int closed_count_ = 0;
   std::vector<contact::ClosedContact> closed_list_;
   std::vector<int> index_set_, persistent_, forced_;
@@ -128,6 +135,7 @@ class Integrator {
   Vec lambda_N_, lambda_T_;     // per contact, from the last ActiveForces
   double friction_power_ = 0.0;
   double h_rk_ = 0.0;
+  double h_free_ = 0.0;  // the last nominal free step (s)
   double v_tol_ = 0.0, v_acc_ = 0.0, gap_tol_ = 0.0;
   double next_output_t_ = kInf;
   double last_impact_t_ = -kInf;
@@ -194,7 +202,8 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   y_ = Vec::Zero(2 * n_ + 3);
   dy_ = y_eval_ = y_;
   atol_ = Vec::Constant(2 * n_ + 3, kInf);
-  q_a_ = u_a_ = q_b_ = u_b_ = q_e_ = u_e_ = q_r_ = u_r_ = h_ = du_ = w_N_ = w_T_ = Vec::Zero(n_);
+  q_a_ = u_a_ = q_b_ = u_b_ = q_e_ = u_e_ = q_r_ = u_r_ = h_ = du_ = w_N_ = w_T_ = cu_ =
+      Vec::Zero(n_);
   gap0_ = gN0_ = gap1_ = gN1_ = Vec::Zero(nc_);
   f0_ = f1_ = f_eval_ = Vec::Zero(2 * nc_);
   lambda_N_ = lambda_T_ = Vec::Zero(nc_);
@@ -204,6 +213,8 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   persistent_.reserve(static_cast<std::size_t>(nc_));
   forced_.reserve(static_cast<std::size_t>(nc_));
   cone_sign_.assign(static_cast<std::size_t>(nc_), 0);
+  cos_.assign(static_cast<std::size_t>(model.n_bodies()), 1.0);
+  sin_.assign(static_cast<std::size_t>(model.n_bodies()), 0.0);
   rows_ = cols_ = Eigen::MatrixXd::Zero(n_, kMaxActive);
   A_.resize(kMaxActive, kMaxActive);
   rhs_.resize(kMaxActive);
@@ -268,6 +279,35 @@ double Integrator::FreeStepSize(const ExcitationPiece& piece) const {
   return h_max;
 }
 
+void Integrator::GapsAndRates(const Eigen::Ref<const Vec>& qq, const Eigen::Ref<const Vec>& uu,
+                              Vec& gap, Vec& gamma_N) {
+  // One sine and cosine per body; a ground face needs only n . (X + (x, y) + R p - A) and
+  // n . (v + thetadot J R p) [method.md §2]. A face on a body takes the general path.
+  const int nb = model_.n_bodies();
+  for (int b = 0; b < nb; ++b) {
+    cos_[b] = std::cos(qq[3 * b + 2]);
+    sin_[b] = std::sin(qq[3 * b + 2]);
+  }
+  for (int c = 0; c < nc_; ++c) {
+    const model::Contact& contact = model_.contact(c);
+    if (contact.face.body != model::kGround) {
+      gap[c] = contact::Gap(model_, c, qq);
+      contact::Jacobians(model_, c, qq, w_N_, w_T_);
+      gamma_N[c] = w_N_.dot(uu);
+      continue;
+    }
+    const int i = 3 * contact.body;
+    const double co = cos_[contact.body], si = sin_[contact.body];
+    const Eigen::Vector2d& p = contact.point_m;
+    const Eigen::Vector2d arm(co * p.x() - si * p.y(), si * p.x() + co * p.y());
+    const Eigen::Vector2d& n = contact.face.normal;
+    const Eigen::Vector2d position =
+        model_.body(contact.body).rest_position_m + qq.segment<2>(i) + arm;
+    gap[c] = n.dot(position - contact.face.point_m);
+    gamma_N[c] = n.dot(uu.segment<2>(i)) + uu[i + 2] * (n.y() * arm.x() - n.x() * arm.y());
+  }
+}
+
 void Integrator::RefreshGaps() {
   contact::Evaluate(model_, q(), u(), ws_.kin_);
   gap0_ = ws_.kin_.gap_m;
@@ -299,7 +339,7 @@ RunResult Integrator::Run() {
   result_.q_end = q();
   result_.u_end = u();
   EnergyLedger& e = result_.energy;
-  e.kinetic_J = 0.5 * u().dot(model_.M() * u());
+  e.kinetic_J = Kinetic();
   e.strain_J = 0.5 * q().dot(model_.K() * q());
   e.balance_error_J = (e.kinetic_J + e.strain_J) -
                       (e.initial_J + e.input_J - e.damping_J - e.impact_J - e.friction_J);
@@ -310,7 +350,14 @@ void Integrator::FreeStep() {
   LinearFlow& flow = ws_.flow_;
   const ExcitationPiece piece = excitation_.PieceAt(t_);
   const double t_stop = std::min(piece.t_end, t_end_);
-  const double h = FreeStepSize(piece);
+  double h = FreeStepSize(piece);
+  // Pieces of a sampled record differ in length by rounding (t_end - t_begin of i dt and
+  // (i + 1) dt); one canonical step keeps the propagator cache hitting. The state moves by
+  // e^{A h} over a step whose length differs from h by a few ulps, far below any tolerance.
+  if (std::abs(h - h_free_) <= 1e-12 * h) {
+    h = h_free_;
+  }
+  h_free_ = h;
   const double s = (t_ - piece.t_begin) / h;
   const double k = std::floor(s + 1e-9);
   double t_next = piece.t_begin + (k + 1.0) * h;
@@ -331,8 +378,10 @@ void Integrator::FreeStep() {
   if (full) {
     const FreePropagator& p = flow.Propagator(h, piece.omega);
     z_new_.noalias() = p.phi * z_;
-    input = z_.dot(p.input_gram * z_);
-    damping = z_.dot(p.damping_gram * z_);
+    dz_.noalias() = p.input_gram * z_;
+    input = z_.dot(dz_);
+    dz_.noalias() = p.damping_gram * z_;
+    damping = z_.dot(dz_);
   } else {
     ensure_dense();
     ws_.free_dense_.Evaluate(tau, z_new_);
@@ -341,12 +390,10 @@ void Integrator::FreeStep() {
 
   // Gap events: an open gap ending below zero, or a dip (gamma_N from - to +) deep enough that
   // the cubic Hermite model of g, with a margin for its error, reaches zero.
-  contact::Evaluate(model_, z_new_.head(n_), z_new_.segment(n_, n_), ws_.kin_);
-  gap1_ = ws_.kin_.gap_m;
-  gN1_ = ws_.kin_.gamma_N;
+  GapsAndRates(z_new_.head(n_), z_new_.segment(n_, n_), gap1_, gN1_);
   const auto at = [&](double t, Vec& qq, Vec& uu) {
     ensure_dense();
-    ws_.free_dense_.Evaluate(t - t_, z_eval_);
+    ws_.free_dense_.EvaluateHead(t - t_, 2 * n_, z_eval_);
     qq = z_eval_.head(n_);
     uu = z_eval_.segment(n_, n_);
   };
@@ -605,8 +652,12 @@ void Integrator::Rhs(double t, const Eigen::Ref<const Vec>& y, Eigen::Ref<Vec> d
   dy.head(n_) = uu;
   dy.segment(n_, n_) = du_;
   const Eigen::Vector2d ag = GroundAcceleration(t);
-  dy[2 * n_] = -uu.dot(model_.M() * (model_.r() * ag));
-  dy[2 * n_ + 1] = uu.dot(model_.C() * uu);
+  // M is diagonal: -u^T M r a_g without a temporary.
+  const Vec& m_diag = model_.mass_diagonal();
+  dy[2 * n_] = -(ag(0) * uu.dot(m_diag.cwiseProduct(model_.r().col(0))) +
+                 ag(1) * uu.dot(m_diag.cwiseProduct(model_.r().col(1))));
+  cu_.noalias() = model_.C() * uu;
+  dy[2 * n_ + 1] = uu.dot(cu_);
   dy[2 * n_ + 2] = friction_power_;
 }
 
@@ -785,7 +836,7 @@ void Integrator::ResolveContacts(const std::vector<int>& forced) {
     last_event_t_ = t_;
     events_here_ = 0;
   }
-  const double kinetic_before = 0.5 * u().dot(model_.M() * u());
+  const double kinetic_before = Kinetic();
   // A sticking contact whose friction has reached the cone (the stick-slip event) is degenerate
   // for the contact problem: at the cone both sticking (a_T = 0, |lambda_T| = mu lambda_N) and
   // slipping solve it, Lemke returns sticking, and the friction event fires again at the same
@@ -841,7 +892,7 @@ void Integrator::ResolveContacts(const std::vector<int>& forced) {
       }
     }
     last_impact_t_ = t_;
-    const double loss = kinetic_before - 0.5 * u().dot(model_.M() * u());
+    const double loss = kinetic_before - Kinetic();
     for (int j = 0; j < ir.k; ++j) {
       if (ir.Lambda_N[j] > 0.0) {
         result_.events.push_back({t_, EventKind::kImpact, index_set_[static_cast<std::size_t>(j)],
@@ -953,7 +1004,7 @@ void Integrator::ResolveContacts(const std::vector<int>& forced) {
   if (AnyClosed()) {
     Project();
   }
-  const double kinetic_after = 0.5 * u().dot(model_.M() * u());
+  const double kinetic_after = Kinetic();
   result_.energy.impact_J += kinetic_before - kinetic_after;
   RefreshGaps();
 }

@@ -1,31 +1,37 @@
 // Runs per second of the event-driven integrator, with and without contacts, and the heap
-// allocations per run (a counting global operator new): a run allocates a fixed number of
-// blocks for its results, independent of its number of steps.
+// allocations per run (counting malloc): a run allocates a fixed number of blocks for its
+// results, independent of its number of steps.
 #include <benchmark/benchmark.h>
 
 #include <atomic>
 #include <cstdlib>
-#include <new>
 
 #include "solver/dynamics/simulate.h"
 #include "tests/dynamics/benchmark_cases.h"
 
-// The replacement pair below is malloc/free on both sides; GCC cannot see that through new.
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-
+// Every heap block counts, Eigen's (malloc) as well as operator new's (which calls malloc):
+// malloc, calloc and realloc are interposed on glibc's own entry points.
 namespace {
 std::atomic<long> g_allocations{0};
 }  // namespace
 
-void* operator new(std::size_t size) {
+extern "C" {
+void* __libc_malloc(std::size_t size);
+void* __libc_calloc(std::size_t count, std::size_t size);
+void* __libc_realloc(void* p, std::size_t size);
+void* malloc(std::size_t size) {
   g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(size == 0 ? 1 : size)) {
-    return p;
-  }
-  throw std::bad_alloc();
+  return __libc_malloc(size);
 }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void* calloc(std::size_t count, std::size_t size) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  return __libc_calloc(count, size);
+}
+void* realloc(void* p, std::size_t size) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  return __libc_realloc(p, size);
+}
+}
 
 namespace skewbridge::dynamics {
 namespace {
