@@ -48,6 +48,8 @@ namespace {
 constexpr double kStepsPerPeriod = 20.0;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr int kMaxEventsAtOneInstant = 64;
+// Rounding of a gap n . (X + (x, y) + R p - A) relative to the deck's size, with a margin.
+constexpr double kGapRoundingUlps = 64.0;
 // Gauss-Legendre nodes and weights on [0, 1] (8 points: exact to degree 15).
 constexpr double kGaussNode[8] = {0.019855071751231856, 0.10166676129318664, 0.2372337950418355,
                                   0.4082826787521751,   0.5917173212478249,  0.7627662049581645,
@@ -169,7 +171,8 @@ SimulationWorkspace::SimulationWorkspace(const model::Model& model)
   omega_max_radps_ = std::sqrt(std::max(w2.maxCoeff(), 0.0));
   omega_min_radps_ = std::sqrt(std::max(w2.minCoeff(), 0.0));
   for (const model::Body& body : model.bodies()) {
-    length_scale_m_ = std::max({length_scale_m_, body.geometry.length_m, body.geometry.width_m});
+    length_scale_m_ = std::max({length_scale_m_, body.geometry.length_m, body.geometry.width_m,
+                                body.rest_position_m.norm() + body.geometry.length_m});
   }
 }
 
@@ -244,7 +247,13 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   v_acc_ = control.accumulation_threshold * v_ref;
   v_tol_ = 1e-10 * v_ref;
   // Gap tolerance from the response's own length scale, so that it scales with the excitation.
-  gap_tol_ = 1e-12 * std::min(v_ref / omega_ref, ws.length_scale_m_);
+  // It never falls below the rounding of a gap computed from world coordinates (a few ulps of
+  // the deck's size): at a tiny excitation a scaled tolerance under that floor would split a
+  // full-edge impact, exactly simultaneous in the model, into two impacts by rounding noise
+  // alone, and break the self-similarity of [method.md §4 fact 4].
+  gap_tol_ =
+      std::max(1e-12 * std::min(v_ref / omega_ref, ws.length_scale_m_),
+               kGapRoundingUlps * std::numeric_limits<double>::epsilon() * ws.length_scale_m_);
   const double omega_top = std::max(ws.omega_max_radps_, 1e-3);
   atol_.head(n_).setConstant(control.absolute_tolerance);
   atol_.segment(n_, n_).setConstant(control.absolute_tolerance * omega_top);

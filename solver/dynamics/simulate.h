@@ -72,7 +72,7 @@ class SimulationWorkspace {
   contact::ContactResult contact_result_;
   double omega_min_radps_ = 0.0;  // lowest natural frequency (0 for a free body)
   double omega_max_radps_ = 0.0;  // highest natural frequency
-  double length_scale_m_ = 1.0;   // largest deck dimension
+  double length_scale_m_ = 1.0;   // largest deck dimension or distance from the origin
 };
 
 /// Integrates one run of `model` under `excitation` with `control` from `initial`.
