@@ -4,7 +4,6 @@
 #include <cmath>
 #include <limits>
 
-#include "records/record_set.h"
 #include "solver/common/error.h"
 
 namespace skewbridge::jobs {
@@ -32,6 +31,8 @@ const std::vector<ResponseInfo>& ResponseTable() {
       {"L_e", "m", "persistency a_g / w_g^2"},
       {"delta", "m", "joint gap along x, Pi_delta L_e"},
       {"w0x_over_wg", "1", "sqrt(K_xx / m) / w_g"},
+      {"band", "1",
+       "w0x/w_g group: k for band_edges[k-1] <= w0x_over_wg < band_edges[k] ([study] bands)"},
   };
   return table;
 }
@@ -106,34 +107,9 @@ SpectraEvaluator::SpectraEvaluator(const SweepSpec& spec) : spec_(spec) {
                                 "not a parameter of the pilot bridge under records (its w0x is "
                                 "fixed and w_g is each record's; see the response w0x_over_wg)");
     }
-    if (spec.record_set_path.empty()) {
-      throw InputError::AtField(spec.source, "records.set",
-                                "missing: a record axis needs a record set");
-    }
-    const records::RecordSet set = records::LoadRecordSet(spec.record_set_path);
-    std::vector<std::string> wanted;
-    if (const Axis* axis = spec.FindAxis("record")) {
-      wanted = axis->labels;
-    } else {
-      wanted.push_back(spec.FindFixed("record")->label);
-    }
-    for (const std::string& label : wanted) {
-      const records::RecordEntry* found = nullptr;
-      for (const records::RecordEntry& entry : set.records) {
-        if (records::RecordLabel(entry) == label) found = &entry;
-      }
-      if (found == nullptr) {
-        throw InputError::AtField(
-            spec.source, "record",
-            "label '" + label + "' is not in the record set " + spec.record_set_path.string());
-      }
-      SweepRecord record;
-      record.label = label;
-      record.motion = records::LoadRecord(*found);
-      record.measures = records::ComputeMeasures(record.motion);
-      records_.push_back(std::move(record));
-    }
+    records_ = LoadSweepRecords(spec);
   }
+  band_edges_ = BandEdges(spec);
   // Every cell's mapping is checked now, so a bad combination fails before the file is touched.
   std::vector<std::size_t> index(spec.axes.size(), 0);
   for (std::uint64_t cell = 0; cell < spec.CellCount(); ++cell) {
@@ -175,6 +151,8 @@ spectra::PointParameters SpectraEvaluator::Parameters(std::span<const std::size_
   p.pulse_a_g_mps2 = NumberOf(spec_, index, "a_g_g", 0.5) * kStandardGravity_mps2;
   p.pulse = LabelOf(spec_, index, "pulse") == "sine" ? records::PulseShape::kSine
                                                      : records::PulseShape::kCosine;
+  p.method = LabelOf(spec_, index, "method") == "time-stepping" ? spectra::Method::kTimeStepping
+                                                                : spectra::Method::kEventDriven;
   *record = nullptr;
   if (!records_.empty()) {
     const std::string label = LabelOf(spec_, index, "record");
@@ -245,7 +223,8 @@ CellOutcome SpectraEvaluator::Evaluate(std::span<const std::size_t> axis_index) 
                    s.w_g_radps,
                    point.persistency_m,
                    point.delta_m,
-                   point.w0x_radps / s.w_g_radps};
+                   point.w0x_radps / s.w_g_radps,
+                   BandOf(point.w0x_radps / s.w_g_radps, band_edges_)};
   out.stats.events = r.events;
   out.stats.steps = r.steps;
   out.stats.wall_s =

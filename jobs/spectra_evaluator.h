@@ -10,19 +10,13 @@
 #include <vector>
 
 #include "jobs/cell.h"
+#include "jobs/study.h"
 #include "jobs/sweep_spec.h"
 #include "records/excitations.h"
 #include "records/measures.h"
 #include "spectra/point.h"
 
 namespace skewbridge::jobs {
-
-/// A record of the sweep's record set, read and measured once at construction.
-struct SweepRecord {
-  std::string label;                    ///< label in the record set
-  records::GroundMotion motion;         ///< accelerations (m/s^2), scaled as the set says
-  records::IntensityMeasures measures;  ///< PGA, T_m, w_g, L_e, ...
-};
 
 /// Cell status codes of the spectra evaluator (0 is ok).
 enum SpectraStatus : std::int32_t {
@@ -52,7 +46,8 @@ class SpectraEvaluator final : public CellEvaluator {
  private:
   SweepSpec spec_;
   spectra::Family family_;
-  std::vector<SweepRecord> records_;
+  std::vector<SweepRecord> records_;  ///< LoadSweepRecords(spec_), read once per rank
+  std::vector<double> band_edges_;    ///< BandEdges(spec_), for the response band
 };
 
 }  // namespace skewbridge::jobs

@@ -11,6 +11,7 @@
 
 #include "jobs/cube.h"
 #include "jobs/h5/cube_file.h"
+#include "jobs/study.h"
 #include "solver/common/error.h"
 
 namespace skewbridge::jobs {
@@ -157,7 +158,9 @@ class Writer {
     const std::string created = file_->CreatedUtc();
     file_->Close();
     file_.reset();
-    h5::WriteFinalCube(options_.out, spec_, layout_, data_, run_, created, examples_);
+    // From the whole cube, so a resumed sweep's statistics cover the cells of every run.
+    const StudyTables study = MakeStudyTables(spec_, layout_, data_);
+    h5::WriteFinalCube(options_.out, spec_, layout_, data_, run_, created, examples_, &study);
     std::error_code ec;
     std::filesystem::remove(PartialPath(options_.out), ec);
   }

@@ -21,7 +21,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // The one table of parameter names. The spectra mapping extends it here (and in
 // docs/sweep-format.md); the order is the canonical axis order of every cube.
 // clang-format off
-constexpr std::array<ParameterInfo, 15> kParameters{{
+constexpr std::array<ParameterInfo, 16> kParameters{{
   {"record", "record", "", "ground-motion record, by its label in the [records] set",
    ParameterKind::kLabel, 0, true, 0, true, false, ""},
   {"pulse", "pulse", "", "one cycle of a_g cos(w_g t) or a_g sin(w_g t) [method.md §5]",
@@ -51,6 +51,8 @@ constexpr std::array<ParameterInfo, 15> kParameters{{
    ParameterKind::kNumber, 0, true, kInf, false, false, ""},
   {"w0_over_wg", "w0/w_g", "1", "substructure over excitation frequency w0 / w_g",
    ParameterKind::kNumber, 0, false, kInf, false, false, ""},
+  {"method", "method", "", "integrator: event-driven, or Moreau-Jean time-stepping with h = 1e-4 of the excitation period",
+   ParameterKind::kLabel, 0, true, 0, true, false, "event-driven|time-stepping"},
 }};
 // clang-format on
 
@@ -93,8 +95,9 @@ class Parser {
     spec.text = std::string(text);
     for (auto&& [key, node] : root) {
       const std::string k(key.str());
-      if (k != "sweep" && k != "axes" && k != "fixed" && k != "records") {
-        throw Error(key.source(), k, "unknown table; allowed: [sweep], [axes], [fixed], [records]");
+      if (k != "sweep" && k != "axes" && k != "fixed" && k != "records" && k != "study") {
+        throw Error(key.source(), k,
+                    "unknown table; allowed: [sweep], [axes], [fixed], [records], [study]");
       }
       if (!node.is_table()) {
         throw Error(node.source(), k, "must be a table [" + k + "]");
@@ -107,6 +110,9 @@ class Parser {
     ParseSweepTable(*sweep, spec);
     if (const toml::table* records = root["records"].as_table()) {
       ParseRecordsTable(*records, spec);
+    }
+    if (const toml::table* study = root["study"].as_table()) {
+      ParseStudyTable(*study, spec);
     }
     if (const toml::table* axes = root["axes"].as_table()) {
       for (auto&& [key, node] : *axes) {
@@ -215,12 +221,65 @@ class Parser {
 
   void ParseRecordsTable(const toml::table& records, SweepSpec& spec) const {
     for (auto&& [key, node] : records) {
-      if (key.str() != "set") {
-        throw Error(key.source(), "records." + std::string(key.str()), "unknown key; allowed: set");
+      if (key.str() != "set" && key.str() != "synthetic") {
+        throw Error(key.source(), "records." + std::string(key.str()),
+                    "unknown key; allowed: set, synthetic");
       }
     }
-    spec.record_set = RequireString(records, "records", "set");
-    spec.record_set_path = ExistingFile(records, "records", "set", spec.record_set);
+    if (records.contains("set") == records.contains("synthetic")) {
+      throw InputError::AtField(source_, "records",
+                                "give set = \"FILE\" or synthetic = {count = N, seed = S}, one of "
+                                "them");
+    }
+    if (records.contains("set")) {
+      spec.record_set = RequireString(records, "records", "set");
+      spec.record_set_path = ExistingFile(records, "records", "set", spec.record_set);
+      return;
+    }
+    const toml::node* node = records.get("synthetic");
+    const toml::table* synth = node->as_table();
+    if (synth == nullptr) {
+      throw Error(node->source(), "records.synthetic", "must be a table {count = N, seed = S}");
+    }
+    for (auto&& [key, value] : *synth) {
+      if (key.str() != "count" && key.str() != "seed") {
+        throw Error(key.source(), "records.synthetic." + std::string(key.str()),
+                    "unknown key; allowed: count, seed");
+      }
+    }
+    const auto count = (*synth)["count"].value<std::int64_t>();
+    if (!count || *count < 1 || *count > 100000) {
+      throw Error(node->source(), "records.synthetic.count",
+                  "must be a whole number of records, 1 to 100000");
+    }
+    const auto seed = (*synth)["seed"].value<std::int64_t>();
+    if (!seed || *seed < 0) {
+      throw Error(node->source(), "records.synthetic.seed", "must be a whole number >= 0");
+    }
+    spec.synthetic_count = static_cast<int>(*count);
+    spec.synthetic_seed = static_cast<std::uint64_t>(*seed);
+  }
+
+  void ParseStudyTable(const toml::table& study, SweepSpec& spec) const {
+    for (auto&& [key, node] : study) {
+      if (key.str() != "bands") {
+        throw Error(key.source(), "study." + std::string(key.str()), "unknown key; allowed: bands");
+      }
+    }
+    const toml::node* node = study.get("bands");
+    if (node == nullptr) return;
+    const toml::array* list = node->as_array();
+    const std::string problem =
+        "must be a list of increasing, finite, positive w0x/w_g edges, e.g. [0.5, 1.0, 2.0]";
+    if (list == nullptr || list->empty()) throw Error(node->source(), "study.bands", problem);
+    for (const toml::node& item : *list) {
+      const std::optional<double> edge = item.value<double>();
+      if (!edge || !std::isfinite(*edge) || *edge <= 0.0 ||
+          (!spec.study_bands.empty() && *edge <= spec.study_bands.back())) {
+        throw Error(item.source(), "study.bands", problem);
+      }
+      spec.study_bands.push_back(*edge);
+    }
   }
 
   const ParameterInfo& Known(const std::string& field, const std::string& key,
@@ -390,7 +449,7 @@ class Parser {
       throw InputError::AtField(source_, "record",
                                 "give pulse or record, not both (one excitation per cell)");
     }
-    if (given("record") && spec.record_set.empty()) {
+    if (given("record") && spec.record_set.empty() && spec.synthetic_count == 0) {
       throw InputError::AtField(source_, "records.set",
                                 "missing: a record axis or value needs [records] set = \"FILE\"");
     }
@@ -486,6 +545,17 @@ std::string SweepSpec::CanonicalText() const {
   }
   if (!record_set.empty()) {
     out << "records.set = " << str(record_set) << "\n";
+  }
+  if (synthetic_count > 0) {
+    out << "records.synthetic = {count = " << synthetic_count << ", seed = " << synthetic_seed
+        << "}\n";
+  }
+  if (!study_bands.empty()) {
+    out << "study.bands = [";
+    for (std::size_t i = 0; i < study_bands.size(); ++i) {
+      out << (i ? ", " : "") << Fmt(study_bands[i]);
+    }
+    out << "]\n";
   }
   for (const Axis& axis : axes) {
     out << "axes." << axis.key << " = [";

@@ -74,6 +74,13 @@ struct SweepSpec {
   std::filesystem::path model_path;       ///< model_file resolved against the spec's folder.
   std::string record_set;                 ///< [records] set, as written, or empty.
   std::filesystem::path record_set_path;  ///< record_set resolved against the spec's folder.
+  /// [records] synthetic = {count, seed}: a suite made in memory (records::SynthesizeSuite)
+  /// instead of a manifest; count 0 when not given.
+  int synthetic_count = 0;
+  std::uint64_t synthetic_seed = 0;  ///< The suite's seed (labels "synth-<seed>-<index>").
+  /// [study] bands: increasing, positive w0x/w_g edges of the frequency-ratio groups; empty
+  /// when not given (the evaluator then uses 0.5, 1, 2) [method.md §6].
+  std::vector<double> study_bands;
   std::vector<Axis> axes;
   std::vector<FixedValue> fixed;
   std::vector<std::string> responses;  ///< Requested responses; empty = all of the evaluator's.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <ctime>
 #include <limits>
+#include <type_traits>
 
 #include "jobs/h5/h5.h"
 #include "solver/common/error.h"
@@ -175,6 +176,136 @@ Datasets CreateLayout(const std::string& path, const SweepSpec& spec, const Cube
   return d;
 }
 
+void SetDoublesAttr(hid_t obj, const std::string& name, const std::vector<double>& values) {
+  const hsize_t n = values.size();
+  Id space = Dataspace(std::span<const hsize_t>(&n, 1));
+  Id attr(H5Acreate2(obj, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT),
+          H5Aclose, "create attribute " + name);
+  Check(H5Awrite(attr.get(), H5T_NATIVE_DOUBLE, values.data()), "write attribute " + name);
+}
+
+// A contiguous dataset of the given shape, written whole, with units and description.
+template <typename T>
+Id WriteArray(hid_t parent, const std::string& name, const std::vector<hsize_t>& shape,
+              const std::vector<T>& values, const std::string& units,
+              const std::string& description) {
+  const bool is_double = std::is_same_v<T, double>;
+  Id ds = CreateDataset(parent, name, is_double ? H5T_IEEE_F64LE : H5T_STD_I64LE, shape, {}, 0,
+                        nullptr);
+  WriteAll(ds.get(), is_double ? H5T_NATIVE_DOUBLE : H5T_NATIVE_INT64, values.data());
+  SetAttr(ds.get(), "units", units);
+  SetAttr(ds.get(), "description", description);
+  return ds;
+}
+
+void WriteRecordTable(hid_t sweep_group, const StudyTables& study) {
+  Id g = CreateGroup(sweep_group, "records");
+  SetAttr(g.get(), "source", study.records_source);
+  SetAttr(g.get(), "set", study.records_set);
+  SetAttr(g.get(), "count", static_cast<std::int64_t>(study.records.size()));
+  const std::vector<hsize_t> shape{study.records.size()};
+  std::vector<std::string> label;
+  std::vector<std::string> file;
+  std::vector<std::string> component;
+  std::vector<std::int64_t> npts;
+  std::vector<double> scale, dt, pga, pgv, pgd, tm, wg, le, arias, d595;
+  for (const SweepRecord& r : study.records) {
+    label.push_back(r.label);
+    file.push_back(r.file);
+    component.push_back(r.motion.component);
+    npts.push_back(static_cast<std::int64_t>(r.motion.npts()));
+    scale.push_back(r.scale);
+    dt.push_back(r.motion.dt_s);
+    pga.push_back(r.measures.pga_mps2);
+    pgv.push_back(r.measures.pgv_mps);
+    pgd.push_back(r.measures.pgd_m);
+    tm.push_back(r.measures.mean_period_s);
+    wg.push_back(r.measures.omega_g_radps);
+    le.push_back(r.measures.persistency_m);
+    arias.push_back(r.measures.arias_mps);
+    d595.push_back(r.measures.significant_duration_s);
+  }
+  WriteStrings(g.get(), "label", label);
+  WriteStrings(g.get(), "file", file);
+  WriteStrings(g.get(), "component", component);
+  WriteArray(g.get(), "scale", shape, scale, "1", "the manifest's factor on the accelerations");
+  WriteArray(g.get(), "dt_s", shape, dt, "s", "sample interval");
+  WriteArray(g.get(), "npts", shape, npts, "1", "number of samples");
+  WriteArray(g.get(), "pga_mps2", shape, pga, "m/s^2", "peak ground acceleration = a_g");
+  WriteArray(g.get(), "pgv_mps", shape, pgv, "m/s", "peak ground velocity");
+  WriteArray(g.get(), "pgd_m", shape, pgd, "m", "peak ground displacement");
+  WriteArray(g.get(), "T_m_s", shape, tm, "s", "mean period [Rathje et al. 1998]");
+  WriteArray(g.get(), "w_g_radps", shape, wg, "rad/s", "w_g = 2 pi / T_m");
+  WriteArray(g.get(), "L_e_m", shape, le, "m", "persistency PGA / w_g^2");
+  WriteArray(g.get(), "arias_mps", shape, arias, "m/s", "Arias intensity");
+  WriteArray(g.get(), "D5_95_s", shape, d595, "s", "significant duration 5-95 % of Arias");
+}
+
+void WriteCorrelation(hid_t sweep_group, const CorrelationTable& table,
+                      const std::vector<double>& band_edges) {
+  Id g = CreateGroup(sweep_group, "correlation");
+  SetAttr(g.get(), "x", std::string("L_e"));
+  SetAttr(g.get(), "y", std::string("theta_m"));
+  SetAttr(g.get(), "over", std::string("record"));
+  SetAttr(g.get(), "axis_order", table.axis_order);
+  SetDoublesAttr(g.get(), "band_edges", band_edges);
+  SetAttr(g.get(), "min_band_records", kMinBandRecords);
+  SetAttr(g.get(), "loglog",
+          std::string("log10(theta_m) = intercept + slope log10(L_e), least squares; "
+                      "r2 = 1 - SS_res/SS_tot"));
+  std::vector<hsize_t> shape(table.shape.begin(), table.shape.end());
+  std::vector<hsize_t> band_shape = shape;
+  band_shape.push_back(table.bands);
+  std::vector<Id> scales;
+  for (const std::string& key : table.axis_order) {
+    scales.push_back(OpenDataset(sweep_group, "axes/" + key));
+  }
+  auto attach = [&](const Id& ds) {
+    for (std::size_t k = 0; k < scales.size(); ++k) {
+      AttachScale(ds.get(), scales[k].get(), static_cast<unsigned>(k), table.axis_order[k]);
+    }
+  };
+  attach(WriteArray(g.get(), "n", shape, table.n, "1",
+                    "cells used: status ok, theta_m and L_e finite"));
+  attach(WriteArray(g.get(), "pearson_theta_Le", shape, table.pearson, "1",
+                    "Pearson r of (L_e, theta_m) over the records"));
+  attach(WriteArray(g.get(), "spearman_theta_Le", shape, table.spearman, "1",
+                    "Spearman rho of (L_e, theta_m), ties given their average rank"));
+  attach(WriteArray(g.get(), "loglog_n", shape, table.loglog_n, "1",
+                    "cells with theta_m > 0 and L_e > 0"));
+  attach(WriteArray(g.get(), "loglog_slope", shape, table.loglog_slope, "1",
+                    "slope of log10 theta_m against log10 L_e (least squares)"));
+  attach(WriteArray(g.get(), "loglog_intercept", shape, table.loglog_intercept, "1",
+                    "intercept of log10 theta_m = intercept + slope log10 L_e (L_e in m)"));
+  attach(WriteArray(g.get(), "loglog_r2", shape, table.loglog_r2, "1",
+                    "R^2 of the log-log fit, 1 - SS_res / SS_tot"));
+  WriteStrings(g.get(), "reason", table.reason);
+  if (table.bands == 0) return;
+  const std::string per_band = " per w0x/w_g group (last dimension), NaN below min_band_records";
+  attach(WriteArray(g.get(), "band_n", band_shape, table.band_n, "1",
+                    "cells used per w0x/w_g group (last dimension)"));
+  attach(WriteArray(g.get(), "band_pearson_theta_Le", band_shape, table.band_pearson, "1",
+                    "Pearson r" + per_band));
+  attach(WriteArray(g.get(), "band_spearman_theta_Le", band_shape, table.band_spearman, "1",
+                    "Spearman rho" + per_band));
+  attach(WriteArray(g.get(), "band_loglog_slope", band_shape, table.band_loglog_slope, "1",
+                    "log-log slope" + per_band));
+  attach(WriteArray(g.get(), "band_loglog_intercept", band_shape, table.band_loglog_intercept, "1",
+                    "log-log intercept" + per_band));
+  attach(WriteArray(g.get(), "band_loglog_r2", band_shape, table.band_loglog_r2, "1",
+                    "log-log R^2" + per_band));
+}
+
+void WriteStudyTables(const Datasets& d, const CubeLayout& layout, const StudyTables& study) {
+  for (std::size_t r = 0; r < layout.responses.size(); ++r) {
+    if (layout.responses[r].name == "band" && !study.band_edges.empty()) {
+      SetDoublesAttr(d.responses[r].get(), "band_edges", study.band_edges);
+    }
+  }
+  if (!study.records.empty()) WriteRecordTable(d.group.get(), study);
+  if (study.correlation) WriteCorrelation(d.group.get(), *study.correlation, study.band_edges);
+}
+
 Datasets OpenLayout(const std::string& path, const std::string& sweep, bool writable,
                     std::vector<std::string>* response_names) {
   Datasets d;
@@ -309,13 +440,14 @@ void CheckpointFile::Close() { impl_.reset(); }
 void WriteFinalCube(const std::filesystem::path& path, const SweepSpec& spec,
                     const CubeLayout& layout, const CubeData& data, std::int32_t runs,
                     const std::string& created_utc,
-                    const std::map<std::int32_t, std::string>& examples) {
+                    const std::map<std::int32_t, std::string>& examples, const StudyTables* study) {
   const std::filesystem::path tmp = path.string() + ".tmp";
   {
     Datasets d = CreateLayout(tmp.string(), spec, layout, true, runs, created_utc);
     for (const Writable& w : DataOf(d, data)) {
       WriteAll(w.dataset, w.mem_type, w.data);
     }
+    if (study != nullptr) WriteStudyTables(d, layout, *study);
     WriteAll(d.done.get(), H5T_NATIVE_UINT8, data.done.data());
     std::vector<std::string> example_column;
     for (const auto& entry : layout.status_names) {
@@ -334,6 +466,27 @@ void WriteFinalCube(const std::filesystem::path& path, const SweepSpec& spec,
   if (ec) {
     throw H5Error("rename " + tmp.string() + " to " + path.string() + ": " + ec.message());
   }
+}
+
+std::vector<double> ReadSweepArray(const std::filesystem::path& path, const std::string& sweep,
+                                   const std::string& dataset) {
+  const Datasets d = OpenLayout(path.string(), sweep, false, nullptr);
+  // H5Lexists needs every intermediate group to exist, so walk the path one link at a time.
+  bool found = !dataset.empty();
+  for (std::size_t slash = 0; found && slash != std::string::npos;) {
+    slash = dataset.find('/', slash + 1);
+    found = Exists(d.group.get(), dataset.substr(0, slash));
+  }
+  if (!found) {
+    throw InputError::AtLine(path.string(), 0,
+                             "sweep '" + sweep + "' holds no dataset '" + dataset + "'");
+  }
+  Id ds = OpenDataset(d.group.get(), dataset);
+  std::size_t n = 1;
+  for (hsize_t extent : Shape(ds.get())) n *= extent;
+  std::vector<double> out(n);
+  ReadAll(ds.get(), H5T_NATIVE_DOUBLE, out.data());
+  return out;
 }
 
 std::vector<SweepSummary> SummarizeCube(const std::filesystem::path& path) {

@@ -14,6 +14,7 @@
 
 #include "jobs/cube.h"
 #include "jobs/h5/h5_error.h"
+#include "jobs/study.h"
 #include "jobs/sweep_spec.h"
 
 namespace skewbridge::jobs::h5 {
@@ -62,11 +63,15 @@ class CheckpointFile {
 /// attribute complete = 1 written last. Writes path + ".tmp" and renames it to path.
 /// examples: one message per failure status (status -> "cell N: text"), stored as the sweep
 /// group's attribute status_examples, aligned with the status dataset's status_codes.
+/// study (may be null): the record table, the band edges and the correlation statistics
+/// (MakeStudyTables), written as the groups records/ and correlation/ and the attribute
+/// band_edges of responses/band.
 /// @throws H5Error on I/O failure.
 void WriteFinalCube(const std::filesystem::path& path, const SweepSpec& spec,
                     const CubeLayout& layout, const CubeData& data, std::int32_t runs,
                     const std::string& created_utc,
-                    const std::map<std::int32_t, std::string>& examples = {});
+                    const std::map<std::int32_t, std::string>& examples = {},
+                    const StudyTables* study = nullptr);
 
 /// One axis as stored in a cube.
 struct AxisSummary {
@@ -102,6 +107,12 @@ std::vector<SweepSummary> SummarizeCube(const std::filesystem::path& path);
 /// @throws InputError when the file or sweep is absent.
 CubeData ReadCubeData(const std::filesystem::path& path, const std::string& sweep,
                       std::vector<std::string>* response_names);
+
+/// Reads a numeric dataset of a sweep group as float64, flattened row-major, e.g.
+/// "correlation/pearson_theta_Le" or "records/L_e_m".
+/// @throws InputError when the file, sweep or dataset is absent.
+std::vector<double> ReadSweepArray(const std::filesystem::path& path, const std::string& sweep,
+                                   const std::string& dataset);
 
 /// Current UTC time as "YYYY-MM-DDTHH:MM:SSZ".
 std::string UtcNow();
