@@ -57,7 +57,8 @@ def plan(sweep):
     if not sweep.has_axis("record", 2):
         skipped.append(("correlation", "no record axis with two or more records"))
     else:
-        extra = [k for k in _curve_axes(sweep) if k != "Pi_delta"]
+        extra = [k for k in sweep.axis_order
+                 if k not in ("record", "Pi_delta") and len(sweep.axes[k]) > 1]
         if extra:
             skipped.append(("correlation", f"axes besides record and Pi_delta: {', '.join(extra)}"))
         else:
@@ -95,6 +96,26 @@ def _status_counts(sweep):
                      for c, n in zip(codes, counts))
 
 
+# The cube's correlation/ datasets (docs/hdf5-layout.md) and the report's own statistics.
+STORED_STATISTICS = {"pearson_theta_Le": "pearson", "spearman_theta_Le": "spearman",
+                     "loglog_slope": "slope", "loglog_intercept": "intercept",
+                     "loglog_r2": "r2", "n": "n", "loglog_n": "n_log"}
+
+
+def _compare_stored(own, stored):
+    """'agree' when every stored statistic equals the report's to 1e-9 (NaN equal to NaN),
+    else the ones that differ with both values."""
+    differ = []
+    for name, key in STORED_STATISTICS.items():
+        if name not in stored:
+            continue
+        a, b = float(stored[name]), float(own[key])
+        same = (np.isnan(a) and np.isnan(b)) or abs(a - b) <= 1e-9 * max(1.0, abs(a), abs(b))
+        if not same:
+            differ.append(f"{name} {a:.6g} (report {b:.6g})")
+    return "agree" if not differ else "differ: " + "; ".join(differ)
+
+
 def _tables_for(kind, sweep, rows, curve_key):
     curve = figures.AXIS_LABEL.get(curve_key, curve_key or "")
     w_label = "w0x/w_g" if sweep.family == "pilot-bridge" else "w0/w_g"
@@ -123,12 +144,12 @@ def _tables_for(kind, sweep, rows, curve_key):
                    own["r2"], own["n_log"]]
             if stored:
                 stored_any = True
-                row.append(", ".join(f"{k} {v:.4g}" for k, v in sorted(stored.items())))
+                row.append(_compare_stored(own, stored))
             out.append(row)
         header = ["Π_δ", "records", "Pearson", "Spearman", "log-log slope", "intercept", "R²",
                   "pairs with θm > 0"]
         if stored_any:
-            header.append("stored in the cube (correlation/)")
+            header.append("the cube's correlation/ statistics")
         return _table(header, out)
     if kind == "correlation_rotation_vs_w0x":
         return _table(["Π_δ", "group", "records", "median θm ρ ωg²/ag", "max"], rows)

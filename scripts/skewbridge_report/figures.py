@@ -161,10 +161,13 @@ def rotation_vs_eta0(sweep, curve_key, out_dir, name, pdf):
             peak = np.full(len(eta), np.nan)
             where = np.full(len(eta), np.nan)
             n_imp = np.full(len(eta), np.nan)
+            # Where the deck does not turn, the arg-max is round-off: no frequency is shown.
+            floor = 1e-9 * max(np.nanmax(theta), 1e-300) if np.any(np.isfinite(theta)) else 0.0
             for ie in range(len(eta)):
                 if np.any(np.isfinite(t[ie])):
+                    peak[ie] = np.nanmax(t[ie])
+                if np.any(np.isfinite(t[ie])) and np.nanmax(t[ie]) > floor:
                     k = int(np.nanargmax(t[ie]))
-                    peak[ie] = t[ie][k]
                     if has_w:
                         where[ie] = sweep.axes["w0_over_wg"][k]
                     if impacts is not None:

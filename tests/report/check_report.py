@@ -7,8 +7,9 @@
 - the summary's tables agree with the cube read directly by h5py (spectrum peaks, the maximum
   rotation over w0/w_g per eta0);
 - the correlation statistics (Pearson, Spearman, log-log slope, intercept, R^2) agree with
-  scipy.stats, an implementation independent of the report's own numpy code, and with the
-  statistics stored in the cube when it has a correlation/ group.
+  scipy.stats, an implementation independent of the report's own numpy code, and so do the
+  statistics stored in the cube when it has a correlation/ group; a stored band response
+  agrees with its band_edges.
 
 usage: check_report.py OUT_DIR REPORT_LOG SPECTRA.h5 PIDELTA.h5 ETA0.h5 RECORDS.h5 RUN.h5"""
 import os
@@ -126,6 +127,8 @@ def check_correlation(summary, path):
               f"slope {fit.slope:.4f}, R^2 {fit.rvalue ** 2:.4f} (scipy agrees)")
     if "correlation" in g:
         check_stored_correlation(g, le, theta)
+        assert all(row[-1] == "agree" for row in rows), rows
+    check_stored_band(g)
 
 
 def check_stored_correlation(g, le, theta):
@@ -150,7 +153,22 @@ def check_stored_correlation(g, le, theta):
             continue
         assert np.allclose(ds[()], refs[key], rtol=1e-6, atol=1e-9), (name, ds[()], refs[key])
         matched += 1
+    assert matched == 5, f"correlation/ holds {matched} of the 5 statistics by name"
     print(f"stored correlation/: {matched} statistics agree with scipy")
+
+
+def check_stored_band(g):
+    """responses/band, when stored, against numpy's digitize of w0x_over_wg by band_edges."""
+    if "band" not in g["responses"]:
+        print("no responses/band in this cube: the report used its default groups")
+        return
+    band = g["responses/band"]
+    edges = band.attrs["band_edges"]
+    w0x = g["responses/w0x_over_wg"][()]
+    expected = np.digitize(w0x, edges).astype(float)
+    expected[~np.isfinite(w0x)] = np.nan
+    assert np.array_equal(band[()], expected, equal_nan=True), (band[()], expected)
+    print(f"stored band agrees with the edges {list(edges)}")
 
 
 def main(out, log, spectra, pidelta, eta0, records, run):
