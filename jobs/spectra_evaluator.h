@@ -29,7 +29,8 @@ enum SpectraStatus : std::int32_t {
 /// Evaluate is a pure function of the cell index.
 class SpectraEvaluator final : public CellEvaluator {
  public:
-  /// Reads the record set (if any), then checks every cell's parameters before any work.
+  /// Reads or synthesises the records (LoadSweepRecords, if any), then checks every cell's
+  /// parameters before any work.
   /// @throws InputError naming the key for a family it cannot evaluate, a parameter this family
   /// does not take, a record label missing from the set, or an impossible combination (eta0 with
   /// a = 0, delta/L with Pi_delta = 0, ...).

@@ -27,4 +27,14 @@ TOML
   || fail "the sweep failed"
 /usr/bin/python3 "$check" study6.h5 study6 || fail "study6.h5 does not check"
 
+# A bad [study] key stops the command with status 2 and one line naming it, before any file.
+sed 's/bands = \[0.5, 1.0, 2.0\]/bands = [1.0, 0.5]/' study6.toml > bad.toml
+set +e
+msg=$("$exe" sweep bad.toml --out bad.h5 2>&1)
+status=$?
+set -e
+[[ $status -eq 2 ]] || fail "bad bands: exit status $status, not 2"
+[[ $(printf '%s\n' "$msg" | wc -l) -eq 1 ]] || fail "bad bands: more than one line: $msg"
+[[ $msg == *"bad.toml:"*"study.bands: must be a list of increasing"* ]] || fail "bad bands: $msg"
+[[ ! -e bad.h5 && ! -e bad.h5.partial ]] || fail "bad bands: an output file was written"
 echo "study_pipeline_test: ok"
