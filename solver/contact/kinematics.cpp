@@ -87,10 +87,10 @@ void FaceDirections(const model::Model& model, int c, const Eigen::Ref<const Eig
 
 namespace {
 
+// Writes the rows of the two bodies only; the caller zeroes the others (once per column: the
+// rows a contact touches never change, which keeps Evaluate O(n_contacts), not O(n_dof n_c)).
 void JacobiansAt(const model::Contact& contact, const Geometry& g, Eigen::Ref<Eigen::VectorXd> w_N,
                  Eigen::Ref<Eigen::VectorXd> w_T) {
-  w_N.setZero();
-  w_T.setZero();
   const int i = 3 * contact.body;
   // Velocity of P: v_i + thetadot_i J R_i p [method.md §2: R'(theta) p = J R(theta) p].
   const Eigen::Vector2d lever_i = Perp(g.arm);
@@ -113,6 +113,8 @@ void JacobiansAt(const model::Contact& contact, const Geometry& g, Eigen::Ref<Ei
 
 void Jacobians(const model::Model& model, int c, const Eigen::Ref<const Eigen::VectorXd>& q,
                Eigen::Ref<Eigen::VectorXd> w_N, Eigen::Ref<Eigen::VectorXd> w_T) {
+  w_N.setZero();
+  w_T.setZero();
   JacobiansAt(model.contact(c), Compute(model, c, q), w_N, w_T);
 }
 
@@ -148,6 +150,31 @@ void VelocityTerms(const model::Model& model, int c, const Eigen::Ref<const Eige
   VelocityTermsAt(model.contact(c), Compute(model, c, q), u, what_N, what_T);
 }
 
+namespace {
+
+// w^T u over the rows of the contact's bodies: the full dot product without its terms that are
+// exact zeros (a single deck's columns have no other rows: the same sum, bit for bit).
+double SparseDot(const model::Contact& contact, const Eigen::Ref<const Eigen::VectorXd>& w,
+                 const Eigen::Ref<const Eigen::VectorXd>& u) {
+  if (w.size() == 3) {
+    return w.dot(u);
+  }
+  const int i = 3 * contact.body;
+  double sum = w.segment<3>(i).dot(u.segment<3>(i));
+  if (contact.face.body != model::kGround) {
+    const int j = 3 * contact.face.body;
+    sum += w.segment<3>(j).dot(u.segment<3>(j));
+  }
+  return sum;
+}
+
+}  // namespace
+
+double ColumnDot(const model::Model& model, int c, const Eigen::Ref<const Eigen::VectorXd>& w,
+                 const Eigen::Ref<const Eigen::VectorXd>& u) {
+  return SparseDot(model.contact(c), w, u);
+}
+
 void Evaluate(const model::Model& model, const Eigen::Ref<const Eigen::VectorXd>& q,
               const Eigen::Ref<const Eigen::VectorXd>& u, ContactKinematics& out) {
   SB_ASSERT(out.W_N.rows() == model.n_dof() && out.W_N.cols() == model.n_contacts(),
@@ -158,8 +185,8 @@ void Evaluate(const model::Model& model, const Eigen::Ref<const Eigen::VectorXd>
     const Geometry g = Compute(model, c, q);
     out.gap_m(c) = g.n.dot(g.P - g.A);
     JacobiansAt(contact, g, out.W_N.col(c), out.W_T.col(c));
-    out.gamma_N(c) = out.W_N.col(c).dot(u);
-    out.gamma_T(c) = out.W_T.col(c).dot(u);
+    out.gamma_N(c) = SparseDot(contact, out.W_N.col(c), u);
+    out.gamma_T(c) = SparseDot(contact, out.W_T.col(c), u);
     VelocityTermsAt(contact, g, u, out.what_N(c), out.what_T(c));
   }
 }

@@ -58,8 +58,15 @@ void Jacobians(const model::Model& model, int c, const Eigen::Ref<const Eigen::V
 void VelocityTerms(const model::Model& model, int c, const Eigen::Ref<const Eigen::VectorXd>& q,
                    const Eigen::Ref<const Eigen::VectorXd>& u, double& what_N, double& what_T);
 
-/// Fills every field of `out` for the state (q, u). No allocation once `out` is sized.
-/// @pre out.Resize(model) was called (SB_ASSERT).
+/// w^T u for a column w of contact c's Jacobian (n_dof): the sum over the rows of the contact's
+/// bodies only, which are its only non-zeros; for a single deck the same sum as w.dot(u).
+double ColumnDot(const model::Model& model, int c, const Eigen::Ref<const Eigen::VectorXd>& w,
+                 const Eigen::Ref<const Eigen::VectorXd>& u);
+
+/// Fills every field of `out` for the state (q, u). No allocation once `out` is sized. Writes
+/// only the rows of each contact's bodies (at most 6 per column): the others keep the zeros of
+/// Resize, so the cost grows with the contacts, not with n_dof times the contacts.
+/// @pre out.Resize(model) was called (SB_ASSERT) and W_N, W_T were not written elsewhere.
 void Evaluate(const model::Model& model, const Eigen::Ref<const Eigen::VectorXd>& q,
               const Eigen::Ref<const Eigen::VectorXd>& u, ContactKinematics& out);
 

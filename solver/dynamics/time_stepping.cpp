@@ -41,6 +41,10 @@ TimeSteppingWorkspace::TimeSteppingWorkspace(const model::Model& model, double t
   P_N_previous_.resize(nc);
   state_.resize(static_cast<std::size_t>(nc));
   state_previous_.resize(static_cast<std::size_t>(nc));
+  K_sparse_ = model.K().sparseView(0.0, 0.0);
+  C_sparse_ = model.C().sparseView(0.0, 0.0);
+  M_sparse_ = model.M().sparseView(0.0, 0.0);
+  triplets_.reserve(static_cast<std::size_t>(6 * nc));
   rhs_.resize(n);
   u_free_.resize(n);
   u1_.resize(n);
@@ -59,6 +63,58 @@ void TimeSteppingWorkspace::Factorise(double h_s) {
   SB_DEMAND(llt_.info() == Eigen::Success, "W = M + h theta C + h^2 theta^2 K is not SPD");
   W_inverse_ = llt_.solve(Eigen::MatrixXd::Identity(W.rows(), W.cols()));
   factorised_h_s_ = h_s;
+}
+
+void TimeSteppingWorkspace::FactoriseSparse(double h_s) {
+  if (h_s == factorised_sparse_h_s_) {
+    return;
+  }
+  const double ht = h_s * theta_;
+  W_sparse_ = M_sparse_ + ht * C_sparse_ + (ht * ht) * K_sparse_;
+  // The pattern of W is the model's: one symbolic analysis (AMD ordering) serves every step.
+  if (!pattern_analysed_) {
+    cholmod_.analyzePattern(W_sparse_);
+    pattern_analysed_ = true;
+  }
+  cholmod_.factorize(W_sparse_);
+  SB_DEMAND(cholmod_.info() == Eigen::Success, "W = M + h theta C + h^2 theta^2 K is not SPD");
+  factorised_sparse_h_s_ = h_s;
+}
+
+void TimeSteppingWorkspace::GatherSparseJacobians(int k) {
+  const int n = model_.n_dof();
+  for (Eigen::SparseMatrix<double>* W : {&WN_sparse_, &WT_sparse_}) {
+    const Eigen::MatrixXd& dense = W == &WN_sparse_ ? WN_ : WT_;
+    triplets_.clear();
+    for (int j = 0; j < k; ++j) {
+      const model::Contact& c = model_.contact(active_[static_cast<std::size_t>(j)]);
+      for (int body : {c.body, c.face.body}) {
+        if (body == model::kGround) {
+          continue;
+        }
+        for (int d = 3 * body; d < 3 * body + 3; ++d) {
+          triplets_.emplace_back(d, j, dense(d, j));
+        }
+      }
+    }
+    W->resize(n, k);
+    W->setFromTriplets(triplets_.begin(), triplets_.end());
+  }
+}
+
+bool UsesSparseLinearAlgebra(const model::Model& model, const model::RunControl& control) {
+  if (control.linear_algebra == "dense") {
+    return false;
+  }
+  if (control.linear_algebra == "sparse") {
+    return true;
+  }
+  if (control.linear_algebra != "auto") {
+    throw InputError::AtField(
+        model.source(), "run.linear_algebra",
+        "must be one of auto, dense, sparse (got \"" + control.linear_algebra + "\")");
+  }
+  return model.n_dof() >= kSparseThresholdDof;
 }
 
 Eigen::Vector2d MeanAcceleration(const Excitation& excitation, double t0_s, double t1_s) {
@@ -135,6 +191,7 @@ RunResult SimulateTimeStepping(const model::Model& model, const Excitation& exci
   }
   const double theta = ws.theta();
   const double t_end = control.EndTime(excitation.Duration());
+  const bool sparse = UsesSparseLinearAlgebra(model, control);
 
   RunResult result;
   Vec q = initial.q.size() == n ? initial.q : Vec::Zero(n);
@@ -211,18 +268,31 @@ RunResult SimulateTimeStepping(const model::Model& model, const Excitation& exci
     }
     const double t1 = k + 1 == n_steps ? t_end : static_cast<double>(k + 1) * h;
     const double hk = t1 - t;
-    ws.Factorise(hk);
+    if (sparse) {
+      ws.FactoriseSparse(hk);
+    } else {
+      ws.Factorise(hk);
+    }
     const Eigen::Vector2d a_mean = MeanAcceleration(excitation, t, t1);
 
     // Free velocity: W (u_free - u_k) = h (-C u_k - K (q_k + h theta u_k) - M r abar_g).
     ws.work_ = q + (hk * theta) * u;
-    ws.rhs_.noalias() = -model.C() * u;
-    ws.rhs_.noalias() -= model.K() * ws.work_;
+    if (sparse) {
+      ws.rhs_.noalias() = -(ws.C_sparse_ * u);
+      ws.rhs_.noalias() -= ws.K_sparse_ * ws.work_;
+    } else {
+      ws.rhs_.noalias() = -model.C() * u;
+      ws.rhs_.noalias() -= model.K() * ws.work_;
+    }
     ws.work_.noalias() = model.r() * a_mean;
     ws.rhs_ -= mass.cwiseProduct(ws.work_);
     ws.rhs_ *= hk;
     ws.u_free_ = u;
-    ws.u_free_.noalias() += ws.W_inverse_ * ws.rhs_;
+    if (sparse) {
+      ws.u_free_ += ws.cholmod_.solve(ws.rhs_);
+    } else {
+      ws.u_free_.noalias() += ws.W_inverse_ * ws.rhs_;
+    }
 
     contact::Evaluate(model, q, u, ws.kin_);
     ws.active_.clear();
@@ -248,17 +318,30 @@ RunResult SimulateTimeStepping(const model::Model& model, const Excitation& exci
       }
       const auto WN = ws.WN_.leftCols(ka);
       const auto WT = ws.WT_.leftCols(ka);
-      ws.WinvWN_.leftCols(ka).noalias() = ws.W_inverse_ * WN;
-      ws.WinvWT_.leftCols(ka).noalias() = ws.W_inverse_ * WT;
-      const auto WinvWN = ws.WinvWN_.leftCols(ka);
-      const auto WinvWT = ws.WinvWT_.leftCols(ka);
       auto A = ws.A_.topLeftCorner(3 * ka, 3 * ka);
       A.setZero();
       // [method.md §3, impact problem] with W^-1 in place of M^-1.
-      A.block(0, 0, ka, ka).noalias() = WN.transpose() * WinvWN;
-      A.block(0, ka, ka, ka).noalias() = WN.transpose() * WinvWT;
-      A.block(ka, 0, ka, ka).noalias() = WT.transpose() * WinvWN;
-      A.block(ka, ka, ka, ka).noalias() = WT.transpose() * WinvWT;
+      if (sparse) {
+        // W^-1 W_N by the factor; W_N^T (W^-1 W_N) with the sparse W_N (6 rows per column).
+        ws.GatherSparseJacobians(ka);
+        ws.WinvWN_.leftCols(ka) = ws.cholmod_.solve(ws.WN_.leftCols(ka));
+        ws.WinvWT_.leftCols(ka) = ws.cholmod_.solve(ws.WT_.leftCols(ka));
+        const auto WinvWN = ws.WinvWN_.leftCols(ka);
+        const auto WinvWT = ws.WinvWT_.leftCols(ka);
+        A.block(0, 0, ka, ka).noalias() = ws.WN_sparse_.transpose() * WinvWN;
+        A.block(0, ka, ka, ka).noalias() = ws.WN_sparse_.transpose() * WinvWT;
+        A.block(ka, 0, ka, ka).noalias() = ws.WT_sparse_.transpose() * WinvWN;
+        A.block(ka, ka, ka, ka).noalias() = ws.WT_sparse_.transpose() * WinvWT;
+      } else {
+        ws.WinvWN_.leftCols(ka).noalias() = ws.W_inverse_ * WN;
+        ws.WinvWT_.leftCols(ka).noalias() = ws.W_inverse_ * WT;
+        const auto WinvWN = ws.WinvWN_.leftCols(ka);
+        const auto WinvWT = ws.WinvWT_.leftCols(ka);
+        A.block(0, 0, ka, ka).noalias() = WN.transpose() * WinvWN;
+        A.block(0, ka, ka, ka).noalias() = WN.transpose() * WinvWT;
+        A.block(ka, 0, ka, ka).noalias() = WT.transpose() * WinvWN;
+        A.block(ka, ka, ka, ka).noalias() = WT.transpose() * WinvWT;
+      }
       for (int j = 0; j < ka; ++j) {
         // Columns of W_N - W_T mu: subtract mu_j times the W_T column block.
         A.block(0, j, ka, 1) -= ws.mu_[j] * A.block(0, ka + j, ka, 1);
@@ -267,8 +350,9 @@ RunResult SimulateTimeStepping(const model::Model& model, const Excitation& exci
         A(2 * ka + j, j) = 2.0 * ws.mu_[j];
         A(2 * ka + j, ka + j) = -1.0;
         const int c = ws.active_[static_cast<std::size_t>(j)];
-        ws.b_[j] = WN.col(j).dot(ws.u_free_) + ws.eps_[j] * ws.kin_.gamma_N[c];
-        ws.b_[ka + j] = WT.col(j).dot(ws.u_free_);
+        ws.b_[j] =
+            contact::ColumnDot(model, c, WN.col(j), ws.u_free_) + ws.eps_[j] * ws.kin_.gamma_N[c];
+        ws.b_[ka + j] = contact::ColumnDot(model, c, WT.col(j), ws.u_free_);
         ws.b_[2 * ka + j] = 0.0;
       }
       lcp::LcpSolution& sol = ws.solutions_[static_cast<std::size_t>(3 * ka)];
@@ -294,7 +378,11 @@ RunResult SimulateTimeStepping(const model::Model& model, const Excitation& exci
 
     // Energy ledger with the theta-point velocity (exact for theta = 1/2).
     EnergyLedger& e = result.energy;
-    ws.work_.noalias() = model.C() * ws.u_theta_;
+    if (sparse) {
+      ws.work_.noalias() = ws.C_sparse_ * ws.u_theta_;
+    } else {
+      ws.work_.noalias() = model.C() * ws.u_theta_;
+    }
     e.damping_J += hk * ws.u_theta_.dot(ws.work_);
     ws.work_.noalias() = model.r() * a_mean;
     e.input_J -= hk * ws.u_theta_.dot(mass.cwiseProduct(ws.work_));
@@ -304,14 +392,14 @@ RunResult SimulateTimeStepping(const model::Model& model, const Excitation& exci
     const double kinetic_after = 0.5 * ws.u1_.dot(mass.cwiseProduct(ws.u1_));
     for (int j = 0; j < ka; ++j) {
       const int c = ws.active_[static_cast<std::size_t>(j)];
-      e.impact_J -= ws.u_theta_.dot(ws.kin_.W_N.col(c)) * ws.P_N_[c];
-      e.friction_J -= ws.u_theta_.dot(ws.kin_.W_T.col(c)) * ws.P_T_[c];
+      e.impact_J -= contact::ColumnDot(model, c, ws.kin_.W_N.col(c), ws.u_theta_) * ws.P_N_[c];
+      e.friction_J -= contact::ColumnDot(model, c, ws.kin_.W_T.col(c), ws.u_theta_) * ws.P_T_[c];
       if (ws.P_N_[c] > 0.0 && ws.P_N_previous_[c] <= 0.0) {
         impact = true;
       }
     }
     for (int c = 0; c < nc; ++c) {
-      const double gamma_T1 = ws.kin_.W_T.col(c).dot(ws.u1_);
+      const double gamma_T1 = contact::ColumnDot(model, c, ws.kin_.W_T.col(c), ws.u1_);
       ws.state_[static_cast<std::size_t>(c)] = StateOf(ws.P_N_[c], gamma_T1, v_tol);
       const int before = ws.state_previous_[static_cast<std::size_t>(c)];
       const int now = ws.state_[static_cast<std::size_t>(c)];
@@ -347,7 +435,7 @@ RunResult SimulateTimeStepping(const model::Model& model, const Excitation& exci
           event.impulse_N_Ns = ws.P_N_[c];
           event.impulse_T_Ns = ws.P_T_[c];
           event.gamma_N_before_mps = ws.kin_.gamma_N[c];
-          event.gamma_N_after_mps = ws.kin_.W_N.col(c).dot(ws.u1_);
+          event.gamma_N_after_mps = contact::ColumnDot(model, c, ws.kin_.W_N.col(c), ws.u1_);
           event.kinetic_loss_J = kinetic_before - kinetic_after;
           result.events.push_back(event);
         }
@@ -371,7 +459,12 @@ RunResult SimulateTimeStepping(const model::Model& model, const Excitation& exci
   result.u_end = u;
   EnergyLedger& e = result.energy;
   e.kinetic_J = 0.5 * u.dot(mass.cwiseProduct(u));
-  e.strain_J = 0.5 * q.dot(model.K() * q);
+  if (sparse) {
+    ws.work_.noalias() = ws.K_sparse_ * q;
+  } else {
+    ws.work_.noalias() = model.K() * q;
+  }
+  e.strain_J = 0.5 * q.dot(ws.work_);
   e.balance_error_J = (e.kinetic_J + e.strain_J) -
                       (e.initial_J + e.input_J - e.damping_J - e.impact_J - e.friction_J);
   return result;

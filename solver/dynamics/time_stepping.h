@@ -34,10 +34,20 @@
 ///   -h u_theta^T M r abar_g, impact -u_theta^T W_N P_N, friction -u_theta^T W_T P_T; exact
 ///   (balance error at rounding level) for theta = 1/2;
 /// - histories linear in t between grid points; the contact forces are P / h of the step.
+///
+/// Linear algebra (RunControl::linear_algebra, docs/multispan.md): the dense path inverts W once
+/// per step size and multiplies by W^-1 (O(n_dof^2) per step); the sparse path keeps K, C, W and
+/// the active W_N, W_T sparse (a deck's columns have at most 6 non-zeros), factorises W with
+/// CHOLMOD (simplicial LL^T, fill-reducing AMD ordering, symbolic analysis once per model) and
+/// solves with the factor (O(nnz(L)) per right-hand side). "auto" takes the sparse path from
+/// kSparseThresholdDof DOFs on. Both paths solve the same equations; they agree to rounding.
+/// The sparse path allocates inside CHOLMOD's solves (the dense path allocates nothing per step).
 
 #include <Eigen/Cholesky>
+#include <Eigen/CholmodSupport>
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
+#include <Eigen/SparseCore>
 #include <vector>
 
 #include "solver/common/excitation.h"
@@ -49,6 +59,16 @@
 #include "solver/model/model_file.h"
 
 namespace skewbridge::dynamics {
+
+/// The DOF count from which run.linear_algebra = "auto" takes the sparse path: the measured
+/// crossover of docs/multispan.md (dense and sparse cost the same near 3 decks and the sparse path
+/// wins from there on).
+inline constexpr int kSparseThresholdDof = 12;
+
+/// Whether a run of `model` under `control` takes the sparse path: control.linear_algebra is
+/// "sparse", or "auto" with model.n_dof() >= kSparseThresholdDof.
+/// @throws InputError when control.linear_algebra is not "auto", "dense" or "sparse".
+bool UsesSparseLinearAlgebra(const model::Model& model, const model::RunControl& control);
 
 /// Scratch memory of the time-stepping scheme for one model: build once, reuse for every run of
 /// that model; results never depend on what ran before. Keeps a reference to the model.
@@ -68,12 +88,24 @@ class TimeSteppingWorkspace {
 
   /// Factorises W for step h (no-op when h is the factorised step).
   void Factorise(double h_s);
+  /// Factorises the sparse W for step h with CHOLMOD (no-op when h is the factorised step).
+  void FactoriseSparse(double h_s);
+  /// The sparse n_dof x k matrices of the first k gathered columns of W_N, W_T (WN_, WT_), from
+  /// the rows of each active contact's bodies.
+  void GatherSparseJacobians(int k);
 
   const model::Model& model_;
   double theta_;
   double factorised_h_s_ = -1.0;
   Eigen::LLT<Eigen::MatrixXd> llt_;
   Eigen::MatrixXd W_inverse_;  // n_dof x n_dof
+  // The sparse path: K, C once per model, W and its CHOLMOD factor per step size.
+  double factorised_sparse_h_s_ = -1.0;
+  bool pattern_analysed_ = false;
+  Eigen::SparseMatrix<double> K_sparse_, C_sparse_, M_sparse_, W_sparse_;
+  Eigen::CholmodSimplicialLLT<Eigen::SparseMatrix<double>> cholmod_;
+  Eigen::SparseMatrix<double> WN_sparse_, WT_sparse_;
+  std::vector<Eigen::Triplet<double>> triplets_;
   contact::ContactKinematics kin_;
   lcp::LemkeSolver lemke_;
   std::vector<lcp::LcpSolution> solutions_;  // one per LCP size: no allocation per step
