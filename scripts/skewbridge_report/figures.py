@@ -310,9 +310,9 @@ def correlation_rotation_vs_w0x(sweep, out_dir, name, pdf):
 
 
 def history(run, out_dir, name, pdf):
-    """x, y, theta of each body against t with impacts (open circles) and plastic closures
-    (filled) on the curves, and a contact timeline: persistent contact (state != 0) filled,
-    impacts open. Returns rows (quantity, max abs, time of max)."""
+    """x, y, theta of each body against t with impacts (open circles), plastic closures and
+    samples in persistent contact (filled) on the curves, and a contact timeline: persistent
+    contact (state != 0) filled, impacts open. Returns rows (quantity, max abs, time of max)."""
     fig, axes = plt.subplots(4, 1, figsize=FIGSIZE_IN["history"], sharex=True,
                              constrained_layout=True,
                              gridspec_kw={"height_ratios": [1, 1, 1, 0.8]})
@@ -323,6 +323,9 @@ def history(run, out_dir, name, pdf):
     t_pc = np.unique(run.event_t_s[run.event_kind == closure]) if closure is not None else []
     labels = [r"$x$ [mm]", r"$y$ [mm]", r"$\theta$ [mrad]"]
     table = []
+    # Samples in persistent contact (any contact closed), thinned to at most 80 markers a curve.
+    closed = np.flatnonzero(np.any(run.state != 0, axis=1))
+    closed = closed[::max(1, len(closed) // 80)]
     for body in range(run.n_bodies):
         for k in range(3):
             ax = axes[k]
@@ -336,6 +339,9 @@ def history(run, out_dir, name, pdf):
                 ax.plot(t_pc, np.interp(t_pc, t, series), "o", ms=7, color="k",
                         label="plastic closure (contact persists)"
                         if body == 0 and k == 0 else None)
+            if len(closed):
+                ax.plot(t[closed], series[closed], "o", ms=3.5, color="k",
+                        label="persistent contact" if body == 0 and k == 0 else None)
             ax.set_ylabel(labels[k])
             i = int(np.argmax(np.abs(series)))
             table.append((("x [m]", "y [m]", "θ [rad]")[k]

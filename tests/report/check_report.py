@@ -11,7 +11,7 @@
   statistics stored in the cube when it has a correlation/ group; a stored band response
   agrees with its band_edges.
 
-usage: check_report.py OUT_DIR REPORT_LOG SPECTRA.h5 PIDELTA.h5 ETA0.h5 RECORDS.h5 RUN.h5"""
+usage: check_report.py OUT_DIR REPORT_LOG SPECTRA.h5 PIDELTA.h5 ETA0.h5 RECORDS.h5 RUN.h5 PUSH.h5"""
 import os
 import sys
 
@@ -27,6 +27,7 @@ EXPECTED = {  # file -> (width, height) in pixels
     "correlation_theta_vs_Le_records.png": (1200, 480),
     "correlation_rotation_vs_w0x_records.png": (1200, 480),
     "history_run.png": (1000, 900),
+    "history_push.png": (1000, 900),
 }
 EXPECTED_SKIPS = [
     "skipped spectra for eta0: 2 curve axes (eta0, W0_over_w0)",
@@ -171,7 +172,24 @@ def check_stored_band(g):
     print(f"stored band agrees with the edges {list(edges)}")
 
 
-def main(out, log, spectra, pidelta, eta0, records, run):
+def check_history_tables(summary, path):
+    """Impacts in the summary against the distinct impact instants of the event log, and the
+    persistent contact of the push run seen in its state history."""
+    with h5py.File(path, "r") as f:
+        kind = f["events/kind"][()]
+        impacts = len(np.unique(f["events/t_s"][()][kind == 0]))
+        closed = int(np.count_nonzero(f["histories/state"][()] != 0))
+    name = os.path.basename(path)
+    lines = summary.splitlines()
+    start = next(i for i, line in enumerate(lines) if line.startswith(f"## Run {name}"))
+    row = next(line for line in lines[start:] if line.startswith("| ") and
+               line.split("|")[1].strip().isdigit())
+    assert int(row.split("|")[1]) == impacts, (row, impacts)
+    print(f"{name}: {impacts} impacts, {closed} samples in persistent contact")
+    return closed
+
+
+def main(out, log, spectra, pidelta, eta0, records, run, push):
     check_images(out)
     text = open(log).read()
     for line in EXPECTED_SKIPS:
@@ -182,9 +200,11 @@ def main(out, log, spectra, pidelta, eta0, records, run):
     check_spectra_table(summary, spectra)
     check_eta0_table(summary, eta0)
     check_correlation(summary, records)
-    del pidelta, run
+    check_history_tables(summary, run)
+    assert check_history_tables(summary, push) > 0, "the push run has no persistent contact"
+    del pidelta
     print("check_report: ok")
 
 
 if __name__ == "__main__":
-    main(*sys.argv[1:8])
+    main(*sys.argv[1:9])

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # scripts/report end to end: four small cubes from `skewbridge sweep` on 2 ranks (subsystem
 # spectra over skew angles, a Pi_delta family, rotation against eta0, the pilot bridge over an
-# 8-record synthetic suite; 24-48 cells each) and one run file; check_report.py then checks the
+# 8-record synthetic suite; 24-48 cells each) and two run files (separate impacts; impacts
+# ending in persistent contact, tests/report/push.toml); check_report.py then checks the
 # figures, tables and statistics; bad inputs must exit with status 2 and one line.
 # usage: report_test.sh SKEWBRIDGE MPIEXEC SOURCE_ROOT WORK_DIR
 set -euo pipefail
@@ -60,11 +61,13 @@ Pi_delta = [0.5, 1.0, 2.0]
 TOML
 for s in spectra pidelta eta0 records; do sweep $s.toml --out $s.h5; done
 "$exe" run "$root/docs/examples/subsystem.toml" --out run.h5 >/dev/null
+"$exe" run "$root/tests/report/push.toml" --out push.h5 >/dev/null
 
-"$report" spectra.h5 pidelta.h5 eta0.h5 records.h5 --run run.h5 --out out --pdf >report.log ||
+"$report" spectra.h5 pidelta.h5 eta0.h5 records.h5 --run run.h5 --run push.h5 --out out --pdf \
+  >report.log ||
   fail "report exited with status $? ($(cat report.log))"
 /usr/bin/python3 "$root/tests/report/check_report.py" out report.log spectra.h5 pidelta.h5 \
-  eta0.h5 records.h5 run.h5 || fail "figures or tables"
+  eta0.h5 records.h5 run.h5 push.h5 || fail "figures or tables"
 
 # expect_error NAME PATTERN ARGS...: exit status 2, one line on stderr matching PATTERN,
 # no output folder made.
