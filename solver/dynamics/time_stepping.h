@@ -61,9 +61,9 @@
 namespace skewbridge::dynamics {
 
 /// The DOF count from which run.linear_algebra = "auto" takes the sparse path: the measured
-/// crossover of docs/multispan.md (dense and sparse cost the same near 3 decks and the sparse path
-/// wins from there on).
-inline constexpr int kSparseThresholdDof = 12;
+/// crossover of docs/multispan.md (dense and sparse cost the same at 5 decks, 15 DOFs; the sparse
+/// path is 1.3 times faster at 10 decks and 10 times faster at 50).
+inline constexpr int kSparseThresholdDof = 15;
 
 /// Whether a run of `model` under `control` takes the sparse path: control.linear_algebra is
 /// "sparse", or "auto" with model.n_dof() >= kSparseThresholdDof.
