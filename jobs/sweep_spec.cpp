@@ -21,7 +21,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // The one table of parameter names. The spectra mapping extends it here (and in
 // docs/sweep-format.md); the order is the canonical axis order of every cube.
 // clang-format off
-constexpr std::array<ParameterInfo, 15> kParameters{{
+constexpr std::array<ParameterInfo, 16> kParameters{{
   {"record", "record", "", "ground-motion record, by its label in the [records] set",
    ParameterKind::kLabel, 0, true, 0, true, false, ""},
   {"pulse", "pulse", "", "one cycle of a_g cos(w_g t) or a_g sin(w_g t) [method.md §5]",
@@ -51,6 +51,8 @@ constexpr std::array<ParameterInfo, 15> kParameters{{
    ParameterKind::kNumber, 0, true, kInf, false, false, ""},
   {"w0_over_wg", "w0/w_g", "1", "substructure over excitation frequency w0 / w_g",
    ParameterKind::kNumber, 0, false, kInf, false, false, ""},
+  {"method", "method", "", "integrator: event-driven, or Moreau-Jean time-stepping with h = 1e-4 of the excitation period",
+   ParameterKind::kLabel, 0, true, 0, true, false, "event-driven|time-stepping"},
 }};
 // clang-format on
 

@@ -9,6 +9,7 @@
 
 #include "solver/common/error.h"
 #include "solver/dynamics/simulate.h"
+#include "solver/dynamics/time_stepping.h"
 #include "solver/model/deck.h"
 
 namespace skewbridge::spectra {
@@ -73,6 +74,10 @@ ExcitationScales PulseScales(const PointParameters& p) {
   return {p.pulse_a_g_mps2, p.pulse_w_g_radps};
 }
 
+const char* ToString(Method method) {
+  return method == Method::kTimeStepping ? "time-stepping" : "event-driven";
+}
+
 DimensionalPoint ToDimensional(const PointParameters& p, const ExcitationScales& scales) {
   RequirePositive(scales.a_g_mps2, "a_g");
   RequirePositive(scales.w_g_radps, "w_g");
@@ -93,6 +98,11 @@ DimensionalPoint ToDimensional(const PointParameters& p, const ExcitationScales&
   out.scales = scales;
   out.persistency_m = scales.a_g_mps2 / (scales.w_g_radps * scales.w_g_radps);
   out.delta_m = p.Pi_delta * out.persistency_m;
+  out.method = p.method;
+  if (p.method == Method::kTimeStepping) {
+    RequirePositive(p.time_step_over_Tg, "time_step_over_Tg");
+    out.time_step_s = p.time_step_over_Tg * 2.0 * std::numbers::pi / scales.w_g_radps;
+  }
 
   model::DeckSpec& deck = out.deck;
   if (p.family == Family::kPilotBridge) {
@@ -167,8 +177,15 @@ PointResult EvaluatePoint(const DimensionalPoint& point, const Excitation& excit
   control.end_time_s =
       excitation.Duration() + 2.0 * std::max(excitation_period_s, natural_period_s);
 
-  dynamics::SimulationWorkspace workspace(model);
-  const dynamics::RunResult run = dynamics::Simulate(model, excitation, control, workspace);
+  dynamics::RunResult run;
+  if (point.method == Method::kTimeStepping) {
+    control.time_step_s = point.time_step_s;
+    dynamics::TimeSteppingWorkspace workspace(model);
+    run = dynamics::SimulateTimeStepping(model, excitation, control, workspace);
+  } else {
+    dynamics::SimulationWorkspace workspace(model);
+    run = dynamics::Simulate(model, excitation, control, workspace);
+  }
 
   PointResult r;
   r.status = run.status;

@@ -29,6 +29,15 @@ enum class Family {
   kPilotBridge,  ///< the two-span pilot bridge of [method.md §6], both abutments
 };
 
+/// How a point is integrated [method.md §3].
+enum class Method {
+  kEventDriven,   ///< dynamics::Simulate (the reference)
+  kTimeStepping,  ///< dynamics::SimulateTimeStepping, Moreau-Jean, the independent check
+};
+
+/// "event-driven" or "time-stepping".
+const char* ToString(Method method);
+
 /// The dimensionless coordinates of one point, with the defaults of the studies of
 /// [method.md §6] (xi = 5 %, eps_N = 0.5).
 struct PointParameters {
@@ -50,6 +59,10 @@ struct PointParameters {
   double pulse_a_g_mps2 = 0.5 * 9.80665;       ///< pulse amplitude a_g (m/s^2), cancels out
   double pulse_w_g_radps = 6.283185307179586;  ///< pulse w_g (rad/s), subsystem; cancels out
   double mass_kg = 1.0e6;                      ///< deck mass (subsystem), cancels out
+  Method method = Method::kEventDriven;        ///< the integrator
+  /// Time-stepping: step over the excitation period, h w_g / (2 pi), so that the step scales
+  /// with 1 / w_g like every time; 1e-4 is h = 1e-4 s for w_g = 2 pi rad/s.
+  double time_step_over_Tg = 1e-4;
 };
 
 /// The excitation scales of a point: a_g and w_g (for a record, PGA and 2 pi / T_m).
@@ -66,6 +79,8 @@ struct DimensionalPoint {
   double rho_m = 0.0;          ///< radius of gyration sqrt(I_m / m)
   double persistency_m = 0.0;  ///< L_e = a_g / w_g^2
   double w0x_radps = 0.0;      ///< sqrt(K_xx / m)
+  Method method = Method::kEventDriven;  ///< the integrator
+  double time_step_s = 0.0;              ///< time-stepping step h (s)
 };
 
 /// The pilot bridge of [method.md §6; Dimitrakopoulos 2011, §6]: m = 1547 t,
@@ -82,7 +97,7 @@ ExcitationScales PulseScales(const PointParameters& p);
 /// Maps a point to its dimensional model [method.md §5].
 /// @throws InputError naming the parameter ("eta0", "Pi_delta", ...) and its allowed range
 /// when a value or a combination is impossible (eta0 with a = 0, delta/L with Pi_delta = 0, a
-/// deck whose geometry is not a parallelogram, ...).
+/// deck whose geometry is not a parallelogram, time_step_over_Tg <= 0, ...).
 DimensionalPoint ToDimensional(const PointParameters& p, const ExcitationScales& scales);
 
 /// The responses of one point, dimensional and normalised as in [method.md §5].
@@ -104,8 +119,8 @@ struct PointResult {
 };
 
 /// Runs the point under `excitation` (the pulse of PulseScales or a record whose scales are
-/// given) and normalises the maxima. The end time is the excitation's duration plus two of
-/// the longer of 2 pi / w_g and the longest natural period, so it scales with 1 / w_g.
+/// given) by point.method and normalises the maxima. The end time is the excitation's duration plus
+/// two of the longer of 2 pi / w_g and the longest natural period, so it scales with 1 / w_g.
 /// @throws InputError as ToDimensional.
 PointResult EvaluatePoint(const DimensionalPoint& point, const Excitation& excitation);
 

@@ -1,6 +1,7 @@
-// `skewbridge run MODEL.toml [--csv run.csv] [--out run.h5]`: one event-driven run of a model
-// file; prints a summary, writes the time histories as CSV and the whole run as HDF5
-// (docs/run-output.md), each to a temporary name renamed on success.
+// `skewbridge run MODEL.toml [--csv run.csv] [--out run.h5]`: one run of a model file by the
+// method of run.method (event-driven or time-stepping); prints a summary, writes the time
+// histories as CSV and the whole run as HDF5 (docs/run-output.md), each to a temporary name
+// renamed on success. A run that stops with a status other than ok exits with status 3.
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -15,10 +16,14 @@
 #include "records/excitations.h"
 #include "solver/common/error.h"
 #include "solver/dynamics/simulate.h"
+#include "solver/dynamics/time_stepping.h"
 #include "solver/model/model_file.h"
 
 namespace skewbridge::app {
 namespace {
+
+// Exit status of a run that ended before its end time with a status other than ok.
+constexpr int kRunStoppedExitCode = 3;
 
 // Samples of a plain text file: one column (acc) with excitation.dt_s, or two (time, acc).
 std::vector<double> ReadSamples(const std::filesystem::path& path, double& dt_s, bool has_dt) {
@@ -164,11 +169,22 @@ void AddRunCommand(CLI::App& app) {
     if (!csv_path->empty() && control.output_interval_s <= 0.0) {
       control.output_interval_s = 0.01;
     }
-    dynamics::SimulationWorkspace workspace(file.model);
-    const dynamics::RunResult r = dynamics::Simulate(file.model, *excitation, control, workspace);
-    std::printf("model %s: status %s%s%s, t_end %.6g s\n", model_path->c_str(),
-                dynamics::ToString(r.status), r.message.empty() ? "" : " - ", r.message.c_str(),
-                r.end_time_s);
+    // run.method: the event-driven integrator, or the Moreau-Jean scheme with run.time_step_s.
+    const bool time_stepping = control.method == "time-stepping";
+    dynamics::RunResult r;
+    if (time_stepping) {
+      dynamics::TimeSteppingWorkspace workspace(file.model);
+      r = dynamics::SimulateTimeStepping(file.model, *excitation, control, workspace);
+    } else {
+      dynamics::SimulationWorkspace workspace(file.model);
+      r = dynamics::Simulate(file.model, *excitation, control, workspace);
+    }
+    std::printf("model %s: method %s", model_path->c_str(), control.method.c_str());
+    if (time_stepping) {
+      std::printf(" (h = %.6g s)", control.time_step_s);
+    }
+    std::printf(", status %s%s%s, t_end %.6g s\n", dynamics::ToString(r.status),
+                r.message.empty() ? "" : " - ", r.message.c_str(), r.end_time_s);
     const char* names[3] = {"x", "y", "theta"};
     for (int i = 0; i < file.model.n_dof(); ++i) {
       std::printf("  max|%s%d| = %.6e at %.6f s, residual %.6e\n", names[i % 3], i / 3,
@@ -192,6 +208,13 @@ void AddRunCommand(CLI::App& app) {
     }
     if (!out_path->empty()) {
       WriteHdf5(*out_path, file, r);
+    }
+    if (r.status != dynamics::RunStatus::kOk) {
+      // An expected numerical outcome (Painleve, LCP failure, step limit): the summary and the
+      // files hold the run up to where it stopped; the exit status tells scripts it stopped.
+      std::fprintf(stderr, "skewbridge: run stopped: %s: %s\n", dynamics::ToString(r.status),
+                   r.message.c_str());
+      throw CLI::RuntimeError(kRunStoppedExitCode);
     }
   });
 }

@@ -201,6 +201,15 @@ void FreeDenseOutput::EvaluateHead(double tau_s, int count, Eigen::Ref<Eigen::Ve
   }
 }
 
+double FreeDenseOutput::EvaluateComponent(double tau_s, int i) const {
+  SB_ASSERT(i >= 0 && i < coefficients_.rows(), "FreeDenseOutput: bad component");
+  double z = coefficients_(i, terms_ - 1);
+  for (int k = terms_ - 2; k >= 0; --k) {
+    z = z * tau_s + coefficients_(i, k);
+  }
+  return z;
+}
+
 void FreeDenseOutput::EvaluateDerivative(double tau_s, Eigen::Ref<Eigen::VectorXd> dz) const {
   dz.setZero();
   for (int k = terms_ - 1; k >= 1; --k) {

@@ -111,6 +111,9 @@ class FreeDenseOutput {
   /// @pre count <= the augmented size, z.size() >= count.
   void EvaluateHead(double tau_s, int count, Eigen::Ref<Eigen::VectorXd> z) const;
 
+  /// Component i of z(tau). @pre 0 <= i < the augmented size.
+  double EvaluateComponent(double tau_s, int i) const;
+
   /// dz/dtau at tau.
   void EvaluateDerivative(double tau_s, Eigen::Ref<Eigen::VectorXd> dz) const;
 

@@ -102,6 +102,13 @@ class DormandPrince45 {
   /// Dense output at absolute time t in [t0, t0 + h].
   void DenseAt(double t, Eigen::Ref<Eigen::VectorXd> out) const { Dense((t - t0_) / h_, out); }
 
+  /// Component i of the dense output at absolute time t.
+  double DenseComponentAt(double t, int i) const {
+    const double s = (t - t0_) / h_, r = 1.0 - s;
+    return dense_(i, 0) +
+           s * (dense_(i, 1) + r * (dense_(i, 2) + s * (dense_(i, 3) + r * dense_(i, 4))));
+  }
+
   double t0() const { return t0_; }
   double h() const { return h_; }
 

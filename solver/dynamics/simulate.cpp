@@ -100,9 +100,11 @@ class Integrator {
   template <class StateAt>
   double GapRoot(int c, double t0, double t1, double g0, double gN0, double g1, double gN1,
                  StateAt&& at);
-  template <class StateAt>
+  // component_at(t, i): entry i of (q, u) at t alone; the root search for a velocity zero needs
+  // one entry, not the whole state.
+  template <class ComponentAt>
   void ScanMaxima(double t0, const Vec& q0, const Vec& u0, double t1, const Vec& q1, const Vec& u1,
-                  StateAt&& at);
+                  ComponentAt&& component_at);
   template <class StateAt>
   void RecordOutputs(double t0, double t1, StateAt&& at);
   void RecordSample(double t, const Eigen::Ref<const Vec>& q, const Eigen::Ref<const Vec>& u);
@@ -453,7 +455,10 @@ void Integrator::FreeStep() {
   u_a_ = u();
   q_b_ = z_new_.head(n_);
   u_b_ = z_new_.segment(n_, n_);
-  ScanMaxima(t_, q_a_, u_a_, t_next, q_b_, u_b_, at);
+  ScanMaxima(t_, q_a_, u_a_, t_next, q_b_, u_b_, [&](double t, int i) {
+    ensure_dense();
+    return ws_.free_dense_.EvaluateComponent(t - t_, i);
+  });
   RecordOutputs(t_, t_next, at);
   z_.head(2 * n_) = z_new_.head(2 * n_);
   t_ = t_next;
@@ -509,9 +514,9 @@ double Integrator::GapRoot(int c, double t0, double t1, double g0, double gN0, d
   return root.fx <= 0.0 ? root.x : root.upper;
 }
 
-template <class StateAt>
+template <class ComponentAt>
 void Integrator::ScanMaxima(double t0, const Vec& q0, const Vec& u0, double t1, const Vec& q1,
-                            const Vec& u1, StateAt&& at) {
+                            const Vec& u1, ComponentAt&& component_at) {
   for (int i = 0; i < n_; ++i) {
     if (std::abs(q1[i]) > result_.max_abs_q[i]) {
       result_.max_abs_q[i] = std::abs(q1[i]);
@@ -521,15 +526,12 @@ void Integrator::ScanMaxima(double t0, const Vec& q0, const Vec& u0, double t1, 
       const double bound = std::max(std::abs(q0[i]), std::abs(q1[i])) +
                            0.5 * (t1 - t0) * std::max(std::abs(u0[i]), std::abs(u1[i]));
       if (bound > result_.max_abs_q[i]) {
-        const auto velocity = [&](double t) {
-          at(t, q_e_, u_e_);
-          return u_e_[i];
-        };
+        const auto velocity = [&](double t) { return component_at(t, n_ + i); };
         const RootResult peak = FindRootBrent(velocity, t0, t1, u0[i], u1[i],
                                               1e-15 * std::max(1.0, std::abs(t1)) + 1e-16);
-        at(peak.x, q_e_, u_e_);
-        if (std::abs(q_e_[i]) > result_.max_abs_q[i]) {
-          result_.max_abs_q[i] = std::abs(q_e_[i]);
+        const double q_peak = std::abs(component_at(peak.x, i));
+        if (q_peak > result_.max_abs_q[i]) {
+          result_.max_abs_q[i] = q_peak;
           result_.time_of_max_s[i] = peak.x;
         }
       }
@@ -761,7 +763,8 @@ void Integrator::ConstrainedStep() {
   u_a_ = z_.segment(n_, n_);
   q_b_ = y_eval_.head(n_);
   u_b_ = y_eval_.segment(n_, n_);
-  ScanMaxima(t_, q_a_, u_a_, t_new, q_b_, u_b_, at);
+  ScanMaxima(t_, q_a_, u_a_, t_new, q_b_, u_b_,
+             [&](double t, int i) { return rk.DenseComponentAt(t, i); });
   RecordOutputs(t_, t_new, at);
   z_.head(n_) = q_b_;
   z_.segment(n_, n_) = u_b_;

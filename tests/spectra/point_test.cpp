@@ -173,5 +173,35 @@ TEST(EvaluatePoint, DimensionlessMaximaAreIndependentOfIntensity) {
   }
 }
 
+TEST(EvaluatePoint, TimeSteppingAgreesWithEventDrivenWithinOnePercent) {
+  // The canonical subsystem point (w0/w_g = 0.5, Pi_delta = 0.5, a = 30 deg, eta0 = 2) by both
+  // integrators; the Moreau-Jean scheme is first order, h = 1e-4 T_g keeps it within 1 %.
+  PointParameters p = Subsystem(0.5, 0.5, 30.0, 2.0);
+  p.delta_over_L = 0.002;
+  const ExcitationScales scales = PulseScales(p);
+  const records::PulseExcitation pulse(p.pulse, scales.a_g_mps2, scales.w_g_radps);
+  const PointResult ed = EvaluatePoint(ToDimensional(p, scales), pulse);
+  p.method = Method::kTimeStepping;
+  const DimensionalPoint d = ToDimensional(p, scales);
+  EXPECT_EQ(d.method, Method::kTimeStepping);
+  EXPECT_NEAR(d.time_step_s, 1e-4 * 2.0 * kPi / scales.w_g_radps, 1e-18);
+  const PointResult ts = EvaluatePoint(d, pulse);
+  ASSERT_EQ(ed.status, dynamics::RunStatus::kOk) << ed.message;
+  ASSERT_EQ(ts.status, dynamics::RunStatus::kOk) << ts.message;
+  ASSERT_GT(ed.impacts, 0);
+  EXPECT_NEAR(ts.x_norm, ed.x_norm, 0.01 * ed.x_norm);
+  EXPECT_NEAR(ts.y_norm, ed.y_norm, 0.01 * ed.y_norm);
+  EXPECT_NEAR(ts.theta_norm, ed.theta_norm, 0.01 * ed.theta_norm);
+  // Different integrators give different step counts: the method really changed.
+  EXPECT_NE(ts.steps, ed.steps);
+}
+
+TEST(ToDimensional, RejectsANonPositiveTimeStep) {
+  PointParameters p = Subsystem(0.5, 0.5, 30.0, 2.0);
+  p.method = Method::kTimeStepping;
+  p.time_step_over_Tg = 0.0;
+  EXPECT_THROW(ToDimensional(p, PulseScales(p)), InputError);
+}
+
 }  // namespace
 }  // namespace skewbridge::spectra
