@@ -21,7 +21,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // The one table of parameter names. The spectra mapping extends it here (and in
 // docs/sweep-format.md); the order is the canonical axis order of every cube.
 // clang-format off
-constexpr std::array<ParameterInfo, 16> kParameters{{
+constexpr std::array<ParameterInfo, 17> kParameters{{
   {"record", "record", "", "ground-motion record, by its label in the [records] set",
    ParameterKind::kLabel, 0, true, 0, true, false, ""},
   {"pulse", "pulse", "", "one cycle of a_g cos(w_g t) or a_g sin(w_g t) [method.md §5]",
@@ -49,6 +49,8 @@ constexpr std::array<ParameterInfo, 16> kParameters{{
    false, false, ""},
   {"Pi_delta", "Pi_delta", "1", "gap over persistency: delta w_g^2 / a_g",
    ParameterKind::kNumber, 0, true, kInf, false, false, ""},
+  {"seat_over_L", "seat/L", "1", "support seat width over span length (multi-span unseating margins)",
+   ParameterKind::kNumber, 0, false, kInf, false, false, ""},
   {"w0_over_wg", "w0/w_g", "1", "substructure over excitation frequency w0 / w_g",
    ParameterKind::kNumber, 0, false, kInf, false, false, ""},
   {"method", "method", "", "integrator: event-driven, or Moreau-Jean time-stepping with h = 1e-4 of the excitation period",
@@ -56,7 +58,8 @@ constexpr std::array<ParameterInfo, 16> kParameters{{
 }};
 // clang-format on
 
-constexpr std::array<std::string_view, 3> kFamilies{"subsystem", "pilot-bridge", "model-file"};
+constexpr std::array<std::string_view, 4> kFamilies{"subsystem", "pilot-bridge", "model-file",
+                                                    "multi-span"};
 
 // "file:line" when the node has a position, for InputError::AtField.
 std::string Where(std::string_view source, const toml::source_region& region) {
@@ -185,9 +188,9 @@ class Parser {
     }
     spec.family = RequireString(sweep, "sweep", "family");
     if (std::find(kFamilies.begin(), kFamilies.end(), spec.family) == kFamilies.end()) {
-      throw Error(
-          sweep.get("family")->source(), "sweep.family",
-          "unknown family '" + spec.family + "'; allowed: subsystem, pilot-bridge, model-file");
+      throw Error(sweep.get("family")->source(), "sweep.family",
+                  "unknown family '" + spec.family +
+                      "'; allowed: subsystem, pilot-bridge, model-file, multi-span");
     }
     if (spec.family == "model-file") {
       spec.model_file = RequireString(sweep, "sweep", "model");

@@ -1,0 +1,269 @@
+#include "jobs/multispan_evaluator.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "records/excitations.h"
+#include "solver/common/error.h"
+#include "solver/dynamics/simulate.h"
+#include "solver/dynamics/time_stepping.h"
+#include "solver/model/multispan.h"
+
+namespace skewbridge::jobs {
+namespace {
+
+constexpr double kStandardGravity_mps2 = 9.80665;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kDeckMass_kg = 1.0e6;  // cancels out of every dimensionless response
+
+double NumberOf(const SweepSpec& spec, std::span<const std::size_t> index, std::string_view key,
+                double fallback, bool* given = nullptr) {
+  for (std::size_t k = 0; k < spec.axes.size(); ++k) {
+    if (spec.axes[k].key == key) {
+      if (given != nullptr) *given = true;
+      return spec.axes[k].values[index[k]];
+    }
+  }
+  if (const FixedValue* fixed = spec.FindFixed(key)) {
+    if (given != nullptr) *given = true;
+    return fixed->value;
+  }
+  if (given != nullptr) *given = false;
+  return fallback;
+}
+
+std::string LabelOf(const SweepSpec& spec, std::span<const std::size_t> index, std::string_view key,
+                    std::string fallback) {
+  for (std::size_t k = 0; k < spec.axes.size(); ++k) {
+    if (spec.axes[k].key == key) return spec.axes[k].labels[index[k]];
+  }
+  if (const FixedValue* fixed = spec.FindFixed(key)) return fixed->label;
+  return fallback;
+}
+
+bool Mentions(const SweepSpec& spec, std::string_view key) {
+  return spec.FindAxis(key) != nullptr || spec.FindFixed(key) != nullptr;
+}
+
+// One cell made dimensional: the bridge, the pulse scales and the run controls.
+struct Cell {
+  model::MultiSpanSpec bridge;
+  double a_g_mps2 = 0.0;
+  double w_g_radps = 2.0 * std::numbers::pi;  // T_g = 1 s; cancels out
+  double persistency_m = 0.0;                 // L_e = a_g / w_g^2
+  records::PulseShape shape = records::PulseShape::kCosine;
+  bool time_stepping = false;
+};
+
+Cell MakeCell(const SweepSpec& spec, std::span<const std::size_t> index) {
+  Cell c;
+  const std::string& source = spec.source;
+  c.a_g_mps2 = NumberOf(spec, index, "a_g_g", 0.5) * kStandardGravity_mps2;
+  c.persistency_m = c.a_g_mps2 / (c.w_g_radps * c.w_g_radps);
+  c.shape = LabelOf(spec, index, "pulse", "cosine") == "sine" ? records::PulseShape::kSine
+                                                              : records::PulseShape::kCosine;
+  c.time_stepping = LabelOf(spec, index, "method", "event-driven") == "time-stepping";
+  model::MultiSpanSpec& b = c.bridge;
+  b.n_spans = static_cast<int>(NumberOf(spec, index, "spans", 1.0));
+  const double Pi_delta = NumberOf(spec, index, "Pi_delta", 1.0);
+  const double delta_m = Pi_delta * c.persistency_m;
+  bool has_delta_over_L = false;
+  const double delta_over_L = NumberOf(spec, index, "delta_over_L", 0.0, &has_delta_over_L);
+  double L_m = 0.0;
+  if (has_delta_over_L) {
+    if (!(delta_over_L > 0.0) || !(Pi_delta > 0.0)) {
+      throw InputError::AtField(source, "delta_over_L",
+                                "needs delta_over_L > 0 and Pi_delta > 0 (the gap sets the span "
+                                "length); use L_over_Le");
+    }
+    L_m = delta_m / delta_over_L;
+  } else {
+    L_m = NumberOf(spec, index, "L_over_Le", 250.0) * c.persistency_m;
+  }
+  const double a_deg = NumberOf(spec, index, "a_deg", 30.0);
+  b.skew_rad = a_deg * std::numbers::pi / 180.0;
+  bool has_eta0 = false;
+  const double eta0 = NumberOf(spec, index, "eta0", 0.0, &has_eta0);
+  if (has_eta0) {
+    if (!(a_deg > 0.0)) {
+      throw InputError::AtField(source, "eta0",
+                                "needs a skew angle > 0 (eta0 = sin 2a / (2 W/L) is 0 at a = 0); "
+                                "give W_over_L");
+    }
+    b.width_m = model::WidthFromEta0(eta0, b.skew_rad, L_m);
+  } else {
+    bool has_ratio = false;
+    b.width_m = NumberOf(spec, index, "W_over_L", 0.0, &has_ratio) * L_m;
+    if (!has_ratio) {
+      throw InputError::AtField(source, "eta0", "missing: give eta0 or W_over_L");
+    }
+  }
+  b.span_lengths_m = {L_m};
+  b.mass_per_length_kgpm = kDeckMass_kg / L_m;
+  const double w0 = NumberOf(spec, index, "w0_over_wg", 1.0) * c.w_g_radps;
+  b.w0x_radps = w0;
+  b.w0y_radps = w0;
+  b.W0_radps = NumberOf(spec, index, "W0_over_w0", 1.0) * w0;
+  b.xi = NumberOf(spec, index, "xi", 0.05);
+  b.abutment_gap_m = delta_m;
+  b.joint_gap_m = delta_m;
+  b.restitution = NumberOf(spec, index, "eps_N", 0.5);
+  b.friction = NumberOf(spec, index, "mu", 0.0);
+  bool has_seat = false;
+  const double seat_over_L = NumberOf(spec, index, "seat_over_L", 0.0, &has_seat);
+  if (has_seat) {
+    b.seat_width_m = seat_over_L * L_m;
+  }
+  return c;
+}
+
+int MaxSpans(const SweepSpec& spec) {
+  if (const Axis* axis = spec.FindAxis("spans")) {
+    return static_cast<int>(*std::max_element(axis->values.begin(), axis->values.end()));
+  }
+  if (const FixedValue* fixed = spec.FindFixed("spans")) {
+    return static_cast<int>(fixed->value);
+  }
+  return 1;
+}
+
+}  // namespace
+
+MultiSpanEvaluator::MultiSpanEvaluator(const SweepSpec& spec) : spec_(spec) {
+  for (std::string_view key : {"record"}) {
+    if (Mentions(spec, key)) {
+      throw InputError::AtField(spec.source, key,
+                                "not a parameter of family 'multi-span' (pulses only)");
+    }
+  }
+  if (Mentions(spec, "delta_over_L") && Mentions(spec, "L_over_Le")) {
+    throw InputError::AtField(spec.source, "L_over_Le",
+                              "give either delta_over_L or L_over_Le, not both");
+  }
+  max_spans_ = MaxSpans(spec);
+  // Every cell is mapped and its model built now, so a bad combination fails before any output.
+  for (std::uint64_t cell = 0; cell < spec.CellCount(); ++cell) {
+    const std::vector<std::size_t> index = spec.AxisIndex(cell);
+    const Cell c = MakeCell(spec, index);
+    if (!c.time_stepping && c.bridge.n_spans > kEventDrivenMaxSpans) {
+      throw InputError::AtField(spec.source, "spans",
+                                "the event-driven method accepts at most " +
+                                    std::to_string(kEventDrivenMaxSpans) + " spans (got " +
+                                    std::to_string(c.bridge.n_spans) +
+                                    "); use method = \"time-stepping\" (docs/multispan.md)");
+    }
+    try {
+      model::BuildMultiSpanBridge(c.bridge, spec.source);
+    } catch (const InputError& e) {
+      throw InputError(spec.source + ": " + e.what());
+    }
+  }
+}
+
+std::vector<ResponseInfo> MultiSpanEvaluator::Responses() const {
+  std::vector<ResponseInfo> out;
+  const bool seat = Mentions(spec_, "seat_over_L");
+  for (int d = 0; d < max_spans_; ++d) {
+    const std::string s = "_d" + std::to_string(d);
+    const std::string of = " of deck " + std::to_string(d) + " (NaN when the cell has fewer decks)";
+    out.push_back({"x_norm" + s, "1", "max |x| w_g^2 / a_g" + of});
+    out.push_back({"y_norm" + s, "1", "max |y| w_g^2 / a_g" + of});
+    out.push_back({"theta_norm" + s, "1", "max |theta| rho w_g^2 / a_g" + of});
+    if (seat) {
+      out.push_back({"margin_norm" + s, "1",
+                     "unseating margin (seat width - corner travel normal to the end line) "
+                     "w_g^2 / a_g" +
+                         of});
+    }
+  }
+  out.push_back({"theta_norm_max", "1", "largest theta_norm over the decks"});
+  out.push_back({"impacts", "1", "number of impact events (a multi-contact impact counts once)"});
+  out.push_back({"L_e", "m", "persistency a_g / w_g^2"});
+  out.push_back({"L", "m", "span length"});
+  out.push_back({"delta", "m", "gap of every joint and abutment, along x: Pi_delta L_e"});
+  return out;
+}
+
+std::vector<std::pair<std::int32_t, std::string>> MultiSpanEvaluator::StatusNames() const {
+  return {{kMultiSpanPainleve, "painleve"},
+          {kMultiSpanLcpFailure, "lcp-failure"},
+          {kMultiSpanStepLimit, "step-limit"}};
+}
+
+CellOutcome MultiSpanEvaluator::Evaluate(std::span<const std::size_t> axis_index) const {
+  const auto start = std::chrono::steady_clock::now();
+  const Cell c = MakeCell(spec_, axis_index);
+  const model::Model model = model::BuildMultiSpanBridge(c.bridge, spec_.source);
+  const records::PulseExcitation pulse(c.shape, c.a_g_mps2, c.w_g_radps);
+  const double excitation_period_s = 2.0 * std::numbers::pi / c.w_g_radps;
+  const double w_min = std::min({c.bridge.w0x_radps, c.bridge.W0_radps});
+  const double natural_period_s = w_min > 0.0 ? 2.0 * std::numbers::pi / w_min : 0.0;
+  model::RunControl control;
+  // Tolerances in state units follow the persistency, as for the single deck, so that the run
+  // is self-similar in a_g [method.md §4 fact 4].
+  control.absolute_tolerance = 1e-11 * c.persistency_m;
+  control.end_time_s = pulse.Duration() + 2.0 * std::max(excitation_period_s, natural_period_s);
+  dynamics::RunResult run;
+  if (c.time_stepping) {
+    control.time_step_s = 1e-4 * excitation_period_s;
+    dynamics::TimeSteppingWorkspace workspace(model);
+    run = dynamics::SimulateTimeStepping(model, pulse, control, workspace);
+  } else {
+    dynamics::SimulationWorkspace workspace(model);
+    run = dynamics::Simulate(model, pulse, control, workspace);
+  }
+
+  CellOutcome out;
+  switch (run.status) {
+    case dynamics::RunStatus::kOk:
+      out.status = kStatusOk;
+      break;
+    case dynamics::RunStatus::kPainleve:
+      out.status = kMultiSpanPainleve;
+      break;
+    case dynamics::RunStatus::kLcpFailure:
+      out.status = kMultiSpanLcpFailure;
+      break;
+    case dynamics::RunStatus::kStepLimit:
+      out.status = kMultiSpanStepLimit;
+      break;
+  }
+  out.status_text = run.message;
+  const bool ok = out.status == kStatusOk;
+  const bool seat = Mentions(spec_, "seat_over_L");
+  const double to_norm = 1.0 / c.persistency_m;
+  double theta_max = 0.0;
+  for (int d = 0; d < max_spans_; ++d) {
+    if (!ok || d >= model.n_bodies()) {
+      out.responses.insert(out.responses.end(), seat ? 4 : 3, kNaN);
+      continue;
+    }
+    const model::Body& deck = model.body(d);
+    const Eigen::Vector3d q_max = run.max_abs_q.segment<3>(3 * d);
+    const double rho_m = std::sqrt(deck.inertia_kgm2 / deck.mass_kg);
+    const double theta_norm = q_max(2) * rho_m * to_norm;
+    theta_max = std::max(theta_max, theta_norm);
+    out.responses.push_back(q_max(0) * to_norm);
+    out.responses.push_back(q_max(1) * to_norm);
+    out.responses.push_back(theta_norm);
+    if (seat) {
+      out.responses.push_back(model::UnseatingMargin(deck, *c.bridge.seat_width_m, q_max) *
+                              to_norm);
+    }
+  }
+  out.responses.push_back(ok ? theta_max : kNaN);
+  out.responses.push_back(ok ? static_cast<double>(run.impacts) : kNaN);
+  out.responses.push_back(c.persistency_m);
+  out.responses.push_back(c.bridge.span_lengths_m[0]);
+  out.responses.push_back(c.bridge.joint_gap_m);
+  out.stats.events = static_cast<std::int64_t>(run.events.size());
+  out.stats.steps = static_cast<std::int64_t>(run.free_steps + run.rk_steps);
+  out.stats.wall_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace skewbridge::jobs

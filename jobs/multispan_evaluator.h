@@ -1,0 +1,51 @@
+#pragma once
+/// @file
+/// The "multi-span" sweep family (docs/sweep-format.md, docs/multispan.md): N identical skew
+/// spans in a row between two abutments (model::BuildMultiSpanBridge), every gap (both abutments,
+/// every joint) delta = Pi_delta a_g / w_g^2, each deck on its own bearings (w0 along x and y,
+/// W0 in torsion, damping ratio xi), under a one-cycle pulse along x. The number of spans is a
+/// parameter (`spans`, an axis or fixed). Responses are stored per deck with a suffix _d<i>
+/// for i up to the largest span count of the sweep; a cell with fewer spans stores NaN for the
+/// decks it does not have (docs/hdf5-layout.md, multi-span responses).
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "jobs/cell.h"
+#include "jobs/sweep_spec.h"
+
+namespace skewbridge::jobs {
+
+/// Cell status codes of the multi-span evaluator (0 is ok), as the spectra evaluator's.
+enum MultiSpanStatus : std::int32_t {
+  kMultiSpanPainleve = 1,    ///< the contact problem had no consistent forces
+  kMultiSpanLcpFailure = 2,  ///< an LCP hit its pivot limit or had invalid input
+  kMultiSpanStepLimit = 3,   ///< the run did not reach its end time (step budget, event cascade)
+};
+
+/// The largest span count the event-driven integrator accepts today (its active set holds at
+/// most 24 constraint rows, 2 per contact, and N spans have 2 N + 2 contacts; docs/multispan.md).
+inline constexpr int kEventDrivenMaxSpans = 5;
+
+/// Evaluates the cells of a multi-span sweep. Immutable after construction: Evaluate is a pure
+/// function of the cell index.
+class MultiSpanEvaluator final : public CellEvaluator {
+ public:
+  /// Checks every cell's parameters before any work.
+  /// @throws InputError naming the key for a parameter this family does not take (record,
+  /// L_over_Le with delta_over_L, ...), an impossible combination (eta0 with a = 0), or more than
+  /// kEventDrivenMaxSpans spans with the event-driven method.
+  explicit MultiSpanEvaluator(const SweepSpec& spec);
+
+  std::vector<ResponseInfo> Responses() const override;
+  std::vector<std::pair<std::int32_t, std::string>> StatusNames() const override;
+  CellOutcome Evaluate(std::span<const std::size_t> axis_index) const override;
+
+ private:
+  SweepSpec spec_;
+  int max_spans_ = 1;  ///< the largest span count over the cells: the number of deck suffixes
+};
+
+}  // namespace skewbridge::jobs
