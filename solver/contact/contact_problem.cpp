@@ -19,10 +19,13 @@ const char* ToString(ContactStatus status) {
   }
 }
 
-ContactProblem::ContactProblem(const model::Model& model, lcp::LemkeOptions options)
-    : model_(model), solver_(options) {
+ContactProblem::ContactProblem(const model::Model& model, lcp::LemkeOptions options,
+                               Assembly assembly)
+    : model_(model), solver_(options), sparse_(UsesSparseAssembly(model, assembly)) {
   const int n = model.n_dof();
   const int nc = model.n_contacts();
+  closed_.reserve(static_cast<std::size_t>(nc));
+  sticking_.reserve(static_cast<std::size_t>(nc));
   WN_.setZero(n, nc);
   WQ_.setZero(n, nc);
   WH_.setZero(n, nc);
@@ -79,6 +82,8 @@ ContactStatus ContactProblem::Solve(const ContactKinematics& kinematics,
   // Columns of the closed set N, of W_Q (per closed contact: w_N - mu s w_T on G,
   // w_N - mu w_T on H) and of the possibly sticking set H.
   int nh = 0;
+  closed_.clear();
+  sticking_.clear();
   for (int j = 0; j < k; ++j) {
     const ClosedContact& cc = closed[static_cast<std::size_t>(j)];
     SB_ASSERT(cc.contact >= 0 && cc.contact < model_.n_contacts(), "contact index out of range");
@@ -87,7 +92,9 @@ ContactStatus ContactProblem::Solve(const ContactKinematics& kinematics,
     WN_.col(j) = kinematics.W_N.col(cc.contact);
     const double s = cc.slip_sign == 0 ? 1.0 : static_cast<double>(cc.slip_sign);
     WQ_.col(j) = kinematics.W_N.col(cc.contact) - mu * s * kinematics.W_T.col(cc.contact);
+    closed_.push_back(cc.contact);
     if (cc.slip_sign == 0) {
+      sticking_.push_back(cc.contact);
       WH_.col(nh) = kinematics.W_T.col(cc.contact);
       mu_H_(nh) = mu;
       ++nh;
@@ -111,10 +118,18 @@ ContactStatus ContactProblem::Solve(const ContactKinematics& kinematics,
   // [method.md §3, contact problem]: unknowns (lambda_N, lambda_R, a_L).
   auto A = A_.topLeftCorner(n, n);
   A.setZero();
-  A.block(0, 0, k, k).noalias() = WN.transpose() * MinvWQ;
-  A.block(0, k, k, nh).noalias() = WN.transpose() * MinvWH;
-  A.block(k, 0, nh, k).noalias() = WH.transpose() * MinvWQ;
-  A.block(k, k, nh, nh).noalias() = WH.transpose() * MinvWH;
+  if (sparse_) {
+    const auto WQ = WQ_.leftCols(k);
+    SparseDelassus(model_, WN, closed_, WQ, closed_, A.block(0, 0, k, k));
+    SparseDelassus(model_, WN, closed_, WH, sticking_, A.block(0, k, k, nh));
+    SparseDelassus(model_, WH, sticking_, WQ, closed_, A.block(k, 0, nh, k));
+    SparseDelassus(model_, WH, sticking_, WH, sticking_, A.block(k, k, nh, nh));
+  } else {
+    A.block(0, 0, k, k).noalias() = WN.transpose() * MinvWQ;
+    A.block(0, k, k, nh).noalias() = WN.transpose() * MinvWH;
+    A.block(k, 0, nh, k).noalias() = WH.transpose() * MinvWQ;
+    A.block(k, k, nh, nh).noalias() = WH.transpose() * MinvWH;
+  }
   auto b = b_.head(n);
   b.head(k).noalias() = WN.transpose() * Minvh_;
   b.segment(k, nh).noalias() = WH.transpose() * Minvh_;

@@ -20,6 +20,7 @@
 #include <span>
 #include <vector>
 
+#include "solver/contact/delassus.h"
 #include "solver/contact/kinematics.h"
 #include "solver/lcp/lemke.h"
 #include "solver/model/model.h"
@@ -71,7 +72,9 @@ struct ContactResult {
 class ContactProblem {
  public:
   /// Sizes the workspace for up to model.n_contacts() closed contacts. Keeps a reference.
-  explicit ContactProblem(const model::Model& model, lcp::LemkeOptions options = {});
+  /// `assembly` chooses how W^T M^-1 W is formed (solver/contact/delassus.h).
+  explicit ContactProblem(const model::Model& model, lcp::LemkeOptions options = {},
+                          Assembly assembly = Assembly::kAuto);
 
   /// Solves for the contact forces and accelerations with the closed contacts `closed`, the
   /// Jacobians and velocity terms of `kinematics` and the applied forces h = -C u - K q - M r a_g.
@@ -98,6 +101,8 @@ class ContactProblem {
   Eigen::MatrixXd MinvWQ_, MinvWH_;  // M^-1 W_Q, M^-1 W_H
   Eigen::VectorXd Minvh_;            // M^-1 h
   Eigen::VectorXd mu_H_;
+  bool sparse_ = false;                 // UsesSparseAssembly
+  std::vector<int> closed_, sticking_;  // contact of each column of W_N (W_Q) and of W_H
   Eigen::MatrixXd A_;
   Eigen::VectorXd b_;
 };

@@ -6,8 +6,9 @@
 
 namespace skewbridge::contact {
 
-ImpactProblem::ImpactProblem(const model::Model& model, lcp::LemkeOptions options)
-    : model_(model), solver_(options) {
+ImpactProblem::ImpactProblem(const model::Model& model, lcp::LemkeOptions options,
+                             Assembly assembly)
+    : model_(model), solver_(options), sparse_(UsesSparseAssembly(model, assembly)) {
   const int n = model.n_dof();
   const int nc = model.n_contacts();
   WN_.setZero(n, nc);
@@ -93,11 +94,18 @@ lcp::LcpStatus ImpactProblem::Solve(const ContactKinematics& kinematics,
   // [method.md §3, impact problem]: rows (Lambda_N, Lambda_R, gamma_TL) blocks.
   auto A = A_.topLeftCorner(3 * k, 3 * k);
   A.setZero();
-  A.block(0, k, k, k).noalias() = WN.transpose() * MinvWT;
-  A.block(0, 0, k, k).noalias() = WN.transpose() * MinvWN;
+  if (sparse_) {
+    SparseDelassus(model_, WN, index_set, WT, index_set, A.block(0, k, k, k));
+    SparseDelassus(model_, WN, index_set, WN, index_set, A.block(0, 0, k, k));
+    SparseDelassus(model_, WT, index_set, WT, index_set, A.block(k, k, k, k));
+    SparseDelassus(model_, WT, index_set, WN, index_set, A.block(k, 0, k, k));
+  } else {
+    A.block(0, k, k, k).noalias() = WN.transpose() * MinvWT;
+    A.block(0, 0, k, k).noalias() = WN.transpose() * MinvWN;
+    A.block(k, k, k, k).noalias() = WT.transpose() * MinvWT;
+    A.block(k, 0, k, k).noalias() = WT.transpose() * MinvWN;
+  }
   A.block(0, 0, k, k).noalias() -= A.block(0, k, k, k) * mu.asDiagonal();
-  A.block(k, k, k, k).noalias() = WT.transpose() * MinvWT;
-  A.block(k, 0, k, k).noalias() = WT.transpose() * MinvWN;
   A.block(k, 0, k, k).noalias() -= A.block(k, k, k, k) * mu.asDiagonal();
   for (int j = 0; j < k; ++j) {
     A(k + j, 2 * k + j) = 1.0;

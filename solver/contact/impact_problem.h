@@ -23,6 +23,7 @@
 #include <span>
 #include <vector>
 
+#include "solver/contact/delassus.h"
 #include "solver/contact/kinematics.h"
 #include "solver/lcp/lemke.h"
 #include "solver/model/model.h"
@@ -47,7 +48,9 @@ struct ImpactResult {
 class ImpactProblem {
  public:
   /// Sizes the workspace for up to model.n_contacts() contacts. Keeps a reference to `model`.
-  explicit ImpactProblem(const model::Model& model, lcp::LemkeOptions options = {});
+  /// `assembly` chooses how W^T M^-1 W is formed (solver/contact/delassus.h).
+  explicit ImpactProblem(const model::Model& model, lcp::LemkeOptions options = {},
+                         Assembly assembly = Assembly::kAuto);
 
   /// Solves the impact of the contacts in `index_set` at the pre-impact velocity u_A, with the
   /// Jacobians of `kinematics` (evaluated at the impact configuration). gamma_N,A = w_N^T u_A,
@@ -73,6 +76,7 @@ class ImpactProblem {
   // and a change of the index set does not allocate.
   std::vector<lcp::LcpSolution> solutions_;
   int k_ = 0;
+  bool sparse_ = false;              // UsesSparseAssembly
   Eigen::MatrixXd WN_, WT_;          // n_dof x k columns of the index set
   Eigen::MatrixXd MinvWN_, MinvWT_;  // M^-1 W_N, M^-1 W_T
   Eigen::VectorXd mu_, eps_;         // per index-set entry
