@@ -10,13 +10,13 @@
 namespace skewbridge::lcp {
 namespace {
 
-/// The smallest power of two >= max_abs (1 for 0): dividing by it is exact, so the scaled
-/// problem has the same solution bits up to the exponent.
-double PowerOfTwoAtLeast(double max_abs) {
-  if (max_abs == 0.0) return 1.0;
+/// The exponent e of the smallest power of two 2^e >= max_abs (0 for 0): dividing by 2^e is
+/// exact, so the scaled problem has the same solution bits up to the exponent.
+int ExponentAtLeast(double max_abs) {
+  if (max_abs == 0.0) return 0;
   int exponent = 0;
   const double mantissa = std::frexp(max_abs, &exponent);  // max_abs = mantissa 2^exponent
-  return mantissa == 0.5 ? max_abs : std::ldexp(1.0, exponent);
+  return mantissa == 0.5 ? exponent - 1 : exponent;
 }
 
 /// "M(2, 3)" style position for messages.
@@ -208,8 +208,35 @@ LcpStatus LemkeSolver::Solve(const Eigen::Ref<const Eigen::MatrixXd>& M,
   ResizeIfNeeded(solution.w, n);
   solution.z.setZero();
 
-  if (q.minCoeff() >= 0.0) {  // z = 0 solves it
+  const double tol = options_.relative_tolerance;
+  // Exact power-of-two scaling: with M' = M / s_M and q' = q / s_q, the LCP (M', q') has the
+  // solution z' = z s_M / s_q, w' = w / s_q, and every entry of M', q' lies in [-1, 1]. Scaling
+  // by powers of two changes no mantissa, so the pivots follow the same path for any units.
+  // q is scaled by ldexp rather than by 1 / s_q, which overflows when q is subnormal (a q of
+  // rounding residue only, as for a deck at rest).
+  const double inv_s_m = std::ldexp(1.0, -ExponentAtLeast(M.cwiseAbs().maxCoeff()));
+  const int q_exponent = ExponentAtLeast(q.cwiseAbs().maxCoeff());
+  // Entries of q' within twice the pivot tolerance of zero are zero to the solver. The first
+  // pivot's tie test (tolerance tol (1 + |min q'|)) cannot tell them from 0: a tiny negative
+  // q'_i tied with a zero entry could be passed over there, stay basic and negative, and end
+  // the path on a false secondary ray (q = (8e-17, -2e-35, 0) of a contact problem did). With
+  // the margin 2 tol every surviving negative entry is below every zero entry's tie band. The
+  // answer for the snapped q' solves the given problem within 2 tol max|q|.
+  const double snap = 2.0 * tol;
+  auto scaled_q = [&](Eigen::Index i) {
+    const double value = std::ldexp(q(i), -q_exponent);
+    return std::abs(value) <= snap ? 0.0 : value;
+  };
+  bool z_zero_solves = true;
+  for (Eigen::Index i = 0; i < n && z_zero_solves; ++i) z_zero_solves = scaled_q(i) >= 0.0;
+  if (z_zero_solves) {
     solution.w = q;
+    const double min_q = q.minCoeff();
+    if (min_q < 0.0) {  // only snapped entries are negative
+      solution.complementarity = -min_q;
+      solution.worst_violation =
+          CheckSolution(M, q, solution.z, options_.acceptance_tolerance).worst_violation;
+    }
     solution.status = LcpStatus::kSolved;
     return solution.status;
   }
@@ -217,14 +244,6 @@ LcpStatus LemkeSolver::Solve(const Eigen::Ref<const Eigen::MatrixXd>& M,
   Reserve(n);
   const Eigen::Index ld = capacity_;
   const Eigen::Index z0 = 2 * n;  // variable numbering: w_i = i, z_i = n + i, z0 = 2n
-  const double tol = options_.relative_tolerance;
-  // Exact power-of-two scaling: with M' = M / s_M and q' = q / s_q, the LCP (M', q') has the
-  // solution z' = z s_M / s_q, w' = w / s_q, and every entry of M', q' lies in [-1, 1]. Scaling
-  // by powers of two changes no mantissa, so the pivots follow the same path for any units.
-  const double s_m = PowerOfTwoAtLeast(M.cwiseAbs().maxCoeff());
-  const double s_q = PowerOfTwoAtLeast(q.cwiseAbs().maxCoeff());
-  const double inv_s_m = 1.0 / s_m;
-  const double inv_s_q = 1.0 / s_q;
   const double* m_data = M.data();
   const Eigen::Index m_ld = M.outerStride();
 
@@ -234,7 +253,7 @@ LcpStatus LemkeSolver::Solve(const Eigen::Ref<const Eigen::MatrixXd>& M,
   int* basis = basis_.data();
   for (Eigen::Index j = 0; j < n; ++j) {
     for (Eigen::Index i = 0; i < n; ++i) binv[j * ld + i] = (i == j) ? 1.0 : 0.0;
-    x[j] = q(j) * inv_s_q;
+    x[j] = scaled_q(j);
     basis[j] = static_cast<int>(j);
     row_size_(j) = 1.0;  // [I | q'] has entries of size <= 1
   }
@@ -310,7 +329,7 @@ LcpStatus LemkeSolver::Solve(const Eigen::Ref<const Eigen::MatrixXd>& M,
   // One step of iterative refinement on B x_B = q' with the original columns removes most of
   // the rounding the pivots accumulated: x_B += B^-1 (q' - B x_B).
   double* res = residual_.data();
-  for (Eigen::Index i = 0; i < n; ++i) res[i] = q(i) * inv_s_q;
+  for (Eigen::Index i = 0; i < n; ++i) res[i] = std::ldexp(q(i), -q_exponent);
   for (Eigen::Index k = 0; k < n; ++k) {
     const Eigen::Index var = basis[k];
     if (var < n) {
@@ -330,7 +349,7 @@ LcpStatus LemkeSolver::Solve(const Eigen::Ref<const Eigen::MatrixXd>& M,
 
   for (Eigen::Index k = 0; k < n; ++k) {
     const Eigen::Index var = basis[k];
-    if (var >= n) solution.z(var - n) = std::max(0.0, x[k]) * s_q * inv_s_m;
+    if (var >= n) solution.z(var - n) = std::ldexp(std::max(0.0, x[k]) * inv_s_m, q_exponent);
   }
   solution.w.noalias() = M * solution.z;
   solution.w += q;

@@ -35,7 +35,8 @@ const char* ToString(LcpStatus status);
 /// Tuning of the solver; the defaults suit the contact problems (n <= 24).
 struct LemkeOptions {
   int max_pivots_per_unknown = 50;  ///< pivot budget = this * (n + 1)
-  /// Pivot tolerance: an entry d_i of the entering column counts as positive when
+  /// Pivot tolerance: |q'_i| <= 2 relative_tolerance counts as q'_i = 0, and an entry d_i of
+  /// the entering column counts as positive when
   /// d_i > relative_tolerance g_i max|a_e|, where M and q are first scaled exactly by powers of
   /// two to max|M'|, max|q'| in (1/2, 1] and g_i is the growth bound of row i of the inverse
   /// basis (the largest magnitude combined into it, hence the size of its rounding error).
@@ -71,7 +72,9 @@ class LemkeSolver {
   explicit LemkeSolver(LemkeOptions options = {});
 
   /// Solves w = M z + q, w, z >= 0, w^T z = 0. Never throws; the status says how it ended.
-  /// q >= 0 gives z = 0 with zero pivots. With a P-matrix M the solution is unique and always
+  /// Entries of q within 2 relative_tolerance max|q| of zero are taken as zero, so that q with
+  /// rounding residue of either sign is not sent down a false secondary ray; q >= 0 (after
+  /// that) gives z = 0 with zero pivots. With a P-matrix M the solution is unique and always
   /// found; with a copositive-plus M a secondary ray proves that {z >= 0 : M z + q >= 0} is
   /// empty [Cottle, Pang and Stone 1992, §4.4].
   /// @return solution.status

@@ -244,6 +244,141 @@ TEST(LemkeSolver, TerminatesWhereIndexTieBreakingCycles) {
   }
 }
 
+TEST(LemkeSolver, SolvesContactProblemWhoseQHasATinyNegativeEntry) {
+  // A contact problem of one deck at rest: w_1 = 4.3e-6 z_1 + 8e-17, w_2 = 1.2e-5 z_2 + z_3 -
+  // 2e-35, w_3 = -z_2. Exactly: w_3 >= 0 and z_2 >= 0 force z_2 = 0; then w_2 = z_3 - 2e-35 >= 0
+  // makes z_3 > 0, so w_2 = 0 and z_3 = 2e-35; w_1 > 0 for z_1 >= 0, so z_1 = 0. The unique
+  // solution is z* = (0, 0, 2e-35), w* = (8e-17, 0, 0). M is PSD (M + M^T = diag(8.6e-6,
+  // 2.4e-5, 0)), hence copositive-plus, so a secondary ray would claim that no z >= 0 makes
+  // w >= 0, which z* disproves. The tiny entry is 2.5e-19 max|q|: the solver may read it as 0,
+  // and z = 0 then misses w* by that much.
+  MatrixXd M(3, 3);
+  // clang-format off
+  M << 4.3e-6,  0.0,    0.0,
+       0.0,     1.2e-5, 1.0,
+       0.0,    -1.0,    0.0;
+  // clang-format on
+  const VectorXd q = (VectorXd(3) << 8e-17, -2e-35, 0.0).finished();
+  const VectorXd z_exact = (VectorXd(3) << 0.0, 0.0, 2e-35).finished();
+  const VectorXd w_exact = (VectorXd(3) << 8e-17, 0.0, 0.0).finished();
+  ASSERT_EQ(CheckSolution(M, q, z_exact, 0.0).worst_violation, 0.0);
+  LemkeSolver solver;
+  LcpSolution s;
+  for (double factor : {1.0, 1e10, 1e-200}) {  // the same problem in other units of q
+    SCOPED_TRACE(::testing::Message() << "q scaled by " << factor);
+    ASSERT_EQ(solver.Solve(M, factor * q, s), LcpStatus::kSolved) << s.message;
+    EXPECT_LE(CheckSolution(M, factor * q, s.z, 1e-8).worst_violation, 1e-18);
+    EXPECT_LE((s.z - factor * z_exact).cwiseAbs().maxCoeff(), factor * 1e-13 * q.norm());
+    EXPECT_LE((s.w - factor * w_exact).cwiseAbs().maxCoeff(), factor * 1e-13 * q.norm());
+    EXPECT_EQ(s.worst_violation, CheckSolution(M, factor * q, s.z, 0.0).worst_violation);
+  }
+  // When the negative entry is not negligible against max|q| (2.5e-4 of it), it is kept and
+  // the exact solution z_3 = -q_2 is found.
+  const VectorXd q_kept = (VectorXd(3) << 8e-17, -2e-20, 0.0).finished();
+  ASSERT_EQ(solver.Solve(M, q_kept, s), LcpStatus::kSolved) << s.message;
+  EXPECT_EQ(s.z(0), 0.0);
+  EXPECT_EQ(s.z(1), 0.0);
+  EXPECT_NEAR(s.z(2), 2e-20, 1e-13 * 2e-20);
+}
+
+/// A PSD contact-like matrix [[P, E], [-E^T, 0]] (P SPD of k rows with a random magnitude in
+/// 1e-6 .. 1, E with entries in {0, 1} of k x m): the structure of the friction problems,
+/// copositive-plus but not a P-matrix, so solutions need not be unique.
+MatrixXd RandomContactLikeMatrix(int k, int m, std::mt19937& rng) {
+  std::uniform_real_distribution<double> exponent(-6.0, 0.0);
+  std::bernoulli_distribution one(0.6);
+  MatrixXd M = MatrixXd::Zero(k + m, k + m);
+  M.topLeftCorner(k, k) = std::pow(10.0, exponent(rng)) * testing::RandomSpd(k, rng);
+  for (int i = 0; i < k; ++i) {
+    for (int j = 0; j < m; ++j) {
+      const double e = one(rng) ? 1.0 : 0.0;
+      M(i, k + j) = e;
+      M(k + j, i) = -e;
+    }
+  }
+  return M;
+}
+
+/// q = w* - M z* for a random complementary pair (z*, w*) in which about a third of the
+/// indices are degenerate (z*_i = w*_i = 0) and, half the time, z* = 0 (at least one index is
+/// not degenerate, so q != 0). Every degenerate q_i is then moved by dq_i of either sign with
+/// |dq_i| = 10^u max|q|: u in [-35, -14] below the solver's tolerance (tiny = true), else u in
+/// [-6, -3], which makes a different problem that the enumeration has to judge.
+VectorXd PerturbedDegenerateQ(const MatrixXd& M, bool tiny, std::mt19937& rng) {
+  const int n = static_cast<int>(M.rows());
+  std::uniform_int_distribution<int> kind(0, 2);  // 0: z basic, 1: w basic, 2: degenerate
+  std::uniform_real_distribution<double> value(0.1, 1.0);
+  std::uniform_real_distribution<double> exponent(tiny ? -35.0 : -6.0, tiny ? -14.0 : -3.0);
+  std::bernoulli_distribution coin(0.5);
+  const bool z_zero = coin(rng);
+  VectorXd z = VectorXd::Zero(n);
+  VectorXd w = VectorXd::Zero(n);
+  std::vector<int> degenerate;
+  for (int i = 0; i < n; ++i) {
+    const int k = (i == 0) ? 1 : kind(rng);
+    if (k == 0 && !z_zero) z(i) = value(rng);
+    if (k == 1 || (k == 0 && z_zero)) w(i) = value(rng);
+    if (k == 2) degenerate.push_back(i);
+  }
+  VectorXd q = w - M * z;
+  const double size = q.cwiseAbs().maxCoeff();
+  for (int i : degenerate) {
+    q(i) += (coin(rng) ? 1.0 : -1.0) * std::pow(10.0, exponent(rng)) * size;
+  }
+  return q;
+}
+
+TEST(LemkeSolver, MatchesBruteForceOnPerturbationsOfDegenerateProblems) {
+  // Each problem is solved as given and in the units of the contact problems (q of order
+  // 1e-16, as for a deck at rest). Perturbations below the solver's tolerance must give a
+  // solution that passes the independent check and is, scaled back, one of the solutions the
+  // enumeration of all complementary bases finds. Larger ones are judged by the enumeration:
+  // both matrix classes are copositive-plus, so Lemke's method solves every solvable problem
+  // and ends on a secondary ray only when none is solvable [Cottle, Pang and Stone 1992,
+  // §4.4].
+  std::mt19937 rng(20260121);
+  LemkeSolver solver;
+  LcpSolution s;
+  int solved = 0;
+  int rays = 0;
+  for (int trial = 0; trial < 600; ++trial) {
+    const bool contact_like = trial % 2 == 0;
+    const bool tiny = trial % 3 != 0;
+    std::uniform_int_distribution<int> rows(1, 4);
+    const int k = rows(rng);
+    const int m = contact_like ? rows(rng) : 0;
+    const MatrixXd M =
+        contact_like ? RandomContactLikeMatrix(k, m, rng) : testing::RandomSpd(k + 2, rng);
+    const VectorXd q = PerturbedDegenerateQ(M, tiny, rng);
+    const std::vector<VectorXd> all = EnumerateSolutions(M, q, 1e-11);
+    SCOPED_TRACE(::testing::Message() << "trial " << trial << (tiny ? " (tiny)" : "") << "\nM =\n"
+                                      << M << "\nq = " << q.transpose());
+    if (tiny) {
+      ASSERT_FALSE(all.empty()) << "a tiny perturbation keeps a near-solution";
+    }
+    for (double q_units : {1.0, 1e-16}) {
+      if (all.empty()) {
+        EXPECT_EQ(solver.Solve(M, q_units * q, s), LcpStatus::kSecondaryRay);
+        ++rays;
+        continue;
+      }
+      ASSERT_EQ(solver.Solve(M, q_units * q, s), LcpStatus::kSolved) << s.message;
+      EXPECT_LE(CheckSolution(M, q_units * q, s.z, 1e-10).worst_violation, 1e-12);
+      const VectorXd z = s.z / q_units;
+      double nearest = std::numeric_limits<double>::infinity();
+      for (const VectorXd& e : all) {
+        nearest =
+            std::min(nearest, (z - e).cwiseAbs().maxCoeff() / (1.0 + e.cwiseAbs().maxCoeff()));
+      }
+      EXPECT_LE(nearest, 1e-8) << "lemke z = " << z.transpose();
+      ++solved;
+    }
+  }
+  EXPECT_EQ(solved + rays, 1200);
+  EXPECT_GT(rays, 0) << "the larger perturbations must also make unsolvable problems";
+  EXPECT_GT(solved, 800);
+}
+
 TEST(LemkeSolver, ReportsRayForUnsolvableScalarProblem) {
   // w = -z - 1 < 0 for every z >= 0: no solution.
   LemkeSolver solver;
