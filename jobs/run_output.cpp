@@ -213,7 +213,8 @@ void WriteHistories(hid_t file, const model::Model& model, const dynamics::Histo
 }  // namespace
 
 void WriteRunHdf5(const std::filesystem::path& path, const model::Model& model,
-                  const dynamics::RunResult& result, std::string_view model_text) {
+                  const dynamics::RunResult& result, std::string_view model_text,
+                  std::string_view method, double time_step_s) {
   h5::SilenceErrorStack();
   Id file = h5::CreateFile(path.string());
   const hid_t f = file.get();
@@ -225,6 +226,8 @@ void WriteRunHdf5(const std::filesystem::path& path, const model::Model& model,
   h5::SetAttr(f, "model_text", std::string(model_text));
   h5::SetAttr(f, "status", std::string(dynamics::ToString(result.status)));
   h5::SetAttr(f, "status_message", result.message);
+  h5::SetAttr(f, "method", std::string(method));
+  h5::SetAttr(f, "time_step_s", time_step_s);
   h5::SetAttr(f, "n_bodies", static_cast<std::int64_t>(model.n_bodies()));
   h5::SetAttr(f, "n_dof", static_cast<std::int64_t>(model.n_dof()));
   h5::SetAttr(f, "contact_names", ContactNames(model));

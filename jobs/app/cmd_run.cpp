@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -127,13 +128,17 @@ void WriteCsv(const std::filesystem::path& path, const model::Model& model,
 
 // The whole run as HDF5; a failed write removes the temporary file and names --out.
 void WriteHdf5(const std::filesystem::path& path, const model::ModelFile& file,
-               const dynamics::RunResult& r) {
+               const model::RunControl& control, const dynamics::RunResult& r) {
   std::ifstream in(file.path, std::ios::binary);
   std::ostringstream text;
   text << in.rdbuf();
   const std::filesystem::path temporary = path.string() + ".partial";
   try {
-    jobs::WriteRunHdf5(temporary, file.model, r, text.str());
+    // The step h means nothing to the event-driven integrator: NaN says so in the file.
+    const double time_step_s = control.method == "time-stepping"
+                                   ? control.time_step_s
+                                   : std::numeric_limits<double>::quiet_NaN();
+    jobs::WriteRunHdf5(temporary, file.model, r, text.str(), control.method, time_step_s);
   } catch (const jobs::h5::H5Error& e) {
     std::error_code ignored;
     std::filesystem::remove(temporary, ignored);
@@ -207,7 +212,7 @@ void AddRunCommand(CLI::App& app) {
       WriteCsv(*csv_path, file.model, r.histories);
     }
     if (!out_path->empty()) {
-      WriteHdf5(*out_path, file, r);
+      WriteHdf5(*out_path, file, control, r);
     }
     if (r.status != dynamics::RunStatus::kOk) {
       // An expected numerical outcome (Painleve, LCP failure, step limit): the summary and the

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # `skewbridge run --out`: the HDF5 file has the layout of docs/run-output.md and agrees with the
-# CSV text and the printed summary (run_h5_check.py); histories only when requested; a bad model
+# CSV text and the printed summary (run_h5_check.py), with the root attributes method and
+# time_step_s naming the integrator of run.method (event-driven: NaN step; time-stepping: the
+# model's run.time_step_s); histories only when requested; a bad model
 # or an unwritable path leaves neither FILE.h5 nor FILE.h5.partial.
 set -u
 exe=${1:?usage: run_h5_test.sh SKEWBRIDGE SOURCE_ROOT}
@@ -16,6 +18,14 @@ model="$root/docs/examples/subsystem.toml"
 [ ! -e "$work/X.h5.partial" ] || fail "good model: temporary file left behind"
 "$python" "$root/tests/app/run_h5_check.py" "$work/X.h5" "$work/X.csv" "$model" "$work/summary" ||
   fail "layout or values"
+
+cp "$model" "$work/ts.toml"
+# [run] is the file's last table: the keys appended here belong to it.
+printf 'method = "time-stepping"\ntime_step_s = 2e-4\n' >>"$work/ts.toml"
+"$exe" run "$work/ts.toml" --out "$work/T.h5" --csv "$work/T.csv" >"$work/tsummary" 2>"$work/err" ||
+  fail "time-stepping model: exit status $? ($(cat "$work/err"))"
+"$python" "$root/tests/app/run_h5_check.py" "$work/T.h5" "$work/T.csv" "$work/ts.toml" \
+  "$work/tsummary" time-stepping 2e-4 || fail "time-stepping run file: layout or values"
 
 sed 's/^output_interval_s.*/output_interval_s = 0.0/' "$model" >"$work/nohist.toml"
 "$exe" run "$work/nohist.toml" --out "$work/N.h5" >/dev/null 2>&1 || fail "no histories: exit $?"
