@@ -360,6 +360,77 @@ void ReadData(const Datasets& d, CubeData& data) {
   ReadAll(d.wall_s.get(), H5T_NATIVE_DOUBLE, data.wall_s.data());
 }
 
+// Checks, read-only, that a checkpoint holds every dataset this program would write into it,
+// with the axis order and shape of `spec`: a file from an older program version (one response
+// fewer, same spec hash) is refused before it is opened for writing, naming what is missing.
+void CheckResumable(const std::filesystem::path& path, const SweepSpec& spec,
+                    const CubeLayout& layout) {
+  const std::string file_name = path.string();
+  auto refuse = [&](const std::string& problem) {
+    return InputError::AtLine(file_name, 0,
+                              "cannot resume: " + problem +
+                                  ", as in a file of another program version; use --force to "
+                                  "start over or a new output file");
+  };
+  Id file;
+  try {
+    file = OpenFile(file_name, false);
+  } catch (const H5Error&) {
+    throw InputError::AtLine(file_name, 0, "cannot open as an HDF5 file");
+  }
+  const std::string group_path = GroupPath(spec.name);
+  if (!HasAttr(file.get(), "format") || GetStringAttr(file.get(), "format") != kCubeFormat) {
+    throw InputError::AtLine(file_name, 0, "not a skewbridge cube (root attribute format)");
+  }
+  if (!Exists(file.get(), "sweeps") || !Exists(OpenGroup(file.get(), "sweeps").get(), spec.name)) {
+    throw InputError::AtLine(file_name, 0, "holds no sweep named '" + spec.name + "'");
+  }
+  Id g = OpenGroup(file.get(), group_path);
+  const std::string hash = GetStringAttr(g.get(), "spec_hash");
+  if (hash != spec.Hash()) {
+    throw InputError::AtLine(
+        file_name, 0,
+        "cannot resume: it was written by a different sweep specification (hash " + hash + ", " +
+            spec.source + " has " + spec.Hash() +
+            "); use the original specification, a new output file, or --force to start over");
+  }
+  std::vector<std::string> axis_order;
+  for (const Axis& axis : spec.axes) {
+    axis_order.push_back(axis.key);
+  }
+  if (!HasAttr(g.get(), "axis_order") || GetStringListAttr(g.get(), "axis_order") != axis_order) {
+    throw refuse("its axis order differs from the specification's");
+  }
+  const std::vector<hsize_t> shape = ShapeOf(spec);
+  std::vector<std::string> datasets;
+  for (const ResponseInfo& r : layout.responses) {
+    datasets.push_back("responses/" + r.name);
+  }
+  for (const char* name :
+       {"status", "done", "stats/run", "stats/events", "stats/steps", "stats/wall_s"}) {
+    datasets.emplace_back(name);
+  }
+  for (const std::string& name : datasets) {
+    const std::size_t slash = name.find('/');
+    const bool present = slash == std::string::npos
+                             ? Exists(g.get(), name)
+                             : Exists(g.get(), name.substr(0, slash)) && Exists(g.get(), name);
+    if (!present) {
+      throw refuse("it has no dataset " + group_path + "/" + name);
+    }
+    if (Shape(OpenDataset(g.get(), name).get()) != shape) {
+      throw refuse("its dataset " + group_path + "/" + name + " has another shape");
+    }
+  }
+  std::vector<std::string> expected;
+  for (const ResponseInfo& r : layout.responses) {
+    expected.push_back(r.name);
+  }
+  if (GetStringListAttr(g.get(), "response_order") != expected) {
+    throw refuse("its responses differ from this program's evaluator");
+  }
+}
+
 }  // namespace
 
 struct CheckpointFile::Impl {
@@ -384,26 +455,13 @@ CheckpointFile CheckpointFile::Create(const std::filesystem::path& path, const S
 
 CheckpointFile CheckpointFile::Resume(const std::filesystem::path& path, const SweepSpec& spec,
                                       const CubeLayout& layout, CubeData& data) {
+  // Everything is checked read-only first: a refused file is left byte for byte as it was.
+  CheckResumable(path, spec, layout);
   auto impl = std::make_unique<Impl>();
   std::vector<std::string> names;
   impl->d = OpenLayout(path.string(), spec.name, true, &names);
   const hid_t g = impl->d.group.get();
-  const std::string hash = GetStringAttr(g, "spec_hash");
-  if (hash != spec.Hash()) {
-    throw InputError::AtLine(
-        path.string(), 0,
-        "cannot resume: it was written by a different sweep specification (hash " + hash + ", " +
-            spec.source + " has " + spec.Hash() +
-            "); use the original specification, a new output file, or --force to start over");
-  }
-  std::vector<std::string> expected;
-  for (const ResponseInfo& r : layout.responses) {
-    expected.push_back(r.name);
-  }
-  if (names != expected) {
-    throw InputError::AtLine(path.string(), 0,
-                             "cannot resume: its responses differ from this program's evaluator");
-  }
+  SB_DEMAND(names.size() == layout.responses.size(), "checked response order changed");
   ReadData(impl->d, data);
   // Bytes of cells without a done flag may be half-written: forget them.
   for (std::uint64_t c = 0; c < data.Cells(); ++c) {

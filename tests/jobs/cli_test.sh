@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # The sweep and inspect commands from the outside: bad specifications and unusable output files
 # fail with exit status 2 and one line naming the key, before any file is written; a resume
-# with another specification is refused; inspect reports axes, responses and completion.
+# with another specification is refused, and so is a checkpoint lacking a response dataset the
+# evaluator declares (one line naming it, exit 2, the file byte for byte unchanged); inspect
+# reports axes, responses and completion.
 # usage: cli_test.sh SKEWBRIDGE SWEEP_DRIVER WORK_DIR
 set -euo pipefail
 skewbridge=$1 driver=$2 work=$3
@@ -57,4 +59,19 @@ grep -Eq "pulse +2  cosine, sine" inspect.txt || fail "inspect: pulse axis"
 grep -q "x_peak" inspect.txt || fail "inspect: responses"
 grep -q "completion: 16/16 cells done (100.0%), complete" inspect.txt || fail "inspect: completion"
 expect_error "nothing.h5: cannot open as an HDF5 file" "$skewbridge" inspect nothing.h5
+
+# A checkpoint from a program version without one response: interrupted (SIGTERM, as a batch
+# system would), one response dataset deleted with h5py, then --resume refuses before any work.
+"$driver" good.toml --out old.h5 --quiet --work 10 --sleep-ms 100 2> /dev/null &
+pid=$!
+for _ in $(seq 1 200); do [ -f old.h5.partial ] && break; sleep 0.02; done
+kill -TERM "$pid"
+wait "$pid" || true
+[ -f old.h5.partial ] && [ ! -f old.h5 ] || fail "no checkpoint left by the interrupted sweep"
+/usr/bin/python3 -c "import h5py; f = h5py.File('old.h5.partial', 'r+'); del f['sweeps/cli/responses/theta_peak']; f.close()"
+cp old.h5.partial old.before
+expect_error "old.h5.partial: cannot resume: it has no dataset sweeps/cli/responses/theta_peak" \
+  "$driver" good.toml --out old.h5 --resume --quiet --work 10
+cmp -s old.h5.partial old.before || fail "the refused checkpoint was modified"
+[ ! -f old.h5 ] || fail "the refused resume wrote old.h5"
 echo "cli_test: ok"

@@ -6,6 +6,8 @@
 
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include "jobs/h5/cube_file.h"
 #include "jobs/sweep_runner.h"
@@ -175,6 +177,66 @@ TEST_F(SweepRunnerTest, ResumeWithADifferentSpecificationIsRefused) {
                                     spec.Hash()));
     EXPECT_THAT(e.what(), HasSubstr("other.toml has " + other.Hash()));
   }
+}
+
+// The test evaluator of a newer program version: one response more, same specification hash.
+class EvaluatorWithBand final : public CellEvaluator {
+ public:
+  explicit EvaluatorWithBand(const CellEvaluator& inner) : inner_(inner) {}
+  std::vector<ResponseInfo> Responses() const override {
+    std::vector<ResponseInfo> out = inner_.Responses();
+    out.push_back({"band", "1", "a response the older version did not write"});
+    return out;
+  }
+  std::vector<std::pair<std::int32_t, std::string>> StatusNames() const override {
+    return inner_.StatusNames();
+  }
+  CellOutcome Evaluate(std::span<const std::size_t> index) const override {
+    ++evaluations_;
+    CellOutcome out = inner_.Evaluate(index);
+    out.responses.push_back(0.0);
+    return out;
+  }
+  int evaluations() const { return evaluations_; }
+
+ private:
+  const CellEvaluator& inner_;
+  mutable int evaluations_ = 0;
+};
+
+std::string FileBytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+TEST_F(SweepRunnerTest, ResumeOfACheckpointWithoutAnEvaluatorResponseIsRefusedUntouched) {
+  const SweepSpec spec = ParseSweepSpec(kSpec, "spec.toml", ".");
+  const TestEvaluator older(spec, 1, 0);
+  volatile std::sig_atomic_t flag = 0;
+  const StoppingEvaluator stopping(older, 5, &flag);
+  options_.stop = &flag;
+  Run(spec, stopping);
+  const std::filesystem::path partial = PartialPath(options_.out);
+  ASSERT_TRUE(std::filesystem::exists(partial));
+  const std::string before = FileBytes(partial);
+
+  const EvaluatorWithBand newer(older);
+  options_.stop = nullptr;
+  options_.resume = true;
+  try {
+    Run(spec, newer);
+    FAIL() << "a checkpoint without responses/band was resumed";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr(partial.string() + ": cannot resume: it has no dataset "
+                                                       "sweeps/runner/responses/band"));
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << "one line";
+  }
+  EXPECT_EQ(newer.evaluations(), 0) << "cells evaluated before the refusal";
+  EXPECT_FALSE(std::filesystem::exists(options_.out));
+  EXPECT_TRUE(FileBytes(partial) == before) << "the refused checkpoint was modified";
+
+  // The same checkpoint still resumes with the evaluator that wrote it.
+  EXPECT_TRUE(Run(spec, older).complete);
 }
 
 TEST_F(SweepRunnerTest, ExistingOutputIsRefusedWithoutResumeOrForce) {
