@@ -2,10 +2,13 @@
 
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "jobs/app/commands.h"
 #include "jobs/h5/cube_file.h"
+#include "solver/common/error.h"
 
 namespace skewbridge::app {
 namespace {
@@ -22,6 +25,80 @@ std::string AxisRange(const jobs::h5::AxisSummary& axis) {
     return "";
   }
   return fmt::format("{:g} .. {:g}", axis.values.front(), axis.values.back());
+}
+
+// A numeric dataset of a sweep group, or nothing when the group does not hold it (the record
+// table and the statistics exist only in final cubes of record-driven sweeps).
+std::optional<std::vector<double>> ReadIfPresent(const std::string& path, const std::string& sweep,
+                                                 const std::string& dataset) {
+  try {
+    return jobs::h5::ReadSweepArray(path, sweep, dataset);
+  } catch (const InputError&) {
+    return std::nullopt;
+  }
+}
+
+// Coordinate k of an axis as printed: the label, or the number to 6 digits.
+std::string Coordinate(const jobs::h5::AxisSummary& axis, std::size_t k) {
+  if (!axis.labels.empty()) {
+    return axis.labels[k];
+  }
+  return fmt::format("{:g}", axis.values[k]);
+}
+
+// The record table's size and the theta_m-L_e statistics of correlation/ (docs/hdf5-layout.md),
+// one row per combination of the axes other than record (for the study: per Pi_delta).
+void PrintRecordStudy(const std::string& path, const jobs::h5::SweepSummary& s) {
+  bool has_record_axis = false;
+  std::vector<const jobs::h5::AxisSummary*> others;
+  for (const jobs::h5::AxisSummary& a : s.axes) {
+    if (a.name == "record") {
+      has_record_axis = true;
+    } else {
+      others.push_back(&a);
+    }
+  }
+  const std::optional<std::vector<double>> l_e = ReadIfPresent(path, s.name, "records/L_e_m");
+  if (!l_e) {
+    if (has_record_axis) {
+      std::printf("  record table: none (written into the final cube only)\n");
+    }
+    return;
+  }
+  std::printf("  record table: %zu record(s) (records/)\n", l_e->size());
+  const std::vector<std::string> columns = {"n",        "pearson_theta_Le", "spearman_theta_Le",
+                                            "loglog_n", "loglog_slope",     "loglog_intercept",
+                                            "loglog_r2"};
+  std::vector<std::vector<double>> values;
+  for (const std::string& c : columns) {
+    std::optional<std::vector<double>> v = ReadIfPresent(path, s.name, "correlation/" + c);
+    if (!v) {
+      return;  // a record axis without Pi_delta: the table and no statistics
+    }
+    values.push_back(std::move(*v));
+  }
+  std::string row_label;
+  for (const jobs::h5::AxisSummary* a : others) {
+    row_label += (row_label.empty() ? "" : ",") + a->name;
+  }
+  std::printf("  correlation of theta_m with L_e over the records (correlation/), per %s:\n",
+              row_label.c_str());
+  std::printf("    %-22s %6s %12s %12s %8s %12s %12s %12s\n", row_label.c_str(), "n", "pearson",
+              "spearman", "loglog_n", "slope", "intercept", "r2");
+  const std::size_t rows = values.front().size();
+  for (std::size_t k = 0; k < rows; ++k) {
+    // Row-major over the remaining axes, the last one fastest.
+    std::string label;
+    std::size_t rest = k;
+    for (std::size_t j = others.size(); j-- > 0;) {
+      const std::size_t n = others[j]->size;
+      label = Coordinate(*others[j], rest % n) + (label.empty() ? "" : "," + label);
+      rest /= n;
+    }
+    std::printf("    %-22s %6.0f %12.6g %12.6g %8.0f %12.6g %12.6g %12.6g\n", label.c_str(),
+                values[0][k], values[1][k], values[2][k], values[3][k], values[4][k], values[5][k],
+                values[6][k]);
+  }
 }
 
 void PrintCube(const std::string& path) {
@@ -47,6 +124,7 @@ void PrintCube(const std::string& path) {
       std::printf("    %-14s %llu%s\n", status.c_str(), static_cast<unsigned long long>(count),
                   example == s.status_examples.end() ? "" : ("  e.g. " + example->second).c_str());
     }
+    PrintRecordStudy(path, s);
   }
 }
 
@@ -54,8 +132,8 @@ void PrintCube(const std::string& path) {
 
 void AddInspectCommand(CLI::App& app) {
   auto path = std::make_shared<std::string>();
-  CLI::App* cmd =
-      app.add_subcommand("inspect", "Summarise a sweep cube: axes, responses, completion");
+  CLI::App* cmd = app.add_subcommand(
+      "inspect", "Summarise a sweep cube: axes, responses, completion, record statistics");
   cmd->add_option("file", *path, "Cube FILE.h5 (or FILE.h5.partial)")->required();
   cmd->callback([path] { PrintCube(*path); });
 }
