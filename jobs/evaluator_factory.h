@@ -1,7 +1,12 @@
 #pragma once
 /// @file
 /// Where the program's `sweep` command gets the physics: the evaluator for a specification's
-/// family (subsystem, pilot-bridge, model-file), built by the spectra mapping.
+/// family (the sweep.family values of jobs::KnownFamilies):
+///  - subsystem, pilot-bridge: jobs::SpectraEvaluator, through the spectra mapping;
+///  - multi-span: jobs::MultiSpanEvaluator (per-deck maxima and unseating margins);
+///  - model-file: parsed, but refused here (InputError on sweep.family) by this build.
+/// The tests of the sweep machinery bypass this factory with their own evaluator
+/// (tests/jobs/test_evaluator.h), which is no family of the program.
 
 #include <memory>
 
