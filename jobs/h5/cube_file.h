@@ -35,7 +35,10 @@ class CheckpointFile {
                                const CubeLayout& layout);
   /// Opens an existing checkpoint for resume, refusing a different specification, reads
   /// its cells into `data` (not-done cells reset to fill values) and starts run number
-  /// runs + 1. @throws InputError for a foreign file or a different spec hash.
+  /// runs + 1. Every refusal is decided read-only, so a refused file is left unchanged.
+  /// @throws InputError for a foreign file, a different spec hash or axis order, or a missing
+  /// or differently shaped dataset of `layout` (e.g. responses/band in a file of an older
+  /// program version), naming the file and the dataset.
   static CheckpointFile Resume(const std::filesystem::path& path, const SweepSpec& spec,
                                const CubeLayout& layout, CubeData& data);
 
