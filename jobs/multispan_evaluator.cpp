@@ -148,13 +148,6 @@ MultiSpanEvaluator::MultiSpanEvaluator(const SweepSpec& spec) : spec_(spec) {
   for (std::uint64_t cell = 0; cell < spec.CellCount(); ++cell) {
     const std::vector<std::size_t> index = spec.AxisIndex(cell);
     const Cell c = MakeCell(spec, index);
-    if (!c.time_stepping && c.bridge.n_spans > kEventDrivenMaxSpans) {
-      throw InputError::AtField(spec.source, "spans",
-                                "the event-driven method accepts at most " +
-                                    std::to_string(kEventDrivenMaxSpans) + " spans (got " +
-                                    std::to_string(c.bridge.n_spans) +
-                                    "); use method = \"time-stepping\" (docs/multispan.md)");
-    }
     try {
       model::BuildMultiSpanBridge(c.bridge, spec.source);
     } catch (const InputError& e) {

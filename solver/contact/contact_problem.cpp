@@ -163,8 +163,21 @@ ContactStatus ContactProblem::Solve(const ContactKinematics& kinematics,
   const Eigen::VectorXd& z = solution.z;
   const Eigen::VectorXd& w = solution.w;
   result.du_dt = Minvh_;
-  // Complementary pairs with both members at round-off are ties: keep the contact's mode.
-  const double scale_b = b.cwiseAbs().maxCoeff();
+  // Complementary pairs with both members at round-off are ties: keep the contact's mode. The
+  // round-off is that of the terms summed into each b entry, not of b itself: a closed joint
+  // between two identical decks has b = 0 up to rounding, and a scale taken from that b would
+  // call its rounding a separating acceleration (a detachment at lambda_N = 0).
+  double scale_b = 0.0;
+  for (int j = 0; j < k; ++j) {
+    const int c = closed[static_cast<std::size_t>(j)].contact;
+    scale_b = std::max(
+        scale_b, WN.col(j).cwiseAbs().dot(Minvh_.cwiseAbs()) + std::abs(kinematics.what_N(c)));
+  }
+  for (int j = 0; j < nh; ++j) {
+    scale_b =
+        std::max(scale_b, WH.col(j).cwiseAbs().dot(Minvh_.cwiseAbs()) +
+                              std::abs(kinematics.what_T(sticking_[static_cast<std::size_t>(j)])));
+  }
   const double tol_w = 1e-9 * (scale_b > 0.0 ? scale_b : 1.0);
   jh = 0;
   for (int j = 0; j < k; ++j) {

@@ -48,6 +48,8 @@ namespace {
 constexpr double kStepsPerPeriod = 20.0;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr int kMaxEventsAtOneInstant = 64;
+// Relative tolerance of a closed contact's normal force (see force_tol_).
+constexpr double kForceTolerance = 1e-7;
 // Rounding of a gap n . (X + (x, y) + R p - A) relative to the deck's size, with a margin.
 constexpr double kGapRoundingUlps = 64.0;
 // Gauss-Legendre nodes and weights on [0, 1] (8 points: exact to degree 15).
@@ -57,6 +59,88 @@ constexpr double kGaussNode[8] = {0.019855071751231856, 0.10166676129318664, 0.2
 constexpr double kGaussWeight[8] = {0.05061426814518813, 0.11119051722668724, 0.15685332293894363,
                                     0.18134189168918100, 0.18134189168918100, 0.15685332293894363,
                                     0.11119051722668724, 0.05061426814518813};
+
+// The dense system A x = b of the active set (one row per closed contact's normal and per
+// sticking contact's tangent), at most 2 n_c rows. Up to kSmallCapacity rows (12 contacts, a
+// bridge of up to 5 spans) it lives in fixed-capacity storage, so the time loop of such models
+// never touches the heap; a larger model sizes heap storage once for its own 2 n_c rows, and
+// only the decomposition's workspace follows the active-set size.
+class ActiveSystem {
+ public:
+  static constexpr int kSmallCapacity = 24;
+
+  explicit ActiveSystem(int capacity)
+      : capacity_(std::max(capacity, 1)), small_(capacity_ <= kSmallCapacity) {
+    if (small_) {
+      a_small_.resize(kSmallCapacity, kSmallCapacity);
+      b_small_.resize(kSmallCapacity);
+      x_small_.resize(kSmallCapacity);
+      cod_small_.setThreshold(kRankThreshold);
+      a_ = a_small_.data();
+      b_ = b_small_.data();
+      x_ = x_small_.data();
+    } else {
+      a_large_.resize(capacity_, capacity_);
+      b_large_.resize(capacity_);
+      x_large_.resize(capacity_);
+      cod_large_.setThreshold(kRankThreshold);
+      a_ = a_large_.data();
+      a_stride_ = capacity_;
+      b_ = b_large_.data();
+      x_ = x_large_.data();
+    }
+  }
+
+  // The raw pointers below point into this object's own storage.
+  ActiveSystem(const ActiveSystem&) = delete;
+  ActiveSystem& operator=(const ActiveSystem&) = delete;
+
+  int capacity() const { return capacity_; }
+  // Sizes A as m x m (its entries are undefined until written); b keeps its entries.
+  void Start(int m) {
+    SB_DEMAND(m <= capacity_, "ActiveSystem: more rows than the model has constraints");
+    m_ = m;
+    if (small_) {
+      a_small_.resize(m, m);
+      a_stride_ = m;
+    }
+  }
+  // Column-major raw storage: no branch on the storage kind in the assembly loops.
+  double& A(int i, int j) { return a_[i + j * a_stride_]; }
+  double& b(int i) { return b_[i]; }
+  double x(int j) const { return x_[j]; }
+  // Least-squares minimum-norm solution (a redundant constraint, such as a deck's four corners
+  // on one straight face of two aligned decks, makes A singular).
+  void Solve() {
+    if (small_) {
+      cod_small_.compute(a_small_);
+      x_small_ = cod_small_.solve(b_small_.head(m_));
+    } else {
+      cod_large_.compute(a_large_.topLeftCorner(m_, m_));
+      x_large_.head(m_) = cod_large_.solve(b_large_.head(m_));
+    }
+  }
+
+ private:
+  static constexpr double kRankThreshold = 1e-10;
+  using SmallMatrix =
+      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kSmallCapacity, kSmallCapacity>;
+  using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kSmallCapacity, 1>;
+
+  int capacity_;
+  bool small_;
+  int m_ = 0;
+  int a_stride_ = 0;
+  double* a_ = nullptr;
+  double* b_ = nullptr;
+  const double* x_ = nullptr;
+  SmallMatrix a_small_;
+  SmallVector b_small_, x_small_;
+  Eigen::CompleteOrthogonalDecomposition<SmallMatrix> cod_small_;
+  Eigen::MatrixXd a_large_;
+  Eigen::VectorXd b_large_, x_large_;
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod_large_;
+};
 
 }  // namespace
 
@@ -141,20 +225,14 @@ class Integrator {
   double h_rk_ = 0.0;
   double h_free_ = 0.0;  // the last nominal free step (s)
   double v_tol_ = 0.0, v_acc_ = 0.0, gap_tol_ = 0.0;
+  double force_tol_ = 0.0;  // N: a closed contact's lambda_N within -force_tol_ of zero is zero
   double next_output_t_ = kInf;
   double last_impact_t_ = -kInf;
   int events_here_ = 0;
   double last_event_t_ = -kInf;
   RunResult result_;
-  // Active-set linear algebra, fixed capacity so the time loop never touches the heap.
-  static constexpr int kMaxActive = 24;
-  using SmallMatrix =
-      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxActive, kMaxActive>;
-  using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxActive, 1>;
-  SmallMatrix A_;
-  SmallVector rhs_, x_;
-  Eigen::CompleteOrthogonalDecomposition<SmallMatrix> cod_;
-  Eigen::MatrixXd rows_, cols_;  // n x kMaxActive constraint rows / force directions
+  ActiveSystem sys_;             // 2 n_c rows at most
+  Eigen::MatrixXd rows_, cols_;  // n x 2 n_c constraint rows / force directions
 };
 
 SimulationWorkspace::SimulationWorkspace(const model::Model& model)
@@ -186,9 +264,9 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
       control_(control),
       ws_(ws),
       n_(model.n_dof()),
-      nc_(model.n_contacts()) {
+      nc_(model.n_contacts()),
+      sys_(2 * model.n_contacts()) {
   SB_DEMAND(&ws.model() == &model, "Simulate: workspace built for another model");
-  SB_DEMAND(2 * nc_ <= kMaxActive, "Simulate: too many contacts for the active-set capacity");
   const int naug = ws.flow_.augmented_size();
   z_ = Vec::Zero(naug);
   z_new_ = z_eval_ = dz_ = z_;
@@ -220,11 +298,7 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   cone_sign_.assign(static_cast<std::size_t>(nc_), 0);
   cos_.assign(static_cast<std::size_t>(model.n_bodies()), 1.0);
   sin_.assign(static_cast<std::size_t>(model.n_bodies()), 0.0);
-  rows_ = cols_ = Eigen::MatrixXd::Zero(n_, kMaxActive);
-  A_.resize(kMaxActive, kMaxActive);
-  rhs_.resize(kMaxActive);
-  x_.resize(kMaxActive);
-  cod_.setThreshold(1e-10);
+  rows_ = cols_ = Eigen::MatrixXd::Zero(n_, sys_.capacity());
 
   t_end_ = control.EndTime(excitation.Duration());
   // The excitation's peak from its pieces (kinks and harmonic amplitudes) sets the scales.
@@ -248,6 +322,20 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   }
   v_acc_ = control.accumulation_threshold * v_ref;
   v_tol_ = 1e-10 * v_ref;
+  // A closed contact that carries no load (two identical decks at a closed joint under uniform
+  // excitation) has lambda_N = 0 up to the rounding of the active-set solve, of either sign.
+  // Zero force with zero relative acceleration keeps the contact closed (the contact LCP's
+  // complementarity allows it); a detachment needs lambda_N clearly negative, that is a
+  // separating acceleration of the order of kForceTolerance a_ref, well above the contact
+  // problem's tie tolerance (solver/contact/contact_problem.cpp), so that the contact problem
+  // at the event confirms it.
+  double m_max = 0.0;
+  for (int i = 0; i < n_; ++i) {
+    if (i % 3 != 2) {
+      m_max = std::max(m_max, model.mass_diagonal()[i]);
+    }
+  }
+  force_tol_ = kForceTolerance * m_max * v_ref * omega_ref;
   // Gap tolerance from the response's own length scale, so that it scales with the excitation.
   // It never falls below the rounding of a gap computed from world coordinates (a few ulps of
   // the deck's size): at a tiny excitation a scaled tolerance under that floor would split a
@@ -597,7 +685,7 @@ void Integrator::ActiveForces(double t, const Eigen::Ref<const Vec>& qq,
     }
     const double mu = model_.contact(c).friction;
     rows_.col(m) = kin.W_N.col(c);
-    rhs_[m] = -(kin.W_N.col(c).dot(inv_m.cwiseProduct(h_)) + kin.what_N[c]);
+    sys_.b(m) = -(kin.W_N.col(c).dot(inv_m.cwiseProduct(h_)) + kin.what_N[c]);
     if (mode == static_cast<int>(ClosedMode::kSlidePositive)) {
       cols_.col(m) = kin.W_N.col(c) - mu * kin.W_T.col(c);
     } else if (mode == static_cast<int>(ClosedMode::kSlideNegative)) {
@@ -612,22 +700,20 @@ void Integrator::ActiveForces(double t, const Eigen::Ref<const Vec>& qq,
     if (mode_[static_cast<std::size_t>(c)] == static_cast<int>(ClosedMode::kStick)) {
       rows_.col(m) = kin.W_T.col(c);
       cols_.col(m) = kin.W_T.col(c);
-      rhs_[m] = -(kin.W_T.col(c).dot(inv_m.cwiseProduct(h_)) + kin.what_T[c]);
+      sys_.b(m) = -(kin.W_T.col(c).dot(inv_m.cwiseProduct(h_)) + kin.what_T[c]);
       ++m;
     }
   }
-  A_.resize(m, m);
+  sys_.Start(m);
   for (int i = 0; i < m; ++i) {
     for (int j = 0; j < m; ++j) {
-      A_(i, j) = rows_.col(i).dot(inv_m.cwiseProduct(cols_.col(j)));
+      sys_.A(i, j) = rows_.col(i).dot(inv_m.cwiseProduct(cols_.col(j)));
     }
   }
-  rhs_.conservativeResize(m);
-  cod_.compute(A_);
-  x_ = cod_.solve(rhs_);
+  sys_.Solve();
   du = h_;
   for (int j = 0; j < m; ++j) {
-    du += cols_.col(j) * x_[j];
+    du += cols_.col(j) * sys_.x(j);
   }
   du = inv_m.cwiseProduct(du);
   // Forces per contact and the friction power.
@@ -640,20 +726,19 @@ void Integrator::ActiveForces(double t, const Eigen::Ref<const Vec>& qq,
       continue;
     }
     const double mu = model_.contact(c).friction;
-    lambda_N_[c] = x_[j];
+    lambda_N_[c] = sys_.x(j);
     if (mode == static_cast<int>(ClosedMode::kSlidePositive)) {
-      lambda_T_[c] = -mu * x_[j];
+      lambda_T_[c] = -mu * sys_.x(j);
     } else if (mode == static_cast<int>(ClosedMode::kSlideNegative)) {
-      lambda_T_[c] = mu * x_[j];
+      lambda_T_[c] = mu * sys_.x(j);
     } else if (mode == static_cast<int>(ClosedMode::kStick)) {
-      lambda_T_[c] = x_[js++];
+      lambda_T_[c] = sys_.x(js++);
     } else {
       lambda_T_[c] = 0.0;
     }
     friction_power_ -= lambda_T_[c] * kin.gamma_T[c];
     ++j;
   }
-  rhs_.resize(kMaxActive);
 }
 
 void Integrator::Rhs(double t, const Eigen::Ref<const Vec>& y, Eigen::Ref<Vec> dy) {
@@ -673,11 +758,12 @@ void Integrator::Rhs(double t, const Eigen::Ref<const Vec>& y, Eigen::Ref<Vec> d
 }
 
 void Integrator::ClosedEventValues(Eigen::Ref<Vec> values) const {
-  // Per closed contact: lambda_N (detachment when it falls below zero) and a friction function
+  // Per closed contact: lambda_N + force_tol_ (detachment when lambda_N falls clearly below zero)
+  // and a friction function
   // (s gamma_T while sliding, mu lambda_N - |lambda_T| while sticking). Open contacts: +1.
   for (int c = 0; c < nc_; ++c) {
     const int mode = mode_[static_cast<std::size_t>(c)];
-    values[2 * c] = mode < 0 ? 1.0 : lambda_N_[c];
+    values[2 * c] = mode < 0 ? 1.0 : lambda_N_[c] + force_tol_;
     double f = 1.0;
     if (mode == static_cast<int>(ClosedMode::kSlidePositive)) {
       f = ws_.kin_.gamma_T[c];
@@ -788,26 +874,23 @@ void Integrator::Project() {
     for (int c = 0; c < nc_; ++c) {
       if (mode_[static_cast<std::size_t>(c)] >= 0) {
         rows_.col(m) = ws_.kin_.W_N.col(c);
-        rhs_[m] = -ws_.kin_.gap_m[c];
+        sys_.b(m) = -ws_.kin_.gap_m[c];
         ++m;
       }
     }
     if (m == 0) {
       return;
     }
-    A_.resize(m, m);
+    sys_.Start(m);
     for (int i = 0; i < m; ++i) {
       for (int j = 0; j < m; ++j) {
-        A_(i, j) = rows_.col(i).dot(inv_m.cwiseProduct(rows_.col(j)));
+        sys_.A(i, j) = rows_.col(i).dot(inv_m.cwiseProduct(rows_.col(j)));
       }
     }
-    rhs_.conservativeResize(m);
-    cod_.compute(A_);
-    x_ = cod_.solve(rhs_);
+    sys_.Solve();
     for (int j = 0; j < m; ++j) {
-      z_.head(n_) += inv_m.cwiseProduct(rows_.col(j)) * x_[j];
+      z_.head(n_) += inv_m.cwiseProduct(rows_.col(j)) * sys_.x(j);
     }
-    rhs_.resize(kMaxActive);
   }
   contact::Evaluate(model_, q(), u(), ws_.kin_);
   int m = 0;
@@ -820,20 +903,17 @@ void Integrator::Project() {
       }
     }
   }
-  A_.resize(m, m);
-  rhs_.conservativeResize(m);
+  sys_.Start(m);
   for (int i = 0; i < m; ++i) {
-    rhs_[i] = -rows_.col(i).dot(u());
+    sys_.b(i) = -rows_.col(i).dot(u());
     for (int j = 0; j < m; ++j) {
-      A_(i, j) = rows_.col(i).dot(inv_m.cwiseProduct(rows_.col(j)));
+      sys_.A(i, j) = rows_.col(i).dot(inv_m.cwiseProduct(rows_.col(j)));
     }
   }
-  cod_.compute(A_);
-  x_ = cod_.solve(rhs_);
+  sys_.Solve();
   for (int j = 0; j < m; ++j) {
-    z_.segment(n_, n_) += inv_m.cwiseProduct(rows_.col(j)) * x_[j];
+    z_.segment(n_, n_) += inv_m.cwiseProduct(rows_.col(j)) * sys_.x(j);
   }
-  rhs_.resize(kMaxActive);
 }
 
 void Integrator::ResolveContacts(const std::vector<int>& forced) {

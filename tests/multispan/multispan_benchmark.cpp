@@ -89,18 +89,9 @@ void SpanCounts(benchmark::internal::Benchmark* b) {
   b->Unit(benchmark::kMillisecond);
 }
 
-// The event-driven integrator's active set holds at most 24 constraint rows (simulate.cpp,
-// 2 n_contacts <= 24): 5 spans (12 contacts) is the largest model it accepts today.
-void EventDrivenSpanCounts(benchmark::internal::Benchmark* b) {
-  for (int n : {1, 2, 3, 4, 5}) {
-    b->Arg(n);
-  }
-  b->Unit(benchmark::kMillisecond);
-}
-
 BENCHMARK(TimeSteppingDense)->Apply(SpanCounts);
 BENCHMARK(TimeSteppingSparse)->Apply(SpanCounts);
-BENCHMARK(EventDriven)->Apply(EventDrivenSpanCounts);
+BENCHMARK(EventDriven)->Apply(SpanCounts);
 
 }  // namespace
 }  // namespace skewbridge
