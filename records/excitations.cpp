@@ -78,7 +78,9 @@ ExcitationPiece SampledExcitation::PieceAt(double t) const {
   ExcitationPiece piece;
   const std::size_t n = ax_.size();
   const double k_real = std::floor(t / dt_s_);
-  if (n < 2 || k_real >= static_cast<double>(n - 1)) {
+  // Compare against the end time itself, not only its sample index: (n - 1) dt / dt can round
+  // below n - 1, and a last ramp returned at its own end time would have zero length.
+  if (n < 2 || k_real >= static_cast<double>(n - 1) || t >= Duration()) {
     piece.t_begin = Duration();
     return piece;  // at rest after the last sample
   }
