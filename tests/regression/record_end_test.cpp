@@ -1,14 +1,14 @@
 /// @file
 /// The step-limit cells of jobs/specs/real/pilot-study-shared.toml (records RSN288_ITALY
 /// A-BRZ000, CHV1-20140203E, LXR1-20140203E and LXR1-20140203N, every Pi_delta): the run
-/// reaches the last sample of the record and then takes zero-length exact steps until
+/// reached the last sample of the record and then took zero-length exact steps until
 /// max_steps. Cause (docs/validation.md, "Step-limit cells of the shared-record study"):
-/// SampledExcitation::PieceAt(t) at t = (n - 1) dt computes floor(t / dt) = n - 2 when the
-/// quotient rounds below n - 1, and its guard `k + 1 < n - 1` then keeps the last ramp
-/// [(n - 2) dt, (n - 1) dt) instead of the rest piece, so the integrator's next stop is t
+/// SampledExcitation::PieceAt(t) at t = (n - 1) dt computed floor(t / dt) = n - 2 when the
+/// quotient rounds below n - 1, and its rounding guard then kept the last ramp
+/// [(n - 2) dt, (n - 1) dt) instead of the rest piece, so the integrator's next stop was t
 /// itself. It happens for 13548 x 0.005 (67.74 / 0.005 = 13547.999...), 12063 x 0.0029 and,
-/// with dt = 0.005, already for 30 samples. The tests are disabled until records/excitations.cpp
-/// and solver/dynamics/simulate.cpp are fixed; run them with --gtest_also_run_disabled_tests.
+/// with dt = 0.005, already for 30 samples. Fixed in records/excitations.cpp (PieceAt compares
+/// t with the end time itself); these tests keep it fixed.
 
 #include <gtest/gtest.h>
 
@@ -52,7 +52,7 @@ TEST(RecordEnd, TheSampleCountsOfTheStepLimitRecordsRoundDownAtTheEnd) {
   EXPECT_FALSE(EndRoundsDown(8773, 0.005));  // RSN1084_NORTHR_SCS052, status ok
 }
 
-TEST(RecordEnd, DISABLED_PieceAtTheLastSampleIsTheRestPiece) {
+TEST(RecordEnd, PieceAtTheLastSampleIsTheRestPiece) {
   // After the last sample the ground is at rest: the piece at t = (n - 1) dt must start there
   // and never end, whatever the rounding of (n - 1) dt / dt.
   for (const auto& [n, dt_s] : {std::pair{30, 0.005}, {13549, 0.005}, {12064, 0.0029}}) {
@@ -88,9 +88,9 @@ dynamics::RunResult RunPilotBridge(int n) {
   return dynamics::Simulate(model, excitation, control, workspace);
 }
 
-TEST(RecordEnd, DISABLED_PilotBridgeRunsPastTheEndOfARecordWhoseEndRoundsDown) {
-  // n = 31 ends cleanly today; n = 30 stalls at t = 29 dt = 0.145 s with zero-length exact
-  // steps until the budget runs out (status step-limit, no event). Both must reach the end
+TEST(RecordEnd, PilotBridgeRunsPastTheEndOfARecordWhoseEndRoundsDown) {
+  // n = 31 always ended cleanly; n = 30 stalled at t = 29 dt = 0.145 s with zero-length exact
+  // steps until the budget ran out (status step-limit, no event). Both must reach the end
   // time with about one exact step per sample interval plus the free vibration after it, so
   // their step counts differ by about one sample's worth.
   const dynamics::RunResult reference = RunPilotBridge(31);
