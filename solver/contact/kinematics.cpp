@@ -175,19 +175,39 @@ double ColumnDot(const model::Model& model, int c, const Eigen::Ref<const Eigen:
   return SparseDot(model.contact(c), w, u);
 }
 
+namespace {
+
+void EvaluateOne(const model::Model& model, int c, const Eigen::Ref<const Eigen::VectorXd>& q,
+                 const Eigen::Ref<const Eigen::VectorXd>& u, ContactKinematics& out) {
+  // One evaluation of the geometry (and its sines and cosines) per contact.
+  const model::Contact& contact = model.contact(c);
+  const Geometry g = Compute(model, c, q);
+  out.gap_m(c) = g.n.dot(g.P - g.A);
+  JacobiansAt(contact, g, out.W_N.col(c), out.W_T.col(c));
+  out.gamma_N(c) = SparseDot(contact, out.W_N.col(c), u);
+  out.gamma_T(c) = SparseDot(contact, out.W_T.col(c), u);
+  VelocityTermsAt(contact, g, u, out.what_N(c), out.what_T(c));
+}
+
+}  // namespace
+
 void Evaluate(const model::Model& model, const Eigen::Ref<const Eigen::VectorXd>& q,
               const Eigen::Ref<const Eigen::VectorXd>& u, ContactKinematics& out) {
   SB_ASSERT(out.W_N.rows() == model.n_dof() && out.W_N.cols() == model.n_contacts(),
             "ContactKinematics not sized for this model");
   for (int c = 0; c < model.n_contacts(); ++c) {
-    // One evaluation of the geometry (and its sines and cosines) per contact.
-    const model::Contact& contact = model.contact(c);
-    const Geometry g = Compute(model, c, q);
-    out.gap_m(c) = g.n.dot(g.P - g.A);
-    JacobiansAt(contact, g, out.W_N.col(c), out.W_T.col(c));
-    out.gamma_N(c) = SparseDot(contact, out.W_N.col(c), u);
-    out.gamma_T(c) = SparseDot(contact, out.W_T.col(c), u);
-    VelocityTermsAt(contact, g, u, out.what_N(c), out.what_T(c));
+    EvaluateOne(model, c, q, u, out);
+  }
+}
+
+void EvaluateContacts(const model::Model& model, const Eigen::Ref<const Eigen::VectorXd>& q,
+                      const Eigen::Ref<const Eigen::VectorXd>& u, std::span<const int> contacts,
+                      ContactKinematics& out) {
+  SB_ASSERT(out.W_N.rows() == model.n_dof() && out.W_N.cols() == model.n_contacts(),
+            "ContactKinematics not sized for this model");
+  for (int c : contacts) {
+    SB_ASSERT(c >= 0 && c < model.n_contacts(), "contact index out of range");
+    EvaluateOne(model, c, q, u, out);
   }
 }
 

@@ -16,6 +16,7 @@
 /// bodies, and w_N is the gradient of g.
 
 #include <Eigen/Core>
+#include <span>
 
 #include "solver/model/model.h"
 
@@ -69,5 +70,13 @@ double ColumnDot(const model::Model& model, int c, const Eigen::Ref<const Eigen:
 /// @pre out.Resize(model) was called (SB_ASSERT) and W_N, W_T were not written elsewhere.
 void Evaluate(const model::Model& model, const Eigen::Ref<const Eigen::VectorXd>& q,
               const Eigen::Ref<const Eigen::VectorXd>& u, ContactKinematics& out);
+
+/// Evaluate for the listed contacts only: their entries of `out` are refilled, every other
+/// entry keeps its last value. The Runge-Kutta stages of a constrained phase need the closed
+/// contacts' Jacobians and velocity terms alone.
+/// @pre out.Resize(model) was called (SB_ASSERT); valid contact indices.
+void EvaluateContacts(const model::Model& model, const Eigen::Ref<const Eigen::VectorXd>& q,
+                      const Eigen::Ref<const Eigen::VectorXd>& u, std::span<const int> contacts,
+                      ContactKinematics& out);
 
 }  // namespace skewbridge::contact

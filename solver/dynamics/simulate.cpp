@@ -219,6 +219,11 @@ class Integrator {
   int closed_count_ = 0;
   std::vector<contact::ClosedContact> closed_list_;
   std::vector<int> index_set_, persistent_, forced_;
+  std::vector<int> closed_ids_;  // the contacts with mode_ >= 0, ascending
+  // Set inside Runge-Kutta stages and event searches of a constrained phase: ActiveForces then
+  // evaluates the kinematics of the closed contacts only (the open ones' gaps are read at the
+  // step's ends).
+  bool closed_only_ = false;
   std::vector<int> cone_sign_;  // per contact: slip sign of a sticking contact at the cone, or 0
   Vec lambda_N_, lambda_T_;     // per contact, from the last ActiveForces
   double friction_power_ = 0.0;
@@ -295,6 +300,7 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   index_set_.reserve(static_cast<std::size_t>(nc_));
   persistent_.reserve(static_cast<std::size_t>(nc_));
   forced_.reserve(static_cast<std::size_t>(nc_));
+  closed_ids_.reserve(static_cast<std::size_t>(nc_));
   cone_sign_.assign(static_cast<std::size_t>(nc_), 0);
   cos_.assign(static_cast<std::size_t>(model.n_bodies()), 1.0);
   sin_.assign(static_cast<std::size_t>(model.n_bodies()), 0.0);
@@ -671,7 +677,11 @@ void Integrator::RecordSample(double t, const Eigen::Ref<const Vec>& qq,
 void Integrator::ActiveForces(double t, const Eigen::Ref<const Vec>& qq,
                               const Eigen::Ref<const Vec>& uu, Eigen::Ref<Vec> du) {
   model_.AppliedForces(qq, uu, GroundAcceleration(t), h_);
-  contact::Evaluate(model_, qq, uu, ws_.kin_);
+  if (closed_only_) {
+    contact::EvaluateContacts(model_, qq, uu, closed_ids_, ws_.kin_);
+  } else {
+    contact::Evaluate(model_, qq, uu, ws_.kin_);
+  }
   const contact::ContactKinematics& kin = ws_.kin_;
   const Vec& inv_m = model_.inverse_mass_diagonal();
   // Unknowns: lambda_N of every closed contact, then lambda_T of every sticking one; rows: the
@@ -793,7 +803,9 @@ void Integrator::ConstrainedStep() {
   gap0_ = ws_.kin_.gap_m;
   gN0_ = ws_.kin_.gamma_N;
   DormandPrince45& rk = ws_.rk_;
+  closed_only_ = true;
   rk.Step(rhs, t_, y_, dy_, h);
+  closed_only_ = false;
   const double err = rk.ErrorNorm(atol_, control_.relative_tolerance);
   if (!(err <= 1.0)) {
     ++result_.rk_rejected;
@@ -826,7 +838,9 @@ void Integrator::ConstrainedStep() {
       if (f1_[e] < 0.0 && f0_[e] >= 0.0) {
         const auto fe = [&](double t) {
           at(t, q_e_, u_e_);
+          closed_only_ = true;
           ActiveForces(t, q_e_, u_e_, du_);
+          closed_only_ = false;
           ClosedEventValues(f_eval_);
           return f_eval_[e];
         };
@@ -866,10 +880,11 @@ void Integrator::ConstrainedStep() {
 
 void Integrator::Project() {
   // Gauss-Newton in the M^-1 metric: positions onto g = 0 of the closed contacts, velocities
-  // onto gamma_N = 0 (and gamma_T = 0 when sticking) [method.md §3, smooth phases].
+  // onto gamma_N = 0 (and gamma_T = 0 when sticking) [method.md §3, smooth phases]. Only the
+  // closed contacts' kinematics are needed; the next step or RefreshGaps evaluates all.
   const Vec& inv_m = model_.inverse_mass_diagonal();
   for (int pass = 0; pass < 2; ++pass) {
-    contact::Evaluate(model_, q(), u(), ws_.kin_);
+    contact::EvaluateContacts(model_, q(), u(), closed_ids_, ws_.kin_);
     int m = 0;
     for (int c = 0; c < nc_; ++c) {
       if (mode_[static_cast<std::size_t>(c)] >= 0) {
@@ -892,7 +907,7 @@ void Integrator::Project() {
       z_.head(n_) += inv_m.cwiseProduct(rows_.col(j)) * sys_.x(j);
     }
   }
-  contact::Evaluate(model_, q(), u(), ws_.kin_);
+  contact::EvaluateContacts(model_, q(), u(), closed_ids_, ws_.kin_);
   int m = 0;
   for (int c = 0; c < nc_; ++c) {
     const int mode = mode_[static_cast<std::size_t>(c)];
@@ -1091,6 +1106,12 @@ void Integrator::ResolveContacts(const std::vector<int>& forced) {
       }
       mode_[static_cast<std::size_t>(c)] = mode;
       closed_count_ += mode >= 0 ? 1 : 0;
+    }
+  }
+  closed_ids_.clear();
+  for (int c = 0; c < nc_; ++c) {
+    if (mode_[static_cast<std::size_t>(c)] >= 0) {
+      closed_ids_.push_back(c);
     }
   }
   if (AnyClosed()) {

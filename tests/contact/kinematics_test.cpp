@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "tests/contact/test_models.h"
 
@@ -189,6 +190,44 @@ TEST(ContactKinematics, VelocityTermsMatchTheRateOfGammaAlongATrajectory) {
   const model::Contact& c = deck.contact(0);
   EXPECT_NEAR(what_N, -0.49 * c.face.normal.dot(Rotation(0.05) * c.point_m), 1e-13 * 89.14);
   EXPECT_NEAR(what_T, -0.49 * c.face.tangent.dot(Rotation(0.05) * c.point_m), 1e-13 * 89.14);
+}
+
+// EvaluateContacts on a subset refills exactly the listed contacts, with the values of the full
+// Evaluate at the new state, and leaves every other entry as the previous state left it.
+TEST(ContactKinematics, EvaluateContactsRefillsTheListedContactsOnly) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const model::Model deck =
+      testing::FreeDeck(30.0, 1.3, 20.0, 0.02, 0.5, 0.2, model::AbutmentSet::kBoth);
+  const int n = deck.n_dof();
+  Eigen::VectorXd q0(n), u0(n), q1(n), u1(n);
+  for (int i = 0; i < n; ++i) {
+    q0[i] = 0.1 * unit(rng);
+    u0[i] = unit(rng);
+    q1[i] = 0.1 * unit(rng);
+    u1[i] = unit(rng);
+  }
+  ContactKinematics before, after, subset;
+  before.Resize(deck);
+  after.Resize(deck);
+  subset.Resize(deck);
+  Evaluate(deck, q0, u0, before);
+  Evaluate(deck, q1, u1, after);
+  Evaluate(deck, q0, u0, subset);
+  ASSERT_GE(deck.n_contacts(), 3);
+  const std::vector<int> listed = {0, deck.n_contacts() - 1};
+  EvaluateContacts(deck, q1, u1, listed, subset);
+  for (int c = 0; c < deck.n_contacts(); ++c) {
+    const bool in = c == listed[0] || c == listed[1];
+    const ContactKinematics& expected = in ? after : before;
+    EXPECT_EQ(subset.gap_m[c], expected.gap_m[c]) << "contact " << c;
+    EXPECT_EQ(subset.gamma_N[c], expected.gamma_N[c]) << "contact " << c;
+    EXPECT_EQ(subset.gamma_T[c], expected.gamma_T[c]) << "contact " << c;
+    EXPECT_EQ(subset.what_N[c], expected.what_N[c]) << "contact " << c;
+    EXPECT_EQ(subset.what_T[c], expected.what_T[c]) << "contact " << c;
+    EXPECT_EQ(subset.W_N.col(c), expected.W_N.col(c)) << "contact " << c;
+    EXPECT_EQ(subset.W_T.col(c), expected.W_T.col(c)) << "contact " << c;
+  }
 }
 
 }  // namespace
