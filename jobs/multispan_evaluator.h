@@ -25,18 +25,13 @@ enum MultiSpanStatus : std::int32_t {
   kMultiSpanStepLimit = 3,   ///< the run did not reach its end time (step budget, event cascade)
 };
 
-/// The largest span count the event-driven integrator accepts today (its active set holds at
-/// most 24 constraint rows, 2 per contact, and N spans have 2 N + 2 contacts; docs/multispan.md).
-inline constexpr int kEventDrivenMaxSpans = 5;
-
 /// Evaluates the cells of a multi-span sweep. Immutable after construction: Evaluate is a pure
 /// function of the cell index.
 class MultiSpanEvaluator final : public CellEvaluator {
  public:
   /// Checks every cell's parameters before any work.
   /// @throws InputError naming the key for a parameter this family does not take (record,
-  /// L_over_Le with delta_over_L, ...), an impossible combination (eta0 with a = 0), or more than
-  /// kEventDrivenMaxSpans spans with the event-driven method.
+  /// L_over_Le with delta_over_L, ...) or an impossible combination (eta0 with a = 0).
   explicit MultiSpanEvaluator(const SweepSpec& spec);
 
   std::vector<ResponseInfo> Responses() const override;
