@@ -471,6 +471,9 @@ RunResult Integrator::Run() {
 void Integrator::FreeStep() {
   LinearFlow& flow = ws_.flow_;
   const ExcitationPiece piece = excitation_.PieceAt(t_);
+  // The Excitation contract: the piece at t extends beyond t. A piece ending at t would make
+  // zero-length steps until the step budget runs out, so stop at once instead.
+  SB_DEMAND(piece.t_end > t_, "Excitation::PieceAt(t) returned a piece that ends at or before t");
   const double t_stop = std::min(piece.t_end, t_end_);
   double h = FreeStepSize(piece);
   // Pieces of a sampled record differ in length by rounding (t_end - t_begin of i dt and
@@ -812,6 +815,7 @@ void Integrator::ClosedEventValues(Eigen::Ref<Vec> values) const {
 
 void Integrator::ConstrainedStep() {
   const ExcitationPiece piece = excitation_.PieceAt(t_);
+  SB_DEMAND(piece.t_end > t_, "Excitation::PieceAt(t) returned a piece that ends at or before t");
   const double t_stop = std::min(piece.t_end, t_end_);
   double h = std::min(h_rk_, t_stop - t_);
   if (t_stop - t_ - h < 1e-9 * h) {
