@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The main job on its built-in default: builds the release preset, runs the default spectrum
-# sweep (jobs/specs/default.toml) on 2 MPI ranks into out/default.h5, and summarises the cube.
+# sweep (jobs/specs/default.toml) on 2 MPI ranks into out/default.h5, summarises the cube and
+# draws its figures (out/report/: PNG spectra and summary.md).
 # Re-running resumes an unfinished cube and recomputes a finished one.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -23,4 +24,5 @@ fi
 mpiexec -n 2 --oversubscribe build/release/skewbridge sweep jobs/specs/default.toml \
   --out "$cube" "${resume[@]}"
 build/release/skewbridge inspect "$cube"
-echo "cube written to $(pwd)/$cube"
+scripts/report "$cube" --out out/report
+echo "cube written to $(pwd)/$cube; figures and summary in $(pwd)/out/report"
