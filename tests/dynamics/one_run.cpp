@@ -1,7 +1,8 @@
 // Runs one benchmark case exactly N times (after one warm-up run), so that an instruction count
 // under callgrind divided by N + 1 is the cost of one run:
 //   valgrind --tool=callgrind build/perf/tests/dynamics/simulate_one_run pilot 1 10
-// Arguments: subsystem|pilot, contacts 0|1, N. Prints the run's status, counts and maxima.
+// Arguments: subsystem|pilot|pilot-study, contacts 0|1, N (pilot-study: the pilot bridge at the
+// gaps of Pi_delta = 0.5). Prints the run's status, counts and maxima.
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -12,14 +13,16 @@
 int main(int argc, char** argv) {
   using namespace skewbridge::dynamics;
   if (argc != 4) {
-    std::fprintf(stderr, "usage: %s subsystem|pilot 0|1 N\n", argv[0]);
+    std::fprintf(stderr, "usage: %s subsystem|pilot|pilot-study 0|1 N\n", argv[0]);
     return 2;
   }
   const std::string which = argv[1];
   const bool contacts = std::atoi(argv[2]) != 0;
   const int n = std::atoi(argv[3]);
-  const bench::Case c =
-      which == "pilot" ? bench::PilotBridgeRecord(contacts) : bench::SubsystemCosinePulse(contacts);
+  const bench::Case c = which == "pilot" ? bench::PilotBridgeRecord(contacts)
+                        : which == "pilot-study"
+                            ? bench::PilotBridgeRecord(contacts, bench::kPilotStudyGap_m)
+                            : bench::SubsystemCosinePulse(contacts);
   SimulationWorkspace ws(c.model);
   RunResult r = Simulate(c.model, *c.excitation, c.control, ws);
   for (int i = 0; i < n; ++i) {

@@ -68,5 +68,13 @@ void BM_PilotBridgeRecord(benchmark::State& state) {
 }
 BENCHMARK(BM_PilotBridgeRecord)->Arg(1)->Arg(0)->ArgName("contacts")->Unit(benchmark::kMillisecond);
 
+// The same signal with the gaps of the pilot study's smallest Pi_delta (0.5): the with-contact
+// cost at the gaps the study uses, against BM_PilotBridgeRecord/contacts:0.
+void BM_PilotBridgeRecordStudyGap(benchmark::State& state) {
+  const bench::Case c = bench::PilotBridgeRecord(true, bench::kPilotStudyGap_m);
+  Run(state, c.model, *c.excitation, c.control);
+}
+BENCHMARK(BM_PilotBridgeRecordStudyGap)->Unit(benchmark::kMillisecond);
+
 }  // namespace
 }  // namespace skewbridge::dynamics
