@@ -57,6 +57,7 @@ ContactResult ContactProblem::MakeResult() const {
   r.gammadot_N.setZero(nc);
   r.gammadot_T.setZero(nc);
   r.outcome.assign(static_cast<std::size_t>(nc), ContactOutcome::kStaysClosed);
+  r.friction_outcome.assign(static_cast<std::size_t>(nc), ContactOutcome::kStaysClosed);
   return r;
 }
 
@@ -202,6 +203,7 @@ ContactStatus ContactProblem::Solve(const ContactKinematics& kinematics,
       }
       ++jh;
     }
+    result.friction_outcome[static_cast<std::size_t>(j)] = outcome;
     if (w(j) > tol_w && w(j) > lambda_N) {
       outcome = ContactOutcome::kDetaches;
     }

@@ -65,6 +65,10 @@ struct ContactResult {
   Eigen::VectorXd gammadot_N;           ///< d gamma_N / dt (m/s^2)
   Eigen::VectorXd gammadot_T;           ///< d gamma_T / dt (m/s^2)
   std::vector<ContactOutcome> outcome;  ///< per entry of `closed`
+  /// Per entry of `closed`: the friction outcome alone (kSlides, kSticks, kStartsSlip...), also
+  /// for a contact whose `outcome` is kDetaches, so that a caller that keeps such a contact
+  /// closed (a separating acceleration within its tolerance) knows its friction mode.
+  std::vector<ContactOutcome> friction_outcome;
   int pivots = 0;
 };
 

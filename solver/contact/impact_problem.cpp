@@ -54,7 +54,8 @@ Eigen::Ref<const Eigen::VectorXd> ImpactProblem::last_b() const { return b_.head
 lcp::LcpStatus ImpactProblem::Solve(const ContactKinematics& kinematics,
                                     std::span<const int> index_set,
                                     const Eigen::Ref<const Eigen::VectorXd>& u_A,
-                                    ImpactResult& result, std::span<const int> persistent) {
+                                    ImpactResult& result, std::span<const int> persistent,
+                                    bool frictionless) {
   const int k = static_cast<int>(index_set.size());
   SB_ASSERT(k <= model_.n_contacts(), "index set larger than the model's contacts");
   SB_ASSERT(u_A.size() == model_.n_dof(), "u_A has the wrong size");
@@ -72,11 +73,14 @@ lcp::LcpStatus ImpactProblem::Solve(const ContactKinematics& kinematics,
     SB_ASSERT(c >= 0 && c < model_.n_contacts(), "contact index out of range");
     WN_.col(j) = kinematics.W_N.col(c);
     WT_.col(j) = kinematics.W_T.col(c);
-    mu_(j) = model_.contact(c).friction;
-    eps_(j) = model_.contact(c).restitution;
+    mu_(j) = frictionless ? 0.0 : model_.contact(c).friction;
+    // A persistent contact takes part with its own (tiny) gamma_N,A and no restitution, so that
+    // after the impact it neither approaches (gamma_N,E >= 0 for the real velocities, not for a
+    // pretended gamma_N,A = 0) nor bounces off by restitution of a closure speed it never had.
     const bool is_persistent =
         std::find(persistent.begin(), persistent.end(), c) != persistent.end();
-    result.gamma_N_A(j) = is_persistent ? 0.0 : WN_.col(j).dot(u_A);
+    eps_(j) = is_persistent ? 0.0 : model_.contact(c).restitution;
+    result.gamma_N_A(j) = WN_.col(j).dot(u_A);
   }
   if (k == 0) {
     result.status = lcp::LcpStatus::kSolved;

@@ -53,14 +53,18 @@ class ImpactProblem {
                          Assembly assembly = Assembly::kAuto);
 
   /// Solves the impact of the contacts in `index_set` at the pre-impact velocity u_A, with the
-  /// Jacobians of `kinematics` (evaluated at the impact configuration). gamma_N,A = w_N^T u_A,
-  /// except for contacts listed in `persistent` (closed, in persistent contact), which take
-  /// part with gamma_N,A = 0 [method.md §3].
+  /// Jacobians of `kinematics` (evaluated at the impact configuration), gamma_N,A = w_N^T u_A.
+  /// Contacts listed in `persistent` (closed, or closing slower than the accumulation threshold)
+  /// take part with restitution 0: their gamma_N,A is zero up to drift, and an impact at one
+  /// corner acts on them [method.md §3] without pushing them apart by restitution.
   /// @pre index_set entries distinct and valid; u_A of size n_dof (SB_ASSERT).
   /// @return result.status; when not kSolved, u_E = u_A and the impulses are zero.
+  /// `frictionless` drops Coulomb's law (mu = 0) for this impact: a closure slower than the
+  /// accumulation threshold only has its approach stopped, and its tangential impulse, bounded
+  /// by mu times a vanishing normal one, is left to the contact problem that follows.
   lcp::LcpStatus Solve(const ContactKinematics& kinematics, std::span<const int> index_set,
                        const Eigen::Ref<const Eigen::VectorXd>& u_A, ImpactResult& result,
-                       std::span<const int> persistent = {});
+                       std::span<const int> persistent = {}, bool frictionless = false);
 
   /// A result sized for this model (so Solve does not allocate).
   ImpactResult MakeResult() const;

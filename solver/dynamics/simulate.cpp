@@ -49,6 +49,19 @@ namespace {
 constexpr double kStepsPerPeriod = 20.0;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr int kMaxEventsAtOneInstant = 64;
+// Decision passes at one instant (velocity-level problem, contact problem, projection) before the
+// integrator goes on; two suffice unless a projection disturbs a contact at the face.
+constexpr int kDecisionPasses = 4;
+// A closed contact whose slip speed is within kStickBand v_tol of zero may stick: the contact
+// problem decides. Wider than the band of the slip event (v_tol), so the contact that the slip
+// event stops is always offered the choice.
+constexpr double kStickBand = 2.0;
+// Probes t0 + (t1 - t0) 2^-k, k = 1..kTouchProbes, for a positive gamma_N of a contact that
+// starts a step at the face.
+constexpr int kTouchProbes = 40;
+// Ternary-search iterations per kernel coordinate in BalanceIndeterminateFriction ((2/3)^80 ~ 1e-14
+// of the search interval).
+constexpr int kTernaryIterations = 80;
 // Relative tolerance of a closed contact's normal force (see force_tol_).
 constexpr double kForceTolerance = 1e-7;
 // Rounding of a gap n . (X + (x, y) + R p - A) relative to the deck's size, with a margin.
@@ -126,6 +139,7 @@ class ActiveSystem {
   // otherwise (redundant constraints) the orthogonal decomposition of Solve. A fraction of the
   // decomposition's cost on the small path.
   void SolveSymmetric() {
+    rank_deficient_ = false;
     if (small_ && m_ > 0) {
       ldlt_small_.compute(a_small_);
       const auto d = ldlt_small_.vectorD();
@@ -133,9 +147,33 @@ class ActiveSystem {
         x_small_ = ldlt_small_.solve(b_small_.head(m_));
         return;
       }
+      rank_deficient_ = true;
     }
     Solve();
   }
+  // True when the last SolveSymmetric met a singular A (small path only).
+  bool rank_deficient() const { return rank_deficient_; }
+  // An orthonormal basis of the kernel of the last symmetric A (columns of `kernel`, at most
+  // `max_dim`); returns its dimension. The minimum-norm solution plus any combination of these
+  // columns solves A x = b as well.
+  int Kernel(Eigen::Ref<Eigen::MatrixXd> kernel, int max_dim) {
+    if (!small_ || m_ == 0) {
+      return 0;
+    }
+    eig_small_.compute(a_small_);
+    const auto& ev = eig_small_.eigenvalues();
+    const double top = ev.cwiseAbs().maxCoeff();
+    int d = 0;
+    for (int i = 0; i < m_ && d < max_dim; ++i) {
+      if (std::abs(ev[i]) <= kRankThreshold * top) {
+        kernel.col(d).head(m_) = eig_small_.eigenvectors().col(i);
+        ++d;
+      }
+    }
+    return d;
+  }
+  // Writable solution (the caller moves it along the kernel).
+  double& x_mutable(int j) { return small_ ? x_small_[j] : x_large_[j]; }
 
  private:
   static constexpr double kRankThreshold = 1e-10;
@@ -154,6 +192,8 @@ class ActiveSystem {
   SmallVector b_small_, x_small_;
   Eigen::CompleteOrthogonalDecomposition<SmallMatrix> cod_small_;
   Eigen::LDLT<SmallMatrix> ldlt_small_;
+  Eigen::SelfAdjointEigenSolver<SmallMatrix> eig_small_;
+  bool rank_deficient_ = false;
   Eigen::MatrixXd a_large_;
   Eigen::VectorXd b_large_, x_large_;
   Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod_large_;
@@ -191,11 +231,19 @@ class Integrator {
   void ActiveForces(double t, const Eigen::Ref<const Vec>& q, const Eigen::Ref<const Vec>& u,
                     Eigen::Ref<Vec> du);
   void Rhs(double t, const Eigen::Ref<const Vec>& y, Eigen::Ref<Vec> dy);
+  // Moves a singular (statically indeterminate) sticking active set's solution along its kernel
+  // to the split of forces deepest inside the friction cones; k normal and m - k tangent rows.
+  void BalanceIndeterminateFriction(int k, int m);
   // Event-function values of the closed contacts at the last ActiveForces call.
   void ClosedEventValues(Eigen::Ref<Vec> values) const;
 
   // Impacts, plastic closures and the contact LCP at the current state; sets the active set.
   void ResolveContacts(const std::vector<int>& forced);
+  // One pass of that decision: velocity-level problem, contact problem, projection. False when
+  // the run failed (an LCP status).
+  bool DecideContacts(const std::vector<int>& forced);
+  // True when an open contact at the face approaches it faster than v_tol_ (after a projection).
+  bool OpenContactApproaching();
   void Project();
 
   template <class StateAt>
@@ -248,12 +296,20 @@ class Integrator {
   double h_free_ = 0.0;  // the last nominal free step (s)
   double v_tol_ = 0.0, v_acc_ = 0.0, gap_tol_ = 0.0;
   double force_tol_ = 0.0;  // N: a closed contact's lambda_N within -force_tol_ of zero is zero
+  double a_detach_ = 0.0;   // m/s^2: a smaller separating acceleration keeps a contact closed
   double next_output_t_ = kInf;
   double last_impact_t_ = -kInf;
   int events_here_ = 0;
   double last_event_t_ = -kInf;
   RunResult result_;
-  ActiveSystem sys_;             // 2 n_c rows at most
+  ActiveSystem sys_;                  // 2 n_c rows at most
+  std::vector<int> projection_rows_;  // per contact: 1 when an open contact joins the projection
+  std::vector<int> tie_;
+  Eigen::MatrixXd kernel_;                   // kernel of a singular active set (columns)
+  std::vector<int> normal_of_, tangent_of_;  // active-set layout for BalanceIndeterminateFriction
+  Vec x_bal_, x_try_;  // its solution and trial points  // per contact: 1 when kept closed with a
+                       // separating acceleration in band
+  Vec u_proj_, u_proj_in_;       // projected velocities; velocities before the projection
   Eigen::MatrixXd rows_, cols_;  // n x 2 n_c constraint rows / force directions
 };
 
@@ -322,6 +378,13 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   cos_.assign(static_cast<std::size_t>(model.n_bodies()), 1.0);
   sin_.assign(static_cast<std::size_t>(model.n_bodies()), 0.0);
   rows_ = cols_ = Eigen::MatrixXd::Zero(n_, sys_.capacity());
+  projection_rows_.assign(static_cast<std::size_t>(nc_), 0);
+  tie_.assign(static_cast<std::size_t>(nc_), 0);
+  kernel_ = Eigen::MatrixXd::Zero(sys_.capacity(), 4);
+  normal_of_.assign(static_cast<std::size_t>(nc_), 0);
+  tangent_of_.assign(static_cast<std::size_t>(nc_), -1);
+  x_bal_ = x_try_ = Vec::Zero(sys_.capacity());
+  u_proj_ = u_proj_in_ = Vec::Zero(n_);
 
   t_end_ = control.EndTime(excitation.Duration());
   // The excitation's peak from its pieces (kinks and harmonic amplitudes) sets the scales.
@@ -359,6 +422,7 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
     }
   }
   force_tol_ = kForceTolerance * m_max * v_ref * omega_ref;
+  a_detach_ = kForceTolerance * v_ref * omega_ref;
   // Gap tolerance from the response's own length scale, so that it scales with the excitation.
   // It never falls below the rounding of a gap computed from world coordinates (a few ulps of
   // the deck's size): at a tiny excitation a scaled tolerance under that floor would split a
@@ -599,12 +663,36 @@ double Integrator::GapRoot(int c, double t0, double t1, double g0, double gN0, d
   const double x_tol = 1e-15 * std::max(1.0, std::abs(t1)) + 1e-16;
   double a = t0, ga = g0, gNa = gN0;
   if (ga <= gap_tol_) {
-    // Starting in touch (just separated): search from the gap's maximum inside the step.
-    if (gNa > 0.0 && gN1 < 0.0) {
-      const RootResult top = FindRootBrent(gamma_N, t0, t1, gNa, gN1, x_tol);
+    // Starting in touch (just separated): search from the gap's maximum inside the step. A
+    // contact that the contact problem has just opened starts with gamma_N = 0 (up to rounding)
+    // and a separating acceleration; if that acceleration reverses within the step, gamma_N is
+    // positive only on an early part of it, found by halving towards t0.
+    double t_pos = gNa > 0.0 ? t0 : kInf;
+    double gN_pos = gNa;
+    if (t_pos == kInf && gNa <= v_tol_ && gN1 < 0.0) {
+      for (int k = 1; k <= kTouchProbes; ++k) {
+        const double t = t0 + std::ldexp(t1 - t0, -k);
+        if (!(t > t0)) {
+          break;
+        }
+        const double v = gamma_N(t);
+        if (v > 0.0) {
+          t_pos = t;
+          gN_pos = v;
+          break;
+        }
+      }
+    }
+    if (t_pos < kInf && gN1 < 0.0) {
+      const RootResult top = FindRootBrent(gamma_N, t_pos, t1, gN_pos, gN1, x_tol);
       a = top.x;
       ga = gap(a);
       gNa = 0.0;
+      if (ga <= 0.0 && a > t0) {
+        // The gap never opened beyond rounding: the contact closes again where its separation
+        // turns round, later than t0, and the contact problem there sees it approaching.
+        return a;
+      }
     }
     if (ga <= 0.0) {
       return g1 < 0.0 && gNa <= 0.0 && gN1 < 0.0 ? a : kInf;
@@ -745,6 +833,9 @@ void Integrator::ActiveForces(double t, const Eigen::Ref<const Vec>& qq,
   }
   if (symmetric) {
     sys_.SolveSymmetric();
+    if (sys_.rank_deficient() && m > k) {
+      BalanceIndeterminateFriction(k, m);
+    }
   } else {
     sys_.Solve();
   }
@@ -778,6 +869,79 @@ void Integrator::ActiveForces(double t, const Eigen::Ref<const Vec>& qq,
   }
 }
 
+void Integrator::BalanceIndeterminateFriction(int k, int m) {
+  // Two corners of a deck sticking on one face constrain its tangential motion twice: the active
+  // set is singular, and the normal and friction forces are fixed only up to a kernel direction
+  // (one corner's friction traded against the other's, with the normal forces balancing the
+  // moment). The minimum-norm solution splits the friction evenly, which can put a lightly loaded
+  // corner beyond its cone while another split keeps both inside, and the slip event would then
+  // fire although the contact problem (which finds such a split) says both stick. Of all the
+  // solutions, take the one deepest inside the cones: it maximises the smallest margin
+  // mu (lambda_N + force_tol) - |lambda_T| and lambda_N + force_tol, a concave function of the
+  // kernel coordinates (maximised one coordinate at a time by ternary search).
+  const int d = sys_.Kernel(kernel_, static_cast<int>(kernel_.cols()));
+  if (d == 0) {
+    return;
+  }
+  // Unknown j < k: lambda_N of the j-th closed contact; k + i: lambda_T of the i-th sticking one.
+  int j = 0, i = k;
+  for (int c = 0; c < nc_; ++c) {
+    const int mode = mode_[static_cast<std::size_t>(c)];
+    if (mode < 0) {
+      continue;
+    }
+    normal_of_[static_cast<std::size_t>(j)] = c;
+    tangent_of_[static_cast<std::size_t>(j)] =
+        mode == static_cast<int>(ClosedMode::kStick) ? i++ : -1;
+    ++j;
+  }
+  SB_DEMAND(i == m && j == k, "BalanceIndeterminateFriction: active set layout changed");
+  for (int r = 0; r < m; ++r) {
+    x_bal_[r] = sys_.x(r);
+  }
+  const auto margin = [&](const Vec& x) {
+    double worst = kInf;
+    for (int jj = 0; jj < k; ++jj) {
+      const double normal = x[jj] + force_tol_;
+      worst = std::min(worst, normal);
+      const int t = tangent_of_[static_cast<std::size_t>(jj)];
+      if (t >= 0) {
+        const double mu = model_.contact(normal_of_[static_cast<std::size_t>(jj)]).friction;
+        worst = std::min(worst, mu * normal - std::abs(x[t]));
+      }
+    }
+    return worst;
+  };
+  double scale = force_tol_;
+  for (int r = 0; r < m; ++r) {
+    scale = std::max(scale, std::abs(x_bal_[r]));
+  }
+  for (int sweep = 0; sweep < (d == 1 ? 1 : 3); ++sweep) {
+    for (int e = 0; e < d; ++e) {
+      double lo = -4.0 * scale * std::sqrt(static_cast<double>(m)), hi = -lo;
+      const auto along = [&](double s_e) {
+        x_try_.head(m) = x_bal_.head(m) + s_e * kernel_.col(e).head(m);
+        return margin(x_try_);
+      };
+      for (int it = 0; it < kTernaryIterations; ++it) {
+        const double a = lo + (hi - lo) / 3.0, b = hi - (hi - lo) / 3.0;
+        if (along(a) < along(b)) {
+          lo = a;
+        } else {
+          hi = b;
+        }
+      }
+      const double s_best = 0.5 * (lo + hi);
+      if (along(s_best) > margin(x_bal_)) {
+        x_bal_.head(m) += s_best * kernel_.col(e).head(m);
+      }
+    }
+  }
+  for (int r = 0; r < m; ++r) {
+    sys_.x_mutable(r) = x_bal_[r];
+  }
+}
+
 void Integrator::Rhs(double t, const Eigen::Ref<const Vec>& y, Eigen::Ref<Vec> dy) {
   const auto qq = y.head(n_);
   const auto uu = y.segment(n_, n_);
@@ -796,18 +960,22 @@ void Integrator::Rhs(double t, const Eigen::Ref<const Vec>& y, Eigen::Ref<Vec> d
 
 void Integrator::ClosedEventValues(Eigen::Ref<Vec> values) const {
   // Per closed contact: lambda_N + force_tol_ (detachment when lambda_N falls clearly below zero)
-  // and a friction function
-  // (s gamma_T while sliding, mu lambda_N - |lambda_T| while sticking). Open contacts: +1.
+  // and a friction function: s gamma_T + v_tol_ while sliding (stick or reversal once the slip
+  // has clearly passed zero), mu (lambda_N + force_tol_) - |lambda_T| while sticking (slip once
+  // the friction clearly exceeds the cone). Open contacts: +1. The bands make every function
+  // non-negative at the start of the phase that the contact problem chose: a slip starts at
+  // gamma_T = 0 and a stick may start with its friction on the cone, and a function that is
+  // negative by rounding there would fire the same event again at the same instant.
   for (int c = 0; c < nc_; ++c) {
     const int mode = mode_[static_cast<std::size_t>(c)];
     values[2 * c] = mode < 0 ? 1.0 : lambda_N_[c] + force_tol_;
     double f = 1.0;
     if (mode == static_cast<int>(ClosedMode::kSlidePositive)) {
-      f = ws_.kin_.gamma_T[c];
+      f = ws_.kin_.gamma_T[c] + v_tol_;
     } else if (mode == static_cast<int>(ClosedMode::kSlideNegative)) {
-      f = -ws_.kin_.gamma_T[c];
+      f = -ws_.kin_.gamma_T[c] + v_tol_;
     } else if (mode == static_cast<int>(ClosedMode::kStick)) {
-      f = model_.contact(c).friction * lambda_N_[c] - std::abs(lambda_T_[c]);
+      f = model_.contact(c).friction * (lambda_N_[c] + force_tol_) - std::abs(lambda_T_[c]);
     }
     values[2 * c + 1] = f;
   }
@@ -935,28 +1103,64 @@ void Integrator::Project() {
       z_.head(n_) += inv_m.cwiseProduct(rows_.col(j)) * sys_.x(j);
     }
   }
-  contact::EvaluateContacts(model_, q(), u(), closed_ids_, ws_.kin_);
-  int m = 0;
-  for (int c = 0; c < nc_; ++c) {
-    const int mode = mode_[static_cast<std::size_t>(c)];
-    if (mode >= 0) {
-      rows_.col(m++) = ws_.kin_.W_N.col(c);
-      if (mode == static_cast<int>(ClosedMode::kStick)) {
-        rows_.col(m++) = ws_.kin_.W_T.col(c);
+  // Velocities: onto gamma_N = 0 of the closed contacts (gamma_T = 0 of the sticking ones), and
+  // gamma_N >= 0 of the open contacts at the face. The projection of the closed contacts alone can
+  // drive an open contact at the face into the face (a deck rocking between two corners: putting
+  // one corner's slow separation to zero swings the other into its face), and the next step would
+  // find that contact closing at once, at the same instant. The inequality rows enter as an active
+  // set: an open contact at the face is added while the projection makes it approach, and dropped
+  // again if it would have to pull (a negative multiplier).
+  contact::Evaluate(model_, q(), u(), ws_.kin_);
+  std::fill(projection_rows_.begin(), projection_rows_.end(), 0);
+  u_proj_in_ = u();
+  for (int pass = 0; pass <= nc_; ++pass) {
+    int m = 0;
+    for (int c = 0; c < nc_; ++c) {
+      const int mode = mode_[static_cast<std::size_t>(c)];
+      if (mode >= 0 || projection_rows_[static_cast<std::size_t>(c)] != 0) {
+        rows_.col(m++) = ws_.kin_.W_N.col(c);
+        if (mode == static_cast<int>(ClosedMode::kStick)) {
+          rows_.col(m++) = ws_.kin_.W_T.col(c);
+        }
       }
     }
-  }
-  sys_.Start(m);
-  for (int i = 0; i < m; ++i) {
-    sys_.b(i) = -rows_.col(i).dot(u());
+    sys_.Start(m);
+    for (int i = 0; i < m; ++i) {
+      sys_.b(i) = -rows_.col(i).dot(u_proj_in_);
+      for (int j = 0; j < m; ++j) {
+        sys_.A(i, j) = rows_.col(i).dot(inv_m.cwiseProduct(rows_.col(j)));
+      }
+    }
+    if (m > 0) {
+      sys_.SolveSymmetric();
+    }
+    u_proj_ = u_proj_in_;
     for (int j = 0; j < m; ++j) {
-      sys_.A(i, j) = rows_.col(i).dot(inv_m.cwiseProduct(rows_.col(j)));
+      u_proj_ += inv_m.cwiseProduct(rows_.col(j)) * sys_.x(j);
+    }
+    // Active-set update of the open contacts at the face.
+    bool changed = false;
+    int row = 0;
+    for (int c = 0; c < nc_; ++c) {
+      const int mode = mode_[static_cast<std::size_t>(c)];
+      const bool in_set = mode >= 0 || projection_rows_[static_cast<std::size_t>(c)] != 0;
+      if (in_set && mode < 0 && sys_.x(row) < 0.0) {
+        projection_rows_[static_cast<std::size_t>(c)] = 0;
+        changed = true;
+      } else if (!in_set && ws_.kin_.gap_m[c] <= gap_tol_ &&
+                 ws_.kin_.W_N.col(c).dot(u_proj_) < -v_tol_) {
+        projection_rows_[static_cast<std::size_t>(c)] = 1;
+        changed = true;
+      }
+      if (in_set) {
+        row += mode == static_cast<int>(ClosedMode::kStick) ? 2 : 1;
+      }
+    }
+    if (!changed) {
+      break;
     }
   }
-  sys_.SolveSymmetric();
-  for (int j = 0; j < m; ++j) {
-    z_.segment(n_, n_) += inv_m.cwiseProduct(rows_.col(j)) * sys_.x(j);
-  }
+  z_.segment(n_, n_) = u_proj_;
 }
 
 void Integrator::ResolveContacts(const std::vector<int>& forced) {
@@ -983,11 +1187,54 @@ void Integrator::ResolveContacts(const std::vector<int>& forced) {
     for (int c = 0; c < nc_; ++c) {
       if (mode_[static_cast<std::size_t>(c)] == static_cast<int>(ClosedMode::kStick) &&
           lambda_T_[c] != 0.0 &&
-          model_.contact(c).friction * lambda_N_[c] - std::abs(lambda_T_[c]) <= 0.0) {
+          model_.contact(c).friction * (lambda_N_[c] + force_tol_) - std::abs(lambda_T_[c]) <=
+              0.0) {
         cone_sign_[static_cast<std::size_t>(c)] = lambda_T_[c] > 0.0 ? -1 : 1;
       }
     }
   }
+  // One decision: the velocity-level problem over every contact at the face, then the frictional
+  // contact problem over those that stay, then the projection. The projection of the closed
+  // contacts (an equality) can leave an open contact at the face approaching it by a speed of
+  // the order of the accumulation threshold (a deck rocking between two corners); the decision is
+  // then made again at the same instant with that contact among the candidates, so the state the
+  // integrator continues from is consistent and no event re-fires on it.
+  for (int pass = 0; pass < kDecisionPasses; ++pass) {
+    if (pass > 0) {
+      // A contact that this instant's decision set sliding keeps its direction unless its slip
+      // says otherwise (its slip velocity is still zero: the cone decides, not a new tie-break).
+      for (int c = 0; c < nc_; ++c) {
+        const int mode = mode_[static_cast<std::size_t>(c)];
+        cone_sign_[static_cast<std::size_t>(c)] =
+            mode == static_cast<int>(ClosedMode::kSlidePositive)   ? 1
+            : mode == static_cast<int>(ClosedMode::kSlideNegative) ? -1
+                                                                   : 0;
+      }
+    }
+    if (!DecideContacts(pass == 0 ? forced : std::vector<int>{})) {
+      return;
+    }
+    if (!OpenContactApproaching()) {
+      break;
+    }
+  }
+  const double kinetic_after = Kinetic();
+  result_.energy.impact_J += kinetic_before - kinetic_after;
+  RefreshGaps();
+}
+
+bool Integrator::OpenContactApproaching() {
+  contact::Evaluate(model_, q(), u(), ws_.kin_);
+  for (int c = 0; c < nc_; ++c) {
+    if (mode_[static_cast<std::size_t>(c)] < 0 && ws_.kin_.gap_m[c] <= gap_tol_ &&
+        ws_.kin_.gamma_N[c] < -v_tol_) {
+      return true;
+    }
+  }
+  return false;
+}
+
+bool Integrator::DecideContacts(const std::vector<int>& forced) {
   contact::Evaluate(model_, q(), u(), ws_.kin_);
   const contact::ContactKinematics& kin = ws_.kin_;
   // Candidates: closed contacts, touching ones not separating, and the simultaneous ones.
@@ -1005,46 +1252,55 @@ void Integrator::ResolveContacts(const std::vector<int>& forced) {
     if (kin.gamma_N[c] < -v_acc_) {
       impact = true;
     } else {
+      // Closed, or closing slower than the accumulation threshold: restitution 0.
       persistent_.push_back(c);
       plastic = plastic || kin.gamma_N[c] < -v_tol_;
     }
   }
-  if (impact) {
+  if (impact || plastic) {
+    // A closure slower than the threshold is a plastic impact [method.md §3, accumulation]: its
+    // impulse stops the approach, so the contact problem that follows starts from gamma_N >= 0.
+    const double kinetic_before = Kinetic();
     const lcp::LcpStatus status =
-        ws_.impact_.Solve(kin, index_set_, u(), ws_.impact_result_, persistent_);
+        ws_.impact_.Solve(kin, index_set_, u(), ws_.impact_result_, persistent_, !impact);
     if (status != lcp::LcpStatus::kSolved) {
       Fail(RunStatus::kLcpFailure, std::string("impact LCP: ") + lcp::ToString(status) +
                                        " at t = " + std::to_string(t_) + " s");
-      return;
+      return false;
     }
     const contact::ImpactResult& ir = ws_.impact_result_;
     z_.segment(n_, n_) = ir.u_E;
-    ++result_.impacts;
-    if (t_ - last_impact_t_ > control_.simultaneity_tolerance_s) {
-      if (std::isfinite(last_impact_t_)) {
-        result_.min_impact_separation_s =
-            std::min(result_.min_impact_separation_s, t_ - last_impact_t_);
-      }
-    }
-    last_impact_t_ = t_;
     const double loss = kinetic_before - Kinetic();
-    for (int j = 0; j < ir.k; ++j) {
-      if (ir.Lambda_N[j] > 0.0) {
-        result_.events.push_back({t_, EventKind::kImpact, index_set_[static_cast<std::size_t>(j)],
-                                  ir.Lambda_N[j], ir.Lambda_T[j], ir.gamma_N_A[j], ir.gamma_N_E[j],
-                                  loss});
+    if (impact) {
+      ++result_.impacts;
+      if (t_ - last_impact_t_ > control_.simultaneity_tolerance_s) {
+        if (std::isfinite(last_impact_t_)) {
+          result_.min_impact_separation_s =
+              std::min(result_.min_impact_separation_s, t_ - last_impact_t_);
+        }
       }
-    }
-  } else if (plastic) {
-    ++result_.plastic_closures;
-    for (int c : index_set_) {
-      if (kin.gamma_N[c] < -v_tol_) {
-        result_.events.push_back(
-            {t_, EventKind::kPlasticClosure, c, 0.0, 0.0, kin.gamma_N[c], 0.0});
+      last_impact_t_ = t_;
+      for (int j = 0; j < ir.k; ++j) {
+        if (ir.Lambda_N[j] > 0.0) {
+          result_.events.push_back({t_, EventKind::kImpact, index_set_[static_cast<std::size_t>(j)],
+                                    ir.Lambda_N[j], ir.Lambda_T[j], ir.gamma_N_A[j],
+                                    ir.gamma_N_E[j], loss});
+        }
+      }
+    } else {
+      ++result_.plastic_closures;
+      for (int j = 0; j < ir.k; ++j) {
+        if (ir.gamma_N_A[j] < -v_tol_) {
+          result_.events.push_back({t_, EventKind::kPlasticClosure,
+                                    index_set_[static_cast<std::size_t>(j)], ir.Lambda_N[j],
+                                    ir.Lambda_T[j], ir.gamma_N_A[j], ir.gamma_N_E[j], loss});
+        }
       }
     }
   }
-  // Which candidates stay in contact: those not separating after the impact.
+  // Which candidates stay in contact: those not separating after the impact. A contact that
+  // separates slower than the accumulation threshold stays a candidate: it is where an
+  // accumulation of impacts (one corner, or a deck rocking between two) converges.
   contact::Evaluate(model_, q(), u(), ws_.kin_);
   closed_list_.clear();
   for (int c : index_set_) {
@@ -1060,7 +1316,7 @@ void Integrator::ResolveContacts(const std::vector<int>& forced) {
     int sign = 0;
     if (mu == 0.0) {
       sign = 1;
-    } else if (std::abs(kin.gamma_T[c]) > v_tol_) {
+    } else if (std::abs(kin.gamma_T[c]) > kStickBand * v_tol_) {
       sign = kin.gamma_T[c] > 0.0 ? 1 : -1;
     } else if (!impact) {
       sign = cone_sign_[static_cast<std::size_t>(c)];
@@ -1084,12 +1340,12 @@ void Integrator::ResolveContacts(const std::vector<int>& forced) {
     if (status == contact::ContactStatus::kPainleve) {
       Fail(RunStatus::kPainleve, "Painleve situation (contact LCP on a secondary ray) at t = " +
                                      std::to_string(t_) + " s");
-      return;
+      return false;
     }
     if (status != contact::ContactStatus::kSolved) {
       Fail(RunStatus::kLcpFailure, std::string("contact LCP: ") + contact::ToString(status) +
                                        " at t = " + std::to_string(t_) + " s");
-      return;
+      return false;
     }
     const contact::ContactResult& cr = ws_.contact_result_;
     for (std::size_t j = 0; j < closed_list_.size(); ++j) {
@@ -1097,7 +1353,19 @@ void Integrator::ResolveContacts(const std::vector<int>& forced) {
       const int before = previous[j];
       const bool frictionless = model_.contact(c).friction == 0.0;
       int mode = -1;
-      switch (cr.outcome[j]) {
+      contact::ContactOutcome outcome = cr.outcome[j];
+      // A separating acceleration within the detachment band is a tie, not a detachment: the
+      // contact stays closed with lambda_N = 0 (what the detachment event of a closed contact
+      // allows, lambda_N > -force_tol_). Opened instead, a contact at the face whose separating
+      // acceleration is about to reverse (a graze) re-closes within the first step, below
+      // any resolvable gap, and the same decision repeats at the same instant.
+      bool tie = false;
+      if (outcome == contact::ContactOutcome::kDetaches &&
+          cr.gammadot_N(static_cast<int>(j)) <= a_detach_) {
+        outcome = cr.friction_outcome[j];
+        tie = true;
+      }
+      switch (outcome) {
         case contact::ContactOutcome::kDetaches:
           mode = -1;
           break;
@@ -1134,6 +1402,36 @@ void Integrator::ResolveContacts(const std::vector<int>& forced) {
       }
       mode_[static_cast<std::size_t>(c)] = mode;
       closed_count_ += mode >= 0 ? 1 : 0;
+      tie_[static_cast<std::size_t>(c)] = tie && mode >= 0 ? (before >= 0 ? 2 : 1) : 0;
+    }
+    // A tie kept closed must be one that the detachment event of the constrained phase accepts
+    // (lambda_N > -force_tol_ with the chosen modes), or that event would fire at once.
+    for (int pass = 0; pass < nc_; ++pass) {
+      bool opened = false;
+      bool any_tie = false;
+      for (int c = 0; c < nc_; ++c) {
+        any_tie = any_tie || tie_[static_cast<std::size_t>(c)] != 0;
+      }
+      if (!any_tie) {
+        break;
+      }
+      ActiveForces(t_, q(), u(), du_);
+      for (int c = 0; c < nc_; ++c) {
+        if (tie_[static_cast<std::size_t>(c)] != 0 && !(lambda_N_[c] + force_tol_ > 0.0)) {
+          if (tie_[static_cast<std::size_t>(c)] == 2) {
+            ++result_.detachments;
+            result_.events.push_back({t_, EventKind::kDetachment, c, 0.0, 0.0, 0.0, 0.0});
+          }
+          tie_[static_cast<std::size_t>(c)] = 0;
+          mode_[static_cast<std::size_t>(c)] = -1;
+          --closed_count_;
+          opened = true;
+          break;
+        }
+      }
+      if (!opened) {
+        break;
+      }
     }
   }
   closed_ids_.clear();
@@ -1145,9 +1443,7 @@ void Integrator::ResolveContacts(const std::vector<int>& forced) {
   if (AnyClosed()) {
     Project();
   }
-  const double kinetic_after = Kinetic();
-  result_.energy.impact_J += kinetic_before - kinetic_after;
-  RefreshGaps();
+  return true;
 }
 
 RunResult Simulate(const model::Model& model, const Excitation& excitation,
