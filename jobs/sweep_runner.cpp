@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <exception>
 #include <limits>
 #include <optional>
@@ -27,33 +28,62 @@ bool StopRequested(const SweepOptions& options) {
   return options.stop != nullptr && *options.stop != 0;
 }
 
-// One cell, with every failure turned into data.
-CellRecord EvaluateCell(const SweepSpec& spec, const CellEvaluator& evaluator,
-                        const CubeLayout& layout, std::uint64_t cell) {
-  CellRecord record;
-  record.cell = cell;
+// One cell into slot i of its chunk's batch, with every failure turned into data.
+void EvaluateInto(const SweepSpec& spec, const CellEvaluator& evaluator, const CubeLayout& layout,
+                  std::uint64_t cell, std::size_t i, ResultBatch& batch) {
+  const std::size_t n = batch.Size();
   const std::vector<std::size_t> index = spec.AxisIndex(cell);
   const Clock::time_point start = Clock::now();
+  std::int32_t status = kStatusOk;
+  std::string text;
   try {
     CellOutcome outcome = evaluator.Evaluate(index);
-    record.status = outcome.status;
-    record.stats = outcome.stats;
+    status = outcome.status;
+    batch.events[i] = outcome.stats.events;
+    batch.steps[i] = outcome.stats.steps;
     if (outcome.status != kStatusOk) {
-      record.text = std::move(outcome.status_text);
+      text = std::move(outcome.status_text);
     }
-    record.values.reserve(layout.source_index.size());
-    for (std::size_t source : layout.source_index) {
-      record.values.push_back(source < outcome.responses.size()
-                                  ? outcome.responses[source]
-                                  : std::numeric_limits<double>::quiet_NaN());
+    for (std::size_t r = 0; r < layout.source_index.size(); ++r) {
+      const std::size_t source = layout.source_index[r];
+      batch.values[r * n + i] = source < outcome.responses.size()
+                                    ? outcome.responses[source]
+                                    : std::numeric_limits<double>::quiet_NaN();
     }
   } catch (const std::exception& e) {
-    record.status = kStatusException;
-    record.text = e.what();
-    record.values.assign(layout.source_index.size(), std::numeric_limits<double>::quiet_NaN());
+    status = kStatusException;
+    text = e.what();
+    for (std::size_t r = 0; r < layout.source_index.size(); ++r) {
+      batch.values[r * n + i] = std::numeric_limits<double>::quiet_NaN();
+    }
   }
-  record.stats.wall_s = Seconds(start);
-  return record;
+  batch.status[i] = status;
+  batch.wall_s[i] = Seconds(start);
+  if (status != kStatusOk) {
+    const auto it = std::find_if(batch.failures.begin(), batch.failures.end(),
+                                 [&](const FailureNote& f) { return f.status == status; });
+    if (it == batch.failures.end()) {
+      batch.failures.push_back({status, 1, cell, std::move(text)});
+    } else {
+      ++it->count;
+      if (cell < it->lowest_cell) {
+        it->lowest_cell = cell;
+        it->text = std::move(text);
+      }
+    }
+  }
+}
+
+template <typename T>
+void CopyColumn(T* cube, const char* column, std::size_t n) {
+  std::memcpy(cube, column, n * sizeof(T));
+}
+
+template <typename T>
+T At(const char* column, std::size_t i) {
+  T v;
+  std::memcpy(&v, column + i * sizeof(T), sizeof(T));
+  return v;
 }
 
 // Rank 0's side: the cube image, the checkpoint file and the bookkeeping of the run.
@@ -111,19 +141,48 @@ class Writer {
     return pending;
   }
 
-  void Store(const CellRecord& record) {
-    SB_DEMAND(record.cell < data_.Cells() && data_.done[record.cell] == 0,
-              "a cell was delivered twice");
-    data_.Store(record.cell, record.status, record.values, record.stats, run_);
-    unwritten_.push_back(record.cell);
-    ++computed_;
-    if (record.status != kStatusOk) {
-      ++failed_;
+  // Copies a chunk's results into the cube image: one memcpy per dataset when its cells are
+  // consecutive (always, in a fresh sweep), a loop over them otherwise (a resume's gaps).
+  void StoreBatch(const BatchView& batch, const std::vector<std::uint64_t>& pending) {
+    const std::size_t n = batch.end - batch.begin;
+    if (n == 0) {
+      return;
+    }
+    SB_DEMAND(batch.end <= pending.size() && batch.responses == data_.responses.size(),
+              "a result batch does not fit the sweep");
+    const std::uint64_t first = pending[batch.begin];
+    if (pending[batch.end - 1] - first == n - 1) {
+      CopyColumn(&data_.status[first], batch.status, n);
+      CopyColumn(&data_.events[first], batch.events, n);
+      CopyColumn(&data_.steps[first], batch.steps, n);
+      CopyColumn(&data_.wall_s[first], batch.wall_s, n);
+      for (std::size_t r = 0; r < data_.responses.size(); ++r) {
+        CopyColumn(&data_.responses[r][first], batch.values + r * n * sizeof(double), n);
+      }
+      std::fill_n(&data_.run[first], n, run_);
+    } else {
+      for (std::size_t i = 0; i < n; ++i) {
+        const std::uint64_t c = pending[batch.begin + i];
+        data_.status[c] = At<std::int32_t>(batch.status, i);
+        data_.events[c] = At<std::int64_t>(batch.events, i);
+        data_.steps[c] = At<std::int64_t>(batch.steps, i);
+        data_.wall_s[c] = At<double>(batch.wall_s, i);
+        for (std::size_t r = 0; r < data_.responses.size(); ++r) {
+          data_.responses[r][c] = At<double>(batch.values, r * n + i);
+        }
+        data_.run[c] = run_;
+      }
+    }
+    unwritten_.emplace_back(batch.begin, batch.end);
+    unwritten_cells_ += n;
+    computed_ += n;
+    for (const FailureNote& note : batch.failures) {
+      failed_ += note.count;
       // The lowest failed cell of each status, whatever the order of arrival.
-      const auto it = example_cells_.find(record.status);
-      if (it == example_cells_.end() || record.cell < it->second) {
-        example_cells_[record.status] = record.cell;
-        examples_[record.status] = "cell " + std::to_string(record.cell) + ": " + record.text;
+      const auto it = example_cells_.find(note.status);
+      if (it == example_cells_.end() || note.lowest_cell < it->second) {
+        example_cells_[note.status] = note.lowest_cell;
+        examples_[note.status] = "cell " + std::to_string(note.lowest_cell) + ": " + note.text;
       }
     }
   }
@@ -133,21 +192,36 @@ class Writer {
       return false;
     }
     return Seconds(last_checkpoint_) >= options_.checkpoint_seconds ||
-           (options_.checkpoint_cells > 0 && unwritten_.size() >= options_.checkpoint_cells);
+           (options_.checkpoint_cells > 0 && unwritten_cells_ >= options_.checkpoint_cells);
   }
 
-  void Checkpoint() {
+  void Checkpoint(const std::vector<std::uint64_t>& pending) {
     if (unwritten_.empty()) {
       return;
     }
+    const Clock::time_point start = Clock::now();
+    // Chunks are disjoint ranges of the pending list (one claim counter): two that overlap, or
+    // one whose first cell is already in the file, mean a cell was delivered twice.
     std::sort(unwritten_.begin(), unwritten_.end());
-    for (std::uint64_t c : unwritten_) {
+    std::vector<std::uint64_t> cells;
+    cells.reserve(unwritten_cells_);
+    for (std::size_t k = 0; k < unwritten_.size(); ++k) {
+      const auto [begin, end] = unwritten_[k];
+      SB_DEMAND(k == 0 || unwritten_[k - 1].second <= begin, "a cell was delivered twice");
+      SB_DEMAND(data_.done[pending[begin]] == 0, "a cell was delivered twice");
+      for (std::uint64_t pos = begin; pos < end; ++pos) {
+        cells.push_back(pending[pos]);
+      }
+    }
+    for (std::uint64_t c : cells) {
       data_.done[c] = 1;  // in memory only; the file gets the flags after the data
     }
-    file_->Write(data_, unwritten_);
+    file_->Write(data_, cells);
     unwritten_.clear();
+    unwritten_cells_ = 0;
     last_checkpoint_ = Clock::now();
     ++checkpoints_;
+    checkpoint_s_ += Seconds(start);
   }
 
   bool AllDone() const {
@@ -189,6 +263,7 @@ class Writer {
   }
 
   std::uint64_t computed() const { return computed_; }
+  double checkpoint_s() const { return checkpoint_s_; }
   std::uint64_t failed() const { return failed_; }
   std::uint64_t done_before() const { return done_before_; }
   void set_done_before(std::uint64_t n) { done_before_ = n; }
@@ -199,7 +274,10 @@ class Writer {
   const SweepOptions& options_;
   CubeData data_;
   std::optional<h5::CheckpointFile> file_;
-  std::vector<std::uint64_t> unwritten_;
+  // Chunks received since the last checkpoint, as [begin, end) positions of the pending list.
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> unwritten_;
+  std::uint64_t unwritten_cells_ = 0;
+  double checkpoint_s_ = 0.0;
   Clock::time_point last_checkpoint_ = Clock::now();
   std::uint64_t computed_ = 0;
   std::uint64_t failed_ = 0;
@@ -210,12 +288,20 @@ class Writer {
   std::map<std::int32_t, std::uint64_t> example_cells_;
 };
 
-// Guided self-scheduling: claim a share of what is left, smaller near the end.
+// Guided self-scheduling [Polychronopoulos and Kuck 1987]: claim a share of what is left,
+// smaller near the end so that the ranks finish together, capped so that a chunk takes about
+// chunk_seconds at this rank's last measured cell time (1 cell while none is measured).
 std::uint64_t ChunkSize(std::uint64_t total, std::uint64_t seen, int ranks,
-                        std::uint64_t max_chunk) {
+                        const SweepOptions& options, double cell_s) {
   const std::uint64_t left = total > seen ? total - seen : 0;
   const std::uint64_t share = left / (2 * static_cast<std::uint64_t>(ranks));
-  return std::clamp<std::uint64_t>(share, 1, std::max<std::uint64_t>(1, max_chunk));
+  std::uint64_t cap = std::max<std::uint64_t>(1, options.max_chunk);
+  if (!(cell_s > 0.0)) {
+    cap = 1;
+  } else if (options.chunk_seconds / cell_s < static_cast<double>(cap)) {
+    cap = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(options.chunk_seconds / cell_s));
+  }
+  return std::clamp<std::uint64_t>(share, 1, cap);
 }
 
 }  // namespace
@@ -268,7 +354,6 @@ SweepReport RunSweep(const SweepSpec& spec, const CellEvaluator& evaluator, Tran
   const std::uint64_t total = pending.size();
   const Clock::time_point start = Clock::now();
   Clock::time_point last_progress = start;
-  Clock::time_point last_send = start;
 
   auto progress = [&](bool force) {
     if (!root || !options.progress) {
@@ -292,25 +377,25 @@ SweepReport RunSweep(const SweepSpec& spec, const CellEvaluator& evaluator, Tran
     options.progress(p);
   };
 
-  std::vector<CellRecord> inbox;
   bool all_finished = transport.Size() == 1;
+  const auto store = [&](std::span<const char> bytes) {
+    writer->StoreBatch(UnpackBatch(bytes), pending);
+  };
   auto service = [&](double wait_s) {
     if (!all_finished) {
-      inbox.clear();
-      all_finished = transport.Receive(inbox, wait_s);
-      for (const CellRecord& r : inbox) {
-        writer->Store(r);
-      }
+      all_finished = transport.Receive(store, wait_s);
     }
     if (writer->CheckpointDue()) {
-      writer->Checkpoint();
+      writer->Checkpoint(pending);
     }
     progress(false);
   };
 
-  std::vector<CellRecord> outbox;
+  ResultBatch batch;
+  const auto responses = static_cast<std::uint32_t>(layout.responses.size());
   bool stopping = false;
   std::uint64_t seen = 0;
+  double cell_s = 0.0;  // this rank's mean cell time in its last chunk [s]
   const bool computes =
       !root || transport.Size() <= options.root_computes_up_to_ranks || transport.Size() == 1;
   while (computes && !stopping) {
@@ -319,29 +404,38 @@ SweepReport RunSweep(const SweepSpec& spec, const CellEvaluator& evaluator, Tran
       break;
     }
     const auto [begin, end] =
-        transport.Claim(ChunkSize(total, seen, transport.Size(), options.max_chunk));
+        transport.Claim(ChunkSize(total, seen, transport.Size(), options, cell_s));
     seen = end;
     if (begin >= end) {
       break;
     }
+    batch.Reset(begin, end, responses);
+    const Clock::time_point chunk_start = Clock::now();
+    std::uint64_t done = 0;
     for (std::uint64_t pos = begin; pos < end; ++pos) {
       if (StopRequested(options)) {
         stopping = true;
         break;
       }
-      CellRecord record = EvaluateCell(spec, evaluator, layout, pending[pos]);
-      ++report.cells_this_rank;
+      EvaluateInto(spec, evaluator, layout, pending[pos], pos - begin, batch);
+      ++done;
       if (root) {
-        writer->Store(record);
-        service(0.0);
-      } else {
-        outbox.push_back(std::move(record));
-        if (Seconds(last_send) >= options.send_seconds) {
-          transport.Send(outbox, false);
-          outbox.clear();
-          last_send = Clock::now();
-        }
+        service(0.0);  // the others' results and checkpoints never wait for this chunk
       }
+    }
+    if (done == 0) {
+      break;
+    }
+    batch.Truncate(done);
+    report.cells_this_rank += done;
+    ++report.chunks_this_rank;
+    // A floor of 1 ns keeps a clock that did not advance from pinning chunks at one cell.
+    cell_s = std::max(1e-9, Seconds(chunk_start) / static_cast<double>(done));
+    if (root) {
+      writer->StoreBatch(ViewOf(batch), pending);
+      service(0.0);
+    } else {
+      transport.Send(PackBatch(batch));
     }
   }
 
@@ -349,7 +443,7 @@ SweepReport RunSweep(const SweepSpec& spec, const CellEvaluator& evaluator, Tran
     if (stopping) {
       transport.StopClaims();
       if (writer->computed() > 0) {
-        writer->Checkpoint();  // secure what is here before waiting for the others
+        writer->Checkpoint(pending);  // secure what is here before waiting for the others
       }
     }
     // Rank 0 drains until every rank has ended its stream, even after a stop request (what is
@@ -361,13 +455,18 @@ SweepReport RunSweep(const SweepSpec& spec, const CellEvaluator& evaluator, Tran
       if (StopRequested(options) && !stop_seen) {
         stop_seen = true;  // rank 0 that only gathers learns of the stop here
         transport.StopClaims();
-        writer->Checkpoint();
+        writer->Checkpoint(pending);
       }
     }
     report.interrupted = StopRequested(options);
-    writer->Checkpoint();
+    writer->Checkpoint(pending);
+    const ReceiveStats received = transport.Received();
+    report.messages_received = received.messages;
+    report.bytes_received = received.bytes;
+    report.receive_busy_s = received.busy_s;
+    report.checkpoint_s = writer->checkpoint_s();
   } else {
-    transport.Send(outbox, true);
+    transport.EndStream();
     report.interrupted = stopping;
   }
   transport.Finish();

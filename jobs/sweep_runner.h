@@ -1,8 +1,10 @@
 #pragma once
 /// @file
 /// Runs a sweep: opens or resumes the cube on rank 0, distributes the pending cells over the
-/// ranks of a Transport, gathers the outcomes to rank 0, checkpoints them into FILE.partial
-/// and, when every cell is done, writes the compressed FILE (docs/hdf5-layout.md).
+/// ranks of a Transport in chunks that every rank claims for itself (guided self-scheduling,
+/// capped by a target duration), gathers each chunk's results to rank 0 as one message,
+/// checkpoints them into FILE.partial and, when every cell is done, writes the compressed FILE
+/// (docs/hdf5-layout.md).
 
 #include <csignal>
 #include <cstdint>
@@ -37,8 +39,14 @@ struct SweepOptions {
   double checkpoint_seconds = 60.0;    ///< Checkpoint at least this often [s].
   std::uint64_t checkpoint_cells = 0;  ///< Also checkpoint every this many cells (0 = off).
   double progress_seconds = 1.0;       ///< Minimum interval between progress reports [s].
-  std::uint64_t max_chunk = 64;        ///< Largest number of cells claimed at once.
-  double send_seconds = 0.5;           ///< A rank sends its finished cells at least this often [s].
+  /// Largest number of cells claimed at once (it bounds a result message: about 52 bytes per
+  /// cell plus 8 per response beyond three).
+  std::uint64_t max_chunk = 65536;
+  /// A chunk is sized to take about this long on the rank that claims it, from the mean cell
+  /// time of its previous chunk (the first chunk of a rank is one cell) [s]. It bounds the
+  /// delay of results and progress and, with the guided share (what is left / 2 ranks), the
+  /// idle time at the end of the sweep.
+  double chunk_seconds = 0.05;
   /// Rank 0 computes cells too when there are at most this many ranks; above, it only
   /// gathers and writes, so that results and progress never wait for one of its own cells.
   int root_computes_up_to_ranks = 64;
@@ -64,7 +72,15 @@ struct SweepReport {
   double wall_s = 0.0;                                    ///< Wall time of this run's cells [s].
   bool interrupted = false;                               ///< A stop request ended the run early.
   bool complete = false;                                  ///< Every cell done and FILE written.
-  bool already_complete = false;  ///< --resume found a complete FILE: nothing to do.
+  bool already_complete = false;       ///< --resume found a complete FILE: nothing to do.
+  std::uint64_t chunks_this_rank = 0;  ///< Chunks this rank claimed and computed.
+  /// Rank 0: result messages received, their bytes, and the time spent receiving and storing
+  /// them into the cube (MPI_Recv, unpacking, copying) [s]; what a sweep costs rank 0 per
+  /// message and per cell (tests/jobs/scheduler_benchmark.cpp).
+  std::uint64_t messages_received = 0;
+  std::uint64_t bytes_received = 0;
+  double receive_busy_s = 0.0;
+  double checkpoint_s = 0.0;  ///< Rank 0: time spent writing checkpoints [s].
 };
 
 /// Runs (or resumes) a sweep on every rank of `transport`. Collective.

@@ -1,5 +1,6 @@
 #include "jobs/transport.h"
 
+#include <algorithm>
 #include <cstring>
 #include <stdexcept>
 
@@ -7,6 +8,8 @@
 
 namespace skewbridge::jobs {
 namespace {
+
+constexpr std::uint32_t kBatchMagic = 0x31524253;  // "SBR1" in little-endian bytes
 
 template <typename T>
 void Put(std::vector<char>& out, const T& v) {
@@ -16,14 +19,33 @@ void Put(std::vector<char>& out, const T& v) {
 }
 
 template <typename T>
+void PutColumn(std::vector<char>& out, const std::vector<T>& column) {
+  const std::size_t at = out.size();
+  const std::size_t bytes = column.size() * sizeof(T);
+  out.resize(at + bytes);
+  if (bytes > 0) {
+    std::memcpy(out.data() + at, column.data(), bytes);
+  }
+}
+
+template <typename T>
 T Take(std::span<const char> bytes, std::size_t& at) {
   if (at + sizeof(T) > bytes.size()) {
-    throw std::runtime_error("truncated cell record message");
+    throw std::runtime_error("truncated result batch message");
   }
   T v;
   std::memcpy(&v, bytes.data() + at, sizeof(T));
   at += sizeof(T);
   return v;
+}
+
+const char* TakeColumn(std::span<const char> bytes, std::size_t& at, std::uint64_t column_bytes) {
+  if (column_bytes > bytes.size() - at) {
+    throw std::runtime_error("truncated result batch message");
+  }
+  const char* p = bytes.data() + at;
+  at += column_bytes;
+  return p;
 }
 
 class InProcessTransport final : public Transport {
@@ -41,8 +63,9 @@ class InProcessTransport final : public Transport {
     return {begin, next_};
   }
   void StopClaims() override { next_ = size_; }
-  void Send(std::span<const CellRecord>, bool) override { SB_DEMAND(false, "rank 0 never sends"); }
-  bool Receive(std::vector<CellRecord>&, double) override { return true; }
+  void Send(std::vector<char>) override { SB_DEMAND(false, "rank 0 never sends"); }
+  void EndStream() override { SB_DEMAND(false, "rank 0 never sends"); }
+  bool Receive(const std::function<void(std::span<const char>)>&, double) override { return true; }
   void Finish() override {}
 
  private:
@@ -52,55 +75,117 @@ class InProcessTransport final : public Transport {
 
 }  // namespace
 
-std::vector<char> PackRecords(std::span<const CellRecord> records, bool last) {
+void ResultBatch::Reset(std::uint64_t from, std::uint64_t to, std::uint32_t response_count) {
+  SB_DEMAND(from <= to, "a batch ends before it begins");
+  begin = from;
+  end = to;
+  responses = response_count;
+  const std::size_t n = to - from;
+  status.assign(n, kStatusNotDone);
+  events.assign(n, 0);
+  steps.assign(n, 0);
+  wall_s.assign(n, 0.0);
+  values.assign(n * response_count, 0.0);
+  failures.clear();
+}
+
+void ResultBatch::Truncate(std::uint64_t count) {
+  const std::size_t n = Size();
+  if (count >= n) {
+    return;
+  }
+  // Response-major: response r moves from r * n to r * count.
+  for (std::size_t r = 1; r < responses; ++r) {
+    std::copy_n(values.begin() + static_cast<std::ptrdiff_t>(r * n), count,
+                values.begin() + static_cast<std::ptrdiff_t>(r * count));
+  }
+  values.resize(count * responses);
+  status.resize(count);
+  events.resize(count);
+  steps.resize(count);
+  wall_s.resize(count);
+  end = begin + count;
+}
+
+std::vector<char> PackBatch(const ResultBatch& batch) {
+  const std::uint64_t n = batch.Size();
+  SB_DEMAND(batch.status.size() == n && batch.events.size() == n && batch.steps.size() == n &&
+                batch.wall_s.size() == n && batch.values.size() == n * batch.responses,
+            "a result batch's columns disagree with its size");
   std::vector<char> out;
-  Put<std::uint8_t>(out, last ? 1 : 0);
-  Put<std::uint64_t>(out, records.size());
-  for (const CellRecord& r : records) {
-    Put(out, r.cell);
-    Put(out, r.status);
-    Put(out, r.stats.events);
-    Put(out, r.stats.steps);
-    Put(out, r.stats.wall_s);
-    Put<std::uint64_t>(out, r.values.size());
-    for (double v : r.values) {
-      Put(out, v);
-    }
-    Put<std::uint64_t>(out, r.text.size());
+  out.reserve(40 + n * (4 + 8 + 8 + 8 + 8 * batch.responses));
+  Put(out, kBatchMagic);
+  Put(out, batch.responses);
+  Put(out, batch.begin);
+  Put(out, batch.end);
+  Put<std::uint64_t>(out, batch.failures.size());
+  PutColumn(out, batch.status);
+  PutColumn(out, batch.events);
+  PutColumn(out, batch.steps);
+  PutColumn(out, batch.wall_s);
+  PutColumn(out, batch.values);
+  for (const FailureNote& note : batch.failures) {
+    Put(out, note.status);
+    Put(out, note.count);
+    Put(out, note.lowest_cell);
+    Put<std::uint64_t>(out, note.text.size());
     const std::size_t at = out.size();
-    out.resize(at + r.text.size());
-    std::memcpy(out.data() + at, r.text.data(), r.text.size());
+    out.resize(at + note.text.size());
+    std::memcpy(out.data() + at, note.text.data(), note.text.size());
   }
   return out;
 }
 
-bool UnpackRecords(std::span<const char> bytes, std::vector<CellRecord>& out) {
+BatchView UnpackBatch(std::span<const char> bytes) {
   std::size_t at = 0;
-  const bool last = Take<std::uint8_t>(bytes, at) != 0;
-  const auto n = Take<std::uint64_t>(bytes, at);
-  for (std::uint64_t i = 0; i < n; ++i) {
-    CellRecord r;
-    r.cell = Take<std::uint64_t>(bytes, at);
-    r.status = Take<std::int32_t>(bytes, at);
-    r.stats.events = Take<std::int64_t>(bytes, at);
-    r.stats.steps = Take<std::int64_t>(bytes, at);
-    r.stats.wall_s = Take<double>(bytes, at);
-    const auto k = Take<std::uint64_t>(bytes, at);
-    if (k > bytes.size()) {
-      throw std::runtime_error("corrupt cell record message");
-    }
-    for (std::uint64_t j = 0; j < k; ++j) {
-      r.values.push_back(Take<double>(bytes, at));
-    }
+  if (Take<std::uint32_t>(bytes, at) != kBatchMagic) {
+    throw std::runtime_error("not a result batch message");
+  }
+  BatchView view;
+  view.responses = Take<std::uint32_t>(bytes, at);
+  view.begin = Take<std::uint64_t>(bytes, at);
+  view.end = Take<std::uint64_t>(bytes, at);
+  const auto notes = Take<std::uint64_t>(bytes, at);
+  if (view.end < view.begin || view.end - view.begin > bytes.size() || notes > bytes.size()) {
+    throw std::runtime_error("corrupt result batch message");
+  }
+  const std::uint64_t n = view.end - view.begin;
+  view.status = TakeColumn(bytes, at, n * sizeof(std::int32_t));
+  view.events = TakeColumn(bytes, at, n * sizeof(std::int64_t));
+  view.steps = TakeColumn(bytes, at, n * sizeof(std::int64_t));
+  view.wall_s = TakeColumn(bytes, at, n * sizeof(double));
+  view.values = TakeColumn(bytes, at, n * view.responses * sizeof(double));
+  for (std::uint64_t k = 0; k < notes; ++k) {
+    FailureNote note;
+    note.status = Take<std::int32_t>(bytes, at);
+    note.count = Take<std::uint64_t>(bytes, at);
+    note.lowest_cell = Take<std::uint64_t>(bytes, at);
     const auto length = Take<std::uint64_t>(bytes, at);
     if (length > bytes.size() - at) {
-      throw std::runtime_error("truncated cell record message");
+      throw std::runtime_error("truncated result batch message");
     }
-    r.text.assign(bytes.data() + at, length);
+    note.text.assign(bytes.data() + at, length);
     at += length;
-    out.push_back(std::move(r));
+    view.failures.push_back(std::move(note));
   }
-  return last;
+  if (at != bytes.size()) {
+    throw std::runtime_error("result batch message has trailing bytes");
+  }
+  return view;
+}
+
+BatchView ViewOf(const ResultBatch& batch) {
+  BatchView view;
+  view.begin = batch.begin;
+  view.end = batch.end;
+  view.responses = batch.responses;
+  view.status = reinterpret_cast<const char*>(batch.status.data());
+  view.events = reinterpret_cast<const char*>(batch.events.data());
+  view.steps = reinterpret_cast<const char*>(batch.steps.data());
+  view.wall_s = reinterpret_cast<const char*>(batch.wall_s.data());
+  view.values = reinterpret_cast<const char*>(batch.values.data());
+  view.failures = batch.failures;
+  return view;
 }
 
 std::unique_ptr<Transport> MakeInProcessTransport() {

@@ -2,9 +2,12 @@
 /// @file
 /// How cells and results move between ranks, seen by the sweep runner without <mpi.h>:
 /// a shared claim counter over the list of pending cells (dynamic load balancing in which
-/// every rank computes) and a one-way stream of finished cells to rank 0, the only writer.
+/// every rank computes) and a one-way stream of result batches to rank 0, the only writer.
+/// A batch holds the results of one claimed chunk in columns, so that rank 0 copies them into
+/// the cube with one memcpy per dataset (docs/hdf5-layout.md, "Scheduling").
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -15,20 +18,65 @@
 
 namespace skewbridge::jobs {
 
-/// One finished cell on its way to the writing rank (values in the cube layout's order).
-struct CellRecord {
-  std::uint64_t cell = 0;
-  std::int32_t status = kStatusOk;
-  CellStats stats;
-  std::vector<double> values;
-  std::string text;  ///< CellOutcome::status_text or the exception's message (failed cells).
+/// The failures of one status within a batch: how many, and the lowest cell with its text
+/// (so that rank 0 keeps one example per status without looking at every cell).
+struct FailureNote {
+  std::int32_t status = kStatusException;
+  std::uint64_t count = 0;
+  std::uint64_t lowest_cell = 0;  ///< linear cell index
+  std::string text;               ///< CellOutcome::status_text or the exception's message
 };
 
-/// Serialises records into bytes (host byte order; all ranks run the same build).
-std::vector<char> PackRecords(std::span<const CellRecord> records, bool last);
-/// The inverse of PackRecords; returns the `last` flag. @throws std::runtime_error when
-/// the bytes are truncated (a bug or a foreign message).
-bool UnpackRecords(std::span<const char> bytes, std::vector<CellRecord>& out);
+/// The results of one claimed chunk: positions [begin, end) of the pending cell list, each
+/// column indexed by position - begin (values in the cube layout's order, response-major).
+struct ResultBatch {
+  std::uint64_t begin = 0;            ///< first position in the pending list
+  std::uint64_t end = 0;              ///< one past the last position
+  std::uint32_t responses = 0;        ///< values per cell
+  std::vector<std::int32_t> status;   ///< [i]
+  std::vector<std::int64_t> events;   ///< [i] CellStats::events
+  std::vector<std::int64_t> steps;    ///< [i] CellStats::steps
+  std::vector<double> wall_s;         ///< [i] CellStats::wall_s [s]
+  std::vector<double> values;         ///< [r * size + i]
+  std::vector<FailureNote> failures;  ///< one note per failed status, none when all ok
+
+  /// Number of cells (end - begin).
+  std::uint64_t Size() const { return end - begin; }
+  /// Empties the columns and sizes them for positions [from, to) and `response_count` values.
+  void Reset(std::uint64_t from, std::uint64_t to, std::uint32_t response_count);
+  /// Keeps only the first `count` cells (a stop request ended the chunk early).
+  void Truncate(std::uint64_t count);
+};
+
+/// A batch as it lies in a received message: the columns point into the message bytes
+/// (unaligned, read with memcpy), nothing is copied until rank 0 stores them.
+struct BatchView {
+  std::uint64_t begin = 0;
+  std::uint64_t end = 0;
+  std::uint32_t responses = 0;
+  const char* status = nullptr;  ///< (end - begin) std::int32_t
+  const char* events = nullptr;  ///< (end - begin) std::int64_t
+  const char* steps = nullptr;   ///< (end - begin) std::int64_t
+  const char* wall_s = nullptr;  ///< (end - begin) double
+  const char* values = nullptr;  ///< responses * (end - begin) double, response-major
+  std::vector<FailureNote> failures;
+};
+
+/// Serialises a batch into one message (host byte order; all ranks run the same build):
+/// a fixed header, the five columns back to back, then the failure notes.
+std::vector<char> PackBatch(const ResultBatch& batch);
+/// Reads a message of PackBatch without copying the columns. @throws std::runtime_error when
+/// the bytes are truncated or not a batch (a bug or a foreign message).
+BatchView UnpackBatch(std::span<const char> bytes);
+/// A view of a batch in memory (rank 0's own cells), as UnpackBatch would give after packing.
+BatchView ViewOf(const ResultBatch& batch);
+
+/// What rank 0 has received so far (for the scheduler's cost model).
+struct ReceiveStats {
+  std::uint64_t messages = 0;  ///< result messages (stream ends excluded)
+  std::uint64_t bytes = 0;     ///< their bytes
+  double busy_s = 0.0;         ///< time from finding a message to the end of its handling [s]
+};
 
 /// The communication a sweep needs. Collective calls must be made by every rank in the same
 /// order; the others are one-sided.
@@ -48,12 +96,17 @@ class Transport {
   virtual std::pair<std::uint64_t, std::uint64_t> Claim(std::uint64_t count) = 0;
   /// Hands out no more positions to anyone (called on a stop request).
   virtual void StopClaims() = 0;
-  /// Ranks other than 0: sends finished cells to rank 0; `last` ends this rank's stream.
-  /// Does not wait for rank 0.
-  virtual void Send(std::span<const CellRecord> records, bool last) = 0;
-  /// Rank 0: appends the records that have arrived (waiting up to wait_s for one message) and
-  /// returns true once every other rank has ended its stream.
-  virtual bool Receive(std::vector<CellRecord>& out, double wait_s) = 0;
+  /// Ranks other than 0: sends one message (a packed batch) to rank 0. Does not wait for
+  /// rank 0; the bytes are owned by the transport until delivered.
+  virtual void Send(std::vector<char> message) = 0;
+  /// Ranks other than 0: ends this rank's stream (after its last Send).
+  virtual void EndStream() = 0;
+  /// Rank 0: calls `handle` on each message that has arrived (waiting up to wait_s for the
+  /// first), in each sender's order; the bytes are valid during the call only. Returns true
+  /// once every other rank has ended its stream.
+  virtual bool Receive(const std::function<void(std::span<const char>)>& handle, double wait_s) = 0;
+  /// Rank 0: the messages received so far and the time spent on them.
+  virtual ReceiveStats Received() const { return {}; }
   /// Collective: ends the sweep's communication (every pending send completed, shared
   /// resources freed); the last call on a transport.
   virtual void Finish() = 0;

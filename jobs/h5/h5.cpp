@@ -161,6 +161,67 @@ void ReadAll(hid_t dataset, hid_t mem_type, void* data) {
   Check(H5Dread(dataset, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "H5Dread");
 }
 
+namespace {
+
+// A box of a row-major array: start and count per axis.
+struct Box {
+  std::vector<hsize_t> start;
+  std::vector<hsize_t> count;
+};
+
+// The boxes that tile the linear range [a, b) of a row-major array of `shape` (at most
+// 2 rank - 1 of them): a partial head slab, whole slabs, a partial tail slab, recursively.
+void RangeBoxes(std::uint64_t a, std::uint64_t b, std::span<const hsize_t> shape,
+                std::vector<hsize_t>& prefix, std::vector<Box>& out) {
+  if (a >= b) {
+    return;
+  }
+  if (shape.size() == 1) {
+    Box box{prefix, std::vector<hsize_t>(prefix.size(), 1)};
+    box.start.push_back(a);
+    box.count.push_back(b - a);
+    out.push_back(std::move(box));
+    return;
+  }
+  std::uint64_t inner = 1;
+  for (std::size_t k = 1; k < shape.size(); ++k) {
+    inner *= shape[k];
+  }
+  const auto recurse = [&](std::uint64_t slab, std::uint64_t from, std::uint64_t to) {
+    prefix.push_back(slab);
+    RangeBoxes(from, to, shape.subspan(1), prefix, out);
+    prefix.pop_back();
+  };
+  std::uint64_t first = a / inner;
+  const std::uint64_t last = b / inner;  // the slab holding b (exclusive end)
+  if (first == last) {
+    recurse(first, a - first * inner, b - first * inner);
+    return;
+  }
+  if (a % inner != 0) {
+    recurse(first, a % inner, inner);
+    ++first;
+  }
+  if (last > first) {
+    Box box{prefix, std::vector<hsize_t>(prefix.size(), 1)};
+    box.start.push_back(first);
+    box.count.push_back(last - first);
+    for (std::size_t k = 1; k < shape.size(); ++k) {
+      box.start.push_back(0);
+      box.count.push_back(shape[k]);
+    }
+    out.push_back(std::move(box));
+  }
+  if (b % inner != 0) {
+    recurse(last, 0, b % inner);
+  }
+}
+
+// Cells in runs at least this long go as boxes; shorter runs go in one point selection.
+constexpr std::size_t kShortestBoxRun = 8;
+
+}  // namespace
+
 void WriteCells(hid_t dataset, hid_t mem_type, std::size_t elem_size, const void* full,
                 std::span<const std::uint64_t> cells) {
   if (cells.empty()) {
@@ -168,21 +229,57 @@ void WriteCells(hid_t dataset, hid_t mem_type, std::size_t elem_size, const void
   }
   const std::vector<hsize_t> shape = Shape(dataset);
   const std::size_t rank = shape.size();
-  std::vector<hsize_t> coords(cells.size() * rank);
-  std::vector<unsigned char> gathered(cells.size() * elem_size);
+  // Runs of consecutive cells (a checkpoint's cells are mostly whole chunks) are written
+  // straight from the full array, the same boxes selected in memory and in the file: a few
+  // H5Dwrite calls per run instead of a coordinate per cell.
+  std::vector<std::uint64_t> loose;
+  std::vector<Box> boxes;
+  std::vector<hsize_t> prefix;
+  for (std::size_t i = 0; i < cells.size();) {
+    std::size_t j = i + 1;
+    while (j < cells.size() && cells[j] == cells[j - 1] + 1) {
+      ++j;
+    }
+    if (rank == 0 || j - i < kShortestBoxRun) {
+      loose.insert(loose.end(), cells.begin() + static_cast<std::ptrdiff_t>(i),
+                   cells.begin() + static_cast<std::ptrdiff_t>(j));
+    } else {
+      boxes.clear();
+      RangeBoxes(cells[i], cells[j - 1] + 1, shape, prefix, boxes);
+      Id file_space(H5Dget_space(dataset), H5Sclose, "H5Dget_space");
+      Id mem_space = Dataspace(shape);
+      for (std::size_t k = 0; k < boxes.size(); ++k) {
+        const H5S_seloper_t op = k == 0 ? H5S_SELECT_SET : H5S_SELECT_OR;
+        Check(H5Sselect_hyperslab(file_space.get(), op, boxes[k].start.data(), nullptr,
+                                  boxes[k].count.data(), nullptr),
+              "H5Sselect_hyperslab");
+        Check(H5Sselect_hyperslab(mem_space.get(), op, boxes[k].start.data(), nullptr,
+                                  boxes[k].count.data(), nullptr),
+              "H5Sselect_hyperslab");
+      }
+      Check(H5Dwrite(dataset, mem_type, mem_space.get(), file_space.get(), H5P_DEFAULT, full),
+            "H5Dwrite(cells)");
+    }
+    i = j;
+  }
+  if (loose.empty()) {
+    return;
+  }
+  std::vector<hsize_t> coords(loose.size() * rank);
+  std::vector<unsigned char> gathered(loose.size() * elem_size);
   const auto* bytes = static_cast<const unsigned char*>(full);
-  for (std::size_t i = 0; i < cells.size(); ++i) {
-    std::uint64_t rest = cells[i];
+  for (std::size_t i = 0; i < loose.size(); ++i) {
+    std::uint64_t rest = loose[i];
     for (std::size_t k = rank; k-- > 0;) {
       coords[i * rank + k] = rest % shape[k];
       rest /= shape[k];
     }
-    std::memcpy(&gathered[i * elem_size], bytes + cells[i] * elem_size, elem_size);
+    std::memcpy(&gathered[i * elem_size], bytes + loose[i] * elem_size, elem_size);
   }
   Id file_space(H5Dget_space(dataset), H5Sclose, "H5Dget_space");
-  Check(H5Sselect_elements(file_space.get(), H5S_SELECT_SET, cells.size(), coords.data()),
+  Check(H5Sselect_elements(file_space.get(), H5S_SELECT_SET, loose.size(), coords.data()),
         "H5Sselect_elements");
-  const hsize_t n = cells.size();
+  const hsize_t n = loose.size();
   Id mem_space = Dataspace(std::span<const hsize_t>(&n, 1));
   Check(
       H5Dwrite(dataset, mem_type, mem_space.get(), file_space.get(), H5P_DEFAULT, gathered.data()),

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <list>
 #include <thread>
 
@@ -76,17 +77,20 @@ class MpiTransport final : public Transport {
 
   void StopClaims() override { FetchAdd(total_ + 1); }
 
-  void Send(std::span<const CellRecord> records, bool last) override {
+  void Send(std::vector<char> message) override {
     SB_DEMAND(rank_ != 0, "rank 0 never sends");
-    Reap(false);
-    pending_sends_.push_back({PackRecords(records, last), MPI_REQUEST_NULL});
-    Outgoing& msg = pending_sends_.back();
-    CheckMpi(MPI_Isend(msg.bytes.data(), static_cast<int>(msg.bytes.size()), MPI_BYTE, 0,
-                       kRecordTag, comm_, &msg.request),
-             "MPI_Isend");
+    SB_DEMAND(!message.empty(), "an empty message would end the stream");
+    Post(std::move(message));
   }
 
-  bool Receive(std::vector<CellRecord>& out, double wait_s) override {
+  // The end of a stream is a message of zero bytes: every batch has a header, and MPI keeps
+  // the order of messages between two ranks on one tag, so it arrives after the last batch.
+  void EndStream() override {
+    SB_DEMAND(rank_ != 0, "rank 0 never sends");
+    Post({});
+  }
+
+  bool Receive(const std::function<void(std::span<const char>)>& handle, double wait_s) override {
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(wait_s);
     bool got_any = false;
     while (finished_ < size_ - 1) {
@@ -94,14 +98,24 @@ class MpiTransport final : public Transport {
       MPI_Status status;
       CheckMpi(MPI_Iprobe(MPI_ANY_SOURCE, kRecordTag, comm_, &flag, &status), "MPI_Iprobe");
       if (flag) {
+        const auto found = std::chrono::steady_clock::now();
         int bytes = 0;
         CheckMpi(MPI_Get_count(&status, MPI_BYTE, &bytes), "MPI_Get_count");
-        std::vector<char> buffer(static_cast<std::size_t>(bytes));
-        CheckMpi(MPI_Recv(buffer.data(), bytes, MPI_BYTE, status.MPI_SOURCE, kRecordTag, comm_,
+        // One buffer for every message: rank 0 allocates only when a larger batch arrives.
+        if (buffer_.size() < static_cast<std::size_t>(bytes)) {
+          buffer_.resize(static_cast<std::size_t>(bytes));
+        }
+        CheckMpi(MPI_Recv(buffer_.data(), bytes, MPI_BYTE, status.MPI_SOURCE, kRecordTag, comm_,
                           MPI_STATUS_IGNORE),
                  "MPI_Recv");
-        if (UnpackRecords(buffer, out)) {
+        if (bytes == 0) {
           ++finished_;
+        } else {
+          handle(std::span<const char>(buffer_.data(), static_cast<std::size_t>(bytes)));
+          ++received_.messages;
+          received_.bytes += static_cast<std::uint64_t>(bytes);
+          received_.busy_s +=
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - found).count();
         }
         got_any = true;
         continue;
@@ -113,6 +127,8 @@ class MpiTransport final : public Transport {
     }
     return finished_ == size_ - 1;
   }
+
+  ReceiveStats Received() const override { return received_; }
 
   void Finish() override {
     Reap(true);
@@ -134,6 +150,17 @@ class MpiTransport final : public Transport {
              "MPI_Fetch_and_op");
     CheckMpi(MPI_Win_unlock(0, window_), "MPI_Win_unlock");
     return old;
+  }
+
+  void Post(std::vector<char> bytes) {
+    Reap(false);
+    SB_DEMAND(bytes.size() <= static_cast<std::size_t>(std::numeric_limits<int>::max()),
+              "a result batch exceeds MPI's int count");
+    pending_sends_.push_back({std::move(bytes), MPI_REQUEST_NULL});
+    Outgoing& msg = pending_sends_.back();
+    CheckMpi(MPI_Isend(msg.bytes.data(), static_cast<int>(msg.bytes.size()), MPI_BYTE, 0,
+                       kRecordTag, comm_, &msg.request),
+             "MPI_Isend");
   }
 
   // Frees the buffers of completed sends (all of them when `wait`).
@@ -158,6 +185,8 @@ class MpiTransport final : public Transport {
   std::uint64_t total_ = 0;
   int finished_ = 0;
   std::list<Outgoing> pending_sends_;  // a list: Isend buffers must not move
+  std::vector<char> buffer_;           // rank 0's receive buffer, reused
+  ReceiveStats received_;
 };
 
 }  // namespace

@@ -28,8 +28,9 @@ void AbortAll(int code);
 
 /// The transport over (a duplicate of) MPI_COMM_WORLD: the claim counter is one 64-bit integer
 /// in an MPI-3 window on rank 0, advanced with MPI_Fetch_and_op under a shared passive-target
-/// lock (no rank waits for rank 0 to hand out work); results travel with MPI_Isend and are
-/// drained by rank 0 with MPI_Iprobe between its own cells. Collective.
+/// lock (no rank waits for rank 0 to hand out work); results travel as one MPI_Isend per
+/// claimed chunk (a packed ResultBatch) and are drained by rank 0 with MPI_Iprobe into one
+/// reused buffer; a zero-byte message ends a rank's stream. Collective.
 /// @pre MPI is initialised (an MpiSession is alive).
 std::unique_ptr<Transport> MakeMpiTransport();
 

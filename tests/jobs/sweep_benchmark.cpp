@@ -37,20 +37,17 @@ void BM_InProcessSweepPerCell(benchmark::State& state) {
 }
 BENCHMARK(BM_InProcessSweepPerCell)->Arg(100)->Arg(10000)->Unit(benchmark::kMillisecond);
 
-void BM_PackUnpackRecords(benchmark::State& state) {
-  std::vector<CellRecord> records(64);
-  for (std::size_t i = 0; i < records.size(); ++i) {
-    records[i] = {i, 0, {3, 1000, 0.01}, {1.0, 2.0, 3.0}, ""};
-  }
-  std::vector<CellRecord> out;
+// One chunk's results: packing on the computing rank, unpacking (no copy) on rank 0.
+void BM_PackUnpackBatch(benchmark::State& state) {
+  ResultBatch batch;
+  batch.Reset(0, static_cast<std::uint64_t>(state.range(0)), 3);
   for (auto _ : state) {
-    out.clear();
-    const std::vector<char> bytes = PackRecords(records, false);
-    benchmark::DoNotOptimize(UnpackRecords(bytes, out));
+    const std::vector<char> bytes = PackBatch(batch);
+    benchmark::DoNotOptimize(UnpackBatch(bytes).values);
   }
-  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(records.size()));
+  state.SetItemsProcessed(state.iterations() * state.range(0));
 }
-BENCHMARK(BM_PackUnpackRecords);
+BENCHMARK(BM_PackUnpackBatch)->Arg(64)->Arg(65536);
 
 }  // namespace
 }  // namespace skewbridge::jobs

@@ -288,21 +288,110 @@ TEST_F(SweepRunnerTest, RequestedResponsesAreStoredInTheirOrder) {
   }
 }
 
-TEST(CellRecords, PackAndUnpackRoundTrip) {
-  std::vector<CellRecord> in(2);
-  in[0] = {7, 1, {3, 400, 0.25}, {1.5, -2.0}, "ray"};
-  in[1] = {123456789012ULL, kStatusException, {0, 0, 0.0}, {}, ""};
-  const std::vector<char> bytes = PackRecords(in, true);
-  std::vector<CellRecord> out;
-  EXPECT_TRUE(UnpackRecords(bytes, out));
-  ASSERT_EQ(out.size(), 2u);
-  EXPECT_EQ(out[1].cell, 123456789012ULL);
-  EXPECT_EQ(out[0].values, in[0].values);
-  EXPECT_EQ(out[0].stats.steps, 400);
-  EXPECT_EQ(out[1].status, kStatusException);
-  EXPECT_EQ(out[0].text, "ray");
-  EXPECT_THROW(UnpackRecords(std::span<const char>(bytes.data(), bytes.size() - 3), out),
+// A checkpoint writes runs of consecutive cells as boxes of the N-D datasets: every listed
+// cell, and no other, reaches the file, whatever the runs cross (rows, planes, short gaps).
+TEST(CheckpointFile, WritesExactlyTheListedCellsInRunsAndAlone) {
+  const SweepSpec spec = ParseSweepSpec(R"(
+[sweep]
+name = "boxes"
+family = "subsystem"
+[axes]
+pulse = ["cosine", "sine"]
+a_deg = {linspace = [0, 60, 5]}
+Pi_delta = [0.5, 1.0, 2.0]
+w0_over_wg = {linspace = [0.2, 4.0, 7]}
+)",
+                                        "spec.toml", ".");
+  const TestEvaluator evaluator(spec, 0, 0);
+  const CubeLayout layout = MakeCubeLayout(evaluator, {}, "spec.toml");
+  const std::uint64_t cells = spec.CellCount();  // 2 * 5 * 3 * 7 = 210
+  CubeData data;
+  data.Reset(cells, layout.responses.size());
+  for (std::uint64_t c = 0; c < cells; ++c) {
+    data.Store(c, static_cast<std::int32_t>(c % 3), {0.5 * static_cast<double>(c), 1.0, 2.0},
+               CellStats{static_cast<std::int64_t>(c), 7, 0.0}, 1);
+  }
+  // A run inside one row, runs across rows, planes and the whole first block, single cells
+  // and runs shorter than a box, all in one call.
+  std::vector<std::uint64_t> listed;
+  for (std::uint64_t c = 2; c < 6; ++c) listed.push_back(c);      // short run
+  for (std::uint64_t c = 9; c < 12; ++c) listed.push_back(c);     // short run
+  listed.push_back(20);                                           // alone
+  for (std::uint64_t c = 23; c < 131; ++c) listed.push_back(c);   // rows and planes
+  for (std::uint64_t c = 140; c < 149; ++c) listed.push_back(c);  // one row and a bit
+  for (std::uint64_t c = 150; c < 210; ++c) listed.push_back(c);  // to the end
+  const auto dir = std::filesystem::temp_directory_path() / "sb_checkpoint_boxes";
+  std::filesystem::create_directories(dir);
+  const auto path = dir / "boxes.h5.partial";
+  {
+    h5::CheckpointFile file = h5::CheckpointFile::Create(path, spec, layout);
+    for (std::uint64_t c : listed) data.done[c] = 1;
+    file.Write(data, listed);
+    file.Close();
+  }
+  const CubeData back = h5::ReadCubeData(path, "boxes", nullptr);
+  std::vector<bool> is_listed(cells, false);
+  for (std::uint64_t c : listed) is_listed[c] = true;
+  for (std::uint64_t c = 0; c < cells; ++c) {
+    if (is_listed[c]) {
+      EXPECT_EQ(back.done[c], 1) << c;
+      EXPECT_EQ(back.responses[0][c], 0.5 * static_cast<double>(c)) << c;
+      EXPECT_EQ(back.status[c], static_cast<std::int32_t>(c % 3)) << c;
+      EXPECT_EQ(back.events[c], static_cast<std::int64_t>(c)) << c;
+    } else {
+      EXPECT_EQ(back.done[c], 0) << c;
+      EXPECT_TRUE(std::isnan(back.responses[0][c])) << c;
+      EXPECT_EQ(back.status[c], kStatusNotDone) << c;
+    }
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST(ResultBatches, PackAndUnpackRoundTripColumnsAndFailureNotes) {
+  ResultBatch in;
+  in.Reset(40, 43, 2);
+  in.status = {0, 1, kStatusException};
+  in.events = {3, 4, 5};
+  in.steps = {400, 500, 600};
+  in.wall_s = {0.25, 0.5, 0.75};
+  in.values = {1.5, -2.0, 3.0, 4.0, -5.5, 6.0};  // response-major: [r * 3 + i]
+  in.failures = {{1, 1, 41, "ray"}, {kStatusException, 1, 123456789012ULL, "boom"}};
+  const std::vector<char> bytes = PackBatch(in);
+  const BatchView out = UnpackBatch(bytes);
+  EXPECT_EQ(out.begin, 40u);
+  EXPECT_EQ(out.end, 43u);
+  EXPECT_EQ(out.responses, 2u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    std::int32_t status = 0;
+    std::int64_t steps = 0;
+    std::memcpy(&status, out.status + 4 * i, 4);
+    std::memcpy(&steps, out.steps + 8 * i, 8);
+    EXPECT_EQ(status, in.status[i]);
+    EXPECT_EQ(steps, in.steps[i]);
+  }
+  for (std::size_t k = 0; k < 6; ++k) {
+    double v = 0.0;
+    std::memcpy(&v, out.values + 8 * k, 8);
+    EXPECT_TRUE(SameBits(v, in.values[k])) << k;
+  }
+  ASSERT_EQ(out.failures.size(), 2u);
+  EXPECT_EQ(out.failures[1].lowest_cell, 123456789012ULL);
+  EXPECT_EQ(out.failures[0].text, "ray");
+  EXPECT_THROW(UnpackBatch(std::span<const char>(bytes.data(), bytes.size() - 3)),
                std::runtime_error);
+  std::vector<char> foreign = bytes;
+  foreign[0] ^= 1;
+  EXPECT_THROW(UnpackBatch(foreign), std::runtime_error);
+}
+
+TEST(ResultBatches, TruncateKeepsTheFirstCellsOfEveryResponse) {
+  ResultBatch b;
+  b.Reset(0, 4, 2);
+  b.values = {0, 1, 2, 3, 10, 11, 12, 13};
+  b.Truncate(2);
+  EXPECT_EQ(b.Size(), 2u);
+  EXPECT_EQ(b.values, (std::vector<double>{0, 1, 10, 11}));
+  EXPECT_EQ(b.status.size(), 2u);
 }
 
 }  // namespace

@@ -1,0 +1,129 @@
+// The scheduler on 8 oversubscribed ranks with cheap cells, rank 0 only gathering as it does
+// above SweepOptions::root_computes_up_to_ranks: every cell is computed exactly once, results
+// travel as one message per claimed chunk (not per cell), and the cube equals the serial run's
+// bit for bit whatever the chunking. Speed is measured by scheduler_benchmark, not here.
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include <cstring>
+#include <filesystem>
+
+#include "jobs/h5/cube_file.h"
+#include "jobs/mpi/mpi_transport.h"
+#include "jobs/sweep_runner.h"
+#include "tests/jobs/test_evaluator.h"
+
+namespace skewbridge::jobs {
+namespace {
+
+// 2 x 40 x 1000 = 80 000 cells.
+const char* kSpec = R"(
+[sweep]
+name = "scheduler"
+family = "subsystem"
+[axes]
+pulse = ["cosine", "sine"]
+a_deg = {linspace = [1, 80, 40]}
+w0_over_wg = {logspace = [0.1, 10.0, 1000]}
+[fixed]
+eta0 = 2.0
+)";
+
+int Rank() {
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  return rank;
+}
+
+std::uint64_t Sum(std::uint64_t mine) {
+  std::uint64_t sum = 0;
+  MPI_Allreduce(&mine, &sum, 1, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
+  return sum;
+}
+
+template <typename T>
+bool SameBytes(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+}
+
+// The datasets that must not depend on the ranks or the chunking (wall_s is a timing).
+void ExpectSameCube(const CubeData& a, const CubeData& b) {
+  ASSERT_EQ(a.responses.size(), b.responses.size());
+  for (std::size_t r = 0; r < a.responses.size(); ++r) {
+    EXPECT_TRUE(SameBytes(a.responses[r], b.responses[r])) << "response " << r;
+  }
+  EXPECT_TRUE(SameBytes(a.status, b.status));
+  EXPECT_TRUE(SameBytes(a.events, b.events));
+  EXPECT_TRUE(SameBytes(a.steps, b.steps));
+  EXPECT_TRUE(SameBytes(a.done, b.done));
+  EXPECT_TRUE(SameBytes(a.run, b.run));
+}
+
+class Scheduler8 : public ::testing::TestWithParam<std::pair<std::uint64_t, double>> {};
+
+TEST_P(Scheduler8, EveryCellOnceOneMessagePerChunkAndTheSerialCube) {
+  ASSERT_EQ(
+      [] {
+        int size = 0;
+        MPI_Comm_size(MPI_COMM_WORLD, &size);
+        return size;
+      }(),
+      8);
+  const SweepSpec spec = ParseSweepSpec(kSpec, "spec.toml", ".");
+  const testing::TestEvaluator evaluator(spec, 0, 0);
+  const auto dir = std::filesystem::temp_directory_path();
+  const std::string tag = std::to_string(GetParam().first);
+  SweepOptions serial;
+  serial.out = dir / ("sb_sched_serial_" + tag + ".h5");
+  serial.force = true;
+  if (Rank() == 0) {
+    auto alone = MakeInProcessTransport();
+    ASSERT_TRUE(RunSweep(spec, evaluator, *alone, serial).complete);
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+
+  SweepOptions options;
+  options.out = dir / ("sb_sched_mpi_" + tag + ".h5");
+  options.force = true;
+  options.root_computes_up_to_ranks = 1;
+  options.max_chunk = GetParam().first;
+  options.chunk_seconds = GetParam().second;
+  options.checkpoint_cells = 9000;  // checkpoints of many chunks while cells arrive
+  auto transport = MakeMpiTransport();
+  const SweepReport report = RunSweep(spec, evaluator, *transport, options);
+
+  EXPECT_EQ(Sum(report.cells_this_rank), spec.CellCount());
+  const std::uint64_t chunks = Sum(report.chunks_this_rank);
+  if (Rank() != 0) {
+    EXPECT_LE(report.chunks_this_rank, report.cells_this_rank);
+    return;
+  }
+  EXPECT_EQ(report.cells_this_rank, 0u) << "rank 0 only gathers";
+  EXPECT_TRUE(report.complete);
+  EXPECT_EQ(report.cells_computed, spec.CellCount());
+  EXPECT_EQ(report.messages_received, chunks) << "one message per chunk";
+  EXPECT_LT(report.messages_received, spec.CellCount() / 4) << "results travel in batches";
+  const CubeData parallel = h5::ReadCubeData(options.out, "scheduler", nullptr);
+  const CubeData alone = h5::ReadCubeData(serial.out, "scheduler", nullptr);
+  ExpectSameCube(parallel, alone);
+  // And both equal the evaluator itself (the serial run is not its own oracle).
+  for (std::uint64_t c = 0; c < spec.CellCount(); c += 97) {
+    if (testing::TestEvaluator::Throws(c)) {
+      EXPECT_EQ(parallel.status[c], kStatusException);
+      continue;
+    }
+    const CellOutcome o = evaluator.Evaluate(spec.AxisIndex(c));
+    EXPECT_EQ(std::memcmp(&parallel.responses[0][c], &o.responses[0], sizeof(double)), 0) << c;
+    EXPECT_EQ(parallel.responses[2][c], static_cast<double>(c));
+  }
+  std::filesystem::remove(options.out);
+  std::filesystem::remove(serial.out);
+}
+
+// Tiny chunks (a message every 1 to 5 cells) and large ones (time-capped, up to 65536 cells).
+INSTANTIATE_TEST_SUITE_P(Chunking, Scheduler8,
+                         ::testing::Values(std::make_pair(std::uint64_t{5}, 0.05),
+                                           std::make_pair(std::uint64_t{65536}, 0.01)));
+
+}  // namespace
+}  // namespace skewbridge::jobs
