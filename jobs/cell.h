@@ -12,6 +12,8 @@
 
 namespace skewbridge::jobs {
 
+struct SweepRecord;  // jobs/study.h
+
 /// Reserved cell status codes; evaluators use 0 for success and positive codes for expected
 /// numerical outcomes (Lemke ray, Painleve situation, ...), named by CellEvaluator::StatusNames.
 inline constexpr std::int32_t kStatusOk = 0;
@@ -54,6 +56,11 @@ class CellEvaluator {
 
   /// Names of the positive status codes this evaluator returns (code, name), e.g. {1, "ray"}.
   virtual std::vector<std::pair<std::int32_t, std::string>> StatusNames() const { return {}; }
+
+  /// The records this evaluator read or synthesised for the sweep (LoadSweepRecords, in axis
+  /// order), so that rank 0 builds the final cube's record table without making them again;
+  /// nullptr when it holds none (then rank 0 loads them itself).
+  virtual const std::vector<SweepRecord>* Records() const { return nullptr; }
 
   /// Evaluates one cell; axis_index[k] indexes axis k of the SweepSpec (its canonical order).
   /// A failed cell returns a non-zero status; responses are then stored as NaN if absent.

@@ -39,6 +39,9 @@ class SpectraEvaluator final : public CellEvaluator {
   std::vector<ResponseInfo> Responses() const override;
   std::vector<std::pair<std::int32_t, std::string>> StatusNames() const override;
   CellOutcome Evaluate(std::span<const std::size_t> axis_index) const override;
+  const std::vector<SweepRecord>* Records() const override {
+    return records_.empty() ? nullptr : &records_;
+  }
 
   /// The point parameters of a cell, and the record it uses (nullptr for a pulse).
   spectra::PointParameters Parameters(std::span<const std::size_t> axis_index,

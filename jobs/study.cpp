@@ -64,8 +64,11 @@ std::vector<SweepRecord> LoadSweepRecords(const SweepSpec& spec) {
       }
       SweepRecord record;
       record.label = label;
-      // Through the .AT2 text, so that the cells see the samples `records synth` writes.
-      record.motion = records::ParseRecord(records::FormatAt2(made), label);
+      // SynthesizeRecord already returns its .AT2 text read back, i.e. the samples
+      // `records synth` writes; a second trip through the text would give the same bytes
+      // (tests/study: LoadSweepRecords.SyntheticRecordsAreTheAt2TextReadBack).
+      record.motion = std::move(made);
+      record.motion.file = label;
       record.measures = records::ComputeMeasures(record.motion);
       out.push_back(std::move(record));
     }
@@ -108,11 +111,12 @@ double BandOf(double ratio, std::span<const double> edges) {
   return static_cast<double>(std::upper_bound(edges.begin(), edges.end(), ratio) - edges.begin());
 }
 
-StudyTables MakeStudyTables(const SweepSpec& spec, const CubeLayout& layout, const CubeData& data) {
+StudyTables MakeStudyTables(const SweepSpec& spec, const CubeLayout& layout, const CubeData& data,
+                            const std::vector<SweepRecord>* records) {
   StudyTables tables;
   const std::optional<std::size_t> band_col = ResponseColumn(layout, "band");
   if (band_col) tables.band_edges = BandEdges(spec);
-  tables.records = LoadSweepRecords(spec);
+  tables.records = records != nullptr ? *records : LoadSweepRecords(spec);
   if (!tables.records.empty()) {
     if (spec.synthetic_count > 0) {
       tables.records_source = "synthetic";

@@ -86,7 +86,10 @@ struct StudyTables {
 /// Builds the tables from the whole cube (so a resumed sweep gets statistics of all its cells).
 /// The correlation table needs a record axis, a Pi_delta axis and the responses theta_m and L_e
 /// in the layout; the per-band statistics need the response band.
+/// `records`: LoadSweepRecords(spec) when the caller already holds them (the evaluator's, see
+/// CellEvaluator::Records), so that a synthetic suite is not made twice; nullptr to load them.
 /// @throws InputError as LoadSweepRecords.
-StudyTables MakeStudyTables(const SweepSpec& spec, const CubeLayout& layout, const CubeData& data);
+StudyTables MakeStudyTables(const SweepSpec& spec, const CubeLayout& layout, const CubeData& data,
+                            const std::vector<SweepRecord>* records = nullptr);
 
 }  // namespace skewbridge::jobs

@@ -228,12 +228,12 @@ class Writer {
     return std::all_of(data_.done.begin(), data_.done.end(), [](std::uint8_t d) { return d; });
   }
 
-  void Finalize() {
+  void Finalize(const std::vector<SweepRecord>* records) {
     const std::string created = file_->CreatedUtc();
     file_->Close();
     file_.reset();
     // From the whole cube, so a resumed sweep's statistics cover the cells of every run.
-    const StudyTables study = MakeStudyTables(spec_, layout_, data_);
+    const StudyTables study = MakeStudyTables(spec_, layout_, data_, records);
     h5::WriteFinalCube(options_.out, spec_, layout_, data_, run_, created, examples_, &study);
     std::error_code ec;
     std::filesystem::remove(PartialPath(options_.out), ec);
@@ -475,7 +475,7 @@ SweepReport RunSweep(const SweepSpec& spec, const CellEvaluator& evaluator, Tran
   if (root) {
     progress(true);
     if (!report.interrupted && writer->AllDone()) {
-      writer->Finalize();
+      writer->Finalize(evaluator.Records());
       report.complete = true;
     }
     writer->FillReport(report);

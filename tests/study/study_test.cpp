@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <csignal>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <numbers>
@@ -208,6 +209,57 @@ TEST(LoadSweepRecords, SyntheticSuiteInMemoryEqualsTheWrittenFiles) {
               std::string::npos)
         << e.what();
   }
+}
+
+// A synthesised record of a sweep is what the reader makes of its .AT2 text (every field, every
+// sample to the bit), without a second trip through the text.
+TEST(LoadSweepRecords, SyntheticRecordsAreTheAt2TextReadBack) {
+  const SweepSpec spec = LoadSweepSpec(fs::path(SKEWBRIDGE_SPECS_DIR) / "pilot-study.toml");
+  const std::vector<SweepRecord> loaded = LoadSweepRecords(spec);
+  ASSERT_EQ(loaded.size(), 62U);
+  records::SynthOptions options;
+  options.count = 62;
+  options.seed = 2011;
+  for (const int i : {0, 1, 17, 40, 61}) {
+    const SweepRecord& r = loaded[static_cast<std::size_t>(i)];
+    const records::GroundMotion oracle =
+        records::ParseRecord(records::FormatAt2(records::SynthesizeRecord(options, i)), r.label);
+    EXPECT_EQ(r.motion.file, oracle.file);
+    EXPECT_EQ(r.motion.format, oracle.format);
+    EXPECT_EQ(r.motion.event, oracle.event);
+    EXPECT_EQ(r.motion.station, oracle.station);
+    EXPECT_EQ(r.motion.component, oracle.component);
+    EXPECT_EQ(r.motion.original_units, oracle.original_units);
+    EXPECT_EQ(r.motion.notes, oracle.notes);
+    EXPECT_EQ(std::memcmp(&r.motion.dt_s, &oracle.dt_s, sizeof(double)), 0);
+    ASSERT_EQ(r.motion.npts(), oracle.npts());
+    EXPECT_EQ(std::memcmp(r.motion.acc_mps2.data(), oracle.acc_mps2.data(),
+                          oracle.npts() * sizeof(double)),
+              0)
+        << r.label;
+  }
+}
+
+// Rank 0 builds the record table from the evaluator's records instead of making the suite a
+// second time: the tables are those of loading the records afresh.
+TEST(MakeStudyTables, TheEvaluatorsRecordsGiveTheTablesOfLoadingThemAgain) {
+  const SweepSpec spec = LoadSweepSpec(fs::path(SKEWBRIDGE_SPECS_DIR) / "pilot-study.toml");
+  const SpectraEvaluator evaluator(spec);
+  ASSERT_NE(evaluator.Records(), nullptr);
+  const CubeLayout layout = MakeCubeLayout(evaluator, spec.responses, spec.source);
+  CubeData data;
+  data.Reset(spec.CellCount(), layout.responses.size());
+  const StudyTables shared = MakeStudyTables(spec, layout, data, evaluator.Records());
+  const StudyTables fresh = MakeStudyTables(spec, layout, data);
+  ASSERT_EQ(shared.records.size(), fresh.records.size());
+  for (std::size_t i = 0; i < fresh.records.size(); ++i) {
+    EXPECT_EQ(shared.records[i].label, fresh.records[i].label);
+    EXPECT_EQ(shared.records[i].file, fresh.records[i].file);
+    EXPECT_EQ(shared.records[i].motion.acc_mps2, fresh.records[i].motion.acc_mps2);
+    EXPECT_EQ(shared.records[i].measures.persistency_m, fresh.records[i].measures.persistency_m);
+    EXPECT_EQ(shared.records[i].measures.arias_mps, fresh.records[i].measures.arias_mps);
+  }
+  EXPECT_EQ(shared.records_set, fresh.records_set);
 }
 
 // With an axis besides record and Pi_delta, each (Pi_delta, mu) pair gets its own statistics
