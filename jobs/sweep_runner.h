@@ -74,8 +74,8 @@ struct SweepReport {
   bool complete = false;                                  ///< Every cell done and FILE written.
   bool already_complete = false;       ///< --resume found a complete FILE: nothing to do.
   std::uint64_t chunks_this_rank = 0;  ///< Chunks this rank claimed and computed.
-  /// Rank 0: result messages received, their bytes, and the time spent receiving and storing
-  /// them into the cube (MPI_Recv, unpacking, copying) [s]; what a sweep costs rank 0 per
+  /// Rank 0: result messages received, their bytes, and the CPU time spent receiving and
+  /// storing them into the cube (MPI_Recv, unpacking, copying) [s]; what a sweep costs rank 0 per
   /// message and per cell (tests/jobs/scheduler_benchmark.cpp).
   std::uint64_t messages_received = 0;
   std::uint64_t bytes_received = 0;

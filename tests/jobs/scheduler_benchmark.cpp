@@ -1,8 +1,8 @@
 // Rank 0's side of the scheduler, measured (not run by ctest; timings vary): run under
 //   mpiexec -n 8 --oversubscribe build/release/tests/jobs/scheduler_benchmark [CELLS_PER_ROW]
 // It runs a sweep of trivial cells (the test evaluator without arithmetic) with rank 0 only
-// gathering, once with small chunks and once with large ones, and prints
-//  - what rank 0 spent per message and per cell (a least-squares-free fit of the two runs:
+// gathering, with chunks of at most 16, 256 and 65536 cells, and prints
+//  - what rank 0 spent per message and per cell (its CPU time, fitted over three chunk caps:
 //    busy = messages * c_msg + cells * c_cell), and the cells/s it sustains while busy;
 //  - the checkpoint and final-cube cost per cell;
 //  - the latency of one claim on the shared counter (every rank claiming one cell at a time).
@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "jobs/mpi/mpi_transport.h"
 #include "jobs/sweep_runner.h"
@@ -90,32 +91,51 @@ int main(int argc, char** argv) {
   const jobs::SweepSpec spec = jobs::ParseSweepSpec(text, "bench.toml", ".");
   const auto out = std::filesystem::temp_directory_path() /
                    ("sb_scheduler_benchmark_" + std::to_string(::getpid()) + ".h5");
-  const Run small = Sweep(spec, 256, out);
-  const Run large = Sweep(spec, 65536, out);
+  const std::vector<std::uint64_t> caps = {16, 256, 65536};
+  std::vector<Run> runs;
+  for (const std::uint64_t cap : caps) {
+    runs.push_back(Sweep(spec, cap, out));
+  }
   const double claim_s = ClaimLatency(20000, mpi.Size());
   if (mpi.Rank() != 0) {
     return 0;
   }
-  // busy = messages c_msg + cells c_cell, from the two runs (equal cells, different messages).
-  const double c_msg = (small.busy_s - large.busy_s) / (small.messages - large.messages);
-  const double c_cell = (large.busy_s - c_msg * large.messages) / large.cells;
-  std::printf("| quantity | small chunks (<= 256) | large chunks (<= 65536) |\n|---|---|---|\n");
-  std::printf("| ranks (rank 0 only gathers) | %d | %d |\n", mpi.Size(), mpi.Size());
-  std::printf("| cells | %.0f | %.0f |\n", small.cells, large.cells);
-  std::printf("| messages to rank 0 | %.0f | %.0f |\n", small.messages, large.messages);
-  std::printf("| bytes per cell on the wire | %.1f | %.1f |\n", small.bytes / small.cells,
-              large.bytes / large.cells);
-  std::printf("| rank 0 busy receiving + storing [s] | %.4f | %.4f |\n", small.busy_s,
-              large.busy_s);
-  std::printf("| rank 0 sustained while busy [cells/s] | %.3g | %.3g |\n",
-              small.cells / small.busy_s, large.cells / large.busy_s);
-  std::printf("| cells/s over the run (all workers) | %.3g | %.3g |\n", small.cells / small.wall_s,
-              large.cells / large.wall_s);
-  std::printf("| checkpoint [ns/cell] | %.1f | %.1f |\n", 1e9 * small.checkpoint_s / small.cells,
-              1e9 * large.checkpoint_s / large.cells);
-  std::printf("| final cube and set-up [ns/cell] | %.1f | %.1f |\n",
-              1e9 * (small.total_s - small.wall_s) / small.cells,
-              1e9 * (large.total_s - large.wall_s) / large.cells);
+  // busy = messages c_msg + cells c_cell: least squares over the runs (equal cells, messages
+  // from one per 16 cells to one per tens of thousands).
+  double smm = 0, smc = 0, scc = 0, smb = 0, scb = 0;
+  for (const Run& r : runs) {
+    smm += r.messages * r.messages;
+    smc += r.messages * r.cells;
+    scc += r.cells * r.cells;
+    smb += r.messages * r.busy_s;
+    scb += r.cells * r.busy_s;
+  }
+  const double det = smm * scc - smc * smc;
+  const double c_msg = (smb * scc - scb * smc) / det;
+  const double c_cell = (smm * scb - smc * smb) / det;
+  std::printf("| quantity |");
+  for (const std::uint64_t cap : caps)
+    std::printf(" chunks <= %llu |", static_cast<unsigned long long>(cap));
+  std::printf("\n|---|---|---|---|\n");
+  const auto row = [&](const char* name, const char* format, auto value) {
+    std::printf("| %s |", name);
+    for (const Run& r : runs) std::printf(format, value(r));
+    std::printf("\n");
+  };
+  std::printf("| ranks (rank 0 only gathers) | %d | %d | %d |\n", mpi.Size(), mpi.Size(),
+              mpi.Size());
+  row("cells", " %.0f |", [](const Run& r) { return r.cells; });
+  row("messages to rank 0", " %.0f |", [](const Run& r) { return r.messages; });
+  row("bytes per cell on the wire", " %.1f |", [](const Run& r) { return r.bytes / r.cells; });
+  row("rank 0 CPU receiving + storing [s]", " %.4f |", [](const Run& r) { return r.busy_s; });
+  row("rank 0 sustained while busy [cells/s]", " %.3g |",
+      [](const Run& r) { return r.cells / r.busy_s; });
+  row("cells/s over the run (all workers)", " %.3g |",
+      [](const Run& r) { return r.cells / r.wall_s; });
+  row("checkpoint [ns/cell]", " %.1f |",
+      [](const Run& r) { return 1e9 * r.checkpoint_s / r.cells; });
+  row("final cube and set-up [ns/cell]", " %.0f |",
+      [](const Run& r) { return 1e9 * (r.total_s - r.wall_s) / r.cells; });
   std::printf("\nfit: c_msg = %.2f us per message, c_cell = %.2f ns per cell on rank 0\n",
               1e6 * c_msg, 1e9 * c_cell);
   std::printf("claim latency: %.2f us per Claim (%d ranks claiming at once)\n", 1e6 * claim_s,
