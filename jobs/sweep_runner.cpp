@@ -131,11 +131,11 @@ class Writer {
     return true;
   }
 
-  std::vector<std::uint64_t> Pending() const {
-    std::vector<std::uint64_t> pending;
+  PendingCells Pending() const {
+    PendingCells pending;
     for (std::uint64_t c = 0; c < data_.Cells(); ++c) {
       if (data_.done[c] == 0) {
-        pending.push_back(c);
+        pending.Append(c);
       }
     }
     return pending;
@@ -143,7 +143,7 @@ class Writer {
 
   // Copies a chunk's results into the cube image: one memcpy per dataset when its cells are
   // consecutive (always, in a fresh sweep), a loop over them otherwise (a resume's gaps).
-  void StoreBatch(const BatchView& batch, const std::vector<std::uint64_t>& pending) {
+  void StoreBatch(const BatchView& batch, const PendingCells& pending) {
     const std::size_t n = batch.end - batch.begin;
     if (n == 0) {
       return;
@@ -195,7 +195,7 @@ class Writer {
            (options_.checkpoint_cells > 0 && unwritten_cells_ >= options_.checkpoint_cells);
   }
 
-  void Checkpoint(const std::vector<std::uint64_t>& pending) {
+  void Checkpoint(const PendingCells& pending) {
     if (unwritten_.empty()) {
       return;
     }
@@ -345,7 +345,7 @@ SweepReport RunSweep(const SweepSpec& spec, const CellEvaluator& evaluator, Tran
     return report;
   }
 
-  std::vector<std::uint64_t> pending;
+  PendingCells pending;
   if (root) {
     pending = writer->Pending();
     writer->set_done_before(spec.CellCount() - pending.size());

@@ -53,7 +53,7 @@ class InProcessTransport final : public Transport {
   int Rank() const override { return 0; }
   int Size() const override { return 1; }
   std::string BroadcastText(const std::string& text) override { return text; }
-  void BroadcastPending(std::vector<std::uint64_t>& pending) override {
+  void BroadcastPending(PendingCells& pending) override {
     size_ = pending.size();
     next_ = 0;
   }
@@ -74,6 +74,59 @@ class InProcessTransport final : public Transport {
 };
 
 }  // namespace
+
+void PendingCells::Append(std::uint64_t cell) {
+  if (size_ > 0) {
+    SB_DEMAND(cell > last_, "pending cells must increase");
+    if (cell == last_ + 1) {
+      ++size_;
+      last_ = cell;
+      return;
+    }
+  }
+  last_ = cell;
+  run_first_cell_.push_back(cell);
+  run_first_pos_.push_back(size_);
+  ++size_;
+}
+
+std::uint64_t PendingCells::operator[](std::uint64_t pos) const {
+  SB_DEMAND(pos < size_, "pending position out of range");
+  // The last run starting at or before pos.
+  const auto it = std::upper_bound(run_first_pos_.begin(), run_first_pos_.end(), pos);
+  const auto run = static_cast<std::size_t>(it - run_first_pos_.begin()) - 1;
+  return run_first_cell_[run] + (pos - run_first_pos_[run]);
+}
+
+std::vector<std::uint64_t> PendingCells::Flatten() const {
+  std::vector<std::uint64_t> flat;
+  flat.reserve(2 * Runs());
+  for (std::size_t r = 0; r < Runs(); ++r) {
+    const std::uint64_t end = r + 1 < Runs() ? run_first_pos_[r + 1] : size_;
+    flat.push_back(run_first_cell_[r]);
+    flat.push_back(end - run_first_pos_[r]);
+  }
+  return flat;
+}
+
+PendingCells PendingCells::FromFlat(const std::vector<std::uint64_t>& flat) {
+  if (flat.size() % 2 != 0) {
+    throw std::runtime_error("pending runs: odd length");
+  }
+  PendingCells pending;
+  for (std::size_t i = 0; i < flat.size(); i += 2) {
+    const std::uint64_t first = flat[i];
+    const std::uint64_t length = flat[i + 1];
+    if (length == 0 || (pending.size_ > 0 && first <= pending.last_)) {
+      throw std::runtime_error("pending runs: empty or unsorted");
+    }
+    pending.run_first_cell_.push_back(first);
+    pending.run_first_pos_.push_back(pending.size_);
+    pending.size_ += length;
+    pending.last_ = first + length - 1;
+  }
+  return pending;
+}
 
 void ResultBatch::Reset(std::uint64_t from, std::uint64_t to, std::uint32_t response_count) {
   SB_DEMAND(from <= to, "a batch ends before it begins");

@@ -59,16 +59,22 @@ class MpiTransport final : public Transport {
     return out;
   }
 
-  void BroadcastPending(std::vector<std::uint64_t>& pending) override {
-    std::uint64_t n = pending.size();
-    CheckMpi(MPI_Bcast(&n, 1, MPI_UINT64_T, 0, comm_), "MPI_Bcast");
-    pending.resize(n);
+  void BroadcastPending(PendingCells& pending) override {
+    // As runs of consecutive cells: 16 bytes per run, whatever the number of cells.
+    std::vector<std::uint64_t> flat = rank_ == 0 ? pending.Flatten() : std::vector<std::uint64_t>{};
+    std::uint64_t words = flat.size();
+    CheckMpi(MPI_Bcast(&words, 1, MPI_UINT64_T, 0, comm_), "MPI_Bcast");
+    flat.resize(words);
     constexpr std::uint64_t kPiece = 1 << 26;  // MPI counts are int
-    for (std::uint64_t at = 0; at < n; at += kPiece) {
-      CheckMpi(MPI_Bcast(pending.data() + at, static_cast<int>(std::min(kPiece, n - at)),
+    for (std::uint64_t at = 0; at < words; at += kPiece) {
+      CheckMpi(MPI_Bcast(flat.data() + at, static_cast<int>(std::min(kPiece, words - at)),
                          MPI_UINT64_T, 0, comm_),
                "MPI_Bcast");
     }
+    if (rank_ != 0) {
+      pending = PendingCells::FromFlat(flat);
+    }
+    const std::uint64_t n = pending.size();
     total_ = n;
     if (rank_ == 0) {
       CheckMpi(MPI_Win_lock(MPI_LOCK_EXCLUSIVE, 0, 0, window_), "MPI_Win_lock");

@@ -56,7 +56,10 @@ Run Sweep(const jobs::SweepSpec& spec, std::uint64_t max_chunk, const std::files
 // Mean time of one Claim(1) while every rank claims [s].
 double ClaimLatency(std::uint64_t claims_per_rank, int ranks) {
   auto transport = jobs::MakeMpiTransport();
-  std::vector<std::uint64_t> pending(claims_per_rank * static_cast<std::uint64_t>(ranks));
+  jobs::PendingCells pending;
+  for (std::uint64_t c = 0; c < claims_per_rank * static_cast<std::uint64_t>(ranks); ++c) {
+    pending.Append(c);
+  }
   transport->BroadcastPending(pending);
   std::uint64_t mine = 0;
   const auto start = std::chrono::steady_clock::now();

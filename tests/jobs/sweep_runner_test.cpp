@@ -347,6 +347,31 @@ w0_over_wg = {linspace = [0.2, 4.0, 7]}
   std::filesystem::remove_all(dir);
 }
 
+// The pending list as runs answers every position like the plain list of cells it replaces,
+// and travels as (first cell, length) pairs.
+TEST(PendingCells, RunsGiveTheCellOfEveryPositionAndSurviveTheirFlatForm) {
+  std::vector<std::uint64_t> plain;
+  for (std::uint64_t c = 0; c < 5000; ++c) {
+    if (testing::Mix(c) % 7 != 0 || c % 100 < 40) plain.push_back(c);  // gaps, and long runs
+  }
+  PendingCells runs;
+  for (std::uint64_t c : plain) runs.Append(c);
+  ASSERT_EQ(runs.size(), plain.size());
+  EXPECT_LT(runs.Runs(), plain.size() / 3);
+  const PendingCells copy = PendingCells::FromFlat(runs.Flatten());
+  for (std::uint64_t pos = 0; pos < plain.size(); ++pos) {
+    ASSERT_EQ(runs[pos], plain[pos]) << pos;
+    ASSERT_EQ(copy[pos], plain[pos]) << pos;
+  }
+  EXPECT_EQ(copy.Runs(), runs.Runs());
+  PendingCells fresh;
+  for (std::uint64_t c = 0; c < 1000000; ++c) fresh.Append(c);
+  EXPECT_EQ(fresh.Runs(), 1U);  // a fresh sweep: 16 bytes for any number of cells
+  EXPECT_EQ(fresh[999999], 999999U);
+  EXPECT_THROW(PendingCells::FromFlat({5, 2, 6, 1}), std::runtime_error);  // overlapping runs
+  EXPECT_THROW(PendingCells::FromFlat({5}), std::runtime_error);
+}
+
 TEST(ResultBatches, PackAndUnpackRoundTripColumnsAndFailureNotes) {
   ResultBatch in;
   in.Reset(40, 43, 2);
