@@ -46,10 +46,10 @@ class PendingCells {
 /// The failures of one status within a batch: how many, and the lowest cell with its text
 /// (so that rank 0 keeps one example per status without looking at every cell).
 struct FailureNote {
-  std::int32_t status = kStatusException;
-  std::uint64_t count = 0;
-  std::uint64_t lowest_cell = 0;  ///< linear cell index
-  std::string text;               ///< CellOutcome::status_text or the exception's message
+  std::int32_t status = kStatusException;  ///< the status (never kStatusOk)
+  std::uint64_t count = 0;                 ///< cells of the batch with this status
+  std::uint64_t lowest_cell = 0;           ///< linear cell index
+  std::string text;                        ///< CellOutcome::status_text or the exception's message
 };
 
 /// The results of one claimed chunk: positions [begin, end) of the pending cell list, each
@@ -76,15 +76,15 @@ struct ResultBatch {
 /// A batch as it lies in a received message: the columns point into the message bytes
 /// (unaligned, read with memcpy), nothing is copied until rank 0 stores them.
 struct BatchView {
-  std::uint64_t begin = 0;
-  std::uint64_t end = 0;
-  std::uint32_t responses = 0;
-  const char* status = nullptr;  ///< (end - begin) std::int32_t
-  const char* events = nullptr;  ///< (end - begin) std::int64_t
-  const char* steps = nullptr;   ///< (end - begin) std::int64_t
-  const char* wall_s = nullptr;  ///< (end - begin) double
-  const char* values = nullptr;  ///< responses * (end - begin) double, response-major
-  std::vector<FailureNote> failures;
+  std::uint64_t begin = 0;            ///< first position in the pending list
+  std::uint64_t end = 0;              ///< one past the last position
+  std::uint32_t responses = 0;        ///< values per cell
+  const char* status = nullptr;       ///< (end - begin) std::int32_t
+  const char* events = nullptr;       ///< (end - begin) std::int64_t
+  const char* steps = nullptr;        ///< (end - begin) std::int64_t
+  const char* wall_s = nullptr;       ///< (end - begin) double
+  const char* values = nullptr;       ///< responses * (end - begin) double, response-major
+  std::vector<FailureNote> failures;  ///< copied: they are few
 };
 
 /// Serialises a batch into one message (host byte order; all ranks run the same build):
