@@ -4,7 +4,8 @@
 #
 #   bash scripts/bench/sweeps.sh [BUILD_DIR] [--repeat N] [--work DIR]
 #
-# BUILD_DIR defaults to build/release and needs the targets skewbridge and simulate_benchmark.
+# BUILD_DIR defaults to build/release and needs the target skewbridge; simulate_benchmark and
+# multispan_benchmark add the warm and multi-span figures when built.
 # Grids, each beside its contact-free twin (the same grid with Pi_delta x 1e6: the gaps never
 # close, so the twin costs only the free flow):
 #   default      jobs/specs/default.toml (1296 cells)
@@ -17,7 +18,8 @@
 # command (MPI start-up, records, final cube); "per CPU s" by its CPU time over all ranks
 # (steadier than wall time on a shared machine). Each figure is the best of N runs (default 3):
 # the machine is usually shared. The warm single-run figures of simulate_benchmark (one model
-# repeated, propagators cached) follow the table.
+# repeated, propagators cached) and the event-driven multi-span cost per simulated second
+# against the span count (multispan_benchmark, 1 to 50 spans) follow the table.
 set -euo pipefail
 here=$(cd "$(dirname "$0")/../.." && pwd)
 build=build/release
@@ -34,6 +36,7 @@ done
 build=$(cd "$build" && pwd)
 exe=$build/skewbridge
 bench=$build/tests/dynamics/simulate_benchmark
+spans_bench=$build/tests/multispan/multispan_benchmark
 [ -x "$exe" ] || { echo "sweeps.sh: error: $exe is missing (cmake --build $build --target skewbridge)" >&2; exit 2; }
 [ -n "$work" ] || work=$(mktemp -d)
 mkdir -p "$work"
@@ -131,4 +134,18 @@ if [ -x "$bench" ]; then
 else
   echo
   echo "(warm single-run figures: build the target simulate_benchmark)"
+fi
+
+if [ -x "$spans_bench" ]; then
+  echo
+  echo "Event-driven multi-span runs (multispan_benchmark: 1 s simulated, CPU time per simulated second):"
+  echo
+  echo "| spans | ms per simulated second |"
+  echo "|---|---|"
+  "$spans_bench" --benchmark_filter='EventDriven/(1|5|10|20|50)$' --benchmark_min_time=0.2 2>/dev/null |
+    awk '/^EventDriven\// { split($1, a, "/"); v = $4; if ($5 == "us") v /= 1000; if ($5 == "s") v *= 1000;
+                              printf "| %s | %.3g |\n", a[2], v }'
+else
+  echo
+  echo "(multi-span scaling: build the target multispan_benchmark)"
 fi
