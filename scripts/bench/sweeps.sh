@@ -16,7 +16,9 @@
 # on 1 and 2 ranks. Columns: "cells/s" is the runner's rate over its cell phase (cells,
 # messages, checkpoints); "end to end" divides the cells by the wall time of the whole
 # command (MPI start-up, records, final cube); "per CPU s" by its CPU time over all ranks
-# (steadier than wall time on a shared machine). Each figure is the best of N runs (default 3):
+# (steadier than wall time on a shared machine); "cell median / mean" are the cells' own
+# evaluation times from the cube (stats/wall_s), from which the with-contact / twin ratios are
+# taken: a rank descheduled between cells does not inflate them. Each figure is the best of N runs (default 3):
 # the machine is usually shared. The warm single-run figures of simulate_benchmark (one model
 # repeated, propagators cached) and the event-driven multi-span cost per simulated second
 # against the span count (multispan_benchmark, 1 to 50 spans) follow the table.
@@ -78,11 +80,24 @@ for g in default c2 pilot multispan; do
   grep -q '^Pi_delta = .*e6' "$g-free.toml" || { echo "sweeps.sh: error: no Pi_delta in $g.toml" >&2; exit 2; }
 done
 
-# run SPEC RANKS -> "cells runner_rate end_to_end_rate per_cpu_rate" (best of $repeat)
+# median and mean of the cells' own evaluation times in a cube [us] (stats/wall_s: the time of
+# each cell alone, so a rank descheduled between cells does not count)
+cell_times() {
+  /usr/bin/python3 - "$1" <<'PY'
+import sys, h5py, numpy as np
+with h5py.File(sys.argv[1], "r") as f:
+    (name,) = list(f["sweeps"])
+    w = f["sweeps"][name]["stats/wall_s"][()].ravel() * 1e6
+print(f"{np.median(w):.1f} {np.mean(w):.1f}")
+PY
+}
+
+# run SPEC RANKS -> "cells runner_rate end_to_end_rate per_cpu_rate median_us mean_us"
+# (each the best of $repeat runs)
 run() {
-  local spec=$1 n=$2 best_rate=0 best_e2e=0 best_cpu=0 cells=0
+  local spec=$1 n=$2 best_rate=0 best_e2e=0 best_cpu=0 best_med=1e30 best_mean=1e30 cells=0
   for _ in $(seq "$repeat"); do
-    local t0 t1 line cpu rate e2e per_cpu
+    local t0 t1 line cpu rate e2e per_cpu med mean
     t0=$(date +%s.%N)
     # /usr/bin/time counts the CPU of mpiexec and of every rank it waited for.
     /usr/bin/time -f "cpu %U %S" -o time.txt mpiexec -n "$n" --oversubscribe "$exe" sweep "$spec" \
@@ -94,19 +109,22 @@ run() {
     cpu=$(awk '/^cpu/ {print $2 + $3}' time.txt)
     e2e=$(awk -v c="$cells" -v a="$t0" -v b="$t1" 'BEGIN{printf "%.1f", c / (b - a)}')
     per_cpu=$(awk -v c="$cells" -v t="$cpu" 'BEGIN{printf "%.1f", (t > 0 ? c / t : 0)}')
+    read -r med mean < <(cell_times out.h5)
     best_rate=$(awk -v x="$rate" -v y="$best_rate" 'BEGIN{print (x > y ? x : y)}')
     best_e2e=$(awk -v x="$e2e" -v y="$best_e2e" 'BEGIN{print (x > y ? x : y)}')
     best_cpu=$(awk -v x="$per_cpu" -v y="$best_cpu" 'BEGIN{print (x > y ? x : y)}')
+    best_med=$(awk -v x="$med" -v y="$best_med" 'BEGIN{print (x < y ? x : y)}')
+    best_mean=$(awk -v x="$mean" -v y="$best_mean" 'BEGIN{print (x < y ? x : y)}')
   done
-  echo "$cells $best_rate $best_e2e $best_cpu"
+  echo "$cells $best_rate $best_e2e $best_cpu $best_med $best_mean"
 }
 
 k() { awk -v x="$1" 'BEGIN{ if (x >= 10000) printf "%.1fk", x / 1000; else printf "%.0f", x }'; }
 
 echo "Sweeps measured $(date -u +%Y-%m-%dT%H:%MZ), commit $(git -C "$here" rev-parse --short HEAD 2>/dev/null || echo '?'), $(nproc) cores, load $(cut -d' ' -f1 /proc/loadavg), best of $repeat."
 echo
-echo "| grid | cells | ranks | cells/s | end to end | per CPU s, end to end | contact-free twin cells/s | with contact / twin (time per cell) |"
-echo "|---|---|---|---|---|---|---|---|"
+echo "| grid | cells | ranks | cells/s | end to end | per CPU s, end to end | cell median / mean [us] | twin cells/s | twin cell median / mean [us] | with contact / twin (median, mean) |"
+echo "|---|---|---|---|---|---|---|---|---|---|"
 for g in default c2 pilot multispan; do
   case $g in
     default) label="default spec" ;;
@@ -115,10 +133,10 @@ for g in default c2 pilot multispan; do
     multispan) label="multi-span (1-5 spans)" ;;
   esac
   for n in 1 2; do
-    read -r cells rate e2e cpu < <(run "$g.toml" "$n")
-    read -r _ frate _ _ < <(run "$g-free.toml" "$n")
-    ratio=$(awk -v a="$rate" -v b="$frate" 'BEGIN{printf "%.2f", b / a}')
-    echo "| $label | $cells | $n | $(k "$rate") | $(k "$e2e") | $(k "$cpu") | $(k "$frate") | ${ratio}x |"
+    read -r cells rate e2e cpu med mean < <(run "$g.toml" "$n")
+    read -r _ frate _ _ fmed fmean < <(run "$g-free.toml" "$n")
+    ratios=$(awk -v a="$med" -v b="$fmed" -v c="$mean" -v d="$fmean" 'BEGIN{printf "%.2fx, %.2fx", a / b, c / d}')
+    echo "| $label | $cells | $n | $(k "$rate") | $(k "$e2e") | $(k "$cpu") | $med / $mean | $(k "$frate") | $fmed / $fmean | $ratios |"
   done
 done
 
