@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Wall and CPU time of the pilot study on 2 ranks (issue: "the whole study under 1 s on 2
-# ranks, same bytes"), and, given a second program, whether both write the same cube.
+# Wall and CPU time of the pilot study on 2 ranks (the target: the whole study under 1 s on 2
+# ranks, same bytes), and, given a second program, whether both write the same cube.
 #
 #   bash scripts/bench/pilot-study.sh [BUILD_DIR] [--repeat N] [--against OTHER_SKEWBRIDGE]
 #
