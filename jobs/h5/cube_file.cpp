@@ -12,9 +12,6 @@
 namespace skewbridge::jobs::h5 {
 namespace {
 
-// Chunks hold whole rows along the last axis (w0/w_g in the canonical order, so a spectrum is
-// one contiguous read) and grow over the preceding axes up to about this many elements.
-constexpr hsize_t kChunkTargetElements = 8192;
 constexpr int kDeflateLevel = 4;
 
 std::string GroupPath(const std::string& sweep) { return "sweeps/" + sweep; }
@@ -25,17 +22,6 @@ std::vector<hsize_t> ShapeOf(const SweepSpec& spec) {
     shape.push_back(n);
   }
   return shape;
-}
-
-std::vector<hsize_t> ChunkOf(const std::vector<hsize_t>& shape) {
-  std::vector<hsize_t> chunk(shape.size(), 1);
-  hsize_t elements = 1;
-  for (std::size_t k = shape.size(); k-- > 0;) {
-    const hsize_t room = std::max<hsize_t>(1, kChunkTargetElements / elements);
-    chunk[k] = k + 1 == shape.size() ? shape[k] : std::min(shape[k], room);
-    elements *= chunk[k];
-  }
-  return chunk;
 }
 
 // The datasets of one sweep group, opened or created.
@@ -129,11 +115,12 @@ Datasets CreateLayout(const std::string& path, const SweepSpec& spec, const Cube
   }
 
   const std::vector<hsize_t> shape = ShapeOf(spec);
-  const std::vector<hsize_t> chunk = final ? ChunkOf(shape) : std::vector<hsize_t>{};
+  // Both files use the same chunks, each with a Fletcher-32 checksum; the checkpoint's are
+  // uncompressed and allocated at creation so that writes rewrite them in place.
   const int level = final ? kDeflateLevel : 0;
   auto make = [&](hid_t parent, const std::string& name, hid_t type, const void* fill,
                   const std::string& units, const std::string& description) {
-    Id ds = CreateDataset(parent, name, type, shape, chunk, level, fill);
+    Id ds = CreateDataset(parent, name, type, shape, {}, level, fill);
     SetAttr(ds.get(), "units", units);
     SetAttr(ds.get(), "description", description);
     for (std::size_t k = 0; k < scales.size(); ++k) {
@@ -360,11 +347,65 @@ void ReadData(const Datasets& d, CubeData& data) {
   ReadAll(d.wall_s.get(), H5T_NATIVE_DOUBLE, data.wall_s.data());
 }
 
+// Reads every dataset of a checkpoint into `data`, which verifies each chunk's Fletcher-32
+// checksum, and checks what a checksum cannot see (bytes rewritten through HDF5): a done cell
+// must carry a status of the table other than not-done and the number of a run that has
+// happened. Any failure refuses the resume naming the dataset and the cell.
+void ReadVerified(const std::string& file_name, const std::string& group_path, hid_t group,
+                  const CubeLayout& layout, CubeData& data) {
+  auto corrupted = [&](const std::string& dataset, const std::string& problem) {
+    return InputError::AtLine(file_name, 0,
+                              "cannot resume: dataset " + group_path + "/" + dataset +
+                                  " is corrupted (" + problem +
+                                  "); use --force to start over or a new output file");
+  };
+  auto read = [&](const std::string& dataset, hid_t mem_type, void* out) {
+    try {
+      ReadAll(OpenDataset(group, dataset).get(), mem_type, out);
+    } catch (const H5Error& e) {
+      throw corrupted(dataset, e.what());
+    }
+  };
+  for (std::size_t r = 0; r < layout.responses.size(); ++r) {
+    read("responses/" + layout.responses[r].name, H5T_NATIVE_DOUBLE, data.responses[r].data());
+  }
+  read("status", H5T_NATIVE_INT32, data.status.data());
+  read("done", H5T_NATIVE_UINT8, data.done.data());
+  read("stats/run", H5T_NATIVE_INT32, data.run.data());
+  read("stats/events", H5T_NATIVE_INT64, data.events.data());
+  read("stats/steps", H5T_NATIVE_INT64, data.steps.data());
+  read("stats/wall_s", H5T_NATIVE_DOUBLE, data.wall_s.data());
+  const std::int64_t runs = GetIntAttr(group, "runs");
+  for (std::uint64_t c = 0; c < data.Cells(); ++c) {
+    const std::string cell = "cell " + std::to_string(c);
+    if (data.done[c] > 1) {
+      throw corrupted("done", cell + " has flag " + std::to_string(data.done[c]) + ", not 0 or 1");
+    }
+    if (data.done[c] == 0) {
+      continue;
+    }
+    const std::int32_t status = data.status[c];
+    const bool known = status != kStatusNotDone &&
+                       std::any_of(layout.status_names.begin(), layout.status_names.end(),
+                                   [status](const auto& entry) { return entry.first == status; });
+    if (!known) {
+      throw corrupted("status", cell + " is done with status " + std::to_string(status) +
+                                    ", which is not a computed status of the table");
+    }
+    if (data.run[c] < 1 || data.run[c] > runs) {
+      throw corrupted("stats/run", cell + " is done but names run " + std::to_string(data.run[c]) +
+                                       " of " + std::to_string(runs) +
+                                       " (a done flag without data)");
+    }
+  }
+}
+
 // Checks, read-only, that a checkpoint holds every dataset this program would write into it,
 // with the axis order and shape of `spec`: a file from an older program version (one response
 // fewer, same spec hash) is refused before it is opened for writing, naming what is missing.
+// Then reads and verifies every cell into `data` (ReadVerified).
 void CheckResumable(const std::filesystem::path& path, const SweepSpec& spec,
-                    const CubeLayout& layout) {
+                    const CubeLayout& layout, CubeData& data) {
   const std::string file_name = path.string();
   auto refuse = [&](const std::string& problem) {
     return InputError::AtLine(file_name, 0,
@@ -429,6 +470,15 @@ void CheckResumable(const std::filesystem::path& path, const SweepSpec& spec,
   if (GetStringListAttr(g.get(), "response_order") != expected) {
     throw refuse("its responses differ from this program's evaluator");
   }
+  data.Reset(spec.CellCount(), layout.responses.size());
+  ReadVerified(file_name, group_path, g.get(), layout, data);
+  try {
+    ReadAllMetadata(file.get());
+  } catch (const H5Error& e) {
+    throw InputError::AtLine(file_name, 0,
+                             std::string("cannot resume: its metadata is corrupted (") + e.what() +
+                                 "); use --force to start over or a new output file");
+  }
 }
 
 }  // namespace
@@ -456,13 +506,12 @@ CheckpointFile CheckpointFile::Create(const std::filesystem::path& path, const S
 CheckpointFile CheckpointFile::Resume(const std::filesystem::path& path, const SweepSpec& spec,
                                       const CubeLayout& layout, CubeData& data) {
   // Everything is checked read-only first: a refused file is left byte for byte as it was.
-  CheckResumable(path, spec, layout);
+  CheckResumable(path, spec, layout, data);
   auto impl = std::make_unique<Impl>();
   std::vector<std::string> names;
   impl->d = OpenLayout(path.string(), spec.name, true, &names);
   const hid_t g = impl->d.group.get();
   SB_DEMAND(names.size() == layout.responses.size(), "checked response order changed");
-  ReadData(impl->d, data);
   // Bytes of cells without a done flag may be half-written: forget them.
   for (std::uint64_t c = 0; c < data.Cells(); ++c) {
     if (data.done[c] == 0) {

@@ -24,9 +24,10 @@ inline constexpr const char* kCubeFormat = "skewbridge-cube";
 /// The version stored in the root attribute "format_version".
 inline constexpr std::int64_t kCubeFormatVersion = 1;
 
-/// The checkpoint file of a running sweep: uncompressed, contiguous, every dataset allocated
-/// at creation, so that after creation only raw bytes change and a process killed at any
-/// moment leaves a readable file whose done mask never covers missing data.
+/// The checkpoint file of a running sweep: uncompressed chunks with Fletcher-32 checksums,
+/// every chunk allocated at creation, so that after creation only raw bytes change in place
+/// and a process killed at any moment leaves a readable file whose done mask never covers
+/// missing data.
 class CheckpointFile {
  public:
   /// Creates (truncating) the file with all metadata, axes and fill values, and flushes it.
@@ -36,9 +37,12 @@ class CheckpointFile {
   /// Opens an existing checkpoint for resume, refusing a different specification, reads
   /// its cells into `data` (not-done cells reset to fill values) and starts run number
   /// runs + 1. Every refusal is decided read-only, so a refused file is left unchanged.
-  /// @throws InputError for a foreign file, a different spec hash or axis order, or a missing
+  /// Every dataset is read through its Fletcher-32 checksum, and every done cell must carry a
+  /// status of the layout's table and the number of a past run.
+  /// @throws InputError for a foreign file, a different spec hash or axis order, a missing
   /// or differently shaped dataset of `layout` (e.g. responses/band in a file of an older
-  /// program version), naming the file and the dataset.
+  /// program version), a chunk failing its checksum, or a done cell without computed data
+  /// (corruption), naming the file and the dataset.
   static CheckpointFile Resume(const std::filesystem::path& path, const SweepSpec& spec,
                                const CubeLayout& layout, CubeData& data);
 
@@ -62,7 +66,8 @@ class CheckpointFile {
   std::unique_ptr<Impl> impl_;
 };
 
-/// Writes the final cube: chunked (contiguous along the last axis), shuffle + deflate, the
+/// Writes the final cube: chunked (contiguous along the last axis), shuffle + deflate +
+/// Fletcher-32 checksum, the
 /// attribute complete = 1 written last. Writes path + ".tmp" and renames it to path.
 /// examples: one message per failure status (status -> "cell N: text"), stored as the sweep
 /// group's attribute status_examples, aligned with the status dataset's status_codes.

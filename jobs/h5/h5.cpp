@@ -4,22 +4,57 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cstring>
 
 namespace skewbridge::jobs::h5 {
 
 static_assert(sizeof(hid_t) == sizeof(std::int64_t), "hid_t is 64-bit since HDF5 1.10");
 
+namespace {
+
+// Collects the descriptions of the current error stack, most specific first.
+herr_t CollectError(unsigned /*n*/, const H5E_error2_t* err, void* client) {
+  if (err != nullptr && err->desc != nullptr) {
+    static_cast<std::vector<std::string>*>(client)->emplace_back(err->desc);
+  }
+  return 0;
+}
+
+}  // namespace
+
+std::string ErrorReason() {
+  std::vector<std::string> descs;
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, CollectError, &descs);
+  H5Eclear2(H5E_DEFAULT);
+  // The file drivers put the system's reason into the most specific entry as
+  // "..., errno = 28, error message = 'No space left on device', ...": keep only that text.
+  for (const std::string& d : descs) {
+    const std::size_t at = d.find("error message = '");
+    if (at != std::string::npos) {
+      const std::size_t begin = at + 17;
+      const std::size_t end = d.find('\'', begin);
+      return d.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
+    }
+  }
+  for (const std::string& d : descs) {
+    if (d.find("Fletcher32") != std::string::npos) {
+      return "Fletcher-32 checksum mismatch";
+    }
+  }
+  return descs.empty() ? std::string("HDF5 call failed") : descs.front();
+}
+
 herr_t Check(herr_t status, std::string_view what) {
   if (status < 0) {
-    throw H5Error(std::string(what) + ": HDF5 call failed");
+    throw H5Error(std::string(what) + ": " + ErrorReason());
   }
   return status;
 }
 
 hid_t CheckId(hid_t id, std::string_view what) {
   if (id < 0) {
-    throw H5Error(std::string(what) + ": HDF5 call failed");
+    throw H5Error(std::string(what) + ": " + ErrorReason());
   }
   return id;
 }
@@ -49,13 +84,32 @@ namespace {
 // Without file locks: the single writer of a cube holds no lock, so that readers (inspect,
 // h5py, a progress check) can open FILE.partial while the sweep runs; the checkpoint file is
 // safe to read at any moment because after creation only raw bytes change.
+// The 1.8 object format puts a checksum on the superblock, every object header and the
+// attribute heaps, so a damaged byte of metadata is found on open as well.
 Id UnlockedAccess() {
   Id fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "H5Pcreate(file access)");
   Check(H5Pset_file_locking(fapl.get(), false, true), "H5Pset_file_locking");
+  Check(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V18, H5F_LIBVER_LATEST),
+        "H5Pset_libver_bounds");
   return fapl;
 }
 
+// Chunks hold whole rows along the last axis and grow over the preceding axes up to about
+// this many elements (a spectrum is one contiguous read).
+constexpr hsize_t kChunkTargetElements = 8192;
+
 }  // namespace
+
+std::vector<hsize_t> DefaultChunk(std::span<const hsize_t> shape) {
+  std::vector<hsize_t> chunk(shape.size(), 1);
+  hsize_t elements = 1;
+  for (std::size_t k = shape.size(); k-- > 0;) {
+    const hsize_t room = std::max<hsize_t>(1, kChunkTargetElements / elements);
+    chunk[k] = k + 1 == shape.size() ? shape[k] : std::min(shape[k], room);
+    elements *= chunk[k];
+  }
+  return chunk;
+}
 
 Id CreateFile(const std::string& path) {
   SilenceErrorStack();
@@ -119,17 +173,29 @@ Id CreateDataset(hid_t parent, const std::string& name, hid_t type, std::span<co
                  std::span<const hsize_t> chunk, int deflate_level, const void* fill) {
   Id space = Dataspace(shape);
   Id dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "H5Pcreate(dataset) " + name);
-  if (chunk.empty()) {
+  const bool empty = shape.empty() || std::find(shape.begin(), shape.end(), 0) != shape.end();
+  // HDF5 filters no variable-length data (the strings live in the global heap).
+  const bool variable = Check(H5Tis_variable_str(type), "H5Tis_variable_str " + name) > 0;
+  if (empty || variable) {
+    // Nothing to checksum, or nothing HDF5 can checksum; it cannot chunk an extent of zero.
     Check(H5Pset_layout(dcpl.get(), H5D_CONTIGUOUS), "H5Pset_layout " + name);
-    Check(H5Pset_alloc_time(dcpl.get(), H5D_ALLOC_TIME_EARLY), "H5Pset_alloc_time " + name);
   } else {
-    Check(H5Pset_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()),
+    const std::vector<hsize_t> chunks =
+        chunk.empty() ? DefaultChunk(shape) : std::vector<hsize_t>(chunk.begin(), chunk.end());
+    Check(H5Pset_chunk(dcpl.get(), static_cast<int>(chunks.size()), chunks.data()),
           "H5Pset_chunk " + name);
     if (deflate_level > 0) {
       Check(H5Pset_shuffle(dcpl.get()), "H5Pset_shuffle " + name);
       Check(H5Pset_deflate(dcpl.get(), static_cast<unsigned>(deflate_level)),
             "H5Pset_deflate " + name);
+    } else {
+      // Every chunk is placed (with its fill) at creation; later writes rewrite chunks of the
+      // same size in place, so the file neither grows nor moves metadata while a sweep runs.
+      Check(H5Pset_alloc_time(dcpl.get(), H5D_ALLOC_TIME_EARLY), "H5Pset_alloc_time " + name);
     }
+    // Last in the pipeline: the checksum covers the bytes as stored, and H5Dread fails on a
+    // chunk whose bytes changed.
+    Check(H5Pset_fletcher32(dcpl.get()), "H5Pset_fletcher32 " + name);
   }
   if (fill != nullptr) {
     Check(H5Pset_fill_value(dcpl.get(), type, fill), "H5Pset_fill_value " + name);
@@ -345,6 +411,16 @@ void SetAttr(hid_t obj, const std::string& name, const std::string& value) {
 }
 
 void SetAttr(hid_t obj, const std::string& name, std::int64_t value) {
+  // An existing integer attribute is rewritten in place (a resume's run counter), which
+  // touches no attribute index of the object.
+  if (Check(H5Aexists(obj, name.c_str()), "H5Aexists " + name) > 0) {
+    Id old = OpenAttr(obj, name);
+    Id type(H5Aget_type(old.get()), H5Tclose, "H5Aget_type " + name);
+    if (H5Tget_class(type.get()) == H5T_INTEGER && AttrCount(old.get()) == 1) {
+      Check(H5Awrite(old.get(), H5T_NATIVE_INT64, &value), "write attribute " + name);
+      return;
+    }
+  }
   Id attr = CreateAttr(obj, name, H5T_STD_I64LE, Scalar().get());
   Check(H5Awrite(attr.get(), H5T_NATIVE_INT64, &value), "write attribute " + name);
 }
@@ -421,12 +497,45 @@ void AttachScale(hid_t dataset, hid_t scale, unsigned dim, const std::string& la
   Check(H5DSset_label(dataset, dim, label.c_str()), "H5DSset_label " + label);
 }
 
+namespace {
+
+// Reads every attribute of one object (the attribute heaps and indexes of the 1.8 format are
+// checksummed, so damage shows here rather than when a writer first touches them).
+herr_t ReadAttribute(hid_t obj, const char* name, const H5A_info_t* /*info*/, void* /*data*/) {
+  Id attr = OpenAttr(obj, name);
+  Id file_type(H5Aget_type(attr.get()), H5Tclose, std::string("H5Aget_type ") + name);
+  Id type(H5Tget_native_type(file_type.get(), H5T_DIR_ASCEND), H5Tclose,
+          std::string("H5Tget_native_type ") + name);
+  Id space(H5Aget_space(attr.get()), H5Sclose, std::string("H5Aget_space ") + name);
+  const std::size_t n = std::max<std::size_t>(1, AttrCount(attr.get()));
+  std::vector<unsigned char> buffer(n * H5Tget_size(type.get()));
+  Check(H5Aread(attr.get(), type.get(), buffer.data()), std::string("read attribute ") + name);
+  if (H5Tdetect_class(type.get(), H5T_VLEN) > 0 || H5Tis_variable_str(type.get()) > 0) {
+    H5Dvlen_reclaim(type.get(), space.get(), H5P_DEFAULT, buffer.data());
+  }
+  return 0;
+}
+
+herr_t ReadObjectAttributes(hid_t root, const char* name, const H5O_info_t* /*info*/,
+                            void* /*data*/) {
+  Id obj(H5Oopen(root, name, H5P_DEFAULT), H5Oclose, std::string("open object ") + name);
+  hsize_t at = 0;
+  return H5Aiterate2(obj.get(), H5_INDEX_NAME, H5_ITER_INC, &at, ReadAttribute, nullptr);
+}
+
+}  // namespace
+
+void ReadAllMetadata(hid_t file) {
+  Check(H5Ovisit2(file, H5_INDEX_NAME, H5_ITER_INC, ReadObjectAttributes, nullptr, H5O_INFO_BASIC),
+        "H5Ovisit (every object and attribute)");
+}
+
 void FlushToDisk(hid_t file) {
   Check(H5Fflush(file, H5F_SCOPE_GLOBAL), "H5Fflush");
   void* handle = nullptr;
   Check(H5Fget_vfd_handle(file, H5P_DEFAULT, &handle), "H5Fget_vfd_handle");
   if (handle != nullptr && ::fsync(*static_cast<int*>(handle)) != 0) {
-    throw H5Error("fsync of the HDF5 file failed");
+    throw H5Error(std::string("fsync: ") + std::strerror(errno));
   }
 }
 

@@ -15,7 +15,11 @@
 
 namespace skewbridge::jobs::h5 {
 
-/// Throws H5Error("what: HDF5 call failed") when status < 0; returns status otherwise.
+/// The reason of the last failed HDF5 call, from the library's error stack (which it clears):
+/// the system's errno text when a file driver failed (e.g. "No space left on device"), a
+/// checksum mismatch, or the most specific description.
+std::string ErrorReason();
+/// Throws H5Error("what: reason") when status < 0; returns status otherwise.
 herr_t Check(herr_t status, std::string_view what);
 /// Throws when id < 0 (an invalid identifier); returns id otherwise.
 hid_t CheckId(hid_t id, std::string_view what);
@@ -63,8 +67,13 @@ Id Dataspace(std::span<const hsize_t> shape);
 /// A variable-length UTF-8 string type.
 Id StringType();
 
-/// Creates a dataset; chunk empty = contiguous layout with early allocation (raw writes only
-/// after creation), otherwise chunked with shuffle + deflate(level). fill may be nullptr.
+/// Chunks of about 8192 elements holding whole rows along the last axis.
+std::vector<hsize_t> DefaultChunk(std::span<const hsize_t> shape);
+/// Creates a dataset, chunked (DefaultChunk when chunk is empty) with the Fletcher-32 checksum
+/// that H5Dread verifies: deflate_level > 0 adds shuffle + deflate(level); deflate_level 0
+/// allocates every chunk at creation (later writes only rewrite chunks in place). A dataset
+/// with an extent of zero or of variable-length strings (which HDF5 cannot filter) is
+/// contiguous, without checksum. fill may be nullptr.
 Id CreateDataset(hid_t parent, const std::string& name, hid_t type, std::span<const hsize_t> shape,
                  std::span<const hsize_t> chunk, int deflate_level, const void* fill);
 /// Opens a dataset. @throws H5Error when absent.
@@ -109,6 +118,11 @@ bool HasAttr(hid_t obj, const std::string& name);
 void AttachScale(hid_t dataset, hid_t scale, unsigned dim, const std::string& label);
 /// Marks a dataset as a dimension scale.
 void SetScale(hid_t scale, const std::string& name);
+
+/// Opens every object of a file and reads every attribute, so that damaged metadata (whose
+/// checksums HDF5 verifies on read) is found before a file is opened for writing.
+/// @throws H5Error naming the failure.
+void ReadAllMetadata(hid_t file);
 
 /// H5Fflush, then fsync of the file descriptor, so the bytes survive a crash of the process
 /// and of the machine.
