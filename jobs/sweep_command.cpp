@@ -1,18 +1,45 @@
 #include "jobs/sweep_command.h"
 
+#include <cstdio>
 #include <exception>
+#include <limits>
+#include <optional>
+#include <string>
 
 #include "jobs/mpi/mpi_transport.h"
+#include "jobs/output_lock.h"
 #include "jobs/stop_signal.h"
 #include "solver/common/error.h"
 
 namespace skewbridge::jobs {
+namespace {
+
+// Refuses a grid larger than the limit before anything is allocated or evaluated for it.
+void CheckCellCount(const SweepSpec& spec, std::uint64_t max_cells) {
+  const std::uint64_t cells = spec.CellCount();
+  if (cells <= max_cells) {
+    return;
+  }
+  std::string shape;
+  for (const Axis& axis : spec.axes) {
+    shape += (shape.empty() ? "" : " x ") + std::to_string(axis.Size());
+  }
+  const std::string count = cells == std::numeric_limits<std::uint64_t>::max()
+                                ? "more than 1.8e19"
+                                : std::to_string(cells);
+  throw InputError::AtLine(spec.source, 0,
+                           "the grid has " + count + " cells (" + shape + "), more than " +
+                               "--max-cells " + std::to_string(max_cells) +
+                               "; use fewer axis values or raise --max-cells");
+}
+
+}  // namespace
 
 void AddSweepArguments(CLI::App& cmd, SweepCommandArgs& args) {
   cmd.add_option("spec", args.spec_file, "Sweep specification (TOML, docs/sweep-format.md)")
       ->required();
   cmd.add_option("--out,-o", args.options.out,
-                 "Output cube FILE.h5 (checkpoints in FILE.h5.partial)")
+                 "Output cube FILE.h5 (checkpoints in FILE.h5.partial, lock in FILE.h5.lock)")
       ->required();
   cmd.add_flag("--resume", args.options.resume,
                "Continue FILE.h5.partial, recomputing only missing cells");
@@ -25,15 +52,51 @@ void AddSweepArguments(CLI::App& cmd, SweepCommandArgs& args) {
   cmd.add_option("--checkpoint-cells", args.options.checkpoint_cells,
                  "Also write them every this many cells (0 = off)")
       ->capture_default_str();
+  cmd.add_option("--max-cells", args.max_cells,
+                 "Refuse a grid of more cells than this before any work")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
 }
 
 int RunSweepCommand(const SweepCommandArgs& args, const EvaluatorFactory& factory,
                     const std::function<void(const std::string&)>& log) {
   MpiSession mpi;
   const bool root = mpi.Rank() == 0;
+  // The rank that found the problem prints it and flushes before any rank leaves, then all
+  // return 2 through MPI_Finalize: no MPI_Abort, whose teardown could swallow the line.
+  auto report = [&](const std::string& message, bool reporter) {
+    if (reporter) {
+      log("skewbridge: error: " + message);
+      std::fflush(stderr);
+    }
+    mpi.Barrier();
+    return 2;
+  };
+
+  // Everything that can be checked before the first cell, on every rank; the ranks agree.
+  std::optional<SweepSpec> spec;
+  std::unique_ptr<CellEvaluator> evaluator;
+  std::optional<OutputLock> lock;
+  std::string problem;
   try {
-    const SweepSpec spec = LoadSweepSpec(args.spec_file);
-    const std::unique_ptr<CellEvaluator> evaluator = factory(spec);
+    if (root) {
+      CheckOutputPath(args.options.out);
+    }
+    spec.emplace(LoadSweepSpec(args.spec_file));
+    CheckCellCount(*spec, args.max_cells);
+    if (root) {
+      lock.emplace(args.options.out);  // held until the run has ended
+    }
+    evaluator = factory(*spec);
+  } catch (const InputError& e) {
+    problem = e.what();
+  }
+  const int first = mpi.FirstRankWith(!problem.empty());
+  if (first < mpi.Size()) {
+    return report(problem, mpi.Rank() == first);
+  }
+
+  try {
     StopSignal stop;
     SweepOptions options = args.options;
     options.stop = stop.Flag();
@@ -42,23 +105,25 @@ int RunSweepCommand(const SweepCommandArgs& args, const EvaluatorFactory& factor
     }
     const std::unique_ptr<Transport> transport =
         mpi.Size() == 1 ? MakeInProcessTransport() : MakeMpiTransport();
-    const SweepReport report = RunSweep(spec, *evaluator, *transport, options);
+    const SweepReport sweep = RunSweep(*spec, *evaluator, *transport, options);
     if (root) {
-      log(FormatSummary(report));
+      log(FormatSummary(sweep));
     }
-    if (stop.Received() != 0 && !report.complete) {
+    if (stop.Received() != 0 && !sweep.complete) {
       return 128 + stop.Received();
     }
     // Only rank 0 knows whether the cube is complete; mpiexec reports its status.
-    return report.complete || !root ? 0 : 3;
-  } catch (const InputError&) {
-    if (root) {
-      throw;
-    }
-    return 2;
+    return sweep.complete || !root ? 0 : 3;
+  } catch (const InputError& e) {
+    // RunSweep's setup errors are shared by broadcast, so every rank is here.
+    return report(e.what(), root);
   } catch (const std::exception& e) {
-    // Past setup, a failure on one rank would leave the others waiting: end them all.
     log(std::string("skewbridge: error: ") + e.what());
+    std::fflush(stderr);
+    if (mpi.Size() == 1) {
+      return 1;  // nobody waits for this process: a clean exit, no abort
+    }
+    // Past setup, a failure on one rank would leave the others waiting: end them all.
     AbortAll(1);
     return 1;
   }

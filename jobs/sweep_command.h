@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -20,23 +21,28 @@ struct SweepCommandArgs {
   std::string spec_file;  ///< SPEC.toml
   SweepOptions options;   ///< out, resume, force, checkpoint_seconds, checkpoint_cells
   bool quiet = false;     ///< No progress lines (the summary line is still printed).
+  /// Refuse a grid of more cells than this before any work (--max-cells).
+  std::uint64_t max_cells = 100'000'000;
 };
 
 /// Builds the evaluator of a specification (MakeEvaluator in the program, a test evaluator in
 /// the tests). @throws InputError for a specification it cannot evaluate.
 using EvaluatorFactory = std::function<std::unique_ptr<CellEvaluator>(const SweepSpec&)>;
 
-/// Declares SPEC, --out, --resume, --force, --quiet, --checkpoint-seconds, --checkpoint-cells
-/// on `cmd`, storing into `args`.
+/// Declares SPEC, --out, --resume, --force, --quiet, --checkpoint-seconds, --checkpoint-cells,
+/// --max-cells on `cmd`, storing into `args`.
 void AddSweepArguments(CLI::App& cmd, SweepCommandArgs& args);
 
-/// Runs the command: MPI_Init (only here), parse the specification on every rank, build the
-/// evaluator, catch SIGTERM/SIGINT as a stop request, run the sweep, MPI_Finalize. Rank 0
-/// passes progress lines and the final summary to `log`.
-/// @returns 0 when the cube is complete, 128 + signal when stopped by a signal (the partial
-///          file stays resumable), 3 when cells are missing for another reason; 2 on ranks
-///          other than 0 for bad input.
-/// @throws InputError on rank 0 for bad input (before any work).
+/// Runs the command: MPI_Init (only here); on every rank, before any work, the output path
+/// (rank 0), the specification, the cell count against max_cells, the writer lock on
+/// FILE.lock (rank 0, held for the whole run) and the evaluator; then catches SIGTERM/SIGINT
+/// as a stop request, runs the sweep, MPI_Finalize. Rank 0 passes progress lines and the
+/// final summary to `log`. Bad input is passed to `log` once, as "skewbridge: error: ...",
+/// by the lowest rank that found it, before any rank returns.
+/// @returns 0 when the cube is complete, 2 on every rank for bad input (nothing computed),
+///          128 + signal when stopped by a signal (the partial file stays resumable), 3 when
+///          cells are missing for another reason, 1 for a failure while running (an I/O
+///          error: one line, then MPI_Abort when other ranks are running).
 int RunSweepCommand(const SweepCommandArgs& args, const EvaluatorFactory& factory,
                     const std::function<void(const std::string&)>& log);
 

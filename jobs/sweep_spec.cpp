@@ -494,9 +494,14 @@ std::vector<std::size_t> SweepSpec::Shape() const {
 }
 
 std::uint64_t SweepSpec::CellCount() const {
+  // Saturates instead of wrapping, so that a product beyond 2^64 is still refused as too large.
   std::uint64_t n = 1;
   for (const Axis& axis : axes) {
-    n *= axis.Size();
+    const std::uint64_t size = axis.Size();
+    if (size != 0 && n > std::numeric_limits<std::uint64_t>::max() / size) {
+      return std::numeric_limits<std::uint64_t>::max();
+    }
+    n *= size;
   }
   return n;
 }

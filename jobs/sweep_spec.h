@@ -87,7 +87,7 @@ struct SweepSpec {
 
   /// The number of coordinates per axis, in axis order.
   std::vector<std::size_t> Shape() const;
-  /// Product of the axis sizes (1 for a sweep without axes).
+  /// Product of the axis sizes (1 for a sweep without axes), UINT64_MAX when it overflows.
   std::uint64_t CellCount() const;
   /// Axis indices of the cell with row-major linear index `cell` (last axis fastest).
   /// @pre cell < CellCount()

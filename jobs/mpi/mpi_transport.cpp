@@ -226,6 +226,15 @@ int MpiSession::Size() const {
   return size;
 }
 
+int MpiSession::FirstRankWith(bool flag) const {
+  const int mine = flag ? Rank() : Size();
+  int first = mine;
+  CheckMpi(MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD), "MPI_Allreduce");
+  return first;
+}
+
+void MpiSession::Barrier() const { CheckMpi(MPI_Barrier(MPI_COMM_WORLD), "MPI_Barrier"); }
+
 void AbortAll(int code) { MPI_Abort(MPI_COMM_WORLD, code); }
 
 std::unique_ptr<Transport> MakeMpiTransport() { return std::make_unique<MpiTransport>(); }

@@ -21,6 +21,11 @@ class MpiSession {
   int Rank() const;
   /// The size of MPI_COMM_WORLD.
   int Size() const;
+  /// Collective: the lowest rank whose `flag` is true, or Size() when none is (how the ranks
+  /// agree, without MPI_Abort, that one of them found bad input and which one reports it).
+  int FirstRankWith(bool flag) const;
+  /// Collective: returns once every rank has called it.
+  void Barrier() const;
 };
 
 /// Ends every rank (MPI_Abort): for a failure after setup that would leave the others waiting.
