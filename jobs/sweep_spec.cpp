@@ -119,7 +119,14 @@ class Parser {
     }
     if (const toml::table* axes = root["axes"].as_table()) {
       for (auto&& [key, node] : *axes) {
-        spec.axes.push_back(ParseAxis(std::string(key.str()), key.source(), node));
+        Axis axis = ParseAxis(std::string(key.str()), key.source(), node);
+        // A key and its symbol (w0_over_wg and "w0/w_g") name one parameter: TOML sees two.
+        if (spec.FindAxis(axis.key) != nullptr) {
+          throw Error(key.source(), "axes." + std::string(key.str()),
+                      "names the parameter " + axis.key + " a second time (a key and its " +
+                          "symbol are the same parameter); give it once");
+        }
+        spec.axes.push_back(std::move(axis));
       }
     }
     if (spec.axes.empty()) {
@@ -128,7 +135,13 @@ class Parser {
     }
     if (const toml::table* fixed = root["fixed"].as_table()) {
       for (auto&& [key, node] : *fixed) {
-        spec.fixed.push_back(ParseFixed(std::string(key.str()), key.source(), node, spec));
+        FixedValue value = ParseFixed(std::string(key.str()), key.source(), node, spec);
+        if (spec.FindFixed(value.key) != nullptr) {
+          throw Error(key.source(), "fixed." + std::string(key.str()),
+                      "names the parameter " + value.key + " a second time (a key and its " +
+                          "symbol are the same parameter); give it once");
+        }
+        spec.fixed.push_back(std::move(value));
       }
     }
     CheckCrossFields(spec);

@@ -120,6 +120,17 @@ RecordSet LoadRecordSet(const std::filesystem::path& manifest) {
       }
       entry.options.channel = static_cast<int>(*value);
     }
+    // A record axis names records by label: two records of one label would make the label
+    // bind to whichever the lookup meets first.
+    const std::string label = RecordLabel(entry);
+    for (const RecordEntry& earlier : set.records) {
+      if (RecordLabel(earlier) == label) {
+        throw InputError::AtField(Where(manifest, entry.line), "label",
+                                  "duplicate record label '" + label +
+                                      "' (also the record of line " + std::to_string(earlier.line) +
+                                      "); give each record its own label");
+      }
+    }
     set.records.push_back(std::move(entry));
   }
   return set;

@@ -42,7 +42,8 @@ struct RecordSet {
 
 /// Reads a record-set manifest (TOML).
 /// @throws InputError "MANIFEST:LINE: problem" for a syntax error, an unknown key, a missing or
-/// mistyped field, a non-positive scale or dt, unknown units or format, or no [[record]].
+/// mistyped field, a non-positive scale or dt, unknown units or format, no [[record]], or two
+/// records of one label (given or defaulted to the file name).
 RecordSet LoadRecordSet(const std::filesystem::path& manifest);
 
 /// Reads one entry: ReadRecord with the entry's options, then scale, label and component.

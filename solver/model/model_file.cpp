@@ -487,6 +487,49 @@ void ReadRun(Section& s, RunControl& run) {
       "simultaneity_tol_s, method, time_step_s, max_steps, linear_algebra");
 }
 
+// The longest run accepted [s]: event times keep a resolution of 1.2e-10 s up to here (one ulp
+// of 1e6), below the default simultaneity tolerance of 1e-9 s; beyond, a run length is a unit
+// error or an overflow (a pulse period of 1e308 s).
+constexpr double kMaxEndTime_s = 1e6;
+// The most history samples a run may store (3 DOFs, positions and velocities: 0.5 GB).
+constexpr double kMaxHistorySamples = 1e7;
+
+// Counts, in floating point so that nothing overflows, what a run asks for before it starts:
+// its length, its history samples and (time-stepping) its steps. A sampled excitation read
+// from a file has no known duration here; its run is counted when the file is read.
+void CheckRunLength(const ExcitationSpec& excitation, const RunControl& run,
+                    std::string_view source) {
+  const std::optional<double> duration = excitation.Duration();
+  if (!run.end_time_s && !duration) {
+    return;
+  }
+  const Where where{source, 0};
+  const double t_end = run.EndTime(duration.value_or(0.0));
+  const std::string field = run.end_time_s ? "run.end_time_s" : "excitation";
+  if (!std::isfinite(t_end) || !(t_end <= kMaxEndTime_s)) {
+    Fail(where, field,
+         "the run would end at t = " + detail::Show(t_end) +
+             " s (the excitation's duration plus run.tail_s, or run.end_time_s); allowed: a "
+             "finite end time up to 1e6 s");
+  }
+  if (run.output_interval_s > 0.0) {
+    const double samples = t_end / run.output_interval_s;
+    if (!(samples <= kMaxHistorySamples)) {
+      Fail(where, "run.output_interval_s",
+           "the run of " + detail::Show(t_end) + " s would store " + detail::Show(samples) +
+               " history samples; allowed at most 1e7 (a larger interval, or 0 for none)");
+    }
+  }
+  if (run.method == "time-stepping") {
+    const double steps = t_end / run.time_step_s;
+    if (!(steps <= static_cast<double>(run.max_steps))) {
+      Fail(where, "run.time_step_s",
+           "the run of " + detail::Show(t_end) + " s would take " + detail::Show(steps) +
+               " steps, more than run.max_steps = " + std::to_string(run.max_steps));
+    }
+  }
+}
+
 // The tables of a TOML array of tables ([[name]]), each with its line.
 std::vector<const toml::table*> ArrayOfTables(Section& top, std::string_view name) {
   std::vector<const toml::table*> tables;
@@ -681,6 +724,7 @@ ModelFile Parse(const toml::table& root, std::string_view source,
       ReadRun(s, run);
     }
     top.Finish("sections [[deck]], [[joint]], abutments, [[support]], excitation, run");
+    CheckRunLength(excitation, run, source);
     Model model = BuildMultiDeckModel(decks, std::string(source));
     return ModelFile{path, deck, std::move(model), excitation, run, std::move(decks)};
   }
@@ -705,6 +749,7 @@ ModelFile Parse(const toml::table& root, std::string_view source,
     ReadRun(s, run);
   }
   top.Finish("sections deck, substructure, abutments, excitation, run");
+  CheckRunLength(excitation, run, source);
   Model model = BuildDeckModel(deck, std::string(source));
   return ModelFile{path, deck, std::move(model), excitation, run, std::nullopt};
 }
