@@ -4,7 +4,10 @@
 #include <exception>
 #include <limits>
 #include <optional>
+#include <span>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "jobs/mpi/mpi_transport.h"
 #include "jobs/output_lock.h"
@@ -32,6 +35,41 @@ void CheckCellCount(const SweepSpec& spec, std::uint64_t max_cells) {
                                "--max-cells " + std::to_string(max_cells) +
                                "; use fewer axis values or raise --max-cells");
 }
+
+// Passes every call through and records whether the collective Finish has returned: a
+// failure after it (the final cube's write on rank 0) leaves no rank waiting, so it needs no
+// MPI_Abort.
+class FinishWatch final : public Transport {
+ public:
+  explicit FinishWatch(std::unique_ptr<Transport> inner) : inner_(std::move(inner)) {}
+  int Rank() const override { return inner_->Rank(); }
+  int Size() const override { return inner_->Size(); }
+  std::string BroadcastText(const std::string& text) override {
+    return inner_->BroadcastText(text);
+  }
+  void BroadcastPending(std::vector<std::uint64_t>& pending) override {
+    inner_->BroadcastPending(pending);
+  }
+  std::pair<std::uint64_t, std::uint64_t> Claim(std::uint64_t count) override {
+    return inner_->Claim(count);
+  }
+  void StopClaims() override { inner_->StopClaims(); }
+  void Send(std::span<const CellRecord> records, bool last) override {
+    inner_->Send(records, last);
+  }
+  bool Receive(std::vector<CellRecord>& out, double wait_s) override {
+    return inner_->Receive(out, wait_s);
+  }
+  void Finish() override {
+    inner_->Finish();
+    finished_ = true;
+  }
+  bool finished() const { return finished_; }
+
+ private:
+  std::unique_ptr<Transport> inner_;
+  bool finished_ = false;
+};
 
 }  // namespace
 
@@ -96,6 +134,7 @@ int RunSweepCommand(const SweepCommandArgs& args, const EvaluatorFactory& factor
     return report(problem, mpi.Rank() == first);
   }
 
+  std::unique_ptr<FinishWatch> transport;
   try {
     StopSignal stop;
     SweepOptions options = args.options;
@@ -103,8 +142,8 @@ int RunSweepCommand(const SweepCommandArgs& args, const EvaluatorFactory& factor
     if (root && !args.quiet) {
       options.progress = [&log](const SweepProgress& p) { log(FormatProgress(p)); };
     }
-    const std::unique_ptr<Transport> transport =
-        mpi.Size() == 1 ? MakeInProcessTransport() : MakeMpiTransport();
+    transport = std::make_unique<FinishWatch>(mpi.Size() == 1 ? MakeInProcessTransport()
+                                                              : MakeMpiTransport());
     const SweepReport sweep = RunSweep(*spec, *evaluator, *transport, options);
     if (root) {
       log(FormatSummary(sweep));
@@ -120,7 +159,7 @@ int RunSweepCommand(const SweepCommandArgs& args, const EvaluatorFactory& factor
   } catch (const std::exception& e) {
     log(std::string("skewbridge: error: ") + e.what());
     std::fflush(stderr);
-    if (mpi.Size() == 1) {
+    if (mpi.Size() == 1 || (transport != nullptr && transport->finished())) {
       return 1;  // nobody waits for this process: a clean exit, no abort
     }
     // Past setup, a failure on one rank would leave the others waiting: end them all.

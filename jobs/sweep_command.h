@@ -42,7 +42,8 @@ void AddSweepArguments(CLI::App& cmd, SweepCommandArgs& args);
 /// @returns 0 when the cube is complete, 2 on every rank for bad input (nothing computed),
 ///          128 + signal when stopped by a signal (the partial file stays resumable), 3 when
 ///          cells are missing for another reason, 1 for a failure while running (an I/O
-///          error: one line, then MPI_Abort when other ranks are running).
+///          error such as a full disk: one line naming the file and the system's reason, then
+///          MPI_Abort only while other ranks still compute; FILE.partial stays resumable).
 int RunSweepCommand(const SweepCommandArgs& args, const EvaluatorFactory& factory,
                     const std::function<void(const std::string&)>& log);
 

@@ -56,7 +56,9 @@ std::vector<Writable> DataOf(const Datasets& d, const CubeData& data) {
 Datasets CreateLayout(const std::string& path, const SweepSpec& spec, const CubeLayout& layout,
                       bool final, std::int32_t runs, const std::string& created_utc) {
   Datasets d;
-  d.file = CreateFile(path);
+  // Built in memory and written out whole (SaveFileImage): a full disk then fails in a plain
+  // write, which leaves no half-written file and no HDF5 file that cannot be closed.
+  d.file = CreateMemoryFile(path);
   SetAttr(d.file.get(), "format", std::string(kCubeFormat));
   SetAttr(d.file.get(), "format_version", kCubeFormatVersion);
   d.group = CreateGroup(d.file.get(), GroupPath(spec.name));
@@ -485,6 +487,7 @@ void CheckResumable(const std::filesystem::path& path, const SweepSpec& spec,
 
 struct CheckpointFile::Impl {
   Datasets d;
+  std::string path;
   std::int32_t run = 1;
   std::string created_utc;
 };
@@ -497,9 +500,13 @@ CheckpointFile::~CheckpointFile() = default;
 CheckpointFile CheckpointFile::Create(const std::filesystem::path& path, const SweepSpec& spec,
                                       const CubeLayout& layout) {
   auto impl = std::make_unique<Impl>();
+  impl->path = path.string();
   impl->created_utc = UtcNow();
-  impl->d = CreateLayout(path.string(), spec, layout, false, 1, impl->created_utc);
-  FlushToDisk(impl->d.file.get());
+  {
+    const Datasets image = CreateLayout(path.string(), spec, layout, false, 1, impl->created_utc);
+    SaveFileImage(image.file.get(), path.string());
+  }
+  impl->d = OpenLayout(path.string(), spec.name, true, nullptr);
   return CheckpointFile(std::move(impl));
 }
 
@@ -508,6 +515,7 @@ CheckpointFile CheckpointFile::Resume(const std::filesystem::path& path, const S
   // Everything is checked read-only first: a refused file is left byte for byte as it was.
   CheckResumable(path, spec, layout, data);
   auto impl = std::make_unique<Impl>();
+  impl->path = path.string();
   std::vector<std::string> names;
   impl->d = OpenLayout(path.string(), spec.name, true, &names);
   const hid_t g = impl->d.group.get();
@@ -534,12 +542,18 @@ void CheckpointFile::Write(const CubeData& data, std::span<const std::uint64_t> 
   if (cells.empty()) {
     return;
   }
-  for (const Writable& w : DataOf(impl_->d, data)) {
-    WriteCells(w.dataset, w.mem_type, w.size, w.data, cells);
+  // A failure leaves the file as the last complete checkpoint left it for the cells marked
+  // done there (their chunks are rewritten in place, their flags come after their data).
+  try {
+    for (const Writable& w : DataOf(impl_->d, data)) {
+      WriteCells(w.dataset, w.mem_type, w.size, w.data, cells);
+    }
+    FlushToDisk(impl_->d.file.get());
+    WriteCells(impl_->d.done.get(), H5T_NATIVE_UINT8, 1, data.done.data(), cells);
+    FlushToDisk(impl_->d.file.get());
+  } catch (const H5Error& e) {
+    throw H5Error(impl_->path + ": checkpoint: " + e.what());
   }
-  FlushToDisk(impl_->d.file.get());
-  WriteCells(impl_->d.done.get(), H5T_NATIVE_UINT8, 1, data.done.data(), cells);
-  FlushToDisk(impl_->d.file.get());
 }
 
 void CheckpointFile::Close() { impl_.reset(); }
@@ -549,7 +563,7 @@ void WriteFinalCube(const std::filesystem::path& path, const SweepSpec& spec,
                     const std::string& created_utc,
                     const std::map<std::int32_t, std::string>& examples, const StudyTables* study) {
   const std::filesystem::path tmp = path.string() + ".tmp";
-  {
+  try {
     Datasets d = CreateLayout(tmp.string(), spec, layout, true, runs, created_utc);
     for (const Writable& w : DataOf(d, data)) {
       WriteAll(w.dataset, w.mem_type, w.data);
@@ -566,7 +580,9 @@ void WriteFinalCube(const std::filesystem::path& path, const SweepSpec& spec,
         std::all_of(data.done.begin(), data.done.end(), [](std::uint8_t v) { return v != 0; });
     SetAttr(d.group.get(), "completed_utc", UtcNow());
     SetAttr(d.group.get(), "complete", static_cast<std::int64_t>(all_done ? 1 : 0));
-    FlushToDisk(d.file.get());
+    SaveFileImage(d.file.get(), tmp.string());
+  } catch (const H5Error& e) {
+    throw H5Error(tmp.string() + ": " + e.what());
   }
   std::error_code ec;
   std::filesystem::rename(tmp, path, ec);

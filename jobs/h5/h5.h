@@ -51,6 +51,9 @@ void SilenceErrorStack();
 
 /// A file created (truncating) or opened; @throws H5Error.
 Id CreateFile(const std::string& path);
+/// A file held in memory (HDF5's core driver, no backing store), to be written out whole by
+/// SaveFileImage; `name` is only a label. @throws H5Error.
+Id CreateMemoryFile(const std::string& name);
 /// Opens an existing file read-only or read-write; @throws H5Error when not an HDF5 file.
 Id OpenFile(const std::string& path, bool writable);
 /// Creates a group (intermediate groups too).
@@ -123,6 +126,13 @@ void SetScale(hid_t scale, const std::string& name);
 /// checksums HDF5 verifies on read) is found before a file is opened for writing.
 /// @throws H5Error naming the failure.
 void ReadAllMetadata(hid_t file);
+
+/// Writes the bytes of a file built in memory (CreateMemoryFile) to `path` with plain writes,
+/// then fsync. A failure (a full disk) removes what was written and throws H5Error naming the
+/// system call and the system's reason (the caller adds the path); HDF5 itself never meets the
+/// failing write, since a failed flush leaves its metadata cache unable to close the file (and its
+/// shutdown then crashes).
+void SaveFileImage(hid_t file, const std::string& path);
 
 /// H5Fflush, then fsync of the file descriptor, so the bytes survive a crash of the process
 /// and of the machine.
