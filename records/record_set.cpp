@@ -93,6 +93,10 @@ RecordSet LoadRecordSet(const std::filesystem::path& manifest) {
     entry.label = RequireString(*table, "label", manifest, false);
     entry.component = RequireString(*table, "component", manifest, false);
     entry.scale = PositiveNumber(*table, "scale", manifest).value_or(1.0);
+    if (!(entry.scale <= 1e6)) {  // beyond, accelerations overflow into unit errors
+      throw InputError::AtField(Where(manifest, LineOf(*table->get("scale"))), "scale",
+                                "must be a number > 0 and at most 1e6");
+    }
     entry.options.dt_s = PositiveNumber(*table, "dt", manifest);
     if (const std::string units = RequireString(*table, "units", manifest, false); !units.empty()) {
       entry.options.units = ParseUnits(units);

@@ -2,6 +2,7 @@
 // method of run.method (event-driven or time-stepping); prints a summary, writes the time
 // histories as CSV and the whole run as HDF5 (docs/run-output.md), each to a temporary name
 // renamed on success. A run that stops with a status other than ok exits with status 3.
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -26,8 +27,11 @@ namespace {
 // Exit status of a run that ended before its end time with a status other than ok.
 constexpr int kRunStoppedExitCode = 3;
 
-// Samples of a plain text file: one column (acc) with excitation.dt_s, or two (time, acc).
-std::vector<double> ReadSamples(const std::filesystem::path& path, double& dt_s, bool has_dt) {
+// Samples of a plain text file: one column (acc) with excitation.dt_s, or two (time, acc)
+// whose times must advance by one constant step; `to_mps2` converts each value, which must
+// then be finite. Every problem names the file and the line.
+std::vector<double> ReadSamples(const std::filesystem::path& path, double& dt_s, bool has_dt,
+                                double to_mps2) {
   std::ifstream in(path);
   if (!in) {
     throw InputError::AtLine(path.string(), 0, "cannot open the excitation file");
@@ -50,6 +54,20 @@ std::vector<double> ReadSamples(const std::filesystem::path& path, double& dt_s,
       a.push_back(y);
     } else {
       a.push_back(x);
+    }
+    if (!std::isfinite(a.back() * to_mps2) || (!t.empty() && !std::isfinite(t.back()))) {
+      throw InputError::AtLine(path.string(), number,
+                               "values must be finite (after units and scale: " +
+                                   std::to_string(a.back() * to_mps2) + " m/s^2)");
+    }
+    // A sampled excitation has one step: the times must advance by the first one.
+    if (t.size() >= 2 &&
+        !(t.back() > t[t.size() - 2] &&
+          std::abs((t.back() - t[t.size() - 2]) - (t[1] - t[0])) <= 1e-6 * (t[1] - t[0]))) {
+      throw InputError::AtLine(path.string(), number,
+                               "the time column must increase by a constant step (the first "
+                               "step is " +
+                                   std::to_string(t[1] - t[0]) + " s)");
     }
   }
   if (a.size() < 2) {
@@ -76,7 +94,7 @@ std::unique_ptr<Excitation> MakeExcitation(const model::ExcitationSpec& spec) {
   double dt = spec.dt_s.value_or(0.0);
   std::vector<double> values = spec.values;
   if (!spec.file.empty()) {
-    values = ReadSamples(spec.file, dt, spec.dt_s.has_value());
+    values = ReadSamples(spec.file, dt, spec.dt_s.has_value(), spec.to_mps2);
     for (double& v : values) {
       v *= spec.to_mps2;
     }

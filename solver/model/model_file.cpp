@@ -362,6 +362,12 @@ void ReadAbutments(Section& s, DeckSpec& spec) {
   s.Finish("set, gap_m, eps_N, mu, contacts");
 }
 
+// The largest ground acceleration accepted [m/s^2] (about 1e5 g: beyond any ground motion, a
+// unit error; far enough from overflow that responses stay finite).
+constexpr double kMaxAcceleration_mps2 = 1e6;
+// The largest factor on a sampled excitation's values.
+constexpr double kMaxScale = 1e6;
+
 void ReadExcitation(Section& s, const std::filesystem::path& base_dir, ExcitationSpec& spec) {
   const std::optional<std::string> kind = s.String("kind", {"pulse", "sampled"});
   if (!kind) {
@@ -391,6 +397,13 @@ void ReadExcitation(Section& s, const std::filesystem::path& base_dir, Excitatio
     } else {
       s.Missing("a_g", "pulse amplitude in m/s^2, or a_g_g in g");
     }
+    // In m/s^2 after the conversion from g, which can overflow (a_g_g = 1e308).
+    const std::string amplitude_key = s.Has("a_g") ? "a_g" : "a_g_g";
+    if (!(std::abs(spec.amplitude_mps2) <= kMaxAcceleration_mps2)) {
+      Fail(s.At(amplitude_key), s.Field(amplitude_key),
+           "the amplitude is " + detail::Show(spec.amplitude_mps2) +
+               " m/s^2; allowed: finite, at most 1e6 m/s^2 (about 1e5 g) in magnitude");
+    }
     if (s.Has("w_g")) {
       s.Reject("T_g", "give either w_g (rad/s) or T_g (s), not both");
       spec.omega_radps = *s.Number("w_g");
@@ -408,6 +421,10 @@ void ReadExcitation(Section& s, const std::filesystem::path& base_dir, Excitatio
   spec.kind = ExcitationSpec::Kind::kSampled;
   const std::string units = s.String("units", {"mps2", "g", "cmps2"}).value_or("mps2");
   const double scale = s.Number("scale").value_or(1.0);
+  if (!(std::abs(scale) <= kMaxScale)) {
+    Fail(s.At("scale"), s.Field("scale"),
+         "must be finite and at most 1e6 in magnitude (got " + detail::Show(scale) + ")");
+  }
   const double unit_factor = units == "g" ? kStandardGravity_mps2 : (units == "cmps2" ? 0.01 : 1.0);
   spec.to_mps2 = unit_factor * scale;
   if (const std::optional<double> dt = s.Number("dt_s")) {

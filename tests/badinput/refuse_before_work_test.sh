@@ -91,4 +91,37 @@ mk end.toml 0.5 'end_time_s = 1e308\noutput_interval_s = 0.01'
 expect 1 "end.toml: run.end_time_s: the run would end at t = 1e+308 s" run end.toml --out run.h5
 mk period.toml 1e308 'tail_s = 2.0'
 expect 1 "period.toml: excitation: the run would end at t = 1e+308 s" run period.toml --out run.h5
+# Excitation numbers at the edge, each named with its file and line.
+sed 's/^a_g_g = 0.5 .*/a_g_g = 1e308/' "$base" > ag.toml
+expect 1 "ag.toml:29: excitation.a_g_g: the amplitude is inf m/s^2; allowed: finite" run ag.toml --out run.h5
+sampled() {  # sampled FILE EXCITATION_LINES
+  sed -e '/^\[excitation\]/,$d' "$base" > "$1"
+  printf '[excitation]\nkind = "sampled"\ndirection = "x"\n%b\n' "$2" >> "$1"
+}
+sampled dt0.toml 'values = [0.0, 0.1, 0.0]\ndt_s = 0\nunits = "g"'
+expect 1 "dt0.toml:[0-9]*: excitation.dt_s: must be > 0 (got 0)" run dt0.toml --out run.h5
+printf '0.0 0.0\n0.02 0.1\n0.01 0.0\n' > reversed.txt
+sampled reversed.toml 'file = "reversed.txt"\nunits = "g"'
+expect 1 "reversed.txt:3: the time column must increase by a constant step" run reversed.toml --out run.h5
+printf '0.0 0.0\n0.0 0.1\n0.0 0.0\n' > still.txt
+sampled still.toml 'file = "still.txt"\nunits = "g"'
+expect 1 "still.txt:2: the time column must increase by a constant step" run still.toml --out run.h5
+printf '0.0 0.0\n0.01 1e308\n0.02 0.0\n' > huge.txt
+sampled hugeacc.toml 'file = "huge.txt"\nunits = "g"'
+expect 1 "huge.txt:2: values must be finite (after units and scale: inf m/s^2)" run hugeacc.toml --out run.h5
+sampled scale.toml 'file = "still.txt"\nunits = "g"\nscale = 1e308'
+expect 1 "scale.toml:[0-9]*: excitation.scale: must be finite and at most 1e6" run scale.toml --out run.h5
+
+# Under mpirun the program's line must reach the terminal every time, not 3 runs in 4: each
+# of these specifications (a table twice, no axes, a slash in the name, a NaN coordinate, a
+# negative xi) 6 times on 2 ranks.
+printf '[sweep]\nname = "bad"\nfamily = "subsystem"\n[axes]\nw0_over_wg = [1.0]\n[axes]\na_deg = [10]\n' > twice.toml
+printf '[sweep]\nname = "bad"\nfamily = "subsystem"\n[fixed]\neta0 = 1.5\n' > noaxes.toml
+printf '[sweep]\nname = "b/ad"\nfamily = "subsystem"\n[axes]\nw0_over_wg = [1.0]\n' > slash.toml
+printf '[sweep]\nname = "bad"\nfamily = "subsystem"\n[axes]\nw0_over_wg = [1.0, nan]\n' > nan.toml
+printf '[sweep]\nname = "bad"\nfamily = "subsystem"\n[axes]\nw0_over_wg = [1.0]\n[fixed]\nxi = -0.05\n' > xi.toml
+for f in twice noaxes slash nan xi; do
+  for _ in 1 2 3 4 5 6; do expect 2 "$f.toml" sweep "$f.toml" --out out.h5 > /dev/null; done
+  echo "ok (2 ranks, 6 times): $(grep '^skewbridge: error: ' err.txt)"
+done
 echo "refuse_before_work_test: $cases cases ok"
