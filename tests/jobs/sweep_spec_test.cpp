@@ -177,3 +177,23 @@ TEST(SweepSpec, LoadsAFileAndResolvesRecordSetRelativeToIt) {
 
 }  // namespace
 }  // namespace skewbridge::jobs
+
+namespace skewbridge::jobs {
+namespace {
+
+// TOML sees a key and its quoted symbol as two keys; the specification sees one parameter.
+TEST(SweepSpec, ParameterNamedTwiceThroughItsSymbolIsRefused) {
+  const std::string fixed = ErrorOf(Replace(kGood, "[fixed]\n", "[fixed]\n\"W0/w0\" = 2.0\n"));
+  EXPECT_THAT(fixed, HasSubstr("names the parameter W0_over_w0 a second time"));
+  EXPECT_THAT(fixed, HasSubstr("spec.toml:"));
+  const std::string axes =
+      ErrorOf(Replace(kGood, "w0_over_wg =", "\"w0/w_g\" = [3.0]\nw0_over_wg ="));
+  EXPECT_THAT(axes, HasSubstr("names the parameter w0_over_wg a second time"));
+}
+
+TEST(SweepSpec, CellCountIsTheProductOfTheAxisSizes) {
+  EXPECT_EQ(Parse(kGood).CellCount(), 5u * 3u * 2u * 3u);
+}
+
+}  // namespace
+}  // namespace skewbridge::jobs
