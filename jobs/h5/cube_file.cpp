@@ -365,7 +365,10 @@ void ReadVerified(const std::string& file_name, const std::string& group_path, h
     try {
       ReadAll(OpenDataset(group, dataset).get(), mem_type, out);
     } catch (const H5Error& e) {
-      throw corrupted(dataset, e.what());
+      // "H5Dread /path: reason": the dataset is named already, keep the reason.
+      const std::string message = e.what();
+      const std::size_t colon = message.rfind(": ");
+      throw corrupted(dataset, colon == std::string::npos ? message : message.substr(colon + 2));
     }
   };
   for (std::size_t r = 0; r < layout.responses.size(); ++r) {
@@ -591,8 +594,20 @@ void WriteFinalCube(const std::filesystem::path& path, const SweepSpec& spec,
   }
 }
 
-std::vector<double> ReadSweepArray(const std::filesystem::path& path, const std::string& sweep,
-                                   const std::string& dataset) {
+namespace {
+
+// Runs a reader, naming the file in an HDF5 failure (a damaged chunk fails its checksum).
+template <typename F>
+auto NamingFile(const std::filesystem::path& path, F&& read) -> decltype(read()) {
+  try {
+    return read();
+  } catch (const H5Error& e) {
+    throw H5Error(path.string() + ": " + e.what());
+  }
+}
+
+std::vector<double> ReadSweepArrayIn(const std::filesystem::path& path, const std::string& sweep,
+                                     const std::string& dataset) {
   const Datasets d = OpenLayout(path.string(), sweep, false, nullptr);
   // H5Lexists needs every intermediate group to exist, so walk the path one link at a time.
   bool found = !dataset.empty();
@@ -612,7 +627,7 @@ std::vector<double> ReadSweepArray(const std::filesystem::path& path, const std:
   return out;
 }
 
-std::vector<SweepSummary> SummarizeCube(const std::filesystem::path& path) {
+std::vector<SweepSummary> SummarizeCubeIn(const std::filesystem::path& path) {
   Id file;
   try {
     file = OpenFile(path.string(), false);
@@ -690,12 +705,28 @@ std::vector<SweepSummary> SummarizeCube(const std::filesystem::path& path) {
   return out;
 }
 
-CubeData ReadCubeData(const std::filesystem::path& path, const std::string& sweep,
-                      std::vector<std::string>* response_names) {
+CubeData ReadCubeDataIn(const std::filesystem::path& path, const std::string& sweep,
+                        std::vector<std::string>* response_names) {
   Datasets d = OpenLayout(path.string(), sweep, false, response_names);
   CubeData data;
   ReadData(d, data);
   return data;
+}
+
+}  // namespace
+
+std::vector<double> ReadSweepArray(const std::filesystem::path& path, const std::string& sweep,
+                                   const std::string& dataset) {
+  return NamingFile(path, [&] { return ReadSweepArrayIn(path, sweep, dataset); });
+}
+
+std::vector<SweepSummary> SummarizeCube(const std::filesystem::path& path) {
+  return NamingFile(path, [&] { return SummarizeCubeIn(path); });
+}
+
+CubeData ReadCubeData(const std::filesystem::path& path, const std::string& sweep,
+                      std::vector<std::string>* response_names) {
+  return NamingFile(path, [&] { return ReadCubeDataIn(path, sweep, response_names); });
 }
 
 std::string UtcNow() {

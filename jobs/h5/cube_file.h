@@ -108,7 +108,8 @@ struct SweepSummary {
 };
 
 /// Reads the summary of every sweep in a cube (final or checkpoint).
-/// @throws InputError when the file is not a skewbridge cube.
+/// @throws InputError when the file is not a skewbridge cube; H5Error naming the file, the
+/// object and the reason when a read fails (e.g. a chunk failing its checksum).
 std::vector<SweepSummary> SummarizeCube(const std::filesystem::path& path);
 
 /// Reads the per-cell arrays of one sweep, with the response names in stored order.

@@ -231,12 +231,29 @@ std::vector<hsize_t> Shape(hid_t dataset) {
   return shape;
 }
 
+namespace {
+
+// The path of an object in its file, for messages ("" when HDF5 cannot tell).
+std::string ObjectName(hid_t obj) {
+  const ssize_t n = H5Iget_name(obj, nullptr, 0);
+  if (n <= 0) {
+    return "";
+  }
+  std::string name(static_cast<std::size_t>(n), '\0');
+  H5Iget_name(obj, name.data(), name.size() + 1);
+  return name;
+}
+
+}  // namespace
+
 void WriteAll(hid_t dataset, hid_t mem_type, const void* data) {
-  Check(H5Dwrite(dataset, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "H5Dwrite");
+  Check(H5Dwrite(dataset, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data),
+        "H5Dwrite " + ObjectName(dataset));
 }
 
 void ReadAll(hid_t dataset, hid_t mem_type, void* data) {
-  Check(H5Dread(dataset, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "H5Dread");
+  Check(H5Dread(dataset, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data),
+        "H5Dread " + ObjectName(dataset));
 }
 
 namespace {
@@ -361,7 +378,7 @@ void WriteCells(hid_t dataset, hid_t mem_type, std::size_t elem_size, const void
   Id mem_space = Dataspace(std::span<const hsize_t>(&n, 1));
   Check(
       H5Dwrite(dataset, mem_type, mem_space.get(), file_space.get(), H5P_DEFAULT, gathered.data()),
-      "H5Dwrite(cells)");
+      "H5Dwrite(cells) " + ObjectName(dataset));
 }
 
 void WriteStrings(hid_t parent, const std::string& name, const std::vector<std::string>& v) {

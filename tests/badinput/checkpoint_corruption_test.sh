@@ -5,10 +5,11 @@
 # random 16-byte blocks (12 seeds). Each --resume either refuses with exit status 2, one line
 # naming the file and the dataset, the checkpoint byte for byte unchanged and no FILE written,
 # or (a block that hit no stored byte that matters) completes a cube identical to the
-# uninterrupted one. Resumes run on 1 and 2 ranks.
-# usage: checkpoint_corruption_test.sh SWEEP_DRIVER MPIEXEC CORRUPT_PY WORK_DIR
+# uninterrupted one. Resumes run on 1 and 2 ranks. A damaged final cube makes `inspect` fail
+# with one line naming the file, the dataset and the checksum.
+# usage: checkpoint_corruption_test.sh SWEEP_DRIVER MPIEXEC CORRUPT_PY SKEWBRIDGE WORK_DIR
 set -euo pipefail
-driver=$1 mpiexec=$2 corrupt=$3 work=$4
+driver=$1 mpiexec=$2 corrupt=$3 exe=$4 work=$5
 rm -rf "$work" && mkdir -p "$work" && cd "$work"
 fail() { echo "checkpoint_corruption_test: FAIL: $*" >&2; exit 1; }
 cat > spec.toml <<'TOML'
@@ -78,8 +79,8 @@ expect_refusal() {  # expect_refusal NAME RANKS PATTERN MODE [SEED]
   [ ! -e "$name.h5" ] || fail "$name: a refused resume wrote $name.h5"
   echo "$name ($ranks ranks): $(cat err.txt)"
 }
-expect_refusal flip1 1 "responses/x_peak is corrupted (H5Dread: Fletcher-32 checksum mismatch)" flip-done-cell
-expect_refusal flip2 2 "responses/x_peak is corrupted (H5Dread: Fletcher-32 checksum mismatch)" flip-done-cell
+expect_refusal flip1 1 "responses/x_peak is corrupted (Fletcher-32 checksum mismatch)" flip-done-cell
+expect_refusal flip2 2 "responses/x_peak is corrupted (Fletcher-32 checksum mismatch)" flip-done-cell
 expect_refusal status1 1 "status is corrupted (cell [0-9]* is done with status 7777" status-7777
 expect_refusal status2 2 "status is corrupted (cell [0-9]* is done with status 7777" status-7777
 expect_refusal undone1 1 "status is corrupted (cell [0-9]* is done with status -1" done-uncomputed
@@ -106,4 +107,12 @@ for seed in $(seq 1 12); do
   fi
 done
 echo "random blocks: $refused refused, $resumed resumed to the identical cube"
+cp ref.h5 damaged.h5
+/usr/bin/python3 "$corrupt" damaged.h5 bytes flip-status-chunk > /dev/null
+status=0
+"$exe" inspect damaged.h5 > out.txt 2> err.txt || status=$?
+[ "$status" -ne 0 ] || fail "inspect of a damaged cube exited 0"
+grep -q "^skewbridge: error: damaged.h5: H5Dread /sweeps/bytes/status: Fletcher-32 checksum mismatch$" err.txt ||
+  fail "inspect of a damaged cube: '$(cat err.txt)'"
+echo "damaged final cube, inspect: exit $status: $(cat err.txt)"
 echo "checkpoint_corruption_test: ok"

@@ -4,6 +4,7 @@ checkpoint_corruption_test.sh. usage: corrupt_checkpoint.py FILE SWEEP MODE [SEE
   status-7777       the status of a done cell rewritten through HDF5 (checksum stays valid)
   done-uncomputed   done flags set through HDF5 on cells that were never computed
   random-blocks     three 16-byte blocks of random bytes at random offsets (seeded)
+  flip-status-chunk one byte in the middle of the first stored chunk of status (any file)
 Prints the cell or offsets it touched."""
 import random
 import sys
@@ -71,5 +72,16 @@ elif mode == "random-blocks":
             raw.seek(offset)
             raw.write(bytes(rng.randrange(256) for _ in range(16)))
             print(f"wrote 16 random bytes at {offset} of {size}")
+elif mode == "flip-status-chunk":
+    with h5py.File(path, "r") as f:
+        ds = f["sweeps/" + sweep + "/status"]
+        info = ds.id.get_chunk_info(0)
+        offset = info.byte_offset + info.size // 2
+    with open(path, "r+b") as raw:
+        raw.seek(offset)
+        byte = raw.read(1)[0]
+        raw.seek(offset)
+        raw.write(bytes([byte ^ 0x01]))
+    print(f"flipped byte {offset} of status")
 else:
     sys.exit("corrupt_checkpoint: unknown mode " + mode)
