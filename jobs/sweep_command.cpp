@@ -47,19 +47,17 @@ class FinishWatch final : public Transport {
   std::string BroadcastText(const std::string& text) override {
     return inner_->BroadcastText(text);
   }
-  void BroadcastPending(std::vector<std::uint64_t>& pending) override {
-    inner_->BroadcastPending(pending);
-  }
+  void BroadcastPending(PendingCells& pending) override { inner_->BroadcastPending(pending); }
   std::pair<std::uint64_t, std::uint64_t> Claim(std::uint64_t count) override {
     return inner_->Claim(count);
   }
   void StopClaims() override { inner_->StopClaims(); }
-  void Send(std::span<const CellRecord> records, bool last) override {
-    inner_->Send(records, last);
+  void Send(std::vector<char> message) override { inner_->Send(std::move(message)); }
+  void EndStream() override { inner_->EndStream(); }
+  bool Receive(const std::function<void(std::span<const char>)>& handle, double wait_s) override {
+    return inner_->Receive(handle, wait_s);
   }
-  bool Receive(std::vector<CellRecord>& out, double wait_s) override {
-    return inner_->Receive(out, wait_s);
-  }
+  ReceiveStats Received() const override { return inner_->Received(); }
   void Finish() override {
     inner_->Finish();
     finished_ = true;
