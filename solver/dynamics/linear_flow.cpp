@@ -17,7 +17,7 @@ constexpr std::size_t kCacheCapacity = 8;
 LinearFlow::LinearFlow(const Eigen::Ref<const Eigen::MatrixXd>& M,
                        const Eigen::Ref<const Eigen::MatrixXd>& K,
                        const Eigen::Ref<const Eigen::MatrixXd>& C,
-                       const Eigen::Ref<const Eigen::MatrixXd>& r)
+                       const Eigen::Ref<const Eigen::MatrixXd>& r, FlowPath path)
     : n_(static_cast<int>(M.rows())), M_(M), K_(K), C_(C), r_(r) {
   SB_DEMAND(M.cols() == n_ && K.rows() == n_ && K.cols() == n_ && C.rows() == n_ &&
                 C.cols() == n_ && r.rows() == n_ && r.cols() == 2,
@@ -44,6 +44,11 @@ LinearFlow::LinearFlow(const Eigen::Ref<const Eigen::MatrixXd>& M,
   }
   Q_damping_ = Eigen::MatrixXd::Zero(N, N);
   Q_damping_.block(n_, n_, n_, n_) = 0.5 * (C_ + C_.transpose());
+  if (path == FlowPath::kAuto) {
+    modal_ = ModalFlow::Classical(M_, K_, C_, r_);
+  }
+  Y_ = Eigen::MatrixXd::Zero(n_, 6);
+  eta_ = deta_ = Eigen::VectorXd::Zero(n_);
 }
 
 Eigen::MatrixXd LinearFlow::AugmentedMatrix(double omega_radps) const {
@@ -72,15 +77,29 @@ void LinearFlow::SetGenerator(const ExcitationPiece& piece, double t_s,
   }
 }
 
-void LinearFlow::Compute(double tau_s, double omega_radps, FreePropagator& out) const {
-  const int N = augmented_size();
-  const Eigen::MatrixXd A = AugmentedMatrix(omega_radps);
+void LinearFlow::Compute(double tau_s, double omega_radps, bool energy, FreePropagator& out) const {
   out.tau_s = tau_s;
   out.omega_radps = omega_radps;
+  out.has_energy = energy;
+  if (modal_) {
+    out.modal_rows.resize(12, n_);
+    modal_->Transitions(tau_s, omega_radps, out.modal_rows, energy ? &out.modal_input : nullptr,
+                        energy ? &out.modal_damping : nullptr);
+    out.cos_wt = std::cos(omega_radps * tau_s);
+    out.sin_wt = std::sin(omega_radps * tau_s);
+    return;
+  }
+  const int N = augmented_size();
+  const Eigen::MatrixXd A = AugmentedMatrix(omega_radps);
+  // The transition on its own, so that it is the same bits whether the energy forms are asked.
+  out.phi = (A * tau_s).exp();
+  if (!energy) {
+    return;
+  }
   // Van Loan: exp([[-A^T, Q], [0, A]] tau) = [[., G2], [0, e^{A tau}]] and
   // int_0^tau e^{A^T s} Q e^{A s} ds = e^{A tau}^T G2. Q is scaled to unit norm so that a heavy
   // deck does not inflate the norm that sets the scaling-and-squaring depth.
-  const auto gram = [&](const Eigen::MatrixXd& Q, Eigen::MatrixXd& result, bool store_phi) {
+  const auto gram = [&](const Eigen::MatrixXd& Q, Eigen::MatrixXd& result) {
     const double scale = std::max(Q.cwiseAbs().maxCoeff(), 1e-300);
     Eigen::MatrixXd H = Eigen::MatrixXd::Zero(2 * N, 2 * N);
     H.topLeftCorner(N, N) = -A.transpose() * tau_s;
@@ -90,27 +109,27 @@ void LinearFlow::Compute(double tau_s, double omega_radps, FreePropagator& out) 
     const Eigen::MatrixXd F3 = E.bottomRightCorner(N, N);
     const Eigen::MatrixXd G = F3.transpose() * E.topRightCorner(N, N) * scale;
     result = 0.5 * (G + G.transpose());
-    if (store_phi) {
-      out.phi = F3;
-    }
   };
-  gram(Q_input_, out.input_gram, true);
-  gram(Q_damping_, out.damping_gram, false);
+  gram(Q_input_, out.input_gram);
+  gram(Q_damping_, out.damping_gram);
 }
 
-const FreePropagator& LinearFlow::Propagator(double tau_s, double omega_radps) {
+const FreePropagator& LinearFlow::Propagator(double tau_s, double omega_radps, bool energy) {
   SB_DEMAND(tau_s > 0.0 && std::isfinite(tau_s), "LinearFlow: step must be positive");
   ++clock_;
   for (std::size_t i = 0; i < cache_.size(); ++i) {
     if (cache_[i].tau_s == tau_s && cache_[i].omega_radps == omega_radps) {
       last_use_[i] = clock_;
+      if (energy && !cache_[i].has_energy) {
+        Compute(tau_s, omega_radps, true, cache_[i]);
+      }
       return cache_[i];
     }
   }
   if (cache_.size() < kCacheCapacity) {
     cache_.emplace_back();
     last_use_.push_back(clock_);
-    Compute(tau_s, omega_radps, cache_.back());
+    Compute(tau_s, omega_radps, energy, cache_.back());
     return cache_.back();
   }
   // Least recently used: a record's nominal step and a pulse's pieces stay while the odd step
@@ -118,8 +137,68 @@ const FreePropagator& LinearFlow::Propagator(double tau_s, double omega_radps) {
   const std::size_t slot = static_cast<std::size_t>(
       std::min_element(last_use_.begin(), last_use_.end()) - last_use_.begin());
   last_use_[slot] = clock_;
-  Compute(tau_s, omega_radps, cache_[slot]);
+  Compute(tau_s, omega_radps, energy, cache_[slot]);
   return cache_[slot];
+}
+
+void LinearFlow::Apply(const FreePropagator& p, const Eigen::Ref<const Eigen::VectorXd>& z,
+                       Eigen::Ref<Eigen::VectorXd> z_next) {
+  if (!modal_) {
+    z_next.noalias() = p.phi * z;
+    return;
+  }
+  modal_->ToModal(z, Y_);
+  const double* T = p.modal_rows.data();
+  for (int k = 0; k < n_; ++k, T += 12) {
+    double eta = 0.0, deta = 0.0;
+    for (int j = 0; j < 6; ++j) {
+      eta += T[j] * Y_(k, j);
+      deta += T[6 + j] * Y_(k, j);
+    }
+    eta_[k] = eta;
+    deta_[k] = deta;
+  }
+  const Eigen::MatrixXd& Phi = modal_->Phi();
+  z_next.head(n_).noalias() = Phi * eta_;
+  z_next.segment(n_, n_).noalias() = Phi * deta_;
+  // The generator: a + slope tau, slope, and (p, k) turned by omega tau.
+  const int ia = 2 * n_;
+  z_next.segment<2>(ia) = z.segment<2>(ia) + p.tau_s * z.segment<2>(ia + 2);
+  z_next.segment<2>(ia + 2) = z.segment<2>(ia + 2);
+  z_next.segment<2>(ia + 4) = p.cos_wt * z.segment<2>(ia + 4) + p.sin_wt * z.segment<2>(ia + 6);
+  z_next.segment<2>(ia + 6) = -p.sin_wt * z.segment<2>(ia + 4) + p.cos_wt * z.segment<2>(ia + 6);
+}
+
+void LinearFlow::StepEnergy(const FreePropagator& p, const Eigen::Ref<const Eigen::VectorXd>& z,
+                            double& input_J, double& damping_J) {
+  SB_DEMAND(p.has_energy, "LinearFlow: the propagator was built without its energy forms");
+  if (!modal_) {
+    // Coefficient-wise: no temporary for G z.
+    input_J = 0.0;
+    damping_J = 0.0;
+    const Eigen::Index N = z.size();
+    for (Eigen::Index j = 0; j < N; ++j) {
+      input_J += z[j] * p.input_gram.col(j).dot(z);
+      damping_J += z[j] * p.damping_gram.col(j).dot(z);
+    }
+    return;
+  }
+  modal_->ToModal(z, Y_);
+  input_J = 0.0;
+  damping_J = 0.0;
+  for (int k = 0; k < n_; ++k) {
+    const double* Qi = p.modal_input.data() + 36 * k;
+    const double* Qd = p.modal_damping.data() + 36 * k;
+    for (int b = 0; b < 6; ++b) {
+      double si = 0.0, sd = 0.0;
+      for (int a = 0; a < 6; ++a) {
+        si += Qi[6 * b + a] * Y_(k, a);
+        sd += Qd[6 * b + a] * Y_(k, a);
+      }
+      input_J += Y_(k, b) * si;
+      damping_J += Y_(k, b) * sd;
+    }
+  }
 }
 
 void LinearFlow::Derivative(double omega_radps, const Eigen::Ref<const Eigen::VectorXd>& z,
@@ -151,12 +230,49 @@ void LinearFlow::Powers(const Eigen::Ref<const Eigen::VectorXd>& z, double& inpu
 }
 
 FreeDenseOutput::FreeDenseOutput(int n_aug, int max_terms)
-    : coefficients_(Eigen::MatrixXd::Zero(n_aug, max_terms)),
-      largest_(Eigen::VectorXd::Zero(n_aug)) {}
+    : n_(std::max(0, (n_aug - kGeneratorSize) / 2)),
+      coefficients_(Eigen::MatrixXd::Zero(n_aug, max_terms)),
+      modal_coefficients_(Eigen::MatrixXd::Zero(kModalMaxTerms, 2 * n_)),
+      largest_(Eigen::VectorXd::Zero(n_aug)),
+      generator_(Eigen::VectorXd::Zero(kGeneratorSize)),
+      Y_(Eigen::MatrixXd::Zero(n_, 6)),
+      eta_(Eigen::VectorXd::Zero(n_)),
+      deta_(Eigen::VectorXd::Zero(n_)),
+      z_scratch_(Eigen::VectorXd::Zero(n_aug)),
+      mode_terms_(static_cast<std::size_t>(n_), 0) {}
 
 void FreeDenseOutput::Build(const LinearFlow& flow, double omega_radps,
                             const Eigen::Ref<const Eigen::VectorXd>& z0, double tau_max_s) {
   SB_DEMAND(coefficients_.rows() == z0.size(), "FreeDenseOutput: wrong state size");
+  flow_ = &flow;
+  omega_radps_ = omega_radps;
+  modal_ = false;
+  if (flow.modal()) {
+    const ModalFlow& modal = flow.modal_flow();
+    double rho_max = 0.0;
+    for (int k = 0; k < n_; ++k) {
+      rho_max = std::max(rho_max, tau_max_s * (std::sqrt(modal.w2()[k]) + std::abs(modal.c()[k]) +
+                                               std::abs(omega_radps)));
+    }
+    modal_ = rho_max <= kModalSeriesRadius;
+  }
+  if (modal_) {
+    const ModalFlow& modal = flow.modal_flow();
+    modal.ToModal(z0, Y_);
+    generator_ = z0.tail(kGeneratorSize);
+    terms_ = 0;
+    for (int k = 0; k < n_; ++k) {
+      const double rho =
+          tau_max_s * (std::sqrt(modal.w2()[k]) + std::abs(modal.c()[k]) + std::abs(omega_radps));
+      const int terms = ModalTermCount(rho);
+      const double y[6] = {Y_(k, 0), Y_(k, 1), Y_(k, 2), Y_(k, 3), Y_(k, 4), Y_(k, 5)};
+      modal.ModeCoefficients(k, omega_radps, y, terms, modal_coefficients_.col(k).data(),
+                             modal_coefficients_.col(n_ + k).data());
+      mode_terms_[static_cast<std::size_t>(k)] = terms;
+      terms_ = std::max(terms_, terms);
+    }
+    return;
+  }
   const int max_terms = static_cast<int>(coefficients_.cols());
   coefficients_.col(0) = z0;
   largest_ = z0.cwiseAbs();
@@ -182,12 +298,69 @@ void FreeDenseOutput::Build(const LinearFlow& flow, double omega_radps,
   }
 }
 
-void FreeDenseOutput::Evaluate(double tau_s, Eigen::Ref<Eigen::VectorXd> z) const {
+namespace {
+
+// Horner on `terms` contiguous coefficients.
+inline double Horner(const double* c, int terms, double tau) {
+  double x = c[terms - 1];
+  for (int m = terms - 2; m >= 0; --m) {
+    x = x * tau + c[m];
+  }
+  return x;
+}
+
+}  // namespace
+
+void FreeDenseOutput::ModalAt(double tau_s, bool velocities) {
+  const Eigen::Index stride = modal_coefficients_.rows();
+  const double* c = modal_coefficients_.data();
+  for (int k = 0; k < n_; ++k) {
+    const int terms = mode_terms_[static_cast<std::size_t>(k)];
+    eta_[k] = Horner(c + k * stride, terms, tau_s);
+    if (velocities) {
+      deta_[k] = Horner(c + (n_ + k) * stride, terms, tau_s);
+    }
+  }
+}
+
+void FreeDenseOutput::GeneratorAt(double tau_s, Eigen::Ref<Eigen::VectorXd> z) const {
+  const int ia = 2 * n_;
+  z.segment<2>(ia) = generator_.segment<2>(0) + tau_s * generator_.segment<2>(2);
+  z.segment<2>(ia + 2) = generator_.segment<2>(2);
+  const double co = std::cos(omega_radps_ * tau_s), si = std::sin(omega_radps_ * tau_s);
+  z.segment<2>(ia + 4) = co * generator_.segment<2>(4) + si * generator_.segment<2>(6);
+  z.segment<2>(ia + 6) = -si * generator_.segment<2>(4) + co * generator_.segment<2>(6);
+}
+
+void FreeDenseOutput::Evaluate(double tau_s, Eigen::Ref<Eigen::VectorXd> z) {
+  if (modal_) {
+    ModalAt(tau_s, true);
+    const Eigen::MatrixXd& Phi = flow_->modal_flow().Phi();
+    z.head(n_).noalias() = Phi * eta_;
+    z.segment(n_, n_).noalias() = Phi * deta_;
+    GeneratorAt(tau_s, z);
+    return;
+  }
   EvaluateHead(tau_s, static_cast<int>(coefficients_.rows()), z);
 }
 
-void FreeDenseOutput::EvaluateHead(double tau_s, int count, Eigen::Ref<Eigen::VectorXd> z) const {
+void FreeDenseOutput::EvaluateHead(double tau_s, int count, Eigen::Ref<Eigen::VectorXd> z) {
   SB_ASSERT(count <= coefficients_.rows() && z.size() >= count, "FreeDenseOutput: bad count");
+  if (modal_) {
+    const Eigen::MatrixXd& Phi = flow_->modal_flow().Phi();
+    if (count > 2 * n_) {
+      Evaluate(tau_s, z_scratch_);
+      z.head(count) = z_scratch_.head(count);
+    } else if (count > n_) {
+      ModalAt(tau_s, true);
+      z.head(n_).noalias() = Phi * eta_;
+      z.segment(n_, count - n_).noalias() = Phi.topRows(count - n_) * deta_;
+    } else {
+      ModalAt(tau_s, false);
+      z.head(count).noalias() = Phi.topRows(count) * eta_;
+    }
+    return;
+  }
   // Horner on the raw columns: the hot path of event location and partial steps.
   const Eigen::Index n = count;
   const Eigen::Index stride = coefficients_.rows();
@@ -203,6 +376,34 @@ void FreeDenseOutput::EvaluateHead(double tau_s, int count, Eigen::Ref<Eigen::Ve
 
 double FreeDenseOutput::EvaluateComponent(double tau_s, int i) const {
   SB_ASSERT(i >= 0 && i < coefficients_.rows(), "FreeDenseOutput: bad component");
+  if (modal_) {
+    if (i < 2 * n_) {
+      // One row of Phi against the modes' series of eta (i < n) or eta' (n <= i < 2 n).
+      const Eigen::MatrixXd& Phi = flow_->modal_flow().Phi();
+      const int row = i < n_ ? i : i - n_;
+      const int offset = i < n_ ? 0 : n_;
+      const Eigen::Index stride = modal_coefficients_.rows();
+      const double* c = modal_coefficients_.data();
+      double x = 0.0;
+      for (int k = 0; k < n_; ++k) {
+        x += Phi(row, k) *
+             Horner(c + (offset + k) * stride, mode_terms_[static_cast<std::size_t>(k)], tau_s);
+      }
+      return x;
+    }
+    const int j = i - 2 * n_;
+    const double co = std::cos(omega_radps_ * tau_s), si = std::sin(omega_radps_ * tau_s);
+    switch (j / 2) {
+      case 0:
+        return generator_[j] + tau_s * generator_[j + 2];
+      case 1:
+        return generator_[j];
+      case 2:
+        return co * generator_[j] + si * generator_[j + 2];
+      default:
+        return -si * generator_[j - 2] + co * generator_[j];
+    }
+  }
   double z = coefficients_(i, terms_ - 1);
   for (int k = terms_ - 2; k >= 0; --k) {
     z = z * tau_s + coefficients_(i, k);
@@ -210,7 +411,12 @@ double FreeDenseOutput::EvaluateComponent(double tau_s, int i) const {
   return z;
 }
 
-void FreeDenseOutput::EvaluateDerivative(double tau_s, Eigen::Ref<Eigen::VectorXd> dz) const {
+void FreeDenseOutput::EvaluateDerivative(double tau_s, Eigen::Ref<Eigen::VectorXd> dz) {
+  if (modal_) {
+    Evaluate(tau_s, z_scratch_);
+    flow_->Derivative(omega_radps_, z_scratch_, dz);
+    return;
+  }
   dz.setZero();
   for (int k = terms_ - 1; k >= 1; --k) {
     dz = dz * tau_s + coefficients_.col(k) * static_cast<double>(k);

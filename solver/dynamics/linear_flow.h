@@ -13,24 +13,46 @@
 /// harmonic counterparts in its last columns [Van Loan 1978]. The energy integrals of a step are
 /// quadratic forms of z(t) whose matrices follow from a second Van Loan exponential [Van Loan 1978,
 /// §4].
+///
+/// That is the general path, for any C. A classically damped model (every model the builders and
+/// the model file make from xi) takes the modal path of solver/dynamics/modal_flow.h instead: the
+/// same transition per mode in closed form, O(n) to build for a new step and O(n^2) to apply,
+/// with the energy forms per mode. The general path stays the oracle of the modal one.
 
 #include <Eigen/Core>
+#include <optional>
 #include <vector>
 
 #include "solver/common/excitation.h"
+#include "solver/dynamics/modal_flow.h"
 
 namespace skewbridge::dynamics {
 
 /// Size of the forcing generator appended to (q, u): (a, slope, p, k), two components each.
 inline constexpr int kGeneratorSize = 8;
 
-/// The exact transition over one step of length tau_s with harmonic rate omega_radps.
+/// Which transition a LinearFlow uses.
+enum class FlowPath {
+  kAuto,       ///< modal when C is classical, else augmented
+  kAugmented,  ///< always the augmented matrix exponential (the general path and test oracle)
+};
+
+/// The exact transition over one step of length tau_s with harmonic rate omega_radps. Apply it
+/// with LinearFlow::Apply and LinearFlow::StepEnergy, which know the path.
 struct FreePropagator {
-  double tau_s = 0.0;            ///< step length (s)
-  double omega_radps = 0.0;      ///< harmonic rate of the excitation piece (rad/s)
+  double tau_s = 0.0;        ///< step length (s)
+  double omega_radps = 0.0;  ///< harmonic rate of the excitation piece (rad/s)
+  bool has_energy = false;   ///< the energy forms below were computed
+  // Augmented path.
   Eigen::MatrixXd phi;           ///< e^{A_hat tau}, (2n+8) x (2n+8)
   Eigen::MatrixXd input_gram;    ///< z0^T G z0 = -int_0^tau u^T M r a_g dt (J), symmetric
   Eigen::MatrixXd damping_gram;  ///< z0^T G z0 = int_0^tau u^T C u dt (J), symmetric
+  // Modal path (ModalFlow::Transitions).
+  Eigen::MatrixXd modal_rows;     ///< 12 x n: per mode the 2 x 6 transition T_k(tau)
+  Eigen::MatrixXd modal_input;    ///< 36 x n: per mode the input-energy form Q_k (J)
+  Eigen::MatrixXd modal_damping;  ///< 36 x n: per mode the damping-energy form Q_k (J)
+  double cos_wt = 1.0;            ///< cos(omega tau), the generator's rotation
+  double sin_wt = 0.0;            ///< sin(omega tau)
 };
 
 /// The contact-free linear flow of a model: matrices, generator bookkeeping and a cache of
@@ -41,10 +63,16 @@ class LinearFlow {
  public:
   /// @param M, K, C n x n mass (kg, kg m^2), stiffness and damping matrices;
   /// @param r n x 2 ground-influence matrix mapping (a_gx, a_gy) to the DOFs.
+  /// @param path kAuto: the modal path when Phi^T C Phi is diagonal (ModalFlow::Classical).
   /// @pre M symmetric positive definite; sizes consistent (checked by SB_DEMAND).
   LinearFlow(const Eigen::Ref<const Eigen::MatrixXd>& M, const Eigen::Ref<const Eigen::MatrixXd>& K,
-             const Eigen::Ref<const Eigen::MatrixXd>& C,
-             const Eigen::Ref<const Eigen::MatrixXd>& r);
+             const Eigen::Ref<const Eigen::MatrixXd>& C, const Eigen::Ref<const Eigen::MatrixXd>& r,
+             FlowPath path = FlowPath::kAuto);
+
+  /// True when the flow propagates in modal coordinates.
+  bool modal() const { return modal_.has_value(); }
+  /// The modal flow. @pre modal().
+  const ModalFlow& modal_flow() const { return *modal_; }
 
   int n_dof() const { return n_; }
   /// 2 n + 8.
@@ -56,9 +84,21 @@ class LinearFlow {
   /// Writes the generator part of z (entries 2n .. 2n+7) for time t_s inside piece.
   void SetGenerator(const ExcitationPiece& piece, double t_s, Eigen::Ref<Eigen::VectorXd> z) const;
 
-  /// The propagator of a step tau_s (> 0) at rate omega_radps, from the cache or computed once.
-  /// The reference stays valid until the next call.
-  const FreePropagator& Propagator(double tau_s, double omega_radps);
+  /// The propagator of a step tau_s (> 0) at rate omega_radps, from the cache or computed once;
+  /// with `energy`, also its energy forms (only then: they cost more than the transition). The
+  /// transition is the same bits with and without them. The reference stays valid until the next
+  /// call.
+  const FreePropagator& Propagator(double tau_s, double omega_radps, bool energy = true);
+
+  /// z_next = e^{A_hat tau} z over the propagator's step (no allocation).
+  /// @pre z and z_next of the augmented size and distinct.
+  void Apply(const FreePropagator& p, const Eigen::Ref<const Eigen::VectorXd>& z,
+             Eigen::Ref<Eigen::VectorXd> z_next);
+
+  /// The step's work of the ground -int u^T M r a_g dt and of damping int u^T C u dt (J) from the
+  /// step's initial state z. @pre p.has_energy.
+  void StepEnergy(const FreePropagator& p, const Eigen::Ref<const Eigen::VectorXd>& z,
+                  double& input_J, double& damping_J);
 
   /// dz/dt = A_hat z (no allocation).
   void Derivative(double omega_radps, const Eigen::Ref<const Eigen::VectorXd>& z,
@@ -76,9 +116,12 @@ class LinearFlow {
   const Eigen::MatrixXd& r() const { return r_; }
 
  private:
-  void Compute(double tau_s, double omega_radps, FreePropagator& out) const;
+  void Compute(double tau_s, double omega_radps, bool energy, FreePropagator& out) const;
 
   int n_;
+  std::optional<ModalFlow> modal_;
+  Eigen::MatrixXd Y_;           // n x 6 modal coordinates of the state being propagated
+  Eigen::VectorXd eta_, deta_;  // modal state at the step end
   Eigen::MatrixXd M_, K_, C_, r_;
   Eigen::MatrixXd Mr_;         // M r, n x 2
   Eigen::MatrixXd A_base_;     // A_hat without the omega entries
@@ -90,9 +133,13 @@ class LinearFlow {
   unsigned long clock_ = 0;
 };
 
-/// The exact solution inside one step as a Taylor series z(tau) = sum_k c_k tau^k, c_k = A_hat^k
-/// z0 / k!, truncated where the terms fall below round-off for |tau| <= tau_max. Used to locate
-/// events and to sample output inside a step; e^{A_hat tau} itself is never formed for these.
+/// The exact solution inside one step, used to locate events and to sample output inside a step.
+/// On the modal path: per mode the Taylor series of the closed-form transition (modal_flow.h),
+/// eta_k(tau) = sum_m e_km tau^m with as many terms as rho_k = tau_max (w_k + c_k + |Omega|)
+/// needs, then q = Phi eta, u = Phi eta'; building costs O(n^2) (the modal transform of z0), a
+/// component O(n) per mode series. On the augmented path: z(tau) = sum_k c_k tau^k,
+/// c_k = A_hat^k z0 / k!, truncated where the terms fall below round-off for |tau| <= tau_max.
+/// e^{A_hat tau} itself is never formed for these. The generator's entries are exact (cos/sin).
 class FreeDenseOutput {
  public:
   /// Storage for a flow of augmented size n_aug, at most max_terms Taylor terms.
@@ -100,28 +147,43 @@ class FreeDenseOutput {
 
   /// Builds the series from z0 for |tau| <= tau_max_s.
   /// @pre omega_radps * tau_max and the flow's rates times tau_max are O(1) (steps bounded by a
-  /// fraction of the shortest period).
+  /// fraction of the shortest period). A modal flow with some rho_k > kModalSeriesRadius takes
+  /// the augmented series.
   void Build(const LinearFlow& flow, double omega_radps,
              const Eigen::Ref<const Eigen::VectorXd>& z0, double tau_max_s);
 
   /// z(tau) (s since the step start).
-  void Evaluate(double tau_s, Eigen::Ref<Eigen::VectorXd> z) const;
+  void Evaluate(double tau_s, Eigen::Ref<Eigen::VectorXd> z);
 
   /// The first `count` components of z(tau) (the rest of z untouched).
   /// @pre count <= the augmented size, z.size() >= count.
-  void EvaluateHead(double tau_s, int count, Eigen::Ref<Eigen::VectorXd> z) const;
+  void EvaluateHead(double tau_s, int count, Eigen::Ref<Eigen::VectorXd> z);
 
   /// Component i of z(tau). @pre 0 <= i < the augmented size.
   double EvaluateComponent(double tau_s, int i) const;
 
   /// dz/dtau at tau.
-  void EvaluateDerivative(double tau_s, Eigen::Ref<Eigen::VectorXd> dz) const;
+  void EvaluateDerivative(double tau_s, Eigen::Ref<Eigen::VectorXd> dz);
 
+  /// Number of Taylor terms (on the modal path, of the mode that needs most).
   int terms() const { return terms_; }
 
  private:
-  Eigen::MatrixXd coefficients_;  // column k = c_k
-  Eigen::VectorXd largest_;       // per component, the largest term so far
+  void ModalAt(double tau_s, bool velocities);
+  void GeneratorAt(double tau_s, Eigen::Ref<Eigen::VectorXd> z) const;
+
+  const LinearFlow* flow_ = nullptr;
+  bool modal_ = false;
+  int n_ = 0;
+  double omega_radps_ = 0.0;
+  Eigen::MatrixXd coefficients_;        // augmented: column k = c_k
+  Eigen::MatrixXd modal_coefficients_;  // modal: column k (n + k) = eta_k (eta_k') coefficients
+  Eigen::VectorXd largest_;             // per component, the largest term so far
+  Eigen::VectorXd generator_;           // modal: the generator (a, slope, p, k) at tau = 0
+  Eigen::MatrixXd Y_;                   // modal: n x 6 modal coordinates of z0
+  Eigen::VectorXd eta_, deta_;          // modal: eta(tau), eta'(tau) of the last ModalAt
+  Eigen::VectorXd z_scratch_;           // for EvaluateDerivative
+  std::vector<int> mode_terms_;         // modal: terms per mode
   int terms_ = 0;
 };
 

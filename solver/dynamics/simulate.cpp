@@ -273,7 +273,7 @@ class Integrator {
   int n_, nc_;
   double t_ = 0.0, t_end_ = 0.0;
   long steps_ = 0;
-  Vec z_, z_new_, z_eval_, dz_;
+  Vec z_, z_new_, z_eval_;
   Vec y_, dy_, y_eval_, atol_;
   Vec cu_;  // C u
   Vec q_a_, u_a_, q_b_, u_b_, q_e_, u_e_, q_r_, u_r_, h_, du_, w_N_, w_T_;
@@ -347,7 +347,7 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   SB_DEMAND(&ws.model() == &model, "Simulate: workspace built for another model");
   const int naug = ws.flow_.augmented_size();
   z_ = Vec::Zero(naug);
-  z_new_ = z_eval_ = dz_ = z_;
+  z_new_ = z_eval_ = z_;
   if (initial.q.size() != 0) {
     if (initial.q.size() != n_) {
       throw InputError::AtField("initial state", "q", "must have n_dof entries");
@@ -529,6 +529,10 @@ RunResult Integrator::Run() {
   e.strain_J = 0.5 * q().dot(model_.K() * q());
   e.balance_error_J = (e.kinetic_J + e.strain_J) -
                       (e.initial_J + e.input_J - e.damping_J - e.impact_J - e.friction_J);
+  if (!control_.energy_ledger) {
+    // The free steps' work was not integrated: what remains would look like a ledger but is not.
+    e.input_J = e.damping_J = e.balance_error_J = std::numeric_limits<double>::quiet_NaN();
+  }
   return std::move(result_);
 }
 
@@ -564,13 +568,13 @@ void Integrator::FreeStep() {
     }
   };
   double input = 0.0, damping = 0.0;
+  const bool ledger = control_.energy_ledger;
   if (full) {
-    const FreePropagator& p = flow.Propagator(h, piece.omega);
-    z_new_.noalias() = p.phi * z_;
-    dz_.noalias() = p.input_gram * z_;
-    input = z_.dot(dz_);
-    dz_.noalias() = p.damping_gram * z_;
-    damping = z_.dot(dz_);
+    const FreePropagator& p = flow.Propagator(h, piece.omega, ledger);
+    flow.Apply(p, z_, z_new_);
+    if (ledger) {
+      flow.StepEnergy(p, z_, input, damping);
+    }
   } else {
     ensure_dense();
     ws_.free_dense_.Evaluate(tau, z_new_);
@@ -614,7 +618,7 @@ void Integrator::FreeStep() {
     z_new_.head(n_) = q_b_;
     z_new_.segment(n_, n_) = u_b_;
   }
-  if (!full || t_event < kInf) {
+  if (ledger && (!full || t_event < kInf)) {
     // Energy of a partial step by Gauss-Legendre quadrature of the exact (Taylor) solution.
     ensure_dense();
     input = damping = 0.0;

@@ -62,6 +62,11 @@ struct RunControl {
   /// run.linear_algebra: "auto" | "dense" | "sparse", the time-stepping integrator's
   /// factorisation and contact assembly (auto: sparse from kSparseThresholdDof DOFs on).
   std::string linear_algebra = "auto";
+  /// Keep the energy ledger's input and damping work (RunResult::energy): the event-driven
+  /// integrator then builds each free step's energy forms as well as its transition. Off, the
+  /// responses are the same bits, and input_J, damping_J and balance_error_J are NaN. A sweep
+  /// cell reads no energy and turns it off.
+  bool energy_ledger = true;
 
   /// The end time (s): end_time_s if given, else excitation_duration_s + tail_s.
   double EndTime(double excitation_duration_s) const;

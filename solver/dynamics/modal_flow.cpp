@@ -1,0 +1,205 @@
+#include "solver/dynamics/modal_flow.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+
+#include "solver/common/error.h"
+
+namespace skewbridge::dynamics {
+namespace {
+
+// Off-diagonal of Phi^T C Phi, relative to its largest diagonal entry, still taken as rounding.
+constexpr double kClassicalTolerance = 1e-12;
+
+using Mat6 = Eigen::Matrix<double, 6, 6>;
+
+}  // namespace
+
+int ModalTermCount(double rho) {
+  // At least up to tau^3: the ramp's response of an undamped rigid mode is a cubic.
+  double term = 1.0;
+  int m = 0;
+  do {
+    ++m;
+    term *= rho / m;
+  } while ((term > 1e-18 || m < 4) && m < kModalMaxTerms - 1);
+  return m + 1;
+}
+
+std::optional<ModalFlow> ModalFlow::Classical(const Eigen::Ref<const Eigen::MatrixXd>& M,
+                                              const Eigen::Ref<const Eigen::MatrixXd>& K,
+                                              const Eigen::Ref<const Eigen::MatrixXd>& C,
+                                              const Eigen::Ref<const Eigen::MatrixXd>& r) {
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(K, M);
+  SB_DEMAND(eig.info() == Eigen::Success, "ModalFlow: the eigenproblem K phi = w^2 M phi failed");
+  ModalFlow flow;
+  flow.Phi_ = eig.eigenvectors();
+  const Eigen::MatrixXd D = flow.Phi_.transpose() * C * flow.Phi_;
+  const int n = static_cast<int>(M.rows());
+  double diagonal = 0.0, off = 0.0;
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      (i == j ? diagonal : off) = std::max(i == j ? diagonal : off, std::abs(D(i, j)));
+    }
+  }
+  if (off > kClassicalTolerance * diagonal) {
+    return std::nullopt;
+  }
+  flow.w2_ = eig.eigenvalues().cwiseMax(0.0);
+  flow.c_ = D.diagonal();
+  flow.PhiTM_ = flow.Phi_.transpose() * M;
+  flow.negL_ = -flow.PhiTM_ * r;
+  return flow;
+}
+
+void ModalFlow::ToModal(const Eigen::Ref<const Eigen::VectorXd>& z,
+                        Eigen::Ref<Eigen::MatrixXd> Y) const {
+  const int n = n_modes();
+  Y.col(0).noalias() = PhiTM_ * z.head(n);
+  Y.col(1).noalias() = PhiTM_ * z.segment(n, n);
+  for (int j = 0; j < 4; ++j) {
+    Y.col(2 + j).noalias() = negL_ * z.segment<2>(2 * n + 2 * j);
+  }
+}
+
+void ModalFlow::ModeCoefficients(int k, double omega_radps, const double* y, int terms, double* eta,
+                                 double* deta) const {
+  SB_ASSERT(terms <= kModalMaxTerms, "ModalFlow: too many terms");
+  const double w2 = w2_[k], c = c_[k];
+  // Taylor coefficients of the harmonic forcing: g = gamma cos + delta sin, gt = delta cos -
+  // gamma sin, g' = Omega gt, gt' = -Omega g.
+  double g = y[4], gt = y[5];
+  eta[0] = y[0];
+  deta[0] = y[1];
+  for (int m = 0; m + 1 < terms; ++m) {
+    const double f = g + (m == 0 ? y[2] : 0.0) + (m == 1 ? y[3] : 0.0);
+    const double inv = 1.0 / (m + 1);
+    eta[m + 1] = deta[m] * inv;
+    deta[m + 1] = (f - w2 * eta[m] - c * deta[m]) * inv;
+    const double g_next = omega_radps * gt * inv;
+    gt = -omega_radps * g * inv;
+    g = g_next;
+  }
+}
+
+void ModalFlow::Transitions(double tau_s, double omega_radps, Eigen::Ref<Eigen::MatrixXd> rows,
+                            Eigen::MatrixXd* input, Eigen::MatrixXd* damping) const {
+  const int n = n_modes();
+  const bool energy = input != nullptr && damping != nullptr;
+  SB_DEMAND(rows.rows() == 12 && rows.cols() == n, "ModalFlow: rows must be 12 x n");
+  if (energy) {
+    input->resize(36, n);
+    damping->resize(36, n);
+  }
+  const double W = std::abs(omega_radps);
+  // Columns: the responses to unit (eta, eta', alpha, beta, gamma, delta). Indices: [m][j].
+  double e[kModalMaxTerms][6], v[kModalMaxTerms][6], f[kModalMaxTerms][6];
+  double weight[2 * kModalMaxTerms];
+  for (int k = 0; k < n; ++k) {
+    const double rho = tau_s * (std::sqrt(w2_[k]) + std::abs(c_[k]) + W);
+    int halvings = 0;
+    double tau = tau_s;
+    while (rho * std::ldexp(1.0, -halvings) > kModalSeriesRadius) {
+      ++halvings;
+    }
+    tau = std::ldexp(tau_s, -halvings);
+    const int terms = ModalTermCount(rho * std::ldexp(1.0, -halvings));
+    // The coefficient recursion of ModeCoefficients for the six unit inputs at once.
+    double g[6] = {0, 0, 0, 0, 1, 0}, gt[6] = {0, 0, 0, 0, 0, 1};
+    for (int j = 0; j < 6; ++j) {
+      e[0][j] = j == 0 ? 1.0 : 0.0;
+      v[0][j] = j == 1 ? 1.0 : 0.0;
+    }
+    for (int m = 0; m < terms; ++m) {
+      const double inv = 1.0 / (m + 1);
+      for (int j = 0; j < 6; ++j) {
+        f[m][j] = g[j] + (m == 0 && j == 2 ? 1.0 : 0.0) + (m == 1 && j == 3 ? 1.0 : 0.0);
+        if (m + 1 < terms) {
+          e[m + 1][j] = v[m][j] * inv;
+          v[m + 1][j] = (f[m][j] - w2_[k] * e[m][j] - c_[k] * v[m][j]) * inv;
+        }
+        const double g_next = omega_radps * gt[j] * inv;
+        gt[j] = -omega_radps * g[j] * inv;
+        g[j] = g_next;
+      }
+    }
+    // Sum the series at tau (Horner).
+    double row[12];
+    for (int j = 0; j < 6; ++j) {
+      double a = e[terms - 1][j], b = v[terms - 1][j];
+      for (int m = terms - 2; m >= 0; --m) {
+        a = a * tau + e[m][j];
+        b = b * tau + v[m][j];
+      }
+      row[j] = a;
+      row[6 + j] = b;
+    }
+    Mat6 Qin, Qd;
+    if (energy) {
+      // int_0^tau s^j ds = tau^{j+1} / (j + 1); the products of two series of `terms` terms.
+      double p = tau;
+      for (int j = 0; j < 2 * terms; ++j) {
+        weight[j] = p / (j + 1);
+        p *= tau;
+      }
+      Qin.setZero();
+      Qd.setZero();
+      for (int m = 0; m < terms; ++m) {
+        double gf[6] = {0, 0, 0, 0, 0, 0}, gv[6] = {0, 0, 0, 0, 0, 0};
+        for (int l = 0; l < terms; ++l) {
+          const double w = weight[m + l];
+          for (int j = 0; j < 6; ++j) {
+            gf[j] += w * f[l][j];
+            gv[j] += w * v[l][j];
+          }
+        }
+        for (int b = 0; b < 6; ++b) {
+          for (int a = 0; a < 6; ++a) {
+            Qin(a, b) += v[m][a] * gf[b];
+            Qd(a, b) += v[m][a] * gv[b];
+          }
+        }
+      }
+      Qin = (0.5 * (Qin + Qin.transpose())).eval();
+      Qd = (0.5 * c_[k] * (Qd + Qd.transpose())).eval();
+    }
+    if (halvings > 0) {
+      // Square back: the 6 x 6 transition of (y_k) with the generator's own rows, and
+      // int_0^{2 tau} = int_0^tau + int_tau^{2 tau}: Q <- Q + P^T Q P.
+      Mat6 P = Mat6::Zero();
+      for (int j = 0; j < 6; ++j) {
+        P(0, j) = row[j];
+        P(1, j) = row[6 + j];
+      }
+      P(2, 2) = 1.0;
+      P(2, 3) = tau;
+      P(3, 3) = 1.0;
+      const double co = std::cos(omega_radps * tau), si = std::sin(omega_radps * tau);
+      P(4, 4) = co;
+      P(4, 5) = si;
+      P(5, 4) = -si;
+      P(5, 5) = co;
+      for (int s = 0; s < halvings; ++s) {
+        if (energy) {
+          Qin = (Qin + P.transpose() * Qin * P).eval();
+          Qd = (Qd + P.transpose() * Qd * P).eval();
+        }
+        P = (P * P).eval();
+      }
+      for (int j = 0; j < 6; ++j) {
+        row[j] = P(0, j);
+        row[6 + j] = P(1, j);
+      }
+    }
+    for (int i = 0; i < 12; ++i) {
+      rows(i, k) = row[i];
+    }
+    if (energy) {
+      input->col(k) = Eigen::Map<const Eigen::Matrix<double, 36, 1>>(Qin.data());
+      damping->col(k) = Eigen::Map<const Eigen::Matrix<double, 36, 1>>(Qd.data());
+    }
+  }
+}
+
+}  // namespace skewbridge::dynamics

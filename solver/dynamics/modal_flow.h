@@ -1,0 +1,88 @@
+#pragma once
+/// @file
+/// The exact contact-free transition of a classically damped linear system in modal coordinates.
+///
+/// With Phi the M-orthonormal modes (Phi^T M Phi = I, Phi^T K Phi = diag(w_k^2)) and classical
+/// damping (Phi^T C Phi = diag(c_k), c_k = 2 xi_k w_k for the builders' C), q = Phi eta splits
+///
+///     M du/dt = -C u - K q - M r a_g(t)
+///
+/// into n uncoupled oscillators
+///
+///     eta_k'' + c_k eta_k' + w_k^2 eta_k = f_k(s),   f_k = -L_k . a_g,   L = Phi^T M r,
+///
+/// and over a smooth piece of the excitation (solver/common/excitation.h) the forcing of a step
+/// that starts at s = 0 is f_k(s) = alpha + beta s + gamma cos(Omega s) + delta sin(Omega s). The
+/// state of mode k and its forcing form the 6-vector y_k = (eta, eta', alpha, beta, gamma, delta);
+/// its exact transition over tau is a 2 x 6 matrix T_k(tau) whose columns are the free response
+/// and the Nigam-Jennings responses to the constant, the ramp, the cosine and the sine [Nigam and
+/// Jennings 1969]. T_k is evaluated as the everywhere-convergent power series of these closed
+/// forms (the phi-functions of the 2 x 2 mode matrix), which is their stable evaluation for
+/// rho_k = tau (w_k + c_k + |Omega|) <= kModalSeriesRadius: the closed forms themselves lose
+/// digits by cancellation for small w tau (1 - e^{-xi w tau} cos ...), at a zero-frequency mode
+/// and at resonance (Omega equal to a natural or damped frequency), where the series has none of
+/// these singular cases. A longer step is halved until it fits and the 6 x 6 transition (with
+/// the forcing generator) squared back. Building T for a new step costs O(n), applying it
+/// O(n^2) (the two modal transforms), and no matrix exponential is formed.
+///
+/// The energy integrals of a step are quadratic forms of y_k per mode:
+///     int u^T C u ds = sum_k c_k int eta_k'^2 ds,  -int u^T M r a_g ds = sum_k int eta_k' f_k ds.
+
+#include <Eigen/Core>
+#include <optional>
+
+namespace skewbridge::dynamics {
+
+/// Largest rho_k = tau (w_k + c_k + |Omega|) evaluated by the series directly.
+inline constexpr double kModalSeriesRadius = 4.0;
+/// Most Taylor terms a mode uses (rho = kModalSeriesRadius needs 34).
+inline constexpr int kModalMaxTerms = 48;
+
+/// Number of Taylor terms (coefficients 0 .. N - 1) that bring rho^N / N! below 1e-18.
+int ModalTermCount(double rho);
+
+/// The modes of a classically damped model and the per-mode transitions.
+class ModalFlow {
+ public:
+  /// The modal flow of (M, K, C, r), or nothing when C is not classical: max_{i != j}
+  /// |(Phi^T C Phi)_ij| > 1e-12 max_k |(Phi^T C Phi)_kk| (an undamped model is classical).
+  /// @pre M symmetric positive definite, K symmetric positive semi-definite.
+  static std::optional<ModalFlow> Classical(const Eigen::Ref<const Eigen::MatrixXd>& M,
+                                            const Eigen::Ref<const Eigen::MatrixXd>& K,
+                                            const Eigen::Ref<const Eigen::MatrixXd>& C,
+                                            const Eigen::Ref<const Eigen::MatrixXd>& r);
+
+  int n_modes() const { return static_cast<int>(w2_.size()); }
+  /// w_k^2 (rad^2/s^2), ascending; rounding below zero of a free body's rigid modes is set to 0.
+  const Eigen::VectorXd& w2() const { return w2_; }
+  /// c_k = (Phi^T C Phi)_kk (1/s).
+  const Eigen::VectorXd& c() const { return c_; }
+  /// Phi, n x n, column k = mode k (Phi^T M Phi = I).
+  const Eigen::MatrixXd& Phi() const { return Phi_; }
+
+  /// Modal coordinates of the augmented state z = (q, u, a, slope, p, k) (linear_flow.h): Y is
+  /// n x 6, row k = y_k = (Phi^T M q, Phi^T M u, -L a, -L slope, -L p, -L k)_k. No allocation.
+  void ToModal(const Eigen::Ref<const Eigen::VectorXd>& z, Eigen::Ref<Eigen::MatrixXd> Y) const;
+
+  /// The transitions over tau_s (> 0) at the harmonic rate omega_radps: column k of `rows`
+  /// (12 x n) holds T_k row-major (eta row, then eta' row). With `input` and `damping` (36 x n,
+  /// column k a 6 x 6 column-major symmetric form Q_k), also the step's energy integrals:
+  /// y_k^T Q_k y_k summed over k is -int u^T M r a_g ds (input) or int u^T C u ds (damping), J.
+  void Transitions(double tau_s, double omega_radps, Eigen::Ref<Eigen::MatrixXd> rows,
+                   Eigen::MatrixXd* input, Eigen::MatrixXd* damping) const;
+
+  /// Taylor coefficients of eta_k and eta_k' (s since the step start) from y_k, `terms` of each
+  /// into eta[0 .. terms) and deta[0 .. terms). @pre terms <= kModalMaxTerms.
+  void ModeCoefficients(int k, double omega_radps, const double* y, int terms, double* eta,
+                        double* deta) const;
+
+ private:
+  ModalFlow() = default;
+
+  Eigen::VectorXd w2_, c_;
+  Eigen::MatrixXd Phi_;    // n x n
+  Eigen::MatrixXd PhiTM_;  // Phi^T M, n x n
+  Eigen::MatrixXd negL_;   // -Phi^T M r, n x 2
+};
+
+}  // namespace skewbridge::dynamics

@@ -1,0 +1,291 @@
+// The modal path of the linear flow (solver/dynamics/modal_flow.h) against the augmented matrix
+// exponential of the general path (its oracle): propagators, energy forms and the dense output on
+// random classically damped models, steps and excitation pieces.
+#include "solver/dynamics/modal_flow.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "solver/dynamics/linear_flow.h"
+#include "solver/model/builders.h"
+#include "solver/model/multispan.h"
+
+namespace skewbridge::dynamics {
+namespace {
+
+constexpr double kRelative = 1e-12;
+
+// A random model: diagonal M, SPD K (or singular: `rigid` zero-frequency modes), classical
+// C = M Phi diag(2 xi_k w_k) Phi^T M with the damping ratios `xi` cycled over the modes (a rigid
+// mode gets an undamped oscillator's c = 0 unless `rigid_damping` > 0).
+struct RandomModel {
+  Eigen::MatrixXd M, K, C, r;
+  Eigen::VectorXd omega;
+};
+
+RandomModel MakeModel(std::mt19937& rng, int n, int rigid, const std::vector<double>& xi,
+                      double rigid_damping = 0.0) {
+  std::uniform_real_distribution<double> unit(-1.0, 1.0), mass(1.0, 50.0);
+  RandomModel m;
+  m.M = Eigen::MatrixXd::Zero(n, n);
+  for (int i = 0; i < n; ++i) m.M(i, i) = mass(rng) * 1e3;
+  Eigen::MatrixXd B(n, n - rigid);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n - rigid; ++j) B(i, j) = unit(rng);
+  // Frequencies from about 1 to 30 rad/s.
+  m.K = 4e5 * B * B.transpose() + (rigid == 0 ? 1e4 : 0.0) * Eigen::MatrixXd::Identity(n, n);
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(m.K, m.M);
+  const Eigen::MatrixXd Phi = eig.eigenvectors();
+  m.omega = eig.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+  Eigen::VectorXd c(n);
+  for (int k = 0; k < n; ++k) {
+    c[k] = k < rigid ? rigid_damping : 2.0 * xi[k % xi.size()] * m.omega[k];
+  }
+  m.C = m.M * Phi * c.asDiagonal() * Phi.transpose() * m.M;
+  m.C = 0.5 * (m.C + m.C.transpose()).eval();
+  m.r = Eigen::MatrixXd::Zero(n, 2);
+  for (int i = 0; i < n; ++i) {
+    m.r(i, 0) = unit(rng);
+    m.r(i, 1) = unit(rng);
+  }
+  return m;
+}
+
+ExcitationPiece RandomPiece(std::mt19937& rng, double omega) {
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  ExcitationPiece piece;
+  piece.t_begin = 0.0;
+  piece.a_begin = {3.0 * unit(rng), 3.0 * unit(rng)};
+  piece.slope = {20.0 * unit(rng), 20.0 * unit(rng)};
+  piece.omega = omega;
+  if (omega != 0.0) {
+    piece.cos_amplitude = {3.0 * unit(rng), 3.0 * unit(rng)};
+    piece.sin_amplitude = {3.0 * unit(rng), 3.0 * unit(rng)};
+  }
+  return piece;
+}
+
+// A random state of the size of a response to the piece (m, m/s).
+Eigen::VectorXd RandomState(std::mt19937& rng, const LinearFlow& flow, const ExcitationPiece& p,
+                            double t) {
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const int n = flow.n_dof();
+  Eigen::VectorXd z(flow.augmented_size());
+  for (int i = 0; i < n; ++i) {
+    z[i] = 0.05 * unit(rng);
+    z[n + i] = 0.3 * unit(rng);
+  }
+  flow.SetGenerator(p, t, z);
+  return z;
+}
+
+// |a - b| per block (q, u, generator) against the block's largest entry in the oracle b.
+void ExpectStatesAgree(const Eigen::VectorXd& a, const Eigen::VectorXd& b, int n,
+                       const std::string& what) {
+  const int blocks[3][2] = {{0, n}, {n, n}, {2 * n, kGeneratorSize}};
+  const char* names[3] = {"q", "u", "generator"};
+  for (int i = 0; i < 3; ++i) {
+    const auto x = a.segment(blocks[i][0], blocks[i][1]);
+    const auto y = b.segment(blocks[i][0], blocks[i][1]);
+    const double scale = std::max(y.cwiseAbs().maxCoeff(), 1e-300);
+    EXPECT_LE((x - y).cwiseAbs().maxCoeff(), kRelative * scale) << what << ", block " << names[i];
+  }
+}
+
+// -int u^T M r a_g and int u^T C u over [0, tau] by 8-point Gauss-Legendre on 32 panels, the
+// states from the augmented transition.
+void GaussEnergy(LinearFlow& oracle, const Eigen::VectorXd& z, double tau, double rate,
+                 double& input_J, double& damping_J) {
+  const double x[8] = {-0.9602898564975363, -0.7966664774136267, -0.5255324099163290,
+                       -0.1834346424956498, 0.1834346424956498,  0.5255324099163290,
+                       0.7966664774136267,  0.9602898564975363};
+  const double w[8] = {0.1012285362903763, 0.2223810344533745, 0.3137066458778873,
+                       0.3626837833783620, 0.3626837833783620, 0.3137066458778873,
+                       0.2223810344533745, 0.1012285362903763};
+  const int panels = 32;
+  const double len = tau / panels;
+  Eigen::VectorXd zs(z.size());
+  input_J = damping_J = 0.0;
+  for (int i = 0; i < panels; ++i) {
+    for (int j = 0; j < 8; ++j) {
+      const double s = (i + 0.5 + 0.5 * x[j]) * len;
+      oracle.Apply(oracle.Propagator(s, rate, false), z, zs);
+      double p_in, p_d;
+      oracle.Powers(zs, p_in, p_d);
+      input_J += 0.5 * len * w[j] * p_in;
+      damping_J += 0.5 * len * w[j] * p_d;
+    }
+  }
+}
+
+struct Scenario {
+  const char* name;
+  int n;
+  int rigid;
+  std::vector<double> xi;
+  double rigid_damping;
+};
+
+class ModalAgainstAugmented : public ::testing::TestWithParam<Scenario> {};
+
+TEST_P(ModalAgainstAugmented, PropagatorsEnergyAndDenseOutputAgree) {
+  const Scenario& s = GetParam();
+  std::mt19937 rng(20261124u + static_cast<unsigned>(s.n * 7 + s.rigid));
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  for (int trial = 0; trial < 6; ++trial) {
+    const RandomModel m = MakeModel(rng, s.n, s.rigid, s.xi, s.rigid_damping);
+    LinearFlow modal(m.M, m.K, m.C, m.r);
+    LinearFlow oracle(m.M, m.K, m.C, m.r, FlowPath::kAugmented);
+    ASSERT_TRUE(modal.modal()) << s.name;
+    ASSERT_FALSE(oracle.modal());
+    const int n = s.n, N = modal.augmented_size();
+    const double w_max = m.omega.maxCoeff();
+    // Excitation rates: none, random, and each resonance (natural and damped frequency).
+    std::vector<double> rates = {0.0, 30.0 * uniform(rng)};
+    const int k = static_cast<int>(uniform(rng) * n) % n;
+    const double xi_k = k < s.rigid ? 0.0 : s.xi[k % s.xi.size()];
+    rates.push_back(m.omega[k]);
+    if (xi_k < 1.0) rates.push_back(m.omega[k] * std::sqrt(1.0 - xi_k * xi_k));
+    for (double rate : rates) {
+      const ExcitationPiece piece = RandomPiece(rng, rate);
+      // Steps from far below to far above the integrator's (1/20 of the shortest period): the
+      // longest ones take the modal path's halving and squaring.
+      for (double fraction : {1e-4, 0.013, 0.05, 0.3, 1.0, 4.0}) {
+        const double tau = fraction * (0.5 + uniform(rng)) * 2.0 * std::numbers::pi /
+                           std::max({w_max, std::abs(rate), 1e-3});
+        const std::string what = std::string(s.name) + " trial " + std::to_string(trial) +
+                                 " rate " + std::to_string(rate) + " tau " + std::to_string(tau);
+        const double t0 = 0.37 * tau;
+        const Eigen::VectorXd z = RandomState(rng, modal, piece, t0);
+        Eigen::VectorXd z_modal(N), z_oracle(N);
+        modal.Apply(modal.Propagator(tau, rate), z, z_modal);
+        oracle.Apply(oracle.Propagator(tau, rate), z, z_oracle);
+        ExpectStatesAgree(z_modal, z_oracle, n, what + " propagator");
+        double in_m, d_m, in_o = 0.0, d_o = 0.0;
+        bool check_energy = true;
+        modal.StepEnergy(modal.Propagator(tau, rate), z, in_m, d_m);
+        if (fraction <= 0.05) {
+          // The Van Loan Gram matrices, within the integrator's steps.
+          oracle.StepEnergy(oracle.Propagator(tau, rate), z, in_o, d_o);
+        } else if (trial == 0) {
+          // Longer steps: the Van Loan block exponential grows like e^{c tau} and loses every
+          // digit for a strongly damped mode, so the oracle is Gauss-Legendre quadrature of the
+          // powers along the augmented transition.
+          GaussEnergy(oracle, z, tau, rate, in_o, d_o);
+        } else {
+          check_energy = false;
+        }
+        // Against the energies moved in the step: the work terms and both mechanical energies.
+        const double energy_scale =
+            std::max({std::abs(in_o), std::abs(d_o), modal.MechanicalEnergy(z),
+                      modal.MechanicalEnergy(z_oracle)});
+        if (check_energy) {
+          EXPECT_LE(std::abs(in_m - in_o), kRelative * energy_scale) << what << " input work";
+          EXPECT_LE(std::abs(d_m - d_o), kRelative * energy_scale) << what << " damping work";
+        }
+        // The transition is the same bits with and without the energy forms.
+        LinearFlow fresh(m.M, m.K, m.C, m.r);
+        Eigen::VectorXd z_plain(N);
+        fresh.Apply(fresh.Propagator(tau, rate, false), z, z_plain);
+        EXPECT_TRUE(z_plain == z_modal) << what;
+
+        // The dense output inside the step, where the integrator uses it (rho_k <= 4).
+        if (fraction > 0.3) continue;
+        FreeDenseOutput dense(N), dense_oracle(N);
+        dense.Build(modal, rate, z, tau);
+        Eigen::VectorXd z_dense(N), z_head(N), z_at(N);
+        for (double part : {0.0, 1e-3, 0.21, 0.5, 0.77, 1.0}) {
+          const double at = part * tau;
+          if (at > 0.0) {
+            oracle.Apply(oracle.Propagator(at, rate, false), z, z_at);
+          } else {
+            z_at = z;
+          }
+          dense.Evaluate(at, z_dense);
+          ExpectStatesAgree(z_dense, z_at, n, what + " dense at " + std::to_string(part));
+          z_head.setConstant(7.0);
+          dense.EvaluateHead(at, 2 * n, z_head);
+          EXPECT_TRUE(z_head.head(2 * n) == z_dense.head(2 * n));
+          EXPECT_EQ(z_head[2 * n], 7.0) << "EvaluateHead wrote past its count";
+          dense.EvaluateHead(at, n, z_head);
+          EXPECT_TRUE(z_head.head(n) == z_dense.head(n));
+          for (int i = 0; i < N; ++i) {
+            const int block_begin = i < n ? 0 : i < 2 * n ? n : 2 * n;
+            const int block_size = i < 2 * n ? n : kGeneratorSize;
+            const double scale = z_at.segment(block_begin, block_size).cwiseAbs().maxCoeff();
+            EXPECT_LE(std::abs(dense.EvaluateComponent(at, i) - z_at[i]), kRelative * scale)
+                << what << " component " << i;
+          }
+        }
+      }
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    RandomModels, ModalAgainstAugmented,
+    ::testing::Values(Scenario{"one_dof_light", 1, 0, {0.05}, 0.0},
+                      Scenario{"three_dof_undamped", 3, 0, {0.0}, 0.0},
+                      Scenario{"three_dof_mixed", 3, 0, {0.0, 0.02, 0.7}, 0.0},
+                      Scenario{"five_dof_critical_and_over", 5, 0, {1.0, 0.3, 1.5, 2.0}, 0.0},
+                      Scenario{"four_dof_free_body", 4, 1, {0.05}, 0.0},
+                      Scenario{"four_dof_damped_rigid_mode", 4, 2, {0.1}, 3.0},
+                      Scenario{"eight_dof", 8, 0, {0.05, 0.1}, 0.0}),
+    [](const ::testing::TestParamInfo<Scenario>& info) { return std::string(info.param.name); });
+
+TEST(ModalFlow, DetectsClassicalDamping) {
+  std::mt19937 rng(7);
+  const RandomModel m = MakeModel(rng, 4, 0, {0.05});
+  EXPECT_TRUE(ModalFlow::Classical(m.M, m.K, m.C, m.r).has_value());
+  EXPECT_TRUE(ModalFlow::Classical(m.M, m.K, Eigen::MatrixXd::Zero(4, 4), m.r).has_value());
+  // Rayleigh damping is classical; a damper on one DOF of a coupled system is not.
+  EXPECT_TRUE(ModalFlow::Classical(m.M, m.K, 0.3 * m.M + 1e-3 * m.K, m.r).has_value());
+  Eigen::MatrixXd local = Eigen::MatrixXd::Zero(4, 4);
+  local(0, 0) = 1e3;
+  EXPECT_FALSE(ModalFlow::Classical(m.M, m.K, local, m.r).has_value());
+  // So is a classical C perturbed by 1e-9 of itself off its modes.
+  Eigen::MatrixXd perturbed = m.C + 1e-9 * m.C.norm() * (local / 1e3);
+  EXPECT_FALSE(ModalFlow::Classical(m.M, m.K, perturbed, m.r).has_value());
+}
+
+TEST(ModalFlow, EveryBuilderModelTakesTheModalPath) {
+  model::DeckSpec deck;
+  deck.mass_kg = 1e5;
+  deck.geometry = {30.0, 12.0, 0.5};
+  deck.w0x_radps = deck.w0y_radps = deck.W0_radps = 3.0;  // a triple natural frequency
+  deck.xi = 0.05;
+  const model::Model single = model::BuildDeckModel(deck);
+  EXPECT_TRUE(LinearFlow(single.M(), single.K(), single.C(), single.r()).modal());
+  model::MultiSpanSpec spec;
+  spec.n_spans = 50;
+  spec.span_lengths_m = {30.0};
+  spec.width_m = 10.0;
+  spec.skew_rad = 0.5;
+  spec.mass_per_length_kgpm = 20e3;
+  spec.w0x_radps = spec.w0y_radps = 8.0;
+  spec.W0_radps = 10.0;
+  spec.xi = 0.05;
+  spec.abutment_gap_m = 0.02;
+  spec.joint_gap_m = 0.01;
+  const model::Model bridge = model::BuildMultiSpanBridge(spec, "test");
+  EXPECT_TRUE(LinearFlow(bridge.M(), bridge.K(), bridge.C(), bridge.r()).modal());
+}
+
+TEST(ModalFlow, TermCountBoundsTheFirstOmittedTerm) {
+  for (double rho : {0.0, 1e-6, 0.3, 1.0, 4.0}) {
+    const int terms = ModalTermCount(rho);
+    EXPECT_GE(terms, 5);
+    EXPECT_LE(terms, kModalMaxTerms);
+    // rho^terms / terms! below 1e-18.
+    double term = 1.0;
+    for (int m = 1; m <= terms - 1; ++m) term *= rho / m;
+    EXPECT_LE(term, 1e-18) << rho;
+  }
+}
+
+}  // namespace
+}  // namespace skewbridge::dynamics
