@@ -176,6 +176,9 @@ PointResult EvaluatePoint(const DimensionalPoint& point, const Excitation& excit
   control.absolute_tolerance = 1e-11 * point.persistency_m;
   control.end_time_s =
       excitation.Duration() + 2.0 * std::max(excitation_period_s, natural_period_s);
+  // A cell stores no energy: the ledger's forms would only cost time (the responses are the same
+  // bits without them).
+  control.energy_ledger = false;
 
   dynamics::RunResult run;
   if (point.method == Method::kTimeStepping) {

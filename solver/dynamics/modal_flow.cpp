@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "solver/common/error.h"
 
@@ -45,6 +46,17 @@ std::optional<ModalFlow> ModalFlow::Classical(const Eigen::Ref<const Eigen::Matr
   }
   if (off > kClassicalTolerance * diagonal) {
     return std::nullopt;
+  }
+  // Entries at rounding level are zero: a DOF that no mode couples (the transverse DOFs of an
+  // unskewed deck under a longitudinal pulse) then stays exactly at rest.
+  for (int k = 0; k < n; ++k) {
+    const double floor =
+        64.0 * std::numeric_limits<double>::epsilon() * flow.Phi_.col(k).cwiseAbs().maxCoeff();
+    for (int i = 0; i < n; ++i) {
+      if (std::abs(flow.Phi_(i, k)) < floor) {
+        flow.Phi_(i, k) = 0.0;
+      }
+    }
   }
   flow.w2_ = eig.eigenvalues().cwiseMax(0.0);
   flow.c_ = D.diagonal();

@@ -3,8 +3,8 @@
 //   valgrind --tool=callgrind build/perf/tests/dynamics/simulate_one_run pilot 1 10
 // Arguments: subsystem|pilot|pilot-study, contacts 0|1, N (pilot-study: the pilot bridge at the
 // gaps of Pi_delta = 0.5), and optionally warm (the default: one workspace for every run) or cold
-// (a new copy of the model and a new workspace for every run, as a sweep cell does). Prints the
-// run's status, counts and maxima.
+// (a new copy of the model and a new workspace for every run) or cell (cold and without the energy
+// ledger: what a sweep cell does). Prints the run's status, counts and maxima.
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -15,12 +15,13 @@
 int main(int argc, char** argv) {
   using namespace skewbridge::dynamics;
   if (argc != 4 && argc != 5) {
-    std::fprintf(stderr, "usage: %s subsystem|pilot|pilot-study 0|1 N [warm|cold]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s subsystem|pilot|pilot-study 0|1 N [warm|cold|cell]\n", argv[0]);
     return 2;
   }
   const std::string mode = argc == 5 ? argv[4] : "warm";
-  if (mode != "warm" && mode != "cold") {
-    std::fprintf(stderr, "%s: the mode must be warm or cold, not %s\n", argv[0], mode.c_str());
+  if (mode != "warm" && mode != "cold" && mode != "cell") {
+    std::fprintf(stderr, "%s: the mode must be warm, cold or cell, not %s\n", argv[0],
+                 mode.c_str());
     return 2;
   }
   const std::string which = argv[1];
@@ -33,11 +34,13 @@ int main(int argc, char** argv) {
   SimulationWorkspace ws(c.model);
   RunResult r = Simulate(c.model, *c.excitation, c.control, ws);
   for (int i = 0; i < n; ++i) {
-    if (mode == "cold") {
+    if (mode != "warm") {
       // Everything a sweep cell builds: its model and a workspace for it (modal data, caches).
       const skewbridge::model::Model model = c.model;
       SimulationWorkspace cold(model);
-      r = Simulate(model, *c.excitation, c.control, cold);
+      skewbridge::model::RunControl control = c.control;
+      control.energy_ledger = mode == "cold";
+      r = Simulate(model, *c.excitation, control, cold);
     } else {
       r = Simulate(c.model, *c.excitation, c.control, ws);
     }

@@ -56,6 +56,39 @@ void Run(benchmark::State& state, const model::Model& m, const Excitation& ex,
   state.counters["ok"] = r.status == RunStatus::kOk ? 1.0 : 0.0;
 }
 
+// Cold: a new model and workspace for every run, and no energy ledger, which is what a sweep cell
+// does (every cell is a new model, so nothing is cached from the previous one).
+void RunCold(benchmark::State& state, const model::Model& m, const Excitation& ex,
+             model::RunControl control) {
+  control.energy_ledger = false;
+  RunResult r;
+  long runs = 0;
+  for (auto _ : state) {
+    const model::Model cell = m;
+    SimulationWorkspace ws(cell);
+    r = Simulate(cell, ex, control, ws);
+    benchmark::DoNotOptimize(r.max_abs_q.data());
+    ++runs;
+  }
+  state.counters["runs_per_s"] =
+      benchmark::Counter(static_cast<double>(runs), benchmark::Counter::kIsRate);
+  state.counters["steps_per_run"] = static_cast<double>(r.free_steps + r.rk_steps + r.rk_rejected);
+  state.counters["impacts"] = static_cast<double>(r.impacts);
+  state.counters["ok"] = r.status == RunStatus::kOk ? 1.0 : 0.0;
+}
+
+void BM_SubsystemCosinePulseCold(benchmark::State& state) {
+  const bench::Case c = bench::SubsystemCosinePulse(state.range(0) != 0);
+  RunCold(state, c.model, *c.excitation, c.control);
+}
+BENCHMARK(BM_SubsystemCosinePulseCold)->Arg(1)->Arg(0)->ArgName("contacts");
+
+void BM_PilotBridgeRecordStudyGapCold(benchmark::State& state) {
+  const bench::Case c = bench::PilotBridgeRecord(true, bench::kPilotStudyGap_m);
+  RunCold(state, c.model, *c.excitation, c.control);
+}
+BENCHMARK(BM_PilotBridgeRecordStudyGapCold)->Unit(benchmark::kMillisecond);
+
 void BM_SubsystemCosinePulse(benchmark::State& state) {
   const bench::Case c = bench::SubsystemCosinePulse(state.range(0) != 0);
   Run(state, c.model, *c.excitation, c.control);

@@ -158,9 +158,10 @@ TEST(Simulate, ZeroSkewKeepsTransverseAndRotationExactlyZero) {
   const RunResult r = Simulate(m, pulse, EndAt(3.0), ws);
   ASSERT_EQ(r.status, RunStatus::kOk) << r.message;
   EXPECT_GT(r.impacts, 0);
-  // Zero up to the round-off of the two-corner impulses (16 digits of x).
-  EXPECT_LE(r.max_abs_q[1], 1e-15 * r.max_abs_q[0]);
-  EXPECT_LE(r.max_abs_q[2] * Rho(m), 1e-15 * r.max_abs_q[0]);
+  // Zero up to the round-off of the two-corner impulses (16 digits of x), which the modal
+  // transforms of each free step (q = Phi eta) round a few times more.
+  EXPECT_LE(r.max_abs_q[1], 1e-14 * r.max_abs_q[0]);
+  EXPECT_LE(r.max_abs_q[2] * Rho(m), 1e-14 * r.max_abs_q[0]);
 }
 
 // Gaps too large to close: the run is the linear response, checked against modal superposition.
