@@ -142,12 +142,20 @@ const FreePropagator& LinearFlow::Propagator(double tau_s, double omega_radps, b
 }
 
 void LinearFlow::Apply(const FreePropagator& p, const Eigen::Ref<const Eigen::VectorXd>& z,
-                       Eigen::Ref<Eigen::VectorXd> z_next) {
+                       Eigen::Ref<Eigen::VectorXd> z_next, double* input_J, double* damping_J) {
+  const bool energy = input_J != nullptr && damping_J != nullptr;
   if (!modal_) {
     z_next.noalias() = p.phi * z;
+    if (energy) {
+      StepEnergy(p, z, *input_J, *damping_J);
+    }
     return;
   }
   modal_->ToModal(z, Y_);
+  if (energy) {
+    SB_DEMAND(p.has_energy, "LinearFlow: the propagator was built without its energy forms");
+    ModalEnergy(p, *input_J, *damping_J);
+  }
   const double* T = p.modal_rows.data();
   for (int k = 0; k < n_; ++k, T += 12) {
     double eta = 0.0, deta = 0.0;
@@ -158,9 +166,7 @@ void LinearFlow::Apply(const FreePropagator& p, const Eigen::Ref<const Eigen::Ve
     eta_[k] = eta;
     deta_[k] = deta;
   }
-  const Eigen::MatrixXd& Phi = modal_->Phi();
-  z_next.head(n_).noalias() = Phi * eta_;
-  z_next.segment(n_, n_).noalias() = Phi * deta_;
+  ModalProduct(modal_->Phi(), n_, eta_.data(), deta_.data(), z_next.data(), z_next.data() + n_);
   // The generator: a + slope tau, slope, and (p, k) turned by omega tau.
   const int ia = 2 * n_;
   z_next.segment<2>(ia) = z.segment<2>(ia) + p.tau_s * z.segment<2>(ia + 2);
@@ -184,6 +190,11 @@ void LinearFlow::StepEnergy(const FreePropagator& p, const Eigen::Ref<const Eige
     return;
   }
   modal_->ToModal(z, Y_);
+  ModalEnergy(p, input_J, damping_J);
+}
+
+void LinearFlow::ModalEnergy(const FreePropagator& p, double& input_J, double& damping_J) const {
+  // Sum over modes of y_k^T Q_k y_k, y_k the row k of Y_.
   input_J = 0.0;
   damping_J = 0.0;
   for (int k = 0; k < n_; ++k) {
@@ -335,9 +346,7 @@ void FreeDenseOutput::GeneratorAt(double tau_s, Eigen::Ref<Eigen::VectorXd> z) c
 void FreeDenseOutput::Evaluate(double tau_s, Eigen::Ref<Eigen::VectorXd> z) {
   if (modal_) {
     ModalAt(tau_s, true);
-    const Eigen::MatrixXd& Phi = flow_->modal_flow().Phi();
-    z.head(n_).noalias() = Phi * eta_;
-    z.segment(n_, n_).noalias() = Phi * deta_;
+    ModalProduct(flow_->modal_flow().Phi(), n_, eta_.data(), deta_.data(), z.data(), z.data() + n_);
     GeneratorAt(tau_s, z);
     return;
   }
@@ -351,13 +360,16 @@ void FreeDenseOutput::EvaluateHead(double tau_s, int count, Eigen::Ref<Eigen::Ve
     if (count > 2 * n_) {
       Evaluate(tau_s, z_scratch_);
       z.head(count) = z_scratch_.head(count);
+    } else if (count == 2 * n_) {
+      ModalAt(tau_s, true);
+      ModalProduct(Phi, n_, eta_.data(), deta_.data(), z.data(), z.data() + n_);
     } else if (count > n_) {
       ModalAt(tau_s, true);
-      z.head(n_).noalias() = Phi * eta_;
-      z.segment(n_, count - n_).noalias() = Phi.topRows(count - n_) * deta_;
+      ModalProduct(Phi, n_, eta_.data(), nullptr, z.data(), nullptr);
+      ModalProduct(Phi, count - n_, deta_.data(), nullptr, z.data() + n_, nullptr);
     } else {
       ModalAt(tau_s, false);
-      z.head(count).noalias() = Phi.topRows(count) * eta_;
+      ModalProduct(Phi, count, eta_.data(), nullptr, z.data(), nullptr);
     }
     return;
   }

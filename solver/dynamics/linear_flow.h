@@ -90,10 +90,12 @@ class LinearFlow {
   /// call.
   const FreePropagator& Propagator(double tau_s, double omega_radps, bool energy = true);
 
-  /// z_next = e^{A_hat tau} z over the propagator's step (no allocation).
-  /// @pre z and z_next of the augmented size and distinct.
+  /// z_next = e^{A_hat tau} z over the propagator's step (no allocation); with input_J and
+  /// damping_J, also the step's energy as StepEnergy gives it, from the same modal transform.
+  /// @pre z and z_next of the augmented size and distinct; p.has_energy if energy is asked.
   void Apply(const FreePropagator& p, const Eigen::Ref<const Eigen::VectorXd>& z,
-             Eigen::Ref<Eigen::VectorXd> z_next);
+             Eigen::Ref<Eigen::VectorXd> z_next, double* input_J = nullptr,
+             double* damping_J = nullptr);
 
   /// The step's work of the ground -int u^T M r a_g dt and of damping int u^T C u dt (J) from the
   /// step's initial state z. @pre p.has_energy.
@@ -117,6 +119,7 @@ class LinearFlow {
 
  private:
   void Compute(double tau_s, double omega_radps, bool energy, FreePropagator& out) const;
+  void ModalEnergy(const FreePropagator& p, double& input_J, double& damping_J) const;
 
   int n_;
   std::optional<ModalFlow> modal_;

@@ -28,6 +28,24 @@ int ModalTermCount(double rho) {
   return m + 1;
 }
 
+void ModalProduct(const Eigen::MatrixXd& A, int rows, const double* x1, const double* x2,
+                  double* y1, double* y2) {
+  const Eigen::Index cols = A.cols(), stride = A.rows();
+  const double* a = A.data();
+  for (int i = 0; i < rows; ++i) y1[i] = 0.0;
+  if (y2 != nullptr) {
+    for (int i = 0; i < rows; ++i) y2[i] = 0.0;
+  }
+  for (Eigen::Index j = 0; j < cols; ++j, a += stride) {
+    const double b1 = x1[j];
+    for (int i = 0; i < rows; ++i) y1[i] += a[i] * b1;
+    if (y2 != nullptr) {
+      const double b2 = x2[j];
+      for (int i = 0; i < rows; ++i) y2[i] += a[i] * b2;
+    }
+  }
+}
+
 std::optional<ModalFlow> ModalFlow::Classical(const Eigen::Ref<const Eigen::MatrixXd>& M,
                                               const Eigen::Ref<const Eigen::MatrixXd>& K,
                                               const Eigen::Ref<const Eigen::MatrixXd>& C,
@@ -68,10 +86,14 @@ std::optional<ModalFlow> ModalFlow::Classical(const Eigen::Ref<const Eigen::Matr
 void ModalFlow::ToModal(const Eigen::Ref<const Eigen::VectorXd>& z,
                         Eigen::Ref<Eigen::MatrixXd> Y) const {
   const int n = n_modes();
-  Y.col(0).noalias() = PhiTM_ * z.head(n);
-  Y.col(1).noalias() = PhiTM_ * z.segment(n, n);
+  SB_ASSERT(Y.rows() == n && Y.cols() == 6, "ModalFlow: Y must be n x 6");
+  ModalProduct(PhiTM_, n, z.data(), z.data() + n, Y.col(0).data(), Y.col(1).data());
   for (int j = 0; j < 4; ++j) {
-    Y.col(2 + j).noalias() = negL_ * z.segment<2>(2 * n + 2 * j);
+    const double gx = z[2 * n + 2 * j], gy = z[2 * n + 2 * j + 1];
+    double* y = Y.col(2 + j).data();
+    for (int k = 0; k < n; ++k) {
+      y[k] = negL_(k, 0) * gx + negL_(k, 1) * gy;
+    }
   }
 }
 

@@ -41,6 +41,12 @@ inline constexpr int kModalMaxTerms = 48;
 /// Number of Taylor terms (coefficients 0 .. N - 1) that bring rho^N / N! below 1e-18.
 int ModalTermCount(double rho);
 
+/// y1 = A.topRows(rows) x1 and y2 = A.topRows(rows) x2 in one pass over the column-major A, as
+/// plain loops: for the few DOFs of a deck, Eigen's general matrix-vector kernel costs more in
+/// its set-up than in its arithmetic. y2 (and x2) may be null.
+void ModalProduct(const Eigen::MatrixXd& A, int rows, const double* x1, const double* x2,
+                  double* y1, double* y2);
+
 /// The modes of a classically damped model and the per-mode transitions.
 class ModalFlow {
  public:

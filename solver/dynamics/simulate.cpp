@@ -571,10 +571,7 @@ void Integrator::FreeStep() {
   const bool ledger = control_.energy_ledger;
   if (full) {
     const FreePropagator& p = flow.Propagator(h, piece.omega, ledger);
-    flow.Apply(p, z_, z_new_);
-    if (ledger) {
-      flow.StepEnergy(p, z_, input, damping);
-    }
+    flow.Apply(p, z_, z_new_, ledger ? &input : nullptr, ledger ? &damping : nullptr);
   } else {
     ensure_dense();
     ws_.free_dense_.Evaluate(tau, z_new_);
