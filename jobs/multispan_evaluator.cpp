@@ -198,6 +198,8 @@ CellOutcome MultiSpanEvaluator::Evaluate(std::span<const std::size_t> axis_index
   // Tolerances in state units follow the persistency, as for the single deck, so that the run
   // is self-similar in a_g [method.md §4 fact 4].
   control.absolute_tolerance = 1e-11 * c.persistency_m;
+  // A cell stores maxima, not the energy ledger: its work integrals are not computed.
+  control.energy_ledger = false;
   control.end_time_s = pulse.Duration() + 2.0 * std::max(excitation_period_s, natural_period_s);
   dynamics::RunResult run;
   if (c.time_stepping) {
