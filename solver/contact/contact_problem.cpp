@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "solver/common/error.h"
+#include "solver/lcp/enumeration.h"
 
 namespace skewbridge::contact {
 
@@ -149,6 +150,13 @@ ContactStatus ContactProblem::Solve(const ContactKinematics& kinematics,
   }
 
   result.lcp_status = solver_.Solve(A, b, solutions_[static_cast<std::size_t>(A.rows())]);
+  if (result.lcp_status != lcp::LcpStatus::kSolved && n <= lcp::kMaxEnumerationSize) {
+    // A ray of Lemke's algorithm proves nothing for a degenerate problem (two corners of one
+    // face have identical tangent rows); the enumeration of the complementary bases decides
+    // whether a solution exists, so a Painleve status means that none does.
+    result.lcp_status =
+        lcp::SolveByEnumeration(A, b, solutions_[static_cast<std::size_t>(A.rows())]);
+  }
   const lcp::LcpSolution& solution = solutions_[static_cast<std::size_t>(A.rows())];
   result.pivots = solution.pivots;
   if (result.lcp_status != lcp::LcpStatus::kSolved) {

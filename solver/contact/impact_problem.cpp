@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "solver/common/error.h"
+#include "solver/lcp/enumeration.h"
 
 namespace skewbridge::contact {
 
@@ -122,6 +123,11 @@ lcp::LcpStatus ImpactProblem::Solve(const ContactKinematics& kinematics,
   b.tail(k).setZero();
 
   result.status = solver_.Solve(A, b, solutions_[static_cast<std::size_t>(A.rows())]);
+  if (result.status != lcp::LcpStatus::kSolved && 3 * k <= lcp::kMaxEnumerationSize) {
+    // Lemke's ray on a degenerate impact (identical tangent rows of two corners on one face)
+    // proves nothing: the enumeration of the complementary bases decides.
+    result.status = lcp::SolveByEnumeration(A, b, solutions_[static_cast<std::size_t>(A.rows())]);
+  }
   const lcp::LcpSolution& solution = solutions_[static_cast<std::size_t>(A.rows())];
   result.pivots = solution.pivots;
   if (result.status != lcp::LcpStatus::kSolved) {

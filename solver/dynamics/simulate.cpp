@@ -2,6 +2,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
+#include <Eigen/LU>
 #include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
@@ -127,6 +128,16 @@ class ActiveSystem {
   // on one straight face of two aligned decks, makes A singular).
   void Solve() {
     if (small_) {
+      // LU with partial pivoting when A is clearly regular (the usual sliding active set), a
+      // fraction of the orthogonal decomposition's cost; the decomposition for a singular A.
+      if (m_ > 0) {
+        lu_small_.compute(a_small_);
+        const auto diag = lu_small_.matrixLU().diagonal().cwiseAbs();
+        if (diag.minCoeff() > kRankThreshold * diag.maxCoeff()) {
+          x_small_ = lu_small_.solve(b_small_.head(m_));
+          return;
+        }
+      }
       cod_small_.compute(a_small_);
       x_small_ = cod_small_.solve(b_small_.head(m_));
     } else {
@@ -192,6 +203,7 @@ class ActiveSystem {
   SmallVector b_small_, x_small_;
   Eigen::CompleteOrthogonalDecomposition<SmallMatrix> cod_small_;
   Eigen::LDLT<SmallMatrix> ldlt_small_;
+  Eigen::PartialPivLU<SmallMatrix> lu_small_;
   Eigen::SelfAdjointEigenSolver<SmallMatrix> eig_small_;
   bool rank_deficient_ = false;
   Eigen::MatrixXd a_large_;
@@ -379,7 +391,7 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   sin_.assign(static_cast<std::size_t>(model.n_bodies()), 0.0);
   rows_ = cols_ = Eigen::MatrixXd::Zero(n_, sys_.capacity());
   projection_rows_.assign(static_cast<std::size_t>(nc_), 0);
-  tie_.assign(static_cast<std::size_t>(nc_), 0);
+  tie_.assign(static_cast<std::size_t>(nc_), -2);
   kernel_ = Eigen::MatrixXd::Zero(sys_.capacity(), 4);
   normal_of_.assign(static_cast<std::size_t>(nc_), 0);
   tangent_of_.assign(static_cast<std::size_t>(nc_), -1);
@@ -878,7 +890,7 @@ void Integrator::BalanceIndeterminateFriction(int k, int m) {
   // corner beyond its cone while another split keeps both inside, and the slip event would then
   // fire although the contact problem (which finds such a split) says both stick. Of all the
   // solutions, take the one deepest inside the cones: it maximises the smallest margin
-  // mu (lambda_N + force_tol) - |lambda_T| and lambda_N + force_tol, a concave function of the
+  // mu lambda_N + force_tol - |lambda_T| and lambda_N + force_tol, a concave function of the
   // kernel coordinates (maximised one coordinate at a time by ternary search).
   const int d = sys_.Kernel(kernel_, static_cast<int>(kernel_.cols()));
   if (d == 0) {
@@ -908,7 +920,7 @@ void Integrator::BalanceIndeterminateFriction(int k, int m) {
       const int t = tangent_of_[static_cast<std::size_t>(jj)];
       if (t >= 0) {
         const double mu = model_.contact(normal_of_[static_cast<std::size_t>(jj)]).friction;
-        worst = std::min(worst, mu * normal - std::abs(x[t]));
+        worst = std::min(worst, mu * x[jj] + force_tol_ - std::abs(x[t]));
       }
     }
     return worst;
@@ -949,6 +961,12 @@ void Integrator::Rhs(double t, const Eigen::Ref<const Vec>& y, Eigen::Ref<Vec> d
   ActiveForces(t, qq, uu, du_);
   dy.head(n_) = uu;
   dy.segment(n_, n_) = du_;
+  if (!control_.energy_ledger) {
+    // The work integrals ride along in y with an infinite absolute tolerance: they never steer
+    // the step size, so leaving them at zero changes no response.
+    dy.tail(3).setZero();
+    return;
+  }
   const Eigen::Vector2d ag = GroundAcceleration(t);
   // M is diagonal: -u^T M r a_g without a temporary.
   const Vec& m_diag = model_.mass_diagonal();
@@ -962,7 +980,7 @@ void Integrator::Rhs(double t, const Eigen::Ref<const Vec>& y, Eigen::Ref<Vec> d
 void Integrator::ClosedEventValues(Eigen::Ref<Vec> values) const {
   // Per closed contact: lambda_N + force_tol_ (detachment when lambda_N falls clearly below zero)
   // and a friction function: s gamma_T + v_tol_ while sliding (stick or reversal once the slip
-  // has clearly passed zero), mu (lambda_N + force_tol_) - |lambda_T| while sticking (slip once
+  // has clearly passed zero), mu lambda_N + force_tol_ - |lambda_T| while sticking (slip once
   // the friction clearly exceeds the cone). Open contacts: +1. The bands make every function
   // non-negative at the start of the phase that the contact problem chose: a slip starts at
   // gamma_T = 0 and a stick may start with its friction on the cone, and a function that is
@@ -976,7 +994,7 @@ void Integrator::ClosedEventValues(Eigen::Ref<Vec> values) const {
     } else if (mode == static_cast<int>(ClosedMode::kSlideNegative)) {
       f = -ws_.kin_.gamma_T[c] + v_tol_;
     } else if (mode == static_cast<int>(ClosedMode::kStick)) {
-      f = model_.contact(c).friction * (lambda_N_[c] + force_tol_) - std::abs(lambda_T_[c]);
+      f = model_.contact(c).friction * lambda_N_[c] + force_tol_ - std::abs(lambda_T_[c]);
     }
     values[2 * c + 1] = f;
   }
@@ -1188,8 +1206,7 @@ void Integrator::ResolveContacts(const std::vector<int>& forced) {
     for (int c = 0; c < nc_; ++c) {
       if (mode_[static_cast<std::size_t>(c)] == static_cast<int>(ClosedMode::kStick) &&
           lambda_T_[c] != 0.0 &&
-          model_.contact(c).friction * (lambda_N_[c] + force_tol_) - std::abs(lambda_T_[c]) <=
-              0.0) {
+          model_.contact(c).friction * lambda_N_[c] + force_tol_ - std::abs(lambda_T_[c]) <= 0.0) {
         cone_sign_[static_cast<std::size_t>(c)] = lambda_T_[c] > 0.0 ? -1 : 1;
       }
     }
@@ -1351,21 +1368,32 @@ bool Integrator::DecideContacts(const std::vector<int>& forced) {
     const contact::ContactResult& cr = ws_.contact_result_;
     for (std::size_t j = 0; j < closed_list_.size(); ++j) {
       const int c = closed_list_[j].contact;
-      const int before = previous[j];
+      const auto jj = static_cast<int>(j);
       const bool frictionless = model_.contact(c).friction == 0.0;
-      int mode = -1;
       contact::ContactOutcome outcome = cr.outcome[j];
-      // A separating acceleration within the detachment band is a tie, not a detachment: the
-      // contact stays closed with lambda_N = 0 (what the detachment event of a closed contact
-      // allows, lambda_N > -force_tol_). Opened instead, a contact at the face whose separating
-      // acceleration is about to reverse (a graze) re-closes within the first step, below
-      // any resolvable gap, and the same decision repeats at the same instant.
-      bool tie = false;
-      if (outcome == contact::ContactOutcome::kDetaches &&
-          cr.gammadot_N(static_cast<int>(j)) <= a_detach_) {
+      // Ties: a separating acceleration within the band a_detach_ keeps the contact closed with
+      // lambda_N = 0 (what the detachment event of a closed contact allows, lambda_N >
+      // -force_tol_), and a slip acceleration within it keeps the contact sticking at the cone.
+      // Decided the other way, a contact whose acceleration is about to reverse (a graze) comes
+      // back within the first step, below any resolvable gap or slip, and the same decision
+      // repeats at the same instant. Each tie is checked below against the constrained phase's
+      // own event function, and falls back to the contact problem's answer if that fires.
+      int fallback = -2;  // the mode the contact problem chose, for a tie; -2: no tie
+      if (outcome == contact::ContactOutcome::kDetaches && cr.gammadot_N(jj) <= a_detach_) {
+        fallback = -1;
         outcome = cr.friction_outcome[j];
-        tie = true;
       }
+      if ((outcome == contact::ContactOutcome::kStartsSlipPositive ||
+           outcome == contact::ContactOutcome::kStartsSlipNegative) &&
+          std::abs(cr.gammadot_T(jj)) <= a_detach_) {
+        if (fallback == -2) {
+          fallback = outcome == contact::ContactOutcome::kStartsSlipPositive
+                         ? static_cast<int>(ClosedMode::kSlidePositive)
+                         : static_cast<int>(ClosedMode::kSlideNegative);
+        }
+        outcome = contact::ContactOutcome::kSticks;
+      }
+      int mode = -1;
       switch (outcome) {
         case contact::ContactOutcome::kDetaches:
           mode = -1;
@@ -1388,7 +1416,52 @@ bool Integrator::DecideContacts(const std::vector<int>& forced) {
       }
       if (frictionless && mode >= 0) {
         mode = static_cast<int>(ClosedMode::kFrictionless);
+        if (fallback >= 0) {
+          fallback = -2;  // no slip tie without friction
+        }
       }
+      mode_[static_cast<std::size_t>(c)] = mode;
+      tie_[static_cast<std::size_t>(c)] = mode >= 0 ? fallback : -2;
+    }
+    // The ties against the constrained phase's event functions at this instant: a tie whose
+    // function is not positive takes the contact problem's answer (one at a time, since each
+    // change moves the others' forces).
+    for (int pass = 0; pass < nc_; ++pass) {
+      bool any_tie = false;
+      for (int c = 0; c < nc_; ++c) {
+        any_tie = any_tie || tie_[static_cast<std::size_t>(c)] != -2;
+      }
+      if (!any_tie) {
+        break;
+      }
+      closed_count_ = 0;
+      for (int c = 0; c < nc_; ++c) {
+        closed_count_ += mode_[static_cast<std::size_t>(c)] >= 0 ? 1 : 0;
+      }
+      ActiveForces(t_, q(), u(), du_);
+      ClosedEventValues(f_eval_);
+      bool changed = false;
+      for (int c = 0; c < nc_ && !changed; ++c) {
+        const int fallback = tie_[static_cast<std::size_t>(c)];
+        if (fallback == -2) {
+          continue;
+        }
+        const bool detach_tie = fallback == -1;
+        if (!(f_eval_[2 * c] > 0.0) || (!detach_tie && !(f_eval_[2 * c + 1] > 0.0))) {
+          mode_[static_cast<std::size_t>(c)] = fallback;
+          tie_[static_cast<std::size_t>(c)] = -2;
+          changed = true;
+        }
+      }
+      if (!changed) {
+        break;
+      }
+    }
+    closed_count_ = 0;
+    for (std::size_t j = 0; j < closed_list_.size(); ++j) {
+      const int c = closed_list_[j].contact;
+      const int before = previous[j];
+      const int mode = mode_[static_cast<std::size_t>(c)];
       if (mode < 0 && before >= 0) {
         ++result_.detachments;
         result_.events.push_back({t_, EventKind::kDetachment, c, 0.0, 0.0, 0.0, 0.0});
@@ -1401,38 +1474,9 @@ bool Integrator::DecideContacts(const std::vector<int>& forced) {
         ++result_.slip_transitions;
         result_.events.push_back({t_, EventKind::kSlip, c, 0.0, 0.0, 0.0, 0.0});
       }
-      mode_[static_cast<std::size_t>(c)] = mode;
-      closed_count_ += mode >= 0 ? 1 : 0;
-      tie_[static_cast<std::size_t>(c)] = tie && mode >= 0 ? (before >= 0 ? 2 : 1) : 0;
     }
-    // A tie kept closed must be one that the detachment event of the constrained phase accepts
-    // (lambda_N > -force_tol_ with the chosen modes), or that event would fire at once.
-    for (int pass = 0; pass < nc_; ++pass) {
-      bool opened = false;
-      bool any_tie = false;
-      for (int c = 0; c < nc_; ++c) {
-        any_tie = any_tie || tie_[static_cast<std::size_t>(c)] != 0;
-      }
-      if (!any_tie) {
-        break;
-      }
-      ActiveForces(t_, q(), u(), du_);
-      for (int c = 0; c < nc_; ++c) {
-        if (tie_[static_cast<std::size_t>(c)] != 0 && !(lambda_N_[c] + force_tol_ > 0.0)) {
-          if (tie_[static_cast<std::size_t>(c)] == 2) {
-            ++result_.detachments;
-            result_.events.push_back({t_, EventKind::kDetachment, c, 0.0, 0.0, 0.0, 0.0});
-          }
-          tie_[static_cast<std::size_t>(c)] = 0;
-          mode_[static_cast<std::size_t>(c)] = -1;
-          --closed_count_;
-          opened = true;
-          break;
-        }
-      }
-      if (!opened) {
-        break;
-      }
+    for (int c = 0; c < nc_; ++c) {
+      closed_count_ += mode_[static_cast<std::size_t>(c)] >= 0 ? 1 : 0;
     }
   }
   closed_ids_.clear();

@@ -116,6 +116,7 @@ inline dynamics::RunResult RunEventDriven(const spectra::PointParameters& p,
   model::RunControl control;
   control.absolute_tolerance = 1e-11 * point.persistency_m;
   control.max_steps = max_steps;
+  control.energy_ledger = false;
   control.end_time_s = pulse.Duration() + 2.0 * std::max(2.0 * std::numbers::pi / scales.w_g_radps,
                                                          2.0 * std::numbers::pi / w_min);
   dynamics::SimulationWorkspace workspace(model);

@@ -26,6 +26,7 @@ struct CellOutcome {
   spectra::PointResult ed;
   double seconds = 0.0;
   double worst_rel = 0.0;  // against time-stepping (with --compare)
+  spectra::PointResult ts;
 };
 
 // CPU time of this process (s): robust to other load on the machine, unlike wall time.
@@ -105,6 +106,7 @@ int main(int argc, char** argv) {
     }
     if (compare) {
       const spectra::PointResult ts = robustness::Evaluate(p, spectra::Method::kTimeStepping);
+      o.ts = ts;
       o.worst_rel =
           std::max({Disagreement(o.ed.x_norm, ts.x_norm), Disagreement(o.ed.y_norm, ts.y_norm),
                     Disagreement(o.ed.theta_norm, ts.theta_norm)});
@@ -133,8 +135,11 @@ int main(int argc, char** argv) {
               [](const CellOutcome& a, const CellOutcome& b) { return a.worst_rel > b.worst_rel; });
     std::printf("largest disagreement with time-stepping (h = 1e-5 T_g):\n");
     for (int i = 0; i < list && i < static_cast<int>(out.size()); ++i) {
-      std::printf("  %.3e  %s\n", out[i].worst_rel,
-                  robustness::Describe(grid.Cell(out[i].index)).c_str());
+      const CellOutcome& w = out[i];
+      std::printf("  %.3e  cell %lld %s\n     x %.6e / %.6e  y %.6e / %.6e  theta %.6e / %.6e\n",
+                  w.worst_rel, static_cast<long long>(w.index),
+                  robustness::Describe(grid.Cell(w.index)).c_str(), w.ed.x_norm, w.ts.x_norm,
+                  w.ed.y_norm, w.ts.y_norm, w.ed.theta_norm, w.ts.theta_norm);
     }
   }
   return failed == 0 ? 0 : 1;
