@@ -63,6 +63,10 @@ constexpr int kTouchProbes = 40;
 // Ternary-search iterations per kernel coordinate in BalanceIndeterminateFriction ((2/3)^80 ~ 1e-14
 // of the search interval).
 constexpr int kTernaryIterations = 80;
+// Zeno: the largest ratio of successive approach speeds, and the longest flight between them as
+// a fraction of the shortest natural period, for which a contact's impacts are an accumulation.
+constexpr double kZenoRatio = 0.9;
+constexpr double kZenoFlight = 1e-2;
 // Relative tolerance of a closed contact's normal force (see force_tol_).
 constexpr double kForceTolerance = 1e-7;
 // Rounding of a gap n . (X + (x, y) + R p - A) relative to the deck's size, with a margin.
@@ -256,6 +260,9 @@ class Integrator {
   bool DecideContacts(const std::vector<int>& forced);
   // True when an open contact at the face approaches it faster than v_tol_ (after a projection).
   bool OpenContactApproaching();
+  // True when an impact of contact c at approach speed approach_mps continues a geometric
+  // sequence of its own impacts (Zeno): the sequence is then closed at once.
+  bool Accumulating(int c, double approach_mps) const;
   void Project();
 
   template <class StateAt>
@@ -316,6 +323,10 @@ class Integrator {
   RunResult result_;
   ActiveSystem sys_;                  // 2 n_c rows at most
   std::vector<int> projection_rows_;  // per contact: 1 when an open contact joins the projection
+  std::vector<double> bounce_t_, bounce_v_;  // per contact: time and speed of its last impact
+  std::vector<long> bounce_seq_;             // per contact: impact_sequence_ of that impact
+  long impact_sequence_ = 0;                 // impact instants so far
+  double period_min_s_ = kInf;               // shortest natural period (s)
   std::vector<int> tie_;
   Eigen::MatrixXd kernel_;                   // kernel of a singular active set (columns)
   std::vector<int> normal_of_, tangent_of_;  // active-set layout for BalanceIndeterminateFriction
@@ -392,6 +403,12 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   rows_ = cols_ = Eigen::MatrixXd::Zero(n_, sys_.capacity());
   projection_rows_.assign(static_cast<std::size_t>(nc_), 0);
   tie_.assign(static_cast<std::size_t>(nc_), -2);
+  bounce_t_.assign(static_cast<std::size_t>(nc_), -kInf);
+  bounce_v_.assign(static_cast<std::size_t>(nc_), 0.0);
+  bounce_seq_.assign(static_cast<std::size_t>(nc_), -1);
+  if (ws.omega_max_radps_ > 0.0) {
+    period_min_s_ = 2.0 * std::numbers::pi / ws.omega_max_radps_;
+  }
   kernel_ = Eigen::MatrixXd::Zero(sys_.capacity(), 4);
   normal_of_.assign(static_cast<std::size_t>(nc_), 0);
   tangent_of_.assign(static_cast<std::size_t>(nc_), -1);
@@ -1241,6 +1258,25 @@ void Integrator::ResolveContacts(const std::vector<int>& forced) {
   RefreshGaps();
 }
 
+bool Integrator::Accumulating(int c, double approach_mps) const {
+  // Zeno [method.md §3, accumulation; Acary and Brogliato 2008, §2.1]: a contact bouncing under
+  // a nearly constant force returns after a flight much shorter than any period of the model,
+  // each time slower by a constant ratio rho (eps_N for a single contact), so its impacts
+  // accumulate after a further time (t_k - t_{k-1}) rho / (1 - rho), at which it is closed. Two
+  // consecutive impacts of the same contact, with no other impact between them, a ratio below
+  // kZenoRatio and a flight below kZenoFlight of the shortest period, identify the sequence;
+  // its remaining impacts, each a fraction of a flight that is itself a small fraction of a
+  // period, are replaced by closing the contact now. Without restitution there is no sequence,
+  // with eps_N = 1 the ratio stays near 1 and nothing is extrapolated.
+  const auto i = static_cast<std::size_t>(c);
+  if (bounce_seq_[i] != impact_sequence_ || !(bounce_v_[i] > 0.0)) {
+    return false;
+  }
+  const double flight = t_ - bounce_t_[i];
+  const double ratio = approach_mps / bounce_v_[i];
+  return flight > 0.0 && flight <= kZenoFlight * period_min_s_ && ratio <= kZenoRatio;
+}
+
 bool Integrator::OpenContactApproaching() {
   contact::Evaluate(model_, q(), u(), ws_.kin_);
   for (int c = 0; c < nc_; ++c) {
@@ -1267,8 +1303,13 @@ bool Integrator::DecideContacts(const std::vector<int>& forced) {
       continue;
     }
     index_set_.push_back(c);
-    if (kin.gamma_N[c] < -v_acc_) {
+    if (kin.gamma_N[c] < -v_acc_ && !Accumulating(c, -kin.gamma_N[c])) {
       impact = true;
+    } else if (kin.gamma_N[c] < -v_acc_) {
+      // The accumulation point of a bouncing contact, reached by extrapolation: this impact
+      // ends the sequence with restitution 0.
+      impact = true;
+      persistent_.push_back(c);
     } else {
       // Closed, or closing slower than the accumulation threshold: restitution 0.
       persistent_.push_back(c);
@@ -1298,7 +1339,14 @@ bool Integrator::DecideContacts(const std::vector<int>& forced) {
         }
       }
       last_impact_t_ = t_;
+      ++impact_sequence_;
       for (int j = 0; j < ir.k; ++j) {
+        const int c = index_set_[static_cast<std::size_t>(j)];
+        if (ir.gamma_N_A[j] < -v_acc_) {
+          bounce_t_[static_cast<std::size_t>(c)] = t_;
+          bounce_v_[static_cast<std::size_t>(c)] = -ir.gamma_N_A[j];
+          bounce_seq_[static_cast<std::size_t>(c)] = impact_sequence_;
+        }
         if (ir.Lambda_N[j] > 0.0) {
           result_.events.push_back({t_, EventKind::kImpact, index_set_[static_cast<std::size_t>(j)],
                                     ir.Lambda_N[j], ir.Lambda_T[j], ir.gamma_N_A[j],

@@ -162,8 +162,21 @@ int Model::FindContact(const std::string& name) const {
 void Model::AppliedForces(const Eigen::Ref<const Eigen::VectorXd>& q,
                           const Eigen::Ref<const Eigen::VectorXd>& u,
                           const Eigen::Vector2d& a_g_mps2, Eigen::Ref<Eigen::VectorXd> h) const {
-  h.noalias() = -C_ * u;
-  h.noalias() -= K_ * q;
+  const Eigen::Index n = h.size();
+  if (n <= 6) {
+    // A single deck: plain loops, without the dispatch of a dynamic-size product (this runs in
+    // every Runge-Kutta stage of a constrained phase).
+    for (Eigen::Index i = 0; i < n; ++i) {
+      double sum = 0.0;
+      for (Eigen::Index j = 0; j < n; ++j) {
+        sum += C_(i, j) * u(j) + K_(i, j) * q(j);
+      }
+      h(i) = -sum;
+    }
+  } else {
+    h.noalias() = -C_ * u;
+    h.noalias() -= K_ * q;
+  }
   // M r a_g column by column, M diagonal: no temporary.
   for (int j = 0; j < 2; ++j) {
     h.noalias() -= a_g_mps2(j) * mass_diagonal_.cwiseProduct(r_.col(j));
