@@ -6,6 +6,7 @@
 #include <string>
 
 #include "solver/common/error.h"
+#include "solver/lcp/enumeration.h"
 
 namespace skewbridge::dynamics {
 
@@ -356,7 +357,12 @@ RunResult SimulateTimeStepping(const model::Model& model, const Excitation& exci
         ws.b_[2 * ka + j] = 0.0;
       }
       lcp::LcpSolution& sol = ws.solutions_[static_cast<std::size_t>(3 * ka)];
-      const lcp::LcpStatus status = ws.lemke_.Solve(A, ws.b_.head(3 * ka), sol);
+      lcp::LcpStatus status = ws.lemke_.Solve(A, ws.b_.head(3 * ka), sol);
+      if (status != lcp::LcpStatus::kSolved && 3 * ka <= lcp::kMaxEnumerationSize) {
+        // Two corners of one face have identical tangent rows: Lemke's ray on such a
+        // degenerate problem proves nothing, the enumeration of its bases decides.
+        status = lcp::SolveByEnumeration(A, ws.b_.head(3 * ka), sol);
+      }
       if (status != lcp::LcpStatus::kSolved) {
         result.status = RunStatus::kLcpFailure;
         result.message = std::string("time-stepping LCP: ") + lcp::ToString(status) +

@@ -3,6 +3,8 @@
 #include <Eigen/QR>
 #include <cmath>
 #include <cstdint>
+#include <limits>
+#include <string>
 
 #include "solver/lcp/lcp_check.h"
 

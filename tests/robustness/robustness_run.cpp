@@ -45,6 +45,7 @@ int main(int argc, char** argv) {
   int sample = 0, list = 10;
   long long one_cell = -1;
   long max_steps = 10'000'000;
+  double ts_step = 1e-5;
   std::uint64_t seed = 12;
   bool compare = false;
   for (int i = 1; i < argc; ++i) {
@@ -54,6 +55,8 @@ int main(int argc, char** argv) {
       seed = std::strtoull(argv[++i], nullptr, 10);
     } else if (!std::strcmp(argv[i], "--cell") && i + 1 < argc) {
       one_cell = std::atoll(argv[++i]);
+    } else if (!std::strcmp(argv[i], "--ts-step") && i + 1 < argc) {
+      ts_step = std::atof(argv[++i]);
     } else if (!std::strcmp(argv[i], "--max-steps") && i + 1 < argc) {
       max_steps = std::atol(argv[++i]);
     } else if (!std::strcmp(argv[i], "--compare")) {
@@ -69,6 +72,17 @@ int main(int argc, char** argv) {
   if (one_cell >= 0) {
     // The event log of one cell (the last `list` events), for diagnosis.
     const dynamics::RunResult r = robustness::RunEventDriven(grid.Cell(one_cell), max_steps);
+    if (compare) {
+      const spectra::PointParameters p = grid.Cell(one_cell);
+      const spectra::PointResult ed = robustness::Evaluate(p, spectra::Method::kEventDriven);
+      const spectra::PointResult ts =
+          robustness::Evaluate(p, spectra::Method::kTimeStepping, ts_step);
+      std::printf(
+          "event-driven x %.9e y %.9e theta %.9e; time-stepping (h = %g T_g, %s) x %.9e "
+          "y %.9e theta %.9e\n",
+          ed.x_norm, ed.y_norm, ed.theta_norm, ts_step, dynamics::ToString(ts.status), ts.x_norm,
+          ts.y_norm, ts.theta_norm);
+    }
     std::printf("%s: %s %s, t_end %.9g, impacts %ld plastic %ld detach %ld stick %ld slip %ld\n",
                 robustness::Describe(grid.Cell(one_cell)).c_str(), dynamics::ToString(r.status),
                 r.message.c_str(), r.end_time_s, r.impacts, r.plastic_closures, r.detachments,
@@ -105,7 +119,8 @@ int main(int argc, char** argv) {
                   robustness::Describe(p).c_str(), o.ed.message.c_str());
     }
     if (compare) {
-      const spectra::PointResult ts = robustness::Evaluate(p, spectra::Method::kTimeStepping);
+      const spectra::PointResult ts =
+          robustness::Evaluate(p, spectra::Method::kTimeStepping, ts_step);
       o.ts = ts;
       o.worst_rel =
           std::max({Disagreement(o.ed.x_norm, ts.x_norm), Disagreement(o.ed.y_norm, ts.y_norm),
