@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <string>
 
 #include "solver/common/error.h"
@@ -165,8 +166,17 @@ DimensionalPoint ToDimensional(const PointParameters& p, const ExcitationScales&
 
 PointResult EvaluatePoint(const DimensionalPoint& point, const Excitation& excitation) {
   const model::Model model = model::BuildDeckModel(point.deck, "point");
-  const model::Modes modes = model::ComputeModes(model.M(), model.K());
-  const double w_min = modes.omega_radps.size() > 0 ? modes.omega_radps.minCoeff() : 0.0;
+  // The event-driven workspace has solved the modes already (its flow's); the time-stepping
+  // method solves them here.
+  std::optional<dynamics::SimulationWorkspace> workspace;
+  double w_min = 0.0;
+  if (point.method == Method::kTimeStepping) {
+    const model::Modes modes = model::ComputeModes(model.M(), model.K());
+    w_min = modes.omega_radps.size() > 0 ? modes.omega_radps.minCoeff() : 0.0;
+  } else {
+    workspace.emplace(model);
+    w_min = workspace->omega_min_radps();
+  }
   const double excitation_period_s = 2.0 * std::numbers::pi / point.scales.w_g_radps;
   const double natural_period_s = w_min > 0.0 ? 2.0 * std::numbers::pi / w_min : 0.0;
 
@@ -186,8 +196,7 @@ PointResult EvaluatePoint(const DimensionalPoint& point, const Excitation& excit
     dynamics::TimeSteppingWorkspace workspace(model);
     run = dynamics::SimulateTimeStepping(model, excitation, control, workspace);
   } else {
-    dynamics::SimulationWorkspace workspace(model);
-    run = dynamics::Simulate(model, excitation, control, workspace);
+    run = dynamics::Simulate(model, excitation, control, *workspace);
   }
 
   PointResult r;

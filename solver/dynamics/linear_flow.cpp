@@ -25,6 +25,21 @@ LinearFlow::LinearFlow(const Eigen::Ref<const Eigen::MatrixXd>& M,
   const Eigen::LLT<Eigen::MatrixXd> llt(M_);
   SB_DEMAND(llt.info() == Eigen::Success, "LinearFlow: M must be symmetric positive definite");
   Mr_ = M_ * r_;
+  if (path == FlowPath::kAuto) {
+    modal_ = ModalFlow::Classical(M_, K_, C_, r_);
+  }
+  if (!modal_) {
+    EnsureAugmented();
+  }
+  Y_ = Eigen::MatrixXd::Zero(n_, 6);
+  eta_ = deta_ = Eigen::VectorXd::Zero(n_);
+}
+
+void LinearFlow::EnsureAugmented() const {
+  if (augmented_ready_) {
+    return;
+  }
+  const Eigen::LLT<Eigen::MatrixXd> llt(M_);
   const int N = augmented_size();
   const int ia = 2 * n_, is = 2 * n_ + 2, ip = 2 * n_ + 4;
   A_base_ = Eigen::MatrixXd::Zero(N, N);
@@ -44,14 +59,11 @@ LinearFlow::LinearFlow(const Eigen::Ref<const Eigen::MatrixXd>& M,
   }
   Q_damping_ = Eigen::MatrixXd::Zero(N, N);
   Q_damping_.block(n_, n_, n_, n_) = 0.5 * (C_ + C_.transpose());
-  if (path == FlowPath::kAuto) {
-    modal_ = ModalFlow::Classical(M_, K_, C_, r_);
-  }
-  Y_ = Eigen::MatrixXd::Zero(n_, 6);
-  eta_ = deta_ = Eigen::VectorXd::Zero(n_);
+  augmented_ready_ = true;
 }
 
 Eigen::MatrixXd LinearFlow::AugmentedMatrix(double omega_radps) const {
+  EnsureAugmented();
   Eigen::MatrixXd A = A_base_;
   const int ip = 2 * n_ + 4, ik = 2 * n_ + 6;
   for (int i = 0; i < 2; ++i) {
@@ -216,6 +228,7 @@ void LinearFlow::Derivative(double omega_radps, const Eigen::Ref<const Eigen::Ve
                             Eigen::Ref<Eigen::VectorXd> dz) const {
   // A_hat is sparse by blocks: dq = u, du from the n dense rows, and the generator's own rows
   // (da = slope, dslope = 0, dp = omega k, dk = -omega p).
+  EnsureAugmented();
   const int ia = 2 * n_, is = ia + 2, ip = ia + 4, ik = ia + 6;
   dz.head(n_) = z.segment(n_, n_);
   dz.segment(n_, n_) = A_u_.lazyProduct(z);
@@ -242,9 +255,10 @@ void LinearFlow::Powers(const Eigen::Ref<const Eigen::VectorXd>& z, double& inpu
 
 FreeDenseOutput::FreeDenseOutput(int n_aug, int max_terms)
     : n_(std::max(0, (n_aug - kGeneratorSize) / 2)),
-      coefficients_(Eigen::MatrixXd::Zero(n_aug, max_terms)),
-      modal_coefficients_(Eigen::MatrixXd::Zero(kModalMaxTerms, 2 * n_)),
-      largest_(Eigen::VectorXd::Zero(n_aug)),
+      n_aug_(n_aug),
+      max_terms_(max_terms),
+      // Only the first mode_terms_[k] coefficients of a mode are ever written or read.
+      modal_coefficients_(kModalMaxTerms, 2 * n_),
       generator_(Eigen::VectorXd::Zero(kGeneratorSize)),
       Y_(Eigen::MatrixXd::Zero(n_, 6)),
       eta_(Eigen::VectorXd::Zero(n_)),
@@ -254,7 +268,7 @@ FreeDenseOutput::FreeDenseOutput(int n_aug, int max_terms)
 
 void FreeDenseOutput::Build(const LinearFlow& flow, double omega_radps,
                             const Eigen::Ref<const Eigen::VectorXd>& z0, double tau_max_s) {
-  SB_DEMAND(coefficients_.rows() == z0.size(), "FreeDenseOutput: wrong state size");
+  SB_DEMAND(n_aug_ == z0.size(), "FreeDenseOutput: wrong state size");
   flow_ = &flow;
   omega_radps_ = omega_radps;
   modal_ = false;
@@ -284,7 +298,13 @@ void FreeDenseOutput::Build(const LinearFlow& flow, double omega_radps,
     }
     return;
   }
-  const int max_terms = static_cast<int>(coefficients_.cols());
+  if (coefficients_.cols() != max_terms_) {
+    // The augmented series' storage, on first use: a modal flow never needs it for the
+    // integrator's steps (they stay inside the modal series' radius).
+    coefficients_.resize(n_aug_, max_terms_);
+    largest_.resize(n_aug_);
+  }
+  const int max_terms = max_terms_;
   coefficients_.col(0) = z0;
   largest_ = z0.cwiseAbs();
   // Per component, stop once two successive terms are below round-off of the largest so far.
@@ -350,11 +370,11 @@ void FreeDenseOutput::Evaluate(double tau_s, Eigen::Ref<Eigen::VectorXd> z) {
     GeneratorAt(tau_s, z);
     return;
   }
-  EvaluateHead(tau_s, static_cast<int>(coefficients_.rows()), z);
+  EvaluateHead(tau_s, n_aug_, z);
 }
 
 void FreeDenseOutput::EvaluateHead(double tau_s, int count, Eigen::Ref<Eigen::VectorXd> z) {
-  SB_ASSERT(count <= coefficients_.rows() && z.size() >= count, "FreeDenseOutput: bad count");
+  SB_ASSERT(count <= n_aug_ && z.size() >= count, "FreeDenseOutput: bad count");
   if (modal_) {
     const Eigen::MatrixXd& Phi = flow_->modal_flow().Phi();
     if (count > 2 * n_) {
@@ -387,7 +407,7 @@ void FreeDenseOutput::EvaluateHead(double tau_s, int count, Eigen::Ref<Eigen::Ve
 }
 
 double FreeDenseOutput::EvaluateComponent(double tau_s, int i) const {
-  SB_ASSERT(i >= 0 && i < coefficients_.rows(), "FreeDenseOutput: bad component");
+  SB_ASSERT(i >= 0 && i < n_aug_, "FreeDenseOutput: bad component");
   if (modal_) {
     if (i < 2 * n_) {
       // One row of Phi against the modes' series of eta (i < n) or eta' (n <= i < 2 n).

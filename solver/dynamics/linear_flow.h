@@ -58,7 +58,8 @@ struct FreePropagator {
 /// The contact-free linear flow of a model: matrices, generator bookkeeping and a cache of
 /// propagators keyed by the exact (tau, omega), least recently used out. A record with a fixed
 /// sample interval needs one propagator; a pulse two. The cache is a pure function of (model, tau,
-/// omega): reusing it across runs never changes a result.
+/// omega): reusing it across runs never changes a result. One flow serves one thread (the cache and
+/// the augmented matrices, built on first use, change inside const calls too).
 class LinearFlow {
  public:
   /// @param M, K, C n x n mass (kg, kg m^2), stiffness and damping matrices;
@@ -126,11 +127,16 @@ class LinearFlow {
   Eigen::MatrixXd Y_;           // n x 6 modal coordinates of the state being propagated
   Eigen::VectorXd eta_, deta_;  // modal state at the step end
   Eigen::MatrixXd M_, K_, C_, r_;
-  Eigen::MatrixXd Mr_;         // M r, n x 2
-  Eigen::MatrixXd A_base_;     // A_hat without the omega entries
-  Eigen::MatrixXd A_u_;        // its n rows of du/dt
-  Eigen::MatrixXd Q_input_;    // quadratic form of the ground's power on z
-  Eigen::MatrixXd Q_damping_;  // quadratic form of the damping power on z
+  Eigen::MatrixXd Mr_;  // M r, n x 2
+  // The augmented path's matrices, built on first use: a modal flow (every sweep cell's) needs
+  // them only for a dense output longer than the modal series' radius, which the integrator's
+  // steps never are, so a new model does not pay for them.
+  void EnsureAugmented() const;
+  mutable bool augmented_ready_ = false;
+  mutable Eigen::MatrixXd A_base_;     // A_hat without the omega entries
+  mutable Eigen::MatrixXd A_u_;        // its n rows of du/dt
+  mutable Eigen::MatrixXd Q_input_;    // quadratic form of the ground's power on z
+  mutable Eigen::MatrixXd Q_damping_;  // quadratic form of the damping power on z
   std::vector<FreePropagator> cache_;
   std::vector<unsigned long> last_use_;  // per cache entry, the clock of its last use (LRU)
   unsigned long clock_ = 0;
@@ -178,8 +184,10 @@ class FreeDenseOutput {
   const LinearFlow* flow_ = nullptr;
   bool modal_ = false;
   int n_ = 0;
+  int n_aug_ = 0;      // 2 n + 8
+  int max_terms_ = 0;  // Taylor terms of the augmented series at most
   double omega_radps_ = 0.0;
-  Eigen::MatrixXd coefficients_;        // augmented: column k = c_k
+  Eigen::MatrixXd coefficients_;        // augmented, sized on first use: column k = c_k
   Eigen::MatrixXd modal_coefficients_;  // modal: column k (n + k) = eta_k (eta_k') coefficients
   Eigen::VectorXd largest_;             // per component, the largest term so far
   Eigen::VectorXd generator_;           // modal: the generator (a, slope, p, k) at tau = 0

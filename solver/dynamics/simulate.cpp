@@ -346,11 +346,18 @@ SimulationWorkspace::SimulationWorkspace(const model::Model& model)
       impact_result_(impact_.MakeResult()),
       contact_result_(contact_problem_.MakeResult()) {
   kin_.Resize(model);
-  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(model.K(), model.M(),
-                                                                      Eigen::EigenvaluesOnly);
-  const Eigen::VectorXd w2 = eig.eigenvalues();
-  omega_max_radps_ = std::sqrt(std::max(w2.maxCoeff(), 0.0));
-  omega_min_radps_ = std::sqrt(std::max(w2.minCoeff(), 0.0));
+  if (flow_.modal()) {
+    // The modal flow's w_k^2 are the eigenvalues below, clamped at 0: one solve, same bits.
+    const Eigen::VectorXd& w2 = flow_.modal_flow().w2();
+    omega_max_radps_ = std::sqrt(w2.maxCoeff());
+    omega_min_radps_ = std::sqrt(w2.minCoeff());
+  } else {
+    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(model.K(), model.M(),
+                                                                        Eigen::EigenvaluesOnly);
+    const Eigen::VectorXd w2 = eig.eigenvalues();
+    omega_max_radps_ = std::sqrt(std::max(w2.maxCoeff(), 0.0));
+    omega_min_radps_ = std::sqrt(std::max(w2.minCoeff(), 0.0));
+  }
   for (const model::Body& body : model.bodies()) {
     length_scale_m_ = std::max({length_scale_m_, body.geometry.length_m, body.geometry.width_m,
                                 body.rest_position_m.norm() + body.geometry.length_m});

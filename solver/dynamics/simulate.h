@@ -57,6 +57,8 @@ class SimulationWorkspace {
   explicit SimulationWorkspace(const model::Model& model);
 
   const model::Model& model() const { return model_; }
+  /// Lowest natural frequency (rad/s; 0 for a free body), from the modes the flow solved.
+  double omega_min_radps() const { return omega_min_radps_; }
 
  private:
   friend class Integrator;

@@ -275,6 +275,88 @@ TEST(ModalFlow, EveryBuilderModelTakesTheModalPath) {
   EXPECT_TRUE(LinearFlow(bridge.M(), bridge.K(), bridge.C(), bridge.r()).modal());
 }
 
+TEST(ModalFlow, ClassicalFromASolvedBasisIsTheSameBits) {
+  // The workspace of a new model may hand over the modes it solved: the flow must not differ.
+  std::mt19937 rng(7u);
+  for (int n : {1, 3, 8}) {
+    const RandomModel m = MakeModel(rng, n, n > 1 ? 1 : 0, {0.05, 0.3});
+    const auto direct = ModalFlow::Classical(m.M, m.K, m.C, m.r);
+    const auto shared = ModalFlow::Classical(ModalBasis::Solve(m.M, m.K), m.M, m.C, m.r);
+    ASSERT_TRUE(direct.has_value() && shared.has_value()) << n;
+    EXPECT_TRUE(direct->Phi() == shared->Phi()) << n;
+    EXPECT_TRUE(direct->w2() == shared->w2()) << n;
+    EXPECT_TRUE(direct->c() == shared->c()) << n;
+  }
+}
+
+TEST(ModalFlow, ProductsSumEachRowInColumnOrder) {
+  // ModalProduct's row-wise kernels (up to 8 columns, 3 unrolled) and its column sweep must give
+  // the bits of the plain sum y_i = ((0 + a_i0 x_0) + a_i1 x_1) + ... that the flow was validated
+  // with, whatever the shape.
+  std::mt19937 rng(11u);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (int cols : {1, 3, 5, 8, 9, 20}) {
+    Eigen::MatrixXd A(cols + 2, cols);
+    for (int j = 0; j < cols; ++j)
+      for (int i = 0; i < cols + 2; ++i) A(i, j) = unit(rng) * std::pow(10.0, 6.0 * unit(rng));
+    Eigen::VectorXd x1(cols), x2(cols);
+    for (int j = 0; j < cols; ++j) {
+      x1[j] = unit(rng) * std::pow(10.0, 6.0 * unit(rng));
+      x2[j] = unit(rng);
+    }
+    for (int rows : {cols, cols + 2, 1}) {
+      Eigen::VectorXd y1 = Eigen::VectorXd::Constant(rows + 1, 7.0), y2 = y1, y1_only = y1;
+      ModalProduct(A, rows, x1.data(), x2.data(), y1.data(), y2.data());
+      ModalProduct(A, rows, x1.data(), nullptr, y1_only.data(), nullptr);
+      for (int i = 0; i < rows; ++i) {
+        double s1 = 0.0, s2 = 0.0;
+        for (int j = 0; j < cols; ++j) {
+          s1 += A(i, j) * x1[j];
+          s2 += A(i, j) * x2[j];
+        }
+        EXPECT_EQ(y1[i], s1) << cols << " columns, row " << i;
+        EXPECT_EQ(y2[i], s2) << cols << " columns, row " << i;
+        EXPECT_EQ(y1_only[i], s1) << cols << " columns, row " << i;
+      }
+      EXPECT_EQ(y1[rows], 7.0) << "wrote past its rows";
+      EXPECT_EQ(y2[rows], 7.0) << "wrote past its rows";
+    }
+  }
+}
+
+TEST(LinearFlow, AugmentedPartsOfAModalFlowAreBuiltOnDemandAndMatchTheGeneralPath) {
+  // A modal flow builds A_hat only when asked (AugmentedMatrix, Derivative, or a dense output
+  // longer than the modal series' radius): the same matrix and series as the general path's.
+  std::mt19937 rng(13u);
+  const RandomModel m = MakeModel(rng, 4, 0, {0.05, 0.2});
+  LinearFlow modal(m.M, m.K, m.C, m.r);
+  LinearFlow oracle(m.M, m.K, m.C, m.r, FlowPath::kAugmented);
+  ASSERT_TRUE(modal.modal());
+  const int N = modal.augmented_size();
+  const ExcitationPiece piece = RandomPiece(rng, 2.5);
+  const Eigen::VectorXd z = RandomState(rng, modal, piece, 0.1);
+  // A dense output first (before any other use of the augmented parts), over a step whose
+  // rho_k exceeds kModalSeriesRadius: it takes the augmented Taylor series.
+  const double tau = 1.5 * kModalSeriesRadius / m.omega.maxCoeff();
+  FreeDenseOutput dense(N), dense_oracle(N);
+  dense.Build(modal, 2.5, z, tau);
+  dense_oracle.Build(oracle, 2.5, z, tau);
+  Eigen::VectorXd a(N), b(N);
+  for (double part : {0.0, 0.3, 1.0}) {
+    dense.Evaluate(part * tau, a);
+    dense_oracle.Evaluate(part * tau, b);
+    EXPECT_TRUE(a == b) << part;
+  }
+  EXPECT_TRUE(modal.AugmentedMatrix(2.5) == oracle.AugmentedMatrix(2.5));
+  modal.Derivative(2.5, z, a);
+  oracle.Derivative(2.5, z, b);
+  EXPECT_TRUE(a == b);
+  // Against the exact transition, so that the series itself is checked, not only the sameness.
+  oracle.Apply(oracle.Propagator(tau, 2.5, false), z, b);
+  dense.Evaluate(tau, a);
+  ExpectStatesAgree(a, b, 4, "augmented series of a modal flow");
+}
+
 TEST(ModalFlow, TermCountBoundsTheFirstOmittedTerm) {
   for (double rho : {0.0, 1e-6, 0.3, 1.0, 4.0}) {
     const int terms = ModalTermCount(rho);

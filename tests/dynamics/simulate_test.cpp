@@ -84,6 +84,33 @@ model::RunControl EndAt(double t_end) {
 
 // method.md §4 fact 1: a translating deck striking the +x abutment full-edge leaves without
 // rotating iff eta0 <= 1; for eta0 > 1 only the obtuse corner P2 takes an impulse.
+TEST(SimulationWorkspace, LowestFrequencyIsTheModelsFirstMode) {
+  // The workspace takes its frequency range from the modes its flow solved (modal path) or from
+  // an eigenvalue solve of its own (general path); a sweep cell's run length uses the lowest.
+  model::DeckSpec deck;
+  deck.mass_kg = 2e5;
+  deck.geometry = {40.0, 15.0, 0.4};
+  deck.w0x_radps = 3.0;
+  deck.w0y_radps = 4.0;
+  deck.W0_radps = 6.0;
+  deck.xi = 0.05;
+  const model::Model classical = model::BuildDeckModel(deck);
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(3, 3);
+  C(0, 0) = 1e4;
+  C(1, 1) = 2e3;
+  C(0, 1) = C(1, 0) = 3e3;
+  const model::Model general(classical.bodies(), classical.K(), C, classical.r(),
+                             classical.contacts());
+  for (const model::Model* m : {&classical, &general}) {
+    const SimulationWorkspace workspace(*m);
+    const model::Modes modes = model::ComputeModes(m->M(), m->K());
+    EXPECT_EQ(workspace.omega_min_radps(), modes.omega_radps.minCoeff());
+    EXPECT_GT(workspace.omega_min_radps(), 2.0);
+  }
+  EXPECT_TRUE(LinearFlow(classical.M(), classical.K(), classical.C(), classical.r()).modal());
+  EXPECT_FALSE(LinearFlow(general.M(), general.K(), general.C(), general.r()).modal());
+}
+
 TEST(Simulate, FullEdgeImpactRotatesOnlyAboveSkewRatioOne) {
   for (double skew : {15.0, 30.0, 45.0, 60.0}) {
     for (double eta0 : {0.6, 0.95, 1.1, 1.6}) {
