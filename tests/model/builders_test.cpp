@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 #include <cmath>
 #include <functional>
 #include <iostream>
@@ -221,6 +222,45 @@ TEST(Builders, ModelRejectsBrokenContactsAndMatrices) {
   ExpectMessage(
       [&] { Model({body}, K, Eigen::Matrix3d::Zero(), GroundInfluence(1), {}, "m.toml"); },
       {"substructure.K", "finite"});
+}
+
+TEST(Builders, SemiDefinitenessAllowsOneBillionthOfTheLargestEntryBelowZero) {
+  // The check's bound: every eigenvalue >= -1e-9 max|A| (a rotated diagonal, so that the
+  // eigenvalues are known and the matrix is full). Just inside passes; just outside fails and
+  // the message gives the smallest eigenvalue.
+  Body body;
+  body.mass_kg = 1.0;
+  body.inertia_kgm2 = 1.0;
+  body.geometry = {10.0, 2.0, 0.3};
+  const Eigen::Matrix3d Q =
+      Eigen::AngleAxisd(0.7, Eigen::Vector3d(1.0, 2.0, 3.0).normalized()).toRotationMatrix();
+  const auto with_smallest = [&](double lambda) {
+    const Eigen::Matrix3d A = Q * Eigen::Vector3d(1e6, 3e5, lambda).asDiagonal() * Q.transpose();
+    return Eigen::Matrix3d(0.5 * (A + A.transpose()));
+  };
+  const double scale = with_smallest(0.0).cwiseAbs().maxCoeff();
+  for (double fraction : {0.0, -0.5e-9, -0.9e-9}) {
+    EXPECT_NO_THROW(Model({body}, with_smallest(fraction * scale), Eigen::Matrix3d::Zero(),
+                          GroundInfluence(1), {}, "m.toml"))
+        << fraction;
+    EXPECT_NO_THROW(Model({body}, Eigen::Matrix3d::Identity(), with_smallest(fraction * scale),
+                          GroundInfluence(1), {}, "m.toml"))
+        << fraction;
+  }
+  for (double fraction : {-1.2e-9, -1e-6, -0.5}) {
+    ExpectMessage(
+        [&] {
+          Model({body}, with_smallest(fraction * scale), Eigen::Matrix3d::Zero(),
+                GroundInfluence(1), {}, "m.toml");
+        },
+        {"substructure.K", "positive semi-definite", "smallest eigenvalue -"});
+    ExpectMessage(
+        [&] {
+          Model({body}, Eigen::Matrix3d::Identity(), with_smallest(fraction * scale),
+                GroundInfluence(1), {}, "m.toml");
+        },
+        {"substructure.C", "positive semi-definite"});
+  }
 }
 
 }  // namespace
