@@ -17,7 +17,8 @@ constexpr std::size_t kCacheCapacity = 8;
 LinearFlow::LinearFlow(const Eigen::Ref<const Eigen::MatrixXd>& M,
                        const Eigen::Ref<const Eigen::MatrixXd>& K,
                        const Eigen::Ref<const Eigen::MatrixXd>& C,
-                       const Eigen::Ref<const Eigen::MatrixXd>& r, FlowPath path)
+                       const Eigen::Ref<const Eigen::MatrixXd>& r, FlowPath path,
+                       const model::Modes* modes)
     : n_(static_cast<int>(M.rows())), M_(M), K_(K), C_(C), r_(r) {
   SB_DEMAND(M.cols() == n_ && K.rows() == n_ && K.cols() == n_ && C.rows() == n_ &&
                 C.cols() == n_ && r.rows() == n_ && r.cols() == 2,
@@ -26,7 +27,8 @@ LinearFlow::LinearFlow(const Eigen::Ref<const Eigen::MatrixXd>& M,
   SB_DEMAND(llt.info() == Eigen::Success, "LinearFlow: M must be symmetric positive definite");
   Mr_ = M_ * r_;
   if (path == FlowPath::kAuto) {
-    modal_ = ModalFlow::Classical(M_, K_, C_, r_);
+    modal_ = modes != nullptr ? ModalFlow::Classical(*modes, M_, C_, r_)
+                              : ModalFlow::Classical(M_, K_, C_, r_);
   }
   if (!modal_) {
     EnsureAugmented();

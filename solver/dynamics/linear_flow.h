@@ -65,10 +65,11 @@ class LinearFlow {
   /// @param M, K, C n x n mass (kg, kg m^2), stiffness and damping matrices;
   /// @param r n x 2 ground-influence matrix mapping (a_gx, a_gy) to the DOFs.
   /// @param path kAuto: the modal path when Phi^T C Phi is diagonal (ModalFlow::Classical).
+  /// @param modes model::ComputeModes(M, K) if already solved (Model::modes()), else null.
   /// @pre M symmetric positive definite; sizes consistent (checked by SB_DEMAND).
   LinearFlow(const Eigen::Ref<const Eigen::MatrixXd>& M, const Eigen::Ref<const Eigen::MatrixXd>& K,
              const Eigen::Ref<const Eigen::MatrixXd>& C, const Eigen::Ref<const Eigen::MatrixXd>& r,
-             FlowPath path = FlowPath::kAuto);
+             FlowPath path = FlowPath::kAuto, const model::Modes* modes = nullptr);
 
   /// True when the flow propagates in modal coordinates.
   bool modal() const { return modal_.has_value(); }

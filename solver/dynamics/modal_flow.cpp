@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "solver/common/error.h"
+#include "solver/model/builders.h"
 
 namespace skewbridge::dynamics {
 namespace {
@@ -74,29 +75,22 @@ void ModalProduct(const Eigen::MatrixXd& A, int rows, const double* x1, const do
   }
 }
 
-ModalBasis ModalBasis::Solve(const Eigen::Ref<const Eigen::MatrixXd>& M,
-                             const Eigen::Ref<const Eigen::MatrixXd>& K) {
-  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(K, M);
-  SB_DEMAND(eig.info() == Eigen::Success, "ModalFlow: the eigenproblem K phi = w^2 M phi failed");
-  return {eig.eigenvalues(), eig.eigenvectors()};
-}
-
 std::optional<ModalFlow> ModalFlow::Classical(const Eigen::Ref<const Eigen::MatrixXd>& M,
                                               const Eigen::Ref<const Eigen::MatrixXd>& K,
                                               const Eigen::Ref<const Eigen::MatrixXd>& C,
                                               const Eigen::Ref<const Eigen::MatrixXd>& r) {
-  return Classical(ModalBasis::Solve(M, K), M, C, r);
+  return Classical(model::ComputeModes(M, K), M, C, r);
 }
 
-std::optional<ModalFlow> ModalFlow::Classical(const ModalBasis& basis,
+std::optional<ModalFlow> ModalFlow::Classical(const model::Modes& modes,
                                               const Eigen::Ref<const Eigen::MatrixXd>& M,
                                               const Eigen::Ref<const Eigen::MatrixXd>& C,
                                               const Eigen::Ref<const Eigen::MatrixXd>& r) {
-  SB_DEMAND(basis.vectors.rows() == M.rows() && basis.vectors.cols() == M.rows() &&
-                basis.eigenvalues.size() == M.rows(),
-            "ModalFlow: the basis does not match M");
+  SB_DEMAND(modes.phi.rows() == M.rows() && modes.phi.cols() == M.rows() &&
+                modes.eigenvalues.size() == M.rows(),
+            "ModalFlow: the modes do not match M");
   ModalFlow flow;
-  flow.Phi_ = basis.vectors;
+  flow.Phi_ = modes.phi;
   const Eigen::MatrixXd D = flow.Phi_.transpose() * C * flow.Phi_;
   const int n = static_cast<int>(M.rows());
   double diagonal = 0.0, off = 0.0;
@@ -119,7 +113,7 @@ std::optional<ModalFlow> ModalFlow::Classical(const ModalBasis& basis,
       }
     }
   }
-  flow.w2_ = basis.eigenvalues.cwiseMax(0.0);
+  flow.w2_ = modes.eigenvalues.cwiseMax(0.0);
   flow.c_ = D.diagonal();
   flow.PhiTM_ = flow.Phi_.transpose() * M;
   flow.negL_ = -flow.PhiTM_ * r;

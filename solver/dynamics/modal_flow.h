@@ -31,6 +31,8 @@
 #include <Eigen/Core>
 #include <optional>
 
+#include "solver/model/model.h"
+
 namespace skewbridge::dynamics {
 
 /// Largest rho_k = tau (w_k + c_k + |Omega|) evaluated by the series directly.
@@ -47,22 +49,6 @@ int ModalTermCount(double rho);
 void ModalProduct(const Eigen::MatrixXd& A, int rows, const double* x1, const double* x2,
                   double* y1, double* y2);
 
-/// The generalised eigenproblem K phi = lambda M phi of a model, solved once: a sweep cell is a new
-/// model, and its modal flow, its step size and its run length all need these numbers (each
-/// solve of it cost as much as a dozen free steps of a deck).
-struct ModalBasis {
-  /// lambda_k = w_k^2 (rad^2/s^2), ascending, as solved: a free body's rigid modes may lie a
-  /// rounding below zero.
-  Eigen::VectorXd eigenvalues;
-  /// Phi, n x n, M-orthonormal eigenvectors (columns).
-  Eigen::MatrixXd vectors;
-
-  /// Solves it (Eigen's GeneralizedSelfAdjointEigenSolver, eigenvectors included).
-  /// @pre M symmetric positive definite, K symmetric (checked: SB_DEMAND on failure).
-  static ModalBasis Solve(const Eigen::Ref<const Eigen::MatrixXd>& M,
-                          const Eigen::Ref<const Eigen::MatrixXd>& K);
-};
-
 /// The modes of a classically damped model and the per-mode transitions.
 class ModalFlow {
  public:
@@ -74,8 +60,10 @@ class ModalFlow {
                                             const Eigen::Ref<const Eigen::MatrixXd>& C,
                                             const Eigen::Ref<const Eigen::MatrixXd>& r);
 
-  /// The same from the model's basis (ModalBasis::Solve(M, K)), without solving again.
-  static std::optional<ModalFlow> Classical(const ModalBasis& basis,
+  /// The same from the modes of (K, M) already solved (model::ComputeModes(M, K), which a
+  /// builder's model carries): a sweep cell is a new model, and the solve cost as much as a dozen
+  /// free steps of a deck.
+  static std::optional<ModalFlow> Classical(const model::Modes& modes,
                                             const Eigen::Ref<const Eigen::MatrixXd>& M,
                                             const Eigen::Ref<const Eigen::MatrixXd>& C,
                                             const Eigen::Ref<const Eigen::MatrixXd>& r);

@@ -338,7 +338,7 @@ class Integrator {
 
 SimulationWorkspace::SimulationWorkspace(const model::Model& model)
     : model_(model),
-      flow_(model.M(), model.K(), model.C(), model.r()),
+      flow_(model.M(), model.K(), model.C(), model.r(), FlowPath::kAuto, model.modes()),
       free_dense_(flow_.augmented_size()),
       rk_(2 * model.n_dof() + 3),
       impact_(model),

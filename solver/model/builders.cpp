@@ -73,13 +73,19 @@ Modes ComputeModes(const Eigen::Ref<const Eigen::MatrixXd>& M,
   Modes modes;
   modes.omega_radps = eig.eigenvalues().cwiseMax(0.0).cwiseSqrt();
   modes.phi = eig.eigenvectors();
+  modes.eigenvalues = eig.eigenvalues();
   return modes;
 }
 
 Eigen::MatrixXd ClassicalDamping(const Eigen::Ref<const Eigen::MatrixXd>& M,
                                  const Eigen::Ref<const Eigen::MatrixXd>& K, double xi) {
   CheckRange(xi, 0.0, 1.0, true, "substructure.xi", Where{"model", 0});
-  const Modes modes = ComputeModes(M, K);
+  return ClassicalDamping(M, ComputeModes(M, K), xi);
+}
+
+Eigen::MatrixXd ClassicalDamping(const Eigen::Ref<const Eigen::MatrixXd>& M, const Modes& modes,
+                                 double xi) {
+  CheckRange(xi, 0.0, 1.0, true, "substructure.xi", Where{"model", 0});
   const Eigen::MatrixXd MPhi = M * modes.phi;
   const Eigen::VectorXd modal = 2.0 * xi * modes.omega_radps;
   const Eigen::MatrixXd C = MPhi * modal.asDiagonal() * MPhi.transpose();
@@ -148,6 +154,9 @@ Model BuildDeckModel(const DeckSpec& spec, const std::string& source) {
   std::vector<Body> bodies{body};
   const Eigen::MatrixXd M = MassMatrix(bodies);
   Eigen::MatrixXd C;
+  // The modes the damping is built from go with the model: the integrator's modal flow needs
+  // the same solve (a sweep builds a model per cell).
+  std::optional<Modes> modes;
   if (spec.C) {
     C = *spec.C;
   } else {
@@ -158,7 +167,8 @@ Model BuildDeckModel(const DeckSpec& spec, const std::string& source) {
     // Damping needs a valid K: the Model checks it again, but an asymmetric K would make
     // the modes meaningless, so report it here first.
     Model check_k(bodies, K, Eigen::Matrix3d::Zero(), GroundInfluence(1), {}, source);
-    C = ClassicalDamping(M, K, spec.xi);
+    modes = ComputeModes(M, K);
+    C = ClassicalDamping(M, *modes, spec.xi);
   }
 
   CheckNonNegative(spec.gap_plus_m, "abutments.gap_m", where);
@@ -189,7 +199,8 @@ Model BuildDeckModel(const DeckSpec& spec, const std::string& source) {
       target->friction = *o.friction;
     }
   }
-  return Model(std::move(bodies), K, C, GroundInfluence(1), std::move(contacts), source);
+  return Model(std::move(bodies), K, C, GroundInfluence(1), std::move(contacts), source,
+               std::move(modes));
 }
 
 }  // namespace skewbridge::model

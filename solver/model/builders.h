@@ -31,15 +31,8 @@ Eigen::MatrixXd MassMatrix(const std::vector<Body>& bodies);
 /// Ground influence r (n_dof x 2): unit entries mapping (a_gx, a_gy) to each body's (x, y).
 Eigen::MatrixXd GroundInfluence(int n_bodies);
 
-/// Natural frequencies w_k (rad/s, ascending) and mass-normalised modes Phi (columns,
-/// Phi^T M Phi = E) of K Phi = M Phi diag(w^2).
+/// Solves the generalised eigenproblem K phi = w^2 M phi (Modes: solver/model/model.h).
 /// @pre M symmetric positive definite, K symmetric positive semi-definite.
-struct Modes {
-  Eigen::VectorXd omega_radps;
-  Eigen::MatrixXd phi;
-};
-
-/// Solves the generalised eigenproblem K phi = w^2 M phi.
 Modes ComputeModes(const Eigen::Ref<const Eigen::MatrixXd>& M,
                    const Eigen::Ref<const Eigen::MatrixXd>& K);
 
@@ -48,6 +41,10 @@ Modes ComputeModes(const Eigen::Ref<const Eigen::MatrixXd>& M,
 /// @throws InputError (field "substructure.xi") when xi is outside [0, 1).
 Eigen::MatrixXd ClassicalDamping(const Eigen::Ref<const Eigen::MatrixXd>& M,
                                  const Eigen::Ref<const Eigen::MatrixXd>& K, double xi);
+
+/// The same from the modes of (K, M) already solved (ComputeModes(M, K)): the same bits.
+Eigen::MatrixXd ClassicalDamping(const Eigen::Ref<const Eigen::MatrixXd>& M, const Modes& modes,
+                                 double xi);
 
 /// Which abutments a deck can strike: "+x" only (contacts P1, P2: the single-abutment
 /// subsystem of method.md §6) or "both" (P1..P4).

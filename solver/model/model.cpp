@@ -87,13 +87,14 @@ std::string BodyField(int n_bodies, int i, std::string_view key) {
 }  // namespace
 
 Model::Model(std::vector<Body> bodies, Eigen::MatrixXd K, Eigen::MatrixXd C, Eigen::MatrixXd r,
-             std::vector<Contact> contacts, std::string source)
+             std::vector<Contact> contacts, std::string source, std::optional<Modes> modes)
     : bodies_(std::move(bodies)),
       K_(std::move(K)),
       C_(std::move(C)),
       r_(std::move(r)),
       contacts_(std::move(contacts)),
-      source_(std::move(source)) {
+      source_(std::move(source)),
+      modes_(std::move(modes)) {
   const Where where{source_, 0};
   const int nb = n_bodies();
   if (nb == 0) {
@@ -120,6 +121,11 @@ Model::Model(std::vector<Body> bodies, Eigen::MatrixXd K, Eigen::MatrixXd C, Eig
   inverse_mass_diagonal_ = mass_diagonal_.cwiseInverse();
   M_ = mass_diagonal_.asDiagonal();
 
+  if (modes_) {
+    SB_DEMAND(modes_->phi.rows() == n && modes_->phi.cols() == n &&
+                  modes_->eigenvalues.size() == n && modes_->omega_radps.size() == n,
+              "Model: the modes do not match the model's size");
+  }
   CheckSymmetricPsd(K_, n, "substructure.K", where, true);
   CheckSymmetricPsd(C_, n, "substructure.C", where, true);
   if (r_.rows() != n || r_.cols() != 2 || !r_.allFinite()) {

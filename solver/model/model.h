@@ -6,6 +6,7 @@
 /// memory live outside it (solver/contact workspaces, the integrator's workspace).
 
 #include <Eigen/Core>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,16 @@ Face MinusXAbutmentFace(const DeckGeometry& deck, double gap_m);
 
 /// The deck model, immutable after construction. DOFs: q = (x_0, y_0, theta_0, x_1, ...)
 /// (m, m, rad) relative to the ground; n_dof = 3 n_bodies. Equation of motion between events
+/// Natural frequencies w_k (rad/s, ascending) and mass-normalised modes Phi (columns,
+/// Phi^T M Phi = E) of K Phi = M Phi diag(w^2), as ComputeModes (builders.h) solves them.
+struct Modes {
+  Eigen::VectorXd omega_radps;
+  Eigen::MatrixXd phi;
+  /// w_k^2 as solved (rad^2/s^2): a free body's rigid modes may lie a rounding below zero,
+  /// where omega_radps holds 0.
+  Eigen::VectorXd eigenvalues;
+};
+
 /// [method.md §2]: M du/dt = h + W_N lambda_N + W_T lambda_T, h = -C u - K q - M r a_g(t).
 class Model {
  public:
@@ -58,8 +69,12 @@ class Model {
   /// K or C not symmetric (relative 1e-9) or not positive semi-definite; a size mismatch; a
   /// contact with eps_N outside [0, 1], mu < 0, a non-unit or non-orthogonal n, t, a bad body
   /// index, a negative gap at q = 0; or a NaN / Inf anywhere.
+  /// @param modes ComputeModes(M, K) when the caller has solved it (a builder, for the damping):
+  /// kept for the integrator's modal flow, which then need not solve it again. Trusted: only
+  /// its sizes are checked (SB_DEMAND).
   Model(std::vector<Body> bodies, Eigen::MatrixXd K, Eigen::MatrixXd C, Eigen::MatrixXd r,
-        std::vector<Contact> contacts, std::string source = "model");
+        std::vector<Contact> contacts, std::string source = "model",
+        std::optional<Modes> modes = std::nullopt);
 
   int n_bodies() const { return static_cast<int>(bodies_.size()); }
   int n_dof() const { return 3 * n_bodies(); }
@@ -83,6 +98,8 @@ class Model {
   /// r: n_dof x 2, column j maps a_g,j (j = x, y) to the DOFs.
   const Eigen::MatrixXd& r() const { return r_; }
   const std::string& source() const { return source_; }
+  /// The modes of (K, M) given at construction, or null.
+  const Modes* modes() const { return modes_ ? &*modes_ : nullptr; }
 
   /// h = -C u - K q - M r a_g (N, N m) into h, without allocating.
   void AppliedForces(const Eigen::Ref<const Eigen::VectorXd>& q,
@@ -103,6 +120,7 @@ class Model {
   Eigen::MatrixXd r_;
   std::vector<Contact> contacts_;
   std::string source_;
+  std::optional<Modes> modes_;
 };
 
 }  // namespace skewbridge::model

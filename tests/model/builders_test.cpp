@@ -105,6 +105,28 @@ TEST(Builders, ClassicalDampingGivesTheSameRatioInEveryMode) {
   }
 }
 
+TEST(Builders, DeckModelCarriesTheModesItsDampingWasBuiltFrom) {
+  // The integrator's modal flow takes them instead of solving again: they must be the solve of
+  // the model's own M and K, bit for bit, raw eigenvalues included.
+  DeckSpec deck;
+  deck.mass_kg = 3e5;
+  deck.geometry = {45.0, 14.0, 0.5};
+  deck.w0x_radps = 2.0;
+  deck.w0y_radps = 2.5;
+  deck.W0_radps = 4.0;
+  deck.xi = 0.05;
+  const Model m = BuildDeckModel(deck);
+  ASSERT_NE(m.modes(), nullptr);
+  const Modes solved = ComputeModes(m.M(), m.K());
+  EXPECT_TRUE(m.modes()->phi == solved.phi);
+  EXPECT_TRUE(m.modes()->eigenvalues == solved.eigenvalues);
+  EXPECT_TRUE(m.modes()->omega_radps == solved.omega_radps);
+  EXPECT_NEAR(solved.eigenvalues[0], 4.0, 1e-12);
+  EXPECT_TRUE(m.C() == ClassicalDamping(m.M(), m.K(), deck.xi));
+  deck.C = m.C();
+  EXPECT_EQ(BuildDeckModel(deck).modes(), nullptr) << "a given C: nothing was solved";
+}
+
 TEST(Builders, AbutmentSetsCarryTheNamedCornersAgainstTheirFaces) {
   DeckSpec spec = PilotSpec();
   spec.abutments = AbutmentSet::kPlusX;
