@@ -63,9 +63,10 @@ assert (imp > 0).sum() >= imp.size // 4 and (th > 1e-6).sum() >= imp.size // 4
 PY
   ;;
 kill)
-  # Long synthetic records make each cell cost some tens of milliseconds, so a sweep of a few
-  # hundred cells can be interrupted with most of it still to do.
-  "$exe" records synth --count 2 --seed 5 --duration-s 100 --out set >/dev/null
+  # Long synthetic records (600 s) make each cell cost some milliseconds even with the closed-form
+  # free flow, so a sweep of 1600 cells (several seconds) can be interrupted with most of it
+  # still to do.
+  "$exe" records synth --count 2 --seed 5 --duration-s 600 --out set >/dev/null
   cat > spec.toml <<'TOML'
 [sweep]
 name = "physics"
