@@ -79,8 +79,12 @@ def _fmt(v):
         return v
     if v is None or (isinstance(v, float) and not np.isfinite(v)):
         return "–"
+    if isinstance(v, (bool, np.bool_)):
+        return "yes" if v else "no"
     if isinstance(v, (int, np.integer)):
         return str(int(v))
+    if abs(v) < figures.ZERO:
+        return "0"
     return f"{v:.4g}"
 
 
@@ -116,44 +120,77 @@ def _compare_stored(own, stored):
     return "agree" if not differ else "differ: " + "; ".join(differ)
 
 
+# The section heading of each figure kind in summary.md.
+KIND_TITLE = {"spectra": "spectra", "pi_delta_family": "the Π_δ family",
+              "rotation_vs_eta0": "rotation against η_0",
+              "correlation_theta_vs_Le": "θ_m against the persistency L_e",
+              "correlation_rotation_vs_w0x": "θ_m ρ ω_g²/a_g against ω_0x/ω_g by group"}
+
+
+def _peak_cells(peak, at, edge, zero):
+    """The two cells of a peak: its value and where it is, "no response" for a curve that is 0
+    everywhere, the abscissa flagged when the peak sits at the edge of the grid."""
+    if zero:
+        return ["0", "no response"]
+    if peak is None:
+        return [None, None]
+    return [peak, _fmt(at) + (" (grid edge)" if edge else "")]
+
+
 def _tables_for(kind, sweep, rows, curve_key):
-    curve = figures.AXIS_LABEL.get(curve_key, curve_key or "")
-    w_label = "w0x/w_g" if sweep.family == "pilot-bridge" else "w0/w_g"
+    curve = figures.AXIS_TEXT.get(curve_key, curve_key or "")
+    w_label = "ω_0x/ω_g" if sweep.family == "pilot-bridge" else "ω_0/ω_g"
     if kind in ("spectra", "pi_delta_family"):
         by_key = {}
-        for pulse, value, resp, peak, w in rows:
-            by_key.setdefault((pulse, value), {})[resp] = (peak, w)
+        for pulse, value, resp, peak, w, edge, zero in rows:
+            by_key.setdefault((pulse, value), {})[resp] = (peak, w, edge, zero)
         out = []
         for (pulse, value), d in by_key.items():
             row = [pulse, value]
             for resp in ("x_norm", "y_norm", "theta_norm"):
-                row += list(d.get(resp, (None, None)))
+                row += _peak_cells(*d.get(resp, (None, None, False, False)))
             out.append(row)
         header = ["pulse", curve or "-"]
-        for resp in ("x", "y", "θ"):
-            header += [f"peak {resp}", f"{w_label} at peak"]
+        for resp in ("x_norm", "y_norm", "theta_norm"):
+            header += [f"max {figures.RESPONSE_TEXT[resp]}", f"{w_label} at max"]
         return _table(header, out)
     if kind == "rotation_vs_eta0":
-        return _table(["pulse", curve or "-", "η0", "max θm ρ ωg²/ag", f"{w_label} at max",
-                       "impacts at max"], rows)
+        out = [[pulse, value, eta] + _peak_cells(peak, where, edge, zero) + [n_imp]
+               for pulse, value, eta, peak, where, n_imp, edge, zero in rows]
+        return _table(["pulse", curve or "-", "η_0", "max θ_m ρ ω_g²/a_g", f"{w_label} at max",
+                       "impacts at max"], out)
     if kind == "correlation_theta_vs_Le":
         out = []
-        stored_any = False
-        for pi, own, stored in rows:
-            row = [pi, own["n"], own["pearson"], own["spearman"], own["slope"], own["intercept"],
-                   own["r2"], own["n_log"]]
-            if stored:
-                stored_any = True
-                row.append(_compare_stored(own, stored))
-            out.append(row)
-        header = ["Π_δ", "records", "Pearson", "Spearman", "log-log slope", "intercept", "R²",
-                  "pairs with θm > 0"]
+        stored_any = any(stored for _, _, _, stored in rows)
+        for pi, own, own_hit, stored in rows:
+            for group, stats_row in (("all records", own), ("records that strike", own_hit)):
+                if stats_row is None:
+                    continue
+                row = [pi, group, stats_row["n"], stats_row["pearson"], stats_row["spearman"],
+                       stats_row["slope"], stats_row["intercept"], stats_row["r2"],
+                       stats_row["n_log"]]
+                if stored_any:
+                    row.append(_compare_stored(own, stored) if stored and stats_row is own
+                               else "–")
+                out.append(row)
+        header = ["Π_δ", "group", "records", "Pearson r", "Spearman r_s", "log-log slope",
+                  "intercept", "R²", "pairs with θ_m > 0"]
         if stored_any:
             header.append("the cube's correlation/ statistics")
         return _table(header, out)
     if kind == "correlation_rotation_vs_w0x":
-        return _table(["Π_δ", "group", "records", "median θm ρ ωg²/ag", "max"], rows)
+        return _table(["Π_δ", "group", "records", "median θ_m ρ ω_g²/a_g", "max"], rows)
     return ""
+
+
+SYMBOLS_MD = ["## Symbols", "",
+              *[f"- {text}" for text in figures.SYMBOLS.values()],
+              "- A normalised maximum is dimensionless: x_m ω_g²/a_g, y_m ω_g²/a_g, "
+              "θ_m ρ ω_g²/a_g.",
+              f"- Values below {figures.ZERO:g} in magnitude are printed as 0; a curve whose "
+              "largest value is 0 is marked \"no response\" and has no abscissa of its maximum.",
+              "- \"(grid edge)\": the maximum sits at the first or last grid value, so the true "
+              "peak may lie outside the grid.", ""]
 
 
 def main(argv):
@@ -210,7 +247,7 @@ def run(args):
             else:
                 path, rows = figures.correlation_rotation_vs_w0x(sweep, args.out, name, args.pdf)
             written.append(path)
-            md += [f"## {sweep.name}: {kind.replace('_', ' ')}", "",
+            md += [f"## {sweep.name}: {KIND_TITLE[kind]}", "",
                    f"![{name}]({os.path.basename(path)})", "",
                    _tables_for(kind, sweep, rows, curve_key), ""]
     for r in runs:
@@ -229,6 +266,7 @@ def run(args):
                         int(r.summary_attrs.get("plastic_closures", 0)),
                         float(r.summary_attrs.get("min_impact_separation_s", np.inf)))]), "",
                _table(["energy term", "J"], energy), ""]
+    md += SYMBOLS_MD
     if skipped_all:
         md += ["## Figures not made", "",
                _table(["sweep", "figure", "why"], skipped_all), ""]

@@ -148,6 +148,9 @@ class Run:
     max_abs_q: np.ndarray
     summary_attrs: dict
     energy: dict
+    u: np.ndarray = None  # [n, n_dof] velocities
+    gap: np.ndarray = None  # [n, n_contacts] normal gaps g_N in m
+    model_text: str = ""
 
     def kind_code(self, name):
         for code, n in self.kind_names.items():
@@ -179,4 +182,7 @@ def load_run(path):
                    kind_names=kinds, max_abs_q=f["summary/max_abs_q"][()],
                    summary_attrs={k: f["summary"].attrs[k] for k in f["summary"].attrs},
                    energy={k: f["energy"].attrs[k] for k in f["energy"].attrs
-                           if k.endswith("_J")})
+                           if k.endswith("_J")},
+                   u=f["histories/u"][()] if "u" in f["histories"] else None,
+                   gap=f["histories/gap"][()] if "gap" in f["histories"] else None,
+                   model_text=_text(f.attrs.get("model_text", "")))

@@ -2,9 +2,15 @@
 pixel size (FIGSIZE_IN x DPI, no tight bounding box, so the size is known in advance) and
 returns the Markdown table rows that go with it in the summary.
 
-Fonts are at least 9 pt at 100 dpi (12.5 px), legible at 100 % zoom; axes carry the symbols of
-method.md and their units."""
+Figures are drawn as a journal prints them: fonts at least 9 pt at 100 dpi (12.5 px), the
+symbols of docs/theory.md in mathtext with their units, log axes with plain tick labels at 1, 2
+and 5 of each decade, curves told apart by marker and line style as well as colour, legends
+outside the data (more than MAX_LEGEND curves become a colour bar), reference lines labelled,
+integer ticks on counts, "no data" on an empty panel, and a caption line under each figure
+defining every symbol it uses."""
 import os
+import textwrap
+import tomllib
 
 import matplotlib
 
@@ -18,7 +24,14 @@ from . import stats  # noqa: E402
 DPI = 100
 FIGSIZE_IN = {"spectra": (10.0, 9.0), "rotation_vs_eta0": (10.0, 9.0),
               "correlation_theta_vs_Le": (12.0, 4.8), "correlation_rotation_vs_w0x": (12.0, 4.8),
-              "history": (10.0, 9.0)}
+              "history": (10.0, 11.0)}
+
+# More curves than this in one panel are told apart by a colour bar, not a legend.
+MAX_LEGEND = 10
+# A value below this in magnitude is printed as 0 in the tables and counts as no response: the
+# normalised maxima are of order 0.01-10, so 1e-9 is far below any physical response and far
+# above the round-off (about 1e-18 rad) of a deck that does not turn.
+ZERO = 1e-9
 
 plt.rcParams.update({"font.size": 10, "axes.labelsize": 11, "axes.titlesize": 11,
                      "legend.fontsize": 9, "xtick.labelsize": 9.5, "ytick.labelsize": 9.5,
@@ -33,6 +46,9 @@ RESPONSE_LABEL = {
     "L_e": r"$L_e = a_g/\omega_g^2$ [m]",
     "impacts": "impacts",
 }
+# The same quantities in plain Unicode, for the Markdown tables.
+RESPONSE_TEXT = {"x_norm": "x_m ω_g²/a_g", "y_norm": "y_m ω_g²/a_g",
+                 "theta_norm": "θ_m ρ ω_g²/a_g", "theta_m": "θ_m [rad]", "L_e": "L_e [m]"}
 AXIS_LABEL = {
     "w0_over_wg": r"$\omega_0/\omega_g$",
     "a_deg": r"$\alpha$",
@@ -45,16 +61,151 @@ AXIS_LABEL = {
     "delta_over_L": r"$\delta/L$",
     "W_over_L": r"$W/L$",
 }
+AXIS_TEXT = {"w0_over_wg": "ω_0/ω_g", "a_deg": "α", "Pi_delta": "Π_δ", "eta0": "η_0",
+             "W0_over_w0": "Ω_0/ω_0", "mu": "μ", "eps_N": "ε_N", "xi": "ξ",
+             "delta_over_L": "δ/L", "W_over_L": "W/L", "pulse": "pulse"}
 AXIS_UNIT = {"a_deg": "°"}
 
-# The w0x/w_g groups of the pilot-bridge study when the cube stores no `band` response:
-# [0, 0.5), [0.5, 1), [1, 2), [2, inf), the default of docs/hdf5-layout.md.
-DEFAULT_BAND_EDGES = (0.5, 1.0, 2.0)
+# One line per symbol; each figure's caption and the summary's symbol list take theirs from here.
+SYMBOLS = {
+    "x": "x_m, y_m, θ_m: largest |x|, |y| (m) and |θ| (rad) of the deck over the run",
+    "rho": "ρ: radius of gyration of the deck (I_m = m ρ²)",
+    "ag": "a_g, ω_g: amplitude (m/s²) and circular frequency (rad/s) of the pulse; for a record "
+          "PGA and 2π/T_m",
+    "w0": "ω_0: frequency of the substructure along x and y; Ω_0: its torsional frequency",
+    "w0x": "ω_0x: the pilot bridge's frequency along x",
+    "eta0": "η_0 = sin 2α / (2W/L): skew ratio (the deck rotates after a full-edge impact iff "
+            "η_0 > 1)",
+    "alpha": "α: skew angle",
+    "Pi": "Π_δ = δ ω_g²/a_g: joint gap δ in units of the persistency a_g/ω_g²",
+    "Le": "L_e = a_g/ω_g²: persistency of the record (m)",
+    "eps": "ε_N: coefficient of restitution; μ: friction coefficient; ξ: damping ratio",
+    "gap": "g_N: normal gap of a corner (m); γ_T: its tangential velocity (m/s)",
+}
+
+
+def caption(fig, keys, extra=""):
+    """A caption under the figure defining the symbols in `keys`; the layout leaves room for it
+    (constrained layout's rect), so that it never overlaps an axis label."""
+    text = "; ".join(SYMBOLS[k] for k in keys) + "." + (" " + extra if extra else "")
+    width_px = fig.get_figwidth() * DPI
+    lines = textwrap.wrap(text, int(width_px / 5.6))  # 8 pt DejaVu Sans: about 5.3 px a glyph
+    fig.text(0.005, 0.004, "\n".join(lines), fontsize=8, va="bottom", ha="left", color="0.2")
+    bottom = (len(lines) * 8 * 1.25 + 6) / 72.0 / fig.get_figheight()
+    fig.get_layout_engine().set(rect=(0, bottom, 1, 1 - bottom))
 
 
 def axis_value_label(key, value):
     """A legend entry such as `α = 30°` or `Π_δ = 0.5`."""
     return f"{AXIS_LABEL.get(key, key)} = {value:g}{AXIS_UNIT.get(key, '')}"
+
+
+class _PlainLogLocator(matplotlib.ticker.Locator):
+    """Ticks of a log axis at 1, 2 and 5 of each decade, with 3, 4 and 7 (then every digit)
+    added when the range holds fewer than three of those, and evenly spaced values on a range
+    narrower still, so that every axis has three or more labels."""
+
+    def __call__(self):
+        lo, hi = self.axis.get_view_interval()
+        return self.tick_values(lo, hi)
+
+    def tick_values(self, vmin, vmax):
+        lo, hi = sorted((max(vmin, 1e-300), max(vmax, 1e-300)))
+        for mantissas in ((1, 2, 5), (1, 2, 3, 4, 5, 7), (1, 1.5, 2, 3, 4, 5, 6, 7, 8, 9)):
+            ticks = [m * 10.0 ** e for e in range(int(np.floor(np.log10(lo))) - 1,
+                                                    int(np.ceil(np.log10(hi))) + 1)
+                     for m in mantissas]
+            ticks = [t for t in ticks if lo * (1 - 1e-9) <= t <= hi * (1 + 1e-9)]
+            if len(ticks) >= 3:
+                break
+        else:  # under a factor of about 1.5: evenly spaced plain numbers
+            ticks = [t for t in matplotlib.ticker.MaxNLocator(4).tick_values(lo, hi)
+                     if lo * (1 - 1e-9) <= t <= hi * (1 + 1e-9) and t > 0]
+        if hi > 1000 * lo or len(ticks) > 12:  # three decades or more: decades only
+            ticks = [t for t in ticks if abs(np.log10(t) - round(np.log10(t))) < 1e-9]
+        return np.array(ticks)
+
+
+class _PlainLogFormatter(matplotlib.ticker.Formatter):
+    """Plain numbers (0.2, 0.5, 1, 2) on a log axis spanning under three decades; powers of ten
+    (10^-4) on a wider one, whose ticks are then decades only."""
+
+    def __call__(self, value, pos=None):
+        lo, hi = sorted(self.axis.get_view_interval())
+        exponent = int(np.floor(np.log10(value) + 1e-9))
+        mantissa = round(value / 10.0 ** exponent, 6)
+        if hi > 1000 * max(lo, 1e-300) or not 1e-3 <= value < 1e5:
+            return (f"$10^{{{exponent}}}$" if mantissa == 1
+                    else f"${mantissa:g}\\times 10^{{{exponent}}}$")
+        return f"{value:g}"
+
+
+def log_axis(ax, which="x"):
+    """A log axis with three or more labelled ticks, never a lone 10^0 on a range under two
+    decades (_PlainLogLocator, _PlainLogFormatter)."""
+    axis = ax.xaxis if which == "x" else ax.yaxis
+    (ax.set_xscale if which == "x" else ax.set_yscale)("log")
+    axis.set_major_locator(_PlainLogLocator())
+    axis.set_major_formatter(_PlainLogFormatter())
+    axis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+
+
+def no_data(ax, text="no data"):
+    """Say so on a panel with nothing to draw."""
+    ax.text(0.5, 0.5, text, transform=ax.transAxes, ha="center", va="center", fontsize=12,
+            color="0.4")
+    if not ax.lines:  # nothing drawn: the tick labels of an empty range would mean nothing
+        ax.set_yticks([])
+
+
+def integer_axis(ax):
+    """Integer ticks on a y axis of counts, half a count of margin around the drawn values (so
+    that a constant count still gets one integer tick rather than fractional ones)."""
+    values = np.concatenate([np.asarray(line.get_ydata(), dtype=float) for line in ax.lines]
+                            or [np.array([])])
+    values = values[np.isfinite(values)]
+    if len(values):
+        ax.set_ylim(values.min() - 0.5, values.max() + 0.5)
+    ax.yaxis.set_major_locator(matplotlib.ticker.MaxNLocator(integer=True, min_n_ticks=1))
+
+
+MARKERS = ["o", "s", "^", "v", "D", "P", "X", "*", "<", ">"]
+LINESTYLES = ["-", "--", "-.", ":"]
+
+
+def curve_styles(n, cmap="viridis"):
+    """n (colour, marker, linestyle) triples: colour from a sequential map, marker and line style
+    cycling so that curves stay distinct in grey print."""
+    colors = plt.get_cmap(cmap)(np.linspace(0.0, 0.9, max(n, 1)))
+    return [(colors[i], MARKERS[i % len(MARKERS)], LINESTYLES[i % len(LINESTYLES)])
+            for i in range(n)]
+
+
+def curve_key_legend(fig, axes, curve_key, values, handles=None, labels=None, cmap="viridis"):
+    """The legend of the curves beside the panels, or a colour bar when there are more than
+    MAX_LEGEND of them; `handles`/`labels` add entries (reference lines) to the legend."""
+    handles, labels = list(handles or []), list(labels or [])
+    axes_flat = np.ravel(axes)
+    if curve_key and len(values) > MAX_LEGEND:
+        finite = np.asarray(values, dtype=float)
+        norm = matplotlib.colors.Normalize(vmin=finite.min(), vmax=finite.max() / 0.9
+                                           if finite.max() > 0 else finite.max())
+        mappable = matplotlib.cm.ScalarMappable(norm=norm, cmap=cmap)
+        label = AXIS_LABEL.get(curve_key, curve_key)
+        fig.colorbar(mappable, ax=list(axes_flat), label=label + (
+            f" [{AXIS_UNIT[curve_key]}]" if curve_key in AXIS_UNIT else ""), shrink=0.6)
+        if handles:
+            axes_flat[0].legend(handles, labels, loc="upper left", bbox_to_anchor=(0.0, 1.22),
+                                ncol=len(handles), frameon=False)
+        return
+    if curve_key:
+        h, lab = axes_flat[0].get_legend_handles_labels()
+        handles, labels = h + handles, lab + labels
+    if handles:
+        # Beside the top-right panel, outside every data area; constrained layout makes room.
+        anchor = np.asarray(axes)[0, -1] if np.ndim(axes) == 2 else axes_flat[-1]
+        anchor.legend(handles, labels, loc="upper left", bbox_to_anchor=(1.02, 1.0),
+                      borderaxespad=0.0)
 
 
 def select(sweep, response, keep, at=None):
@@ -88,24 +239,50 @@ def _pulses(sweep):
     return [(0, sweep.param("pulse") or "")]
 
 
-def _colors(n):
-    return plt.cm.viridis(np.linspace(0.0, 0.9, max(n, 1)))
-
-
 def _w0_label(sweep):
     return r"$\omega_{0x}/\omega_g$" if sweep.family == "pilot-bridge" else AXIS_LABEL["w0_over_wg"]
 
 
+# The caption entry of each axis or fixed parameter.
+_SYMBOL_OF = {"a_deg": "alpha", "eta0": "eta0", "Pi_delta": "Pi", "W0_over_w0": "w0",
+              "eps_N": "eps", "mu": "eps", "xi": "eps"}
+
+
+def _caption_keys(sweep, base, *keys):
+    out = list(base)
+    for key in list(keys) + list(sweep.fixed):
+        sym = _SYMBOL_OF.get(key)
+        if sym and sym not in out:
+            out.append(sym)
+    return out
+
+
+def peak_of(values, grid):
+    """(peak, abscissa at the peak, index, at the grid edge, no response) of one curve; NaN
+    peak when the curve has no finite value. A curve whose largest value is below ZERO has
+    no response: its arg-max is round-off and is not reported."""
+    finite = np.isfinite(values)
+    if not np.any(finite):
+        return float("nan"), float("nan"), -1, False, False
+    k = int(np.nanargmax(values))
+    peak = float(values[k])
+    if abs(peak) < ZERO:
+        return 0.0, float("nan"), -1, False, True
+    return peak, float(grid[k]), k, k in (0, len(grid) - 1), False
+
+
 def spectra(sweep, curve_key, out_dir, name, pdf):
     """x, y, theta maxima against w0/w_g: one curve per value of curve_key (or one curve),
-    one column per pulse. Returns table rows (pulse, curve, response, peak, w0/w_g at peak)."""
+    one column per pulse. Returns table rows (pulse, curve, response, peak, w0/w_g at peak,
+    at the grid edge, no response)."""
     rows_resp = [r for r in ("x_norm", "y_norm", "theta_norm") if r in sweep.responses]
     pulses = _pulses(sweep)
     fig, axes = plt.subplots(len(rows_resp), len(pulses), figsize=FIGSIZE_IN["spectra"],
                              squeeze=False, sharex=True, constrained_layout=True)
     w = sweep.axes["w0_over_wg"]
     curves = list(sweep.axes[curve_key]) if curve_key else [None]
-    colors = _colors(len(curves))
+    many = len(curves) > MAX_LEGEND
+    styles = curve_styles(len(curves))
     table = []
     for col, (ip, pulse) in enumerate(pulses):
         for row, resp in enumerate(rows_resp):
@@ -116,28 +293,34 @@ def spectra(sweep, curve_key, out_dir, name, pdf):
                 data = data[np.newaxis, :]
             for ic, value in enumerate(curves):
                 label = axis_value_label(curve_key, value) if curve_key else None
-                ax.plot(w, data[ic], color=colors[ic], label=label)
-                finite = np.isfinite(data[ic])
-                if np.any(finite):
-                    k = int(np.nanargmax(data[ic]))
-                    table.append((pulse, "" if value is None else f"{value:g}", resp,
-                                  data[ic][k], w[k]))
-            ax.set_xscale("log")
+                color, marker, ls = styles[ic]
+                if many:
+                    ax.plot(w, data[ic], color=color, lw=1.0)
+                else:
+                    ax.plot(w, data[ic], color=color, ls=ls, marker=marker, ms=4,
+                            markevery=max(1, len(w) // 8), label=label)
+                peak, at, _, edge, zero = peak_of(data[ic], w)
+                if np.isfinite(peak) or zero:
+                    table.append((pulse, "" if value is None else f"{value:g}", resp, peak, at,
+                                  edge, zero))
+            if not np.any(np.isfinite(data)):
+                no_data(ax)
+            log_axis(ax, "x")
             ax.set_ylabel(RESPONSE_LABEL[resp])
             if row == 0:
                 ax.set_title(f"{pulse} pulse" if pulse else sweep.name)
             if row == len(rows_resp) - 1:
                 ax.set_xlabel(_w0_label(sweep))
-    if curve_key:
-        axes[0][-1].legend(loc="upper right", ncol=2 if len(curves) > 4 else 1)
+    curve_key_legend(fig, axes, curve_key, curves)
     fig.suptitle(f"{sweep.name}: {_fixed_text(sweep)}", fontsize=10)
+    caption(fig, _caption_keys(sweep, ["x", "rho", "ag", "w0"], curve_key))
     return _save(fig, out_dir, name, pdf), table
 
 
 def rotation_vs_eta0(sweep, curve_key, out_dir, name, pdf):
     """The largest theta rho w_g^2/a_g over w0/w_g against eta0, one curve per curve_key value,
     with the w0/w_g where it occurs and the impacts of that cell. Returns table rows
-    (pulse, curve, eta0, peak, w0/w_g at peak, impacts)."""
+    (pulse, curve, eta0, peak, w0/w_g at peak, impacts, at the grid edge, no response)."""
     pulses = _pulses(sweep)
     has_w = sweep.has_axis("w0_over_wg")
     rows = 3 if (has_w and "impacts" in sweep.responses) else (2 if has_w else 1)
@@ -145,9 +328,11 @@ def rotation_vs_eta0(sweep, curve_key, out_dir, name, pdf):
                              squeeze=False, sharex=True, constrained_layout=True)
     eta = sweep.axes["eta0"]
     curves = list(sweep.axes[curve_key]) if curve_key else [None]
-    colors = _colors(len(curves))
+    many = len(curves) > MAX_LEGEND
+    styles = curve_styles(len(curves))
     table = []
     keep = ([curve_key] if curve_key else []) + ["eta0"] + (["w0_over_wg"] if has_w else [])
+    w_grid = sweep.axes["w0_over_wg"] if has_w else np.array([np.nan])
     for col, (ip, pulse) in enumerate(pulses):
         theta = select(sweep, "theta_norm", keep, {"pulse": ip})
         impacts = select(sweep, "impacts", keep, {"pulse": ip}) if rows == 3 else None
@@ -161,37 +346,46 @@ def rotation_vs_eta0(sweep, curve_key, out_dir, name, pdf):
             peak = np.full(len(eta), np.nan)
             where = np.full(len(eta), np.nan)
             n_imp = np.full(len(eta), np.nan)
-            # Where the deck does not turn, the arg-max is round-off: no frequency is shown.
-            floor = 1e-9 * max(np.nanmax(theta), 1e-300) if np.any(np.isfinite(theta)) else 0.0
             for ie in range(len(eta)):
-                if np.any(np.isfinite(t[ie])):
-                    peak[ie] = np.nanmax(t[ie])
-                if np.any(np.isfinite(t[ie])) and np.nanmax(t[ie]) > floor:
-                    k = int(np.nanargmax(t[ie]))
-                    if has_w:
-                        where[ie] = sweep.axes["w0_over_wg"][k]
+                p, at, k, edge, zero = peak_of(t[ie], w_grid)
+                peak[ie] = p
+                if k >= 0:
+                    where[ie] = at
                     if impacts is not None:
                         n_imp[ie] = impacts[ic][ie][k]
-                table.append((pulse, "" if value is None else f"{value:g}", eta[ie], peak[ie],
-                              where[ie], n_imp[ie]))
+                table.append((pulse, "" if value is None else f"{value:g}", eta[ie], p,
+                              where[ie], n_imp[ie], edge and has_w, zero))
             label = axis_value_label(curve_key, value) if curve_key else None
-            axes[0][col].plot(eta, peak, "o-", ms=3, color=colors[ic], label=label)
+            color, marker, ls = styles[ic]
+            kw = dict(color=color, lw=1.0) if many else dict(color=color, ls=ls, marker=marker,
+                                                             ms=4)
+            axes[0][col].plot(eta, peak, label=None if many else label, **kw)
             if rows >= 2:
-                axes[1][col].plot(eta, where, "o-", ms=3, color=colors[ic])
+                axes[1][col].plot(eta, where, **kw)
             if rows == 3:
-                axes[2][col].plot(eta, n_imp, "o-", ms=3, color=colors[ic])
+                axes[2][col].plot(eta, n_imp, **kw)
         axes[0][col].set_ylabel(r"$\max_{\omega_0/\omega_g}\ \theta_m\,\rho\,\omega_g^2/a_g$")
         axes[0][col].set_title(f"{pulse} pulse" if pulse else sweep.name)
-        axes[0][col].axvline(1.0, color="0.5", lw=0.8, ls="--")
+        for r in range(rows):
+            axes[r][col].axvline(1.0, color="0.5", lw=0.9, ls=(0, (4, 3)))
+        if not np.any(np.isfinite(theta)):
+            no_data(axes[0][col])
         if rows >= 2:
-            axes[1][col].set_yscale("log")
+            log_axis(axes[1][col], "y")
             axes[1][col].set_ylabel(r"$\omega_0/\omega_g$ at the maximum")
+            if not np.any(np.isfinite(where)):
+                no_data(axes[1][col], "no rotation")
         if rows == 3:
             axes[2][col].set_ylabel("impacts at the maximum")
+            integer_axis(axes[2][col])
         axes[-1][col].set_xlabel(AXIS_LABEL["eta0"] + r" $= \sin 2\alpha\,/\,(2W/L)$")
-    if curve_key:
-        axes[0][-1].legend(loc="upper left")
+    ref = matplotlib.lines.Line2D([], [], color="0.5", lw=0.9, ls=(0, (4, 3)))
+    curve_key_legend(fig, axes, curve_key if curve_key else None, curves, [ref],
+                     [r"$\eta_0 = 1$: onset of rotation" + "\n(full-edge impact)"])
     fig.suptitle(f"{sweep.name}: {_fixed_text(sweep)}", fontsize=10)
+    caption(fig, _caption_keys(sweep, ["x", "rho", "ag", "w0", "eta0"], curve_key),
+            "A point with no rotation has no ω_0/ω_g of its maximum and is not drawn in the "
+            "lower panels.")
     return _save(fig, out_dir, name, pdf), table
 
 
@@ -212,50 +406,97 @@ def band_of(sweep, w0x):
     return band, labels, list(edges)
 
 
+def band_legend_label(label):
+    """A band label of band_of() in mathtext."""
+    return "$" + label.replace("≤", r"\leq").replace("≥", r"\geq").replace(
+        "ω0x/ωg", r"\omega_{0x}/\omega_g") + "$"
+
+
+# The w0x/w_g groups of the pilot-bridge study when the cube stores no `band` response:
+# [0, 0.5), [0.5, 1), [1, 2), [2, inf), the default of docs/hdf5-layout.md.
+DEFAULT_BAND_EDGES = (0.5, 1.0, 2.0)
+
+
 def _pi_values(sweep):
     if sweep.has_axis("Pi_delta"):
         return list(enumerate(sweep.axes["Pi_delta"]))
     return [(0, sweep.param("Pi_delta"))]
 
 
+def strikes(sweep, keep, at):
+    """Per record: True when it strikes an abutment (impacts > 0); all True without `impacts`."""
+    if "impacts" not in sweep.responses:
+        return None
+    return select(sweep, "impacts", keep, at) > 0
+
+
 def correlation_theta_vs_le(sweep, out_dir, name, pdf):
-    """theta_m against L_e over the records, one panel per Pi_delta, log-log with the fitted
-    line. Returns rows (Pi_delta, own statistics dict, stored statistics dict or None)."""
+    """theta_m against L_e over the records, one panel per Pi_delta, log-log, with two fitted
+    lines: over every record with theta_m > 0, and over the records that strike an abutment
+    alone, since the records that never strike rotate by eccentricity only and form a
+    separate group that one line through both would misrepresent. Returns rows
+    (Pi_delta, statistics over all, statistics over those that strike or None, stored)."""
     pis = _pi_values(sweep)
     fig, axes = plt.subplots(1, len(pis), figsize=FIGSIZE_IN["correlation_theta_vs_Le"],
                              squeeze=False, constrained_layout=True, sharey=True)
     keep = ["record"]
     table = []
+    handles = {}
     for col, (ipi, pi) in enumerate(pis):
         ax = axes[0][col]
-        le = select(sweep, "L_e", keep, {"Pi_delta": ipi})
-        theta = select(sweep, "theta_m", keep, {"Pi_delta": ipi})
+        at = {"Pi_delta": ipi}
+        le = select(sweep, "L_e", keep, at)
+        theta = select(sweep, "theta_m", keep, at)
         row = stats.correlation_row(le, theta)
+        hits = strikes(sweep, keep, at)
+        row_hit = stats.correlation_row(le[hits], theta[hits]) if hits is not None else None
         positive = theta > 0
-        impacts = (select(sweep, "impacts", keep, {"Pi_delta": ipi}) > 0
-                   if "impacts" in sweep.responses else np.ones_like(positive))
-        hit, miss = positive & impacts, positive & ~impacts
-        ax.loglog(le[hit], theta[hit], "o", ms=5, color="C0",
-                  label=f"with impacts: {int(np.count_nonzero(hit))}")
+        hit = positive & (hits if hits is not None else True)
+        miss = positive & ~hits if hits is not None else np.zeros_like(positive)
+        handles["hit"], = ax.loglog(le[hit], theta[hit], "o", ms=5, color="C0")
         if np.any(miss):
-            ax.loglog(le[miss], theta[miss], "o", ms=5, mfc="none", color="0.45",
-                      label=f"no impact (eccentricity only): {int(np.count_nonzero(miss))}")
-        if np.isfinite(row["slope"]):
-            xs = np.geomspace(np.nanmin(le[positive]), np.nanmax(le[positive]), 20)
-            ax.loglog(xs, 10 ** (row["slope"] * np.log10(xs) + row["intercept"]), "-",
-                      color="C3", label=f"log-log fit: slope {row['slope']:.2f}, "
-                                        f"$R^2$ = {row['r2']:.2f}")
+            handles["miss"], = ax.loglog(le[miss], theta[miss], "s", ms=5, mfc="none",
+                                         color="0.4")
+        for key, r, sel, style in (("fit_all", row, positive, dict(color="C3", ls="-")),
+                                   ("fit_hit", row_hit, hit, dict(color="C2", ls="--"))):
+            if r is None or not np.isfinite(r["slope"]) or np.count_nonzero(sel) < 3:
+                continue
+            xs = np.geomspace(np.nanmin(le[sel]), np.nanmax(le[sel]), 20)
+            handles[key], = ax.loglog(xs, 10 ** (r["slope"] * np.log10(xs) + r["intercept"]),
+                                      lw=1.6, **style)
+        if not np.any(positive):
+            no_data(ax, "no record rotates")
+        else:
+            log_axis(ax, "x")
+            log_axis(ax, "y")
         zero = int(np.count_nonzero(theta == 0))
-        ax.set_title(f"{AXIS_LABEL['Pi_delta']} = {pi:g}: Pearson {row['pearson']:.2f}, "
-                     f"Spearman {row['spearman']:.2f}" + (f", {zero} with θm = 0" if zero else ""),
-                     fontsize=10)
+        title = f"{AXIS_LABEL['Pi_delta']} = {pi:g}: " + _fit_text("all", row)
+        if row_hit is not None:
+            title += "\n" + _fit_text("strike", row_hit)
+        if zero:
+            title += f"; {zero} with $\\theta_m$ = 0 not drawn"
+        ax.set_title(title, fontsize=9.5)
         ax.set_xlabel(RESPONSE_LABEL["L_e"])
         if col == 0:
             ax.set_ylabel(RESPONSE_LABEL["theta_m"])
-        ax.legend(loc="lower right")
-        table.append((pi, row, stored_correlation(sweep, ipi)))
+        table.append((pi, row, row_hit, stored_correlation(sweep, ipi)))
+    names = {"hit": "strikes an abutment", "miss": "never strikes\n(eccentricity only)",
+             "fit_all": "log-log fit, all records\n(both groups)",
+             "fit_hit": "log-log fit, records\nthat strike"}
+    keys = [k for k in names if k in handles]
+    axes[0][-1].legend([handles[k] for k in keys], [names[k] for k in keys], loc="upper left",
+                       bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)
     fig.suptitle(f"{sweep.name}: rotation against the persistency of each record", fontsize=10)
+    caption(fig, ["Le", "Pi"], "r: Pearson's correlation of θ_m with L_e; slope of "
+            "log10 θ_m against log10 L_e.")
     return _save(fig, out_dir, name, pdf), table
+
+
+def _fit_text(group, row):
+    """`group, r = ..., slope ...`, or that the group is too small for a correlation."""
+    if row["n_log"] < 3 or not np.isfinite(row["slope"]):
+        return f"{group}: {row['n']} records, too few to fit"
+    return f"{group}, $r$ = {row['pearson']:.2f}, slope {row['slope']:.2f}"
 
 
 def stored_correlation(sweep, ipi):
@@ -274,96 +515,214 @@ def stored_correlation(sweep, ipi):
 
 
 def correlation_rotation_vs_w0x(sweep, out_dir, name, pdf):
-    """theta rho w_g^2/a_g against w0x/w_g, one panel per Pi_delta, coloured by band.
-    Returns rows (Pi_delta, band label, count, median, max)."""
+    """theta rho w_g^2/a_g against w0x/w_g, one panel per Pi_delta, by frequency-ratio group
+    (colour and marker); records that never strike drawn open. Groups with no record are left
+    out of the legend. Returns rows (Pi_delta, band label, count, median, max)."""
     pis = _pi_values(sweep)
     fig, axes = plt.subplots(1, len(pis), figsize=FIGSIZE_IN["correlation_rotation_vs_w0x"],
                              squeeze=False, constrained_layout=True, sharey=True)
     w0x_all = sweep.responses["w0x_over_wg"]
     band_all, labels, _ = band_of(sweep, w0x_all)
-    colors = plt.cm.plasma(np.linspace(0.0, 0.8, len(labels)))
+    styles = curve_styles(len(labels), "plasma")
     table = []
+    shown = {}
     for col, (ipi, pi) in enumerate(pis):
         ax = axes[0][col]
         at = {"Pi_delta": ipi}
         w0x = select(sweep, "w0x_over_wg", ["record"], at)
         theta = select(sweep, "theta_norm", ["record"], at)
         band = select_array(sweep, band_all, ["record"], at)
+        hits = strikes(sweep, ["record"], at)
+        if hits is None:
+            hits = np.ones(len(theta), dtype=bool)
         for b, label in enumerate(labels):
             mask = band == b
-            ax.plot(w0x[mask], theta[mask], "o", ms=5, color=colors[b], label=label)
+            color, marker, _ = styles[b]
+            if np.any(mask & hits):
+                shown[b], = ax.plot(w0x[mask & hits], theta[mask & hits], marker, ms=5,
+                                    color=color, ls="none")
+            if np.any(mask & ~hits):
+                h, = ax.plot(w0x[mask & ~hits], theta[mask & ~hits], marker, ms=5,
+                             mfc="none", color=color, ls="none")
+                shown.setdefault(b, h)
             finite = theta[mask][np.isfinite(theta[mask])]
             table.append((pi, label, len(finite),
                           float(np.median(finite)) if len(finite) else float("nan"),
                           float(np.max(finite)) if len(finite) else float("nan")))
-        ax.axvline(2.0, color="0.5", lw=0.8, ls="--")
-        ax.set_xscale("log")
-        ax.xaxis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
-        ax.xaxis.set_minor_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
+        if not np.any(np.isfinite(theta)):
+            no_data(ax)
+        ax.axvline(2.0, color="0.5", lw=0.9, ls=(0, (4, 3)))
+        log_axis(ax, "x")
         ax.set_xlabel(r"$\omega_{0x}/\omega_g$")
         if col == 0:
             ax.set_ylabel(RESPONSE_LABEL["theta_norm"])
         ax.set_title(f"{AXIS_LABEL['Pi_delta']} = {pi:g}")
-    axes[0][-1].legend(loc="upper right")
+    ref = matplotlib.lines.Line2D([], [], color="0.5", lw=0.9, ls=(0, (4, 3)))
+    open_marker = matplotlib.lines.Line2D([], [], marker="o", mfc="none", color="0.3",
+                                          ls="none")
+    keys = sorted(shown)
+    axes[0][-1].legend([shown[b] for b in keys] + [open_marker, ref],
+                       [band_legend_label(labels[b]) for b in keys] + ["open: never strikes",
+                                                    r"$\omega_{0x}/\omega_g = 2$: rotations" +
+                                                    "\nfade above (§6)"],
+                       loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)
     fig.suptitle(f"{sweep.name}: dimensionless rotation by frequency-ratio group", fontsize=10)
+    caption(fig, ["rho", "ag", "w0x", "Pi"])
     return _save(fig, out_dir, name, pdf), table
 
 
+G_MPS2 = 9.80665
+_UNIT_MPS2 = {"mps2": 1.0, "g": G_MPS2, "cmps2": 0.01}
+
+
+def _model(run):
+    try:
+        return tomllib.loads(run.model_text)
+    except (tomllib.TOMLDecodeError, TypeError):
+        return None
+
+
+def ground_acceleration(run):
+    """(a_g(t) in m/s^2 at run.t_s, direction text) rebuilt from the run's model text for a
+    pulse or inline samples; (None, reason) for a record file, which the run file does not hold."""
+    model = _model(run)
+    ex = (model or {}).get("excitation")
+    if not ex:
+        return None, "no excitation in the run file's model text"
+    t = run.t_s
+    direction = (f"at {ex['angle_deg']:g}° from x" if "angle_deg" in ex
+                 else f"along {ex.get('direction', 'x')}")
+    if ex.get("kind") == "pulse":
+        a_g = ex["a_g"] if "a_g" in ex else ex["a_g_g"] * G_MPS2
+        w_g = ex["w_g"] if "w_g" in ex else 2.0 * np.pi / ex["T_g"]
+        phase = w_g * t
+        a = a_g * (np.cos(phase) if ex.get("shape") == "cosine" else np.sin(phase))
+        return np.where(t <= 2.0 * np.pi / w_g, a, 0.0), direction
+    if ex.get("kind") == "sampled" and "values" in ex:
+        values = np.asarray(ex["values"], dtype=float)
+        values = values * _UNIT_MPS2.get(ex.get("units", "mps2"), 1.0) * ex.get("scale", 1.0)
+        times = np.arange(len(values)) * float(ex["dt_s"])
+        return np.interp(t, times, values, right=0.0), direction
+    return None, "a record file: its samples are not stored in the run file"
+
+
+def tangential_velocity(run):
+    """gamma_T = w_T^T u of each contact at run.t_s (m/s), w_T = (t, t . R'(theta) p) with the
+    corner p and the face tangent t of docs/theory.md §2, for one deck against its abutments;
+    None for a multi-span model or a run without velocities."""
+    model = _model(run)
+    deck = (model or {}).get("deck")
+    if run.u is None or not isinstance(deck, dict) or run.n_bodies != 1:
+        return None
+    a = np.radians(deck.get("skew_deg", 0.0))
+    length = float(deck["L"])
+    width = float(deck["W"]) if "W" in deck else length * np.sin(2 * a) / (2 * deck["eta0"])
+    half_l, half_w, shift = length / 2, width / 2, width / 2 * np.tan(a)
+    corners = {"P1": ((half_l + shift, half_w), 1), "P2": ((half_l - shift, -half_w), 1),
+               "P3": ((-half_l - shift, -half_w), -1), "P4": ((-half_l + shift, half_w), -1)}
+    if not all(c in corners for c in run.contact_names):
+        return None
+    theta = run.q[:, 2]
+    out = np.empty((len(run.t_s), len(run.contact_names)))
+    for c, cname in enumerate(run.contact_names):
+        (px, py), side = corners[cname]
+        tx, ty = side * np.sin(a), side * np.cos(a)
+        dpx = -np.sin(theta) * px - np.cos(theta) * py  # R'(theta) p
+        dpy = np.cos(theta) * px - np.sin(theta) * py
+        out[:, c] = tx * run.u[:, 0] + ty * run.u[:, 1] + (tx * dpx + ty * dpy) * run.u[:, 2]
+    return out
+
+
 def history(run, out_dir, name, pdf):
-    """x, y, theta of each body against t with impacts (open circles), plastic closures and
-    samples in persistent contact (filled) on the curves, and a contact timeline: persistent
-    contact (state != 0) filled, impacts open. Returns rows (quantity, max abs, time of max)."""
-    fig, axes = plt.subplots(4, 1, figsize=FIGSIZE_IN["history"], sharex=True,
-                             constrained_layout=True,
-                             gridspec_kw={"height_ratios": [1, 1, 1, 0.8]})
+    """The ground acceleration, x, y, theta of each body, the gaps g_N and tangential velocities
+    gamma_T of the contacts against t, with impacts (open circles) and plastic closures (filled)
+    on the curves, and a contact timeline: persistent contact (state != 0) filled, impacts
+    open. Returns rows (quantity, max abs, time of max)."""
+    has_gap = run.gap is not None
+    gamma_t = tangential_velocity(run)
+    a_g, a_note = ground_acceleration(run)
+    panels = ["a_g", "x", "y", "theta"] + (["gap"] if has_gap else []) + ["gamma_T", "contact"]
+    ratios = [0.7, 1, 1, 1] + ([1] if has_gap else []) + [1, 0.7]
+    fig, axes = plt.subplots(len(panels), 1, figsize=FIGSIZE_IN["history"], sharex=True,
+                             constrained_layout=True, gridspec_kw={"height_ratios": ratios})
+    ax_of = dict(zip(panels, axes))
     t = run.t_s
     impact = run.kind_code("impact")
     closure = run.kind_code("plastic-closure")
     t_imp = np.unique(run.event_t_s[run.event_kind == impact]) if impact is not None else []
     t_pc = np.unique(run.event_t_s[run.event_kind == closure]) if closure is not None else []
-    labels = [r"$x$ [mm]", r"$y$ [mm]", r"$\theta$ [mrad]"]
     table = []
-    # Samples in persistent contact (any contact closed), thinned to at most 80 markers a curve.
-    closed = np.flatnonzero(np.any(run.state != 0, axis=1))
-    closed = closed[::max(1, len(closed) // 80)]
+    ax = ax_of["a_g"]
+    if a_g is None:
+        no_data(ax, "ground acceleration not shown: " + a_note)
+    else:
+        ax.plot(t, a_g, color="0.2")
+        ax.axhline(0.0, color="0.6", lw=0.6)
+    ax.set_ylabel(r"$a_g$ [m/s$^2$]" + "\n" + (a_note if a_g is not None else ""), fontsize=10)
+    labels = {"x": r"$x$ [mm]", "y": r"$y$ [mm]", "theta": r"$\theta$ [mrad]"}
+    legend = {}
     for body in range(run.n_bodies):
-        for k in range(3):
-            ax = axes[k]
+        for k, key in enumerate(("x", "y", "theta")):
+            ax = ax_of[key]
             series = run.q[:, 3 * body + k] * 1e3
-            color = f"C{body}"
-            ax.plot(t, series, color=color, label=f"deck {body}" if run.n_bodies > 1 else None)
+            h, = ax.plot(t, series, color=f"C{body}", ls=LINESTYLES[body % len(LINESTYLES)])
+            if run.n_bodies > 1:
+                legend.setdefault(f"deck {body}", h)
             if len(t_imp):
-                ax.plot(t_imp, np.interp(t_imp, t, series), "o", ms=7, mfc="none", mec="C3",
-                        mew=1.4, label="impact" if body == 0 and k == 0 else None)
+                legend["impact"], = ax.plot(t_imp, np.interp(t_imp, t, series), "o", ms=7,
+                                            mfc="none", mec="C3", mew=1.4)
             if len(t_pc):
-                ax.plot(t_pc, np.interp(t_pc, t, series), "o", ms=7, color="k",
-                        label="plastic closure (contact persists)"
-                        if body == 0 and k == 0 else None)
-            if len(closed):
-                ax.plot(t[closed], series[closed], "o", ms=3.5, color="k",
-                        label="persistent contact" if body == 0 and k == 0 else None)
-            ax.set_ylabel(labels[k])
+                legend["plastic closure (contact persists)"], = ax.plot(
+                    t_pc, np.interp(t_pc, t, series), "o", ms=6, color="k")
+            ax.set_ylabel(labels[key])
             i = int(np.argmax(np.abs(series)))
             table.append((("x [m]", "y [m]", "θ [rad]")[k]
                           + (f" (deck {body})" if run.n_bodies > 1 else ""),
                           float(run.max_abs_q[3 * body + k]), float(t[i])))
-    axes[0].legend(loc="upper right")
-    ax = axes[3]
+    # Contact colours apart from the deck's (C0, C1, ...) and from the impact marker (C3).
+    palette = ["C2", "C4", "C6", "C8", "C9", "C5", "C7", "C1"]
+    contact_legend = {}
+    for key, values, unit, scale in (("gap", run.gap, "[mm]", 1e3),
+                                     ("gamma_T", gamma_t, "[m/s]", 1.0)):
+        if key not in ax_of:
+            continue
+        ax = ax_of[key]
+        if values is None:
+            no_data(ax, "γ_T not shown: computed for one deck against its abutments only")
+        else:
+            for c, cname in enumerate(run.contact_names):
+                h, = ax.plot(t, values[:, c] * scale, color=palette[c % len(palette)],
+                             ls=LINESTYLES[c % len(LINESTYLES)])
+                contact_legend.setdefault(f"corner {cname}", h)
+            ax.axhline(0.0, color="0.6", lw=0.6)
+        ax.set_ylabel((r"$g_N$ " if key == "gap" else r"$\gamma_T$ ") + unit)
+    ax = ax_of["contact"]
     for c, cname in enumerate(run.contact_names):
         closed = run.state[:, c] != 0
-        ax.plot(t[closed], np.full(np.count_nonzero(closed), c), "s", ms=3.5, color="k",
-                label="persistent contact" if c == 0 else None)
+        if np.any(closed):
+            legend["persistent contact"], = ax.plot(t[closed], np.full(np.count_nonzero(closed), c),
+                                                    "s", ms=3.5, color="k")
         mine = (run.event_kind == impact) & (run.event_contact == c)
-        ax.plot(run.event_t_s[mine], np.full(np.count_nonzero(mine), c), "o", ms=8, mfc="none",
-                mec="C3", mew=1.4, label="impact" if c == 0 else None)
+        if np.any(mine):
+            ax.plot(run.event_t_s[mine], np.full(np.count_nonzero(mine), c), "o", ms=8,
+                    mfc="none", mec="C3", mew=1.4)
+    if not np.any(run.state != 0) and not len(t_imp):
+        no_data(ax, "no contact: the gaps never close")
     ax.set_yticks(range(len(run.contact_names)))
     ax.set_yticklabels(run.contact_names)
     ax.set_ylim(-0.7, len(run.contact_names) - 0.3)
+    ax.grid(False, axis="y")
     ax.set_ylabel("contact")
     ax.set_xlabel(r"$t$ [s]")
-    ax.legend(loc="upper right", ncol=2)
+    for key, entries in (("x", legend), ("gap" if has_gap else "gamma_T", contact_legend)):
+        if entries:
+            ax_of[key].legend(list(entries.values()), list(entries.keys()), loc="upper left",
+                              bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
     fig.suptitle(f"{os.path.basename(run.path)}: status {run.status}, "
                  f"{int(run.summary_attrs.get('impacts', 0))} impacts", fontsize=10)
+    caption(fig, ["gap"], "x, y, θ: displacements and rotation of the deck relative to the "
+            "ground; a_g: ground acceleration. The corners of one end share their face's tangent, so "
+            "their γ_T differ only by the lever-arm term r_i θ' sin θ and nearly overlap.")
     return _save(fig, out_dir, name, pdf), table
 
 
@@ -372,5 +731,8 @@ def _fixed_text(sweep):
     for key in ("a_deg", "eta0", "Pi_delta", "W0_over_w0", "xi", "eps_N", "mu", "pulse"):
         if key in sweep.fixed:
             v = sweep.fixed[key]
-            parts.append(f"{key} = {v:g}" if isinstance(v, float) else f"{key} = {v}")
+            if isinstance(v, float):
+                parts.append(f"{AXIS_LABEL.get(key, key)} = {v:g}{AXIS_UNIT.get(key, '')}")
+            else:
+                parts.append(f"{AXIS_TEXT.get(key, key)}: {v}")
     return ", ".join(parts) if parts else sweep.family

@@ -47,6 +47,17 @@ w0_over_wg = {logspace = [0.3, 3.0, 6]}
 pulse = "cosine"
 a_deg = 30.0
 TOML
+cat > many.toml <<'TOML'
+[sweep]
+name = "many"
+family = "subsystem"
+[axes]
+a_deg = [5, 10, 15, 20, 25, 30, 35, 40, 45, 50, 55, 60]
+w0_over_wg = {logspace = [0.3, 3.0, 4]}
+[fixed]
+pulse = "cosine"
+eta0 = 2.0
+TOML
 "$exe" records synth --count 8 --seed 7 --duration-s 10 --out set >/dev/null
 cat > records.toml <<'TOML'
 [sweep]
@@ -59,7 +70,7 @@ record = ["synth-7-000", "synth-7-001", "synth-7-002", "synth-7-003", "synth-7-0
           "synth-7-005", "synth-7-006", "synth-7-007"]
 Pi_delta = [0.5, 1.0, 2.0]
 TOML
-for s in spectra pidelta eta0 records; do sweep $s.toml --out $s.h5; done
+for s in spectra pidelta eta0 records many; do sweep $s.toml --out $s.h5; done
 "$exe" run "$root/docs/examples/subsystem.toml" --out run.h5 >/dev/null
 "$exe" run "$root/tests/report/push.toml" --out push.h5 >/dev/null
 
@@ -68,6 +79,14 @@ for s in spectra pidelta eta0 records; do sweep $s.toml --out $s.h5; done
   fail "report exited with status $? ($(cat report.log))"
 /usr/bin/python3 "$root/tests/report/check_report.py" out report.log spectra.h5 pidelta.h5 \
   eta0.h5 records.h5 run.h5 push.h5 || fail "figures or tables"
+
+# Readability, checked on the figures themselves: legends, log ticks, symbols, captions, a
+# colour bar for 12 curves, "no data" on the empty column of a cube whose sine cells are not
+# done, gamma_T against finite differences.
+cp spectra.h5 holes.h5
+/usr/bin/python3 -c "import h5py; g = h5py.File('holes.h5', 'r+')['sweeps/spectra']; g.attrs['complete'] = 0; d = g['done'][()]; d[1] = 0; g['done'][...] = d"
+/usr/bin/python3 "$root/tests/report/check_readability.py" "$root" readable spectra.h5 pidelta.h5 \
+  eta0.h5 records.h5 many.h5 holes.h5 --run run.h5 --run push.h5 || fail "readability"
 
 # expect_error NAME PATTERN ARGS...: exit status 2, one line on stderr matching PATTERN,
 # no output folder made.

@@ -1,0 +1,177 @@
+#!/usr/bin/python3
+"""Checks that scripts/report draws figures a journal would print, by running the report
+in-process and inspecting each figure just before it is saved, then the saved image:
+
+- no legend overlaps the data area of any panel, and none lists more than MAX_LEGEND curves plus
+  its reference lines; a sweep with more curves gets a colour bar instead;
+- every log axis has three or more plain tick labels in view (never a lone 10^0);
+- axis labels, panel titles and legend entries use symbols, never identifiers (eta0, Pi_delta,
+  eps_N, w0_over_wg, a_deg, W0_over_w0);
+- every symbol used in a label (rho, eta_0, Pi_delta, alpha, omega_0, L_e, g_N, gamma_T) is
+  defined in the figure's caption;
+- panels of counts (impacts) have integer ticks; every dashed reference line is in a legend;
+  every panel has data or says "no data"/"no ...";
+- in the PNG, the caption band under the lowest axis label holds ink (the caption is drawn);
+- the history figure's gamma_T agrees with a finite difference of the corner's tangential
+  position t . ((x, y) + R(theta) p) computed here from q (an independent second method), and
+  its ground acceleration with the model's samples.
+
+usage: check_readability.py SOURCE_ROOT OUT_DIR CUBE.h5... --run RUN.h5..."""
+import os
+import re
+import sys
+
+import matplotlib.image
+import numpy as np
+
+ROOT = sys.argv[1]
+sys.dont_write_bytecode = True
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+from skewbridge_report import cli, data, figures  # noqa: E402
+
+IDENTIFIERS = re.compile(r"\b(eta0|Pi_delta|eps_N|w0_over_wg|a_deg|W0_over_w0)\b")
+# A symbol in a label (mathtext source) and the text its caption definition starts with.
+DEFINED = {r"\rho": "ρ:", r"\eta_0": "η_0", r"\Pi_\delta": "Π_δ", r"\alpha": "α:",
+           r"\omega_0": "ω_0", r"L_e": "L_e", r"g_N": "g_N", r"\gamma_T": "γ_T"}
+
+checked = []
+
+
+def visible_texts(fig):
+    """Axis labels, panel titles and legend entries (the suptitle names the sweep: not here)."""
+    out = []
+    for ax in fig.axes:
+        out += [ax.get_xlabel(), ax.get_ylabel(), ax.get_title()]
+        legend = ax.get_legend()
+        if legend:
+            out += [t.get_text() for t in legend.get_texts()]
+    return [t for t in out if t]
+
+
+def check_figure(fig, name):
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    data_axes = [ax for ax in fig.axes if ax.get_label() != "<colorbar>"]
+    caption = " ".join(t.get_text() for t in fig.texts)
+    assert caption, f"{name}: no caption"
+    legends = [ax.get_legend() for ax in fig.axes if ax.get_legend()]
+    for legend in legends:
+        box = legend.get_window_extent(renderer)
+        for ax in data_axes:
+            inter = box.intersection(box, ax.get_window_extent(renderer))
+            assert inter is None or inter.width * inter.height < 1.0, \
+                f"{name}: a legend overlaps the data of panel '{ax.get_title()}'"
+        entries = len(legend.get_texts())
+        assert entries <= figures.MAX_LEGEND + 3, f"{name}: a legend of {entries} entries"
+    labelled = {t.get_text() for legend in legends for t in legend.get_texts()}
+    for text in visible_texts(fig):
+        assert not IDENTIFIERS.search(text.replace("$", "")), f"{name}: identifier in '{text}'"
+        for symbol, definition in DEFINED.items():
+            if symbol in text:
+                assert definition in caption, f"{name}: '{symbol}' of '{text}' not in caption"
+    for ax in data_axes:
+        for axis, scale in ((ax.xaxis, ax.get_xscale()), (ax.yaxis, ax.get_yscale())):
+            if scale != "log" or not ax.lines:
+                continue
+            lo, hi = sorted(axis.get_view_interval())
+            ticks = [t for t in axis.get_major_locator()() if lo <= t <= hi]
+            labels = [axis.get_major_formatter()(t) for t in ticks]
+            assert len([t for t in labels if t]) >= 3, f"{name}: log axis labels {labels}"
+        if "impacts" in ax.get_ylabel():
+            ticks = ax.get_yticks()
+            assert np.allclose(ticks, np.round(ticks)), f"{name}: fractional count ticks {ticks}"
+        dashed = [line for line in ax.lines if line.get_linestyle() not in ("-", "None", "")
+                  and len(line.get_xdata()) == 2 and line.get_label().startswith("_")]
+        # an axvline/axhline is two points; a dashed one must be explained in some legend
+        for line in dashed:
+            xs = np.asarray(line.get_xdata(), dtype=float)
+            if xs[0] == xs[1]:
+                assert any("=" in t for t in labelled), f"{name}: unlabelled reference line"
+        has_data = any(np.any(np.isfinite(np.asarray(line.get_ydata(), dtype=float)))
+                       for line in ax.lines)
+        says_no = any(t.get_text().startswith(("no ", "ground acceleration not"))
+                      for t in ax.texts)
+        assert has_data or says_no, f"{name}: empty panel '{ax.get_ylabel()}' without a note"
+    colorbars = [ax for ax in fig.axes if ax.get_label() == "<colorbar>"]
+    checked.append((name, len(legends), len(colorbars)))
+
+
+def check_png(path):
+    """The caption band: ink in the bottom 3 % of the image (the caption is drawn)."""
+    img = matplotlib.image.imread(path)
+    grey = img[..., :3].mean(axis=2)
+    band = grey[-int(0.03 * grey.shape[0]):]
+    assert np.mean(band < 0.8) > 0.002, f"{path}: no caption under the panels"
+
+
+def check_gamma_t(run_path):
+    """gamma_T of the figure's code against d/dt of t . ((x, y) + R(theta) p) by central
+    differences over the samples, away from impacts (where gamma_T jumps)."""
+    run = data.load_run(run_path)
+    gamma = figures.tangential_velocity(run)
+    assert gamma is not None, run_path
+    model = figures._model(run)
+    deck = model["deck"]
+    a = np.radians(deck["skew_deg"])
+    length = deck["L"]
+    width = deck["W"] if "W" in deck else length * np.sin(2 * a) / (2 * deck["eta0"])
+    t, q = run.t_s, run.q
+    worst = 0.0
+    for c, name in enumerate(run.contact_names):
+        side = 1 if name in ("P1", "P2") else -1
+        sign_y = 1 if name in ("P1", "P4") else -1
+        px = side * length / 2 + sign_y * width / 2 * np.tan(a)
+        py = sign_y * width / 2
+        tangent = np.array([side * np.sin(a), side * np.cos(a)])
+        rx = q[:, 0] + np.cos(q[:, 2]) * px - np.sin(q[:, 2]) * py
+        ry = q[:, 1] + np.sin(q[:, 2]) * px + np.cos(q[:, 2]) * py
+        s = tangent[0] * rx + tangent[1] * ry
+        ds = (s[2:] - s[:-2]) / (t[2:] - t[:-2])
+        near = np.zeros(len(t) - 2, dtype=bool)
+        for te in run.event_t_s:
+            near |= np.abs(t[1:-1] - te) < 3 * (t[1] - t[0])
+        scale = np.max(np.abs(gamma[:, c]))
+        err = np.max(np.abs(ds[~near] - gamma[1:-1, c][~near])) / scale
+        worst = max(worst, err)
+    # central differences at 5 ms on motions of about 0.5 s period: error ~ (w h)^2 / 6 ~ 0.1 %
+    assert worst < 5e-3, f"{run_path}: gamma_T against finite differences: {worst:.2e}"
+    print(f"{os.path.basename(run_path)}: gamma_T agrees with finite differences to {worst:.1e}")
+
+
+def check_ground(run_path):
+    run = data.load_run(run_path)
+    a_g, _ = figures.ground_acceleration(run)
+    ex = figures._model(run)["excitation"]
+    values = np.asarray(ex["values"], dtype=float)
+    k = np.searchsorted(run.t_s, np.arange(len(values)) * ex["dt_s"])
+    hit = k < len(run.t_s)
+    assert np.allclose(a_g[k[hit]], values[hit], atol=1e-9), (a_g[k[hit]], values[hit])
+    print(f"{os.path.basename(run_path)}: ground acceleration matches the model's samples")
+
+
+def main(argv):
+    out = argv[1]
+    save = figures._save
+
+    def inspecting_save(fig, out_dir, name, pdf):
+        check_figure(fig, name)
+        return save(fig, out_dir, name, pdf)
+
+    figures._save = inspecting_save
+    assert cli.main(argv[2:] + ["--out", out, "--allow-partial"]) == 0
+    for f in sorted(os.listdir(out)):
+        if f.endswith(".png"):
+            check_png(os.path.join(out, f))
+    for name, n_legends, n_colorbars in checked:
+        print(f"{name}: {n_legends} legends, {n_colorbars} colour bars: readable")
+    many = [c for c in checked if c[0].startswith("spectra_many")]
+    assert many and many[0][2] == 1, f"more than {figures.MAX_LEGEND} curves: no colour bar"
+    runs = [argv[i + 1] for i, a in enumerate(argv) if a == "--run"]
+    for path in runs:
+        check_gamma_t(path)
+    check_ground(next(p for p in runs if "push" in p))
+    print("check_readability: ok")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
