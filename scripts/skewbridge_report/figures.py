@@ -665,6 +665,9 @@ def history(run, out_dir, name, pdf):
         for k, key in enumerate(("x", "y", "theta")):
             ax = ax_of[key]
             series = run.q[:, 3 * body + k] * 1e3
+            if np.max(np.abs(run.q[:, 3 * body + k])) < ZERO:  # round-off of a zero motion
+                series = np.zeros_like(series)
+                no_data(ax, f"{('x', 'y', 'θ')[k]} = 0 (|value| below {ZERO:g} in SI units)")
             h, = ax.plot(t, series, color=f"C{body}", ls=LINESTYLES[body % len(LINESTYLES)])
             if run.n_bodies > 1:
                 legend.setdefault(f"deck {body}", h)
@@ -721,8 +724,9 @@ def history(run, out_dir, name, pdf):
     fig.suptitle(f"{os.path.basename(run.path)}: status {run.status}, "
                  f"{int(run.summary_attrs.get('impacts', 0))} impacts", fontsize=10)
     caption(fig, ["gap"], "x, y, θ: displacements and rotation of the deck relative to the "
-            "ground; a_g: ground acceleration. The corners of one end share their face's tangent, so "
-            "their γ_T differ only by the lever-arm term r_i θ' sin θ and nearly overlap.")
+            "ground; a_g: ground acceleration. The corners of one end share their face's "
+            "tangent, so their γ_T differ only by the lever-arm term r_i θ' sin θ and nearly "
+            "overlap.")
     return _save(fig, out_dir, name, pdf), table
 
 

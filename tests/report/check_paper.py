@@ -1,0 +1,93 @@
+#!/usr/bin/python3
+"""Checks the output of `scripts/paper --quick` (paper_test.sh):
+
+- every figure of Figs. 5-11 and 13 exists as a PNG that is not blank;
+- paper.md has one section per figure, each with the paper's statement, the parameters, the
+  measured numbers and a verdict from the allowed set, and a summary table of the verdicts;
+- the numbers agree with the cubes read directly by h5py: Fig. 7 has no rotation at eta0 <= 1
+  (theory fact 1), Fig. 9's complementary angles at eta0 = 1 have the same transverse
+  spectrum (exact when the deck does not turn) and paper.md says so; Fig. 5's deviation is the
+  one computed here from the run files' histories.
+
+usage: check_paper.py OUT_DIR WORK_DIR"""
+import os
+import re
+import sys
+
+import h5py
+import matplotlib.image
+import numpy as np
+
+FIGURES = ["fig05_self_similarity.png", "fig06_eta0-0.8.png", "fig06_eta0-2.png",
+           "fig07_rotation_vs_eta0.png", "fig08_eta0-2_mu-0.3.png",
+           "fig09_complementary_angles.png", "fig10_spectra_eta0-1.png",
+           "fig10_spectra_eta0-2.png", "fig11_pi_delta_family_eta0-2.png",
+           "fig13a_theta_vs_persistency.png", "fig13b_rotation_vs_w0x.png"]
+VERDICTS = {"reproduced", "partly", "not", "not tested"}
+
+
+def sweep(work, name):
+    f = h5py.File(os.path.join(work, name + ".h5"), "r")
+    g = next(iter(f["sweeps"].values()))
+    assert int(g.attrs["complete"]) == 1, name
+    return g
+
+
+def main(out, work):
+    for name in FIGURES:
+        img = matplotlib.image.imread(os.path.join(out, name))
+        grey = img[..., :3].mean(axis=2)
+        assert grey.var() > 1e-3 and np.mean(grey < 0.95) > 0.02, f"{name}: blank"
+    md = open(os.path.join(out, "paper.md"), encoding="utf-8").read()
+    sections = re.split(r"\n## ", md)[1:]
+    numbers = [s.split(":")[0] for s in sections]
+    assert numbers == ["Fig. 5", "Fig. 6", "Fig. 7", "Fig. 8", "Fig. 9", "Fig. 10", "Fig. 11",
+                       "Fig. 13"], numbers
+    for s in sections:
+        for part in ("**Paper.**", "**Here.**", "**Measured.**", "**Verdict: "):
+            assert part in s, f"{s.splitlines()[0]}: no {part}"
+        verdict = re.search(r"\*\*Verdict: ([a-z ]+)\.\*\*", s).group(1)
+        assert verdict in VERDICTS, verdict
+        for image in re.findall(r"\]\(([^)]+\.png)\)", s):
+            assert os.path.exists(os.path.join(out, image)), image
+    assert md.count("| Fig. ") == 8, "no summary table of the verdicts"
+
+    # Fig. 7: fact 1 (no rotation after a frictionless full-edge impact iff eta0 <= 1)
+    g = sweep(work, "fig07")
+    order = [k.decode() if isinstance(k, bytes) else k for k in g.attrs["axis_order"]]
+    eta = g["axes/eta0"][()]
+    theta = np.take(g["responses/theta_norm"][()], np.flatnonzero(eta <= 1.0),
+                    axis=order.index("eta0"))
+    assert theta.size and np.max(np.abs(theta)) < 1e-9
+    assert "at η_0 <= 1: 0." in md
+
+    # Fig. 9: a and 90 - a at eta0 = 1 give the same y spectrum
+    g = sweep(work, "fig09")
+    angles = list(g["axes/a_deg"][()])
+    order = [k.decode() if isinstance(k, bytes) else k for k in g.attrs["axis_order"]]
+    y = np.moveaxis(g["responses/y_norm"][()], [order.index("eta0"), order.index("a_deg")],
+                    [0, 1])
+    ie = list(g["axes/eta0"][()]).index(1.0)
+    for a in (20.0, 30.0):
+        ya, yb = y[ie, angles.index(a)], y[ie, angles.index(90.0 - a)]
+        rel = np.max(np.abs(ya - yb)) / np.max(ya)
+        assert rel < 1e-9, (a, rel)
+        shown = re.search(rf"η_0 = 1: .*?{a:g}/{90 - a:g}° y ([0-9.e+-]+)", md)
+        assert shown and float(shown.group(1)) < 1e-6, shown
+
+    # Fig. 5: the deviation of the dimensionless histories, recomputed from the run files
+    w_g, g0 = 2 * np.pi / 0.5, 9.80665
+    curves = []
+    for a in ("0.25", "0.5", "1.0"):
+        with h5py.File(os.path.join(work, f"fig05-ag{a}.h5"), "r") as f:
+            curves.append(f["histories/q"][()][:, 0] * w_g ** 2 / (float(a) * g0))
+    n = min(len(c) for c in curves)
+    dev = max(np.max(np.abs(c[:n] - curves[0][:n])) for c in curves[1:]) / np.max(
+        np.abs(curves[0][:n]))
+    shown = float(re.search(r"in units of their peak: x ([0-9.e+-]+)", md).group(1))
+    assert abs(shown - dev) <= 0.01 * dev + 1e-12, (shown, dev)
+    print(f"check_paper: ok ({len(FIGURES)} figures, Fig. 5 x deviation {dev:.2g})")
+
+
+if __name__ == "__main__":
+    main(*sys.argv[1:3])

@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# scripts/paper --quick end to end on 2 ranks: every figure and paper.md (check_paper.py), then
+# a second run that must reuse every cube and run file (their modification times unchanged).
+# usage: paper_test.sh SKEWBRIDGE MPIEXEC SOURCE_ROOT WORK_DIR
+set -euo pipefail
+exe=$1 mpiexec=$2 root=$3 work=$4
+rm -rf "$work" && mkdir -p "$work"
+fail() { echo "paper_test: FAIL: $*" >&2; exit 1; }
+paper() {
+  "$root/scripts/paper" --quick --exe "$exe" --mpiexec "$mpiexec" --work "$work/cubes" \
+    --out "$work/out" >"$work/paper.log" 2>&1 || fail "scripts/paper: $(tail -3 "$work/paper.log")"
+}
+paper
+/usr/bin/python3 "$root/tests/report/check_paper.py" "$work/out" "$work/cubes" || fail "outputs"
+before=$(stat -c '%n %Y' "$work"/cubes/*.h5 | sort)
+sleep 1
+paper
+after=$(stat -c '%n %Y' "$work"/cubes/*.h5 | sort)
+[ "$before" = "$after" ] || fail "a re-run recomputed a cube or run file"
+echo "paper_test: ok"
