@@ -15,7 +15,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev clang-format clang-tidy clang libclang-rt-14-dev
   valgrind
   # post-processing scripts (run with /usr/bin/python3)
-  python3 python3-numpy python3-h5py python3-matplotlib python3-scipy
+  python3 python3-numpy python3-h5py python3-matplotlib python3-scipy python3-xarray
+  python3-h5netcdf
 )
 
 if [ "$(id -u)" -ne 0 ]; then

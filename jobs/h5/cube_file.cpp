@@ -86,12 +86,22 @@ Datasets CreateLayout(const std::string& path, const SweepSpec& spec, const Cube
   SetAttr(g, "response_order", response_order);
 
   Id fixed = CreateGroup(g, "fixed");
+  std::vector<std::string> fixed_keys;
+  std::vector<std::string> fixed_units;
   for (const FixedValue& f : spec.fixed) {
     if (f.kind == ParameterKind::kNumber) {
       SetAttr(fixed.get(), f.key, f.value);
     } else {
       SetAttr(fixed.get(), f.key, f.label);
     }
+    // An attribute cannot carry attributes: the units go in two parallel lists.
+    const ParameterInfo* info = FindParameter(f.key);
+    fixed_keys.push_back(f.key);
+    fixed_units.push_back(info != nullptr ? std::string(info->unit) : std::string("1"));
+  }
+  if (!fixed_keys.empty()) {  // an empty string list is not a valid attribute
+    SetAttr(fixed.get(), "keys", fixed_keys);
+    SetAttr(fixed.get(), "units", fixed_units);
   }
 
   Id axes_group = CreateGroup(g, "axes");
@@ -114,6 +124,11 @@ Datasets CreateLayout(const std::string& path, const SweepSpec& spec, const Cube
     SetAttr(s, "symbol", std::string(info->symbol));
     SetAttr(s, "spacing", axis.spacing);
     SetScale(s, axis.key);
+    // A second name for the scale in the sweep group: netCDF readers (xarray's h5netcdf engine)
+    // see a dimension only in the group that holds it or its ancestors.
+    Check(H5Lcreate_hard(axes_group.get(), axis.key.c_str(), g, axis.key.c_str(), H5P_DEFAULT,
+                         H5P_DEFAULT),
+          "link axes/" + axis.key);
   }
 
   const std::vector<hsize_t> shape = ShapeOf(spec);
@@ -140,6 +155,10 @@ Datasets CreateLayout(const std::string& path, const SweepSpec& spec, const Cube
   for (const ResponseInfo& r : layout.responses) {
     d.responses.push_back(
         make(responses.get(), r.name, H5T_IEEE_F64LE, &nan, r.unit, r.description));
+    // ... and the responses beside their coordinates, so that one xarray Dataset holds both.
+    Check(H5Lcreate_hard(responses.get(), r.name.c_str(), g, r.name.c_str(), H5P_DEFAULT,
+                         H5P_DEFAULT),
+          "link responses/" + r.name);
   }
   d.status = make(g, "status", H5T_STD_I32LE, &not_done, "1",
                   "cell status code; names in the attributes status_codes / status_names");
@@ -228,6 +247,14 @@ void WriteRecordTable(hid_t sweep_group, const StudyTables& study) {
   WriteArray(g.get(), "L_e_m", shape, le, "m", "persistency PGA / w_g^2");
   WriteArray(g.get(), "arias_mps", shape, arias, "m/s", "Arias intensity");
   WriteArray(g.get(), "D5_95_s", shape, d595, "s", "significant duration 5-95 % of Arias");
+  // The table's rows are the record axis: attach its scale to every column (select by label).
+  if (Exists(sweep_group, "axes/record")) {
+    Id record_axis = OpenDataset(sweep_group, "axes/record");
+    for (const std::string& column : ListChildren(g.get())) {
+      Id ds = OpenDataset(g.get(), column);
+      AttachScale(ds.get(), record_axis.get(), 0, "record");
+    }
+  }
 }
 
 void WriteCorrelation(hid_t sweep_group, const CorrelationTable& table,

@@ -113,6 +113,8 @@ def load_cube(path, allow_partial=False):
             fixed = {}
             if "fixed" in g:
                 for k in g["fixed"].attrs:
+                    if k in ("keys", "units"):  # the units of the fixed parameters
+                        continue
                     v = g["fixed"].attrs[k]
                     fixed[k] = _text(v) if isinstance(v, (str, bytes)) else float(v)
             extra = {key: _read_group_tree(g[key]) for key in ("records", "correlation")

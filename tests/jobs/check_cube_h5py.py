@@ -31,7 +31,8 @@ def main(path, name):
             for k, key in enumerate(axis_order):
                 assert len(ds.dims[k]) == 1, (ds.name, k)
                 scale = ds.dims[k][0]
-                assert scale.name == g["axes"][key].name, (scale.name, key)
+                # the same object as axes/<key> (also linked as <key> beside the responses)
+                assert scale == g["axes"][key] == g[key], (scale.name, key)
                 assert ds.dims[k].label == key
                 assert h5py.h5ds.is_scale(scale.id)
             assert ds.chunks[-1] == shape[-1], ds.chunks

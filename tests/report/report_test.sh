@@ -80,6 +80,10 @@ for s in spectra pidelta eta0 records many; do sweep $s.toml --out $s.h5; done
 /usr/bin/python3 "$root/tests/report/check_report.py" out report.log spectra.h5 pidelta.h5 \
   eta0.h5 records.h5 run.h5 push.h5 || fail "figures or tables"
 
+# xarray's h5netcdf engine opens every sweep, coordinates and units included.
+/usr/bin/python3 "$root/tests/report/check_xarray.py" spectra.h5 records.h5 eta0.h5 ||
+  fail "xarray"
+
 # Readability, checked on the figures themselves: legends, log ticks, symbols, captions, a
 # colour bar for 12 curves, "no data" on the empty column of a cube whose sine cells are not
 # done, gamma_T against finite differences.
