@@ -1,27 +1,67 @@
 #!/usr/bin/env bash
 # Builds and runs the whole test suite: the release preset (unit, cross-check, MPI and lint
-# tests), then the unit tests under AddressSanitizer + UndefinedBehaviorSanitizer.
-# Any failing test, sanitizer report or build error makes it exit non-zero.
-set -euo pipefail
+# tests), then the unit tests under AddressSanitizer + UndefinedBehaviorSanitizer, then each
+# record reader under libFuzzer for 12 s. Each step's output goes to build/test-logs/ (the
+# fuzzers' thousands of lines too); the last line printed is exactly `N passed, N failed`,
+# counting every ctest test of both presets and each fuzzer (a build that fails counts as one
+# failure). Exit status 0 only when nothing failed.
+set -uo pipefail
 cd "$(dirname "$0")/.."
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 jobs=$(nproc)
 export CMAKE_BUILD_PARALLEL_LEVEL=$jobs CTEST_PARALLEL_LEVEL=$jobs
+logs=build/test-logs
+mkdir -p "$logs"
+passed=0 failed=0
+
+# workflow PRESET: build and test one preset; add its ctest counts.
+workflow() {
+  local log="$logs/$1.log"
+  cmake --workflow --preset "$1" >"$log" 2>&1
+  local status=$?
+  # ctest's summary: "97% tests passed, 2 tests failed out of 80"
+  local summary
+  summary=$(grep -E "tests passed, [0-9]+ tests failed out of [0-9]+" "$log" | tail -1)
+  if [ -z "$summary" ]; then
+    echo "$1: build failed (exit $status), see $log"
+    failed=$((failed + 1))
+    return
+  fi
+  local bad total
+  bad=$(sed -E 's/.* ([0-9]+) tests failed out of ([0-9]+).*/\1/' <<<"$summary")
+  total=$(sed -E 's/.* out of ([0-9]+).*/\1/' <<<"$summary")
+  passed=$((passed + total - bad))
+  failed=$((failed + bad))
+  echo "$1: $((total - bad)) passed, $bad failed (log $log)"
+  [ "$bad" -eq 0 ] || grep -E "^\s+[0-9]+ - .* \((Failed|Timeout|SEGFAULT|Not Run)" "$log"
+}
 
 echo "== release: build and test"
-cmake --workflow --preset release
-
+workflow release
 echo "== asan-ubsan: build and test (MPI off; see docs/architecture.md)"
-cmake --workflow --preset asan-ubsan
+workflow asan-ubsan
 
 echo "== fuzz: each record reader under libFuzzer + ASan + UBSan for 12 s (docs/records.md)"
-cmake --preset fuzz
-cmake --build --preset fuzz
-fuzz_work=$(mktemp -d)
-for fuzzer in build/fuzz/records/fuzz_records_*; do
-  corpus="$fuzz_work/$(basename "$fuzzer")"
-  mkdir -p "$corpus"
-  find tests/data/records -type f ! -name '*.md' -exec cp {} "$corpus" \;
-  "$fuzzer" -max_total_time=12 -timeout=10 -max_len=8192 -artifact_prefix="$fuzz_work/" "$corpus"
-done
-rm -rf "$fuzz_work"
+fuzz_log="$logs/fuzz.log"
+if cmake --preset fuzz >"$fuzz_log" 2>&1 && cmake --build --preset fuzz >>"$fuzz_log" 2>&1; then
+  fuzz_work=$(mktemp -d)
+  for fuzzer in build/fuzz/records/fuzz_records_*; do
+    corpus="$fuzz_work/$(basename "$fuzzer")"
+    mkdir -p "$corpus"
+    find tests/data/records -type f ! -name '*.md' -exec cp {} "$corpus" \;
+    if "$fuzzer" -max_total_time=12 -timeout=10 -max_len=8192 -artifact_prefix="$fuzz_work/" \
+      "$corpus" >>"$fuzz_log" 2>&1; then
+      passed=$((passed + 1))
+    else
+      failed=$((failed + 1))
+      echo "$(basename "$fuzzer"): FAILED, see $fuzz_log"
+    fi
+  done
+  rm -rf "$fuzz_work"
+else
+  echo "fuzz: build failed, see $fuzz_log"
+  failed=$((failed + 1))
+fi
+
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]

@@ -1,6 +1,7 @@
 // `skewbridge records`: intensity measures of records and record sets, and synthetic suites.
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -34,6 +35,7 @@ struct Row {
   std::string label;
   GroundMotion motion;
   IntensityMeasures measures;
+  int channel = 1;  ///< the CSMIP V2 channel read (meaningful for multi-channel files only)
 };
 
 std::string JsonString(const std::string& text) {
@@ -71,7 +73,7 @@ std::vector<Row> LoadRows(const InfoArgs& args) {
     }
     const records::RecordSet set = records::LoadRecordSet(path);
     for (const records::RecordEntry& entry : set.records) {
-      Row row{records::RecordLabel(entry), records::LoadRecord(entry), {}};
+      Row row{records::RecordLabel(entry), records::LoadRecord(entry), {}, entry.options.channel};
       row.measures = records::ComputeMeasures(row.motion);
       rows.push_back(std::move(row));
     }
@@ -95,7 +97,7 @@ std::vector<Row> LoadRows(const InfoArgs& args) {
   }
   options.format = *format;
   options.channel = args.channel;
-  Row row{path.filename().string(), records::ReadRecord(path, options), {}};
+  Row row{path.filename().string(), records::ReadRecord(path, options), {}, args.channel};
   row.measures = records::ComputeMeasures(row.motion);
   rows.push_back(std::move(row));
   return rows;
@@ -147,21 +149,29 @@ void PrintInfo(const InfoArgs& args) {
     }
     return;
   }
-  std::printf("%s", fmt::format("{:<36} {:<8} {:>7} {:>8} {:>7} {:>8} {:>8} {:>7} {:>8} {:>8} "
-                                "{:>8} {:>7}\n",
-                                "record", "format", "npts", "dt[s]", "PGA[g]", "PGV[m/s]", "PGD[m]",
-                                "Tm[s]", "wg[r/s]", "Le[m]", "Ia[m/s]", "D5-95")
-                        .c_str());
+  // The label column is as wide as the longest label (up to 48): ESM labels start with
+  // network.station.location.channel, which a fixed 36-character column cut off.
+  std::size_t width = 6;
+  for (const Row& r : rows) width = std::max(width, std::min<std::size_t>(r.label.size(), 48));
+  std::printf(
+      "%s", fmt::format("{:<{}} {:<8} {:>7} {:>8} {:>7} {:>8} {:>8} {:>7} {:>8} {:>8} "
+                        "{:>8} {:>7}  {}\n",
+                        "record", width, "format", "npts", "dt[s]", "PGA[g]", "PGV[m/s]", "PGD[m]",
+                        "Tm[s]", "wg[r/s]", "Le[m]", "Ia[m/s]", "D5-95", "channel / component")
+                .c_str());
   for (const Row& r : rows) {
     const IntensityMeasures& m = r.measures;
     std::string label = r.label;
-    if (label.size() > 36) label = "..." + label.substr(label.size() - 33);
+    if (label.size() > width) label = label.substr(0, width - 3) + "...";
+    // A CSMIP V2 file holds several channels: say which one was read (--channel picks another).
+    std::string channel = r.motion.format == "csmip" ? fmt::format("ch {}", r.channel) : "-";
+    if (!r.motion.component.empty()) channel += " / " + r.motion.component;
     std::printf("%s",
-                fmt::format("{:<36} {:<8} {:>7} {:>8.5g} {:>7.4f} {:>8.4f} {:>8.4f} "
-                            "{:>7.4f} {:>8.3f} {:>8.5f} {:>8.4f} {:>7.2f}\n",
-                            label, r.motion.format, r.motion.npts(), r.motion.dt_s, m.pga_mps2 / g,
-                            m.pgv_mps, m.pgd_m, m.mean_period_s, m.omega_g_radps, m.persistency_m,
-                            m.arias_mps, m.significant_duration_s)
+                fmt::format("{:<{}} {:<8} {:>7} {:>8.5g} {:>7.4f} {:>8.4f} {:>8.4f} "
+                            "{:>7.4f} {:>8.3f} {:>8.5f} {:>8.4f} {:>7.2f}  {}\n",
+                            label, width, r.motion.format, r.motion.npts(), r.motion.dt_s,
+                            m.pga_mps2 / g, m.pgv_mps, m.pgd_m, m.mean_period_s, m.omega_g_radps,
+                            m.persistency_m, m.arias_mps, m.significant_duration_s, channel)
                     .c_str());
   }
 }

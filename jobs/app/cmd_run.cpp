@@ -209,9 +209,10 @@ void AddRunCommand(CLI::App& app) {
     std::printf(", status %s%s%s, t_end %.6g s\n", dynamics::ToString(r.status),
                 r.message.empty() ? "" : " - ", r.message.c_str(), r.end_time_s);
     const char* names[3] = {"x", "y", "theta"};
+    const char* units[3] = {"m", "m", "rad"};
     for (int i = 0; i < file.model.n_dof(); ++i) {
-      std::printf("  max|%s%d| = %.6e at %.6f s, residual %.6e\n", names[i % 3], i / 3,
-                  r.max_abs_q[i], r.time_of_max_s[i], r.q_end[i]);
+      std::printf("  max|%s%d| = %.6e at %.6f s, residual %.6e (%s)\n", names[i % 3], i / 3,
+                  r.max_abs_q[i], r.time_of_max_s[i], r.q_end[i], units[i % 3]);
     }
     std::printf("  impacts %ld, plastic closures %ld, detachments %ld, stick %ld, slip %ld\n",
                 r.impacts, r.plastic_closures, r.detachments, r.stick_transitions,

@@ -217,7 +217,9 @@ Units ResolveUnits(std::optional<Units> in_file, const ReadOptions& options,
   if (in_file) return *in_file;
   if (options.units) return *options.units;
   throw InputError::AtLine(source, line,
-                           "the file does not state its units: give them (g, m/s^2 or cm/s^2)");
+                           "the file does not state its units: give them (g, m/s^2 or cm/s^2) "
+                           "with --units of `skewbridge records info`, or `units` in a "
+                           "record set or model file");
 }
 
 double ResolveDt(std::optional<double> in_file, const ReadOptions& options, std::string_view source,
@@ -239,7 +241,10 @@ double ResolveDt(std::optional<double> in_file, const ReadOptions& options, std:
     return *in_file;
   }
   if (options.dt_s) return *options.dt_s;
-  throw InputError::AtLine(source, line, "the file does not state its time step: give dt (s)");
+  throw InputError::AtLine(source, line,
+                           "the file does not state its time step: give dt (s) with --dt of "
+                           "`skewbridge records info`, `dt` in a record set or `dt_s` in a "
+                           "model file");
 }
 
 GroundMotion MakeMotion(std::string_view source, Format format, Units units, double dt_s,
