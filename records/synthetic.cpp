@@ -170,6 +170,99 @@ std::string IndexName(int index, int count) {
 
 }  // namespace
 
+// ---- Baseline correction: a post-processing step of the filtered motion ----------------------
+
+namespace {
+
+// Zero-phase high-pass of magnitude 1 / sqrt(1 + (f_c / f)^8) (a 4th-order Butterworth's, applied
+// forward and backward in effect), on the record padded with zeros to twice its length so that
+// the filter's response does not wrap around.
+void HighPass(std::vector<double>& acc, double dt_s, double corner_hz) {
+  const std::size_t n = acc.size();
+  const std::size_t n_dft = std::bit_ceil(2 * n);
+  const std::size_t bins = n_dft / 2 + 1;
+  std::unique_ptr<double, FftwFree> time(static_cast<double*>(fftw_malloc(sizeof(double) * n_dft)));
+  std::unique_ptr<fftw_complex, FftwFree> freq(
+      static_cast<fftw_complex*>(fftw_malloc(sizeof(fftw_complex) * bins)));
+  SB_DEMAND(time && freq, "fftw_malloc failed");
+  std::copy(acc.begin(), acc.end(), time.get());
+  std::fill(time.get() + n, time.get() + n_dft, 0.0);
+  const std::unique_ptr<fftw_plan_s, PlanDestroy> forward(
+      fftw_plan_dft_r2c_1d(static_cast<int>(n_dft), time.get(), freq.get(), FFTW_ESTIMATE));
+  const std::unique_ptr<fftw_plan_s, PlanDestroy> backward(
+      fftw_plan_dft_c2r_1d(static_cast<int>(n_dft), freq.get(), time.get(), FFTW_ESTIMATE));
+  SB_DEMAND(forward != nullptr && backward != nullptr, "fftw plan failed");
+  fftw_execute(forward.get());
+  const double df = 1.0 / (static_cast<double>(n_dft) * dt_s);
+  for (std::size_t i = 0; i < bins; ++i) {
+    const double f = df * static_cast<double>(i);
+    const double gain = i == 0 ? 0.0 : 1.0 / std::sqrt(1.0 + std::pow(corner_hz / f, 8));
+    const double scale = gain / static_cast<double>(n_dft);  // FFTW's transforms are unscaled
+    freq.get()[i][0] *= scale;
+    freq.get()[i][1] *= scale;
+  }
+  fftw_execute(backward.get());
+  std::copy(time.get(), time.get() + n, acc.begin());
+}
+
+}  // namespace
+
+void RemoveBaselineDrift(std::vector<double>& acc, double dt_s) {
+  constexpr int kTerms = 5;  // c(t) = b_0 + b_1 s + ... + b_4 s^4, s = t / T
+  const std::size_t n = acc.size();
+  SB_DEMAND(n >= 6 && dt_s > 0.0, "baseline correction needs 6 samples and dt > 0");
+  HighPass(acc, dt_s, kBaselineHighPass_hz);
+  const double length = dt_s * static_cast<double>(n - 1);
+  std::vector<double> vel, disp;
+  IntegrateMotion(acc, dt_s, vel, disp);
+  // The displacement and end velocity of each basis acceleration, by the same discrete rule.
+  std::vector<std::vector<double>> basis_disp(kTerms);
+  double basis_v_end[kTerms];
+  std::vector<double> phi(n), phi_vel;
+  for (int k = 0; k < kTerms; ++k) {
+    for (std::size_t i = 0; i < n; ++i) {
+      phi[i] = std::pow(static_cast<double>(i) * dt_s / length, k);
+    }
+    IntegrateMotion(phi, dt_s, phi_vel, basis_disp[k]);
+    basis_v_end[k] = phi_vel.back();
+  }
+  // KKT system of min |disp - D b|^2 subject to D_end b = disp_end, V_end b = vel_end.
+  constexpr int m = kTerms + 2;
+  double a[m][m + 1] = {};
+  for (int j = 0; j < kTerms; ++j) {
+    for (int k = 0; k < kTerms; ++k) {
+      for (std::size_t i = 0; i < n; ++i) a[j][k] += basis_disp[j][i] * basis_disp[k][i];
+    }
+    for (std::size_t i = 0; i < n; ++i) a[j][m] += basis_disp[j][i] * disp[i];
+    a[j][kTerms] = a[kTerms][j] = basis_disp[j].back();
+    a[j][kTerms + 1] = a[kTerms + 1][j] = basis_v_end[j];
+  }
+  a[kTerms][m] = disp.back();
+  a[kTerms + 1][m] = vel.back();
+  // Gaussian elimination with partial pivoting (7 unknowns).
+  for (int col = 0; col < m; ++col) {
+    int pivot = col;
+    for (int r = col + 1; r < m; ++r) {
+      if (std::abs(a[r][col]) > std::abs(a[pivot][col])) pivot = r;
+    }
+    SB_DEMAND(a[pivot][col] != 0.0, "baseline correction: singular fit");
+    for (int c = 0; c <= m; ++c) std::swap(a[col][c], a[pivot][c]);
+    for (int r = 0; r < m; ++r) {
+      if (r == col) continue;
+      const double f = a[r][col] / a[col][col];
+      for (int c = col; c <= m; ++c) a[r][c] -= f * a[col][c];
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const double s = static_cast<double>(i) * dt_s / length;
+    double c = 0.0;
+    for (int k = kTerms - 1; k >= 0; --k) c = c * s + a[k][m] / a[k][k];
+    acc[i] -= c;
+  }
+}
+
+// ---- end of the baseline correction ----------------------------------------------------------
+
 void ValidateSynthOptions(const SynthOptions& o) {
   const auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
   if (o.count < 1) throw InputError::AtField("synth", "count", "must be >= 1");
@@ -207,7 +300,13 @@ GroundMotion SynthesizeRecord(const SynthOptions& options, int index) {
   Filter filter(options, noise);
 
   // T_m falls as w_g rises: bisect on log w_g.
-  const auto tm_of = [&](double omega) { return MeanPeriod(filter.Motion(omega), options.dt_s); };
+  // The filtered motion after its baseline correction (RemoveBaselineDrift), the motion written.
+  const auto motion_of = [&](double omega) {
+    std::vector<double> acc = filter.Motion(omega);
+    RemoveBaselineDrift(acc, options.dt_s);
+    return acc;
+  };
+  const auto tm_of = [&](double omega) { return MeanPeriod(motion_of(omega), options.dt_s); };
   double lo = 2.0 * pi * kLowestGroundFrequency_hz;
   double hi = 2.0 * pi * std::min(kHighestGroundFrequency_hz, 0.4 / options.dt_s);
   const double tm_longest = tm_of(lo);
@@ -227,7 +326,7 @@ GroundMotion SynthesizeRecord(const SynthOptions& options, int index) {
     omega = std::sqrt(lo * hi);
     tm = tm_of(omega);
   }
-  std::vector<double> acc = filter.Motion(omega);
+  std::vector<double> acc = motion_of(omega);
   double peak = 0.0;
   for (double a : acc) peak = std::max(peak, std::abs(a));
   SB_DEMAND(peak > 0.0, "filtered noise is identically zero");
