@@ -150,9 +150,9 @@ def log_axis(ax, which="x"):
     axis.set_minor_formatter(matplotlib.ticker.NullFormatter())
 
 
-def no_data(ax, text="no data"):
-    """Say so on a panel with nothing to draw."""
-    ax.text(0.5, 0.5, text, transform=ax.transAxes, ha="center", va="center", fontsize=12,
+def no_data(ax, text="no data", y=0.5):
+    """Say so on a panel with nothing to draw (y: height of the note in axes units)."""
+    ax.text(0.5, y, text, transform=ax.transAxes, ha="center", va="center", fontsize=12,
             color="0.4")
     if not ax.lines:  # nothing drawn: the tick labels of an empty range would mean nothing
         ax.set_yticks([])
@@ -291,6 +291,8 @@ def spectra(sweep, curve_key, out_dir, name, pdf):
             data = select(sweep, resp, keep, {"pulse": ip})
             if not curve_key:
                 data = data[np.newaxis, :]
+            # round-off (1e-16) of a deck that does not move is drawn as the 0 it is
+            data = np.where(np.abs(data) < ZERO, 0.0, data)
             for ic, value in enumerate(curves):
                 label = axis_value_label(curve_key, value) if curve_key else None
                 color, marker, ls = styles[ic]
@@ -305,6 +307,9 @@ def spectra(sweep, curve_key, out_dir, name, pdf):
                                   edge, zero))
             if not np.any(np.isfinite(data)):
                 no_data(ax)
+            elif not np.any(data[np.isfinite(data)]):
+                ax.text(0.5, 0.6, f"no response: 0 everywhere (below {ZERO:g})",
+                        transform=ax.transAxes, ha="center", color="0.4", fontsize=11)
             log_axis(ax, "x")
             ax.set_ylabel(RESPONSE_LABEL[resp])
             if row == 0:
@@ -335,6 +340,7 @@ def rotation_vs_eta0(sweep, curve_key, out_dir, name, pdf):
     w_grid = sweep.axes["w0_over_wg"] if has_w else np.array([np.nan])
     for col, (ip, pulse) in enumerate(pulses):
         theta = select(sweep, "theta_norm", keep, {"pulse": ip})
+        theta = np.where(np.abs(theta) < ZERO, 0.0, theta)  # round-off of no rotation
         impacts = select(sweep, "impacts", keep, {"pulse": ip}) if rows == 3 else None
         if not curve_key:
             theta = theta[np.newaxis]
@@ -667,7 +673,8 @@ def history(run, out_dir, name, pdf):
             series = run.q[:, 3 * body + k] * 1e3
             if np.max(np.abs(run.q[:, 3 * body + k])) < ZERO:  # round-off of a zero motion
                 series = np.zeros_like(series)
-                no_data(ax, f"{('x', 'y', 'θ')[k]} = 0 (|value| below {ZERO:g} in SI units)")
+                no_data(ax, f"{('x', 'y', 'θ')[k]} = 0 (|value| below {ZERO:g} in SI units)",
+                        y=0.75)
             h, = ax.plot(t, series, color=f"C{body}", ls=LINESTYLES[body % len(LINESTYLES)])
             if run.n_bodies > 1:
                 legend.setdefault(f"deck {body}", h)
