@@ -235,11 +235,6 @@ def fig06_08(runner, out):
     return results
 
 
-def _at(sweep, resp, **index):
-    return figures.select(sweep, resp, [k for k in sweep.axis_order if k not in index],
-                          {k: v for k, v in index.items()})
-
-
 def fig07(runner, out):
     sweep = load_cube(runner.sweep(os.path.join(SPECS, "paper", "fig07-rotation-eta0.toml"),
                                    "fig07"))[0]
@@ -365,11 +360,6 @@ def fig09(runner, out):
     else:
         verdict = ("not", "the complementary spectra differ at every η_0")
     return path, measured, verdict
-
-
-def spectra_figure(sweep, key, out, name, title):
-    path, rows = figures.spectra(sweep, key, out, name, False)
-    return path, rows
 
 
 def _peaks(rows, resp, pulse):
