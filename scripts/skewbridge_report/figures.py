@@ -523,7 +523,7 @@ def stored_correlation(sweep, ipi):
 def correlation_rotation_vs_w0x(sweep, out_dir, name, pdf):
     """theta rho w_g^2/a_g against w0x/w_g, one panel per Pi_delta, by frequency-ratio group
     (colour and marker); records that never strike drawn open. Groups with no record are left
-    out of the legend. Returns rows (Pi_delta, band label, count, median, max)."""
+    out of the legend and the table. Returns rows (Pi_delta, band label, count, median, max)."""
     pis = _pi_values(sweep)
     fig, axes = plt.subplots(1, len(pis), figsize=FIGSIZE_IN["correlation_rotation_vs_w0x"],
                              squeeze=False, constrained_layout=True, sharey=True)
@@ -552,6 +552,8 @@ def correlation_rotation_vs_w0x(sweep, out_dir, name, pdf):
                              mfc="none", color=color, ls="none")
                 shown.setdefault(b, h)
             finite = theta[mask][np.isfinite(theta[mask])]
+            if not len(finite):  # an empty group is neither drawn nor listed
+                continue
             table.append((pi, label, len(finite),
                           float(np.median(finite)) if len(finite) else float("nan"),
                           float(np.max(finite)) if len(finite) else float("nan")))
