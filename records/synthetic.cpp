@@ -7,6 +7,7 @@
 #include <charconv>
 #include <cmath>
 #include <complex>
+#include <cstring>
 #include <fstream>
 #include <memory>
 #include <numbers>
@@ -174,91 +175,127 @@ std::string IndexName(int index, int count) {
 
 namespace {
 
-// Zero-phase high-pass of magnitude 1 / sqrt(1 + (f_c / f)^8) (a 4th-order Butterworth's, applied
-// forward and backward in effect), on the record padded with zeros to twice its length so that
-// the filter's response does not wrap around.
-void HighPass(std::vector<double>& acc, double dt_s, double corner_hz) {
-  const std::size_t n = acc.size();
-  const std::size_t n_dft = std::bit_ceil(2 * n);
-  const std::size_t bins = n_dft / 2 + 1;
-  std::unique_ptr<double, FftwFree> time(static_cast<double*>(fftw_malloc(sizeof(double) * n_dft)));
-  std::unique_ptr<fftw_complex, FftwFree> freq(
-      static_cast<fftw_complex*>(fftw_malloc(sizeof(fftw_complex) * bins)));
-  SB_DEMAND(time && freq, "fftw_malloc failed");
-  std::copy(acc.begin(), acc.end(), time.get());
-  std::fill(time.get() + n, time.get() + n_dft, 0.0);
-  const std::unique_ptr<fftw_plan_s, PlanDestroy> forward(
-      fftw_plan_dft_r2c_1d(static_cast<int>(n_dft), time.get(), freq.get(), FFTW_ESTIMATE));
-  const std::unique_ptr<fftw_plan_s, PlanDestroy> backward(
-      fftw_plan_dft_c2r_1d(static_cast<int>(n_dft), freq.get(), time.get(), FFTW_ESTIMATE));
-  SB_DEMAND(forward != nullptr && backward != nullptr, "fftw plan failed");
-  fftw_execute(forward.get());
-  const double df = 1.0 / (static_cast<double>(n_dft) * dt_s);
-  for (std::size_t i = 0; i < bins; ++i) {
-    const double f = df * static_cast<double>(i);
-    const double gain = i == 0 ? 0.0 : 1.0 / std::sqrt(1.0 + std::pow(corner_hz / f, 8));
-    const double scale = gain / static_cast<double>(n_dft);  // FFTW's transforms are unscaled
-    freq.get()[i][0] *= scale;
-    freq.get()[i][1] *= scale;
+constexpr int kTerms = 5;  // c(t) = b_0 + b_1 s + ... + b_4 s^4, s = t / T
+constexpr int kUnknowns = kTerms + 2;
+
+// RemoveBaselineDrift for records of one length and sample interval. Everything that does not
+// depend on the record (the high-pass gains, the FFT plans, the basis displacements and their
+// normal matrix) is computed once, since the T_m bisection corrects about twenty trial motions
+// of one record; the arithmetic per record is the same, operation for operation, as computing
+// it afresh, so the bytes do not depend on the reuse.
+class BaselineCorrection {
+ public:
+  BaselineCorrection(std::size_t n, double dt_s)
+      : n_(n), dt_s_(dt_s), n_dft_(std::bit_ceil(2 * n)), bins_(n_dft_ / 2 + 1) {
+    SB_DEMAND(n >= 6 && dt_s > 0.0, "baseline correction needs 6 samples and dt > 0");
+    // Zero-phase high-pass of magnitude 1 / sqrt(1 + (f_c / f)^8) (a 4th-order Butterworth's,
+    // applied forward and backward in effect), on the record padded with zeros to twice its
+    // length so that the filter's response does not wrap around.
+    time_.reset(static_cast<double*>(fftw_malloc(sizeof(double) * n_dft_)));
+    freq_.reset(static_cast<fftw_complex*>(fftw_malloc(sizeof(fftw_complex) * bins_)));
+    SB_DEMAND(time_ && freq_, "fftw_malloc failed");
+    forward_.reset(
+        fftw_plan_dft_r2c_1d(static_cast<int>(n_dft_), time_.get(), freq_.get(), FFTW_ESTIMATE));
+    backward_.reset(
+        fftw_plan_dft_c2r_1d(static_cast<int>(n_dft_), freq_.get(), time_.get(), FFTW_ESTIMATE));
+    SB_DEMAND(forward_ != nullptr && backward_ != nullptr, "fftw plan failed");
+    const double df = 1.0 / (static_cast<double>(n_dft_) * dt_s);
+    scale_.resize(bins_);
+    for (std::size_t i = 0; i < bins_; ++i) {
+      const double f = df * static_cast<double>(i);
+      const double gain =
+          i == 0 ? 0.0 : 1.0 / std::sqrt(1.0 + std::pow(kBaselineHighPass_hz / f, 8));
+      scale_[i] = gain / static_cast<double>(n_dft_);  // FFTW's transforms are unscaled
+    }
+    // The displacement and end velocity of each basis acceleration, by the same discrete rule
+    // as the record's.
+    length_s_ = dt_s * static_cast<double>(n - 1);
+    std::vector<double> phi(n), phi_vel;
+    for (int k = 0; k < kTerms; ++k) {
+      for (std::size_t i = 0; i < n; ++i) {
+        phi[i] = std::pow(static_cast<double>(i) * dt_s / length_s_, k);
+      }
+      IntegrateMotion(phi, dt_s, phi_vel, basis_disp_[k]);
+      basis_v_end_[k] = phi_vel.back();
+    }
+    // KKT system of min |disp - D b|^2 subject to D_end b = disp_end, V_end b = vel_end; the
+    // last column (the record's) is filled per record.
+    for (int j = 0; j < kTerms; ++j) {
+      for (int k = 0; k < kTerms; ++k) {
+        for (std::size_t i = 0; i < n; ++i) kkt_[j][k] += basis_disp_[j][i] * basis_disp_[k][i];
+      }
+      kkt_[j][kTerms] = kkt_[kTerms][j] = basis_disp_[j].back();
+      kkt_[j][kTerms + 1] = kkt_[kTerms + 1][j] = basis_v_end_[j];
+    }
   }
-  fftw_execute(backward.get());
-  std::copy(time.get(), time.get() + n, acc.begin());
-}
+
+  void Apply(std::vector<double>& acc) {
+    SB_DEMAND(acc.size() == n_, "baseline correction of a record of another length");
+    HighPass(acc);
+    std::vector<double> vel, disp;
+    IntegrateMotion(acc, dt_s_, vel, disp);
+    constexpr int m = kUnknowns;
+    double a[m][m + 1];
+    std::memcpy(a, kkt_, sizeof a);
+    for (int j = 0; j < kTerms; ++j) {
+      for (std::size_t i = 0; i < n_; ++i) a[j][m] += basis_disp_[j][i] * disp[i];
+    }
+    a[kTerms][m] = disp.back();
+    a[kTerms + 1][m] = vel.back();
+    // Gaussian elimination with partial pivoting (7 unknowns).
+    for (int col = 0; col < m; ++col) {
+      int pivot = col;
+      for (int r = col + 1; r < m; ++r) {
+        if (std::abs(a[r][col]) > std::abs(a[pivot][col])) pivot = r;
+      }
+      SB_DEMAND(a[pivot][col] != 0.0, "baseline correction: singular fit");
+      for (int c = 0; c <= m; ++c) std::swap(a[col][c], a[pivot][c]);
+      for (int r = 0; r < m; ++r) {
+        if (r == col) continue;
+        const double f = a[r][col] / a[col][col];
+        for (int c = col; c <= m; ++c) a[r][c] -= f * a[col][c];
+      }
+    }
+    for (std::size_t i = 0; i < n_; ++i) {
+      const double s = static_cast<double>(i) * dt_s_ / length_s_;
+      double c = 0.0;
+      for (int k = kTerms - 1; k >= 0; --k) c = c * s + a[k][m] / a[k][k];
+      acc[i] -= c;
+    }
+  }
+
+ private:
+  void HighPass(std::vector<double>& acc) {
+    std::copy(acc.begin(), acc.end(), time_.get());
+    std::fill(time_.get() + n_, time_.get() + n_dft_, 0.0);
+    fftw_execute(forward_.get());
+    for (std::size_t i = 0; i < bins_; ++i) {
+      freq_.get()[i][0] *= scale_[i];
+      freq_.get()[i][1] *= scale_[i];
+    }
+    fftw_execute(backward_.get());
+    std::copy(time_.get(), time_.get() + n_, acc.begin());
+  }
+
+  std::size_t n_;
+  double dt_s_;
+  std::size_t n_dft_;
+  std::size_t bins_;
+  double length_s_ = 0.0;
+  std::unique_ptr<double, FftwFree> time_;
+  std::unique_ptr<fftw_complex, FftwFree> freq_;
+  std::unique_ptr<fftw_plan_s, PlanDestroy> forward_;
+  std::unique_ptr<fftw_plan_s, PlanDestroy> backward_;
+  std::vector<double> scale_;  // high-pass gain / n_dft per frequency bin
+  std::vector<double> basis_disp_[kTerms];
+  double basis_v_end_[kTerms] = {};
+  double kkt_[kUnknowns][kUnknowns + 1] = {};
+};
 
 }  // namespace
 
 void RemoveBaselineDrift(std::vector<double>& acc, double dt_s) {
-  constexpr int kTerms = 5;  // c(t) = b_0 + b_1 s + ... + b_4 s^4, s = t / T
-  const std::size_t n = acc.size();
-  SB_DEMAND(n >= 6 && dt_s > 0.0, "baseline correction needs 6 samples and dt > 0");
-  HighPass(acc, dt_s, kBaselineHighPass_hz);
-  const double length = dt_s * static_cast<double>(n - 1);
-  std::vector<double> vel, disp;
-  IntegrateMotion(acc, dt_s, vel, disp);
-  // The displacement and end velocity of each basis acceleration, by the same discrete rule.
-  std::vector<std::vector<double>> basis_disp(kTerms);
-  double basis_v_end[kTerms];
-  std::vector<double> phi(n), phi_vel;
-  for (int k = 0; k < kTerms; ++k) {
-    for (std::size_t i = 0; i < n; ++i) {
-      phi[i] = std::pow(static_cast<double>(i) * dt_s / length, k);
-    }
-    IntegrateMotion(phi, dt_s, phi_vel, basis_disp[k]);
-    basis_v_end[k] = phi_vel.back();
-  }
-  // KKT system of min |disp - D b|^2 subject to D_end b = disp_end, V_end b = vel_end.
-  constexpr int m = kTerms + 2;
-  double a[m][m + 1] = {};
-  for (int j = 0; j < kTerms; ++j) {
-    for (int k = 0; k < kTerms; ++k) {
-      for (std::size_t i = 0; i < n; ++i) a[j][k] += basis_disp[j][i] * basis_disp[k][i];
-    }
-    for (std::size_t i = 0; i < n; ++i) a[j][m] += basis_disp[j][i] * disp[i];
-    a[j][kTerms] = a[kTerms][j] = basis_disp[j].back();
-    a[j][kTerms + 1] = a[kTerms + 1][j] = basis_v_end[j];
-  }
-  a[kTerms][m] = disp.back();
-  a[kTerms + 1][m] = vel.back();
-  // Gaussian elimination with partial pivoting (7 unknowns).
-  for (int col = 0; col < m; ++col) {
-    int pivot = col;
-    for (int r = col + 1; r < m; ++r) {
-      if (std::abs(a[r][col]) > std::abs(a[pivot][col])) pivot = r;
-    }
-    SB_DEMAND(a[pivot][col] != 0.0, "baseline correction: singular fit");
-    for (int c = 0; c <= m; ++c) std::swap(a[col][c], a[pivot][c]);
-    for (int r = 0; r < m; ++r) {
-      if (r == col) continue;
-      const double f = a[r][col] / a[col][col];
-      for (int c = col; c <= m; ++c) a[r][c] -= f * a[col][c];
-    }
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    const double s = static_cast<double>(i) * dt_s / length;
-    double c = 0.0;
-    for (int k = kTerms - 1; k >= 0; --k) c = c * s + a[k][m] / a[k][k];
-    acc[i] -= c;
-  }
+  BaselineCorrection(acc.size(), dt_s).Apply(acc);
 }
 
 // ---- end of the baseline correction ----------------------------------------------------------
@@ -301,9 +338,10 @@ GroundMotion SynthesizeRecord(const SynthOptions& options, int index) {
 
   // T_m falls as w_g rises: bisect on log w_g.
   // The filtered motion after its baseline correction (RemoveBaselineDrift), the motion written.
+  BaselineCorrection baseline(n, options.dt_s);
   const auto motion_of = [&](double omega) {
     std::vector<double> acc = filter.Motion(omega);
-    RemoveBaselineDrift(acc, options.dt_s);
+    baseline.Apply(acc);
     return acc;
   };
   const auto tm_of = [&](double omega) { return MeanPeriod(motion_of(omega), options.dt_s); };
