@@ -26,7 +26,7 @@ inline constexpr std::int32_t kStatusException = -2;
 struct ResponseInfo {
   std::string name;         ///< HDF5 dataset name: letters, digits and '_' only.
   std::string unit;         ///< "1" for dimensionless.
-  std::string description;  ///< One line, with the normalisation [method.md §5].
+  std::string description;  ///< One line, with the normalisation [docs/theory.md §5].
 };
 
 /// Solver statistics of one cell (not part of the bit-identical comparison: wall_s varies).

@@ -196,7 +196,7 @@ CellOutcome MultiSpanEvaluator::Evaluate(std::span<const std::size_t> axis_index
   const double natural_period_s = w_min > 0.0 ? 2.0 * std::numbers::pi / w_min : 0.0;
   model::RunControl control;
   // Tolerances in state units follow the persistency, as for the single deck, so that the run
-  // is self-similar in a_g [method.md §4 fact 4].
+  // is self-similar in a_g [docs/theory.md §4 fact 4].
   control.absolute_tolerance = 1e-11 * c.persistency_m;
   // A cell stores maxima, not the energy ledger: its work integrals are not computed.
   control.energy_ledger = false;

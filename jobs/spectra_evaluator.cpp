@@ -12,7 +12,7 @@ namespace {
 constexpr double kStandardGravity_mps2 = 9.80665;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// The responses, in the order Evaluate fills them [method.md §5].
+// The responses, in the order Evaluate fills them [docs/theory.md §5].
 const std::vector<ResponseInfo>& ResponseTable() {
   static const std::vector<ResponseInfo> table{
       {"x_m", "m", "maximum |x|, longitudinal deck displacement relative to the ground"},
@@ -73,7 +73,7 @@ SpectraEvaluator::SpectraEvaluator(const SweepSpec& spec) : spec_(spec) {
     family_ = spectra::Family::kSubsystem;
   } else if (spec.family == "pilot-bridge") {
     family_ = spectra::Family::kPilotBridge;
-    // The pilot bridge's deck and substructure are the published ones [method.md §6].
+    // The pilot bridge's deck and substructure are the published ones [docs/theory.md §6].
     for (std::string_view key :
          {"a_deg", "eta0", "W_over_L", "W0_over_w0", "delta_over_L", "L_over_Le", "spans"}) {
       if (Mentions(spec, key)) {
@@ -130,7 +130,7 @@ spectra::PointParameters SpectraEvaluator::Parameters(std::span<const std::size_
   spectra::PointParameters p;
   p.family = family_;
   if (family_ == spectra::Family::kPilotBridge) {
-    p.mu = 0.3;  // the published pilot bridge [method.md §6]
+    p.mu = 0.3;  // the published pilot bridge [docs/theory.md §6]
   }
   p.w0_over_wg = NumberOf(spec_, index, "w0_over_wg", p.w0_over_wg);
   p.Pi_delta = NumberOf(spec_, index, "Pi_delta", p.Pi_delta);

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The record correlation sets of a record-driven sweep [method.md §6; Dimitrakopoulos 2011,
+/// The record correlation sets of a record-driven sweep [docs/theory.md §6; Dimitrakopoulos 2011,
 /// §6]: the records of the sweep (read from a manifest or synthesised in memory) with their
 /// measures, the w0x/w_g frequency-ratio groups, and the statistics of theta_m against the
 /// persistency L_e over the record axis that rank 0 stores in the final cube
@@ -38,7 +38,7 @@ struct SweepRecord {
 /// record.
 std::vector<SweepRecord> LoadSweepRecords(const SweepSpec& spec);
 
-/// The default w0x/w_g group edges: [0, 0.5), [0.5, 1), [1, 2), [2, inf) [method.md §6: the
+/// The default w0x/w_g group edges: [0, 0.5), [0.5, 1), [1, 2), [2, inf) [docs/theory.md §6: the
 /// rotations fade above w0x/w_g of about 2].
 inline constexpr std::array<double, 3> kDefaultBandEdges{0.5, 1.0, 2.0};
 

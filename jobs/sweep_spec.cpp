@@ -24,7 +24,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr std::array<ParameterInfo, 17> kParameters{{
   {"record", "record", "", "ground-motion record, by its label in the [records] set",
    ParameterKind::kLabel, 0, true, 0, true, false, ""},
-  {"pulse", "pulse", "", "one cycle of a_g cos(w_g t) or a_g sin(w_g t) [method.md §5]",
+  {"pulse", "pulse", "", "one cycle of a_g cos(w_g t) or a_g sin(w_g t) [docs/theory.md §5]",
    ParameterKind::kLabel, 0, true, 0, true, false, "cosine|sine"},
   {"spans", "spans", "1", "number of deck spans", ParameterKind::kNumber, 1, true, 64, true,
    true, ""},

@@ -22,7 +22,7 @@ struct ParameterInfo {
   std::string_view key;          ///< TOML key and HDF5 scale name, e.g. "w0_over_wg".
   std::string_view symbol;       ///< Display symbol, also accepted as a quoted key: "w0/w_g".
   std::string_view unit;         ///< "1" for dimensionless, "deg" for the skew angle.
-  std::string_view description;  ///< One line, with the definition [method.md §5].
+  std::string_view description;  ///< One line, with the definition [docs/theory.md §5].
   ParameterKind kind;
   double min;                ///< Lower bound for numbers.
   bool min_inclusive;        ///< Whether min itself is allowed.
@@ -79,7 +79,7 @@ struct SweepSpec {
   int synthetic_count = 0;
   std::uint64_t synthetic_seed = 0;  ///< The suite's seed (labels "synth-<seed>-<index>").
   /// [study] bands: increasing, positive w0x/w_g edges of the frequency-ratio groups; empty
-  /// when not given (the evaluator then uses 0.5, 1, 2) [method.md §6].
+  /// when not given (the evaluator then uses 0.5, 1, 2) [docs/theory.md §6].
   std::vector<double> study_bands;
   std::vector<Axis> axes;
   std::vector<FixedValue> fixed;

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// Intensity measures of a ground motion: peaks, the mean period of Rathje et al. (1998) that
-/// sets w_g for records [method.md §5], Arias intensity, significant duration and the linear
+/// sets w_g for records [docs/theory.md §5], Arias intensity, significant duration and the linear
 /// elastic pseudo-acceleration spectrum (exact for piecewise-linear excitation).
 ///
 /// Conventions (docs/records.md): the acceleration is linear between samples (the same
@@ -26,7 +26,7 @@ struct IntensityMeasures {
   double pgv_mps = 0.0;                 ///< max |v| (m/s), v from a by exact integration
   double pgd_m = 0.0;                   ///< max |d| (m)
   double mean_period_s = 0.0;           ///< T_m (s) [Rathje et al. 1998]
-  double omega_g_radps = 0.0;           ///< w_g = 2 pi / T_m (rad/s) [method.md §5]
+  double omega_g_radps = 0.0;           ///< w_g = 2 pi / T_m (rad/s) [docs/theory.md §5]
   double persistency_m = 0.0;           ///< L_e = a_g / w_g^2 = PGA / w_g^2 (m)
   double arias_mps = 0.0;               ///< I_a = pi / (2 g) int a^2 dt (m/s)
   double significant_duration_s = 0.0;  ///< D5-95: time between 5 % and 95 % of I_a (s)

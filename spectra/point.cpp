@@ -182,7 +182,7 @@ PointResult EvaluatePoint(const DimensionalPoint& point, const Excitation& excit
 
   model::RunControl control;
   // The absolute tolerance is in state units: tie it to the persistency so that the run is
-  // self-similar in a_g [method.md §4 fact 4].
+  // self-similar in a_g [docs/theory.md §4 fact 4].
   control.absolute_tolerance = 1e-11 * point.persistency_m;
   control.end_time_s =
       excitation.Duration() + 2.0 * std::max(excitation_period_s, natural_period_s);
@@ -206,7 +206,7 @@ PointResult EvaluatePoint(const DimensionalPoint& point, const Excitation& excit
   r.y_m = run.max_abs_q(1);
   r.theta_rad = run.max_abs_q(2);
   r.theta_end_rad = run.q_end(2);
-  // [method.md §5]: lengths over the persistency a_g / w_g^2, rotations times rho.
+  // [docs/theory.md §5]: lengths over the persistency a_g / w_g^2, rotations times rho.
   const double to_norm = 1.0 / point.persistency_m;
   r.x_norm = r.x_m * to_norm;
   r.y_norm = r.y_m * to_norm;

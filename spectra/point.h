@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// One point of a dimensionless response spectrum [method.md §5]: the mapping from the
+/// One point of a dimensionless response spectrum [docs/theory.md §5]: the mapping from the
 /// dimensionless groups to a dimensional deck model and excitation, the run, and the
 /// normalisation of the maxima. This is the only place where normalisations live.
 ///
@@ -12,7 +12,7 @@
 /// The length scale is the persistency L_e = a_g / w_g^2. The deck length follows from
 /// delta/L (L = delta / (delta/L), which needs Pi_delta > 0) or, when delta/L is not given,
 /// from L/L_e. Every dimensional choice left (the mass, the pulse's a_g and w_g) cancels from
-/// the dimensionless results, exactly so in the small-rotation limit [method.md §4 fact 4].
+/// the dimensionless results, exactly so in the small-rotation limit [docs/theory.md §4 fact 4].
 
 #include <optional>
 #include <string>
@@ -25,11 +25,11 @@ namespace skewbridge::spectra {
 
 /// The model family of a sweep.
 enum class Family {
-  kSubsystem,    ///< single-abutment subsystem: contacts P1, P2, uncoupled K [method.md §6]
-  kPilotBridge,  ///< the two-span pilot bridge of [method.md §6], both abutments
+  kSubsystem,    ///< single-abutment subsystem: contacts P1, P2, uncoupled K [docs/theory.md §6]
+  kPilotBridge,  ///< the two-span pilot bridge of [docs/theory.md §6], both abutments
 };
 
-/// How a point is integrated [method.md §3].
+/// How a point is integrated [docs/theory.md §3].
 enum class Method {
   kEventDriven,   ///< dynamics::Simulate (the reference)
   kTimeStepping,  ///< dynamics::SimulateTimeStepping, Moreau-Jean, the independent check
@@ -39,7 +39,7 @@ enum class Method {
 const char* ToString(Method method);
 
 /// The dimensionless coordinates of one point, with the defaults of the studies of
-/// [method.md §6] (xi = 5 %, eps_N = 0.5).
+/// [docs/theory.md §6] (xi = 5 %, eps_N = 0.5).
 struct PointParameters {
   Family family = Family::kSubsystem;
   /// w0/w_g. Subsystem: w0 = w0x = w0y. Pilot bridge under a pulse: w0x/w_g with
@@ -83,7 +83,7 @@ struct DimensionalPoint {
   double time_step_s = 0.0;              ///< time-stepping step h (s)
 };
 
-/// The pilot bridge of [method.md §6; Dimitrakopoulos 2011, §6]: m = 1547 t,
+/// The pilot bridge of [docs/theory.md §6; Dimitrakopoulos 2011, §6]: m = 1547 t,
 /// I_m = 1 079 100 t m^2, a = 20 deg, L = 89.14 m, W = 19.36 m (eta0 = 1.48), principal axes
 /// at +20 deg with 18 and 19 rad/s, torsion 26 rad/s about the centre of rigidity
 /// (-0.24, 0.01) m, xi = 5 %, eps_N = 0.5, mu = 0.3, both abutments, gaps 0 (set per point).
@@ -94,13 +94,13 @@ model::DeckSpec PilotBridgeDeck();
 /// @throws InputError when w0/w_g <= 0.
 ExcitationScales PulseScales(const PointParameters& p);
 
-/// Maps a point to its dimensional model [method.md §5].
+/// Maps a point to its dimensional model [docs/theory.md §5].
 /// @throws InputError naming the parameter ("eta0", "Pi_delta", ...) and its allowed range
 /// when a value or a combination is impossible (eta0 with a = 0, delta/L with Pi_delta = 0, a
 /// deck whose geometry is not a parallelogram, time_step_over_Tg <= 0, ...).
 DimensionalPoint ToDimensional(const PointParameters& p, const ExcitationScales& scales);
 
-/// The responses of one point, dimensional and normalised as in [method.md §5].
+/// The responses of one point, dimensional and normalised as in [docs/theory.md §5].
 struct PointResult {
   dynamics::RunStatus status = dynamics::RunStatus::kOk;
   std::string message;                   ///< empty when ok

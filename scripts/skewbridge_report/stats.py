@@ -1,4 +1,4 @@
-"""Correlation statistics of the pilot-bridge study with numpy alone (method.md §6).
+"""Correlation statistics of the pilot-bridge study with numpy alone (docs/theory.md §6).
 
 theta_m against the persistency L_e = a_g / w_g^2 over the records at one Pi_delta: Pearson's
 r of the values, Spearman's rho (Pearson's r of the average ranks, ties shared), and the

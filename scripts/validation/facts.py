@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """The numbers of docs/validation.md, measured from the cubes run.sh made and from batches of
-`skewbridge run`: one block per fact of method.md §4 and per trend of §6.
+`skewbridge run`: one block per fact of docs/theory.md §4 and per trend of §6.
 
 usage: facts.py SKEWBRIDGE WORK_DIR   (run by scripts/validation/run.sh)"""
 import os

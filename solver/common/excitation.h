@@ -10,7 +10,7 @@
 ///
 /// which covers the piecewise-linear interpolation of a sampled record (c = s = 0) and the
 /// one-cycle pulses of Makris and Black (2004) (a_begin = slope = 0) exactly, so the
-/// contact-free state transition can be exact on every piece ([method.md §3, smooth phases]).
+/// contact-free state transition can be exact on every piece ([docs/theory.md §3, smooth phases]).
 
 #include <Eigen/Core>
 #include <limits>

@@ -117,7 +117,7 @@ ContactStatus ContactProblem::Solve(const ContactKinematics& kinematics,
   auto MinvWQ = MinvWQ_.leftCols(k);
   auto MinvWH = MinvWH_.leftCols(nh);
 
-  // [method.md §3, contact problem]: unknowns (lambda_N, lambda_R, a_L).
+  // [docs/theory.md §3, contact problem]: unknowns (lambda_N, lambda_R, a_L).
   auto A = A_.topLeftCorner(n, n);
   A.setZero();
   if (sparse_) {

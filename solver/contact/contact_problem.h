@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The acceleration-level contact problem of [method.md §3, contact problem; Pfeiffer and
+/// The acceleration-level contact problem of [docs/theory.md §3, contact problem; Pfeiffer and
 /// Glocker 1996, §6] over the closed contacts (gamma_N = 0), split into sliding ones G (slip
 /// sign s_G, lambda_T = -mu s_G lambda_N) and possibly sticking ones H
 /// (lambda_R = mu lambda_N + lambda_T, lambda_L = mu lambda_N - lambda_T,

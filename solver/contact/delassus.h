@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// Sparse assembly of the Delassus blocks W_a^T M^-1 W_b of the impact and contact problems
-/// [method.md §3] for models of several decks. M is diagonal (planar rigid decks), and a
+/// [docs/theory.md §3] for models of several decks. M is diagonal (planar rigid decks), and a
 /// Jacobian column of a contact is non-zero only on the DOFs of the contact's two bodies (its
 /// point's deck and, for a deck-to-deck contact, the face's deck), so entry (r, s) is a sum over
 /// the bodies the two contacts share: at most 6 products instead of n_dof, and zero for contacts

@@ -96,7 +96,7 @@ lcp::LcpStatus ImpactProblem::Solve(const ContactKinematics& kinematics,
   auto mu = mu_.head(k);
   auto eps = eps_.head(k);
 
-  // [method.md §3, impact problem]: rows (Lambda_N, Lambda_R, gamma_TL) blocks.
+  // [docs/theory.md §3, impact problem]: rows (Lambda_N, Lambda_R, gamma_TL) blocks.
   auto A = A_.topLeftCorner(3 * k, 3 * k);
   A.setZero();
   if (sparse_) {

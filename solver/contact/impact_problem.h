@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The velocity-level impact problem of [method.md §3, impact problem; Pfeiffer and Glocker
+/// The velocity-level impact problem of [docs/theory.md §3, impact problem; Pfeiffer and Glocker
 /// 1996, §7; Dimitrakopoulos 2011, eq. 11] over an index set of k contacts:
 ///
 ///     w = A z + b,  w >= 0, z >= 0, w^T z = 0
@@ -56,7 +56,7 @@ class ImpactProblem {
   /// Jacobians of `kinematics` (evaluated at the impact configuration), gamma_N,A = w_N^T u_A.
   /// Contacts listed in `persistent` (closed, or closing slower than the accumulation threshold)
   /// take part with restitution 0: their gamma_N,A is zero up to drift, and an impact at one
-  /// corner acts on them [method.md §3] without pushing them apart by restitution.
+  /// corner acts on them [docs/theory.md §3] without pushing them apart by restitution.
   /// @pre index_set entries distinct and valid; u_A of size n_dof (SB_ASSERT).
   /// @return result.status; when not kSolved, u_E = u_A and the impulses are zero.
   /// `frictionless` drops Coulomb's law (mu = 0) for this impact: a closure slower than the

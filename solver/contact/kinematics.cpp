@@ -92,7 +92,7 @@ namespace {
 void JacobiansAt(const model::Contact& contact, const Geometry& g, Eigen::Ref<Eigen::VectorXd> w_N,
                  Eigen::Ref<Eigen::VectorXd> w_T) {
   const int i = 3 * contact.body;
-  // Velocity of P: v_i + thetadot_i J R_i p [method.md §2: R'(theta) p = J R(theta) p].
+  // Velocity of P: v_i + thetadot_i J R_i p [docs/theory.md §2: R'(theta) p = J R(theta) p].
   const Eigen::Vector2d lever_i = Perp(g.arm);
   w_N.segment<2>(i) = g.n;
   w_N(i + 2) = g.n.dot(lever_i);

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// Contact kinematics in the general form of [method.md §2, contacts (general form)]: for a
+/// Contact kinematics in the general form of [docs/theory.md §2, contacts (general form)]: for a
 /// body-fixed point p (on body i) against a face (A, n, t), ground-fixed or on body j,
 ///
 ///     g      = n . (X_i + (x_i, y_i) + R(theta_i) p - A_world)

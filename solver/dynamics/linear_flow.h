@@ -4,7 +4,7 @@
 ///
 ///     M du/dt = -C u - K q - M r a_g(t),   s = (q, u)
 ///
-/// over one smooth piece of the excitation ([method.md §3, smooth phases]). The piece's ground
+/// over one smooth piece of the excitation ([docs/theory.md §3, smooth phases]). The piece's ground
 /// acceleration a_g = a + p is produced by a forcing generator appended to the state: the linear
 /// part (a, slope) with da/dt = slope, and the harmonic part as a rotating pair (p, k) with
 /// dp/dt = omega k, dk/dt = -omega p. The augmented state z = (q, u, a, slope, p, k) of size

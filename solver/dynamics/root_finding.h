@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// Bracketed scalar root finding for event location on dense output [method.md §3, events]:
+/// Bracketed scalar root finding for event location on dense output [docs/theory.md §3, events]:
 /// Brent's method (inverse quadratic interpolation, secant and bisection), which keeps the
 /// bracket and converges superlinearly on smooth functions [Brent 1973, ch. 4].
 

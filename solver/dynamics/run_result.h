@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// What one run of the event-driven integrator returns [method.md §3]: a status, response
+/// What one run of the event-driven integrator returns [docs/theory.md §3]: a status, response
 /// maxima, residuals, counts, the event log, the energy ledger and optional time histories.
 
 #include <Eigen/Core>

@@ -2,7 +2,7 @@
 /// @file
 /// The embedded Runge-Kutta pair of Dormand and Prince, 5(4), with its 4th-order continuous
 /// extension (dense output) [Hairer, Norsett and Wanner 1993, §II.5 and §II.6, DOPRI5]. It
-/// integrates the constrained smooth phases [method.md §3]; the integrator owns the step loop,
+/// integrates the constrained smooth phases [docs/theory.md §3]; the integrator owns the step loop,
 /// the error control and the event location, this class one step and its dense output.
 
 #include <Eigen/Core>

@@ -463,7 +463,7 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   // It never falls below the rounding of a gap computed from world coordinates (a few ulps of
   // the deck's size): at a tiny excitation a scaled tolerance under that floor would split a
   // full-edge impact, exactly simultaneous in the model, into two impacts by rounding noise
-  // alone, and break the self-similarity of [method.md §4 fact 4].
+  // alone, and break the self-similarity of [docs/theory.md §4 fact 4].
   gap_tol_ =
       std::max(1e-12 * std::min(v_ref / omega_ref, ws.length_scale_m_),
                kGapRoundingUlps * std::numeric_limits<double>::epsilon() * ws.length_scale_m_);
@@ -504,7 +504,7 @@ double Integrator::FreeStepSize(const ExcitationPiece& piece) const {
 void Integrator::GapsAndRates(const Eigen::Ref<const Vec>& qq, const Eigen::Ref<const Vec>& uu,
                               Vec& gap, Vec& gamma_N) {
   // One sine and cosine per body; a ground face needs only n . (X + (x, y) + R p - A) and
-  // n . (v + thetadot J R p) [method.md §2]. A face on a body takes the general path.
+  // n . (v + thetadot J R p) [docs/theory.md §2]. A face on a body takes the general path.
   const int nb = model_.n_bodies();
   for (int b = 0; b < nb; ++b) {
     cos_[b] = std::cos(qq[3 * b + 2]);
@@ -830,7 +830,7 @@ void Integrator::ActiveForces(double t, const Eigen::Ref<const Vec>& qq,
   const contact::ContactKinematics& kin = ws_.kin_;
   const Vec& inv_m = model_.inverse_mass_diagonal();
   // Unknowns: lambda_N of every closed contact, then lambda_T of every sticking one; rows: the
-  // matching d gamma_N/dt = 0 and d gamma_T/dt = 0 [method.md §3, contact problem, with the
+  // matching d gamma_N/dt = 0 and d gamma_T/dt = 0 [docs/theory.md §3, contact problem, with the
   // active set fixed].
   int m = 0;
   bool symmetric = true;  // no sliding contact: force directions = constraint rows
@@ -1119,7 +1119,7 @@ void Integrator::ConstrainedStep() {
 
 void Integrator::Project() {
   // Gauss-Newton in the M^-1 metric: positions onto g = 0 of the closed contacts, velocities
-  // onto gamma_N = 0 (and gamma_T = 0 when sticking) [method.md §3, smooth phases]. Only the
+  // onto gamma_N = 0 (and gamma_T = 0 when sticking) [docs/theory.md §3, smooth phases]. Only the
   // closed contacts' kinematics are needed; the next step or RefreshGaps evaluates all.
   const Vec& inv_m = model_.inverse_mass_diagonal();
   for (int pass = 0; pass < 2; ++pass) {
@@ -1266,8 +1266,8 @@ void Integrator::ResolveContacts(const std::vector<int>& forced) {
 }
 
 bool Integrator::Accumulating(int c, double approach_mps) const {
-  // Zeno [method.md §3, accumulation; Acary and Brogliato 2008, §2.1]: a contact bouncing under
-  // a nearly constant force returns after a flight much shorter than any period of the model,
+  // Zeno [docs/theory.md §3, accumulation; Acary and Brogliato 2008, §2.1]: a contact bouncing
+  // under a nearly constant force returns after a flight much shorter than any period of the model,
   // each time slower by a constant ratio rho (eps_N for a single contact), so its impacts
   // accumulate after a further time (t_k - t_{k-1}) rho / (1 - rho), at which it is closed. Two
   // consecutive impacts of the same contact, with no other impact between them, a ratio below
@@ -1324,8 +1324,8 @@ bool Integrator::DecideContacts(const std::vector<int>& forced) {
     }
   }
   if (impact || plastic) {
-    // A closure slower than the threshold is a plastic impact [method.md §3, accumulation]: its
-    // impulse stops the approach, so the contact problem that follows starts from gamma_N >= 0.
+    // A closure slower than the threshold is a plastic impact [docs/theory.md §3, accumulation]:
+    // its impulse stops the approach, so the contact problem that follows starts from gamma_N >= 0.
     const double kinetic_before = Kinetic();
     const lcp::LcpStatus status =
         ws_.impact_.Solve(kin, index_set_, u(), ws_.impact_result_, persistent_, !impact);

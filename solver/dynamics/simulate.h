@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The event-driven integrator of [method.md §3; Pfeiffer and Glocker 1996, ch. 6-7;
+/// The event-driven integrator of [docs/theory.md §3; Pfeiffer and Glocker 1996, ch. 6-7;
 /// Dimitrakopoulos 2011, §3]:
 /// - no closed contact: the exact transition of the linear flow (solver/dynamics/linear_flow.h)
 ///   on a grid aligned with each excitation piece, steps at most 1/20 of the shortest natural
@@ -17,7 +17,7 @@
 /// Accumulation threshold: an impact with approach speed |gamma_N,A| below
 /// v_acc = accumulation_threshold * a_peak / omega_1 (a_peak the largest |a_g| of the excitation,
 /// omega_1 the lowest natural frequency, or 1 rad/s for a free body) is plastic: the contact
-/// closes. v_acc scales with the excitation, so it keeps the self-similarity of [method.md §4
+/// closes. v_acc scales with the excitation, so it keeps the self-similarity of [docs/theory.md §4
 /// fact 4].
 ///
 /// Simultaneity: impacts whose roots lie within RunControl::simultaneity_tolerance_s of the

@@ -321,7 +321,7 @@ RunResult SimulateTimeStepping(const model::Model& model, const Excitation& exci
       const auto WT = ws.WT_.leftCols(ka);
       auto A = ws.A_.topLeftCorner(3 * ka, 3 * ka);
       A.setZero();
-      // [method.md §3, impact problem] with W^-1 in place of M^-1.
+      // [docs/theory.md §3, impact problem] with W^-1 in place of M^-1.
       if (sparse) {
         // W^-1 W_N by the factor; W_N^T (W^-1 W_N) with the sparse W_N (6 rows per column).
         ws.GatherSparseJacobians(ka);

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// The Moreau-Jean time-stepping scheme [Acary and Brogliato 2008, ch. 10 (§10.1); Moreau 1988;
-/// Jean 1999], the independent check of the event-driven integrator [method.md §3, independent
+/// Jean 1999], the independent check of the event-driven integrator [docs/theory.md §3, independent
 /// check]. On a fixed grid t_k = k h (the last step shortened to reach the end time):
 ///
 ///     W = M + h theta C + h^2 theta^2 K                      (factorised once per step size)
@@ -11,13 +11,13 @@
 ///
 /// with abar_g the exact mean of the ground acceleration over the step (so a kink inside a step
 /// costs no order), W_N, W_T at q_k, and the impulses P from the velocity-level LCP of
-/// [method.md §3, impact problem] over the active index set with W in place of M:
+/// [docs/theory.md §3, impact problem] over the active index set with W in place of M:
 ///
 ///     z = (P_N, P_R, gamma_TL),  w = (gamma_N,k+1 + eps gamma_N,k, gamma_TR, P_L)
 ///     b = (gamma_N,free + eps gamma_N,k, gamma_T,free, 0),  gamma_free = w^T u_free
 ///
-/// (Newton's law at velocity level, Coulomb's law in the split form of method.md §3). A contact
-/// is active when its predicted gap g_k + (h / 2) gamma_N,k <= 0 [Acary and Brogliato 2008,
+/// (Newton's law at velocity level, Coulomb's law in the split form of docs/theory.md §3). A
+/// contact is active when its predicted gap g_k + (h / 2) gamma_N,k <= 0 [Acary and Brogliato 2008,
 /// §10.1.2, the index set I_1 with gamma = 1/2]. Solved with the same Lemke solver
 /// (solver/lcp/lemke.h). With theta = 1/2 the contact-free scheme is the trapezoidal rule:
 /// second order without contacts, first order with impacts.

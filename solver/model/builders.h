@@ -2,7 +2,7 @@
 /// @file
 /// Builders of the substructure matrices and abutment contacts, and the plain-data description
 /// of a single-deck bridge (DeckSpec) that the model file and the spectra both turn into a Model
-/// [method.md §2, §6].
+/// [docs/theory.md §2, §6].
 
 #include <Eigen/Core>
 #include <optional>
@@ -13,11 +13,11 @@
 
 namespace skewbridge::model {
 
-/// K = diag(m w0x^2, m w0y^2, I_m W0^2) (N/m, N/m, N m/rad) [method.md §6, subsystem].
+/// K = diag(m w0x^2, m w0y^2, I_m W0^2) (N/m, N/m, N m/rad) [docs/theory.md §6, subsystem].
 Eigen::Matrix3d UncoupledStiffness(const Body& body, double w0x_radps, double w0y_radps,
                                    double W0_radps);
 
-/// The pilot bridge's stiffness K = T^T K_cr T [method.md §6] with
+/// The pilot bridge's stiffness K = T^T K_cr T [docs/theory.md §6] with
 /// K_cr = blockdiag(R(phi) diag(m w1^2, m w2^2) R(phi)^T, I_m w_theta^2) about the centre of
 /// rigidity (e_x, e_y) and T = [[1, 0, -e_y], [0, 1, e_x], [0, 0, 1]].
 /// @param axis_rad phi, the angle of principal axis 1 from x (CCW positive).
@@ -37,7 +37,7 @@ Modes ComputeModes(const Eigen::Ref<const Eigen::MatrixXd>& M,
                    const Eigen::Ref<const Eigen::MatrixXd>& K);
 
 /// Classical damping with ratio xi in every mode: C = M Phi diag(2 xi w_k) Phi^T M
-/// [method.md §2, damping].
+/// [docs/theory.md §2, damping].
 /// @throws InputError (field "substructure.xi") when xi is outside [0, 1).
 Eigen::MatrixXd ClassicalDamping(const Eigen::Ref<const Eigen::MatrixXd>& M,
                                  const Eigen::Ref<const Eigen::MatrixXd>& K, double xi);
@@ -47,7 +47,7 @@ Eigen::MatrixXd ClassicalDamping(const Eigen::Ref<const Eigen::MatrixXd>& M, con
                                  double xi);
 
 /// Which abutments a deck can strike: "+x" only (contacts P1, P2: the single-abutment
-/// subsystem of method.md §6) or "both" (P1..P4).
+/// subsystem of docs/theory.md §6) or "both" (P1..P4).
 enum class AbutmentSet { kPlusX, kBoth };
 
 /// Contacts of deck `body_index` against ground-fixed abutments: P1, P2 against the +x face

@@ -10,7 +10,7 @@ Eigen::Vector2d Corner(const DeckGeometry& deck, int k) {
   SB_DEMAND(k >= 1 && k <= 4, "corner index must be 1..4");
   const double half_L = 0.5 * deck.length_m;
   const double half_W = 0.5 * deck.width_m;
-  // The end edges are parallel to W (tan a, 1): offset (W/2) tan a along x [method.md §2].
+  // The end edges are parallel to W (tan a, 1): offset (W/2) tan a along x [docs/theory.md §2].
   const double shift = half_W * std::tan(deck.skew_rad);
   switch (k) {
     case 1:

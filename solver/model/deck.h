@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// The plan geometry of a skew deck (a parallelogram) and its rigid-body properties
-/// [method.md §2, deck geometry; Dimitrakopoulos 2011, Fig. 1]. Body frame: origin at the mass
+/// [docs/theory.md §2, deck geometry; Dimitrakopoulos 2011, Fig. 1]. Body frame: origin at the mass
 /// centre, x along the deck axis, y transverse, corners numbered as in NOTATION.md.
 
 #include <Eigen/Core>
@@ -16,7 +16,7 @@ struct DeckGeometry {
   double skew_rad = 0.0;  ///< a: skew angle, 0 <= a < pi/2 (rad)
 };
 
-/// Corner P_k (k = 1..4) in the body frame (m) [method.md §2]:
+/// Corner P_k (k = 1..4) in the body frame (m) [docs/theory.md §2]:
 /// P1 = (L/2 + (W/2) tan a, W/2), P2 = (L/2 - (W/2) tan a, -W/2),
 /// P3 = (-L/2 - (W/2) tan a, -W/2), P4 = (-L/2 + (W/2) tan a, W/2).
 /// P1, P3 are the acute corners, P2, P4 the obtuse ones.
@@ -24,14 +24,14 @@ struct DeckGeometry {
 Eigen::Vector2d Corner(const DeckGeometry& deck, int k);
 
 /// Radius of gyration squared of a uniform deck (m^2): rho^2 = (L^2 + W^2 / cos^2 a) / 12
-/// [method.md §2].
+/// [docs/theory.md §2].
 double UniformRadiusOfGyrationSquared(const DeckGeometry& deck);
 
-/// Polar mass moment of inertia of a uniform deck (kg m^2): I_m = m rho^2 [method.md §2].
+/// Polar mass moment of inertia of a uniform deck (kg m^2): I_m = m rho^2 [docs/theory.md §2].
 double UniformDeckInertia(double mass_kg, const DeckGeometry& deck);
 
 /// The frictionless skew ratio eta0 = sin 2a / (2 W / L) [Dimitrakopoulos 2011, eq. 14;
-/// method.md §4 fact 1]. eta0 <= 1 iff the obtuse-corner lever arm r_2 <= 0.
+/// docs/theory.md §4 fact 1]. eta0 <= 1 iff the obtuse-corner lever arm r_2 <= 0.
 double Eta0(const DeckGeometry& deck);
 
 /// The width that gives a skew ratio: W = L sin 2a / (2 eta0) (m), the inverse of Eta0.
@@ -39,10 +39,10 @@ double Eta0(const DeckGeometry& deck);
 double WidthFromEta0(double eta0, double skew_rad, double length_m);
 
 /// The frictional skew ratio eta1 = eta0 (1 + mu / tan a) [Dimitrakopoulos 2011, eq. 20;
-/// method.md §4 fact 2, sigma = +1].
+/// docs/theory.md §4 fact 2, sigma = +1].
 double Eta1(const DeckGeometry& deck, double mu);
 
-/// Lever arms of the +x abutment's closed forms (m) [method.md §2]:
+/// Lever arms of the +x abutment's closed forms (m) [docs/theory.md §2]:
 /// r_1 = (L sin a + W / cos a) / 2, r_2 = (L sin a - W / cos a) / 2, r_T = L cos a / 2.
 struct LeverArms {
   double r1_m = 0.0;
@@ -50,7 +50,7 @@ struct LeverArms {
   double rT_m = 0.0;
 };
 
-/// The lever arms r_1, r_2, r_T of a deck [method.md §2].
+/// The lever arms r_1, r_2, r_T of a deck [docs/theory.md §2].
 LeverArms ComputeLeverArms(const DeckGeometry& deck);
 
 /// One planar rigid body (a deck): its generalised coordinates (x, y, theta) relative to the

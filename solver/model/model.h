@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// The immutable deck model: bodies, mass, stiffness, damping, ground influence and the
-/// potential contacts in the general form of [method.md §2, contacts (general form)].
+/// potential contacts in the general form of [docs/theory.md §2, contacts (general form)].
 /// Validated at construction: a Model that exists is consistent. State (q, u) and scratch
 /// memory live outside it (solver/contact workspaces, the integrator's workspace).
 
@@ -28,7 +28,7 @@ struct Face {
 };
 
 /// A potential contact: the body-fixed point p of `body` against `face`, with the gap
-/// g = n . ((x, y) + R(theta) p - A) for a ground face [method.md §2].
+/// g = n . ((x, y) + R(theta) p - A) for a ground face [docs/theory.md §2].
 struct Contact {
   std::string name;                                   ///< "P1".."P4" for deck corners
   int body = 0;                                       ///< body carrying the point p
@@ -39,11 +39,11 @@ struct Contact {
 };
 
 /// The normal, tangent and point A of the +x abutment face for a deck of skew a and gap delta
-/// (m, along x): n = (-cos a, sin a), t = (sin a, cos a), A = (L/2 + delta, 0) [method.md §2].
+/// (m, along x): n = (-cos a, sin a), t = (sin a, cos a), A = (L/2 + delta, 0) [docs/theory.md §2].
 Face PlusXAbutmentFace(const DeckGeometry& deck, double gap_m);
 
 /// The -x abutment face: n = (cos a, -sin a), t = (-sin a, -cos a), A = (-L/2 - delta, 0)
-/// [method.md §2].
+/// [docs/theory.md §2].
 Face MinusXAbutmentFace(const DeckGeometry& deck, double gap_m);
 
 /// The deck model, immutable after construction. DOFs: q = (x_0, y_0, theta_0, x_1, ...)
@@ -58,7 +58,7 @@ struct Modes {
   Eigen::VectorXd eigenvalues;
 };
 
-/// [method.md §2]: M du/dt = h + W_N lambda_N + W_T lambda_T, h = -C u - K q - M r a_g(t).
+/// [docs/theory.md §2]: M du/dt = h + W_N lambda_N + W_T lambda_T, h = -C u - K q - M r a_g(t).
 class Model {
  public:
   /// Builds and validates a model. `source` names the input in error messages (a file name or

@@ -31,7 +31,7 @@ struct ExcitationSpec {
   /// Unit direction (x, y) of the ground motion (excitation.direction or angle_deg).
   Eigen::Vector2d direction = Eigen::Vector2d::UnitX();
 
-  // kind = "pulse": one cycle of a_g cos(w_g t) or a_g sin(w_g t) [method.md §5].
+  // kind = "pulse": one cycle of a_g cos(w_g t) or a_g sin(w_g t) [docs/theory.md §5].
   PulseShape shape = PulseShape::kCosine;
   double amplitude_mps2 = 0.0;  ///< a_g (m/s^2; the file may give a_g_g in g)
   double omega_radps = 0.0;     ///< w_g (rad/s; the file may give T_g = 2 pi / w_g in s)

@@ -2,7 +2,7 @@
 /// @file
 /// Multi-span bridges: N decks in a row along x, each a planar rigid body, separated by joints
 /// at which consecutive decks pound against each other, with abutments at both ends and linear
-/// supports (bearings, piers) to the ground or between decks [method.md §2, contacts (general
+/// supports (bearings, piers) to the ground or between decks [docs/theory.md §2, contacts (general
 /// form): the face of a deck-to-deck contact moves with its deck]. docs/multispan.md derives the
 /// contact geometry; docs/model-format.md gives the file form ([[deck]], [[joint]], [[support]]).
 

@@ -1,4 +1,4 @@
-// The impact problem through the contact layer, end to end: facts 1 and 2 of [method.md §4]
+// The impact problem through the contact layer, end to end: facts 1 and 2 of [docs/theory.md §4]
 // against their lever-arm criteria, single-contact impacts against the closed form
 // Lambda = -(1 + eps) gamma_N,A / (w_N^T M^-1 w_N), and, over 1000 seeded random impacts,
 // energy never created, Newton's law on active contacts and Coulomb's cone.
@@ -38,7 +38,7 @@ ImpactResult FullEdgeImpact(const model::Model& model, const Eigen::Vector3d& u_
 }
 
 TEST(ImpactProblem, FrictionlessFullEdgeImpactLeavesWithoutRotationIffEta0AtMostOne) {
-  // [method.md §4 fact 1] at a = 20, 30, 45 deg.
+  // [docs/theory.md §4 fact 1] at a = 20, 30, 45 deg.
   for (double a_deg : {20.0, 30.0, 45.0}) {
     for (double eta0 : {0.5, 0.9, 1.0, 1.1, 1.5, 2.5}) {
       const model::Model model = testing::FreeDeck(a_deg, eta0, 30.0, 0.05, 0.5, 0.0);
@@ -72,7 +72,7 @@ TEST(ImpactProblem, FrictionlessFullEdgeImpactLeavesWithoutRotationIffEta0AtMost
 }
 
 TEST(ImpactProblem, FrictionalFullEdgeImpactRotatesIffR2PlusSigmaMuRTIsPositive) {
-  // [method.md §4 fact 2]: a = 30 deg, eta0 = 0.87. sigma = +1 (slip along -t: a transverse
+  // [docs/theory.md §4 fact 2]: a = 30 deg, eta0 = 0.87. sigma = +1 (slip along -t: a transverse
   // approach) gives eta1 = eta0 (1 + mu / tan a): mu = 0.08 -> 0.99, no rotation; mu = 0.10 ->
   // 1.02, rotation. sigma = -1 (a longitudinal approach, slip along +t) inhibits rotation, even
   // at eta0 = 1.1 where eta0 (1 - mu / tan a) = 0.91.
@@ -251,7 +251,7 @@ ImpactBatch RandomImpacts(std::uint64_t seed, int trials, double eps_max, double
 }
 
 TEST(ImpactProblem, FrictionlessImpactsNeverCreateEnergy) {
-  // 1000 seeded impacts, eps in [0, 1], mu = 0 [method.md §4 fact 6].
+  // 1000 seeded impacts, eps in [0, 1], mu = 0 [docs/theory.md §4 fact 6].
   const ImpactBatch batch = RandomImpacts(1000, 1000, 1.0, 0.0);
   EXPECT_GT(batch.impacts, 500);
   EXPECT_EQ(batch.unsolved, 0);
@@ -270,7 +270,7 @@ TEST(ImpactProblem, RandomImpactsObeyNewtonAndCoulombAndReportEnergyGains) {
   // 1000 seeded impacts, eps and mu in [0, 1]. Newton's kinematic restitution combined with
   // Coulomb friction can create kinetic energy when the normal impulse drives the slip
   // (the paradox of Kane and Levinson 1985, analysed by Stronge 2000 and Glocker 2013): the
-  // law of method.md §3 is assembled exactly, so such gains are reported here, not hidden.
+  // law of docs/theory.md §3 is assembled exactly, so such gains are reported here, not hidden.
   // With friction and restitution the impact LCP may also have no solution at all; Lemke must
   // then end without one, never miss an existing one.
   const ImpactBatch batch = RandomImpacts(3000, 1000, 1.0, 1.0);

@@ -1,4 +1,4 @@
-// Contact kinematics against the paper's closed forms [method.md §2] at random states, against
+// Contact kinematics against the paper's closed forms [docs/theory.md §2] at random states, against
 // finite differences of the gap (Jacobians) and of gamma along a trajectory (velocity terms).
 #include "solver/contact/kinematics.h"
 
@@ -15,7 +15,7 @@ namespace {
 
 using testing::kDeg;
 
-// The closed forms for corner i with lever arm r_i at the +x abutment [method.md §2]:
+// The closed forms for corner i with lever arm r_i at the +x abutment [docs/theory.md §2]:
 //   g_i = (delta - x) cos a + y sin a + (1/2)[L cos a (1 - cos theta) + 2 r_i sin theta]
 //   w_N,i = (-cos a, sin a, (1/2)[L cos a sin theta + 2 r_i cos theta])
 //   w_T,i = (sin a, cos a, -r_i sin theta + r_T cos theta).
@@ -183,7 +183,7 @@ TEST(ContactKinematics, VelocityTermsMatchTheRateOfGammaAlongATrajectory) {
     }
     CheckVelocityTermsAlongTrajectory(two, q2, u2, a2);
   }
-  // For a ground face what_N = -thetadot^2 n . R(theta) p exactly [method.md §2].
+  // For a ground face what_N = -thetadot^2 n . R(theta) p exactly [docs/theory.md §2].
   const Eigen::Vector3d q(0.1, -0.2, 0.05), u(0.3, 0.1, 0.7);
   double what_N, what_T;
   VelocityTerms(deck, 0, q, u, what_N, what_T);

@@ -45,7 +45,8 @@ inline Case SubsystemCosinePulse(bool contacts) {
 /// Both gaps of the pilot bridge's stress case (m): Pi_delta ~ 0.1 of the signal's persistency
 /// PGA / (4 pi)^2 = 19 mm, so the deck pounds 655 times in 40 s.
 inline constexpr double kPilotStressGap_m = 0.002;
-/// Both gaps at Pi_delta = 0.5 of that persistency, the smallest of the pilot study (method.md §6).
+/// Both gaps at Pi_delta = 0.5 of that persistency, the smallest of the pilot study (docs/theory.md
+/// §6).
 inline constexpr double kPilotStudyGap_m = 0.0095;
 
 /// The pilot bridge of docs/examples/pilot-bridge.toml with both gaps `gap_m` (or 1 km) under a

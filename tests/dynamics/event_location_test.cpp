@@ -1,4 +1,4 @@
-// Events inside one exact free step are found, never stepped over [method.md §3]: a free deck
+// Events inside one exact free step are found, never stepped over [docs/theory.md §3]: a free deck
 // (K = C = 0, so the whole 1 s excitation piece is a single step) moves towards the +x abutment
 // while the ground pushes it back. Its gap g(t) = g0 - v t + a t^2 / 2 dips below zero and is
 // positive again at both ends of the step (times cos a, the face's obliquity); the impact must be

@@ -1,4 +1,4 @@
-// A Painleve situation reached through the event-driven integrator [method.md §3; Pfeiffer and
+// A Painleve situation reached through the event-driven integrator [docs/theory.md §3; Pfeiffer and
 // Glocker 1996, ch. 6]: a free deck slides with its obtuse corner P2 along the +x abutment while
 // the ground pushes it into the face. For a single sliding contact the acceleration-level
 // problem is the scalar LCP w = A lambda_N + b with A = w_N^T M^-1 (w_N - mu s w_T) and

@@ -82,7 +82,7 @@ model::RunControl EndAt(double t_end) {
   return control;
 }
 
-// method.md §4 fact 1: a translating deck striking the +x abutment full-edge leaves without
+// docs/theory.md §4 fact 1: a translating deck striking the +x abutment full-edge leaves without
 // rotating iff eta0 <= 1; for eta0 > 1 only the obtuse corner P2 takes an impulse.
 TEST(SimulationWorkspace, LowestFrequencyIsTheModelsFirstMode) {
   // The workspace takes its frequency range from the modes its flow solved (modal path) or from
@@ -145,7 +145,7 @@ TEST(Simulate, FullEdgeImpactRotatesOnlyAboveSkewRatioOne) {
   }
 }
 
-// method.md §4 fact 2: slipping along -t through the impact (friction along +t), a = 30 deg,
+// docs/theory.md §4 fact 2: slipping along -t through the impact (friction along +t), a = 30 deg,
 // eta0 = 0.87: mu = 0.08 gives eta1 = 0.99 (no rotation), mu = 0.10 gives eta1 = 1.02.
 TEST(Simulate, FrictionalImpactFollowsFrictionalSkewRatio) {
   for (double mu : {0.08, 0.10}) {
@@ -172,7 +172,7 @@ TEST(Simulate, FrictionalImpactFollowsFrictionalSkewRatio) {
   }
 }
 
-// method.md §4 fact 3: with a = 0 the deck is the pounding oscillator; y and theta stay zero.
+// docs/theory.md §4 fact 3: with a = 0 the deck is the pounding oscillator; y and theta stay zero.
 TEST(Simulate, ZeroSkewKeepsTransverseAndRotationExactlyZero) {
   DeckParams p;
   p.skew_deg = 0.0;
@@ -303,8 +303,8 @@ Eigen::Vector3d DimensionlessMaxima(double a_g, double pi_delta, bool* ok) {
   return {r.max_abs_q[0] * scale, r.max_abs_q[1] * scale, r.max_abs_q[2] * Rho(m) * scale};
 }
 
-// method.md §4 fact 4: at fixed Pi_delta the dimensionless maxima do not depend on a_g (exact in
-// the small-rotation limit; the deviation with full kinematics is printed).
+// docs/theory.md §4 fact 4: at fixed Pi_delta the dimensionless maxima do not depend on a_g (exact
+// in the small-rotation limit; the deviation with full kinematics is printed).
 TEST(Simulate, DimensionlessMaximaAreSelfSimilarInIntensity) {
   bool ok = false;
   const Eigen::Vector3d base = DimensionlessMaxima(1e-4, 0.5, &ok);
@@ -374,7 +374,7 @@ TEST(Simulate, MaximaConvergeUnderTolerance) {
   }
 }
 
-// method.md §4 fact 6: no impact creates energy; the ledger balances to 1e-6 of the input.
+// docs/theory.md §4 fact 6: no impact creates energy; the ledger balances to 1e-6 of the input.
 TEST(Simulate, ImpactsNeverCreateEnergyAndLedgerBalances) {
   for (double mu : {0.0, 0.2}) {
     const RunResult r = Canonical(1e-10, 1e-12, mu);

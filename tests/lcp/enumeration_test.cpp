@@ -44,7 +44,7 @@ TEST(LcpEnumeration, AgreesWithLemkeOnRandomPMatrices) {
 TEST(LcpEnumeration, SolvesTheDegenerateContactProblemLemkeLeftOnARay) {
   // The contact problem of a robustness-grid cell (Pi_delta = 0, eps_N = 0.5, mu = 0.6, a = 5
   // deg, eta0 = 0.5, W0/w0 = 0.5, w0/w_g = 10, sine) at t = 2.4541 s, two sticking corners of
-  // one face: rows 3 and 4 differ only in the identity block (method.md §3, contact problem).
+  // one face: rows 3 and 4 differ only in the identity block (docs/theory.md §3, contact problem).
   Eigen::MatrixXd A(6, 6);
   // clang-format off
   A << 7.44023e-07,  4.78626e-07,  7.58374e-07,  7.58374e-07,  0, 0,

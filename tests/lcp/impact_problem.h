@@ -1,10 +1,10 @@
 #pragma once
 /// @file
-/// The velocity-level impact LCP of method.md §3 for a planar rigid deck, written here from
+/// The velocity-level impact LCP of docs/theory.md §3 for a planar rigid deck, written here from
 /// the formulas alone (independent of solver/contact) so the LCP tests can check the physical
-/// facts of method.md §4.
+/// facts of docs/theory.md §4.
 ///
-/// Sign conventions (method.md §2): q = (x, y, theta), theta CCW. A contact pairs a body point
+/// Sign conventions (docs/theory.md §2): q = (x, y, theta), theta CCW. A contact pairs a body point
 /// p with a face of unit normal n pointing into the free side and tangent t; the contact
 /// velocities are gamma_N = w_N^T u (< 0: approaching) and gamma_T = w_T^T u (slip along +t
 /// when > 0). Impulses act on the deck as W_N Lambda_N + W_T Lambda_T, so Lambda_N >= 0 pushes
@@ -21,7 +21,7 @@
 
 namespace skewbridge::lcp::testing {
 
-/// Uniform parallelogram deck (method.md §2): length L (m), width W (m), skew a (rad), mass m.
+/// Uniform parallelogram deck (docs/theory.md §2): length L (m), width W (m), skew a (rad), mass m.
 struct Deck {
   double L = 1.0;
   double W = 1.0;
@@ -71,14 +71,14 @@ inline Contact CornerContact(const Deck& deck, int i) {
 }
 
 /// Generalised direction (d, d . R'(theta) p) of a contact direction d: w_N for d = n,
-/// w_T for d = t (method.md §2, "Contacts").
+/// w_T for d = t (docs/theory.md §2, "Contacts").
 inline Eigen::Vector3d Jacobian(const Eigen::Vector2d& d, const Eigen::Vector2d& p, double theta) {
   const Eigen::Vector2d rp(-std::sin(theta) * p.x() - std::cos(theta) * p.y(),
                            std::cos(theta) * p.x() - std::sin(theta) * p.y());
   return {d.x(), d.y(), d.dot(rp)};
 }
 
-/// The impact LCP w = A z + b of method.md §3 over k closed contacts and its ingredients.
+/// The impact LCP w = A z + b of docs/theory.md §3 over k closed contacts and its ingredients.
 struct ImpactProblem {
   Eigen::Matrix3d M_inv;
   Eigen::MatrixXd W_N;  // 3 x k
@@ -100,7 +100,7 @@ struct ImpactProblem {
   }
 };
 
-/// Builds A and b exactly as method.md §3 writes them:
+/// Builds A and b exactly as docs/theory.md §3 writes them:
 ///   A = [ W_N^T M^-1 (W_N - W_T mu)   W_N^T M^-1 W_T   0
 ///         W_T^T M^-1 (W_N - W_T mu)   W_T^T M^-1 W_T   E
 ///         2 mu                        -E               0 ]

@@ -1,5 +1,5 @@
-// The impact LCP of method.md §3, built from its formulas in tests/lcp/impact_problem.h and
-// solved by LemkeSolver, must reproduce the physical facts of method.md §4 (facts 1, 2, 6).
+// The impact LCP of docs/theory.md §3, built from its formulas in tests/lcp/impact_problem.h and
+// solved by LemkeSolver, must reproduce the physical facts of docs/theory.md §4 (facts 1, 2, 6).
 //
 // Derivations the checks rely on (translating deck, theta = thetadot = 0, contacts P1, P2 at
 // the +x abutment, n = (-cos a, sin a), t = (sin a, cos a)):
@@ -45,7 +45,7 @@ using testing::KineticEnergy;
 constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kV = 0.4;  // approach speed, m/s
 
-/// Lever arms of method.md §2 for the +x abutment.
+/// Lever arms of docs/theory.md §2 for the +x abutment.
 struct Arms {
   double r1, r2, rT;
 };
@@ -192,7 +192,7 @@ void CheckFrictionCase(const FrictionCase& fc, double eps) {
 
 TEST(ImpactFact2, PaperExampleRotatesOnlyAboveTheFrictionalSkewRatio) {
   // a = 30 deg, eta0 = 0.87: eta1 = eta0 (1 + mu / tan a) is 0.99 for mu = 0.08 and 1.02 for
-  // mu = 0.10 (method.md §4 fact 2), with friction along +t (sigma = +1).
+  // mu = 0.10 (docs/theory.md §4 fact 2), with friction along +t (sigma = +1).
   const double tan_a = std::tan(30 * kDeg);
   EXPECT_NEAR(0.87 * (1 + 0.08 / tan_a), 0.99, 0.005);
   EXPECT_NEAR(0.87 * (1 + 0.10 / tan_a), 1.02, 0.005);

@@ -1,5 +1,5 @@
 // Time per solve of a reused LemkeSolver on random SPD problems (n = 2..24) and on the impact
-// LCPs of method.md §3 for two contacts (n = 6) and four contacts (n = 12).
+// LCPs of docs/theory.md §3 for two contacts (n = 6) and four contacts (n = 12).
 // Run: lemke_benchmark --benchmark_min_time=0.2
 
 #include <benchmark/benchmark.h>

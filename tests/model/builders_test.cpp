@@ -21,7 +21,7 @@ namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 
-// The pilot bridge of [method.md §6].
+// The pilot bridge of [docs/theory.md §6].
 DeckSpec PilotSpec() {
   DeckSpec spec;
   spec.mass_kg = 1547e3;
@@ -144,7 +144,7 @@ TEST(Builders, AbutmentSetsCarryTheNamedCornersAgainstTheirFaces) {
   EXPECT_EQ(both.contact(2).restitution, 0.9);
   EXPECT_EQ(both.contact(2).friction, 0.1);
   EXPECT_EQ(both.contact(3).restitution, 0.5);
-  // At rest every gap is delta cos a [method.md §2].
+  // At rest every gap is delta cos a [docs/theory.md §2].
   for (int c = 0; c < 4; ++c) {
     const Contact& k = both.contact(c);
     const double gap = k.face.normal.dot(k.point_m - k.face.point_m);

@@ -59,7 +59,7 @@ TEST(DeckGeometry, Eta0AndWidthAreInverseAndEta0OneIsWhereR2VanishesWithSign) {
       const double W = WidthFromEta0(eta0, a_deg * kDeg, 50.0);
       const DeckGeometry deck{50.0, W, a_deg * kDeg};
       EXPECT_NEAR(Eta0(deck), eta0, 1e-14 * eta0);
-      // [method.md §4 fact 1]: eta0 <= 1 iff r_2 <= 0; r_2 = (L sin a - W / cos a) / 2.
+      // [docs/theory.md §4 fact 1]: eta0 <= 1 iff r_2 <= 0; r_2 = (L sin a - W / cos a) / 2.
       const double r2 = 0.5 * (50.0 * std::sin(a_deg * kDeg) - W / std::cos(a_deg * kDeg));
       EXPECT_NEAR(ComputeLeverArms(deck).r2_m, r2, 1e-12 * 50.0);
       if (eta0 < 1.0) {
@@ -74,7 +74,7 @@ TEST(DeckGeometry, Eta0AndWidthAreInverseAndEta0OneIsWhereR2VanishesWithSign) {
 }
 
 TEST(DeckGeometry, PilotBridgeDimensionsGiveEta0OfOnePointFourEightAndItsInertia) {
-  // [method.md §6]: L = 89.14 m, W = 19.36 m, a = 20 deg, eta0 = 1.48, I_m = 1 079 100 t m^2
+  // [docs/theory.md §6]: L = 89.14 m, W = 19.36 m, a = 20 deg, eta0 = 1.48, I_m = 1 079 100 t m^2
   // with the uniform-deck relation; the published figures are rounded to 4 digits.
   const DeckGeometry deck{89.14, 19.36, 20.0 * kDeg};
   EXPECT_NEAR(Eta0(deck), 1.48, 0.5e-2);
@@ -82,7 +82,8 @@ TEST(DeckGeometry, PilotBridgeDimensionsGiveEta0OfOnePointFourEightAndItsInertia
 }
 
 TEST(DeckGeometry, FrictionalSkewRatioOfTheWorkedExample) {
-  // [method.md §4 fact 2]: a = 30 deg, eta0 = 0.87: mu = 0.08 -> eta1 = 0.99, mu = 0.10 -> 1.02.
+  // [docs/theory.md §4 fact 2]: a = 30 deg, eta0 = 0.87: mu = 0.08 -> eta1 = 0.99, mu = 0.10
+  // -> 1.02.
   const DeckGeometry deck{1.0, WidthFromEta0(0.87, 30.0 * kDeg, 1.0), 30.0 * kDeg};
   EXPECT_NEAR(Eta1(deck, 0.08), 0.99, 0.005);
   EXPECT_NEAR(Eta1(deck, 0.10), 1.02, 0.005);

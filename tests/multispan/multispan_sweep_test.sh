@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # A multi-span sweep through `skewbridge sweep` (spans 1-3 as an axis, a = 0 and 30 deg):
 # byte-identical responses, status and statistics on 1 and 2 ranks; NaN exactly for the decks a
-# cell does not have; at a = 0 no deck moves transversally or rotates [method.md §4 fact 3], so
+# cell does not have; at a = 0 no deck moves transversally or rotates [docs/theory.md §4 fact 3], so
 # the unseating margin is the seat width minus max |x| exactly; the skewed cells pound and rotate
 # at w0/w_g <= 1 and nothing pounds at w0/w_g = 2.
 # usage: multispan_sweep_test.sh SKEWBRIDGE MPIEXEC WORK_DIR

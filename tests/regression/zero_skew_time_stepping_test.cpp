@@ -54,7 +54,7 @@ TEST(ZeroSkewTimeStepping, RunsThroughAndMatchesTheEventDrivenMaximum) {
   ASSERT_EQ(run.status, dynamics::RunStatus::kOk) << run.message;
   EXPECT_DOUBLE_EQ(run.end_time_s, 2.5);
   // The time-stepping maximum is within 2 % of the event-driven one, as for the example
-  // subsystem in docs/validation.md; a deck without skew does not turn [method.md §4 fact 3].
+  // subsystem in docs/validation.md; a deck without skew does not turn [docs/theory.md §4 fact 3].
   EXPECT_NEAR(run.max_abs_q(0), exact.max_abs_q(0), 0.02 * exact.max_abs_q(0));
   EXPECT_LE(run.max_abs_q(2), 1e-12);
 }

@@ -2,8 +2,9 @@
 /// @file
 /// The robustness grid of the event-driven integrator: the corners of the subsystem's parameter
 /// space where pounding is most intense (closed and small joints, plastic to elastic impacts,
-/// friction up to 0.6, stiff to soft substructures) [method.md §6]. Shared by the test (a seeded
-/// sample, with time-stepping as the second method) and the benchmark program (the whole grid).
+/// friction up to 0.6, stiff to soft substructures) [docs/theory.md §6]. Shared by the test (a
+/// seeded sample, with time-stepping as the second method) and the benchmark program (the whole
+/// grid).
 
 #include <array>
 #include <cmath>

@@ -1,7 +1,7 @@
 // The robustness grid of the event-driven integrator (robustness_grid.h) and the reproductions
 // of the cells that failed before the consistent mode decision: every run ends ok, makes
 // progress in time (no decision repeated at one instant), and agrees with Moreau-Jean
-// time-stepping, the independent method [method.md §3].
+// time-stepping, the independent method [docs/theory.md §3].
 
 #include <gtest/gtest.h>
 

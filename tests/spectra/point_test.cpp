@@ -1,4 +1,4 @@
-// The dimensionless mapping of method.md §5 against its definitions, and the normalised
+// The dimensionless mapping of docs/theory.md §5 against its definitions, and the normalised
 // responses against an independent integration of the contact-free oscillator.
 #include <gtest/gtest.h>
 
@@ -39,7 +39,7 @@ TEST(ToDimensional, BuildsExactlyTheRequestedGroups) {
   EXPECT_NEAR(d.deck.w0y_radps / w_g, 0.7, 1e-15);
   EXPECT_NEAR(d.deck.W0_radps / d.deck.w0x_radps, 1.3, 1e-15);
   EXPECT_NEAR(d.persistency_m, a_g / (w_g * w_g), 1e-16);
-  // rho of the uniform deck: 12 rho^2 = L^2 + W^2 / cos^2 a [method.md §2].
+  // rho of the uniform deck: 12 rho^2 = L^2 + W^2 / cos^2 a [docs/theory.md §2].
   const double L = d.deck.geometry.length_m;
   const double W = d.deck.geometry.width_m;
   const double c = std::cos(d.deck.geometry.skew_rad);
@@ -83,7 +83,7 @@ TEST(PilotBridge, HasThePublishedSkewRatioAndSetsBothGaps) {
   p.w0_over_wg = 0.8;
   const ExcitationScales scales = PulseScales(p);
   const DimensionalPoint d = ToDimensional(p, scales);
-  EXPECT_NEAR(model::Eta0(d.deck.geometry), 1.48, 0.005);  // [method.md §6]
+  EXPECT_NEAR(model::Eta0(d.deck.geometry), 1.48, 0.005);  // [docs/theory.md §6]
   EXPECT_NEAR(d.w0x_radps / scales.w_g_radps, 0.8, 1e-14);
   EXPECT_EQ(d.deck.abutments, model::AbutmentSet::kBoth);
   EXPECT_DOUBLE_EQ(d.deck.gap_plus_m, d.deck.gap_minus_m);
@@ -150,7 +150,7 @@ TEST(EvaluatePoint, ContactFreeSpectrumOrdinateEqualsTheLinearOscillator) {
 }
 
 TEST(EvaluatePoint, DimensionlessMaximaAreIndependentOfIntensity) {
-  // [method.md §4 fact 4]: at fixed Pi_delta the dimensionless maxima do not depend on a_g;
+  // [docs/theory.md §4 fact 4]: at fixed Pi_delta the dimensionless maxima do not depend on a_g;
   // exactly so while rotations are small, which eta0 = 2 at a = 30 deg keeps them here.
   PointParameters p = Subsystem(0.5, 0.5, 30.0, 2.0);
   p.delta_over_L = 0.002;

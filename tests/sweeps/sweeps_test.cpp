@@ -126,7 +126,7 @@ TEST(ExampleSpecs, SubsystemStudiesHoldTheGroupsOfTheirHeaders) {
   EXPECT_GE(rotation.FindAxis("W0_over_w0")->values.size(), 3u);
 }
 
-// [method.md §4 fact 1] over a whole sweep: a frictionless deck with eta0 <= 1 leaves every
+// [docs/theory.md §4 fact 1] over a whole sweep: a frictionless deck with eta0 <= 1 leaves every
 // impact without rotating, so theta stays at round-off level in every cell, while eta0 > 1
 // rotates the deck in the cells that pound.
 TEST(SubsystemSweep, RotatesOnlyAboveEta0OfOneWithoutFriction) {

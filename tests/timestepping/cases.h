@@ -1,5 +1,5 @@
 #pragma once
-// The canonical single-abutment cases of docs/examples/subsystem.toml (method.md §6) varied in
+// The canonical single-abutment cases of docs/examples/subsystem.toml (docs/theory.md §6) varied in
 // friction, eta0 and pulse shape, and the pilot bridge, shared by the time-stepping tests and
 // the convergence study.
 

@@ -29,7 +29,7 @@ RunResult Stepped(const Case& c, double h_s, TimeSteppingWorkspace& ws) {
   return SimulateTimeStepping(c.file.model, *c.excitation, control, ws);
 }
 
-// Rotation in the sense of method.md §4: theta_m rho above 1e-3 of the largest translation.
+// Rotation in the sense of docs/theory.md §4: theta_m rho above 1e-3 of the largest translation.
 bool Rotates(const RunResult& r, double rho_m) {
   return r.max_abs_q[2] * rho_m > 1e-3 * std::max(r.max_abs_q[0], r.max_abs_q[1]);
 }
