@@ -138,6 +138,9 @@ int main(int argc, char** argv) {
   const double median = sorted[sorted.size() / 2];
   std::printf("cells %zu, failed %d, total %.3f s, median %.1f us, max %.1f us (%.1fx median)\n",
               out.size(), failed, total, 1e6 * median, 1e6 * sorted.back(), sorted.back() / median);
+  const auto above =
+      std::count_if(secs.begin(), secs.end(), [&](double x) { return x > 50.0 * median; });
+  std::printf("cells above 50x the median: %ld\n", static_cast<long>(above));
   std::sort(out.begin(), out.end(),
             [](const CellOutcome& a, const CellOutcome& b) { return a.seconds > b.seconds; });
   std::printf("slowest cells:\n");
