@@ -327,11 +327,11 @@ class Integrator {
   std::vector<long> bounce_seq_;             // per contact: impact_sequence_ of that impact
   long impact_sequence_ = 0;                 // impact instants so far
   double period_min_s_ = kInf;               // shortest natural period (s)
-  std::vector<int> tie_;
-  Eigen::MatrixXd kernel_;                   // kernel of a singular active set (columns)
+  const std::vector<int> no_contacts_;       // the empty list of forced contacts (no copy per pass)
+  std::vector<int> tie_;    // per contact: -2 no tie, else the mode the contact problem chose
+  Eigen::MatrixXd kernel_;  // kernel of a singular active set (columns)
   std::vector<int> normal_of_, tangent_of_;  // active-set layout for BalanceIndeterminateFriction
-  Vec x_bal_, x_try_;  // its solution and trial points  // per contact: 1 when kept closed with a
-                       // separating acceleration in band
+  Vec x_bal_, x_try_;                        // its solution and trial points
   Vec u_proj_, u_proj_in_;       // projected velocities; velocities before the projection
   Eigen::MatrixXd rows_, cols_;  // n x 2 n_c constraint rows / force directions
 };
@@ -1253,7 +1253,7 @@ void Integrator::ResolveContacts(const std::vector<int>& forced) {
                                                                    : 0;
       }
     }
-    if (!DecideContacts(pass == 0 ? forced : std::vector<int>{})) {
+    if (!DecideContacts(pass == 0 ? forced : no_contacts_)) {
       return;
     }
     if (!OpenContactApproaching()) {
