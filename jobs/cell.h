@@ -1,70 +1,18 @@
 #pragma once
 /// @file
-/// The narrow interface between the sweep machinery and the physics: one cell of a sweep is
-/// one solver run, a pure function of the cell's axis indices (docs/hdf5-layout.md).
+/// The sweep machinery's names for the cell interface, which spectra owns (spectra/cell.h):
+/// the scheduler, the transport and the cube speak of cells, never of decks.
 
-#include <cstddef>
-#include <cstdint>
-#include <span>
-#include <string>
-#include <utility>
-#include <vector>
+#include "spectra/cell.h"
 
 namespace skewbridge::jobs {
 
-struct SweepRecord;  // jobs/study.h
-
-/// Reserved cell status codes; evaluators use 0 for success and positive codes for expected
-/// numerical outcomes (Lemke ray, Painleve situation, ...), named by CellEvaluator::StatusNames.
-inline constexpr std::int32_t kStatusOk = 0;
-/// The cell has not been computed yet (the fill value of the status dataset).
-inline constexpr std::int32_t kStatusNotDone = -1;
-/// CellEvaluator::Evaluate threw; the sweep records it and goes on.
-inline constexpr std::int32_t kStatusException = -2;
-
-/// One scalar response of a cell, e.g. {"theta_m_norm", "1", "theta_m rho w_g^2 / a_g"}.
-struct ResponseInfo {
-  std::string name;         ///< HDF5 dataset name: letters, digits and '_' only.
-  std::string unit;         ///< "1" for dimensionless.
-  std::string description;  ///< One line, with the normalisation [docs/theory.md §5].
-};
-
-/// Solver statistics of one cell (not part of the bit-identical comparison: wall_s varies).
-struct CellStats {
-  std::int64_t events = 0;  ///< Contact events (impacts, detachments, stick/slip transitions).
-  std::int64_t steps = 0;   ///< Integration steps.
-  double wall_s = 0.0;      ///< Wall-clock time of the evaluation [s].
-};
-
-/// What one cell evaluation returns.
-struct CellOutcome {
-  std::int32_t status = kStatusOk;  ///< kStatusOk, or an evaluator-defined positive code.
-  std::string status_text;          ///< Free text for a failed cell (not stored per cell).
-  std::vector<double> responses;    ///< In the order of CellEvaluator::Responses().
-  CellStats stats;
-};
-
-/// Computes cells of a sweep. Implementations must be pure: the outcome depends only on the
-/// axis indices (no state carried between cells), so that a cube is bit-identical whatever the
-/// number of ranks and the order of execution. Evaluate is called from one thread per process.
-class CellEvaluator {
- public:
-  virtual ~CellEvaluator() = default;
-
-  /// The responses stored per cell, in the order CellOutcome::responses follows.
-  virtual std::vector<ResponseInfo> Responses() const = 0;
-
-  /// Names of the positive status codes this evaluator returns (code, name), e.g. {1, "ray"}.
-  virtual std::vector<std::pair<std::int32_t, std::string>> StatusNames() const { return {}; }
-
-  /// The records this evaluator read or synthesised for the sweep (LoadSweepRecords, in axis
-  /// order), so that rank 0 builds the final cube's record table without making them again;
-  /// nullptr when it holds none (then rank 0 loads them itself).
-  virtual const std::vector<SweepRecord>* Records() const { return nullptr; }
-
-  /// Evaluates one cell; axis_index[k] indexes axis k of the SweepSpec (its canonical order).
-  /// A failed cell returns a non-zero status; responses are then stored as NaN if absent.
-  virtual CellOutcome Evaluate(std::span<const std::size_t> axis_index) const = 0;
-};
+using spectra::CellEvaluator;
+using spectra::CellOutcome;
+using spectra::CellStats;
+using spectra::kStatusException;
+using spectra::kStatusNotDone;
+using spectra::kStatusOk;
+using spectra::ResponseInfo;
 
 }  // namespace skewbridge::jobs

@@ -1,13 +1,13 @@
 #include "jobs/evaluator_factory.h"
 
-#include "jobs/multispan_evaluator.h"
-#include "jobs/spectra_evaluator.h"
+#include "spectra/multispan_evaluator.h"
+#include "spectra/spectra_evaluator.h"
 
 namespace skewbridge::jobs {
 
 std::unique_ptr<CellEvaluator> MakeEvaluator(const SweepSpec& spec) {
-  if (spec.family == "multi-span") return std::make_unique<MultiSpanEvaluator>(spec);
-  return std::make_unique<SpectraEvaluator>(spec);
+  if (spec.family == "multi-span") return std::make_unique<spectra::MultiSpanEvaluator>(spec);
+  return std::make_unique<spectra::SpectraEvaluator>(spec);
 }
 
 }  // namespace skewbridge::jobs

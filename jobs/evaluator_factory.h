@@ -2,8 +2,8 @@
 /// @file
 /// Where the program's `sweep` command gets the physics: the evaluator for a specification's
 /// family (the sweep.family values of jobs::KnownFamilies):
-///  - subsystem, pilot-bridge: jobs::SpectraEvaluator, through the spectra mapping;
-///  - multi-span: jobs::MultiSpanEvaluator (per-deck maxima and unseating margins);
+///  - subsystem, pilot-bridge: spectra::SpectraEvaluator, through the spectra mapping;
+///  - multi-span: spectra::MultiSpanEvaluator (per-deck maxima and unseating margins);
 ///  - model-file: parsed, but refused here (InputError on sweep.family) by this build.
 /// The tests of the sweep machinery bypass this factory with their own evaluator
 /// (tests/jobs/test_evaluator.h), which is no family of the program.

@@ -498,55 +498,6 @@ const ParameterInfo* FindParameter(std::string_view name) {
 
 std::span<const std::string_view> KnownFamilies() { return kFamilies; }
 
-std::vector<std::size_t> SweepSpec::Shape() const {
-  std::vector<std::size_t> shape;
-  for (const Axis& axis : axes) {
-    shape.push_back(axis.Size());
-  }
-  return shape;
-}
-
-std::uint64_t SweepSpec::CellCount() const {
-  // Saturates instead of wrapping, so that a product beyond 2^64 is still refused as too large.
-  std::uint64_t n = 1;
-  for (const Axis& axis : axes) {
-    const std::uint64_t size = axis.Size();
-    if (size != 0 && n > std::numeric_limits<std::uint64_t>::max() / size) {
-      return std::numeric_limits<std::uint64_t>::max();
-    }
-    n *= size;
-  }
-  return n;
-}
-
-std::vector<std::size_t> SweepSpec::AxisIndex(std::uint64_t cell) const {
-  SB_DEMAND(cell < CellCount(), "cell index out of range");
-  std::vector<std::size_t> index(axes.size());
-  for (std::size_t k = axes.size(); k-- > 0;) {
-    index[k] = static_cast<std::size_t>(cell % axes[k].Size());
-    cell /= axes[k].Size();
-  }
-  return index;
-}
-
-const Axis* SweepSpec::FindAxis(std::string_view key) const {
-  for (const Axis& axis : axes) {
-    if (axis.key == key) {
-      return &axis;
-    }
-  }
-  return nullptr;
-}
-
-const FixedValue* SweepSpec::FindFixed(std::string_view key) const {
-  for (const FixedValue& f : fixed) {
-    if (f.key == key) {
-      return &f;
-    }
-  }
-  return nullptr;
-}
-
 std::string SweepSpec::CanonicalText() const {
   std::ostringstream out;
   auto str = [](const std::string& s) {

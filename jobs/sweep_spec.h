@@ -12,10 +12,14 @@
 #include <string_view>
 #include <vector>
 
+#include "spectra/grid.h"
+
 namespace skewbridge::jobs {
 
-/// Whether a parameter takes numbers or text labels (pulse shape, record label).
-enum class ParameterKind { kNumber, kLabel };
+// The grid types belong to spectra (an evaluator reads them); the specification uses them.
+using spectra::Axis;
+using spectra::FixedValue;
+using spectra::ParameterKind;
 
 /// One entry of the table of known axis / fixed names (jobs/sweep_spec.cpp, KnownParameters).
 struct ParameterInfo {
@@ -42,60 +46,14 @@ const ParameterInfo* FindParameter(std::string_view name);
 /// The sweep families known to the specification parser (an evaluator may support fewer).
 std::span<const std::string_view> KnownFamilies();
 
-/// One axis of the grid: numbers (values) or labels, never both.
-struct Axis {
-  std::string key;  ///< A KnownParameters() key.
-  ParameterKind kind = ParameterKind::kNumber;
-  std::vector<double> values;       ///< Coordinates of a numeric axis, in the given order.
-  std::vector<std::string> labels;  ///< Coordinates of a label axis.
-  std::string spacing;              ///< "list", "linspace" or "logspace" (how it was written).
-  /// Number of coordinates (>= 1 after validation).
-  std::size_t Size() const {
-    return kind == ParameterKind::kNumber ? values.size() : labels.size();
-  }
-};
-
-/// A parameter held constant over the sweep.
-struct FixedValue {
-  std::string key;  ///< A KnownParameters() key.
-  ParameterKind kind = ParameterKind::kNumber;
-  double value = 0.0;  ///< For numbers.
-  std::string label;   ///< For labels.
-};
-
-/// A validated sweep specification. Axes are kept in the canonical order of KnownParameters(),
-/// whatever the order in the file, so equal specifications give equal cube layouts.
-struct SweepSpec {
-  std::string source;                     ///< Where it came from (file name), for messages.
-  std::string text;                       ///< The original text, stored verbatim in the cube.
-  std::string name;                       ///< [sweep] name: the HDF5 group name.
-  std::string family;                     ///< One of KnownFamilies().
-  std::string model_file;                 ///< [sweep] model, as written (family "model-file" only).
-  std::filesystem::path model_path;       ///< model_file resolved against the spec's folder.
-  std::string record_set;                 ///< [records] set, as written, or empty.
-  std::filesystem::path record_set_path;  ///< record_set resolved against the spec's folder.
-  /// [records] synthetic = {count, seed}: a suite made in memory (records::SynthesizeSuite)
-  /// instead of a manifest; count 0 when not given.
-  int synthetic_count = 0;
-  std::uint64_t synthetic_seed = 0;  ///< The suite's seed (labels "synth-<seed>-<index>").
-  /// [study] bands: increasing, positive w0x/w_g edges of the frequency-ratio groups; empty
-  /// when not given (the evaluator then uses 0.5, 1, 2) [docs/theory.md §6].
-  std::vector<double> study_bands;
-  std::vector<Axis> axes;
-  std::vector<FixedValue> fixed;
+/// A validated sweep specification: the grid the evaluator reads, plus what the sweep machinery
+/// alone needs. Axes are kept in the canonical order of KnownParameters(), whatever the order in
+/// the file, so equal specifications give equal cube layouts.
+struct SweepSpec : spectra::CellGrid {
+  std::string text;                    ///< The original text, stored verbatim in the cube.
+  std::string name;                    ///< [sweep] name: the HDF5 group name.
   std::vector<std::string> responses;  ///< Requested responses; empty = all of the evaluator's.
 
-  /// The number of coordinates per axis, in axis order.
-  std::vector<std::size_t> Shape() const;
-  /// Product of the axis sizes (1 for a sweep without axes), UINT64_MAX when it overflows.
-  std::uint64_t CellCount() const;
-  /// Axis indices of the cell with row-major linear index `cell` (last axis fastest).
-  /// @pre cell < CellCount()
-  std::vector<std::size_t> AxisIndex(std::uint64_t cell) const;
-  /// The axis with this key, or nullptr.
-  const Axis* FindAxis(std::string_view key) const;
-  /// The fixed value with this key, or nullptr.
-  const FixedValue* FindFixed(std::string_view key) const;
   /// A normalised text of the specification (fixed key order, shortest round-trip numbers,
   /// expanded linspace/logspace): equal for specifications that define the same sweep.
   std::string CanonicalText() const;

@@ -2,6 +2,7 @@
 # Fails when a module includes a header it must not see (docs/architecture.md, "Layers"):
 #   solver/common  <- solver/{lcp,model,contact,dynamics}, records
 #   solver, records <- spectra <- jobs <- jobs/app
+# jobs (but jobs/app and the run output) includes no solver or records header but solver/common.
 # <mpi.h> only in jobs/mpi (and the MPI test main), <hdf5.h> only in jobs/h5.
 set -u
 root=${1:?usage: check_layering.sh SOURCE_ROOT}
@@ -22,6 +23,11 @@ forbid spectra '#include "jobs/' "jobs"
 forbid solver '#include <(mpi|hdf5)\.h>' "MPI or HDF5"
 forbid records '#include <(mpi|hdf5)\.h>' "MPI or HDF5"
 forbid spectra '#include <(mpi|hdf5)\.h>' "MPI or HDF5"
+# The physics of a cell lives in spectra: the sweep machinery (jobs/ but the program and the
+# run-output writer of `skewbridge run`) reaches the solver and records only through it.
+hits=$(grep -rnE --include='*.h' --include='*.cpp' '#include "(solver/(lcp|model|contact|dynamics)|records)/' jobs |
+  grep -vE '^jobs/(app/|run_output\.)')
+[ -z "$hits" ] || { echo "layering: jobs must reach the solver and records through spectra:"; echo "$hits"; status=1; }
 hits=$(grep -rlE '#include <mpi\.h>' jobs --include='*.h' --include='*.cpp' | grep -v '^jobs/mpi/')
 [ -z "$hits" ] || { echo "layering: <mpi.h> outside jobs/mpi: $hits"; status=1; }
 hits=$(grep -rlE '#include <hdf5\.h>' jobs --include='*.h' --include='*.cpp' | grep -v '^jobs/h5/')

@@ -1,13 +1,13 @@
 // The correlation statistics of jobs/correlation.h against hand-computed closed forms.
 
-#include "jobs/correlation.h"
+#include "spectra/correlation.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
 
-namespace skewbridge::jobs {
+namespace skewbridge::spectra {
 namespace {
 
 TEST(Pearson, IsOneForAnIncreasingLineAndMinusOneForADecreasingOne) {
@@ -120,4 +120,4 @@ TEST(Correlation, DegenerateInputsGiveNaNWithAReason) {
 }
 
 }  // namespace
-}  // namespace skewbridge::jobs
+}  // namespace skewbridge::spectra

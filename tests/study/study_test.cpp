@@ -18,9 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "jobs/correlation.h"
 #include "jobs/h5/cube_file.h"
-#include "jobs/spectra_evaluator.h"
 #include "jobs/sweep_runner.h"
 #include "jobs/transport.h"
 #include "records/excitations.h"
@@ -29,12 +27,18 @@
 #include "solver/dynamics/simulate.h"
 #include "solver/model/builders.h"
 #include "solver/model/model.h"
+#include "spectra/correlation.h"
 #include "spectra/point.h"
+#include "spectra/spectra_evaluator.h"
 
 namespace skewbridge::jobs {
 namespace {
 
 namespace fs = std::filesystem;
+using spectra::FitLogLog;
+using spectra::Pearson;
+using spectra::Spearman;
+using spectra::SpectraEvaluator;
 
 // A folder of its own per test process, removed afterwards.
 class TempDir {
@@ -289,7 +293,7 @@ TEST(MakeStudyTables, GroupsTheRecordAxisPerCombinationOfTheOtherAxes) {
   }
   // Record 2 at (mu 0.3, Pi_delta 2) failed.
   const std::uint64_t failed = (2 * 2 + 1) * 2 + 1;
-  data.status[failed] = kSpectraPainleve;
+  data.status[failed] = spectra::kStatusPainleve;
   const StudyTables tables = MakeStudyTables(spec, layout, data);
   EXPECT_EQ(tables.band_edges, (std::vector<double>{0.5, 1.0, 2.0}));
   EXPECT_EQ(tables.records_source, "synthetic");

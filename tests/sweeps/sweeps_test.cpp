@@ -15,7 +15,6 @@
 #include <unistd.h>
 
 #include "jobs/evaluator_factory.h"
-#include "jobs/spectra_evaluator.h"
 #include "jobs/sweep_spec.h"
 #include "records/excitations.h"
 #include "records/synthetic.h"
@@ -24,6 +23,7 @@
 #include "solver/model/model.h"
 #include "solver/model/model_file.h"
 #include "spectra/point.h"
+#include "spectra/spectra_evaluator.h"
 
 namespace skewbridge::jobs {
 namespace {
@@ -144,7 +144,7 @@ mu = 0.0
 delta_over_L = 0.002
 )",
                                         "eta0-threshold.toml", fs::temp_directory_path());
-  const SpectraEvaluator evaluator(spec);
+  const spectra::SpectraEvaluator evaluator(spec);
   const Axis* eta0 = spec.FindAxis("eta0");
   const std::size_t eta0_dim = static_cast<std::size_t>(eta0 - spec.axes.data());
   int rotating_above = 0;
@@ -157,7 +157,7 @@ delta_over_L = 0.002
     const double theta_m = out.responses[Column(evaluator, "theta_m")];
     const double impacts = out.responses[Column(evaluator, "impacts")];
     const spectra::PointParameters p = [&] {
-      const SweepRecord* record = nullptr;
+      const spectra::SweepRecord* record = nullptr;
       return evaluator.Parameters(index, &record);
     }();
     const double rho_m = spectra::ToDimensional(p, spectra::PulseScales(p)).rho_m;
@@ -186,7 +186,7 @@ w0_over_wg = [0.5, 1.0, 2.0, 4.0]
 Pi_delta = 1e6
 )",
                                         "pilot-open.toml", fs::temp_directory_path());
-  const SpectraEvaluator evaluator(spec);
+  const spectra::SpectraEvaluator evaluator(spec);
   for (std::uint64_t cell = 0; cell < spec.CellCount(); ++cell) {
     SCOPED_TRACE("cell " + std::to_string(cell));
     const std::vector<std::size_t> index = spec.AxisIndex(cell);
@@ -194,7 +194,7 @@ Pi_delta = 1e6
     ASSERT_EQ(swept.status, kStatusOk) << swept.status_text;
     EXPECT_EQ(swept.responses[Column(evaluator, "impacts")], 0.0);
 
-    const SweepRecord* record = nullptr;
+    const spectra::SweepRecord* record = nullptr;
     const spectra::PointParameters p = evaluator.Parameters(index, &record);
     const spectra::ExcitationScales scales = spectra::PulseScales(p);
     const spectra::DimensionalPoint point = spectra::ToDimensional(p, scales);

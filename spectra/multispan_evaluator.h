@@ -13,17 +13,11 @@
 #include <utility>
 #include <vector>
 
-#include "jobs/cell.h"
-#include "jobs/sweep_spec.h"
+#include "spectra/cell.h"
+#include "spectra/grid.h"
+#include "spectra/solver_status.h"
 
-namespace skewbridge::jobs {
-
-/// Cell status codes of the multi-span evaluator (0 is ok), as the spectra evaluator's.
-enum MultiSpanStatus : std::int32_t {
-  kMultiSpanPainleve = 1,    ///< the contact problem had no consistent forces
-  kMultiSpanLcpFailure = 2,  ///< an LCP hit its pivot limit or had invalid input
-  kMultiSpanStepLimit = 3,   ///< the run did not reach its end time (step budget, event cascade)
-};
+namespace skewbridge::spectra {
 
 /// Evaluates the cells of a multi-span sweep. Immutable after construction: Evaluate is a pure
 /// function of the cell index.
@@ -32,15 +26,15 @@ class MultiSpanEvaluator final : public CellEvaluator {
   /// Checks every cell's parameters before any work.
   /// @throws InputError naming the key for a parameter this family does not take (record,
   /// L_over_Le with delta_over_L, ...) or an impossible combination (eta0 with a = 0).
-  explicit MultiSpanEvaluator(const SweepSpec& spec);
+  explicit MultiSpanEvaluator(const CellGrid& spec);
 
   std::vector<ResponseInfo> Responses() const override;
   std::vector<std::pair<std::int32_t, std::string>> StatusNames() const override;
   CellOutcome Evaluate(std::span<const std::size_t> axis_index) const override;
 
  private:
-  SweepSpec spec_;
+  CellGrid spec_;
   int max_spans_ = 1;  ///< the largest span count over the cells: the number of deck suffixes
 };
 
-}  // namespace skewbridge::jobs
+}  // namespace skewbridge::spectra

@@ -1,11 +1,11 @@
-#include "jobs/correlation.h"
+#include "spectra/correlation.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
 
-namespace skewbridge::jobs {
+namespace skewbridge::spectra {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -125,4 +125,4 @@ LogLogFit FitLogLog(std::span<const double> x, std::span<const double> y) {
   return fit;
 }
 
-}  // namespace skewbridge::jobs
+}  // namespace skewbridge::spectra

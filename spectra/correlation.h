@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace skewbridge::jobs {
+namespace skewbridge::spectra {
 
 /// A statistic and, when it is NaN, why.
 struct Statistic {
@@ -46,4 +46,4 @@ struct LogLogFit {
 /// For y = c x^p exactly: slope = p, intercept = log10 c, r2 = 1.
 LogLogFit FitLogLog(std::span<const double> x, std::span<const double> y);
 
-}  // namespace skewbridge::jobs
+}  // namespace skewbridge::spectra

@@ -1,4 +1,4 @@
-#include "jobs/spectra_evaluator.h"
+#include "spectra/spectra_evaluator.h"
 
 #include <chrono>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include "solver/common/error.h"
 
-namespace skewbridge::jobs {
+namespace skewbridge::spectra {
 namespace {
 
 constexpr double kStandardGravity_mps2 = 9.80665;
@@ -37,38 +37,9 @@ const std::vector<ResponseInfo>& ResponseTable() {
   return table;
 }
 
-double NumberOf(const SweepSpec& spec, std::span<const std::size_t> index, std::string_view key,
-                double fallback, bool* given = nullptr) {
-  for (std::size_t k = 0; k < spec.axes.size(); ++k) {
-    if (spec.axes[k].key == key) {
-      if (given != nullptr) *given = true;
-      return spec.axes[k].values[index[k]];
-    }
-  }
-  if (const FixedValue* fixed = spec.FindFixed(key)) {
-    if (given != nullptr) *given = true;
-    return fixed->value;
-  }
-  if (given != nullptr) *given = false;
-  return fallback;
-}
-
-std::string LabelOf(const SweepSpec& spec, std::span<const std::size_t> index,
-                    std::string_view key) {
-  for (std::size_t k = 0; k < spec.axes.size(); ++k) {
-    if (spec.axes[k].key == key) return spec.axes[k].labels[index[k]];
-  }
-  if (const FixedValue* fixed = spec.FindFixed(key)) return fixed->label;
-  return {};
-}
-
-bool Mentions(const SweepSpec& spec, std::string_view key) {
-  return spec.FindAxis(key) != nullptr || spec.FindFixed(key) != nullptr;
-}
-
 }  // namespace
 
-SpectraEvaluator::SpectraEvaluator(const SweepSpec& spec) : spec_(spec) {
+SpectraEvaluator::SpectraEvaluator(const CellGrid& spec) : spec_(spec) {
   if (spec.family == "subsystem") {
     family_ = spectra::Family::kSubsystem;
   } else if (spec.family == "pilot-bridge") {
@@ -166,9 +137,7 @@ spectra::PointParameters SpectraEvaluator::Parameters(std::span<const std::size_
 std::vector<ResponseInfo> SpectraEvaluator::Responses() const { return ResponseTable(); }
 
 std::vector<std::pair<std::int32_t, std::string>> SpectraEvaluator::StatusNames() const {
-  return {{kSpectraPainleve, "painleve"},
-          {kSpectraLcpFailure, "lcp-failure"},
-          {kSpectraStepLimit, "step-limit"}};
+  return SolverStatusNames();
 }
 
 CellOutcome SpectraEvaluator::Evaluate(std::span<const std::size_t> axis_index) const {
@@ -191,20 +160,7 @@ CellOutcome SpectraEvaluator::Evaluate(std::span<const std::size_t> axis_index) 
   }
 
   CellOutcome out;
-  switch (r.status) {
-    case dynamics::RunStatus::kOk:
-      out.status = kStatusOk;
-      break;
-    case dynamics::RunStatus::kPainleve:
-      out.status = kSpectraPainleve;
-      break;
-    case dynamics::RunStatus::kLcpFailure:
-      out.status = kSpectraLcpFailure;
-      break;
-    case dynamics::RunStatus::kStepLimit:
-      out.status = kSpectraStepLimit;
-      break;
-  }
+  out.status = CellStatusOf(r.status);
   out.status_text = r.message;
   const bool ok = out.status == kStatusOk;
   auto value = [ok](double v) { return ok ? v : kNaN; };
@@ -232,4 +188,4 @@ CellOutcome SpectraEvaluator::Evaluate(std::span<const std::size_t> axis_index) 
   return out;
 }
 
-}  // namespace skewbridge::jobs
+}  // namespace skewbridge::spectra

@@ -1,4 +1,4 @@
-#include "jobs/multispan_evaluator.h"
+#include "spectra/multispan_evaluator.h"
 
 #include <algorithm>
 #include <chrono>
@@ -12,41 +12,12 @@
 #include "solver/dynamics/time_stepping.h"
 #include "solver/model/multispan.h"
 
-namespace skewbridge::jobs {
+namespace skewbridge::spectra {
 namespace {
 
 constexpr double kStandardGravity_mps2 = 9.80665;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kDeckMass_kg = 1.0e6;  // cancels out of every dimensionless response
-
-double NumberOf(const SweepSpec& spec, std::span<const std::size_t> index, std::string_view key,
-                double fallback, bool* given = nullptr) {
-  for (std::size_t k = 0; k < spec.axes.size(); ++k) {
-    if (spec.axes[k].key == key) {
-      if (given != nullptr) *given = true;
-      return spec.axes[k].values[index[k]];
-    }
-  }
-  if (const FixedValue* fixed = spec.FindFixed(key)) {
-    if (given != nullptr) *given = true;
-    return fixed->value;
-  }
-  if (given != nullptr) *given = false;
-  return fallback;
-}
-
-std::string LabelOf(const SweepSpec& spec, std::span<const std::size_t> index, std::string_view key,
-                    std::string fallback) {
-  for (std::size_t k = 0; k < spec.axes.size(); ++k) {
-    if (spec.axes[k].key == key) return spec.axes[k].labels[index[k]];
-  }
-  if (const FixedValue* fixed = spec.FindFixed(key)) return fixed->label;
-  return fallback;
-}
-
-bool Mentions(const SweepSpec& spec, std::string_view key) {
-  return spec.FindAxis(key) != nullptr || spec.FindFixed(key) != nullptr;
-}
 
 // One cell made dimensional: the bridge, the pulse scales and the run controls.
 struct Cell {
@@ -58,7 +29,7 @@ struct Cell {
   bool time_stepping = false;
 };
 
-Cell MakeCell(const SweepSpec& spec, std::span<const std::size_t> index) {
+Cell MakeCell(const CellGrid& spec, std::span<const std::size_t> index) {
   Cell c;
   const std::string& source = spec.source;
   c.a_g_mps2 = NumberOf(spec, index, "a_g_g", 0.5) * kStandardGravity_mps2;
@@ -120,7 +91,7 @@ Cell MakeCell(const SweepSpec& spec, std::span<const std::size_t> index) {
   return c;
 }
 
-int MaxSpans(const SweepSpec& spec) {
+int MaxSpans(const CellGrid& spec) {
   if (const Axis* axis = spec.FindAxis("spans")) {
     return static_cast<int>(*std::max_element(axis->values.begin(), axis->values.end()));
   }
@@ -132,7 +103,7 @@ int MaxSpans(const SweepSpec& spec) {
 
 }  // namespace
 
-MultiSpanEvaluator::MultiSpanEvaluator(const SweepSpec& spec) : spec_(spec) {
+MultiSpanEvaluator::MultiSpanEvaluator(const CellGrid& spec) : spec_(spec) {
   for (std::string_view key : {"record"}) {
     if (Mentions(spec, key)) {
       throw InputError::AtField(spec.source, key,
@@ -181,9 +152,7 @@ std::vector<ResponseInfo> MultiSpanEvaluator::Responses() const {
 }
 
 std::vector<std::pair<std::int32_t, std::string>> MultiSpanEvaluator::StatusNames() const {
-  return {{kMultiSpanPainleve, "painleve"},
-          {kMultiSpanLcpFailure, "lcp-failure"},
-          {kMultiSpanStepLimit, "step-limit"}};
+  return SolverStatusNames();
 }
 
 CellOutcome MultiSpanEvaluator::Evaluate(std::span<const std::size_t> axis_index) const {
@@ -212,20 +181,7 @@ CellOutcome MultiSpanEvaluator::Evaluate(std::span<const std::size_t> axis_index
   }
 
   CellOutcome out;
-  switch (run.status) {
-    case dynamics::RunStatus::kOk:
-      out.status = kStatusOk;
-      break;
-    case dynamics::RunStatus::kPainleve:
-      out.status = kMultiSpanPainleve;
-      break;
-    case dynamics::RunStatus::kLcpFailure:
-      out.status = kMultiSpanLcpFailure;
-      break;
-    case dynamics::RunStatus::kStepLimit:
-      out.status = kMultiSpanStepLimit;
-      break;
-  }
+  out.status = CellStatusOf(run.status);
   out.status_text = run.message;
   const bool ok = out.status == kStatusOk;
   const bool seat = Mentions(spec_, "seat_over_L");
@@ -261,4 +217,4 @@ CellOutcome MultiSpanEvaluator::Evaluate(std::span<const std::size_t> axis_index
   return out;
 }
 
-}  // namespace skewbridge::jobs
+}  // namespace skewbridge::spectra

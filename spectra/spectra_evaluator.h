@@ -9,21 +9,15 @@
 #include <string>
 #include <vector>
 
-#include "jobs/cell.h"
-#include "jobs/study.h"
-#include "jobs/sweep_spec.h"
 #include "records/excitations.h"
 #include "records/measures.h"
+#include "spectra/cell.h"
+#include "spectra/grid.h"
 #include "spectra/point.h"
+#include "spectra/solver_status.h"
+#include "spectra/study.h"
 
-namespace skewbridge::jobs {
-
-/// Cell status codes of the spectra evaluator (0 is ok).
-enum SpectraStatus : std::int32_t {
-  kSpectraPainleve = 1,    ///< the contact problem had no consistent forces
-  kSpectraLcpFailure = 2,  ///< an LCP hit its pivot limit or had invalid input
-  kSpectraStepLimit = 3,   ///< the run did not reach its end time within the step budget
-};
+namespace skewbridge::spectra {
 
 /// Evaluates the cells of a subsystem or pilot-bridge sweep. Immutable after construction, so
 /// Evaluate is a pure function of the cell index.
@@ -34,7 +28,7 @@ class SpectraEvaluator final : public CellEvaluator {
   /// @throws InputError naming the key for a family it cannot evaluate, a parameter this family
   /// does not take, a record label missing from the set, or an impossible combination (eta0 with
   /// a = 0, delta/L with Pi_delta = 0, ...).
-  explicit SpectraEvaluator(const SweepSpec& spec);
+  explicit SpectraEvaluator(const CellGrid& spec);
 
   std::vector<ResponseInfo> Responses() const override;
   std::vector<std::pair<std::int32_t, std::string>> StatusNames() const override;
@@ -48,10 +42,10 @@ class SpectraEvaluator final : public CellEvaluator {
                                       const SweepRecord** record) const;
 
  private:
-  SweepSpec spec_;
+  CellGrid spec_;
   spectra::Family family_;
   std::vector<SweepRecord> records_;  ///< LoadSweepRecords(spec_), read once per rank
   std::vector<double> band_edges_;    ///< BandEdges(spec_), for the response band
 };
 
-}  // namespace skewbridge::jobs
+}  // namespace skewbridge::spectra

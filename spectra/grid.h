@@ -1,0 +1,87 @@
+#pragma once
+/// @file
+/// The grid of a sweep as the physics sees it: the family, the axes and fixed values of the
+/// parameters, and where the records and the model come from. jobs::SweepSpec adds to it what
+/// only the sweep machinery needs (the file text, the cube name, the stored responses); an
+/// evaluator reads nothing else (docs/architecture.md, "The life of one grid point").
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace skewbridge::spectra {
+
+/// Whether a parameter takes numbers or text labels (pulse shape, record label).
+enum class ParameterKind { kNumber, kLabel };
+
+/// One axis of the grid: numbers (values) or labels, never both.
+struct Axis {
+  std::string key;  ///< A parameter key (jobs::KnownParameters()).
+  ParameterKind kind = ParameterKind::kNumber;
+  std::vector<double> values;       ///< Coordinates of a numeric axis, in the given order.
+  std::vector<std::string> labels;  ///< Coordinates of a label axis.
+  std::string spacing;              ///< "list", "linspace" or "logspace" (how it was written).
+  /// Number of coordinates (>= 1 after validation).
+  std::size_t Size() const {
+    return kind == ParameterKind::kNumber ? values.size() : labels.size();
+  }
+};
+
+/// A parameter held constant over the sweep.
+struct FixedValue {
+  std::string key;  ///< A parameter key (jobs::KnownParameters()).
+  ParameterKind kind = ParameterKind::kNumber;
+  double value = 0.0;  ///< For numbers.
+  std::string label;   ///< For labels.
+};
+
+/// The validated grid of a sweep. Axes are in the canonical order of the parameter table,
+/// whatever the order in the file, so equal grids give equal cube layouts.
+struct CellGrid {
+  std::string source;                     ///< Where it came from (file name), for messages.
+  std::string family;                     ///< "subsystem", "pilot-bridge", "multispan", ...
+  std::string model_file;                 ///< [sweep] model, as written (family "model-file" only).
+  std::filesystem::path model_path;       ///< model_file resolved against the spec's folder.
+  std::string record_set;                 ///< [records] set, as written, or empty.
+  std::filesystem::path record_set_path;  ///< record_set resolved against the spec's folder.
+  /// [records] synthetic = {count, seed}: a suite made in memory (records::SynthesizeSuite)
+  /// instead of a manifest; count 0 when not given.
+  int synthetic_count = 0;
+  std::uint64_t synthetic_seed = 0;  ///< The suite's seed (labels "synth-<seed>-<index>").
+  /// [study] bands: increasing, positive w0x/w_g edges of the frequency-ratio groups; empty
+  /// when not given (the evaluator then uses 0.5, 1, 2) [docs/theory.md §6].
+  std::vector<double> study_bands;
+  std::vector<Axis> axes;
+  std::vector<FixedValue> fixed;
+
+  /// The number of coordinates per axis, in axis order.
+  std::vector<std::size_t> Shape() const;
+  /// Product of the axis sizes (1 for a sweep without axes), UINT64_MAX when it overflows.
+  std::uint64_t CellCount() const;
+  /// Axis indices of the cell with row-major linear index `cell` (last axis fastest).
+  /// @pre cell < CellCount()
+  std::vector<std::size_t> AxisIndex(std::uint64_t cell) const;
+  /// The axis with this key, or nullptr.
+  const Axis* FindAxis(std::string_view key) const;
+  /// The fixed value with this key, or nullptr.
+  const FixedValue* FindFixed(std::string_view key) const;
+};
+
+/// The value of numeric parameter `key` in the cell with axis indices `index` (its axis
+/// coordinate, else its fixed value, else `fallback`); `given` (if not null) says whether the
+/// grid mentions the key.
+double NumberOf(const CellGrid& grid, std::span<const std::size_t> index, std::string_view key,
+                double fallback, bool* given = nullptr);
+
+/// The label of parameter `key` in the cell (axis, fixed value or `fallback`).
+std::string LabelOf(const CellGrid& grid, std::span<const std::size_t> index, std::string_view key,
+                    std::string fallback = {});
+
+/// Whether the grid names `key` as an axis or a fixed value.
+bool Mentions(const CellGrid& grid, std::string_view key);
+
+}  // namespace skewbridge::spectra

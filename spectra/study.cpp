@@ -1,0 +1,186 @@
+#include "spectra/study.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "records/record_set.h"
+#include "records/synthetic.h"
+#include "solver/common/error.h"
+#include "spectra/correlation.h"
+
+namespace skewbridge::spectra {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::vector<std::string> WantedLabels(const CellGrid& spec) {
+  if (const Axis* axis = spec.FindAxis("record")) return axis->labels;
+  if (const FixedValue* fixed = spec.FindFixed("record")) return {fixed->label};
+  return {};
+}
+
+void AddReason(std::string& reason, std::string_view what, const std::string& why) {
+  if (why.empty()) return;
+  reason += (reason.empty() ? "" : "; ") + std::string(what) + ": " + why;
+}
+
+}  // namespace
+
+std::vector<SweepRecord> LoadSweepRecords(const CellGrid& spec) {
+  const std::vector<std::string> wanted = WantedLabels(spec);
+  if (wanted.empty()) return {};
+  std::vector<SweepRecord> out;
+  if (spec.synthetic_count > 0) {
+    records::SynthOptions options;
+    options.count = spec.synthetic_count;
+    options.seed = spec.synthetic_seed;
+    records::ValidateSynthOptions(options);
+    // Only the wanted indices are made: each record depends on (options, index) alone.
+    for (const std::string& label : wanted) {
+      int index = -1;
+      const std::string prefix = "synth-" + std::to_string(options.seed) + "-";
+      if (label.rfind(prefix, 0) == 0 && label.size() > prefix.size() &&
+          label.size() - prefix.size() <= 9 &&
+          std::all_of(label.begin() + static_cast<std::ptrdiff_t>(prefix.size()), label.end(),
+                      [](char c) { return c >= '0' && c <= '9'; })) {
+        index = std::stoi(label.substr(prefix.size()));
+      }
+      records::GroundMotion made;
+      if (index >= 0 && index < options.count) made = records::SynthesizeRecord(options, index);
+      if (index < 0 || index >= options.count || made.station != label) {
+        throw InputError::AtField(spec.source, "record",
+                                  "label '" + label + "' is not in the synthetic suite (count " +
+                                      std::to_string(options.count) + ", seed " +
+                                      std::to_string(options.seed) + ": labels " + prefix +
+                                      "000 ...)");
+      }
+      SweepRecord record;
+      record.label = label;
+      // SynthesizeRecord already returns its .AT2 text read back, i.e. the samples
+      // `records synth` writes; a second trip through the text would give the same bytes
+      // (tests/study: LoadSweepRecords.SyntheticRecordsAreTheAt2TextReadBack).
+      record.motion = std::move(made);
+      record.motion.file = label;
+      record.measures = records::ComputeMeasures(record.motion);
+      out.push_back(std::move(record));
+    }
+    return out;
+  }
+  if (spec.record_set_path.empty()) {
+    throw InputError::AtField(spec.source, "records.set",
+                              "missing: a record axis needs a record set");
+  }
+  const records::RecordSet set = records::LoadRecordSet(spec.record_set_path);
+  const std::filesystem::path base = set.manifest.parent_path().lexically_normal();
+  for (const std::string& label : wanted) {
+    const records::RecordEntry* found = nullptr;
+    for (const records::RecordEntry& entry : set.records) {
+      if (records::RecordLabel(entry) == label) found = &entry;
+    }
+    if (found == nullptr) {
+      throw InputError::AtField(
+          spec.source, "record",
+          "label '" + label + "' is not in the record set " + spec.record_set_path.string());
+    }
+    SweepRecord record;
+    record.label = label;
+    record.file = found->file.lexically_normal().lexically_relative(base).generic_string();
+    record.scale = found->scale;
+    record.motion = records::LoadRecord(*found);
+    record.measures = records::ComputeMeasures(record.motion);
+    out.push_back(std::move(record));
+  }
+  return out;
+}
+
+std::vector<double> BandEdges(const CellGrid& spec) {
+  if (!spec.study_bands.empty()) return spec.study_bands;
+  return {kDefaultBandEdges.begin(), kDefaultBandEdges.end()};
+}
+
+double BandOf(double ratio, std::span<const double> edges) {
+  if (std::isnan(ratio)) return kNaN;
+  return static_cast<double>(std::upper_bound(edges.begin(), edges.end(), ratio) - edges.begin());
+}
+
+CorrelationTable CorrelateOverRecords(const CellGrid& grid, std::span<const double> theta,
+                                      std::span<const double> le, std::span<const double> band,
+                                      std::span<const std::uint8_t> usable,
+                                      std::size_t band_count) {
+  CorrelationTable table;
+  std::size_t record_dim = 0;
+  for (std::size_t k = 0; k < grid.axes.size(); ++k) {
+    if (grid.axes[k].key == "record") {
+      record_dim = k;
+    } else {
+      table.axis_order.push_back(grid.axes[k].key);
+      table.shape.push_back(grid.axes[k].Size());
+    }
+  }
+  std::size_t combinations = 1;
+  for (std::size_t n : table.shape) combinations *= n;
+  table.bands = band.empty() ? 0 : band_count;
+
+  // The cells of each combination, in record order.
+  std::vector<std::vector<std::uint64_t>> members(combinations);
+  for (std::uint64_t cell = 0; cell < usable.size(); ++cell) {
+    const std::vector<std::size_t> index = grid.AxisIndex(cell);
+    std::size_t g = 0;
+    for (std::size_t k = 0; k < index.size(); ++k) {
+      if (k != record_dim) g = g * grid.axes[k].Size() + index[k];
+    }
+    members[g].push_back(cell);
+  }
+
+  for (std::size_t g = 0; g < combinations; ++g) {
+    std::vector<double> x;
+    std::vector<double> y;
+    std::vector<double> cell_band;
+    for (std::uint64_t cell : members[g]) {
+      if (usable[cell] == 0) continue;
+      if (!std::isfinite(theta[cell]) || !std::isfinite(le[cell])) continue;
+      x.push_back(le[cell]);
+      y.push_back(theta[cell]);
+      cell_band.push_back(band.empty() ? kNaN : band[cell]);
+    }
+    const Statistic pearson = Pearson(x, y);
+    const Statistic spearman = Spearman(x, y);
+    const LogLogFit fit = FitLogLog(x, y);
+    table.n.push_back(static_cast<std::int64_t>(x.size()));
+    table.pearson.push_back(pearson.value);
+    table.spearman.push_back(spearman.value);
+    table.loglog_n.push_back(static_cast<std::int64_t>(fit.n));
+    table.loglog_slope.push_back(fit.slope.value);
+    table.loglog_intercept.push_back(fit.intercept.value);
+    table.loglog_r2.push_back(fit.r2.value);
+    std::string reason;
+    AddReason(reason, "pearson", pearson.reason);
+    AddReason(reason, "spearman", spearman.reason);
+    AddReason(reason, "loglog", fit.slope.reason.empty() ? fit.r2.reason : fit.slope.reason);
+    table.reason.push_back(reason);
+
+    for (std::size_t b = 0; b < table.bands; ++b) {
+      std::vector<double> bx;
+      std::vector<double> by;
+      for (std::size_t i = 0; i < x.size(); ++i) {
+        if (cell_band[i] == static_cast<double>(b)) {
+          bx.push_back(x[i]);
+          by.push_back(y[i]);
+        }
+      }
+      const auto count = static_cast<std::int64_t>(bx.size());
+      table.band_n.push_back(count);
+      const bool enough = count >= kMinBandRecords;
+      const LogLogFit band_fit = FitLogLog(bx, by);
+      table.band_pearson.push_back(enough ? Pearson(bx, by).value : kNaN);
+      table.band_spearman.push_back(enough ? Spearman(bx, by).value : kNaN);
+      table.band_loglog_slope.push_back(enough ? band_fit.slope.value : kNaN);
+      table.band_loglog_intercept.push_back(enough ? band_fit.intercept.value : kNaN);
+      table.band_loglog_r2.push_back(enough ? band_fit.r2.value : kNaN);
+    }
+  }
+  return table;
+}
+
+}  // namespace skewbridge::spectra
