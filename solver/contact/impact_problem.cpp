@@ -20,17 +20,7 @@ ImpactProblem::ImpactProblem(const model::Model& model, lcp::LemkeOptions option
   eps_.setZero(nc);
   A_.setZero(3 * nc, 3 * nc);
   b_.setZero(3 * nc);
-  solutions_.resize(static_cast<std::size_t>(3 * nc + 1));
-  for (std::size_t n_lcp = 0; n_lcp < solutions_.size(); ++n_lcp) {
-    solutions_[n_lcp].z.setZero(static_cast<Eigen::Index>(n_lcp));
-    solutions_[n_lcp].w.setZero(static_cast<Eigen::Index>(n_lcp));
-    solutions_[n_lcp].message.reserve(128);
-  }
-  // A trivial solve of the largest size sizes the solver's workspace now, not in the time loop.
-  if (nc > 0) {
-    solver_.Solve(Eigen::MatrixXd::Identity(3 * nc, 3 * nc), Eigen::VectorXd::Ones(3 * nc),
-                  solutions_.back());
-  }
+  solver_.Prepare(3 * nc, solutions_);
 }
 
 ImpactResult ImpactProblem::MakeResult() const {

@@ -366,4 +366,18 @@ LcpStatus LemkeSolver::Solve(const Eigen::Ref<const Eigen::MatrixXd>& M,
   return status;
 }
 
+void LemkeSolver::Prepare(Eigen::Index max_n, std::vector<LcpSolution>& solutions) {
+  solutions.resize(static_cast<std::size_t>(max_n + 1));
+  for (std::size_t n = 0; n < solutions.size(); ++n) {
+    solutions[n].z.setZero(static_cast<Eigen::Index>(n));
+    solutions[n].w.setZero(static_cast<Eigen::Index>(n));
+    solutions[n].message.reserve(128);
+  }
+  // A trivial solve of the largest size sizes every buffer a solve touches, the pivoting's
+  // included.
+  if (max_n > 0) {
+    Solve(Eigen::MatrixXd::Identity(max_n, max_n), Eigen::VectorXd::Ones(max_n), solutions.back());
+  }
+}
+
 }  // namespace skewbridge::lcp

@@ -15,6 +15,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <vector>
 
 namespace skewbridge::lcp {
 
@@ -80,6 +81,11 @@ class LemkeSolver {
   /// @return solution.status
   LcpStatus Solve(const Eigen::Ref<const Eigen::MatrixXd>& M,
                   const Eigen::Ref<const Eigen::VectorXd>& q, LcpSolution& solution);
+
+  /// Sizes the workspace for problems up to size max_n and makes `solutions` one solution per
+  /// size 0..max_n, so that solves of those sizes into solutions[n] never allocate. The contact
+  /// and impact problems call it once per model, not in the time loop.
+  void Prepare(Eigen::Index max_n, std::vector<LcpSolution>& solutions);
 
   /// The options the solver was built with.
   const LemkeOptions& options() const { return options_; }
