@@ -4,12 +4,19 @@
 
 #include <CLI/CLI.hpp>
 
+#include "solver/model/model.h"
+
 namespace skewbridge::app {
 
 /// `skewbridge version`: prints the version and source revision.
 void AddVersionCommand(CLI::App& app);
 /// `skewbridge run MODEL.toml [--csv run.csv]`: one event-driven run and its summary.
 void AddRunCommand(CLI::App& app);
+/// `skewbridge modes MODEL.toml`: natural frequencies, mode shapes, centre of rigidity and
+/// principal stiffness axes of a model file.
+void AddModesCommand(CLI::App& app);
+/// Prints the natural frequencies w_k (rad/s), f_k (Hz) and periods of K phi = w^2 M phi.
+void PrintNaturalFrequencies(const model::Model& model);
 /// `skewbridge sweep SPEC.toml --out FILE.h5`: runs a sweep (MPI inside), jobs/sweep_command.h.
 void AddSweepCommand(CLI::App& app);
 /// `skewbridge inspect FILE.h5`: prints the sweeps, axes, responses and completion of a cube.

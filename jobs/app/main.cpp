@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
       "Print the version and source revision and exit");
   skewbridge::app::AddVersionCommand(app);
   skewbridge::app::AddRunCommand(app);
+  skewbridge::app::AddModesCommand(app);
   skewbridge::app::AddSweepCommand(app);
   skewbridge::app::AddInspectCommand(app);
   skewbridge::app::AddRecordsCommand(app);

@@ -15,6 +15,58 @@ using detail::CheckRange;
 using detail::Fail;
 using detail::Where;
 
+namespace {
+
+void CheckSpring(const PlanSpring& k, const std::string& prefix, bool positive,
+                 const Where& where) {
+  if (positive) {
+    CheckPositive(k.k_strong_Npm, prefix + ".k_strong_Npm", where);
+    CheckPositive(k.k_weak_Npm, prefix + ".k_weak_Npm", where);
+  } else {
+    CheckNonNegative(k.k_strong_Npm, prefix + ".k_strong_Npm", where);
+    CheckNonNegative(k.k_weak_Npm, prefix + ".k_weak_Npm", where);
+  }
+  detail::CheckFinite(k.strong_axis_rad, prefix + ".strong_axis_deg", where);
+}
+
+// The elements a deck stands on: stiffnesses in range, every bearing on an existing pier (or
+// the ground), every pier carrying a bearing (else it holds nothing up).
+void CheckElements(const std::vector<BearingSpec>& bearings, const std::vector<PierSpec>& piers,
+                   const Where& where) {
+  if (bearings.empty()) {
+    Fail(where, "substructure.bearing", "at least one [[substructure.bearing]] is required");
+  }
+  std::vector<bool> carries(piers.size(), false);
+  for (std::size_t i = 0; i < bearings.size(); ++i) {
+    const std::string name = "substructure.bearing[" + std::to_string(i) + "]";
+    const BearingSpec& b = bearings[i];
+    detail::CheckFinite(b.position_m.x(), name + ".x_m", where);
+    detail::CheckFinite(b.position_m.y(), name + ".y_m", where);
+    CheckSpring(b.spring, name, false, where);
+    if (b.pier >= static_cast<int>(piers.size()) || b.pier < -1) {
+      Fail(where, name + ".pier",
+           "must be a pier index in [0, " + std::to_string(piers.size()) + ") (got " +
+               std::to_string(b.pier) + ")");
+    }
+    if (b.pier >= 0) {
+      carries[static_cast<std::size_t>(b.pier)] = true;
+    }
+  }
+  for (std::size_t p = 0; p < piers.size(); ++p) {
+    const std::string name = "substructure.pier[" + std::to_string(p) + "]";
+    detail::CheckFinite(piers[p].position_m.x(), name + ".x_m", where);
+    detail::CheckFinite(piers[p].position_m.y(), name + ".y_m", where);
+    CheckSpring(piers[p].spring, name, true, where);
+    if (!carries[p]) {
+      Fail(where, name,
+           "no bearing sits on it (give a bearing with pier = " + std::to_string(p) +
+               ", or remove the pier)");
+    }
+  }
+}
+
+}  // namespace
+
 Eigen::Matrix3d UncoupledStiffness(const Body& body, double w0x_radps, double w0y_radps,
                                    double W0_radps) {
   Eigen::Matrix3d K = Eigen::Matrix3d::Zero();
@@ -75,6 +127,25 @@ Modes ComputeModes(const Eigen::Ref<const Eigen::MatrixXd>& M,
   modes.phi = eig.eigenvectors();
   modes.eigenvalues = eig.eigenvalues();
   return modes;
+}
+
+Eigen::MatrixXd DisplayModeShapes(const Modes& modes, const std::vector<Body>& bodies) {
+  SB_DEMAND(modes.phi.rows() == 3 * static_cast<Eigen::Index>(bodies.size()),
+            "mode shapes and bodies disagree in size");
+  Eigen::MatrixXd shapes = modes.phi;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const double rho_m = std::sqrt(bodies[i].inertia_kgm2 / bodies[i].mass_kg);
+    shapes.row(3 * static_cast<Eigen::Index>(i) + 2) *= rho_m;
+  }
+  for (Eigen::Index k = 0; k < shapes.cols(); ++k) {
+    Eigen::Index largest = 0;
+    shapes.col(k).cwiseAbs().maxCoeff(&largest);
+    const double scale = shapes(largest, k);
+    if (scale != 0.0) {
+      shapes.col(k) /= scale;
+    }
+  }
+  return shapes;
 }
 
 Eigen::MatrixXd ClassicalDamping(const Eigen::Ref<const Eigen::MatrixXd>& M,
@@ -145,6 +216,10 @@ Model BuildDeckModel(const DeckSpec& spec, const std::string& source) {
       detail::CheckFinite(spec.centre_of_rigidity_m.y(), "substructure.e_y", where);
       K = PrincipalAxesStiffness(body, spec.w1_radps, spec.w2_radps, spec.w_theta_radps,
                                  spec.axis_rad, spec.centre_of_rigidity_m);
+      break;
+    case DeckSpec::StiffnessKind::kElements:
+      CheckElements(spec.bearings, spec.piers, where);
+      K = ElementsStiffness(spec.bearings, spec.piers);
       break;
     case DeckSpec::StiffnessKind::kMatrix:
     default:

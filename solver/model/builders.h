@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "solver/model/model.h"
+#include "solver/model/substructure.h"
 
 namespace skewbridge::model {
 
@@ -35,6 +36,12 @@ Eigen::MatrixXd GroundInfluence(int n_bodies);
 /// @pre M symmetric positive definite, K symmetric positive semi-definite.
 Modes ComputeModes(const Eigen::Ref<const Eigen::MatrixXd>& M,
                    const Eigen::Ref<const Eigen::MatrixXd>& K);
+
+/// Mode shapes for display: column k is phi_k with each body's rotation times its radius of
+/// gyration (x_i, y_i, rho_i theta_i, all in m), scaled so that its largest entry in magnitude
+/// is +1; the components are then comparable across DOFs and independent of the
+/// normalisation of phi.
+Eigen::MatrixXd DisplayModeShapes(const Modes& modes, const std::vector<Body>& bodies);
 
 /// Classical damping with ratio xi in every mode: C = M Phi diag(2 xi w_k) Phi^T M
 /// [docs/theory.md §2, damping].
@@ -73,7 +80,7 @@ struct DeckSpec {
   DeckGeometry geometry;               ///< deck.L, deck.W (or eta0), deck.skew_deg
 
   // [substructure]
-  enum class StiffnessKind { kUncoupled, kPrincipal, kMatrix };
+  enum class StiffnessKind { kUncoupled, kPrincipal, kMatrix, kElements };
   StiffnessKind stiffness = StiffnessKind::kUncoupled;
   double w0x_radps = 0.0;      ///< uncoupled: substructure.w0x
   double w0y_radps = 0.0;      ///< uncoupled: substructure.w0y
@@ -84,8 +91,10 @@ struct DeckSpec {
   double axis_rad = 0.0;       ///< principal: substructure.axis_deg
   Eigen::Vector2d centre_of_rigidity_m = Eigen::Vector2d::Zero();  ///< substructure.e_x, e_y
   Eigen::Matrix3d K = Eigen::Matrix3d::Zero();                     ///< matrix: substructure.K
-  std::optional<Eigen::Matrix3d> C;  ///< substructure.C; empty = classical from xi
-  double xi = 0.05;                  ///< substructure.xi
+  std::vector<BearingSpec> bearings;  ///< elements: [[substructure.bearing]]
+  std::vector<PierSpec> piers;        ///< elements: [[substructure.pier]]
+  std::optional<Eigen::Matrix3d> C;   ///< substructure.C; empty = classical from xi
+  double xi = 0.05;                   ///< substructure.xi
 
   // [abutments]
   AbutmentSet abutments = AbutmentSet::kPlusX;  ///< abutments.set

@@ -206,6 +206,31 @@ Eigen::Matrix3d Matrix3(Section& s, std::string_view key) {
   return A;
 }
 
+// The tables of a TOML array of tables ([[name]]), each with its line.
+std::vector<const toml::table*> ArrayOfTables(Section& top, std::string_view name) {
+  std::vector<const toml::table*> tables;
+  const toml::node* node = top.Get(name);
+  if (node == nullptr) {
+    return tables;
+  }
+  const toml::array* array = node->as_array();
+  if (array == nullptr) {
+    Fail(top.At(name), top.Field(name), "must be an array of tables [[" + std::string(name) + "]]");
+  }
+  for (const toml::node& entry : *array) {
+    if (!entry.is_table()) {
+      Fail(Where{top.source(), LineOf(entry)}, top.Field(name),
+           "must be an array of tables [[" + std::string(name) + "]]");
+    }
+    tables.push_back(entry.as_table());
+  }
+  return tables;
+}
+
+std::string Indexed(std::string_view name, std::size_t i) {
+  return std::string(name) + "[" + std::to_string(i) + "]";
+}
+
 void ReadDeck(Section& s, DeckSpec& spec) {
   const double m = s.RequiredNumber("m", "deck mass, kg");
   CheckPositive(m, s.Field("m"), s.At("m"));
@@ -248,9 +273,94 @@ void ReadDeck(Section& s, DeckSpec& spec) {
   s.Finish("m, I_m, L, W, eta0, skew_deg");
 }
 
+// A plan spring's keys: k_strong_Npm and k_weak_Npm with strong_axis_deg, or k_Npm for the
+// same stiffness along every axis.
+PlanSpring ReadPlanSpring(Section& s, bool positive) {
+  PlanSpring k;
+  const auto check = [&](double value, std::string_view key) {
+    if (positive) {
+      CheckPositive(value, s.Field(key), s.At(key));
+    } else {
+      CheckNonNegative(value, s.Field(key), s.At(key));
+    }
+  };
+  if (const std::optional<double> k_all = s.Number("k_Npm")) {
+    s.Reject("k_strong_Npm", "give either k_Npm or k_strong_Npm and k_weak_Npm, not both");
+    s.Reject("k_weak_Npm", "give either k_Npm or k_strong_Npm and k_weak_Npm, not both");
+    s.Reject("strong_axis_deg", "has no meaning with k_Npm (the same stiffness on every axis)");
+    check(*k_all, "k_Npm");
+    k.k_strong_Npm = *k_all;
+    k.k_weak_Npm = *k_all;
+    return k;
+  }
+  k.k_strong_Npm = s.RequiredNumber("k_strong_Npm", "N/m along the strong axis, or k_Npm");
+  check(k.k_strong_Npm, "k_strong_Npm");
+  k.k_weak_Npm = s.RequiredNumber("k_weak_Npm", "N/m along the weak axis, or k_Npm");
+  check(k.k_weak_Npm, "k_weak_Npm");
+  k.strong_axis_rad = s.Number("strong_axis_deg").value_or(0.0) * kDegToRad;
+  return k;
+}
+
+// kind = "elements": [[substructure.pier]] (position, stiffness > 0) and
+// [[substructure.bearing]] (on pier i, or on the ground without `pier`; stiffness >= 0).
+void ReadElements(Section& s, DeckSpec& spec) {
+  spec.piers.clear();
+  spec.bearings.clear();
+  const std::vector<const toml::table*> piers = ArrayOfTables(s, "pier");
+  for (std::size_t i = 0; i < piers.size(); ++i) {
+    Section p(*piers[i], Indexed(s.Field("pier"), i), s.source());
+    PierSpec pier;
+    pier.position_m = {p.RequiredNumber("x_m", "pier axis x in the deck frame, m"),
+                       p.RequiredNumber("y_m", "pier axis y in the deck frame, m")};
+    pier.spring = ReadPlanSpring(p, true);
+    p.Finish("x_m, y_m, k_Npm, k_strong_Npm, k_weak_Npm, strong_axis_deg");
+    spec.piers.push_back(pier);
+  }
+  const std::vector<const toml::table*> bearings = ArrayOfTables(s, "bearing");
+  if (bearings.empty()) {
+    Fail(Where{s.source(), s.TableLine()}, s.Field("bearing"),
+         "at least one [[substructure.bearing]] is required with kind = \"elements\"");
+  }
+  std::vector<bool> carries(piers.size(), false);
+  for (std::size_t i = 0; i < bearings.size(); ++i) {
+    Section b(*bearings[i], Indexed(s.Field("bearing"), i), s.source());
+    BearingSpec bearing;
+    if (const std::optional<double> pier = b.Number("pier")) {
+      if (!(*pier >= 0.0) || *pier != std::floor(*pier) ||
+          *pier >= static_cast<double>(piers.size())) {
+        Fail(b.At("pier"), b.Field("pier"),
+             "must be a pier index, a whole number in [0, " + std::to_string(piers.size()) +
+                 ") (got " + detail::Show(*pier) + "); omit it for a bearing on the ground");
+      }
+      bearing.pier = static_cast<int>(*pier);
+      carries[static_cast<std::size_t>(bearing.pier)] = true;
+    }
+    // On a pier the bearing sits on its axis unless placed; on the ground it must be placed.
+    if (bearing.pier >= 0 && !b.Has("x_m") && !b.Has("y_m")) {
+      bearing.position_m = spec.piers[static_cast<std::size_t>(bearing.pier)].position_m;
+    } else {
+      const char* what = bearing.pier >= 0 ? "bearing x in the deck frame, m"
+                                           : "bearing x in the deck frame, m (a bearing on the "
+                                             "ground has no pier to take it from)";
+      bearing.position_m = {b.RequiredNumber("x_m", what),
+                            b.RequiredNumber("y_m", "bearing y in the deck frame, m")};
+    }
+    bearing.spring = ReadPlanSpring(b, false);
+    b.Finish("pier, x_m, y_m, k_Npm, k_strong_Npm, k_weak_Npm, strong_axis_deg");
+    spec.bearings.push_back(bearing);
+  }
+  for (std::size_t i = 0; i < piers.size(); ++i) {
+    if (!carries[i]) {
+      Fail(Where{s.source(), LineOf(*piers[i])}, Indexed(s.Field("pier"), i),
+           "no bearing sits on it (give a [[substructure.bearing]] with pier = " +
+               std::to_string(i) + ", or remove the pier)");
+    }
+  }
+}
+
 void ReadSubstructure(Section& s, DeckSpec& spec) {
   const std::string kind =
-      s.String("kind", {"uncoupled", "principal", "matrix"}).value_or("uncoupled");
+      s.String("kind", {"uncoupled", "principal", "matrix", "elements"}).value_or("uncoupled");
   if (kind == "uncoupled") {
     spec.stiffness = DeckSpec::StiffnessKind::kUncoupled;
     const std::optional<double> w0 = s.Number("w0");
@@ -279,6 +389,9 @@ void ReadSubstructure(Section& s, DeckSpec& spec) {
     CheckNonNegative(spec.w_theta_radps, s.Field("w_theta"), s.At("w_theta"));
     spec.axis_rad = s.Number("axis_deg").value_or(0.0) * kDegToRad;
     spec.centre_of_rigidity_m = {s.Number("e_x").value_or(0.0), s.Number("e_y").value_or(0.0)};
+  } else if (kind == "elements") {
+    spec.stiffness = DeckSpec::StiffnessKind::kElements;
+    ReadElements(s, spec);
   } else {
     spec.stiffness = DeckSpec::StiffnessKind::kMatrix;
     if (!s.Has("K")) {
@@ -298,27 +411,44 @@ void ReadSubstructure(Section& s, DeckSpec& spec) {
     s.Finish("kind, w0, w0x, w0y, W0, xi, C (with kind = \"uncoupled\")");
   } else if (kind == "principal") {
     s.Finish("kind, w1, w2, w_theta, axis_deg, e_x, e_y, xi, C (with kind = \"principal\")");
+  } else if (kind == "elements") {
+    s.Finish("kind, bearing, pier, xi, C (with kind = \"elements\")");
   } else {
     s.Finish("kind, K, xi, C (with kind = \"matrix\")");
   }
 }
 
-void ReadAbutments(Section& s, DeckSpec& spec) {
-  const std::optional<std::string> set = s.String("set", {"+x", "both"});
-  if (!set) {
+// What an [abutments] section says, in either form of the file.
+struct AbutmentParameters {
+  AbutmentSet set = AbutmentSet::kBoth;
+  double gap_plus_m = 0.0;
+  double gap_minus_m = 0.0;
+  double restitution = 0.5;
+  double friction = 0.0;
+  std::vector<ContactOverride> overrides;
+};
+
+// The one [abutments] reader. A single deck names its set ("+x" or "both") and may override
+// contacts P1..P4; a row of [[deck]] tables always has both abutments (set may say "both") and
+// no per-contact table (its contacts are named by deck and corner).
+AbutmentParameters ReadAbutments(Section& s, bool multi_deck) {
+  AbutmentParameters a;
+  const std::optional<std::string> set =
+      multi_deck ? s.String("set", {"both"}) : s.String("set", {"+x", "both"});
+  if (!set && !multi_deck) {
     s.Missing("set", "\"+x\" or \"both\"");
   }
-  spec.abutments = *set == "both" ? AbutmentSet::kBoth : AbutmentSet::kPlusX;
+  a.set = set.value_or("both") == "both" ? AbutmentSet::kBoth : AbutmentSet::kPlusX;
   if (!s.Has("gap_m")) {
     s.Missing("gap_m", "joint gap along x, m, or a table { \"+x\" = ..., \"-x\" = ... }");
   }
   if (const toml::node* gap_node = s.Get("gap_m"); gap_node->is_table()) {
     Section g(*gap_node->as_table(), s.Field("gap_m"), s.source());
-    spec.gap_plus_m = g.RequiredNumber("+x", "gap of the +x abutment, m");
-    CheckNonNegative(spec.gap_plus_m, g.Field("+x"), g.At("+x"));
-    if (spec.abutments == AbutmentSet::kBoth) {
-      spec.gap_minus_m = g.RequiredNumber("-x", "gap of the -x abutment, m");
-      CheckNonNegative(spec.gap_minus_m, g.Field("-x"), g.At("-x"));
+    a.gap_plus_m = g.RequiredNumber("+x", "gap of the +x abutment, m");
+    CheckNonNegative(a.gap_plus_m, g.Field("+x"), g.At("+x"));
+    if (a.set == AbutmentSet::kBoth) {
+      a.gap_minus_m = g.RequiredNumber("-x", "gap of the -x abutment, m");
+      CheckNonNegative(a.gap_minus_m, g.Field("-x"), g.At("-x"));
       g.Finish("\"+x\", \"-x\"");
     } else {
       g.Finish("\"+x\" (with set = \"+x\")");
@@ -326,17 +456,20 @@ void ReadAbutments(Section& s, DeckSpec& spec) {
   } else {
     const double gap = s.RequiredNumber("gap_m", "");
     CheckNonNegative(gap, s.Field("gap_m"), s.At("gap_m"));
-    spec.gap_plus_m = gap;
-    spec.gap_minus_m = gap;
+    a.gap_plus_m = gap;
+    a.gap_minus_m = gap;
   }
-  spec.restitution = s.Number("eps_N").value_or(0.5);
-  CheckRange(spec.restitution, 0.0, 1.0, false, s.Field("eps_N"), s.At("eps_N"));
-  spec.friction = s.Number("mu").value_or(0.0);
-  CheckNonNegative(spec.friction, s.Field("mu"), s.At("mu"));
-  spec.overrides.clear();
+  a.restitution = s.Number("eps_N").value_or(0.5);
+  CheckRange(a.restitution, 0.0, 1.0, false, s.Field("eps_N"), s.At("eps_N"));
+  a.friction = s.Number("mu").value_or(0.0);
+  CheckNonNegative(a.friction, s.Field("mu"), s.At("mu"));
+  if (multi_deck) {
+    s.Finish("set, gap_m, eps_N, mu (with [[deck]] tables)");
+    return a;
+  }
   if (const toml::table* contacts = s.Table("contacts")) {
     Section cs(*contacts, s.Field("contacts"), s.source());
-    const bool both = spec.abutments == AbutmentSet::kBoth;
+    const bool both = a.set == AbutmentSet::kBoth;
     for (std::string_view name : {"P1", "P2", "P3", "P4"}) {
       if (!both && (name == "P3" || name == "P4")) {
         continue;
@@ -354,12 +487,13 @@ void ReadAbutments(Section& s, DeckSpec& spec) {
           CheckNonNegative(*o.friction, c.Field("mu"), c.At("mu"));
         }
         c.Finish("eps_N, mu");
-        spec.overrides.push_back(o);
+        a.overrides.push_back(o);
       }
     }
     cs.Finish(both ? "P1, P2, P3, P4" : "P1, P2 (with set = \"+x\")");
   }
   s.Finish("set, gap_m, eps_N, mu, contacts");
+  return a;
 }
 
 // The largest ground acceleration accepted [m/s^2] (about 1e5 g: beyond any ground motion, a
@@ -547,31 +681,6 @@ void CheckRunLength(const ExcitationSpec& excitation, const RunControl& run,
   }
 }
 
-// The tables of a TOML array of tables ([[name]]), each with its line.
-std::vector<const toml::table*> ArrayOfTables(Section& top, std::string_view name) {
-  std::vector<const toml::table*> tables;
-  const toml::node* node = top.Get(name);
-  if (node == nullptr) {
-    return tables;
-  }
-  const toml::array* array = node->as_array();
-  if (array == nullptr) {
-    Fail(top.At(name), name, "must be an array of tables [[" + std::string(name) + "]]");
-  }
-  for (const toml::node& entry : *array) {
-    if (!entry.is_table()) {
-      Fail(Where{top.source(), LineOf(entry)}, name,
-           "must be an array of tables [[" + std::string(name) + "]]");
-    }
-    tables.push_back(entry.as_table());
-  }
-  return tables;
-}
-
-std::string Indexed(std::string_view name, std::size_t i) {
-  return std::string(name) + "[" + std::to_string(i) + "]";
-}
-
 // A deck index: a whole number in [0, n_decks).
 int DeckIndex(Section& s, std::string_view key, double value, std::size_t n_decks) {
   if (!(value >= 0.0) || value != std::floor(value) || value >= static_cast<double>(n_decks)) {
@@ -629,31 +738,6 @@ void ReadSupport(Section& s, std::size_t n_decks, SupportSpec& support) {
   s.Finish("deck, between, k_x, k_y, k_theta, c_x, c_y, c_theta, xi");
 }
 
-void ReadMultiAbutments(Section& s, MultiDeckSpec& spec) {
-  s.String("set", {"both"});
-  if (!s.Has("gap_m")) {
-    s.Missing("gap_m", "joint gap along x, m, or a table { \"+x\" = ..., \"-x\" = ... }");
-  }
-  if (const toml::node* gap_node = s.Get("gap_m"); gap_node->is_table()) {
-    Section g(*gap_node->as_table(), s.Field("gap_m"), s.source());
-    spec.gap_plus_m = g.RequiredNumber("+x", "gap of the +x abutment, m");
-    CheckNonNegative(spec.gap_plus_m, g.Field("+x"), g.At("+x"));
-    spec.gap_minus_m = g.RequiredNumber("-x", "gap of the -x abutment, m");
-    CheckNonNegative(spec.gap_minus_m, g.Field("-x"), g.At("-x"));
-    g.Finish("\"+x\", \"-x\"");
-  } else {
-    const double gap = s.RequiredNumber("gap_m", "");
-    CheckNonNegative(gap, s.Field("gap_m"), s.At("gap_m"));
-    spec.gap_plus_m = gap;
-    spec.gap_minus_m = gap;
-  }
-  spec.restitution = s.Number("eps_N").value_or(0.5);
-  CheckRange(spec.restitution, 0.0, 1.0, false, s.Field("eps_N"), s.At("eps_N"));
-  spec.friction = s.Number("mu").value_or(0.0);
-  CheckNonNegative(spec.friction, s.Field("mu"), s.At("mu"));
-  s.Finish("set, gap_m, eps_N, mu (with [[deck]] tables)");
-}
-
 // The [[deck]] form: decks in a row along x, joints between consecutive decks, supports.
 MultiDeckSpec ReadMultiDeck(Section& top, std::string_view source) {
   MultiDeckSpec spec;
@@ -703,7 +787,11 @@ MultiDeckSpec ReadMultiDeck(Section& top, std::string_view source) {
   }
   {
     Section s(*abutments, "abutments", source);
-    ReadMultiAbutments(s, spec);
+    const AbutmentParameters a = ReadAbutments(s, true);
+    spec.gap_plus_m = a.gap_plus_m;
+    spec.gap_minus_m = a.gap_minus_m;
+    spec.restitution = a.restitution;
+    spec.friction = a.friction;
   }
   const std::vector<const toml::table*> supports = ArrayOfTables(top, "support");
   for (std::size_t i = 0; i < supports.size(); ++i) {
@@ -755,7 +843,13 @@ ModelFile Parse(const toml::table& root, std::string_view source,
   }
   {
     Section s(required("abutments"), "abutments", source);
-    ReadAbutments(s, deck);
+    const AbutmentParameters a = ReadAbutments(s, false);
+    deck.abutments = a.set;
+    deck.gap_plus_m = a.gap_plus_m;
+    deck.gap_minus_m = a.gap_minus_m;
+    deck.restitution = a.restitution;
+    deck.friction = a.friction;
+    deck.overrides = a.overrides;
   }
   {
     Section s(required("excitation"), "excitation", source);
