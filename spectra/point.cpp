@@ -65,6 +65,34 @@ model::DeckSpec PilotBridgeDeck() {
   return deck;
 }
 
+model::DeckSpec PilotBridgeDeck(std::optional<double> skew_deg, std::optional<double> eta0) {
+  model::DeckSpec deck = PilotBridgeDeck();
+  const double published_skew_deg = deck.geometry.skew_rad / kDegree;
+  if (skew_deg && (!std::isfinite(*skew_deg) || *skew_deg < 0.0 || *skew_deg >= 90.0)) {
+    Reject("a_deg", "must be in [0, 90) deg (got " + Show(*skew_deg) + ")");
+  }
+  if (eta0) {
+    RequirePositive(*eta0, "eta0");
+    if (skew_deg && *skew_deg <= 0.0) {
+      Reject("eta0", "needs a skew angle a_deg > 0 (eta0 = sin 2a / (2 W/L) is 0 at a = 0)");
+    }
+  }
+  // The published deck itself: its L and W, not their re-derivation (which differs from them
+  // by the rounding of the published figures), so that the default given explicitly changes
+  // nothing.
+  if (!eta0 && (!skew_deg || *skew_deg == published_skew_deg)) {
+    return deck;
+  }
+  const double skew_rad = skew_deg.value_or(published_skew_deg) * kDegree;
+  const double W_over_L = eta0 ? std::sin(2.0 * skew_rad) / (2.0 * *eta0)
+                               : deck.geometry.width_m / deck.geometry.length_m;
+  const double rho2_m2 = *deck.inertia_kgm2 / deck.mass_kg;
+  const double c = std::cos(skew_rad);
+  const double length_m = std::sqrt(12.0 * rho2_m2 / (1.0 + W_over_L * W_over_L / (c * c)));
+  deck.geometry = {length_m, W_over_L * length_m, skew_rad};
+  return deck;
+}
+
 ExcitationScales PulseScales(const PointParameters& p) {
   RequirePositive(p.w0_over_wg, "w0_over_wg");
   RequirePositive(p.pulse_a_g_mps2, "a_g");
@@ -107,7 +135,7 @@ DimensionalPoint ToDimensional(const PointParameters& p, const ExcitationScales&
 
   model::DeckSpec& deck = out.deck;
   if (p.family == Family::kPilotBridge) {
-    deck = PilotBridgeDeck();
+    deck = PilotBridgeDeck(p.pilot_skew_deg, p.eta0);
   } else {
     RequirePositive(p.w0_over_wg, "w0_over_wg");
     RequirePositive(p.W0_over_w0, "W0_over_w0");

@@ -45,9 +45,13 @@ struct PointParameters {
   /// w0/w_g. Subsystem: w0 = w0x = w0y. Pilot bridge under a pulse: w0x/w_g with
   /// w0x = sqrt(K_xx / m), which sets w_g; under a record it is an output.
   double w0_over_wg = 1.0;
-  double Pi_delta = 1.0;               ///< delta w_g^2 / a_g >= 0
-  double skew_deg = 30.0;              ///< a in [0, 90) deg (subsystem)
-  std::optional<double> eta0;          ///< sin 2a / (2 W/L) > 0 (subsystem; needs a > 0)
+  double Pi_delta = 1.0;   ///< delta w_g^2 / a_g >= 0
+  double skew_deg = 30.0;  ///< a in [0, 90) deg (subsystem)
+  /// Pilot bridge: a in [0, 90) deg; empty = the published 20 deg (PilotBridgeDeck).
+  std::optional<double> pilot_skew_deg;
+  /// sin 2a / (2 W/L) > 0, needs a > 0. Subsystem: eta0 or W_over_L is required; pilot bridge:
+  /// empty keeps the published plan's W/L (PilotBridgeDeck).
+  std::optional<double> eta0;
   std::optional<double> W_over_L;      ///< used when eta0 is not given (subsystem)
   double W0_over_w0 = 1.0;             ///< torsional over translational frequency (subsystem)
   double xi = 0.05;                    ///< damping ratio in every mode
@@ -88,6 +92,17 @@ struct DimensionalPoint {
 /// at +20 deg with 18 and 19 rad/s, torsion 26 rad/s about the centre of rigidity
 /// (-0.24, 0.01) m, xi = 5 %, eps_N = 0.5, mu = 0.3, both abutments, gaps 0 (set per point).
 model::DeckSpec PilotBridgeDeck();
+
+/// The pilot bridge at another skew a and/or skew ratio eta0: the published m, I_m,
+/// substructure (principal axes, frequencies, centre of rigidity), damping, abutments and
+/// contact laws, on a plan re-derived from I_m by the uniform-deck rule
+/// 12 I_m / m = L^2 + W^2 / cos^2 a [docs/theory.md §2] with W/L = sin 2a / (2 eta0) when eta0
+/// is given and the published W/L = 19.36 / 89.14 otherwise:
+///     L = sqrt(12 (I_m / m) / (1 + (W/L)^2 / cos^2 a)),  W = (W/L) L.
+/// With neither given, or a = 20 deg exactly and no eta0, it is PilotBridgeDeck() itself, whose
+/// published L and W reproduce I_m / m to 1.5e-5 (their rounding to four digits).
+/// @throws InputError naming "a_deg" (outside [0, 90) deg) or "eta0" (<= 0, or with a = 0).
+model::DeckSpec PilotBridgeDeck(std::optional<double> skew_deg, std::optional<double> eta0);
 
 /// The scales of a pulse point: (pulse_a_g, pulse_w_g) for the subsystem; for the pilot
 /// bridge w_g = w0x / (w0/w_g).

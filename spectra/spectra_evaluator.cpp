@@ -44,12 +44,13 @@ SpectraEvaluator::SpectraEvaluator(const CellGrid& spec) : spec_(spec) {
     family_ = spectra::Family::kSubsystem;
   } else if (spec.family == "pilot-bridge") {
     family_ = spectra::Family::kPilotBridge;
-    // The pilot bridge's deck and substructure are the published ones [docs/theory.md §6].
-    for (std::string_view key :
-         {"a_deg", "eta0", "W_over_L", "W0_over_w0", "delta_over_L", "L_over_Le", "spans"}) {
+    // The pilot bridge's mass, inertia and substructure are the published ones
+    // [docs/theory.md §6]; only its skew (a_deg, eta0) may vary (spectra::PilotBridgeDeck).
+    for (std::string_view key : {"W_over_L", "W0_over_w0", "delta_over_L", "L_over_Le", "spans"}) {
       if (Mentions(spec, key)) {
         throw InputError::AtField(spec.source, key,
-                                  "not a parameter of family 'pilot-bridge' (its deck is fixed)");
+                                  "not a parameter of family 'pilot-bridge' (its deck is the "
+                                  "published one; a_deg and eta0 may vary its skew)");
       }
     }
   } else {
@@ -105,13 +106,18 @@ spectra::PointParameters SpectraEvaluator::Parameters(std::span<const std::size_
   }
   p.w0_over_wg = NumberOf(spec_, index, "w0_over_wg", p.w0_over_wg);
   p.Pi_delta = NumberOf(spec_, index, "Pi_delta", p.Pi_delta);
-  p.skew_deg = NumberOf(spec_, index, "a_deg", p.skew_deg);
   bool given = false;
+  const double a_deg = NumberOf(spec_, index, "a_deg", p.skew_deg, &given);
+  if (family_ == spectra::Family::kPilotBridge) {
+    if (given) p.pilot_skew_deg = a_deg;
+  } else {
+    p.skew_deg = a_deg;
+  }
   const double eta0 = NumberOf(spec_, index, "eta0", 0.0, &given);
   if (given) p.eta0 = eta0;
   const double w_over_l = NumberOf(spec_, index, "W_over_L", 0.0, &given);
   if (given) p.W_over_L = w_over_l;
-  if (!p.eta0 && !p.W_over_L) p.eta0 = 1.0;
+  if (family_ == spectra::Family::kSubsystem && !p.eta0 && !p.W_over_L) p.eta0 = 1.0;
   p.W0_over_w0 = NumberOf(spec_, index, "W0_over_w0", p.W0_over_w0);
   p.xi = NumberOf(spec_, index, "xi", p.xi);
   p.eps_N = NumberOf(spec_, index, "eps_N", p.eps_N);

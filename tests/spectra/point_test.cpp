@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <numbers>
+#include <optional>
+#include <string>
 
 #include "solver/common/error.h"
 #include "solver/model/deck.h"
@@ -94,6 +96,89 @@ TEST(PilotBridge, HasThePublishedSkewRatioAndSetsBothGaps) {
   // w0x lies between the two translational principal frequencies (18 and 19 rad/s).
   EXPECT_GT(d.w0x_radps, 18.0);
   EXPECT_LT(d.w0x_radps, 19.0);
+}
+
+TEST(PilotBridge, TheDefaultSkewGivenExplicitlyIsThePublishedDeckBitForBit) {
+  const model::DeckSpec published = PilotBridgeDeck();
+  const model::DeckSpec explicit_default = PilotBridgeDeck(20.0, std::nullopt);
+  const model::DeckSpec omitted = PilotBridgeDeck(std::nullopt, std::nullopt);
+  for (const model::DeckSpec* d : {&explicit_default, &omitted}) {
+    EXPECT_EQ(d->geometry.length_m, 89.14);
+    EXPECT_EQ(d->geometry.width_m, 19.36);
+    EXPECT_EQ(d->geometry.skew_rad, published.geometry.skew_rad);
+    EXPECT_EQ(*d->inertia_kgm2, *published.inertia_kgm2);
+  }
+  // Through the point mapping as a sweep uses it.
+  PointParameters p;
+  p.family = Family::kPilotBridge;
+  PointParameters q = p;
+  q.pilot_skew_deg = 20.0;
+  const DimensionalPoint a = ToDimensional(p, PulseScales(p));
+  const DimensionalPoint b = ToDimensional(q, PulseScales(q));
+  EXPECT_EQ(a.deck.geometry.length_m, b.deck.geometry.length_m);
+  EXPECT_EQ(a.deck.geometry.width_m, b.deck.geometry.width_m);
+  EXPECT_EQ(a.rho_m, b.rho_m);
+  EXPECT_EQ(a.w0x_radps, b.w0x_radps);
+}
+
+TEST(PilotBridge, OtherSkewsKeepMassInertiaAndSubstructure) {
+  const model::DeckSpec published = PilotBridgeDeck();
+  const double m = 1547e3, I_m = 1079100e3;
+  struct Case {
+    std::optional<double> a_deg, eta0;
+  };
+  for (const Case& c : {Case{0.0, std::nullopt}, Case{35.0, std::nullopt}, Case{60.0, std::nullopt},
+                        Case{std::nullopt, 0.8}, Case{45.0, 2.5}, Case{10.0, 1.48}}) {
+    SCOPED_TRACE("a_deg " + std::to_string(c.a_deg.value_or(-1)) + " eta0 " +
+                 std::to_string(c.eta0.value_or(-1)));
+    const model::DeckSpec d = PilotBridgeDeck(c.a_deg, c.eta0);
+    const double a_rad = c.a_deg.value_or(20.0) * kPi / 180.0;
+    EXPECT_NEAR(d.geometry.skew_rad, a_rad, 1e-15);
+    // The uniform-deck rule reproduces the published I_m from the new plan.
+    EXPECT_NEAR(model::UniformDeckInertia(m, d.geometry), I_m, 1e-12 * I_m);
+    EXPECT_EQ(d.mass_kg, m);
+    EXPECT_EQ(*d.inertia_kgm2, I_m);
+    if (c.eta0) {
+      EXPECT_NEAR(model::Eta0(d.geometry), *c.eta0, 1e-12 * *c.eta0);
+    } else {
+      EXPECT_NEAR(d.geometry.width_m / d.geometry.length_m, 19.36 / 89.14, 1e-14);
+    }
+    // The rest is the published bridge.
+    EXPECT_EQ(d.stiffness, published.stiffness);
+    EXPECT_EQ(d.w1_radps, 18.0);
+    EXPECT_EQ(d.w2_radps, 19.0);
+    EXPECT_EQ(d.w_theta_radps, 26.0);
+    EXPECT_EQ(d.axis_rad, published.axis_rad);
+    EXPECT_EQ(d.centre_of_rigidity_m, published.centre_of_rigidity_m);
+    EXPECT_EQ(d.abutments, model::AbutmentSet::kBoth);
+    EXPECT_EQ(d.friction, 0.3);
+  }
+  // A hand value: a = 0, W/L = r kept: L = sqrt(12 I_m / m / (1 + r^2)).
+  const double r = 19.36 / 89.14;
+  EXPECT_NEAR(PilotBridgeDeck(0.0, std::nullopt).geometry.length_m,
+              std::sqrt(12.0 * 1079100.0 / 1547.0 / (1.0 + r * r)), 1e-12);
+  // The published plan is its own re-derivation to the rounding of its figures (1.5e-5).
+  const model::DeckSpec near = PilotBridgeDeck(20.0 + 1e-9, std::nullopt);
+  EXPECT_NEAR(near.geometry.length_m, 89.14, 2e-5 * 89.14);
+  EXPECT_NEAR(near.geometry.width_m, 19.36, 2e-5 * 19.36);
+}
+
+TEST(PilotBridge, ImpossibleSkewsAreRefusedNamingTheKey) {
+  const auto message = [](std::optional<double> a_deg, std::optional<double> eta0) {
+    try {
+      PilotBridgeDeck(a_deg, eta0);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(message(90.0, std::nullopt).find("a_deg: must be in [0, 90) deg (got 90)"),
+            std::string::npos);
+  EXPECT_NE(message(-1.0, std::nullopt).find("a_deg"), std::string::npos);
+  EXPECT_NE(message(std::nan(""), std::nullopt).find("a_deg"), std::string::npos);
+  EXPECT_NE(message(30.0, 0.0).find("eta0: must be > 0"), std::string::npos);
+  EXPECT_NE(message(std::nullopt, -2.0).find("eta0"), std::string::npos);
+  EXPECT_NE(message(0.0, 1.0).find("eta0: needs a skew angle a_deg > 0"), std::string::npos);
 }
 
 // x'' + 2 xi w0 x' + w0^2 x = -a_g(t), integrated with classical RK4 on a fine grid: an

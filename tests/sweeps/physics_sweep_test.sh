@@ -190,9 +190,10 @@ name = "bad"'
   printf '%s\nfamily = "pilot-bridge"\n[records]\nset = "set/set.toml"\n[axes]\nrecord = ["synth-3-000", "KALA-T"]\n' "$head" >unknown-record.toml
   expect_refused unknown-record "record"
   grep -q "KALA-T" unknown-record.err || fail "unknown-record: the message does not name the label"
-  printf '%s\nfamily = "pilot-bridge"\n[axes]\nw0_over_wg = [0.5, 1.0]\n[fixed]\na_deg = 30.0\n' "$head" >pilot-skew.toml
-  expect_refused pilot-skew "a_deg"
-  printf '%s\nfamily = "pilot-bridge"\n[axes]\nw0_over_wg = [0.5, 1.0]\n[fixed]\neta0 = 1.2\n' "$head" >pilot-eta0.toml
+  # The pilot bridge takes a_deg and eta0 (spectra::PilotBridgeDeck), not its plan's W/L.
+  printf '%s\nfamily = "pilot-bridge"\n[axes]\nw0_over_wg = [0.5, 1.0]\n[fixed]\nW_over_L = 0.3\n' "$head" >pilot-width.toml
+  expect_refused pilot-width "W_over_L"
+  printf '%s\nfamily = "pilot-bridge"\n[axes]\neta0 = [1.2, 2.0]\n[fixed]\na_deg = 0.0\n' "$head" >pilot-eta0.toml
   expect_refused pilot-eta0 "eta0"
   # Under records the pilot bridge's w0x/w_g is an output, and a_g is each record's PGA.
   printf '%s\nfamily = "pilot-bridge"\n[records]\nset = "set/set.toml"\n[axes]\nrecord = ["synth-3-000"]\nw0_over_wg = [0.5, 1.0]\n' "$head" >pilot-record-w0.toml

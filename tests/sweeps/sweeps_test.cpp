@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -18,6 +20,7 @@
 #include "jobs/sweep_spec.h"
 #include "records/excitations.h"
 #include "records/synthetic.h"
+#include "solver/common/error.h"
 #include "solver/dynamics/simulate.h"
 #include "solver/model/builders.h"
 #include "solver/model/model.h"
@@ -222,6 +225,71 @@ Pi_delta = 1e6
     EXPECT_GT(theta_m, 0.0);
     EXPECT_LT(theta_m * point.rho_m, 0.05 * x_m);
   }
+}
+
+// The pilot bridge's skew axes: a_deg = 20 given explicitly is the published deck bit for bit,
+// another skew or eta0 a plan that reproduces m and I_m by the uniform-deck rule.
+TEST(PilotBridge, SkewAxesKeepTheDefaultBitForBitAndReproduceTheInertia) {
+  const std::string base = R"([sweep]
+name = "pilot-skew"
+family = "pilot-bridge"
+[axes]
+w0_over_wg = [0.5, 2.0]
+)";
+  const SweepSpec omitted =
+      ParseSweepSpec(base + "[fixed]\nPi_delta = 0.5\n", "omitted.toml", fs::temp_directory_path());
+  const SweepSpec swept = ParseSweepSpec(base + "a_deg = [20.0, 35.0]\n[fixed]\nPi_delta = 0.5\n",
+                                         "swept.toml", fs::temp_directory_path());
+  const SpectraEvaluator plain(omitted);
+  const SpectraEvaluator skewed(swept);
+  ASSERT_EQ(swept.CellCount(), 2 * omitted.CellCount());
+  const std::size_t a_axis = swept.axes[0].key == "a_deg" ? 0 : 1;
+  for (std::size_t w = 0; w < 2; ++w) {
+    SCOPED_TRACE("w0_over_wg index " + std::to_string(w));
+    const CellOutcome reference = plain.Evaluate(std::vector<std::size_t>{w});
+    ASSERT_EQ(reference.status, kStatusOk) << reference.status_text;
+    std::vector<std::size_t> index(2);
+    index[1 - a_axis] = w;
+    index[a_axis] = 0;  // a_deg = 20, the published skew
+    const CellOutcome same = skewed.Evaluate(index);
+    ASSERT_EQ(same.responses.size(), reference.responses.size());
+    for (std::size_t k = 0; k < reference.responses.size(); ++k) {
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(same.responses[k]),
+                std::bit_cast<std::uint64_t>(reference.responses[k]))
+          << plain.Responses()[k].name;
+    }
+    index[a_axis] = 1;  // a_deg = 35
+    const SweepRecord* record = nullptr;
+    const spectra::PointParameters p = skewed.Parameters(index, &record);
+    const spectra::DimensionalPoint point = spectra::ToDimensional(p, spectra::PulseScales(p));
+    EXPECT_NEAR(point.deck.geometry.skew_rad, 35.0 * std::numbers::pi / 180.0, 1e-15);
+    EXPECT_NEAR(model::UniformDeckInertia(point.deck.mass_kg, point.deck.geometry), 1079100e3,
+                1e-12 * 1079100e3);
+    EXPECT_NEAR(point.deck.geometry.width_m / point.deck.geometry.length_m, 19.36 / 89.14, 1e-14);
+    const CellOutcome other = skewed.Evaluate(index);
+    ASSERT_EQ(other.status, kStatusOk) << other.status_text;
+    EXPECT_NE(other.responses[Column(skewed, "theta_m")],
+              reference.responses[Column(plain, "theta_m")]);
+  }
+}
+
+TEST(PilotBridge, ImpossibleSkewsAreRefusedNamingTheKey) {
+  const auto message = [](const std::string& extra) {
+    try {
+      const SweepSpec spec = ParseSweepSpec(
+          "[sweep]\nname = \"p\"\nfamily = \"pilot-bridge\"\n[axes]\nPi_delta = [1.0]\n" + extra,
+          "p.toml", fs::temp_directory_path());
+      const SpectraEvaluator evaluator(spec);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(message("eta0 = [1.0]\n[fixed]\na_deg = 0.0\n").find("eta0"), std::string::npos);
+  EXPECT_NE(message("eta0 = [-1.0]\n").find("eta0"), std::string::npos);
+  EXPECT_NE(message("a_deg = [95.0]\n").find("a_deg"), std::string::npos);
+  EXPECT_NE(message("W_over_L = [0.2]\n").find("W_over_L"), std::string::npos);
+  EXPECT_EQ(message("eta0 = [0.8, 2.0]\n"), "accepted");
 }
 
 }  // namespace
