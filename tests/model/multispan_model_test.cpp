@@ -254,6 +254,40 @@ TEST(MultiSpanModel, BadInputsNameTheirFieldInOneLine) {
   }
 }
 
+TEST(MultiSpanModel, AbutmentsFollowTheSingleDeckRulesWithBothEndsAlways) {
+  const std::string base = TwoDeckFile("W = 8\n", "gap_m = 0.01\n", "deck = 1\n");
+  const auto with = [&](const std::string& abutments) {
+    std::string text = base;
+    const std::string from = "[abutments]\ngap_m = 0.02\n";
+    return text.replace(text.find(from), from.size(), "[abutments]\n" + abutments);
+  };
+  // Per-abutment gaps, as for a single deck with set = "both".
+  const ModelFile file =
+      ParseModelString(with("gap_m = { \"+x\" = 0.02, \"-x\" = 0.05 }\nmu = 0.1\n"), "b.toml");
+  ASSERT_TRUE(file.decks.has_value());
+  EXPECT_EQ(file.decks->gap_plus_m, 0.02);
+  EXPECT_EQ(file.decks->gap_minus_m, 0.05);
+  EXPECT_EQ(file.decks->friction, 0.1);
+  const struct {
+    std::string abutments;
+    std::string expected;
+  } cases[] = {
+      {"gap_m = -0.02\n", "abutments.gap_m: must be >= 0 (got -0.02)"},
+      {"gap_m = { \"+x\" = 0.02 }\n", "abutments.gap_m.\"-x\": missing required key"},
+      {"gap_m = 0.02\neps_N = 1.5\n", "abutments.eps_N: must be in [0, 1]"},
+      {"set = \"+x\"\ngap_m = 0.02\n", "abutments.set: must be one of both"},
+      {"gap_m = 0.02\n[abutments.contacts.P1]\nmu = 0.1\n",
+       "abutments.contacts: unknown key (allowed: set, gap_m, eps_N, mu (with [[deck]] tables))"},
+      {"eps_N = 0.5\n", "abutments.gap_m: missing required key"},
+  };
+  for (const auto& c : cases) {
+    const std::string message = ErrorOf(with(c.abutments));
+    EXPECT_NE(message.find(c.expected), std::string::npos)
+        << "expected: " << c.expected << "\n     got: " << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  }
+}
+
 TEST(MultiSpanModel, JointCountAndSkewMismatchAndSubstructureAreRejected) {
   const std::string decks =
       "[[deck]]\nm = 1e5\nL = 20\nW = 8\nskew_deg = 20\n"
