@@ -32,6 +32,8 @@ namespace skewbridge::jobs {
 namespace {
 
 namespace fs = std::filesystem;
+using spectra::SpectraEvaluator;
+using spectra::SweepRecord;
 
 std::string ReadText(const fs::path& file) {
   std::ifstream in(file);
