@@ -1,5 +1,6 @@
 #include "jobs/evaluator_factory.h"
 
+#include "jobs/model_file_evaluator.h"
 #include "jobs/multispan_evaluator.h"
 #include "jobs/spectra_evaluator.h"
 
@@ -7,6 +8,7 @@ namespace skewbridge::jobs {
 
 std::unique_ptr<CellEvaluator> MakeEvaluator(const SweepSpec& spec) {
   if (spec.family == "multi-span") return std::make_unique<MultiSpanEvaluator>(spec);
+  if (spec.family == "model-file") return std::make_unique<ModelFileEvaluator>(spec);
   return std::make_unique<SpectraEvaluator>(spec);
 }
 

@@ -11,6 +11,8 @@
 #include <limits>
 #include <sstream>
 
+#include "records/record_set.h"
+#include "records/synthetic.h"
 #include "solver/common/error.h"
 
 namespace skewbridge::jobs {
@@ -21,7 +23,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // The one table of parameter names. The spectra mapping extends it here (and in
 // docs/sweep-format.md); the order is the canonical axis order of every cube.
 // clang-format off
-constexpr std::array<ParameterInfo, 17> kParameters{{
+constexpr std::array<ParameterInfo, 22> kParameters{{
   {"record", "record", "", "ground-motion record, by its label in the [records] set",
    ParameterKind::kLabel, 0, true, 0, true, false, ""},
   {"pulse", "pulse", "", "one cycle of a_g cos(w_g t) or a_g sin(w_g t) [docs/theory.md §5]",
@@ -30,6 +32,12 @@ constexpr std::array<ParameterInfo, 17> kParameters{{
    true, ""},
   {"a_g_g", "a_g", "g", "pulse amplitude a_g (cancels out of the dimensionless responses)",
    ParameterKind::kNumber, 0, false, kInf, false, false, ""},
+  {"w_g", "w_g", "rad/s", "pulse frequency w_g (family model-file; or T_g)",
+   ParameterKind::kNumber, 0, false, kInf, false, false, ""},
+  {"T_g", "T_g", "s", "pulse period T_g = 2 pi / w_g (family model-file; or w_g)",
+   ParameterKind::kNumber, 0, false, kInf, false, false, ""},
+  {"scale", "scale", "1", "factor on the excitation's accelerations (family model-file)",
+   ParameterKind::kNumber, 0, false, 1e6, true, false, ""},
   {"a_deg", "a", "deg", "skew angle a", ParameterKind::kNumber, 0, true, 90, false, false, ""},
   {"eta0", "eta0", "1", "skew ratio eta0 = sin 2a / (2 W/L)", ParameterKind::kNumber, 0, false,
    kInf, false, false, ""},
@@ -49,6 +57,10 @@ constexpr std::array<ParameterInfo, 17> kParameters{{
    false, false, ""},
   {"Pi_delta", "Pi_delta", "1", "gap over persistency: delta w_g^2 / a_g",
    ParameterKind::kNumber, 0, true, kInf, false, false, ""},
+  {"gap_m", "delta", "m", "every gap, abutments and joints, along x (family model-file; or Pi_delta)",
+   ParameterKind::kNumber, 0, true, kInf, false, false, ""},
+  {"k_factor", "k_factor", "1", "factor on the substructure stiffness K (family model-file)",
+   ParameterKind::kNumber, 0, false, 1e6, true, false, ""},
   {"seat_over_L", "seat/L", "1", "support seat width over span length (multi-span unseating margins)",
    ParameterKind::kNumber, 0, false, kInf, false, false, ""},
   {"w0_over_wg", "w0/w_g", "1", "substructure over excitation frequency w0 / w_g",
@@ -119,7 +131,7 @@ class Parser {
     }
     if (const toml::table* axes = root["axes"].as_table()) {
       for (auto&& [key, node] : *axes) {
-        Axis axis = ParseAxis(std::string(key.str()), key.source(), node);
+        Axis axis = ParseAxis(std::string(key.str()), key.source(), node, spec);
         // A key and its symbol (w0_over_wg and "w0/w_g") name one parameter: TOML sees two.
         if (spec.FindAxis(axis.key) != nullptr) {
           throw Error(key.source(), "axes." + std::string(key.str()),
@@ -128,10 +140,6 @@ class Parser {
         }
         spec.axes.push_back(std::move(axis));
       }
-    }
-    if (spec.axes.empty()) {
-      throw InputError::AtField(source_, "axes",
-                                "give at least one axis (a single cell is `skewbridge run`)");
     }
     if (const toml::table* fixed = root["fixed"].as_table()) {
       for (auto&& [key, node] : *fixed) {
@@ -143,6 +151,21 @@ class Parser {
         }
         spec.fixed.push_back(std::move(value));
       }
+    }
+    // [records] without a record key (and without a pulse) means every record of the set.
+    const bool has_records = !spec.record_set.empty() || spec.synthetic_count > 0;
+    if (has_records && spec.FindAxis("record") == nullptr && spec.FindFixed("record") == nullptr &&
+        spec.FindAxis("pulse") == nullptr && spec.FindFixed("pulse") == nullptr) {
+      Axis axis;
+      axis.key = "record";
+      axis.kind = ParameterKind::kLabel;
+      axis.spacing = "all";
+      axis.labels = AllRecordLabels(spec, "records", toml::source_region{});
+      spec.axes.push_back(std::move(axis));
+    }
+    if (spec.axes.empty()) {
+      throw InputError::AtField(source_, "axes",
+                                "give at least one axis (a single cell is `skewbridge run`)");
     }
     CheckCrossFields(spec);
     SortCanonically(spec);
@@ -298,6 +321,29 @@ class Parser {
     }
   }
 
+  // Every label of the spec's record set, in set order ([records] must come first in the file
+  // only as far as TOML goes: tables are parsed before axes whatever their order).
+  std::vector<std::string> AllRecordLabels(const SweepSpec& spec, const std::string& field,
+                                           const toml::source_region& where) const {
+    std::vector<std::string> labels;
+    if (spec.synthetic_count > 0) {
+      records::SynthOptions options;
+      options.count = spec.synthetic_count;
+      options.seed = spec.synthetic_seed;
+      for (int i = 0; i < options.count; ++i) labels.push_back(records::SyntheticLabel(options, i));
+      return labels;
+    }
+    if (spec.record_set_path.empty()) {
+      throw Error(where, field,
+                  "\"*\" (every record) needs [records] set = \"FILE\" or synthetic = {...}");
+    }
+    const records::RecordSet set = records::LoadRecordSet(spec.record_set_path);
+    for (const records::RecordEntry& entry : set.records) {
+      labels.push_back(records::RecordLabel(entry));
+    }
+    return labels;
+  }
+
   const ParameterInfo& Known(const std::string& field, const std::string& key,
                              const toml::source_region& where) const {
     const ParameterInfo* info = FindParameter(key);
@@ -351,12 +397,21 @@ class Parser {
   }
 
   Axis ParseAxis(const std::string& key, const toml::source_region& key_where,
-                 const toml::node& node) const {
+                 const toml::node& node, const SweepSpec& spec) const {
     const std::string field = "axes." + key;
     const ParameterInfo& p = Known(field, key, key_where);
     Axis axis;
     axis.key = std::string(p.key);
     axis.kind = p.kind;
+    if (axis.key == "record" && node.is_string()) {
+      if (node.value<std::string>() != "*") {
+        throw Error(node.source(), field,
+                    "must be a list of record labels or \"*\" (every record of the set)");
+      }
+      axis.spacing = "all";
+      axis.labels = AllRecordLabels(spec, field, node.source());
+      return axis;
+    }
     if (const toml::array* list = node.as_array()) {
       if (list->empty()) {
         throw Error(node.source(), field, "empty axis: give at least one value");
@@ -369,6 +424,10 @@ class Parser {
             throw Error(item.source(), field, "entries must be strings");
           }
           CheckLabel(p, *label, field, item.source());
+          if (axis.key == "record" && *label == "*") {
+            throw Error(item.source(), field,
+                        "\"*\" stands alone: record = \"*\" takes every record of the set");
+          }
           axis.labels.push_back(*label);
         } else {
           const double v = Number(item, field);
@@ -440,6 +499,10 @@ class Parser {
         throw Error(node.source(), field, "must be a string");
       }
       CheckLabel(p, *label, field, node.source());
+      if (fixed.key == "record" && *label == "*") {
+        throw Error(node.source(), field,
+                    "a fixed record is one label; [axes] record = \"*\" takes every record");
+      }
       fixed.label = *label;
     } else {
       fixed.value = Number(node, field);
@@ -460,6 +523,25 @@ class Parser {
     if (given("eta0") && given("W_over_L")) {
       throw InputError::AtField(source_, "eta0",
                                 "give eta0 or W_over_L, not both (eta0 = sin 2a / (2 W/L))");
+    }
+    static constexpr std::array<std::string_view, 5> kModelFileOnly{"w_g", "T_g", "scale", "gap_m",
+                                                                    "k_factor"};
+    if (spec.family != "model-file") {
+      for (std::string_view key : kModelFileOnly) {
+        if (given(key)) {
+          throw InputError::AtField(source_, key,
+                                    "only a parameter of family \"model-file\" (this sweep's "
+                                    "family is \"" +
+                                        spec.family + "\")");
+        }
+      }
+    }
+    if (given("w_g") && given("T_g")) {
+      throw InputError::AtField(source_, "T_g", "give w_g or T_g, not both (T_g = 2 pi / w_g)");
+    }
+    if (given("gap_m") && given("Pi_delta")) {
+      throw InputError::AtField(source_, "gap_m",
+                                "give gap_m or Pi_delta, not both (the gap is Pi_delta L_e)");
     }
     if (given("pulse") && given("record")) {
       throw InputError::AtField(source_, "record",

@@ -48,7 +48,7 @@ struct Axis {
   ParameterKind kind = ParameterKind::kNumber;
   std::vector<double> values;       ///< Coordinates of a numeric axis, in the given order.
   std::vector<std::string> labels;  ///< Coordinates of a label axis.
-  std::string spacing;              ///< "list", "linspace" or "logspace" (how it was written).
+  std::string spacing;  ///< "list", "linspace", "logspace" or "all" (record = "*" or implied).
   /// Number of coordinates (>= 1 after validation).
   std::size_t Size() const {
     return kind == ParameterKind::kNumber ? values.size() : labels.size();
