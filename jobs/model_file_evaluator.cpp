@@ -106,12 +106,6 @@ ModelFileEvaluator::ModelFileEvaluator(const SweepSpec& spec)
   const bool by_pulse = Mentions(spec, "pulse") || Mentions(spec, "a_g_g") ||
                         Mentions(spec, "w_g") || Mentions(spec, "T_g");
   if (!by_record && ex.kind == model::ExcitationSpec::Kind::kSampled) {
-    if (!by_pulse && !ex.file.empty()) {
-      throw InputError::AtField(src, "sweep.model",
-                                "the model file's excitation is read from " + ex.file.string() +
-                                    ", which a sweep does not read: name it in a [records] set "
-                                    "and give a record, or give a pulse");
-    }
     if (by_pulse &&
         !(Mentions(spec, "a_g_g") && (Mentions(spec, "w_g") || Mentions(spec, "T_g")))) {
       throw InputError::AtField(src, Mentions(spec, "a_g_g") ? "w_g" : "a_g_g",
@@ -119,11 +113,21 @@ ModelFileEvaluator::ModelFileEvaluator(const SweepSpec& spec)
                                 "needs a_g_g and w_g or T_g");
     }
     if (!by_pulse) {
+      // The file's samples, read once as `skewbridge run` reads them, and their measures.
+      if (ex.file.empty()) {
+        samples_mps2_ = ex.values;
+        samples_dt_s_ = *ex.dt_s;
+      } else {
+        records::ExcitationSamples samples =
+            records::ReadExcitationSamples(ex.file, ex.dt_s, ex.to_mps2);
+        samples_mps2_ = std::move(samples.values_mps2);
+        samples_dt_s_ = samples.dt_s;
+      }
       records::GroundMotion motion;
-      motion.file = spec.model_path.string();
-      motion.dt_s = ex.dt_s.value_or(0.0);
-      motion.acc_mps2 = ex.values;
-      inline_measures_ = records::ComputeMeasures(motion);
+      motion.file = ex.file.empty() ? spec.model_path.string() : ex.file.string();
+      motion.dt_s = samples_dt_s_;
+      motion.acc_mps2 = samples_mps2_;
+      samples_measures_ = records::ComputeMeasures(motion);
     }
   }
   if (Mentions(spec, "xi")) {
@@ -187,20 +191,20 @@ ModelFileCell ModelFileEvaluator::MakeCell(std::span<const std::size_t> index,
       c.excitation =
           std::make_unique<records::SampledExcitation>(records::ToExcitation(scaled, ex.direction));
     }
-  } else if (inline_measures_) {
-    c.a_g_mps2 = inline_measures_->pga_mps2 * c.scale;
-    c.w_g_radps = inline_measures_->omega_g_radps;
-    c.persistency_m = inline_measures_->persistency_m * c.scale;
+  } else if (samples_measures_) {
+    c.a_g_mps2 = samples_measures_->pga_mps2 * c.scale;
+    c.w_g_radps = samples_measures_->omega_g_radps;
+    c.persistency_m = samples_measures_->persistency_m * c.scale;
     if (with_excitation) {
       // As `skewbridge run` makes it: the samples times the direction, both components.
-      std::vector<double> ax(ex.values.size()), ay(ex.values.size());
-      for (std::size_t i = 0; i < ex.values.size(); ++i) {
-        const double v = c.scale == 1.0 ? ex.values[i] : ex.values[i] * c.scale;
+      std::vector<double> ax(samples_mps2_.size()), ay(samples_mps2_.size());
+      for (std::size_t i = 0; i < samples_mps2_.size(); ++i) {
+        const double v = c.scale == 1.0 ? samples_mps2_[i] : samples_mps2_[i] * c.scale;
         ax[i] = v * ex.direction.x();
         ay[i] = v * ex.direction.y();
       }
       c.excitation =
-          std::make_unique<records::SampledExcitation>(*ex.dt_s, std::move(ax), std::move(ay));
+          std::make_unique<records::SampledExcitation>(samples_dt_s_, std::move(ax), std::move(ay));
     }
   } else {
     const bool file_pulse = ex.kind == model::ExcitationSpec::Kind::kPulse;

@@ -54,7 +54,8 @@ class ModelFileEvaluator final : public CellEvaluator {
   /// @throws InputError naming the spec file and key for a parameter this family does not take
   /// (spans, w0_over_wg, ...), a combination the model file cannot take (xi with a given damping
   /// matrix C, eta0 at a = 0, a pulse without a_g or w_g when the file's excitation is sampled),
-  /// or a cell whose model is invalid (the model file's key named too).
+  /// or a cell whose model is invalid (the model file's key named too); InputError from the
+  /// model file, its excitation file or the record set.
   explicit ModelFileEvaluator(const SweepSpec& spec);
 
   std::vector<ResponseInfo> Responses() const override;
@@ -74,8 +75,11 @@ class ModelFileEvaluator final : public CellEvaluator {
   model::ModelFile file_;
   std::vector<model::DeckAsWritten> written_;  ///< DecksAsWritten(model file)
   std::vector<SweepRecord> records_;           ///< LoadSweepRecords(spec_), read once per rank
-  /// Measures of the file's inline samples (L_e for Pi_delta), when a cell runs them.
-  std::optional<records::IntensityMeasures> inline_measures_;
+  /// The file's sampled excitation (inline or read from its file, times units and scale),
+  /// when no record or pulse replaces it, and its measures (L_e for Pi_delta).
+  std::vector<double> samples_mps2_;
+  double samples_dt_s_ = 0.0;
+  std::optional<records::IntensityMeasures> samples_measures_;
   int n_decks_ = 1;
   bool seats_ = false;  ///< margins are stored (seat_over_L given, or the file's seat width)
 };

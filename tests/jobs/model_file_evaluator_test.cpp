@@ -202,8 +202,6 @@ TEST(ModelFileEvaluator, RefusesKeysAndCombinationsNamingFileAndKey) {
               HasSubstr("spec.toml: xi: the model file gives substructure.C"));
   EXPECT_THAT(ErrorOf("[axes]\na_deg = [0, 30]\n"),
               HasSubstr("spec.toml: a_deg: needs a skew angle > 0"));
-  EXPECT_THAT(ErrorOf("[axes]\nmu = [0.1]\n", "deck-file.toml"),
-              HasSubstr("spec.toml: sweep.model: the model file's excitation is read from"));
   EXPECT_THAT(ErrorOf("[axes]\na_g_g = [0.1]\n", "deck-file.toml"),
               HasSubstr("spec.toml: w_g: missing: the model file's excitation is sampled"));
   // The same sweep with a record is accepted once the file's excitation is replaced.
@@ -242,6 +240,15 @@ TEST(ModelFileEvaluator, CellModelFollowsTheDefinitions) {
   EXPECT_EQ(cell.a_g_mps2, 2.0 * cell.record->measures.pga_mps2);
   EXPECT_EQ(cell.persistency_m, 2.0 * cell.record->measures.persistency_m);
   EXPECT_NEAR(cell.record->measures.pga_mps2, 3.0, 0.01);
+  // The same samples as the model file's excitation file: the same scales, read by the run's
+  // reader instead of the record reader.
+  const ModelFileEvaluator file(
+      Spec("[axes]\nPi_delta = [2.0]\nscale = [2.0]\n", "deck-file.toml"));
+  const std::vector<std::size_t> f{0, 0};
+  const ModelFileCell from_file = file.MakeCell(f, true);
+  EXPECT_NEAR(from_file.persistency_m, cell.persistency_m, 1e-12 * cell.persistency_m);
+  EXPECT_NEAR(from_file.gap_m, 2.0 * cell.persistency_m, 1e-12 * cell.persistency_m);
+  EXPECT_EQ(from_file.excitation->Duration(), cell.excitation->Duration());
 }
 
 }  // namespace

@@ -119,7 +119,31 @@ xi = 0.03
 seat_over_L = 0.02
 TOML
 
-for spec in deck spans; do
+# Refused before any work: one line naming the spec and the key, exit 2, no output left.
+printf '[sweep]\nname = "bad"\nfamily = "model-file"\nmodel = "deck.toml"\n[axes]\na_deg = [0, 30]\n' > bad.toml
+set +e
+"$exe" sweep bad.toml --out bad.h5 2> bad.err
+status=$?
+set -e
+[ "$status" -eq 2 ] || fail "bad spec: exit $status, expected 2"
+[ "$(wc -l < bad.err)" -eq 1 ] || fail "bad spec: not one line: $(cat bad.err)"
+grep -q "bad.toml: a_deg: needs a skew angle > 0" bad.err || fail "bad spec message: $(cat bad.err)"
+! ls bad.h5* >/dev/null 2>&1 || fail "bad spec left output files"
+
+# --- the single deck under the samples of its own excitation file, times scale ---------------
+sed -e 's/^kind = "pulse"/kind = "sampled"\nfile = "recs\/r1.txt"\ndt_s = 0.01\nunits = "mps2"/' \
+    -e '/^shape = /d' -e '/^a_g_g = /d' -e '/^T_g = /d' deck.toml > sampled.toml
+cat > sampled-sweep.toml <<'TOML'
+[sweep]
+name = "sampled"
+family = "model-file"
+model = "sampled.toml"
+[axes]
+Pi_delta = [0.25, 1.0]
+scale = [1.0, 2.0]
+TOML
+
+for spec in deck spans sampled; do
   for n in 1 2; do
     "$mpiexec" -n "$n" "$exe" sweep "$spec-sweep.toml" --out "$spec-$n.h5" --quiet
   done
@@ -216,5 +240,19 @@ np.testing.assert_allclose(pga[:, 1, :] / pga[:, 0, :], 3.0, rtol=1e-14)
 tm = c["responses/T_m"][()]
 assert np.all(tm == tm[:, :1, :1]), "T_m depends on the scale"
 assert impacting >= 4, "too few cells pound to test the joints"
-print("model-file cubes ok: 16 deck cells and 8 two-deck cells equal `skewbridge run`")
+# The deck under its file's samples: the cell's file has scale and the gaps delta of the cube
+# (Pi_delta L_e, with L_e of the samples' measures).
+c = same_bytes("sampled")
+sampled = open("sampled.toml").read()
+order = [x.decode() if isinstance(x, bytes) else x for x in c.attrs["axis_order"]]
+assert order == ["scale", "Pi_delta"], order
+for idx in itertools.product(range(2), range(2)):
+    s = float(c["axes/scale"][idx[0]])
+    gap = float(c["responses/delta"][idx])
+    text = (sampled.replace("gap_m = 0.03", f"gap_m = {gap!r}")
+            .replace('units = "mps2"', f'units = "mps2"\nscale = {s!r}'))
+    maxima, impacts = run(text)
+    compare(c, idx, maxima, impacts, 1, f"sampled cell scale={s} gap={gap}")
+np.testing.assert_allclose(c["responses/L_e"][1, :], 2 * c["responses/L_e"][0, :], rtol=1e-15)
+print("model-file cubes ok: 16 + 4 deck cells and 8 two-deck cells equal `skewbridge run`")
 PY
