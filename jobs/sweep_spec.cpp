@@ -83,6 +83,16 @@ std::string Where(std::string_view source, const toml::source_region& region) {
 
 std::string Fmt(double v) { return fmt::format("{}", v); }
 
+// 16 hex digits of the 64-bit FNV-1a hash of `bytes`.
+std::string Fnv1a(std::string_view bytes) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;  // FNV-1a 64 offset basis
+  for (unsigned char c : bytes) {
+    h ^= c;
+    h *= 0x100000001b3ULL;
+  }
+  return fmt::format("{:016x}", h);
+}
+
 std::string AllowedRange(const ParameterInfo& p) {
   std::string lo = p.min_inclusive ? ">= " + Fmt(p.min) : "> " + Fmt(p.min);
   if (std::isinf(p.max)) {
@@ -231,6 +241,14 @@ class Parser {
     if (spec.family == "model-file") {
       spec.model_file = RequireString(sweep, "sweep", "model");
       spec.model_path = ExistingFile(sweep, "sweep", "model", spec.model_file);
+      std::ifstream in(spec.model_path, std::ios::binary);
+      std::stringstream bytes;
+      bytes << in.rdbuf();
+      if (!in) {
+        throw Error(sweep.get("model")->source(), "sweep.model",
+                    "cannot read " + spec.model_path.string());
+      }
+      spec.model_hash = Fnv1a(bytes.str());
     } else if (sweep.contains("model")) {
       throw Error(sweep.get("model")->source(), "sweep.model",
                   "only allowed with family = \"model-file\"");
@@ -645,6 +663,7 @@ std::string SweepSpec::CanonicalText() const {
   out << "sweep.family = " << str(family) << "\n";
   if (!model_file.empty()) {
     out << "sweep.model = " << str(model_file) << "\n";
+    out << "sweep.model_hash = " << str(model_hash) << "\n";
   }
   if (!record_set.empty()) {
     out << "records.set = " << str(record_set) << "\n";
@@ -680,14 +699,7 @@ std::string SweepSpec::CanonicalText() const {
   return out.str();
 }
 
-std::string SweepSpec::Hash() const {
-  std::uint64_t h = 0xcbf29ce484222325ULL;  // FNV-1a 64 offset basis
-  for (unsigned char c : CanonicalText()) {
-    h ^= c;
-    h *= 0x100000001b3ULL;
-  }
-  return fmt::format("{:016x}", h);
-}
+std::string SweepSpec::Hash() const { return Fnv1a(CanonicalText()); }
 
 SweepSpec ParseSweepSpec(std::string_view text, std::string_view source,
                          const std::filesystem::path& base_dir) {

@@ -66,12 +66,15 @@ struct FixedValue {
 /// A validated sweep specification. Axes are kept in the canonical order of KnownParameters(),
 /// whatever the order in the file, so equal specifications give equal cube layouts.
 struct SweepSpec {
-  std::string source;                     ///< Where it came from (file name), for messages.
-  std::string text;                       ///< The original text, stored verbatim in the cube.
-  std::string name;                       ///< [sweep] name: the HDF5 group name.
-  std::string family;                     ///< One of KnownFamilies().
-  std::string model_file;                 ///< [sweep] model, as written (family "model-file" only).
-  std::filesystem::path model_path;       ///< model_file resolved against the spec's folder.
+  std::string source;                ///< Where it came from (file name), for messages.
+  std::string text;                  ///< The original text, stored verbatim in the cube.
+  std::string name;                  ///< [sweep] name: the HDF5 group name.
+  std::string family;                ///< One of KnownFamilies().
+  std::string model_file;            ///< [sweep] model, as written (family "model-file" only).
+  std::filesystem::path model_path;  ///< model_file resolved against the spec's folder.
+  /// FNV-1a hash (16 hex digits) of the model file's bytes when it was read: part of the
+  /// identity, so that --resume refuses a cube of a model file that has changed since.
+  std::string model_hash;
   std::string record_set;                 ///< [records] set, as written, or empty.
   std::filesystem::path record_set_path;  ///< record_set resolved against the spec's folder.
   /// [records] synthetic = {count, seed}: a suite made in memory (records::SynthesizeSuite)

@@ -134,6 +134,15 @@ TEST(ModelFileSpec, NewKeysTakeTheirRanges) {
   }
 }
 
+// The model file's bytes are part of the identity: --resume refuses a changed model.
+TEST(ModelFileSpec, HashFollowsTheModelFileContent) {
+  std::ofstream(Folder() / "copy.toml") << kDeck;
+  const std::string before = Spec("[axes]\nmu = [0.1]\n", "copy.toml").Hash();
+  EXPECT_EQ(Spec("[axes]\nmu = [0.1]\n", "copy.toml").Hash(), before);
+  std::ofstream(Folder() / "copy.toml") << kDeck << "# edited\n";
+  EXPECT_NE(Spec("[axes]\nmu = [0.1]\n", "copy.toml").Hash(), before);
+}
+
 TEST(ModelFileSpec, RecordStarTakesEveryRecordOfTheSetInSetOrder) {
   const SweepSpec star = Spec("[records]\nset = \"set.toml\"\n[axes]\nrecord = \"*\"\n");
   ASSERT_NE(star.FindAxis("record"), nullptr);
