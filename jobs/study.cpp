@@ -74,11 +74,11 @@ std::vector<SweepRecord> LoadSweepRecords(const SweepSpec& spec) {
     }
     return out;
   }
-  if (spec.record_set_path.empty()) {
+  if (spec.record_set_path.empty() && spec.record_folder.empty()) {
     throw InputError::AtField(spec.source, "records.set",
                               "missing: a record axis needs a record set");
   }
-  const records::RecordSet set = records::LoadRecordSet(spec.record_set_path);
+  const records::RecordSet set = LoadSpecRecordSet(spec);
   const std::filesystem::path base = set.manifest.parent_path().lexically_normal();
   for (const std::string& label : wanted) {
     const records::RecordEntry* found = nullptr;
@@ -88,7 +88,7 @@ std::vector<SweepRecord> LoadSweepRecords(const SweepSpec& spec) {
     if (found == nullptr) {
       throw InputError::AtField(
           spec.source, "record",
-          "label '" + label + "' is not in the record set " + spec.record_set_path.string());
+          "label '" + label + "' is not in the record set " + set.manifest.string());
     }
     SweepRecord record;
     record.label = label;
@@ -124,7 +124,9 @@ StudyTables MakeStudyTables(const SweepSpec& spec, const CubeLayout& layout, con
                            " seed=" + std::to_string(spec.synthetic_seed);
     } else {
       tables.records_source = "set";
-      tables.records_set = spec.record_set;
+      tables.records_set = spec.record_folder.empty()
+                               ? spec.record_set
+                               : spec.record_folder + " (" + spec.record_pattern + ")";
     }
   }
 

@@ -163,7 +163,8 @@ class Parser {
       }
     }
     // [records] without a record key (and without a pulse) means every record of the set.
-    const bool has_records = !spec.record_set.empty() || spec.synthetic_count > 0;
+    const bool has_records =
+        !spec.record_set.empty() || !spec.record_folder.empty() || spec.synthetic_count > 0;
     if (has_records && spec.FindAxis("record") == nullptr && spec.FindFixed("record") == nullptr &&
         spec.FindAxis("pulse") == nullptr && spec.FindFixed("pulse") == nullptr) {
       Axis axis;
@@ -277,16 +278,26 @@ class Parser {
   }
 
   void ParseRecordsTable(const toml::table& records, SweepSpec& spec) const {
+    const bool folder_form = records.contains("folder") || records.contains("pattern");
     for (auto&& [key, node] : records) {
-      if (key.str() != "set" && key.str() != "synthetic") {
-        throw Error(key.source(), "records." + std::string(key.str()),
-                    "unknown key; allowed: set, synthetic");
+      const std::string_view k = key.str();
+      const bool folder_key = k == "folder" || k == "pattern" || k == "units" || k == "dt";
+      if (k != "set" && k != "synthetic" && !(folder_form && folder_key)) {
+        throw Error(key.source(), "records." + std::string(k),
+                    "unknown key; allowed: set, synthetic, or folder and pattern (with units, "
+                    "dt)");
       }
     }
-    if (records.contains("set") == records.contains("synthetic")) {
+    if (static_cast<int>(records.contains("set")) +
+            static_cast<int>(records.contains("synthetic")) + static_cast<int>(folder_form) !=
+        1) {
       throw InputError::AtField(source_, "records",
-                                "give set = \"FILE\" or synthetic = {count = N, seed = S}, one of "
-                                "them");
+                                "give set = \"FILE\" or synthetic = {count = N, seed = S} or "
+                                "folder = \"DIR\" with pattern = \"GLOB\", one of them");
+    }
+    if (folder_form) {
+      ParseRecordFolder(records, spec);
+      return;
     }
     if (records.contains("set")) {
       spec.record_set = RequireString(records, "records", "set");
@@ -315,6 +326,41 @@ class Parser {
     }
     spec.synthetic_count = static_cast<int>(*count);
     spec.synthetic_seed = static_cast<std::uint64_t>(*seed);
+  }
+
+  // [records] folder and pattern: a folder set without a manifest; the folder is listed now,
+  // so a missing folder, a bad pattern or an empty match fails here.
+  void ParseRecordFolder(const toml::table& records, SweepSpec& spec) const {
+    if (!records.contains("folder")) {
+      throw InputError::AtField(source_, "records.folder",
+                                "missing: pattern needs folder = \"DIR\" (relative to the spec)");
+    }
+    spec.record_folder = RequireString(records, "records", "folder");
+    if (!records.contains("pattern")) {
+      throw Error(records.get("folder")->source(), "records.pattern",
+                  "is required with folder (a file-name glob, e.g. \"*.AT2\")");
+    }
+    spec.record_pattern = RequireString(records, "records", "pattern");
+    spec.record_folder_path = base_dir_ / spec.record_folder;
+    spec.record_folder_at = Where(source_, records.get("folder")->source());
+    spec.record_pattern_at = Where(source_, records.get("pattern")->source());
+    if (const toml::node* node = records.get("units")) {
+      const auto units = node->value<std::string>();
+      if (!units || !records::ParseUnits(*units)) {
+        throw Error(node->source(), "records.units",
+                    "must be one of g, m/s^2, cm/s^2 (the units of files that state none)");
+      }
+      spec.record_units = *units;
+    }
+    if (const toml::node* node = records.get("dt")) {
+      const auto dt = node->value<double>();
+      if (!node->is_number() || !dt || !std::isfinite(*dt) || *dt <= 0.0) {
+        throw Error(node->source(), "records.dt",
+                    "must be a number > 0 (s; the step of files that state none)");
+      }
+      spec.record_dt_s = *dt;
+    }
+    LoadSpecRecordSet(spec);
   }
 
   void ParseStudyTable(const toml::table& study, SweepSpec& spec) const {
@@ -351,11 +397,12 @@ class Parser {
       for (int i = 0; i < options.count; ++i) labels.push_back(records::SyntheticLabel(options, i));
       return labels;
     }
-    if (spec.record_set_path.empty()) {
+    if (spec.record_set_path.empty() && spec.record_folder.empty()) {
       throw Error(where, field,
-                  "\"*\" (every record) needs [records] set = \"FILE\" or synthetic = {...}");
+                  "\"*\" (every record) needs [records] set = \"FILE\", folder and pattern, or "
+                  "synthetic = {...}");
     }
-    const records::RecordSet set = records::LoadRecordSet(spec.record_set_path);
+    const records::RecordSet set = LoadSpecRecordSet(spec);
     for (const records::RecordEntry& entry : set.records) {
       labels.push_back(records::RecordLabel(entry));
     }
@@ -565,7 +612,8 @@ class Parser {
       throw InputError::AtField(source_, "record",
                                 "give pulse or record, not both (one excitation per cell)");
     }
-    if (given("record") && spec.record_set.empty() && spec.synthetic_count == 0) {
+    if (given("record") && spec.record_set.empty() && spec.record_folder.empty() &&
+        spec.synthetic_count == 0) {
       throw InputError::AtField(source_, "records.set",
                                 "missing: a record axis or value needs [records] set = \"FILE\"");
     }
@@ -668,6 +716,12 @@ std::string SweepSpec::CanonicalText() const {
   if (!record_set.empty()) {
     out << "records.set = " << str(record_set) << "\n";
   }
+  if (!record_folder.empty()) {
+    out << "records.folder = " << str(record_folder) << "\n";
+    out << "records.pattern = " << str(record_pattern) << "\n";
+    if (!record_units.empty()) out << "records.units = " << str(record_units) << "\n";
+    if (record_dt_s > 0.0) out << "records.dt = " << Fmt(record_dt_s) << "\n";
+  }
   if (synthetic_count > 0) {
     out << "records.synthetic = {count = " << synthetic_count << ", seed = " << synthetic_seed
         << "}\n";
@@ -700,6 +754,17 @@ std::string SweepSpec::CanonicalText() const {
 }
 
 std::string SweepSpec::Hash() const { return Fnv1a(CanonicalText()); }
+
+records::RecordSet LoadSpecRecordSet(const SweepSpec& spec) {
+  if (!spec.record_folder.empty()) {
+    records::RecordEntry defaults;
+    if (!spec.record_units.empty()) defaults.options.units = records::ParseUnits(spec.record_units);
+    if (spec.record_dt_s > 0.0) defaults.options.dt_s = spec.record_dt_s;
+    return records::MakeFolderSet(spec.record_folder_path, spec.record_pattern, defaults,
+                                  {spec.record_folder_at, spec.record_pattern_at, "records."});
+  }
+  return records::LoadRecordSet(spec.record_set_path);
+}
 
 SweepSpec ParseSweepSpec(std::string_view text, std::string_view source,
                          const std::filesystem::path& base_dir) {

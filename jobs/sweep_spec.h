@@ -12,6 +12,8 @@
 #include <string_view>
 #include <vector>
 
+#include "records/record_set.h"
+
 namespace skewbridge::jobs {
 
 /// Whether a parameter takes numbers or text labels (pulse shape, record label).
@@ -77,6 +79,15 @@ struct SweepSpec {
   std::string model_hash;
   std::string record_set;                 ///< [records] set, as written, or empty.
   std::filesystem::path record_set_path;  ///< record_set resolved against the spec's folder.
+  /// [records] folder and pattern: a set of every matching file, without a manifest
+  /// (records::MakeFolderSet); empty when not given.
+  std::string record_folder;
+  std::filesystem::path record_folder_path;  ///< record_folder resolved against the spec's folder.
+  std::string record_pattern;                ///< [records] pattern, a file-name glob.
+  std::string record_units;                  ///< [records] units for files stating none, or "".
+  double record_dt_s = 0.0;                  ///< [records] dt for files stating none, or 0.
+  std::string record_folder_at;              ///< "spec.toml:LINE" of folder, for messages.
+  std::string record_pattern_at;             ///< "spec.toml:LINE" of pattern, for messages.
   /// [records] synthetic = {count, seed}: a suite made in memory (records::SynthesizeSuite)
   /// instead of a manifest; count 0 when not given.
   int synthetic_count = 0;
@@ -105,6 +116,10 @@ struct SweepSpec {
   /// 16 hex digits of the 64-bit FNV-1a hash of CanonicalText(): the resume identity.
   std::string Hash() const;
 };
+
+/// The record set a spec names: its manifest ([records] set) or its folder and pattern.
+/// @throws InputError from the manifest, or naming the spec's records.folder / records.pattern.
+records::RecordSet LoadSpecRecordSet(const SweepSpec& spec);
 
 /// Parses and validates a specification held in memory; relative paths (model, record set) are
 /// resolved against base_dir and must exist.

@@ -85,48 +85,20 @@ void ReadEntryOptions(const toml::table& table, const std::filesystem::path& man
 // top-level options.
 void ReadFolderSet(const toml::table& root, const std::filesystem::path& manifest, RecordSet& set) {
   const std::string folder = RequireString(root, "folder", manifest, true);
+  const std::string folder_at = Where(manifest, LineOf(*root.get("folder")));
   const toml::node* pattern_node = root.get("pattern");
   if (pattern_node == nullptr) {
-    throw InputError::AtField(Where(manifest, LineOf(*root.get("folder"))), "pattern",
+    throw InputError::AtField(folder_at, "pattern",
                               "is required with folder (a file-name glob, e.g. \"*.AT2\")");
   }
   const std::string pattern = RequireString(root, "pattern", manifest, true);
-  if (const std::string problem = GlobProblem(pattern); !problem.empty()) {
-    throw InputError::AtField(Where(manifest, LineOf(*pattern_node)), "pattern",
-                              problem + " (allowed: a file name with *, ? and [...] classes)");
-  }
-  const std::filesystem::path dir = manifest.parent_path() / folder;
-  std::error_code ec;
-  if (!std::filesystem::is_directory(dir, ec)) {
-    throw InputError::AtField(Where(manifest, LineOf(*root.get("folder"))), "folder",
-                              "not a folder: " + dir.string());
-  }
-  std::vector<std::filesystem::path> files;
-  for (const std::filesystem::directory_entry& item :
-       std::filesystem::directory_iterator(dir, ec)) {
-    if (item.is_regular_file(ec) && GlobMatch(pattern, item.path().filename().string())) {
-      files.push_back(item.path());
-    }
-  }
-  if (ec) {
-    throw InputError::AtField(Where(manifest, LineOf(*root.get("folder"))), "folder",
-                              "cannot list " + dir.string() + ": " + ec.message());
-  }
-  if (files.empty()) {
-    throw InputError::AtField(Where(manifest, LineOf(*pattern_node)), "pattern",
-                              "no file of " + dir.string() + " matches '" + pattern + "'");
-  }
-  std::sort(files.begin(), files.end(), [](const auto& a, const auto& b) {
-    return a.filename().string() < b.filename().string();
-  });
   RecordEntry defaults;
   ReadEntryOptions(root, manifest, defaults);
   defaults.line = LineOf(*root.get("folder"));
-  for (const std::filesystem::path& file : files) {
-    RecordEntry entry = defaults;
-    entry.file = file;
-    set.records.push_back(std::move(entry));
-  }
+  const RecordSet folder_set =
+      MakeFolderSet(manifest.parent_path() / folder, pattern, defaults,
+                    {folder_at, Where(manifest, LineOf(*pattern_node)), ""});
+  set.records = folder_set.records;
 }
 
 }  // namespace
@@ -209,6 +181,49 @@ bool GlobMatch(std::string_view pattern, std::string_view name) {
   }
   while (p < pattern.size() && pattern[p] == '*') ++p;
   return p == pattern.size();
+}
+
+RecordSet MakeFolderSet(const std::filesystem::path& folder, std::string_view pattern,
+                        const RecordEntry& defaults, const FolderSetSource& source) {
+  const std::string folder_key = source.key_prefix + "folder";
+  const std::string pattern_key = source.key_prefix + "pattern";
+  if (const std::string problem = GlobProblem(pattern); !problem.empty()) {
+    throw InputError::AtField(source.pattern_at, pattern_key,
+                              problem + " (allowed: a file name with *, ? and [...] classes)");
+  }
+  std::error_code ec;
+  if (!std::filesystem::is_directory(folder, ec)) {
+    throw InputError::AtField(source.folder_at, folder_key, "not a folder: " + folder.string());
+  }
+  std::vector<std::filesystem::path> files;
+  for (const std::filesystem::directory_entry& item :
+       std::filesystem::directory_iterator(folder, ec)) {
+    if (item.is_regular_file(ec) && GlobMatch(pattern, item.path().filename().string())) {
+      files.push_back(item.path());
+    }
+  }
+  if (ec) {
+    throw InputError::AtField(source.folder_at, folder_key,
+                              "cannot list " + folder.string() + ": " + ec.message());
+  }
+  if (files.empty()) {
+    throw InputError::AtField(
+        source.pattern_at, pattern_key,
+        "no file of " + folder.string() + " matches '" + std::string(pattern) + "'");
+  }
+  std::sort(files.begin(), files.end(), [](const auto& a, const auto& b) {
+    return a.filename().string() < b.filename().string();
+  });
+  RecordSet set;
+  // The folder itself stands for the manifest: record paths are relative to its parent.
+  set.manifest = folder.filename().empty() ? folder.parent_path() : folder;
+  set.name = set.manifest.filename().string();
+  for (const std::filesystem::path& file : files) {
+    RecordEntry entry = defaults;
+    entry.file = file;
+    set.records.push_back(std::move(entry));
+  }
+  return set;
 }
 
 RecordSet LoadRecordSet(const std::filesystem::path& manifest) {

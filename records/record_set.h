@@ -57,6 +57,22 @@ struct RecordSet {
 /// folder, a bad pattern or a pattern that matches no file.
 RecordSet LoadRecordSet(const std::filesystem::path& manifest);
 
+/// Where a folder set's folder and pattern were given, for messages: "FILE:LINE" of each and
+/// the prefix of the key names ("" in a manifest, "records." in a sweep specification).
+struct FolderSetSource {
+  std::string folder_at;
+  std::string pattern_at;
+  std::string key_prefix;
+};
+
+/// The folder form of a set: every regular file of `folder` whose name matches `pattern`, in
+/// byte order of the names, each a copy of `defaults` (options, scale) with its file; labels are
+/// the file names. RecordSet::manifest is the folder.
+/// @throws InputError "<folder_at>: <prefix>folder: not a folder ...", or at pattern_at for a bad
+/// pattern or one that matches no file.
+RecordSet MakeFolderSet(const std::filesystem::path& folder, std::string_view pattern,
+                        const RecordEntry& defaults, const FolderSetSource& source);
+
 /// Why `pattern` is not a file-name glob ("" when it is one): empty, a '/' in it, or an
 /// unclosed '[' class.
 std::string GlobProblem(std::string_view pattern);

@@ -194,6 +194,63 @@ TEST(ModelFileSpec, RecordStarErrorsNameTheKey) {
               HasSubstr("none.toml:2: pattern: no file of"));
 }
 
+// [records] folder and pattern: the set of a folder without a manifest, the same records as a
+// manifest of that folder (and the same cube identity whichever spelling of the axis).
+TEST(RecordsFolder, TakesTheFilesOfTheFolderLikeAManifest) {
+  const SweepSpec folder = Spec(
+      "[records]\nfolder = \"recs\"\npattern = \"*.txt\"\nunits = \"m/s^2\"\ndt = 0.01\n"
+      "[axes]\nscale = [1.0]\n");
+  ASSERT_NE(folder.FindAxis("record"), nullptr);
+  EXPECT_EQ(folder.FindAxis("record")->labels, (std::vector<std::string>{"a.txt", "b.txt"}));
+  const ModelFileEvaluator by_folder(folder);
+  const ModelFileEvaluator by_manifest(
+      Spec("[records]\nset = \"set.toml\"\n[axes]\nscale = [1.0]\n"));
+  ASSERT_NE(by_folder.Records(), nullptr);
+  ASSERT_EQ(by_folder.Records()->size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    const SweepRecord& a = (*by_folder.Records())[i];
+    const SweepRecord& b = (*by_manifest.Records())[i];
+    EXPECT_EQ(a.label, b.label);
+    EXPECT_EQ(a.file, b.file);
+    EXPECT_EQ(a.file, "recs/" + a.label);
+    EXPECT_EQ(a.motion.acc_mps2, b.motion.acc_mps2);
+    EXPECT_EQ(a.measures.persistency_m, b.measures.persistency_m);
+  }
+  EXPECT_NE(folder.Hash(), Spec("[records]\nfolder = \"recs\"\npattern = \"a*\"\nunits = "
+                                "\"m/s^2\"\ndt = 0.01\n[axes]\nscale = [1.0]\n")
+                               .Hash());
+}
+
+TEST(RecordsFolder, ErrorsNameTheSpecLineAndKey) {
+  const auto error = [](const std::string& body) {
+    try {
+      Spec(body);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string axes = "[axes]\nscale = [1.0]\n";
+  EXPECT_THAT(error("[records]\nfolder = \"nope\"\npattern = \"*\"\n" + axes),
+              HasSubstr("spec.toml:6: records.folder: not a folder"));
+  EXPECT_THAT(error("[records]\nfolder = \"recs\"\npattern = \"*.AT2\"\n" + axes),
+              HasSubstr("spec.toml:7: records.pattern: no file of"));
+  EXPECT_THAT(error("[records]\nfolder = \"recs\"\npattern = \"[a\"\n" + axes),
+              HasSubstr("spec.toml:7: records.pattern: '[a' has an unclosed '['"));
+  EXPECT_THAT(error("[records]\nfolder = \"recs\"\n" + axes),
+              HasSubstr("spec.toml:6: records.pattern: is required with folder"));
+  EXPECT_THAT(error("[records]\npattern = \"*\"\n" + axes),
+              HasSubstr("spec.toml: records.folder: missing"));
+  EXPECT_THAT(error("[records]\nfolder = \"recs\"\npattern = \"*\"\nunits = \"ft\"\n" + axes),
+              HasSubstr("spec.toml:8: records.units: must be one of g, m/s^2, cm/s^2"));
+  EXPECT_THAT(error("[records]\nfolder = \"recs\"\npattern = \"*\"\ndt = 0\n" + axes),
+              HasSubstr("spec.toml:8: records.dt: must be a number > 0"));
+  EXPECT_THAT(error("[records]\nset = \"set.toml\"\nfolder = \"recs\"\npattern = \"*\"\n" + axes),
+              HasSubstr("spec.toml: records: give set"));
+  EXPECT_THAT(error("[records]\nset = \"set.toml\"\nunits = \"g\"\n" + axes),
+              HasSubstr("spec.toml:7: records.units: unknown key"));
+}
+
 TEST(ModelFileEvaluator, RefusesKeysAndCombinationsNamingFileAndKey) {
   for (const char* key : {"w0_over_wg", "W0_over_w0", "L_over_Le", "W_over_L", "delta_over_L"}) {
     EXPECT_THAT(
