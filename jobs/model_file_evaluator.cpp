@@ -127,7 +127,21 @@ ModelFileEvaluator::ModelFileEvaluator(const SweepSpec& spec)
       motion.file = ex.file.empty() ? spec.model_path.string() : ex.file.string();
       motion.dt_s = samples_dt_s_;
       motion.acc_mps2 = samples_mps2_;
-      samples_measures_ = records::ComputeMeasures(motion);
+      try {
+        samples_measures_ = records::ComputeMeasures(motion);
+      } catch (const InputError& e) {
+        // Samples without a mean period (no content in its band) have no L_e: only a sweep
+        // that needs it (Pi_delta) is refused; the scales are then NaN.
+        if (Mentions(spec, "Pi_delta")) {
+          throw InputError::AtField(src, "Pi_delta",
+                                    std::string("needs L_e of the model file's samples, which "
+                                                "have none: ") +
+                                        e.what());
+        }
+        records::IntensityMeasures none;
+        none.pga_mps2 = none.omega_g_radps = none.persistency_m = kNaN;
+        samples_measures_ = none;
+      }
     }
   }
   if (Mentions(spec, "xi")) {

@@ -275,6 +275,23 @@ TEST(ModelFileEvaluator, RefusesKeysAndCombinationsNamingFileAndKey) {
             "no error");
 }
 
+// Inline samples without a mean period (all zero) have no L_e: Pi_delta is refused, naming it;
+// other keys run with NaN scales.
+TEST(ModelFileEvaluator, SamplesWithoutMeanPeriodRefuseOnlyPiDelta) {
+  std::string still = kDeck;
+  still.replace(still.find("kind = \"pulse\""), still.size() - still.find("kind = \"pulse\""),
+                "kind = \"sampled\"\nvalues = [0.0, 0.0, 0.0, 0.0]\ndt_s = 0.01\n");
+  std::ofstream(Folder() / "still.toml") << still;
+  EXPECT_THAT(ErrorOf("[axes]\nPi_delta = [1.0]\n", "still.toml"),
+              HasSubstr("spec.toml: Pi_delta: needs L_e of the model file's samples"));
+  const ModelFileEvaluator evaluator(Spec("[axes]\nmu = [0.1]\n", "still.toml"));
+  const std::vector<std::size_t> cell{0};
+  const CellOutcome out = evaluator.Evaluate(cell);
+  EXPECT_EQ(out.status, kStatusOk);
+  EXPECT_EQ(out.responses[0], 0.0);           // x_m_d0: the ground does not move
+  EXPECT_TRUE(std::isnan(out.responses[6]));  // x_norm_d0 = x_m / L_e, L_e undefined
+}
+
 TEST(ModelFileEvaluator, CellModelFollowsTheDefinitions) {
   const ModelFileEvaluator evaluator(
       Spec("[axes]\na_deg = [45]\nk_factor = [1, 2]\nPi_delta = [0.5]\n[fixed]\neps_N = 0.7\n"));
