@@ -1,5 +1,6 @@
 #include "jobs/evaluator_factory.h"
 
+#include "spectra/model_file_evaluator.h"
 #include "spectra/multispan_evaluator.h"
 #include "spectra/spectra_evaluator.h"
 
@@ -7,6 +8,7 @@ namespace skewbridge::jobs {
 
 std::unique_ptr<CellEvaluator> MakeEvaluator(const SweepSpec& spec) {
   if (spec.family == "multi-span") return std::make_unique<spectra::MultiSpanEvaluator>(spec);
+  if (spec.family == "model-file") return std::make_unique<spectra::ModelFileEvaluator>(spec);
   return std::make_unique<spectra::SpectraEvaluator>(spec);
 }
 

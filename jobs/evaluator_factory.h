@@ -4,7 +4,7 @@
 /// family (the sweep.family values of jobs::KnownFamilies):
 ///  - subsystem, pilot-bridge: spectra::SpectraEvaluator, through the spectra mapping;
 ///  - multi-span: spectra::MultiSpanEvaluator (per-deck maxima and unseating margins);
-///  - model-file: parsed, but refused here (InputError on sweep.family) by this build.
+///  - model-file: spectra::ModelFileEvaluator (a model file with some values replaced per cell).
 /// The tests of the sweep machinery bypass this factory with their own evaluator
 /// (tests/jobs/test_evaluator.h), which is no family of the program.
 

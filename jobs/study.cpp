@@ -28,7 +28,9 @@ StudyTables MakeStudyTables(const SweepSpec& spec, const CubeLayout& layout, con
                            " seed=" + std::to_string(spec.synthetic_seed);
     } else {
       tables.records_source = "set";
-      tables.records_set = spec.record_set;
+      tables.records_set = spec.record_folder.empty()
+                               ? spec.record_set
+                               : spec.record_folder + " (" + spec.record_pattern + ")";
     }
   }
 

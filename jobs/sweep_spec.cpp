@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "solver/common/error.h"
+#include "spectra/study.h"
 
 namespace skewbridge::jobs {
 namespace {
@@ -21,7 +22,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // The one table of parameter names. The spectra mapping extends it here (and in
 // docs/sweep-format.md); the order is the canonical axis order of every cube.
 // clang-format off
-constexpr std::array<ParameterInfo, 17> kParameters{{
+constexpr std::array<ParameterInfo, 22> kParameters{{
   {"record", "record", "", "ground-motion record, by its label in the [records] set",
    ParameterKind::kLabel, 0, true, 0, true, false, ""},
   {"pulse", "pulse", "", "one cycle of a_g cos(w_g t) or a_g sin(w_g t) [docs/theory.md §5]",
@@ -30,6 +31,12 @@ constexpr std::array<ParameterInfo, 17> kParameters{{
    true, ""},
   {"a_g_g", "a_g", "g", "pulse amplitude a_g (cancels out of the dimensionless responses)",
    ParameterKind::kNumber, 0, false, kInf, false, false, ""},
+  {"w_g", "w_g", "rad/s", "pulse frequency w_g (family model-file; or T_g)",
+   ParameterKind::kNumber, 0, false, kInf, false, false, ""},
+  {"T_g", "T_g", "s", "pulse period T_g = 2 pi / w_g (family model-file; or w_g)",
+   ParameterKind::kNumber, 0, false, kInf, false, false, ""},
+  {"scale", "scale", "1", "factor on the excitation's accelerations (family model-file)",
+   ParameterKind::kNumber, 0, false, 1e6, true, false, ""},
   {"a_deg", "a", "deg", "skew angle a", ParameterKind::kNumber, 0, true, 90, false, false, ""},
   {"eta0", "eta0", "1", "skew ratio eta0 = sin 2a / (2 W/L)", ParameterKind::kNumber, 0, false,
    kInf, false, false, ""},
@@ -49,6 +56,10 @@ constexpr std::array<ParameterInfo, 17> kParameters{{
    false, false, ""},
   {"Pi_delta", "Pi_delta", "1", "gap over persistency: delta w_g^2 / a_g",
    ParameterKind::kNumber, 0, true, kInf, false, false, ""},
+  {"gap_m", "delta", "m", "every gap, abutments and joints, along x (family model-file; or Pi_delta)",
+   ParameterKind::kNumber, 0, true, kInf, false, false, ""},
+  {"k_factor", "k_factor", "1", "factor on the substructure stiffness K (family model-file)",
+   ParameterKind::kNumber, 0, false, 1e6, true, false, ""},
   {"seat_over_L", "seat/L", "1", "support seat width over span length (multi-span unseating margins)",
    ParameterKind::kNumber, 0, false, kInf, false, false, ""},
   {"w0_over_wg", "w0/w_g", "1", "substructure over excitation frequency w0 / w_g",
@@ -70,6 +81,16 @@ std::string Where(std::string_view source, const toml::source_region& region) {
 }
 
 std::string Fmt(double v) { return fmt::format("{}", v); }
+
+// 16 hex digits of the 64-bit FNV-1a hash of `bytes`.
+std::string Fnv1a(std::string_view bytes) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;  // FNV-1a 64 offset basis
+  for (unsigned char c : bytes) {
+    h ^= c;
+    h *= 0x100000001b3ULL;
+  }
+  return fmt::format("{:016x}", h);
+}
 
 std::string AllowedRange(const ParameterInfo& p) {
   std::string lo = p.min_inclusive ? ">= " + Fmt(p.min) : "> " + Fmt(p.min);
@@ -119,7 +140,7 @@ class Parser {
     }
     if (const toml::table* axes = root["axes"].as_table()) {
       for (auto&& [key, node] : *axes) {
-        Axis axis = ParseAxis(std::string(key.str()), key.source(), node);
+        Axis axis = ParseAxis(std::string(key.str()), key.source(), node, spec);
         // A key and its symbol (w0_over_wg and "w0/w_g") name one parameter: TOML sees two.
         if (spec.FindAxis(axis.key) != nullptr) {
           throw Error(key.source(), "axes." + std::string(key.str()),
@@ -128,10 +149,6 @@ class Parser {
         }
         spec.axes.push_back(std::move(axis));
       }
-    }
-    if (spec.axes.empty()) {
-      throw InputError::AtField(source_, "axes",
-                                "give at least one axis (a single cell is `skewbridge run`)");
     }
     if (const toml::table* fixed = root["fixed"].as_table()) {
       for (auto&& [key, node] : *fixed) {
@@ -143,6 +160,22 @@ class Parser {
         }
         spec.fixed.push_back(std::move(value));
       }
+    }
+    // [records] without a record key (and without a pulse) means every record of the set.
+    const bool has_records =
+        !spec.record_set.empty() || !spec.record_folder.empty() || spec.synthetic_count > 0;
+    if (has_records && spec.FindAxis("record") == nullptr && spec.FindFixed("record") == nullptr &&
+        spec.FindAxis("pulse") == nullptr && spec.FindFixed("pulse") == nullptr) {
+      Axis axis;
+      axis.key = "record";
+      axis.kind = ParameterKind::kLabel;
+      axis.spacing = "all";
+      axis.labels = AllRecordLabels(spec, "records", toml::source_region{});
+      spec.axes.push_back(std::move(axis));
+    }
+    if (spec.axes.empty()) {
+      throw InputError::AtField(source_, "axes",
+                                "give at least one axis (a single cell is `skewbridge run`)");
     }
     CheckCrossFields(spec);
     SortCanonically(spec);
@@ -208,6 +241,14 @@ class Parser {
     if (spec.family == "model-file") {
       spec.model_file = RequireString(sweep, "sweep", "model");
       spec.model_path = ExistingFile(sweep, "sweep", "model", spec.model_file);
+      std::ifstream in(spec.model_path, std::ios::binary);
+      std::stringstream bytes;
+      bytes << in.rdbuf();
+      if (!in) {
+        throw Error(sweep.get("model")->source(), "sweep.model",
+                    "cannot read " + spec.model_path.string());
+      }
+      spec.model_hash = Fnv1a(bytes.str());
     } else if (sweep.contains("model")) {
       throw Error(sweep.get("model")->source(), "sweep.model",
                   "only allowed with family = \"model-file\"");
@@ -236,16 +277,26 @@ class Parser {
   }
 
   void ParseRecordsTable(const toml::table& records, SweepSpec& spec) const {
+    const bool folder_form = records.contains("folder") || records.contains("pattern");
     for (auto&& [key, node] : records) {
-      if (key.str() != "set" && key.str() != "synthetic") {
-        throw Error(key.source(), "records." + std::string(key.str()),
-                    "unknown key; allowed: set, synthetic");
+      const std::string_view k = key.str();
+      const bool folder_key = k == "folder" || k == "pattern" || k == "units" || k == "dt";
+      if (k != "set" && k != "synthetic" && !(folder_form && folder_key)) {
+        throw Error(key.source(), "records." + std::string(k),
+                    "unknown key; allowed: set, synthetic, or folder and pattern (with units, "
+                    "dt)");
       }
     }
-    if (records.contains("set") == records.contains("synthetic")) {
+    if (static_cast<int>(records.contains("set")) +
+            static_cast<int>(records.contains("synthetic")) + static_cast<int>(folder_form) !=
+        1) {
       throw InputError::AtField(source_, "records",
-                                "give set = \"FILE\" or synthetic = {count = N, seed = S}, one of "
-                                "them");
+                                "give set = \"FILE\" or synthetic = {count = N, seed = S} or "
+                                "folder = \"DIR\" with pattern = \"GLOB\", one of them");
+    }
+    if (folder_form) {
+      ParseRecordFolder(records, spec);
+      return;
     }
     if (records.contains("set")) {
       spec.record_set = RequireString(records, "records", "set");
@@ -276,6 +327,41 @@ class Parser {
     spec.synthetic_seed = static_cast<std::uint64_t>(*seed);
   }
 
+  // [records] folder and pattern: a folder set without a manifest; the folder is listed now,
+  // so a missing folder, a bad pattern or an empty match fails here.
+  void ParseRecordFolder(const toml::table& records, SweepSpec& spec) const {
+    if (!records.contains("folder")) {
+      throw InputError::AtField(source_, "records.folder",
+                                "missing: pattern needs folder = \"DIR\" (relative to the spec)");
+    }
+    spec.record_folder = RequireString(records, "records", "folder");
+    if (!records.contains("pattern")) {
+      throw Error(records.get("folder")->source(), "records.pattern",
+                  "is required with folder (a file-name glob, e.g. \"*.AT2\")");
+    }
+    spec.record_pattern = RequireString(records, "records", "pattern");
+    spec.record_folder_path = base_dir_ / spec.record_folder;
+    spec.record_folder_at = Where(source_, records.get("folder")->source());
+    spec.record_pattern_at = Where(source_, records.get("pattern")->source());
+    if (const toml::node* node = records.get("units")) {
+      const auto units = node->value<std::string>();
+      if (!units || !spectra::KnownRecordUnits(*units)) {
+        throw Error(node->source(), "records.units",
+                    "must be one of g, m/s^2, cm/s^2 (the units of files that state none)");
+      }
+      spec.record_units = *units;
+    }
+    if (const toml::node* node = records.get("dt")) {
+      const auto dt = node->value<double>();
+      if (!node->is_number() || !dt || !std::isfinite(*dt) || *dt <= 0.0) {
+        throw Error(node->source(), "records.dt",
+                    "must be a number > 0 (s; the step of files that state none)");
+      }
+      spec.record_dt_s = *dt;
+    }
+    spectra::LoadSpecRecordSet(spec);
+  }
+
   void ParseStudyTable(const toml::table& study, SweepSpec& spec) const {
     for (auto&& [key, node] : study) {
       if (key.str() != "bands") {
@@ -296,6 +382,20 @@ class Parser {
       }
       spec.study_bands.push_back(*edge);
     }
+  }
+
+  // Every label of the spec's record set, in set order ([records] must come first in the file
+  // only as far as TOML goes: tables are parsed before axes whatever their order).
+  std::vector<std::string> AllRecordLabels(const SweepSpec& spec, const std::string& field,
+                                           const toml::source_region& where) const {
+    std::vector<std::string> labels;
+    if (spec.synthetic_count > 0) return spectra::AllRecordLabels(spec);
+    if (spec.record_set_path.empty() && spec.record_folder.empty()) {
+      throw Error(where, field,
+                  "\"*\" (every record) needs [records] set = \"FILE\", folder and pattern, or "
+                  "synthetic = {...}");
+    }
+    return spectra::AllRecordLabels(spec);
   }
 
   const ParameterInfo& Known(const std::string& field, const std::string& key,
@@ -351,12 +451,21 @@ class Parser {
   }
 
   Axis ParseAxis(const std::string& key, const toml::source_region& key_where,
-                 const toml::node& node) const {
+                 const toml::node& node, const SweepSpec& spec) const {
     const std::string field = "axes." + key;
     const ParameterInfo& p = Known(field, key, key_where);
     Axis axis;
     axis.key = std::string(p.key);
     axis.kind = p.kind;
+    if (axis.key == "record" && node.is_string()) {
+      if (node.value<std::string>() != "*") {
+        throw Error(node.source(), field,
+                    "must be a list of record labels or \"*\" (every record of the set)");
+      }
+      axis.spacing = "all";
+      axis.labels = AllRecordLabels(spec, field, node.source());
+      return axis;
+    }
     if (const toml::array* list = node.as_array()) {
       if (list->empty()) {
         throw Error(node.source(), field, "empty axis: give at least one value");
@@ -369,6 +478,10 @@ class Parser {
             throw Error(item.source(), field, "entries must be strings");
           }
           CheckLabel(p, *label, field, item.source());
+          if (axis.key == "record" && *label == "*") {
+            throw Error(item.source(), field,
+                        "\"*\" stands alone: record = \"*\" takes every record of the set");
+          }
           axis.labels.push_back(*label);
         } else {
           const double v = Number(item, field);
@@ -440,6 +553,10 @@ class Parser {
         throw Error(node.source(), field, "must be a string");
       }
       CheckLabel(p, *label, field, node.source());
+      if (fixed.key == "record" && *label == "*") {
+        throw Error(node.source(), field,
+                    "a fixed record is one label; [axes] record = \"*\" takes every record");
+      }
       fixed.label = *label;
     } else {
       fixed.value = Number(node, field);
@@ -461,11 +578,31 @@ class Parser {
       throw InputError::AtField(source_, "eta0",
                                 "give eta0 or W_over_L, not both (eta0 = sin 2a / (2 W/L))");
     }
+    static constexpr std::array<std::string_view, 5> kModelFileOnly{"w_g", "T_g", "scale", "gap_m",
+                                                                    "k_factor"};
+    if (spec.family != "model-file") {
+      for (std::string_view key : kModelFileOnly) {
+        if (given(key)) {
+          throw InputError::AtField(source_, key,
+                                    "only a parameter of family \"model-file\" (this sweep's "
+                                    "family is \"" +
+                                        spec.family + "\")");
+        }
+      }
+    }
+    if (given("w_g") && given("T_g")) {
+      throw InputError::AtField(source_, "T_g", "give w_g or T_g, not both (T_g = 2 pi / w_g)");
+    }
+    if (given("gap_m") && given("Pi_delta")) {
+      throw InputError::AtField(source_, "gap_m",
+                                "give gap_m or Pi_delta, not both (the gap is Pi_delta L_e)");
+    }
     if (given("pulse") && given("record")) {
       throw InputError::AtField(source_, "record",
                                 "give pulse or record, not both (one excitation per cell)");
     }
-    if (given("record") && spec.record_set.empty() && spec.synthetic_count == 0) {
+    if (given("record") && spec.record_set.empty() && spec.record_folder.empty() &&
+        spec.synthetic_count == 0) {
       throw InputError::AtField(source_, "records.set",
                                 "missing: a record axis or value needs [records] set = \"FILE\"");
     }
@@ -514,9 +651,16 @@ std::string SweepSpec::CanonicalText() const {
   out << "sweep.family = " << str(family) << "\n";
   if (!model_file.empty()) {
     out << "sweep.model = " << str(model_file) << "\n";
+    out << "sweep.model_hash = " << str(model_hash) << "\n";
   }
   if (!record_set.empty()) {
     out << "records.set = " << str(record_set) << "\n";
+  }
+  if (!record_folder.empty()) {
+    out << "records.folder = " << str(record_folder) << "\n";
+    out << "records.pattern = " << str(record_pattern) << "\n";
+    if (!record_units.empty()) out << "records.units = " << str(record_units) << "\n";
+    if (record_dt_s > 0.0) out << "records.dt = " << Fmt(record_dt_s) << "\n";
   }
   if (synthetic_count > 0) {
     out << "records.synthetic = {count = " << synthetic_count << ", seed = " << synthetic_seed
@@ -549,14 +693,7 @@ std::string SweepSpec::CanonicalText() const {
   return out.str();
 }
 
-std::string SweepSpec::Hash() const {
-  std::uint64_t h = 0xcbf29ce484222325ULL;  // FNV-1a 64 offset basis
-  for (unsigned char c : CanonicalText()) {
-    h ^= c;
-    h *= 0x100000001b3ULL;
-  }
-  return fmt::format("{:016x}", h);
-}
+std::string SweepSpec::Hash() const { return Fnv1a(CanonicalText()); }
 
 SweepSpec ParseSweepSpec(std::string_view text, std::string_view source,
                          const std::filesystem::path& base_dir) {

@@ -50,8 +50,11 @@ std::span<const std::string_view> KnownFamilies();
 /// alone needs. Axes are kept in the canonical order of KnownParameters(), whatever the order in
 /// the file, so equal specifications give equal cube layouts.
 struct SweepSpec : spectra::CellGrid {
-  std::string text;                    ///< The original text, stored verbatim in the cube.
-  std::string name;                    ///< [sweep] name: the HDF5 group name.
+  std::string text;  ///< The original text, stored verbatim in the cube.
+  std::string name;  ///< [sweep] name: the HDF5 group name.
+  /// FNV-1a hash (16 hex digits) of the model file's bytes when it was read: part of the
+  /// identity, so that --resume refuses a cube of a model file that has changed since.
+  std::string model_hash;
   std::vector<std::string> responses;  ///< Requested responses; empty = all of the evaluator's.
 
   /// A normalised text of the specification (fixed key order, shortest round-trip numbers,

@@ -4,6 +4,8 @@
 /// skewbridge::Excitation (solver/common/excitation.h).
 
 #include <Eigen/Core>
+#include <filesystem>
+#include <optional>
 #include <vector>
 
 #include "records/ground_motion.h"
@@ -62,6 +64,22 @@ class SampledExcitation final : public Excitation {
   std::vector<double> ax_;
   std::vector<double> ay_;
 };
+
+/// Samples of a model file's excitation file (docs/model-format.md, excitation.file).
+struct ExcitationSamples {
+  std::vector<double> values_mps2;  ///< each value of the file times to_mps2
+  double dt_s = 0.0;                ///< the given dt, or the step of the time column
+};
+
+/// Reads a plain text excitation file: one column (acceleration) with `dt_s` given, or two
+/// (time, acceleration) whose times advance by one constant step (within 1e-6 of the first);
+/// '#' lines and empty lines are skipped. Each value is multiplied by `to_mps2` (units x scale)
+/// and must then be finite. `skewbridge run` and model-file sweeps read the file through here.
+/// @throws InputError naming the file and the line: unreadable file, a token that is not a
+/// number, a non-finite value, an uneven time column, fewer than two samples, or one column
+/// without dt_s.
+ExcitationSamples ReadExcitationSamples(const std::filesystem::path& path,
+                                        std::optional<double> dt_s, double to_mps2);
 
 /// The record as the solver's excitation along `direction` (unit (x, y)), each sample a kink.
 /// @throws InputError when the direction is not a unit vector (see SampledExcitation).

@@ -372,11 +372,7 @@ GroundMotion SynthesizeRecord(const SynthOptions& options, int index) {
   for (double& a : acc) a *= scale;
 
   GroundMotion motion;
-  // Appending (not "literal" + string) avoids g++ 12's false -Wrestrict warning.
-  std::string name = "synth-";
-  name += std::to_string(options.seed);
-  name += '-';
-  name += IndexName(index, options.count);
+  const std::string name = SyntheticLabel(options, index);
   motion.file = name + ".AT2";
   motion.format = std::string(FormatName(Format::kAt2));
   motion.event = "Synthetic Clough-Penzien (seed ";
@@ -449,6 +445,15 @@ std::filesystem::path WriteSuite(const std::filesystem::path& directory,
   out << manifest;
   if (!out) throw InputError::AtLine(path.string(), 0, "cannot write the manifest");
   return path;
+}
+
+std::string SyntheticLabel(const SynthOptions& options, int index) {
+  // Appending (not "literal" + string) avoids g++ 12's false -Wrestrict warning.
+  std::string name = "synth-";
+  name += std::to_string(options.seed);
+  name += '-';
+  name += IndexName(index, options.count);
+  return name;
 }
 
 }  // namespace skewbridge::records

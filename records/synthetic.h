@@ -62,6 +62,10 @@ void RemoveBaselineDrift(std::vector<double>& acc_mps2, double dt_s);
 /// @throws InputError when a target T_m cannot be reached with the given dt and duration.
 GroundMotion SynthesizeRecord(const SynthOptions& options, int index);
 
+/// The label (station) of record `index` of a suite: "synth-<seed>-<index>", the index padded
+/// to at least three digits and to the digits of count - 1 (so labels sort in index order).
+std::string SyntheticLabel(const SynthOptions& options, int index);
+
 /// The whole suite, records named "synth-<seed>-<index>".
 std::vector<GroundMotion> SynthesizeSuite(const SynthOptions& options);
 

@@ -24,7 +24,7 @@ struct Axis {
   ParameterKind kind = ParameterKind::kNumber;
   std::vector<double> values;       ///< Coordinates of a numeric axis, in the given order.
   std::vector<std::string> labels;  ///< Coordinates of a label axis.
-  std::string spacing;              ///< "list", "linspace" or "logspace" (how it was written).
+  std::string spacing;  ///< "list", "linspace", "logspace" or "all" (record = "*" or implied).
   /// Number of coordinates (>= 1 after validation).
   std::size_t Size() const {
     return kind == ParameterKind::kNumber ? values.size() : labels.size();
@@ -48,6 +48,15 @@ struct CellGrid {
   std::filesystem::path model_path;       ///< model_file resolved against the spec's folder.
   std::string record_set;                 ///< [records] set, as written, or empty.
   std::filesystem::path record_set_path;  ///< record_set resolved against the spec's folder.
+  /// [records] folder and pattern: a set of every matching file, without a manifest
+  /// (records::MakeFolderSet); empty when not given.
+  std::string record_folder;
+  std::filesystem::path record_folder_path;  ///< record_folder resolved against the spec's folder.
+  std::string record_pattern;                ///< [records] pattern, a file-name glob.
+  std::string record_units;                  ///< [records] units for files stating none, or "".
+  double record_dt_s = 0.0;                  ///< [records] dt for files stating none, or 0.
+  std::string record_folder_at;              ///< "spec.toml:LINE" of folder, for messages.
+  std::string record_pattern_at;             ///< "spec.toml:LINE" of pattern, for messages.
   /// [records] synthetic = {count, seed}: a suite made in memory (records::SynthesizeSuite)
   /// instead of a manifest; count 0 when not given.
   int synthetic_count = 0;

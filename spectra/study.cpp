@@ -67,11 +67,11 @@ std::vector<SweepRecord> LoadSweepRecords(const CellGrid& spec) {
     }
     return out;
   }
-  if (spec.record_set_path.empty()) {
+  if (spec.record_set_path.empty() && spec.record_folder.empty()) {
     throw InputError::AtField(spec.source, "records.set",
                               "missing: a record axis needs a record set");
   }
-  const records::RecordSet set = records::LoadRecordSet(spec.record_set_path);
+  const records::RecordSet set = LoadSpecRecordSet(spec);
   const std::filesystem::path base = set.manifest.parent_path().lexically_normal();
   for (const std::string& label : wanted) {
     const records::RecordEntry* found = nullptr;
@@ -81,7 +81,7 @@ std::vector<SweepRecord> LoadSweepRecords(const CellGrid& spec) {
     if (found == nullptr) {
       throw InputError::AtField(
           spec.source, "record",
-          "label '" + label + "' is not in the record set " + spec.record_set_path.string());
+          "label '" + label + "' is not in the record set " + set.manifest.string());
     }
     SweepRecord record;
     record.label = label;
@@ -93,6 +93,35 @@ std::vector<SweepRecord> LoadSweepRecords(const CellGrid& spec) {
   }
   return out;
 }
+
+records::RecordSet LoadSpecRecordSet(const CellGrid& spec) {
+  if (!spec.record_folder.empty()) {
+    records::RecordEntry defaults;
+    if (!spec.record_units.empty()) defaults.options.units = records::ParseUnits(spec.record_units);
+    if (spec.record_dt_s > 0.0) defaults.options.dt_s = spec.record_dt_s;
+    return records::MakeFolderSet(spec.record_folder_path, spec.record_pattern, defaults,
+                                  {spec.record_folder_at, spec.record_pattern_at, "records."});
+  }
+  return records::LoadRecordSet(spec.record_set_path);
+}
+
+std::vector<std::string> AllRecordLabels(const CellGrid& spec) {
+  std::vector<std::string> labels;
+  if (spec.synthetic_count > 0) {
+    records::SynthOptions options;
+    options.count = spec.synthetic_count;
+    options.seed = spec.synthetic_seed;
+    for (int i = 0; i < options.count; ++i) labels.push_back(records::SyntheticLabel(options, i));
+    return labels;
+  }
+  const records::RecordSet set = LoadSpecRecordSet(spec);
+  for (const records::RecordEntry& entry : set.records) {
+    labels.push_back(records::RecordLabel(entry));
+  }
+  return labels;
+}
+
+bool KnownRecordUnits(std::string_view units) { return records::ParseUnits(units).has_value(); }
 
 std::vector<double> BandEdges(const CellGrid& spec) {
   if (!spec.study_bands.empty()) return spec.study_bands;

@@ -11,10 +11,12 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "records/ground_motion.h"
 #include "records/measures.h"
+#include "records/record_set.h"
 #include "spectra/grid.h"
 
 namespace skewbridge::spectra {
@@ -36,6 +38,18 @@ struct SweepRecord {
 /// @throws InputError for a label that is not in the set, or an unreadable or unmeasurable
 /// record.
 std::vector<SweepRecord> LoadSweepRecords(const CellGrid& spec);
+
+/// The record set a grid names: its manifest ([records] set) or its folder and pattern
+/// (records::MakeFolderSet, with the grid's units and dt for files that state none).
+/// @throws InputError from the manifest, or naming the spec's records.folder / records.pattern.
+records::RecordSet LoadSpecRecordSet(const CellGrid& spec);
+
+/// Every record label of the grid's synthetic suite or record set, in set order (what
+/// `record = "*"` stands for). @throws InputError as LoadSpecRecordSet.
+std::vector<std::string> AllRecordLabels(const CellGrid& spec);
+
+/// Whether `units` names the units of a record file (records::ParseUnits: g, m/s^2, cm/s^2).
+bool KnownRecordUnits(std::string_view units);
 
 /// The default w0x/w_g group edges: [0, 0.5), [0.5, 1), [1, 2), [2, inf) [docs/theory.md §6: the
 /// rotations fade above w0x/w_g of about 2].

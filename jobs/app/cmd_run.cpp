@@ -27,62 +27,6 @@ namespace {
 // Exit status of a run that ended before its end time with a status other than ok.
 constexpr int kRunStoppedExitCode = 3;
 
-// Samples of a plain text file: one column (acc) with excitation.dt_s, or two (time, acc)
-// whose times must advance by one constant step; `to_mps2` converts each value, which must
-// then be finite. Every problem names the file and the line.
-std::vector<double> ReadSamples(const std::filesystem::path& path, double& dt_s, bool has_dt,
-                                double to_mps2) {
-  std::ifstream in(path);
-  if (!in) {
-    throw InputError::AtLine(path.string(), 0, "cannot open the excitation file");
-  }
-  std::vector<double> t, a;
-  std::string line;
-  long number = 0;
-  while (std::getline(in, line)) {
-    ++number;
-    if (line.empty() || line[0] == '#') {
-      continue;
-    }
-    std::istringstream fields(line);
-    double x = 0.0, y = 0.0;
-    if (!(fields >> x)) {
-      throw InputError::AtLine(path.string(), number, "expected numbers (time acc, or acc)");
-    }
-    if (fields >> y) {
-      t.push_back(x);
-      a.push_back(y);
-    } else {
-      a.push_back(x);
-    }
-    if (!std::isfinite(a.back() * to_mps2) || (!t.empty() && !std::isfinite(t.back()))) {
-      throw InputError::AtLine(path.string(), number,
-                               "values must be finite (after units and scale: " +
-                                   std::to_string(a.back() * to_mps2) + " m/s^2)");
-    }
-    // A sampled excitation has one step: the times must advance by the first one.
-    if (t.size() >= 2 &&
-        !(t.back() > t[t.size() - 2] &&
-          std::abs((t.back() - t[t.size() - 2]) - (t[1] - t[0])) <= 1e-6 * (t[1] - t[0]))) {
-      throw InputError::AtLine(path.string(), number,
-                               "the time column must increase by a constant step (the first "
-                               "step is " +
-                                   std::to_string(t[1] - t[0]) + " s)");
-    }
-  }
-  if (a.size() < 2) {
-    throw InputError::AtLine(path.string(), 0, "needs at least two samples");
-  }
-  if (!has_dt) {
-    if (t.size() != a.size()) {
-      throw InputError::AtLine(path.string(), 0,
-                               "one-column files need excitation.dt_s in the model file");
-    }
-    dt_s = t[1] - t[0];
-  }
-  return a;
-}
-
 std::unique_ptr<Excitation> MakeExcitation(const model::ExcitationSpec& spec) {
   if (spec.kind == model::ExcitationSpec::Kind::kPulse) {
     const auto shape = spec.shape == model::ExcitationSpec::PulseShape::kCosine
@@ -94,10 +38,10 @@ std::unique_ptr<Excitation> MakeExcitation(const model::ExcitationSpec& spec) {
   double dt = spec.dt_s.value_or(0.0);
   std::vector<double> values = spec.values;
   if (!spec.file.empty()) {
-    values = ReadSamples(spec.file, dt, spec.dt_s.has_value(), spec.to_mps2);
-    for (double& v : values) {
-      v *= spec.to_mps2;
-    }
+    records::ExcitationSamples samples =
+        records::ReadExcitationSamples(spec.file, spec.dt_s, spec.to_mps2);
+    values = std::move(samples.values_mps2);
+    dt = samples.dt_s;
   }
   std::vector<double> ax(values.size()), ay(values.size());
   for (std::size_t i = 0; i < values.size(); ++i) {

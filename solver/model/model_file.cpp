@@ -892,4 +892,31 @@ ModelFile ParseModelFile(const std::filesystem::path& path) {
   return file;
 }
 
+std::vector<DeckAsWritten> DecksAsWritten(const std::filesystem::path& path) {
+  toml::table root;
+  try {
+    root = toml::parse_file(path.string());
+  } catch (const toml::parse_error& e) {
+    throw InputError::AtLine(path.string(), static_cast<long>(e.source().begin.line),
+                             std::string("syntax error: ").append(e.description()));
+  }
+  std::vector<const toml::table*> decks;
+  if (const toml::array* list = root["deck"].as_array()) {
+    for (const toml::node& item : *list) decks.push_back(item.as_table());
+  } else {
+    decks.push_back(root["deck"].as_table());
+  }
+  std::vector<DeckAsWritten> out;
+  for (const toml::table* deck : decks) {
+    DeckAsWritten d;
+    if (deck != nullptr) {
+      d.eta0 = (*deck)["eta0"].value<double>();
+      const toml::node* inertia = deck->get("I_m");
+      d.inertia_given = inertia != nullptr && inertia->is_number();
+    }
+    out.push_back(d);
+  }
+  return out;
+}
+
 }  // namespace skewbridge::model

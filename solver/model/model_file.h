@@ -93,4 +93,17 @@ ModelFile ParseModelFile(const std::filesystem::path& path);
 ModelFile ParseModelString(std::string_view text, std::string_view source_name,
                            const std::filesystem::path& base_dir = {});
 
+/// What a model file's [deck] (or each [[deck]]) wrote, beyond the DeckSpec it gave: whether the
+/// width came from eta0 and whether I_m was a number. A sweep that changes the skew angle needs
+/// it to re-derive the deck the way the file defines it (W kept, or W = L sin 2a / (2 eta0)).
+struct DeckAsWritten {
+  std::optional<double> eta0;  ///< deck.eta0 when the file gives it (then W follows from it)
+  bool inertia_given = false;  ///< deck.I_m is a number (else the uniform-deck rule)
+};
+
+/// DeckAsWritten of each deck of a model file that ParseModelFile accepted, in deck order (one
+/// entry for the [deck] form).
+/// @throws InputError "FILE: cannot open" if unreadable, or a syntax error.
+std::vector<DeckAsWritten> DecksAsWritten(const std::filesystem::path& path);
+
 }  // namespace skewbridge::model

@@ -1,0 +1,420 @@
+#include "spectra/model_file_evaluator.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "records/excitations.h"
+#include "solver/common/error.h"
+#include "solver/dynamics/simulate.h"
+#include "solver/dynamics/time_stepping.h"
+#include "solver/model/deck.h"
+#include "solver/model/multispan.h"
+
+namespace skewbridge::spectra {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kDegToRad = std::numbers::pi / 180.0;
+
+// "a_deg = 20, Pi_delta = 0.5": the cell's coordinates, for messages.
+std::string CellText(const CellGrid& spec, std::span<const std::size_t> index) {
+  std::string text;
+  for (std::size_t k = 0; k < spec.axes.size(); ++k) {
+    const Axis& axis = spec.axes[k];
+    text += (k ? ", " : "") + axis.key + " = " +
+            (axis.kind == ParameterKind::kNumber ? fmt::format("{}", axis.values[index[k]])
+                                                 : axis.labels[index[k]]);
+  }
+  return text;
+}
+
+// The record intensity measures stored per cell, of the excitation applied (record x scale).
+constexpr std::size_t kMeasureCount = 6;
+
+// The keys a model-file sweep refuses, checked before the model file is read; then the file.
+model::ModelFile CheckedModelFile(const CellGrid& spec) {
+  const std::string& src = spec.source;
+  // The model file gives the bridge: the subsystem's dimensionless deck and substructure keys
+  // have no meaning here (a_deg, eta0, xi, k_factor change the file's values instead).
+  for (std::string_view key :
+       {"spans", "W_over_L", "delta_over_L", "L_over_Le", "W0_over_w0", "w0_over_wg"}) {
+    if (Mentions(spec, key)) {
+      throw InputError::AtField(src, key,
+                                "not a parameter of family 'model-file' (the model file gives "
+                                "the bridge; allowed: record, pulse, a_g_g, w_g, T_g, scale, "
+                                "a_deg, eta0, xi, eps_N, mu, Pi_delta, gap_m, k_factor, "
+                                "seat_over_L, method)");
+    }
+  }
+  const bool by_record = Mentions(spec, "record");
+  if (by_record) {
+    for (std::string_view key : {"pulse", "a_g_g", "w_g", "T_g"}) {
+      if (Mentions(spec, key)) {
+        throw InputError::AtField(src, key,
+                                  "not a parameter of a record-driven sweep (a_g and w_g are "
+                                  "each record's PGA and 2 pi / T_m; scale multiplies it)");
+      }
+    }
+  }
+  return model::ParseModelFile(spec.model_path);
+}
+
+}  // namespace
+
+ModelFileEvaluator::ModelFileEvaluator(const CellGrid& spec)
+    : spec_(spec), file_(CheckedModelFile(spec)) {
+  const std::string& src = spec.source;
+  const bool by_record = Mentions(spec, "record");
+  written_ = model::DecksAsWritten(spec.model_path);
+  n_decks_ = file_.model.n_bodies();
+  const model::ExcitationSpec& ex = file_.excitation;
+  const bool by_pulse = Mentions(spec, "pulse") || Mentions(spec, "a_g_g") ||
+                        Mentions(spec, "w_g") || Mentions(spec, "T_g");
+  if (!by_record && ex.kind == model::ExcitationSpec::Kind::kSampled) {
+    if (by_pulse &&
+        !(Mentions(spec, "a_g_g") && (Mentions(spec, "w_g") || Mentions(spec, "T_g")))) {
+      throw InputError::AtField(src, Mentions(spec, "a_g_g") ? "w_g" : "a_g_g",
+                                "missing: the model file's excitation is sampled, so a pulse "
+                                "needs a_g_g and w_g or T_g");
+    }
+    if (!by_pulse) {
+      // The file's samples, read once as `skewbridge run` reads them, and their measures.
+      if (ex.file.empty()) {
+        samples_mps2_ = ex.values;
+        samples_dt_s_ = *ex.dt_s;
+      } else {
+        records::ExcitationSamples samples =
+            records::ReadExcitationSamples(ex.file, ex.dt_s, ex.to_mps2);
+        samples_mps2_ = std::move(samples.values_mps2);
+        samples_dt_s_ = samples.dt_s;
+      }
+      records::GroundMotion motion;
+      motion.file = ex.file.empty() ? spec.model_path.string() : ex.file.string();
+      motion.dt_s = samples_dt_s_;
+      motion.acc_mps2 = samples_mps2_;
+      try {
+        samples_measures_ = records::ComputeMeasures(motion);
+      } catch (const InputError& e) {
+        // Samples without a mean period (no content in its band) have no L_e: only a sweep
+        // that needs it (Pi_delta) is refused; the scales are then NaN.
+        if (Mentions(spec, "Pi_delta")) {
+          throw InputError::AtField(src, "Pi_delta",
+                                    std::string("needs L_e of the model file's samples, which "
+                                                "have none: ") +
+                                        e.what());
+        }
+        records::IntensityMeasures none;
+        none.pga_mps2 = none.omega_g_radps = none.persistency_m = kNaN;
+        samples_measures_ = none;
+      }
+    }
+  }
+  if (Mentions(spec, "xi")) {
+    if (!file_.decks && file_.deck.C) {
+      throw InputError::AtField(src, "xi",
+                                "the model file gives substructure.C, so there is no xi to "
+                                "change; remove xi or the file's C");
+    }
+    if (file_.decks) {
+      for (const model::SupportSpec& s : file_.decks->supports) {
+        if (s.other == model::kGround && s.damping) {
+          throw InputError::AtField(src, "xi",
+                                    "a [[support]] of the model file gives c_x, c_y, c_theta, so "
+                                    "there is no xi to change; give xi there instead");
+        }
+      }
+    }
+  }
+  seats_ = Mentions(spec, "seat_over_L") || (file_.decks && file_.decks->seat_width_m);
+  if (by_record) records_ = LoadSweepRecords(spec);
+  // Every cell's model is built now, so a bad combination fails before the file is touched.
+  for (std::uint64_t cell = 0; cell < spec.CellCount(); ++cell) {
+    MakeCell(spec.AxisIndex(cell), false);
+  }
+}
+
+ModelFileCell ModelFileEvaluator::MakeCell(std::span<const std::size_t> index,
+                                           bool with_excitation) const {
+  const std::string& src = spec_.source;
+  const std::string model_source = spec_.model_path.string();
+  const model::ExcitationSpec& ex = file_.excitation;
+  ModelFileCell c;
+  c.control = file_.run;
+  // A cell stores maxima, not histories nor the energy ledger (the maxima are the same bits).
+  c.control.energy_ledger = false;
+  c.control.output_interval_s = 0.0;
+  if (const std::string method = LabelOf(spec_, index, "method"); !method.empty()) {
+    c.control.method = method;
+  }
+  c.scale = NumberOf(spec_, index, "scale", 1.0);
+
+  // The excitation and its scales a_g, w_g, L_e [docs/theory.md §5].
+  const std::string label = LabelOf(spec_, index, "record");
+  if (!label.empty()) {
+    for (const SweepRecord& r : records_) {
+      if (r.label == label) c.record = &r;
+    }
+    SB_DEMAND(c.record != nullptr, "a record label of the axis is not among the loaded records");
+    c.a_g_mps2 = c.record->measures.pga_mps2 * c.scale;
+    c.w_g_radps = c.record->measures.omega_g_radps;
+    c.persistency_m = c.record->measures.persistency_m * c.scale;
+    if (with_excitation) {
+      std::vector<double> acc = c.record->motion.acc_mps2;
+      if (c.scale != 1.0) {
+        for (double& a : acc) a *= c.scale;
+      }
+      records::GroundMotion scaled;
+      scaled.file = c.record->motion.file;
+      scaled.dt_s = c.record->motion.dt_s;
+      scaled.acc_mps2 = std::move(acc);
+      c.excitation =
+          std::make_unique<records::SampledExcitation>(records::ToExcitation(scaled, ex.direction));
+    }
+  } else if (samples_measures_) {
+    c.a_g_mps2 = samples_measures_->pga_mps2 * c.scale;
+    c.w_g_radps = samples_measures_->omega_g_radps;
+    c.persistency_m = samples_measures_->persistency_m * c.scale;
+    if (with_excitation) {
+      // As `skewbridge run` makes it: the samples times the direction, both components.
+      std::vector<double> ax(samples_mps2_.size()), ay(samples_mps2_.size());
+      for (std::size_t i = 0; i < samples_mps2_.size(); ++i) {
+        const double v = c.scale == 1.0 ? samples_mps2_[i] : samples_mps2_[i] * c.scale;
+        ax[i] = v * ex.direction.x();
+        ay[i] = v * ex.direction.y();
+      }
+      c.excitation =
+          std::make_unique<records::SampledExcitation>(samples_dt_s_, std::move(ax), std::move(ay));
+    }
+  } else {
+    const bool file_pulse = ex.kind == model::ExcitationSpec::Kind::kPulse;
+    const std::string shape = LabelOf(spec_, index, "pulse");
+    const bool sine = shape.empty()
+                          ? file_pulse && ex.shape == model::ExcitationSpec::PulseShape::kSine
+                          : shape == "sine";
+    bool given = false;
+    const double a_g_g = NumberOf(spec_, index, "a_g_g", 0.0, &given);
+    c.a_g_mps2 = given ? a_g_g * model::kStandardGravity_mps2 : ex.amplitude_mps2;
+    c.a_g_mps2 *= c.scale;
+    const double w_g = NumberOf(spec_, index, "w_g", 0.0, &given);
+    c.w_g_radps = given ? w_g : ex.omega_radps;
+    const double T_g = NumberOf(spec_, index, "T_g", 0.0, &given);
+    if (given) c.w_g_radps = 2.0 * std::numbers::pi / T_g;
+    c.persistency_m = std::abs(c.a_g_mps2) / (c.w_g_radps * c.w_g_radps);
+    if (with_excitation) {
+      c.excitation = std::make_unique<records::PulseExcitation>(
+          sine ? records::PulseShape::kSine : records::PulseShape::kCosine, c.a_g_mps2, c.w_g_radps,
+          ex.direction);
+    }
+  }
+
+  // The gaps: Pi_delta L_e of this cell's excitation, or metres; every joint and abutment.
+  bool has_Pi = false, has_gap = false;
+  const double Pi_delta = NumberOf(spec_, index, "Pi_delta", 0.0, &has_Pi);
+  const double gap_m = NumberOf(spec_, index, "gap_m", 0.0, &has_gap);
+  const bool set_gaps = has_Pi || has_gap;
+  const double gap = has_Pi ? Pi_delta * c.persistency_m : gap_m;
+  bool has_eps = false, has_mu = false, has_xi = false, has_a = false, has_eta0 = false,
+       has_seat = false;
+  const double eps_N = NumberOf(spec_, index, "eps_N", 0.0, &has_eps);
+  const double mu = NumberOf(spec_, index, "mu", 0.0, &has_mu);
+  const double xi = NumberOf(spec_, index, "xi", 0.0, &has_xi);
+  const double a_deg = NumberOf(spec_, index, "a_deg", 0.0, &has_a);
+  const double eta0 = NumberOf(spec_, index, "eta0", 0.0, &has_eta0);
+  const double k_factor = NumberOf(spec_, index, "k_factor", 1.0);
+  const double seat_over_L = NumberOf(spec_, index, "seat_over_L", 0.0, &has_seat);
+
+  // The deck re-derived as the file defines it: L kept, W kept or from eta0 at the new angle;
+  // a uniform deck's I_m follows its geometry.
+  auto reshape = [&](model::DeckGeometry& g, const model::DeckAsWritten& written) {
+    if (has_a) g.skew_rad = a_deg * kDegToRad;
+    const std::optional<double> ratio = has_eta0 ? std::optional<double>(eta0) : written.eta0;
+    if ((has_a || has_eta0) && ratio) {
+      if (!(g.skew_rad > 0.0)) {
+        throw InputError::AtField(src, has_eta0 ? "eta0" : "a_deg",
+                                  "needs a skew angle > 0 (the deck's W = L sin 2a / (2 eta0) " +
+                                      std::string(has_eta0 ? "" : "of " + model_source) +
+                                      " is 0 at a = 0); cell " + CellText(spec_, index));
+      }
+      g.width_m = model::WidthFromEta0(*ratio, g.skew_rad, g.length_m);
+    }
+  };
+
+  try {
+    if (!file_.decks) {
+      model::DeckSpec d = file_.deck;
+      reshape(d.geometry, written_.front());
+      if (set_gaps) d.gap_plus_m = d.gap_minus_m = gap;
+      for (model::ContactOverride& o : d.overrides) {
+        if (has_eps) o.restitution.reset();
+        if (has_mu) o.friction.reset();
+      }
+      if (has_eps) d.restitution = eps_N;
+      if (has_mu) d.friction = mu;
+      if (has_xi) d.xi = xi;
+      c.model = model::BuildDeckModel(d, model_source);
+      if (k_factor != 1.0) {
+        // The stiffness the file describes (any kind), scaled; C from xi follows it.
+        model::DeckSpec scaled = d;
+        scaled.stiffness = model::DeckSpec::StiffnessKind::kMatrix;
+        scaled.K = c.model->K() * k_factor;
+        c.model = model::BuildDeckModel(scaled, model_source);
+      }
+      c.gap_m = d.gap_plus_m;
+      if (has_seat) c.seat_width_m = {seat_over_L * d.geometry.length_m};
+    } else {
+      model::MultiDeckSpec m = *file_.decks;
+      for (std::size_t i = 0; i < m.decks.size(); ++i) {
+        model::Body& b = m.decks[i];
+        reshape(b.geometry, written_[i]);
+        if (!written_[i].inertia_given) {
+          b.inertia_kgm2 = model::UniformDeckInertia(b.mass_kg, b.geometry);
+        }
+      }
+      if (set_gaps) {
+        m.gap_plus_m = m.gap_minus_m = gap;
+        for (model::JointSpec& j : m.joints) j.gap_m = gap;
+      }
+      if (has_eps) {
+        m.restitution = eps_N;
+        for (model::JointSpec& j : m.joints) j.restitution = eps_N;
+      }
+      if (has_mu) {
+        m.friction = mu;
+        for (model::JointSpec& j : m.joints) j.friction = mu;
+      }
+      for (model::SupportSpec& s : m.supports) {
+        if (has_xi && s.other == model::kGround) s.xi = xi;
+        s.stiffness *= k_factor;
+      }
+      c.model = model::BuildMultiDeckModel(m, model_source);
+      c.gap_m = m.gap_plus_m;
+      for (const model::Body& b : m.decks) {
+        if (has_seat) {
+          c.seat_width_m.push_back(seat_over_L * b.geometry.length_m);
+        } else if (m.seat_width_m) {
+          c.seat_width_m.push_back(*m.seat_width_m);
+        }
+      }
+    }
+  } catch (const InputError& e) {
+    throw InputError(src + ": cell " + CellText(spec_, index) + ": " + e.what());
+  }
+  return c;
+}
+
+std::vector<ResponseInfo> ModelFileEvaluator::Responses() const {
+  std::vector<ResponseInfo> out;
+  for (int d = 0; d < n_decks_; ++d) {
+    const std::string s = "_d" + std::to_string(d);
+    const std::string of = " of deck " + std::to_string(d);
+    out.push_back({"x_m" + s, "m", "maximum |x|" + of + ", relative to the ground"});
+    out.push_back({"y_m" + s, "m", "maximum |y|" + of});
+    out.push_back({"theta_m" + s, "rad", "maximum |theta|" + of});
+    out.push_back({"x_end" + s, "m", "residual x" + of + " at the end of the run"});
+    out.push_back({"y_end" + s, "m", "residual y" + of});
+    out.push_back({"theta_end" + s, "rad", "residual theta" + of});
+    out.push_back({"x_norm" + s, "1", "x_m / L_e" + of});
+    out.push_back({"y_norm" + s, "1", "y_m / L_e" + of});
+    out.push_back(
+        {"theta_norm" + s, "1", "theta_m rho / L_e" + of + ", rho its radius of gyration"});
+    out.push_back({"theta_end_norm" + s, "1", "theta_end rho / L_e" + of});
+    if (seats_) {
+      out.push_back({"margin_m" + s, "m",
+                     "unseating margin" + of +
+                         ": seat width - corner travel normal to the end "
+                         "line (a lower bound)"});
+      out.push_back({"margin_norm" + s, "1", "margin_m / L_e" + of});
+    }
+  }
+  out.push_back({"theta_norm_max", "1", "largest theta_norm over the decks"});
+  out.push_back({"impacts", "1", "number of impact events (a multi-contact impact counts once)"});
+  out.push_back({"min_impact_separation", "s",
+                 "smallest time between distinct impact instants (inf with fewer than two)"});
+  out.push_back({"a_g", "m/s^2", "excitation amplitude: pulse a_g, or the record's PGA, x scale"});
+  out.push_back({"w_g", "rad/s", "excitation frequency: pulse w_g, or 2 pi / T_m of the record"});
+  out.push_back({"L_e", "m", "persistency |a_g| / w_g^2"});
+  out.push_back(
+      {"delta", "m", "gap of the +x abutment along x (Pi_delta L_e, gap_m or the file's)"});
+  if (Mentions(spec_, "record")) {
+    out.push_back({"pga", "m/s^2", "PGA of the record x scale"});
+    out.push_back({"pgv", "m/s", "PGV of the record x scale (no baseline correction)"});
+    out.push_back({"pgd", "m", "PGD of the record x scale (no baseline correction)"});
+    out.push_back({"T_m", "s", "mean period of the record [Rathje et al. 1998]"});
+    out.push_back({"arias", "m/s", "Arias intensity of the record x scale^2"});
+    out.push_back({"D5_95", "s", "significant duration D5-95 of the record"});
+  }
+  return out;
+}
+
+std::vector<std::pair<std::int32_t, std::string>> ModelFileEvaluator::StatusNames() const {
+  return SolverStatusNames();
+}
+
+CellOutcome ModelFileEvaluator::Evaluate(std::span<const std::size_t> axis_index) const {
+  const auto start = std::chrono::steady_clock::now();
+  const ModelFileCell c = MakeCell(axis_index, true);
+  const model::Model& model = *c.model;
+  // As `skewbridge run`: run.method picks the integrator, the file's [run] its controls.
+  dynamics::RunResult run;
+  if (c.control.method == "time-stepping") {
+    dynamics::TimeSteppingWorkspace workspace(model);
+    run = dynamics::SimulateTimeStepping(model, *c.excitation, c.control, workspace);
+  } else {
+    dynamics::SimulationWorkspace workspace(model);
+    run = dynamics::Simulate(model, *c.excitation, c.control, workspace);
+  }
+
+  CellOutcome out;
+  out.status = CellStatusOf(run.status);
+  out.status_text = run.message;
+  const bool ok = out.status == kStatusOk;
+  auto value = [ok](double v) { return ok ? v : kNaN; };
+  const double to_norm = 1.0 / c.persistency_m;
+  double theta_max = 0.0;
+  for (int d = 0; d < n_decks_; ++d) {
+    const model::Body& deck = model.body(d);
+    const Eigen::Vector3d q_max = run.max_abs_q.segment<3>(3 * d);
+    const Eigen::Vector3d q_end = run.q_end.segment<3>(3 * d);
+    const double rho_m = std::sqrt(deck.inertia_kgm2 / deck.mass_kg);
+    const double theta_norm = q_max(2) * rho_m * to_norm;
+    theta_max = std::max(theta_max, theta_norm);
+    for (double v : {q_max(0), q_max(1), q_max(2), q_end(0), q_end(1), q_end(2), q_max(0) * to_norm,
+                     q_max(1) * to_norm, theta_norm, q_end(2) * rho_m * to_norm}) {
+      out.responses.push_back(value(v));
+    }
+    if (seats_) {
+      const double margin_m =
+          model::UnseatingMargin(deck, c.seat_width_m[static_cast<std::size_t>(d)], q_max);
+      out.responses.push_back(value(margin_m));
+      out.responses.push_back(value(margin_m * to_norm));
+    }
+  }
+  out.responses.push_back(value(theta_max));
+  out.responses.push_back(value(static_cast<double>(run.impacts)));
+  out.responses.push_back(value(run.min_impact_separation_s));
+  out.responses.push_back(c.a_g_mps2);
+  out.responses.push_back(c.w_g_radps);
+  out.responses.push_back(c.persistency_m);
+  out.responses.push_back(c.gap_m);
+  if (c.record != nullptr) {
+    const records::IntensityMeasures& m = c.record->measures;
+    const double s = c.scale;
+    const std::array<double, kMeasureCount> measures{m.pga_mps2 * s,      m.pgv_mps * s,
+                                                     m.pgd_m * s,         m.mean_period_s,
+                                                     m.arias_mps * s * s, m.significant_duration_s};
+    out.responses.insert(out.responses.end(), measures.begin(), measures.end());
+  }
+  out.stats.events = static_cast<std::int64_t>(run.events.size());
+  out.stats.steps = static_cast<std::int64_t>(run.free_steps + run.rk_steps);
+  out.stats.wall_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace skewbridge::spectra

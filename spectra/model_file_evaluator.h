@@ -1,0 +1,81 @@
+#pragma once
+/// @file
+/// The "model-file" sweep family (docs/sweep-format.md): a bridge given by a model file
+/// (docs/model-format.md; one deck or several in a row), run as `skewbridge run` runs it, with
+/// some of its values replaced cell by cell: the excitation (a record of the [records] set, or a
+/// pulse of shape, a_g and w_g or T_g), a factor on the accelerations, the gaps (Pi_delta L_e of
+/// the cell's excitation, or metres), eps_N, mu, the skew angle (the deck re-derived from the
+/// file's L and W, or eta0), xi, and a factor on the substructure stiffness. Responses are stored
+/// per deck with a suffix _d<i> (the decks of the file), then for the cell.
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "records/measures.h"
+#include "solver/common/excitation.h"
+#include "solver/model/model_file.h"
+#include "spectra/cell.h"
+#include "spectra/grid.h"
+#include "spectra/solver_status.h"
+#include "spectra/study.h"
+
+namespace skewbridge::spectra {
+
+/// One cell of a model-file sweep made concrete: what `skewbridge run` would be given.
+struct ModelFileCell {
+  std::optional<model::Model> model;       ///< the file's model with the cell's values
+  std::unique_ptr<Excitation> excitation;  ///< the cell's ground motion
+  model::RunControl control;               ///< the file's [run], with the cell's method
+  double a_g_mps2 = 0.0;                   ///< amplitude: pulse a_g, or the record's PGA x scale
+  double w_g_radps = 0.0;                  ///< pulse w_g, or 2 pi / T_m of the record
+  double persistency_m = 0.0;              ///< L_e = a_g / w_g^2 (m)
+  double gap_m = 0.0;                      ///< gap of the +x abutment (m, along x)
+  std::vector<double> seat_width_m;        ///< per deck; empty without seat widths
+  const SweepRecord* record = nullptr;     ///< the record of the cell, or nullptr
+  double scale = 1.0;                      ///< factor on the accelerations
+};
+
+/// Evaluates the cells of a model-file sweep. Immutable after construction: Evaluate is a pure
+/// function of the cell index.
+class ModelFileEvaluator final : public CellEvaluator {
+ public:
+  /// Reads the model file and the records (LoadSweepRecords, if any), then builds every cell's
+  /// model before any work.
+  /// @throws InputError naming the spec file and key for a parameter this family does not take
+  /// (spans, w0_over_wg, ...), a combination the model file cannot take (xi with a given damping
+  /// matrix C, eta0 at a = 0, a pulse without a_g or w_g when the file's excitation is sampled),
+  /// or a cell whose model is invalid (the model file's key named too); InputError from the
+  /// model file, its excitation file or the record set.
+  explicit ModelFileEvaluator(const CellGrid& spec);
+
+  std::vector<ResponseInfo> Responses() const override;
+  std::vector<std::pair<std::int32_t, std::string>> StatusNames() const override;
+  CellOutcome Evaluate(std::span<const std::size_t> axis_index) const override;
+  const std::vector<SweepRecord>* Records() const override {
+    return records_.empty() ? nullptr : &records_;
+  }
+
+  /// The model, excitation and run control of a cell (the excitation is made only when
+  /// `with_excitation`, so that checking every cell does not copy records).
+  /// @throws InputError naming the spec file and the key, as the constructor.
+  ModelFileCell MakeCell(std::span<const std::size_t> axis_index, bool with_excitation) const;
+
+ private:
+  CellGrid spec_;
+  model::ModelFile file_;
+  std::vector<model::DeckAsWritten> written_;  ///< DecksAsWritten(model file)
+  std::vector<SweepRecord> records_;           ///< LoadSweepRecords(spec_), read once per rank
+  /// The file's sampled excitation (inline or read from its file, times units and scale),
+  /// when no record or pulse replaces it, and its measures (L_e for Pi_delta).
+  std::vector<double> samples_mps2_;
+  double samples_dt_s_ = 0.0;
+  std::optional<records::IntensityMeasures> samples_measures_;
+  int n_decks_ = 1;
+  bool seats_ = false;  ///< margins are stored (seat_over_L given, or the file's seat width)
+};
+
+}  // namespace skewbridge::spectra

@@ -1,0 +1,344 @@
+// The model-file sweep family: every new key valid and invalid (a one-line InputError naming
+// the file and the key), record = "*" and the implied record axis, and the cell's model against
+// its definition (the deck re-derived from eta0, the stiffness factor, gaps of Pi_delta L_e).
+// tests/jobs/model_file_sweep_test.sh runs such sweeps against `skewbridge run`.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <string>
+
+#include "jobs/sweep_spec.h"
+#include "records/synthetic.h"
+#include "solver/common/error.h"
+#include "solver/model/deck.h"
+#include "spectra/model_file_evaluator.h"
+
+namespace skewbridge::jobs {
+namespace {
+
+using spectra::CellOutcome;
+using spectra::kStatusOk;
+using spectra::ModelFileCell;
+using spectra::ModelFileEvaluator;
+using spectra::SweepRecord;
+
+using ::testing::HasSubstr;
+
+constexpr double kG = 9.80665;
+
+const char* kDeck = R"([deck]
+m = 500e3
+I_m = "uniform"
+L = 30.0
+eta0 = 1.5
+skew_deg = 30.0
+[substructure]
+kind = "uncoupled"
+w0 = 10.0
+W0 = 12.0
+xi = 0.05
+[abutments]
+set = "both"
+gap_m = 0.03
+[excitation]
+kind = "pulse"
+shape = "cosine"
+a_g_g = 0.5
+T_g = 0.6
+[run]
+tail_s = 1.0
+)";
+
+// A folder holding the model file, a folder set of two plain records and its manifest.
+std::filesystem::path Folder() {
+  static const std::filesystem::path dir = [] {
+    const std::filesystem::path d = std::filesystem::path(::testing::TempDir()) / "model-file";
+    std::filesystem::remove_all(d);
+    std::filesystem::create_directories(d / "recs");
+    std::ofstream(d / "deck.toml") << kDeck;
+    std::string with_c = kDeck;
+    with_c.replace(with_c.find("xi = 0.05"), 9, "C = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]");
+    std::ofstream(d / "deck-c.toml") << with_c;
+    std::string sampled = kDeck;
+    sampled.replace(sampled.find("kind = \"pulse\""),
+                    sampled.size() - sampled.find("kind = \"pulse\""),
+                    "kind = \"sampled\"\nfile = \"recs/b.txt\"\ndt_s = 0.01\n");
+    std::ofstream(d / "deck-file.toml") << sampled;
+    for (const char* name : {"b.txt", "a.txt"}) {
+      std::ofstream out(d / "recs" / name);
+      for (int k = 0; k < 200; ++k) out << std::sin(0.1 * k) * (name[0] == 'a' ? 2.0 : 3.0) << "\n";
+    }
+    std::ofstream(d / "set.toml") << "folder = \"recs\"\npattern = \"*.txt\"\nunits = \"m/s^2\"\n"
+                                     "dt = 0.01\n";
+    return d;
+  }();
+  return dir;
+}
+
+SweepSpec Spec(const std::string& body, const std::string& model = "deck.toml",
+               const std::string& family = "model-file") {
+  const std::string head = "[sweep]\nname = \"m\"\nfamily = \"" + family + "\"\n" +
+                           (family == "model-file" ? "model = \"" + model + "\"\n" : "");
+  return ParseSweepSpec(head + body, "spec.toml", Folder());
+}
+
+std::string ErrorOf(const std::string& body, const std::string& model = "deck.toml",
+                    const std::string& family = "model-file") {
+  try {
+    ModelFileEvaluator evaluator(Spec(body, model, family));
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;  // one line
+    return what;
+  }
+  return "no error";
+}
+
+TEST(ModelFileSpec, NewKeysTakeTheirRanges) {
+  const SweepSpec spec = Spec(
+      "[axes]\nw_g = [5.0, 10.0]\nscale = [0.5, 2]\ngap_m = [0, 0.01]\nk_factor = [0.5, 1, 4]\n");
+  EXPECT_EQ(spec.CellCount(), 24u);
+  EXPECT_NO_THROW(Spec("[axes]\nT_g = [0.3, 0.6]\n"));
+  const auto error = [](const std::string& body) {
+    try {
+      Spec(body);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_THAT(error("[axes]\nw_g = [0.0]\n"),
+              HasSubstr("spec.toml:6: axes.w_g: must be a number > 0"));
+  EXPECT_THAT(error("[axes]\nT_g = [-1]\n"),
+              HasSubstr("spec.toml:6: axes.T_g: must be a number > 0"));
+  EXPECT_THAT(error("[axes]\nscale = [0]\n"),
+              HasSubstr("spec.toml:6: axes.scale: must be a number > 0"));
+  EXPECT_THAT(error("[axes]\nscale = [2e6]\n"),
+              HasSubstr("axes.scale: must be a number > 0 and <= 1000000 (got 2000000)"));
+  EXPECT_THAT(error("[axes]\ngap_m = [-0.01]\n"),
+              HasSubstr("spec.toml:6: axes.gap_m: must be a number >= 0"));
+  EXPECT_THAT(error("[axes]\nk_factor = [0]\n"),
+              HasSubstr("spec.toml:6: axes.k_factor: must be a number > 0"));
+  EXPECT_THAT(error("[axes]\nk_factor = [\"x\"]\n"), HasSubstr("axes.k_factor: must be a number"));
+  EXPECT_THAT(error("[axes]\nw_g = [5.0]\n[fixed]\nT_g = 0.5\n"),
+              HasSubstr("spec.toml: T_g: give w_g or T_g, not both"));
+  EXPECT_THAT(error("[axes]\ngap_m = [0.01]\n[fixed]\nPi_delta = 1\n"),
+              HasSubstr("spec.toml: gap_m: give gap_m or Pi_delta, not both"));
+  // The model-file keys mean nothing to the other families.
+  for (const char* key : {"w_g", "T_g", "scale", "gap_m", "k_factor"}) {
+    try {
+      Spec(std::string("[axes]\n") + key + " = [1.0]\n", "", "subsystem");
+      ADD_FAILURE() << key;
+    } catch (const InputError& e) {
+      EXPECT_THAT(e.what(), HasSubstr(std::string("spec.toml: ") + key +
+                                      ": only a parameter of family \"model-file\""));
+    }
+  }
+}
+
+// The model file's bytes are part of the identity: --resume refuses a changed model.
+TEST(ModelFileSpec, HashFollowsTheModelFileContent) {
+  std::ofstream(Folder() / "copy.toml") << kDeck;
+  const std::string before = Spec("[axes]\nmu = [0.1]\n", "copy.toml").Hash();
+  EXPECT_EQ(Spec("[axes]\nmu = [0.1]\n", "copy.toml").Hash(), before);
+  std::ofstream(Folder() / "copy.toml") << kDeck << "# edited\n";
+  EXPECT_NE(Spec("[axes]\nmu = [0.1]\n", "copy.toml").Hash(), before);
+}
+
+TEST(ModelFileSpec, RecordStarTakesEveryRecordOfTheSetInSetOrder) {
+  const SweepSpec star = Spec("[records]\nset = \"set.toml\"\n[axes]\nrecord = \"*\"\n");
+  ASSERT_NE(star.FindAxis("record"), nullptr);
+  EXPECT_EQ(star.FindAxis("record")->labels, (std::vector<std::string>{"a.txt", "b.txt"}));
+  // Omitted, the record key means the same; and the spec is the one that lists the labels.
+  const SweepSpec omitted = Spec("[records]\nset = \"set.toml\"\n[axes]\nscale = [1.0]\n");
+  ASSERT_NE(omitted.FindAxis("record"), nullptr);
+  EXPECT_EQ(omitted.FindAxis("record")->labels, star.FindAxis("record")->labels);
+  const SweepSpec listed =
+      Spec("[records]\nset = \"set.toml\"\n[axes]\nrecord = [\"a.txt\", \"b.txt\"]\n");
+  EXPECT_EQ(star.Hash(), listed.Hash());
+  // A synthetic suite: its labels, as records synth names them.
+  const SweepSpec synth =
+      Spec("[records]\nsynthetic = {count = 3, seed = 5}\n[axes]\nrecord = \"*\"\n");
+  records::SynthOptions options;
+  options.count = 3;
+  options.seed = 5;
+  EXPECT_EQ(synth.FindAxis("record")->labels,
+            (std::vector<std::string>{records::SyntheticLabel(options, 0),
+                                      records::SyntheticLabel(options, 1),
+                                      records::SyntheticLabel(options, 2)}));
+  EXPECT_EQ(synth.FindAxis("record")->labels[2], "synth-5-002");
+  // A pulse key keeps [records] from implying a record axis (and pulse with record is refused).
+  EXPECT_EQ(Spec("[records]\nset = \"set.toml\"\n[axes]\npulse = [\"sine\"]\n").FindAxis("record"),
+            nullptr);
+}
+
+TEST(ModelFileSpec, RecordStarErrorsNameTheKey) {
+  const auto error = [](const std::string& body) {
+    try {
+      Spec(body);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_THAT(error("[axes]\nrecord = \"*\"\n"),
+              HasSubstr("spec.toml:6: axes.record: \"*\" (every record) needs [records] set"));
+  EXPECT_THAT(error("[records]\nset = \"set.toml\"\n[axes]\nrecord = \"a.txt\"\n"),
+              HasSubstr("spec.toml:8: axes.record: must be a list of record labels or \"*\""));
+  EXPECT_THAT(error("[records]\nset = \"set.toml\"\n[axes]\nrecord = [\"*\", \"a.txt\"]\n"),
+              HasSubstr("spec.toml:8: axes.record: \"*\" stands alone"));
+  EXPECT_THAT(
+      error("[records]\nset = \"set.toml\"\n[axes]\nscale = [1.0]\n[fixed]\nrecord = \"*\"\n"),
+      HasSubstr("spec.toml:10: fixed.record: a fixed record is one label"));
+  // A folder set whose pattern matches nothing: the manifest's line and key.
+  std::ofstream(Folder() / "none.toml") << "folder = \"recs\"\npattern = \"*.AT2\"\n";
+  EXPECT_THAT(error("[records]\nset = \"none.toml\"\n[axes]\nrecord = \"*\"\n"),
+              HasSubstr("none.toml:2: pattern: no file of"));
+}
+
+// [records] folder and pattern: the set of a folder without a manifest, the same records as a
+// manifest of that folder (and the same cube identity whichever spelling of the axis).
+TEST(RecordsFolder, TakesTheFilesOfTheFolderLikeAManifest) {
+  const SweepSpec folder = Spec(
+      "[records]\nfolder = \"recs\"\npattern = \"*.txt\"\nunits = \"m/s^2\"\ndt = 0.01\n"
+      "[axes]\nscale = [1.0]\n");
+  ASSERT_NE(folder.FindAxis("record"), nullptr);
+  EXPECT_EQ(folder.FindAxis("record")->labels, (std::vector<std::string>{"a.txt", "b.txt"}));
+  const ModelFileEvaluator by_folder(folder);
+  const ModelFileEvaluator by_manifest(
+      Spec("[records]\nset = \"set.toml\"\n[axes]\nscale = [1.0]\n"));
+  ASSERT_NE(by_folder.Records(), nullptr);
+  ASSERT_EQ(by_folder.Records()->size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    const SweepRecord& a = (*by_folder.Records())[i];
+    const SweepRecord& b = (*by_manifest.Records())[i];
+    EXPECT_EQ(a.label, b.label);
+    EXPECT_EQ(a.file, b.file);
+    EXPECT_EQ(a.file, "recs/" + a.label);
+    EXPECT_EQ(a.motion.acc_mps2, b.motion.acc_mps2);
+    EXPECT_EQ(a.measures.persistency_m, b.measures.persistency_m);
+  }
+  EXPECT_NE(folder.Hash(), Spec("[records]\nfolder = \"recs\"\npattern = \"a*\"\nunits = "
+                                "\"m/s^2\"\ndt = 0.01\n[axes]\nscale = [1.0]\n")
+                               .Hash());
+}
+
+TEST(RecordsFolder, ErrorsNameTheSpecLineAndKey) {
+  const auto error = [](const std::string& body) {
+    try {
+      Spec(body);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string axes = "[axes]\nscale = [1.0]\n";
+  EXPECT_THAT(error("[records]\nfolder = \"nope\"\npattern = \"*\"\n" + axes),
+              HasSubstr("spec.toml:6: records.folder: not a folder"));
+  EXPECT_THAT(error("[records]\nfolder = \"recs\"\npattern = \"*.AT2\"\n" + axes),
+              HasSubstr("spec.toml:7: records.pattern: no file of"));
+  EXPECT_THAT(error("[records]\nfolder = \"recs\"\npattern = \"[a\"\n" + axes),
+              HasSubstr("spec.toml:7: records.pattern: '[a' has an unclosed '['"));
+  EXPECT_THAT(error("[records]\nfolder = \"recs\"\n" + axes),
+              HasSubstr("spec.toml:6: records.pattern: is required with folder"));
+  EXPECT_THAT(error("[records]\npattern = \"*\"\n" + axes),
+              HasSubstr("spec.toml: records.folder: missing"));
+  EXPECT_THAT(error("[records]\nfolder = \"recs\"\npattern = \"*\"\nunits = \"ft\"\n" + axes),
+              HasSubstr("spec.toml:8: records.units: must be one of g, m/s^2, cm/s^2"));
+  EXPECT_THAT(error("[records]\nfolder = \"recs\"\npattern = \"*\"\ndt = 0\n" + axes),
+              HasSubstr("spec.toml:8: records.dt: must be a number > 0"));
+  EXPECT_THAT(error("[records]\nset = \"set.toml\"\nfolder = \"recs\"\npattern = \"*\"\n" + axes),
+              HasSubstr("spec.toml: records: give set"));
+  EXPECT_THAT(error("[records]\nset = \"set.toml\"\nunits = \"g\"\n" + axes),
+              HasSubstr("spec.toml:7: records.units: unknown key"));
+}
+
+TEST(ModelFileEvaluator, RefusesKeysAndCombinationsNamingFileAndKey) {
+  for (const char* key : {"w0_over_wg", "W0_over_w0", "L_over_Le", "W_over_L", "delta_over_L"}) {
+    EXPECT_THAT(
+        ErrorOf(std::string("[axes]\n") + key + " = [1.0]\n"),
+        HasSubstr(std::string("spec.toml: ") + key + ": not a parameter of family 'model-file'"));
+  }
+  EXPECT_THAT(ErrorOf("[axes]\nspans = [1]\n"),
+              HasSubstr("spec.toml: spans: not a parameter of family 'model-file'"));
+  EXPECT_THAT(
+      ErrorOf("[records]\nset = \"set.toml\"\n[axes]\nrecord = \"*\"\n[fixed]\na_g_g = 0.3\n"),
+      HasSubstr("spec.toml: a_g_g: not a parameter of a record-driven sweep"));
+  EXPECT_THAT(ErrorOf("[records]\nset = \"set.toml\"\n[axes]\nrecord = \"*\"\n[fixed]\nw_g = 3\n"),
+              HasSubstr("spec.toml: w_g: not a parameter of a record-driven sweep"));
+  EXPECT_THAT(ErrorOf("[axes]\nxi = [0.02]\n", "deck-c.toml"),
+              HasSubstr("spec.toml: xi: the model file gives substructure.C"));
+  EXPECT_THAT(ErrorOf("[axes]\na_deg = [0, 30]\n"),
+              HasSubstr("spec.toml: a_deg: needs a skew angle > 0"));
+  EXPECT_THAT(ErrorOf("[axes]\na_g_g = [0.1]\n", "deck-file.toml"),
+              HasSubstr("spec.toml: w_g: missing: the model file's excitation is sampled"));
+  // The same sweep with a record is accepted once the file's excitation is replaced.
+  EXPECT_EQ(ErrorOf("[records]\nset = \"set.toml\"\n[axes]\nrecord = \"*\"\n", "deck-file.toml"),
+            "no error");
+}
+
+// Inline samples without a mean period (all zero) have no L_e: Pi_delta is refused, naming it;
+// other keys run with NaN scales.
+TEST(ModelFileEvaluator, SamplesWithoutMeanPeriodRefuseOnlyPiDelta) {
+  std::string still = kDeck;
+  still.replace(still.find("kind = \"pulse\""), still.size() - still.find("kind = \"pulse\""),
+                "kind = \"sampled\"\nvalues = [0.0, 0.0, 0.0, 0.0]\ndt_s = 0.01\n");
+  std::ofstream(Folder() / "still.toml") << still;
+  EXPECT_THAT(ErrorOf("[axes]\nPi_delta = [1.0]\n", "still.toml"),
+              HasSubstr("spec.toml: Pi_delta: needs L_e of the model file's samples"));
+  const ModelFileEvaluator evaluator(Spec("[axes]\nmu = [0.1]\n", "still.toml"));
+  const std::vector<std::size_t> cell{0};
+  const CellOutcome out = evaluator.Evaluate(cell);
+  EXPECT_EQ(out.status, kStatusOk);
+  EXPECT_EQ(out.responses[0], 0.0);           // x_m_d0: the ground does not move
+  EXPECT_TRUE(std::isnan(out.responses[6]));  // x_norm_d0 = x_m / L_e, L_e undefined
+}
+
+TEST(ModelFileEvaluator, CellModelFollowsTheDefinitions) {
+  const ModelFileEvaluator evaluator(
+      Spec("[axes]\na_deg = [45]\nk_factor = [1, 2]\nPi_delta = [0.5]\n[fixed]\neps_N = 0.7\n"));
+  const std::vector<std::size_t> k1{0, 0, 0}, k2{0, 0, 1};  // a_deg, Pi_delta, k_factor
+  const ModelFileCell one = evaluator.MakeCell(k1, true);
+  const ModelFileCell two = evaluator.MakeCell(k2, true);
+  const model::Body& deck = one.model->body(0);
+  // W = L sin 2a / (2 eta0) at the new angle: 30 x 1 / 3 = 10 m; uniform I_m of that deck.
+  EXPECT_NEAR(deck.geometry.width_m, 10.0, 1e-12);
+  EXPECT_DOUBLE_EQ(deck.geometry.skew_rad, std::numbers::pi / 4);
+  EXPECT_DOUBLE_EQ(deck.inertia_kgm2, 500e3 * (900.0 + 100.0 / 0.5) / 12.0);
+  // K = diag(m w0^2, m w0^2, I_m W0^2), doubled exactly by k_factor = 2.
+  EXPECT_DOUBLE_EQ(one.model->K()(0, 0), 500e3 * 100.0);
+  EXPECT_DOUBLE_EQ(one.model->K()(2, 2), deck.inertia_kgm2 * 144.0);
+  EXPECT_EQ(two.model->K(), one.model->K() * 2.0);
+  // Gaps of Pi_delta L_e with L_e = a_g / w_g^2 of the file's pulse; eps_N on every contact.
+  const double w_g = 2.0 * std::numbers::pi / 0.6;
+  EXPECT_DOUBLE_EQ(one.persistency_m, 0.5 * kG / (w_g * w_g));
+  EXPECT_DOUBLE_EQ(one.gap_m, 0.5 * one.persistency_m);
+  ASSERT_EQ(one.model->n_contacts(), 4);
+  for (const model::Contact& c : one.model->contacts()) EXPECT_EQ(c.restitution, 0.7);
+  // A record cell: a_g, w_g, L_e are the record's measures times scale.
+  const ModelFileEvaluator records(
+      Spec("[records]\nset = \"set.toml\"\n[axes]\nrecord = \"*\"\nscale = [2.0]\n"));
+  const std::vector<std::size_t> r{1, 0};
+  const ModelFileCell cell = records.MakeCell(r, true);
+  ASSERT_NE(cell.record, nullptr);
+  EXPECT_EQ(cell.record->label, "b.txt");
+  EXPECT_EQ(cell.a_g_mps2, 2.0 * cell.record->measures.pga_mps2);
+  EXPECT_EQ(cell.persistency_m, 2.0 * cell.record->measures.persistency_m);
+  EXPECT_NEAR(cell.record->measures.pga_mps2, 3.0, 0.01);
+  // The same samples as the model file's excitation file: the same scales, read by the run's
+  // reader instead of the record reader.
+  const ModelFileEvaluator file(
+      Spec("[axes]\nPi_delta = [2.0]\nscale = [2.0]\n", "deck-file.toml"));
+  const std::vector<std::size_t> f{0, 0};
+  const ModelFileCell from_file = file.MakeCell(f, true);
+  EXPECT_NEAR(from_file.persistency_m, cell.persistency_m, 1e-12 * cell.persistency_m);
+  EXPECT_NEAR(from_file.gap_m, 2.0 * cell.persistency_m, 1e-12 * cell.persistency_m);
+  EXPECT_EQ(from_file.excitation->Duration(), cell.excitation->Duration());
+}
+
+}  // namespace
+}  // namespace skewbridge::jobs
