@@ -73,6 +73,33 @@ void PrintNaturalFrequencies(const model::Model& model) {
   }
 }
 
+void PrintModes(const model::Model& model) {
+  PrintNaturalFrequencies(model);
+  const model::Modes modes = model::ComputeModes(model.M(), model.K());
+  std::vector<model::Body> bodies;
+  for (int b = 0; b < model.n_bodies(); ++b) {
+    bodies.push_back(model.body(b));
+  }
+  const Eigen::MatrixXd shapes = model::DisplayModeShapes(modes, bodies);
+  std::printf(
+      "mode shapes (columns: modes; rho theta with rho the radius of gyration; "
+      "largest entry +1):\n");
+  for (Eigen::Index i = 0; i < shapes.rows(); ++i) {
+    const int b = static_cast<int>(i / 3);
+    const char* names[3] = {"x", "y", "rho theta"};
+    std::printf("  %-9s deck %d:", names[i % 3], b);
+    for (Eigen::Index k = 0; k < shapes.cols(); ++k) {
+      std::printf(" %10.6f", shapes(i, k));
+    }
+    std::printf("\n");
+  }
+  if (model.n_bodies() == 1) {
+    PrintStiffnessCentre(model);
+  } else {
+    std::printf("centre of rigidity and principal axes: printed for a single deck only\n");
+  }
+}
+
 void AddModesCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "modes",
@@ -85,30 +112,7 @@ void AddModesCommand(CLI::App& app) {
     const model::Model& model = file.model;
     std::printf("model %s: %d deck%s, %d DOFs, substructure %s\n", model_path->c_str(),
                 model.n_bodies(), model.n_bodies() == 1 ? "" : "s", model.n_dof(), KindName(file));
-    PrintNaturalFrequencies(model);
-    const model::Modes modes = model::ComputeModes(model.M(), model.K());
-    std::vector<model::Body> bodies;
-    for (int b = 0; b < model.n_bodies(); ++b) {
-      bodies.push_back(model.body(b));
-    }
-    const Eigen::MatrixXd shapes = model::DisplayModeShapes(modes, bodies);
-    std::printf(
-        "mode shapes (columns: modes; rho theta with rho the radius of gyration; "
-        "largest entry +1):\n");
-    for (Eigen::Index i = 0; i < shapes.rows(); ++i) {
-      const int b = static_cast<int>(i / 3);
-      const char* names[3] = {"x", "y", "rho theta"};
-      std::printf("  %-9s deck %d:", names[i % 3], b);
-      for (Eigen::Index k = 0; k < shapes.cols(); ++k) {
-        std::printf(" %10.6f", shapes(i, k));
-      }
-      std::printf("\n");
-    }
-    if (model.n_bodies() == 1) {
-      PrintStiffnessCentre(model);
-    } else {
-      std::printf("centre of rigidity and principal axes: printed for a single deck only\n");
-    }
+    PrintModes(model);
   });
 }
 

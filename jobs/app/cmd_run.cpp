@@ -152,9 +152,9 @@ void AddRunCommand(CLI::App& app) {
     }
     std::printf(", status %s%s%s, t_end %.6g s\n", dynamics::ToString(r.status),
                 r.message.empty() ? "" : " - ", r.message.c_str(), r.end_time_s);
-    // Stiffness assembled from bearings and piers: its frequencies are a result worth seeing.
+    // Stiffness assembled from bearings and piers: its modes are a result worth seeing.
     if (!file.decks && file.deck.stiffness == model::DeckSpec::StiffnessKind::kElements) {
-      PrintNaturalFrequencies(file.model);
+      PrintModes(file.model);
     }
     const char* names[3] = {"x", "y", "theta"};
     const char* units[3] = {"m", "m", "rad"};

@@ -17,6 +17,9 @@ void AddRunCommand(CLI::App& app);
 void AddModesCommand(CLI::App& app);
 /// Prints the natural frequencies w_k (rad/s), f_k (Hz) and periods of K phi = w^2 M phi.
 void PrintNaturalFrequencies(const model::Model& model);
+/// Prints the natural frequencies, the mode shapes and, for one deck, the centre of rigidity and
+/// the principal stiffness axes (what `skewbridge modes` shows after its header line).
+void PrintModes(const model::Model& model);
 /// `skewbridge sweep SPEC.toml --out FILE.h5`: runs a sweep (MPI inside), jobs/sweep_command.h.
 void AddSweepCommand(CLI::App& app);
 /// `skewbridge inspect FILE.h5`: prints the sweeps, axes, responses and completion of a cube.

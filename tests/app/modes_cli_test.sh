@@ -30,6 +30,7 @@ grep -q "rho theta" "$work/out" || fail "modes: no mode shapes"
 "$exe" run "$model" >"$work/run" 2>&1 || fail "run: exit $? ($(cat "$work/run"))"
 grep -q "status ok" "$work/run" || fail "run: no 'status ok'"
 grep -q "mode 1: w = $w_weak rad/s" "$work/run" || fail "run: frequencies not printed"
+grep -q "centre of rigidity: e_x = 0 m, e_y = 0 m" "$work/run" || fail "run: centre of rigidity not printed"
 
 # The principal-axes example has no elements: modes still prints its (published) frequencies.
 "$exe" modes "$root/docs/examples/pilot-bridge.toml" >"$work/pilot" 2>&1 || fail "pilot: exit $?"
