@@ -37,8 +37,8 @@ void CheckCellCount(const SweepSpec& spec, std::uint64_t max_cells) {
 }
 
 // Passes every call through and records whether the collective Finish has returned: a
-// failure after it (the final cube's write on rank 0) leaves no rank waiting, so it needs no
-// MPI_Abort.
+// failure after it (the final cube's write on rank 0, which ends the chunk farm before
+// Finish) leaves no rank waiting, so it needs no MPI_Abort.
 class FinishWatch final : public Transport {
  public:
   explicit FinishWatch(std::unique_ptr<Transport> inner) : inner_(std::move(inner)) {}
@@ -58,6 +58,11 @@ class FinishWatch final : public Transport {
     return inner_->Receive(handle, wait_s);
   }
   ReceiveStats Received() const override { return inner_->Received(); }
+  void Farm(std::size_t count, const std::function<std::vector<char>(std::size_t)>& job,
+            const std::function<std::vector<char>(std::span<const char>)>& work,
+            const std::function<void(std::size_t, std::span<const char>)>& done) override {
+    inner_->Farm(count, job, work, done);
+  }
   void Finish() override {
     inner_->Finish();
     finished_ = true;

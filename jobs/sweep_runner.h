@@ -50,6 +50,10 @@ struct SweepOptions {
   /// Rank 0 computes cells too when there are at most this many ranks; above, it only
   /// gathers and writes, so that results and progress never wait for one of its own cells.
   int root_computes_up_to_ranks = 64;
+  /// With more than one rank, the final cube's chunks are shuffled, deflated and checksummed
+  /// by the other ranks (idle once the cells are done) and written by rank 0 as stored bytes;
+  /// false: rank 0 alone filters them through HDF5 (the serial path, same file contents).
+  bool farm_final_cube = true;
   /// Set asynchronously (a signal handler) to stop: the run checkpoints and returns
   /// interrupted. May be nullptr.
   const volatile std::sig_atomic_t* stop = nullptr;
@@ -81,6 +85,7 @@ struct SweepReport {
   std::uint64_t bytes_received = 0;
   double receive_busy_s = 0.0;
   double checkpoint_s = 0.0;  ///< Rank 0: time spent writing checkpoints [s].
+  double final_s = 0.0;       ///< Rank 0: time spent writing the final cube (study included) [s].
 };
 
 /// Runs (or resumes) a sweep on every rank of `transport`. Collective.

@@ -241,6 +241,15 @@ BatchView ViewOf(const ResultBatch& batch) {
   return view;
 }
 
+void Transport::Farm(std::size_t count, const std::function<std::vector<char>(std::size_t)>& job,
+                     const std::function<std::vector<char>(std::span<const char>)>& work,
+                     const std::function<void(std::size_t, std::span<const char>)>& done) {
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::vector<char> result = work(job(i));
+    done(i, result);
+  }
+}
+
 std::unique_ptr<Transport> MakeInProcessTransport() {
   return std::make_unique<InProcessTransport>();
 }

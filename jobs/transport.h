@@ -132,6 +132,14 @@ class Transport {
   virtual bool Receive(const std::function<void(std::span<const char>)>& handle, double wait_s) = 0;
   /// Rank 0: the messages received so far and the time spent on them.
   virtual ReceiveStats Received() const { return {}; }
+  /// Collective, after every stream has ended: rank 0 hands jobs 0 .. count - 1 (job(i) makes
+  /// the bytes of job i when it is sent) to the other ranks, which apply `work` and return its
+  /// bytes; rank 0 gets each result through done(i, bytes), in any order. The other ranks pass
+  /// count 0 and no job or done. This base version, for a single process, runs every job on
+  /// rank 0 itself. A throwing done ends the farm (the other ranks are released) and rethrows.
+  virtual void Farm(std::size_t count, const std::function<std::vector<char>(std::size_t)>& job,
+                    const std::function<std::vector<char>(std::span<const char>)>& work,
+                    const std::function<void(std::size_t, std::span<const char>)>& done);
   /// Collective: ends the sweep's communication (every pending send completed, shared
   /// resources freed); the last call on a transport.
   virtual void Finish() = 0;

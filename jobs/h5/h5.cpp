@@ -231,9 +231,6 @@ std::vector<hsize_t> Shape(hid_t dataset) {
   return shape;
 }
 
-namespace {
-
-// The path of an object in its file, for messages ("" when HDF5 cannot tell).
 std::string ObjectName(hid_t obj) {
   const ssize_t n = H5Iget_name(obj, nullptr, 0);
   if (n <= 0) {
@@ -243,8 +240,6 @@ std::string ObjectName(hid_t obj) {
   H5Iget_name(obj, name.data(), name.size() + 1);
   return name;
 }
-
-}  // namespace
 
 void WriteAll(hid_t dataset, hid_t mem_type, const void* data) {
   Check(H5Dwrite(dataset, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data),

@@ -46,6 +46,9 @@ class Id {
   Closer closer_ = nullptr;
 };
 
+/// The path of an object in its file, for messages ("" when HDF5 cannot tell).
+std::string ObjectName(hid_t obj);
+
 /// Silences HDF5's automatic error stack printing (libraries never print); errors are thrown.
 void SilenceErrorStack();
 

@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstring>
 #include <ctime>
+#include <exception>
 #include <limits>
 #include <list>
 #include <thread>
@@ -15,6 +17,9 @@ namespace skewbridge::jobs {
 namespace {
 
 constexpr int kRecordTag = 7101;
+constexpr int kJobTag = 7102;     // rank 0 -> a rank: [job index, 8 bytes][job]; 0 bytes = stop
+constexpr int kResultTag = 7103;  // a rank -> rank 0: [job index, 8 bytes][result]
+constexpr int kJobsInFlight = 2;  // per rank: one to work on, one already waiting
 
 void CheckMpi(int code, const char* what) { SB_DEMAND(code == MPI_SUCCESS, what); }
 
@@ -143,6 +148,122 @@ class MpiTransport final : public Transport {
   }
 
   ReceiveStats Received() const override { return received_; }
+
+  // Rank 0 keeps kJobsInFlight jobs at every other rank and hands the next job to whichever
+  // returns a result (dynamic, as the cells); then a zero-byte job tells each rank to stop.
+  void Farm(std::size_t count, const std::function<std::vector<char>(std::size_t)>& job,
+            const std::function<std::vector<char>(std::span<const char>)>& work,
+            const std::function<void(std::size_t, std::span<const char>)>& done) override {
+    if (size_ == 1) {
+      Transport::Farm(count, job, work, done);
+      return;
+    }
+    if (rank_ != 0) {
+      std::vector<char> in;
+      while (true) {
+        MPI_Status status;
+        CheckMpi(MPI_Probe(0, kJobTag, comm_, &status), "MPI_Probe");
+        int bytes = 0;
+        CheckMpi(MPI_Get_count(&status, MPI_BYTE, &bytes), "MPI_Get_count");
+        in.resize(static_cast<std::size_t>(bytes));
+        CheckMpi(MPI_Recv(in.data(), bytes, MPI_BYTE, 0, kJobTag, comm_, MPI_STATUS_IGNORE),
+                 "MPI_Recv");
+        if (bytes == 0) {
+          return;
+        }
+        SB_DEMAND(in.size() >= sizeof(std::uint64_t), "a farm job without its index");
+        const std::vector<char> result =
+            work(std::span<const char>(in).subspan(sizeof(std::uint64_t)));
+        std::vector<char> out(in.begin(), in.begin() + sizeof(std::uint64_t));  // the index
+        out.insert(out.end(), result.begin(), result.end());
+        SB_DEMAND(out.size() <= static_cast<std::size_t>(std::numeric_limits<int>::max()),
+                  "a farm result exceeds MPI's int count");
+        CheckMpi(MPI_Send(out.data(), static_cast<int>(out.size()), MPI_BYTE, 0, kResultTag, comm_),
+                 "MPI_Send");
+      }
+    }
+    std::list<Outgoing> sends;  // a list: Isend buffers must not move
+    std::size_t next = 0;
+    std::size_t outstanding = 0;
+    bool failed = false;
+    std::exception_ptr error;
+    auto send = [&](int to, std::vector<char> bytes) {
+      SB_DEMAND(bytes.size() <= static_cast<std::size_t>(std::numeric_limits<int>::max()),
+                "a farm job exceeds MPI's int count");
+      sends.push_back({std::move(bytes), MPI_REQUEST_NULL});
+      Outgoing& msg = sends.back();
+      CheckMpi(MPI_Isend(msg.bytes.data(), static_cast<int>(msg.bytes.size()), MPI_BYTE, to,
+                         kJobTag, comm_, &msg.request),
+               "MPI_Isend");
+    };
+    auto hand_out = [&](int to) {
+      if (failed || next >= count) {
+        return;
+      }
+      std::vector<char> body;
+      try {
+        body = job(next);
+      } catch (...) {
+        failed = true;
+        error = std::current_exception();
+        return;
+      }
+      const std::uint64_t index = next;
+      std::vector<char> bytes(sizeof index);
+      std::memcpy(bytes.data(), &index, sizeof index);
+      bytes.insert(bytes.end(), body.begin(), body.end());
+      send(to, std::move(bytes));
+      ++next;
+      ++outstanding;
+    };
+    for (int k = 0; k < kJobsInFlight; ++k) {
+      for (int to = 1; to < size_; ++to) {
+        hand_out(to);
+      }
+    }
+    while (outstanding > 0) {
+      MPI_Status status;
+      CheckMpi(MPI_Probe(MPI_ANY_SOURCE, kResultTag, comm_, &status), "MPI_Probe");
+      int bytes = 0;
+      CheckMpi(MPI_Get_count(&status, MPI_BYTE, &bytes), "MPI_Get_count");
+      if (buffer_.size() < static_cast<std::size_t>(bytes)) {
+        buffer_.resize(static_cast<std::size_t>(bytes));
+      }
+      CheckMpi(MPI_Recv(buffer_.data(), bytes, MPI_BYTE, status.MPI_SOURCE, kResultTag, comm_,
+                        MPI_STATUS_IGNORE),
+               "MPI_Recv");
+      --outstanding;
+      SB_DEMAND(static_cast<std::size_t>(bytes) >= sizeof(std::uint64_t),
+                "a farm result without its index");
+      std::uint64_t index = 0;
+      std::memcpy(&index, buffer_.data(), sizeof index);
+      if (!failed) {
+        try {
+          done(static_cast<std::size_t>(index),
+               std::span<const char>(buffer_.data() + sizeof index,
+                                     static_cast<std::size_t>(bytes) - sizeof index));
+        } catch (...) {
+          failed = true;  // no more jobs; the results still on their way are drained
+          error = std::current_exception();
+        }
+      }
+      hand_out(status.MPI_SOURCE);
+      for (auto it = sends.begin(); it != sends.end();) {
+        int complete = 0;
+        CheckMpi(MPI_Test(&it->request, &complete, MPI_STATUS_IGNORE), "MPI_Test");
+        it = complete ? sends.erase(it) : std::next(it);
+      }
+    }
+    for (int to = 1; to < size_; ++to) {
+      send(to, {});
+    }
+    for (Outgoing& msg : sends) {
+      CheckMpi(MPI_Wait(&msg.request, MPI_STATUS_IGNORE), "MPI_Wait");
+    }
+    if (error) {
+      std::rethrow_exception(error);
+    }
+  }
 
   void Finish() override {
     Reap(true);

@@ -347,6 +347,84 @@ w0_over_wg = {linspace = [0.2, 4.0, 7]}
   std::filesystem::remove_all(dir);
 }
 
+// The final cube's chunks filtered outside HDF5 (FilterFinalChunk, as the idle ranks do) and
+// written as stored bytes are, chunk for chunk, the bytes HDF5's own shuffle + deflate +
+// Fletcher-32 pipeline stores (edge chunks with their fill included), and they read back
+// through the checksum; a chunk whose deflate stream changed under its checksum fails the read.
+TEST(FinalCube, FarmedChunksAreTheBytesHdf5StoresAndTheirChecksumsVerify) {
+  const SweepSpec spec = ParseSweepSpec(R"(
+[sweep]
+name = "farm"
+family = "subsystem"
+[axes]
+pulse = ["cosine", "sine"]
+a_deg = {linspace = [0, 60, 11]}
+w0_over_wg = {linspace = [0.2, 4.0, 1000]}
+)",
+                                        "spec.toml", ".");
+  const TestEvaluator evaluator(spec, 0, 0);
+  const CubeLayout layout = MakeCubeLayout(evaluator, {}, "spec.toml");
+  const std::uint64_t cells = spec.CellCount();  // 2 x 11 x 1000: chunks of 8 rows, an edge of 3
+  CubeData data;
+  data.Reset(cells, layout.responses.size());
+  for (std::uint64_t c = 0; c < cells; ++c) {
+    if (c % 7 == 3 || TestEvaluator::Throws(c)) continue;  // not done: fill values stay
+    const CellOutcome o = evaluator.Evaluate(spec.AxisIndex(c));
+    data.Store(c, o.status, o.responses,
+               CellStats{o.stats.events, o.stats.steps, 1e-6 * static_cast<double>(c)}, 2);
+    data.done[c] = 1;
+  }
+  const auto dir = std::filesystem::temp_directory_path() / "sb_final_farm";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::size_t jobs = 0;
+  const h5::ChunkFarm local = [&](std::size_t count, const auto& job, const auto& done) {
+    for (std::size_t i = 0; i < count; ++i, ++jobs) {
+      const std::vector<char> stored = h5::RunChunkJob(job(i));
+      done(i, stored);
+    }
+  };
+  h5::WriteFinalCube(dir / "hdf5.h5", spec, layout, data, 2, "2026-01-01T00:00:00Z");
+  h5::WriteFinalCube(dir / "farm.h5", spec, layout, data, 2, "2026-01-01T00:00:00Z", {}, nullptr,
+                     &local);
+  std::vector<std::string> names;
+  const CubeData back = h5::ReadCubeData(dir / "farm.h5", "farm", &names);  // checksums on
+  std::vector<std::string> datasets = {"status",       "done",        "stats/run",
+                                       "stats/events", "stats/steps", "stats/wall_s"};
+  for (const std::string& r : names) datasets.push_back("responses/" + r);
+  EXPECT_EQ(jobs, datasets.size() * 2 * 2) << "2 x 2 chunks per dataset";
+  for (const std::string& name : datasets) {
+    const auto ours = h5::ReadStoredChunks(dir / "farm.h5", "farm", name);
+    const auto theirs = h5::ReadStoredChunks(dir / "hdf5.h5", "farm", name);
+    ASSERT_EQ(ours.size(), 4u) << name;
+    EXPECT_TRUE(ours == theirs) << name << ": stored bytes differ from HDF5's pipeline";
+  }
+  for (std::size_t r = 0; r < names.size(); ++r) {
+    EXPECT_EQ(std::memcmp(back.responses[r].data(), data.responses[r].data(), cells * 8), 0);
+  }
+  EXPECT_EQ(std::memcmp(back.status.data(), data.status.data(), cells * 4), 0);
+  EXPECT_EQ(std::memcmp(back.done.data(), data.done.data(), cells), 0);
+  EXPECT_EQ(std::memcmp(back.wall_s.data(), data.wall_s.data(), cells * 8), 0);
+
+  // One byte of a deflate stream changed after its checksum was computed: the read must fail.
+  const h5::ChunkFarm damaging = [&](std::size_t count, const auto& job, const auto& done) {
+    for (std::size_t i = 0; i < count; ++i) {
+      std::vector<char> stored = h5::RunChunkJob(job(i));
+      if (i == 0) stored[stored.size() / 2] ^= 0x10;
+      done(i, stored);
+    }
+  };
+  h5::WriteFinalCube(dir / "bad.h5", spec, layout, data, 2, "2026-01-01T00:00:00Z", {}, nullptr,
+                     &damaging);
+  try {
+    (void)h5::ReadCubeData(dir / "bad.h5", "farm", nullptr);
+    ADD_FAILURE() << "a damaged chunk was read";
+  } catch (const h5::H5Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("checksum"));
+  }
+  std::filesystem::remove_all(dir);
+}
+
 // The pending list as runs answers every position like the plain list of cells it replaces,
 // and travels as (first cell, length) pairs.
 TEST(PendingCells, RunsGiveTheCellOfEveryPositionAndSurviveTheirFlatForm) {
