@@ -86,6 +86,7 @@ struct SweepReport {
   double receive_busy_s = 0.0;
   double checkpoint_s = 0.0;  ///< Rank 0: time spent writing checkpoints [s].
   double final_s = 0.0;       ///< Rank 0: time spent writing the final cube (study included) [s].
+  double final_cpu_s = 0.0;   ///< Rank 0: its own CPU time in that write (not the farm's) [s].
 };
 
 /// Runs (or resumes) a sweep on every rank of `transport`. Collective.

@@ -250,21 +250,29 @@ struct ChunkSource {
     return offset;
   }
 
-  // The raw chunk j: fill value everywhere, the cube's rows copied over the part in the extent.
-  std::vector<char> Raw(std::uint64_t j) const {
+  // The job of chunk j (MakeChunkJob's message, built in place: one copy of the cube's bytes):
+  // the element size, then the chunk with the fill value everywhere and the cube's rows over
+  // the part inside the extent.
+  std::vector<char> Job(std::uint64_t j) const {
     const std::size_t rank = shape.size();
     const std::vector<hsize_t> offset = Offset(j);
     std::size_t elements = 1;
     for (hsize_t c : chunk) elements *= c;
-    std::vector<char> raw(elements * size);
-    for (std::size_t e = 0; e < elements; ++e) {
-      std::memcpy(raw.data() + e * size, fill.data(), size);
-    }
+    std::vector<char> job(1 + elements * size);
+    job[0] = static_cast<char>(size);
+    char* const raw = job.data() + 1;
     std::vector<hsize_t> extent(rank);  // the part of the chunk inside the dataset
+    std::size_t inside = 1;
     for (std::size_t k = 0; k < rank; ++k) {
       extent[k] = std::min(chunk[k], shape[k] - offset[k]);
-      if (extent[k] == 0) return raw;
+      inside *= extent[k];
     }
+    if (inside < elements) {  // an edge chunk
+      for (std::size_t e = 0; e < elements; ++e) {
+        std::memcpy(raw + e * size, fill.data(), size);
+      }
+    }
+    if (inside == 0) return job;
     // One memcpy per row along the last axis: walk the other axes of the chunk's extent.
     std::vector<hsize_t> at(rank, 0);
     while (true) {
@@ -274,7 +282,7 @@ struct ChunkSource {
         in_chunk = in_chunk * chunk[k] + at[k];
         in_cube = in_cube * shape[k] + offset[k] + at[k];
       }
-      std::memcpy(raw.data() + in_chunk * size, data + in_cube * size, extent[rank - 1] * size);
+      std::memcpy(raw + in_chunk * size, data + in_cube * size, extent[rank - 1] * size);
       std::size_t k = rank - 1;
       while (k-- > 0) {
         if (++at[k] < extent[k]) break;
@@ -282,7 +290,7 @@ struct ChunkSource {
       }
       if (k == static_cast<std::size_t>(-1)) break;
     }
-    return raw;
+    return job;
   }
 };
 
@@ -307,8 +315,7 @@ void WriteChunksThroughFarm(const std::vector<Writable>& datasets, const ChunkFa
       count,
       [&](std::size_t i) {
         const auto [s, j] = locate(i);
-        const std::vector<char> raw = sources[s].Raw(j);
-        return MakeChunkJob(raw, sources[s].size);
+        return sources[s].Job(j);
       },
       [&](std::size_t i, std::span<const char> stored) {
         const auto [s, j] = locate(i);

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstring>
 #include <ctime>
+#include <deque>
 #include <exception>
 #include <limits>
 #include <list>
@@ -17,8 +18,8 @@ namespace skewbridge::jobs {
 namespace {
 
 constexpr int kRecordTag = 7101;
-constexpr int kJobTag = 7102;     // rank 0 -> a rank: [job index, 8 bytes][job]; 0 bytes = stop
-constexpr int kResultTag = 7103;  // a rank -> rank 0: [job index, 8 bytes][result]
+constexpr int kJobTag = 7102;     // rank 0 -> a rank: a job; 0 bytes = stop
+constexpr int kResultTag = 7103;  // a rank -> rank 0: the result of its oldest job
 constexpr int kJobsInFlight = 2;  // per rank: one to work on, one already waiting
 
 void CheckMpi(int code, const char* what) { SB_DEMAND(code == MPI_SUCCESS, what); }
@@ -151,6 +152,9 @@ class MpiTransport final : public Transport {
 
   // Rank 0 keeps kJobsInFlight jobs at every other rank and hands the next job to whichever
   // returns a result (dynamic, as the cells); then a zero-byte job tells each rank to stop.
+  // MPI keeps the order of messages between two ranks, so a rank's results come back in the
+  // order of its jobs: rank 0 keeps the job numbers of each rank in a queue and the messages
+  // carry nothing but the bytes.
   void Farm(std::size_t count, const std::function<std::vector<char>(std::size_t)>& job,
             const std::function<std::vector<char>(std::span<const char>)>& work,
             const std::function<void(std::size_t, std::span<const char>)>& done) override {
@@ -161,31 +165,25 @@ class MpiTransport final : public Transport {
     if (rank_ != 0) {
       std::vector<char> in;
       while (true) {
-        MPI_Status status;
-        CheckMpi(MPI_Probe(0, kJobTag, comm_, &status), "MPI_Probe");
-        int bytes = 0;
-        CheckMpi(MPI_Get_count(&status, MPI_BYTE, &bytes), "MPI_Get_count");
+        const int bytes = ProbeSleeping(0, kJobTag);
         in.resize(static_cast<std::size_t>(bytes));
         CheckMpi(MPI_Recv(in.data(), bytes, MPI_BYTE, 0, kJobTag, comm_, MPI_STATUS_IGNORE),
                  "MPI_Recv");
         if (bytes == 0) {
           return;
         }
-        SB_DEMAND(in.size() >= sizeof(std::uint64_t), "a farm job without its index");
-        const std::vector<char> result =
-            work(std::span<const char>(in).subspan(sizeof(std::uint64_t)));
-        std::vector<char> out(in.begin(), in.begin() + sizeof(std::uint64_t));  // the index
-        out.insert(out.end(), result.begin(), result.end());
-        SB_DEMAND(out.size() <= static_cast<std::size_t>(std::numeric_limits<int>::max()),
+        const std::vector<char> result = work(in);
+        SB_DEMAND(result.size() <= static_cast<std::size_t>(std::numeric_limits<int>::max()),
                   "a farm result exceeds MPI's int count");
-        CheckMpi(MPI_Send(out.data(), static_cast<int>(out.size()), MPI_BYTE, 0, kResultTag, comm_),
+        CheckMpi(MPI_Send(result.data(), static_cast<int>(result.size()), MPI_BYTE, 0, kResultTag,
+                          comm_),
                  "MPI_Send");
       }
     }
     std::list<Outgoing> sends;  // a list: Isend buffers must not move
+    std::vector<std::deque<std::size_t>> queued(static_cast<std::size_t>(size_));
     std::size_t next = 0;
     std::size_t outstanding = 0;
-    bool failed = false;
     std::exception_ptr error;
     auto send = [&](int to, std::vector<char> bytes) {
       SB_DEMAND(bytes.size() <= static_cast<std::size_t>(std::numeric_limits<int>::max()),
@@ -197,22 +195,16 @@ class MpiTransport final : public Transport {
                "MPI_Isend");
     };
     auto hand_out = [&](int to) {
-      if (failed || next >= count) {
+      if (error || next >= count) {
         return;
       }
-      std::vector<char> body;
       try {
-        body = job(next);
+        send(to, job(next));
       } catch (...) {
-        failed = true;
         error = std::current_exception();
         return;
       }
-      const std::uint64_t index = next;
-      std::vector<char> bytes(sizeof index);
-      std::memcpy(bytes.data(), &index, sizeof index);
-      bytes.insert(bytes.end(), body.begin(), body.end());
-      send(to, std::move(bytes));
+      queued[static_cast<std::size_t>(to)].push_back(next);
       ++next;
       ++outstanding;
     };
@@ -223,9 +215,7 @@ class MpiTransport final : public Transport {
     }
     while (outstanding > 0) {
       MPI_Status status;
-      CheckMpi(MPI_Probe(MPI_ANY_SOURCE, kResultTag, comm_, &status), "MPI_Probe");
-      int bytes = 0;
-      CheckMpi(MPI_Get_count(&status, MPI_BYTE, &bytes), "MPI_Get_count");
+      const int bytes = ProbeSleeping(MPI_ANY_SOURCE, kResultTag, &status);
       if (buffer_.size() < static_cast<std::size_t>(bytes)) {
         buffer_.resize(static_cast<std::size_t>(bytes));
       }
@@ -233,18 +223,15 @@ class MpiTransport final : public Transport {
                         MPI_STATUS_IGNORE),
                "MPI_Recv");
       --outstanding;
-      SB_DEMAND(static_cast<std::size_t>(bytes) >= sizeof(std::uint64_t),
-                "a farm result without its index");
-      std::uint64_t index = 0;
-      std::memcpy(&index, buffer_.data(), sizeof index);
-      if (!failed) {
+      std::deque<std::size_t>& mine = queued[static_cast<std::size_t>(status.MPI_SOURCE)];
+      SB_DEMAND(!mine.empty(), "a farm result without a job");
+      const std::size_t index = mine.front();
+      mine.pop_front();
+      if (!error) {
         try {
-          done(static_cast<std::size_t>(index),
-               std::span<const char>(buffer_.data() + sizeof index,
-                                     static_cast<std::size_t>(bytes) - sizeof index));
+          done(index, std::span<const char>(buffer_.data(), static_cast<std::size_t>(bytes)));
         } catch (...) {
-          failed = true;  // no more jobs; the results still on their way are drained
-          error = std::current_exception();
+          error = std::current_exception();  // no more jobs; results on their way are drained
         }
       }
       hand_out(status.MPI_SOURCE);
@@ -273,6 +260,26 @@ class MpiTransport final : public Transport {
   }
 
  private:
+  // Waits for a message (MPI_Iprobe, sleeping 20 us between tries: a blocking MPI_Probe spins
+  // and would take the core from the ranks computing beside it) and returns its byte count.
+  int ProbeSleeping(int source, int tag, MPI_Status* out = nullptr) {
+    MPI_Status status;
+    while (true) {
+      int flag = 0;
+      CheckMpi(MPI_Iprobe(source, tag, comm_, &flag, &status), "MPI_Iprobe");
+      if (flag) {
+        break;
+      }
+      std::this_thread::sleep_for(std::chrono::microseconds(20));
+    }
+    int bytes = 0;
+    CheckMpi(MPI_Get_count(&status, MPI_BYTE, &bytes), "MPI_Get_count");
+    if (out != nullptr) {
+      *out = status;
+    }
+    return bytes;
+  }
+
   struct Outgoing {
     std::vector<char> bytes;
     MPI_Request request;

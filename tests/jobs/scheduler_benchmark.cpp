@@ -4,7 +4,8 @@
 // gathering, with chunks of at most 16, 256 and 65536 cells, and prints
 //  - what rank 0 spent per message and per cell (its CPU time, fitted over three chunk caps:
 //    busy = messages * c_msg + cells * c_cell), and the cells/s it sustains while busy;
-//  - the checkpoint and final-cube cost per cell;
+//  - the checkpoint and final-cube cost per cell: the final cube's chunks deflated by the other
+//    ranks (wall time, and rank 0's own CPU time in it), and by rank 0 alone for comparison;
 //  - the latency of one claim on the shared counter (every rank claiming one cell at a time).
 // docs/performance.md turns these constants into the efficiency model at 1000 ranks.
 #include <mpi.h>
@@ -27,9 +28,11 @@ namespace {
 
 struct Run {
   double cells = 0, messages = 0, bytes = 0, busy_s = 0, checkpoint_s = 0, wall_s = 0, total_s = 0;
+  double final_s = 0, final_cpu_s = 0;
 };
 
-Run Sweep(const jobs::SweepSpec& spec, std::uint64_t max_chunk, const std::filesystem::path& out) {
+Run Sweep(const jobs::SweepSpec& spec, std::uint64_t max_chunk, const std::filesystem::path& out,
+          bool farm = true) {
   const jobs::testing::TestEvaluator evaluator(spec, 0, 0);
   jobs::SweepOptions options;
   options.out = out;
@@ -37,6 +40,7 @@ Run Sweep(const jobs::SweepSpec& spec, std::uint64_t max_chunk, const std::files
   options.root_computes_up_to_ranks = 1;
   options.max_chunk = max_chunk;
   options.checkpoint_seconds = 1e9;  // one checkpoint, at the end: timed separately
+  options.farm_final_cube = farm;
   auto transport = jobs::MakeMpiTransport();
   MPI_Barrier(MPI_COMM_WORLD);
   const auto start = std::chrono::steady_clock::now();
@@ -49,6 +53,8 @@ Run Sweep(const jobs::SweepSpec& spec, std::uint64_t max_chunk, const std::files
   run.busy_s = r.receive_busy_s;
   run.checkpoint_s = r.checkpoint_s;
   run.wall_s = r.wall_s;
+  run.final_s = r.final_s;
+  run.final_cpu_s = r.final_cpu_s;
   std::filesystem::remove(out);
   return run;
 }
@@ -99,6 +105,8 @@ int main(int argc, char** argv) {
   for (const std::uint64_t cap : caps) {
     runs.push_back(Sweep(spec, cap, out));
   }
+  // The final cube by rank 0 alone (HDF5's filters), against the farmed runs above.
+  const Run alone = Sweep(spec, caps.back(), out, false);
   const double claim_s = ClaimLatency(20000, mpi.Size());
   if (mpi.Rank() != 0) {
     return 0;
@@ -137,8 +145,15 @@ int main(int argc, char** argv) {
       [](const Run& r) { return r.cells / r.wall_s; });
   row("checkpoint [ns/cell]", " %.1f |",
       [](const Run& r) { return 1e9 * r.checkpoint_s / r.cells; });
-  row("final cube and set-up [ns/cell]", " %.0f |",
+  row("final cube and set-up [ns/cell, wall]", " %.0f |",
       [](const Run& r) { return 1e9 * (r.total_s - r.wall_s) / r.cells; });
+  row("final cube, chunks deflated by the others [ns/cell, wall]", " %.0f |",
+      [](const Run& r) { return 1e9 * r.final_s / r.cells; });
+  row("final cube, rank 0's own CPU [ns/cell]", " %.1f |",
+      [](const Run& r) { return 1e9 * r.final_cpu_s / r.cells; });
+  std::printf(
+      "\nfinal cube by rank 0 alone (HDF5's filters): %.0f ns/cell wall, %.0f ns/cell CPU\n",
+      1e9 * alone.final_s / alone.cells, 1e9 * alone.final_cpu_s / alone.cells);
   std::printf("\nfit: c_msg = %.2f us per message, c_cell = %.2f ns per cell on rank 0\n",
               1e6 * c_msg, 1e9 * c_cell);
   std::printf("claim latency: %.2f us per Claim (%d ranks claiming at once)\n", 1e6 * claim_s,
