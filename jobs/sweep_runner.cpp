@@ -160,6 +160,9 @@ class Writer {
     SB_DEMAND(batch.end <= pending.size() && batch.responses == data_.responses.size(),
               "a result batch does not fit the sweep");
     const std::uint64_t first = pending[batch.begin];
+    // Chunks are disjoint ranges of the pending list (one claim counter): a chunk whose first
+    // cell is already here means a cell was delivered twice.
+    SB_DEMAND(data_.done[first] == 0, "a cell was delivered twice");
     if (pending[batch.end - 1] - first == n - 1) {
       CopyColumn(&data_.status[first], batch.status, n);
       CopyColumn(&data_.events[first], batch.events, n);
@@ -169,6 +172,8 @@ class Writer {
         CopyColumn(&data_.responses[r][first], batch.values + r * n * sizeof(double), n);
       }
       std::fill_n(&data_.run[first], n, run_);
+      // Done in memory: the checkpoint file gets the flags after the data (Checkpoint).
+      std::fill_n(&data_.done[first], n, std::uint8_t{1});
     } else {
       for (std::size_t i = 0; i < n; ++i) {
         const std::uint64_t c = pending[batch.begin + i];
@@ -180,6 +185,7 @@ class Writer {
           data_.responses[r][c] = At<double>(batch.values, r * n + i);
         }
         data_.run[c] = run_;
+        data_.done[c] = 1;
       }
     }
     unwritten_.emplace_back(batch.begin, batch.end);
@@ -200,7 +206,13 @@ class Writer {
     if (unwritten_.empty()) {
       return false;
     }
-    return Seconds(last_checkpoint_) >= options_.checkpoint_seconds ||
+    const double since = Seconds(last_checkpoint_);
+    // The share of rank 0's time: a long checkpoint defers the next one.
+    const double share = std::clamp(options_.checkpoint_share, 1e-3, 1.0);
+    if (since < last_checkpoint_s_ * (1.0 - share) / share) {
+      return false;
+    }
+    return since >= options_.checkpoint_seconds ||
            (options_.checkpoint_cells > 0 && unwritten_cells_ >= options_.checkpoint_cells);
   }
 
@@ -209,41 +221,53 @@ class Writer {
       return;
     }
     const Clock::time_point start = Clock::now();
-    // Chunks are disjoint ranges of the pending list (one claim counter): two that overlap, or
-    // one whose first cell is already in the file, mean a cell was delivered twice.
+    // Chunks are disjoint ranges of the pending list (one claim counter): two that overlap
+    // mean a cell was delivered twice (StoreBatch checks a chunk's first cell).
     std::sort(unwritten_.begin(), unwritten_.end());
     std::vector<std::uint64_t> cells;
     cells.reserve(unwritten_cells_);
     for (std::size_t k = 0; k < unwritten_.size(); ++k) {
       const auto [begin, end] = unwritten_[k];
       SB_DEMAND(k == 0 || unwritten_[k - 1].second <= begin, "a cell was delivered twice");
-      SB_DEMAND(data_.done[pending[begin]] == 0, "a cell was delivered twice");
       for (std::uint64_t pos = begin; pos < end; ++pos) {
         cells.push_back(pending[pos]);
       }
     }
-    for (std::uint64_t c : cells) {
-      data_.done[c] = 1;  // in memory only; the file gets the flags after the data
-    }
-    file_->Write(data_, cells);
+    file_->Write(data_, cells);  // their done flags, set in memory by StoreBatch, come last
+    checkpointed_ += cells.size();
     unwritten_.clear();
     unwritten_cells_ = 0;
     last_checkpoint_ = Clock::now();
+    last_checkpoint_s_ = Seconds(start);
     ++checkpoints_;
-    checkpoint_s_ += Seconds(start);
+    checkpoint_s_ += last_checkpoint_s_;
   }
 
   bool AllDone() const {
     return std::all_of(data_.done.begin(), data_.done.end(), [](std::uint8_t d) { return d; });
   }
 
-  void Finalize(const std::vector<SweepRecord>* records, const h5::ChunkFarm* farm) {
-    const std::string created = file_->CreatedUtc();
+  // Writes the final cube from memory, then drops the checkpoint file. Cells the checkpoints
+  // have not caught up with are not written there first (with very cheap cells on many ranks
+  // they can be most of the cube): only when the final write fails does the checkpoint catch
+  // up, so that --resume finds every cell and just writes the cube.
+  void Finalize(const std::vector<SweepRecord>* records, const h5::ChunkFarm* farm,
+                const PendingCells& pending) {
+    try {
+      // From the whole cube, so a resumed sweep's statistics cover the cells of every run.
+      const StudyTables study = MakeStudyTables(spec_, layout_, data_, records);
+      h5::WriteFinalCube(options_.out, spec_, layout_, data_, run_, file_->CreatedUtc(), examples_,
+                         &study, farm);
+    } catch (...) {
+      try {
+        Checkpoint(pending);
+      } catch (const std::exception&) {
+        // The final write's failure is the one to report (the same disk, most likely).
+      }
+      throw;
+    }
     file_->Close();
     file_.reset();
-    // From the whole cube, so a resumed sweep's statistics cover the cells of every run.
-    const StudyTables study = MakeStudyTables(spec_, layout_, data_, records);
-    h5::WriteFinalCube(options_.out, spec_, layout_, data_, run_, created, examples_, &study, farm);
     std::error_code ec;
     std::filesystem::remove(PartialPath(options_.out), ec);
   }
@@ -273,6 +297,7 @@ class Writer {
 
   std::uint64_t computed() const { return computed_; }
   double checkpoint_s() const { return checkpoint_s_; }
+  std::uint64_t checkpointed() const { return checkpointed_; }
   std::uint64_t failed() const { return failed_; }
   std::uint64_t done_before() const { return done_before_; }
   void set_done_before(std::uint64_t n) { done_before_ = n; }
@@ -287,6 +312,8 @@ class Writer {
   std::vector<std::pair<std::uint64_t, std::uint64_t>> unwritten_;
   std::uint64_t unwritten_cells_ = 0;
   double checkpoint_s_ = 0.0;
+  double last_checkpoint_s_ = 0.0;  // how long the last checkpoint took [s]
+  std::uint64_t checkpointed_ = 0;  // cells written by checkpoints in this run
   Clock::time_point last_checkpoint_ = Clock::now();
   std::uint64_t computed_ = 0;
   std::uint64_t failed_ = 0;
@@ -468,12 +495,16 @@ SweepReport RunSweep(const SweepSpec& spec, const CellEvaluator& evaluator, Tran
       }
     }
     report.interrupted = StopRequested(options);
-    writer->Checkpoint(pending);
+    // A complete sweep goes straight to the final cube (Finalize); anything else checkpoints.
+    if (report.interrupted || !writer->AllDone()) {
+      writer->Checkpoint(pending);
+    }
     const ReceiveStats received = transport.Received();
     report.messages_received = received.messages;
     report.bytes_received = received.bytes;
     report.receive_busy_s = received.busy_s;
     report.checkpoint_s = writer->checkpoint_s();
+    report.cells_checkpointed = writer->checkpointed();
   } else {
     transport.EndStream();
     report.interrupted = stopping;
@@ -498,7 +529,7 @@ SweepReport RunSweep(const SweepSpec& spec, const CellEvaluator& evaluator, Tran
         transport.Farm(count, job, h5::RunChunkJob, done);
       };
       try {
-        writer->Finalize(evaluator.Records(), farm ? &chunk_farm : nullptr);
+        writer->Finalize(evaluator.Records(), farm ? &chunk_farm : nullptr, pending);
         report.complete = true;
       } catch (...) {
         failure = std::current_exception();

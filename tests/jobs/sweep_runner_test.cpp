@@ -155,6 +155,29 @@ TEST_F(SweepRunnerTest, InterruptedSweepResumesComputingOnlyMissingCells) {
   EXPECT_TRUE(third.already_complete);
 }
 
+// Checkpoints due after every cell are written after every cell when they may take all of
+// rank 0's time (share 1), and deferred when they may take only a thousandth of it (a
+// checkpoint of at least tens of microseconds, two fsyncs, then defers the next by tens of
+// milliseconds or more, longer than the 42 cells of 1 ms); the cube is the same.
+TEST_F(SweepRunnerTest, CheckpointsTakeAtMostTheirShareOfRankZero) {
+  const SweepSpec spec = ParseSweepSpec(kSpec, "spec.toml", ".");
+  const TestEvaluator evaluator(spec, 50, 1.0);  // 1 ms per cell
+  options_.max_chunk = 1;  // results stored cell by cell, each making a checkpoint due
+  options_.checkpoint_cells = 1;
+  options_.force = true;
+  options_.checkpoint_share = 1.0;
+  const SweepReport every = Run(spec, evaluator);
+  EXPECT_TRUE(every.complete);
+  EXPECT_EQ(every.checkpoints, 42u) << "one per cell";
+  EXPECT_EQ(every.cells_checkpointed, 42u);
+  options_.checkpoint_share = 1e-3;
+  const SweepReport deferred = Run(spec, evaluator);
+  EXPECT_TRUE(deferred.complete);
+  EXPECT_LE(deferred.checkpoints, 2u);
+  EXPECT_GE(deferred.checkpoints, 1u) << "the first is due after the first cell";
+  ExpectMatchesDirect(spec, h5::ReadCubeData(options_.out, "runner", nullptr), true);
+}
+
 TEST_F(SweepRunnerTest, ResumeWithADifferentSpecificationIsRefused) {
   const SweepSpec spec = ParseSweepSpec(kSpec, "spec.toml", ".");
   const TestEvaluator evaluator(spec, 50, 0);
