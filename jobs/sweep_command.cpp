@@ -58,6 +58,7 @@ class FinishWatch final : public Transport {
     return inner_->Receive(handle, wait_s);
   }
   ReceiveStats Received() const override { return inner_->Received(); }
+  bool AllTrue(bool mine) override { return inner_->AllTrue(mine); }
   void Farm(std::size_t count, const std::function<std::vector<char>(std::size_t)>& job,
             const std::function<std::vector<char>(std::span<const char>)>& work,
             const std::function<void(std::size_t, std::span<const char>)>& done) override {

@@ -254,23 +254,74 @@ class Writer {
   void Finalize(const std::vector<SweepRecord>* records, const h5::ChunkFarm* farm,
                 const PendingCells& pending) {
     try {
-      // From the whole cube, so a resumed sweep's statistics cover the cells of every run.
-      const StudyTables study = MakeStudyTables(spec_, layout_, data_, records);
-      h5::WriteFinalCube(options_.out, spec_, layout_, data_, run_, file_->CreatedUtc(), examples_,
-                         &study, farm);
+      WriteFinal(records, farm, false);
     } catch (...) {
-      try {
-        Checkpoint(pending);
-      } catch (const std::exception&) {
-        // The final write's failure is the one to report (the same disk, most likely).
-      }
+      CatchUp(pending);
       throw;
     }
+    DropCheckpoint();
+  }
+
+  // The final file: everything, or (cells_collectively) everything but the per-cell data and
+  // complete = 1, which WriteFinalCellsCollective and CompleteFinalCube add.
+  void WriteFinal(const std::vector<SweepRecord>* records, const h5::ChunkFarm* farm,
+                  bool cells_collectively) {
+    // From the whole cube, so a resumed sweep's statistics cover the cells of every run.
+    const StudyTables study = MakeStudyTables(spec_, layout_, data_, records);
+    h5::WriteFinalCube(options_.out, spec_, layout_, data_, run_, file_->CreatedUtc(), examples_,
+                       &study, farm, cells_collectively);
+  }
+
+  // After a failed final write: the checkpoint catches up, so that --resume finds every cell.
+  void CatchUp(const PendingCells& pending) {
+    try {
+      Checkpoint(pending);
+    } catch (const std::exception&) {
+      // The final write's failure is the one to report (the same disk, most likely).
+    }
+  }
+
+  // After the final cube is in place.
+  void DropCheckpoint() {
     file_->Close();
     file_.reset();
     std::error_code ec;
     std::filesystem::remove(PartialPath(options_.out), ec);
   }
+
+  // Rank 0's cells for the collective final write: every cell but those the other ranks
+  // computed in this run (given as ranges of pending positions): its own and earlier runs'.
+  h5::FinalCells RootCells(const PendingCells& pending,
+                           const std::vector<std::pair<std::uint64_t, std::uint64_t>>& others) {
+    std::vector<std::uint8_t> elsewhere(data_.Cells(), 0);
+    for (const auto& [begin, end] : others) {
+      for (std::uint64_t pos = begin; pos < end; ++pos) {
+        elsewhere[pending[pos]] = 1;
+      }
+    }
+    h5::FinalCells mine;
+    for (std::uint64_t c = 0; c < data_.Cells(); ++c) {
+      if (elsewhere[c] == 0) {
+        mine.cells.push_back(c);
+      }
+    }
+    mine.data.Reset(mine.cells.size(), data_.responses.size());
+    for (std::size_t i = 0; i < mine.cells.size(); ++i) {
+      const std::uint64_t c = mine.cells[i];
+      mine.data.status[i] = data_.status[c];
+      mine.data.events[i] = data_.events[c];
+      mine.data.steps[i] = data_.steps[c];
+      mine.data.wall_s[i] = data_.wall_s[c];
+      mine.data.run[i] = data_.run[c];
+      mine.data.done[i] = data_.done[c];
+      for (std::size_t r = 0; r < data_.responses.size(); ++r) {
+        mine.data.responses[r][i] = data_.responses[r][c];
+      }
+    }
+    return mine;
+  }
+
+  std::int32_t run() const { return run_; }
 
   void FillReport(SweepReport& report) const {
     report.run = run_;
@@ -338,6 +389,82 @@ std::uint64_t ChunkSize(std::uint64_t total, std::uint64_t seen, int ranks,
     cap = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(options.chunk_seconds / cell_s));
   }
   return std::clamp<std::uint64_t>(share, 1, cap);
+}
+
+// The cells a rank other than 0 computed in this run, from its kept batches (in pending order,
+// which is cell order), for the collective final write.
+h5::FinalCells KeptCells(std::vector<ResultBatch>& kept, const PendingCells& pending,
+                         std::size_t responses, std::int32_t run) {
+  std::sort(kept.begin(), kept.end(),
+            [](const ResultBatch& a, const ResultBatch& b) { return a.begin < b.begin; });
+  std::uint64_t n = 0;
+  for (const ResultBatch& b : kept) n += b.Size();
+  h5::FinalCells mine;
+  mine.cells.reserve(n);
+  mine.data.Reset(n, responses);
+  std::uint64_t i = 0;
+  for (ResultBatch& b : kept) {
+    const std::uint64_t size = b.Size();
+    for (std::uint64_t k = 0; k < size; ++k, ++i) {
+      mine.cells.push_back(pending[b.begin + k]);
+      mine.data.status[i] = b.status[k];
+      mine.data.events[i] = b.events[k];
+      mine.data.steps[i] = b.steps[k];
+      mine.data.wall_s[i] = b.wall_s[k];
+      mine.data.run[i] = run;
+      mine.data.done[i] = 1;
+      for (std::size_t r = 0; r < responses; ++r) {
+        mine.data.responses[r][i] = b.values[r * size + k];
+      }
+    }
+    b = ResultBatch{};  // its memory goes as soon as it is copied
+  }
+  return mine;
+}
+
+// Collective: rank 0 writes the final file without the per-cell data, every rank then writes
+// its cells with parallel HDF5, rank 0 sets complete = 1 and renames. A failure anywhere makes
+// rank 0's checkpoint catch up and removes FILE.tmp; returned on rank 0.
+std::exception_ptr WriteFinalCollectively(
+    const SweepSpec& spec, const CubeLayout& layout, const CellEvaluator& evaluator,
+    Transport& transport, std::optional<Writer>& writer, const PendingCells& pending,
+    const std::filesystem::path& out, std::vector<ResultBatch>& kept,
+    const std::vector<std::pair<std::uint64_t, std::uint64_t>>& from_others) {
+  const bool root = transport.Rank() == 0;
+  std::exception_ptr failure;
+  if (root) {
+    try {
+      writer->WriteFinal(evaluator.Records(), nullptr, true);
+    } catch (...) {
+      failure = std::current_exception();
+    }
+  }
+  const std::string go =
+      transport.BroadcastText(root && !failure ? std::to_string(writer->run()) : "");
+  if (!go.empty()) {
+    const h5::FinalCells mine =
+        root ? writer->RootCells(pending, from_others)
+             : KeptCells(kept, pending, layout.responses.size(), std::stoi(go));
+    const std::string error = h5::WriteFinalCellsCollective(
+        out, spec, layout, mine, [&](bool ok) { return transport.AllTrue(ok); });
+    if (root) {
+      try {
+        if (!error.empty()) {
+          throw h5::H5Error(error);
+        }
+        h5::CompleteFinalCube(out, spec);
+        writer->DropCheckpoint();
+      } catch (...) {
+        failure = std::current_exception();
+      }
+    }
+  }
+  if (root && failure) {
+    writer->CatchUp(pending);
+    std::error_code ec;
+    std::filesystem::remove(out.string() + ".tmp", ec);
+  }
+  return failure;
 }
 
 }  // namespace
@@ -414,8 +541,17 @@ SweepReport RunSweep(const SweepSpec& spec, const CellEvaluator& evaluator, Tran
   };
 
   bool all_finished = transport.Size() == 1;
+  // The collective final write: every rank keeps what it computed, rank 0 what came from whom.
+  const bool collective =
+      transport.Size() > 1 && transport.Size() >= options.collective_final_from_ranks;
+  std::vector<ResultBatch> kept;
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> from_others;
   const auto store = [&](std::span<const char> bytes) {
-    writer->StoreBatch(UnpackBatch(bytes), pending);
+    const BatchView view = UnpackBatch(bytes);
+    if (collective) {
+      from_others.emplace_back(view.begin, view.end);
+    }
+    writer->StoreBatch(view, pending);
   };
   auto service = [&](double wait_s) {
     if (!all_finished) {
@@ -472,6 +608,10 @@ SweepReport RunSweep(const SweepSpec& spec, const CellEvaluator& evaluator, Tran
       service(0.0);
     } else {
       transport.Send(PackBatch(batch));
+      if (collective) {
+        kept.push_back(std::move(batch));
+        batch = ResultBatch{};
+      }
     }
   }
 
@@ -518,7 +658,20 @@ SweepReport RunSweep(const SweepSpec& spec, const CellEvaluator& evaluator, Tran
       transport.BroadcastText(root && !report.interrupted && writer->AllDone() ? "final" : "") ==
       "final";
   std::exception_ptr failure;
-  if (root) {
+  if (finalize && collective) {
+    const Clock::time_point final_start = Clock::now();
+    const double final_cpu_start = ThreadCpuSeconds();
+    failure = WriteFinalCollectively(spec, layout, evaluator, transport, writer, pending,
+                                     options.out, kept, from_others);
+    if (root) {
+      progress(true);
+      report.complete = !failure;
+      report.final_s = Seconds(final_start);
+      report.final_cpu_s = ThreadCpuSeconds() - final_cpu_start;
+    } else {
+      failure = nullptr;  // rank 0 reports it
+    }
+  } else if (root) {
     progress(true);
     if (finalize) {
       const Clock::time_point final_start = Clock::now();

@@ -132,6 +132,9 @@ class Transport {
   virtual bool Receive(const std::function<void(std::span<const char>)>& handle, double wait_s) = 0;
   /// Rank 0: the messages received so far and the time spent on them.
   virtual ReceiveStats Received() const { return {}; }
+  /// Collective: whether every rank passed true (the ranks of a collective write stop together).
+  /// This base version, for a single process, returns `mine`.
+  virtual bool AllTrue(bool mine) { return mine; }
   /// Collective, after every stream has ended: rank 0 hands jobs 0 .. count - 1 (job(i) makes
   /// the bytes of job i when it is sent) to the other ranks, which apply `work` and return its
   /// bytes; rank 0 gets each result through done(i, bytes), in any order. The other ranks pass

@@ -794,7 +794,7 @@ void WriteFinalCube(const std::filesystem::path& path, const SweepSpec& spec,
                     const CubeLayout& layout, const CubeData& data, std::int32_t runs,
                     const std::string& created_utc,
                     const std::map<std::int32_t, std::string>& examples, const StudyTables* study,
-                    const ChunkFarm* farm) {
+                    const ChunkFarm* farm, bool cells_collectively) {
   const std::filesystem::path tmp = path.string() + ".tmp";
   bool farmed = false;
   try {
@@ -803,7 +803,9 @@ void WriteFinalCube(const std::filesystem::path& path, const SweepSpec& spec,
     per_cell.push_back({d.done.get(), H5T_NATIVE_UINT8, 1, data.done.data()});
     // A dataset of extent zero is contiguous (no chunks): nothing to farm, nothing to write.
     const bool chunked = spec.CellCount() > 0;
-    if (farm != nullptr && chunked) {
+    if (cells_collectively) {
+      // Written later by every rank (WriteFinalCellsCollective); the chunks are allocated then.
+    } else if (farm != nullptr && chunked) {
       farmed = true;
       WriteChunksThroughFarm(per_cell, *farm);
     } else {
@@ -821,7 +823,8 @@ void WriteFinalCube(const std::filesystem::path& path, const SweepSpec& spec,
     const bool all_done =
         std::all_of(data.done.begin(), data.done.end(), [](std::uint8_t v) { return v != 0; });
     SetAttr(d.group.get(), "completed_utc", UtcNow());
-    SetAttr(d.group.get(), "complete", static_cast<std::int64_t>(all_done ? 1 : 0));
+    SetAttr(d.group.get(), "complete",
+            static_cast<std::int64_t>(all_done && !cells_collectively ? 1 : 0));
     SaveFileImage(d.file.get(), tmp.string());
   } catch (const H5Error& e) {
     ReleaseFarm(farm, farmed);
@@ -831,6 +834,103 @@ void WriteFinalCube(const std::filesystem::path& path, const SweepSpec& spec,
     throw;
   }
   ReleaseFarm(farm, farmed);
+  if (cells_collectively) {
+    return;  // complete = 1 and the rename come after the cells (CompleteFinalCube)
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    throw H5Error("rename " + tmp.string() + " to " + path.string() + ": " + ec.message());
+  }
+}
+
+std::string WriteFinalCellsCollective(const std::filesystem::path& path, const SweepSpec& spec,
+                                      const CubeLayout& layout, const FinalCells& mine,
+                                      const std::function<bool(bool)>& all_ok) {
+  const std::string tmp = path.string() + ".tmp";
+  const CubeData& data = mine.data;
+  SB_DEMAND(data.Cells() == mine.cells.size() && data.responses.size() == layout.responses.size(),
+            "final cells do not fit the layout");
+  std::string error;
+  auto attempt = [&](auto&& step) {
+    if (error.empty()) {
+      try {
+        step();
+      } catch (const H5Error& e) {
+        error = tmp + ": " + e.what();
+      }
+    }
+    return all_ok(error.empty());
+  };
+  // Local work first (a rank failing alone must not leave the others in a collective call):
+  // one selection serves every per-cell dataset, all of the cube's shape.
+  Id selection;
+  if (!attempt([&] { selection = CellsSelection(ShapeOf(spec), mine.cells); })) {
+    return error.empty() ? tmp + ": the collective write failed on another rank" : error;
+  }
+  // MPI-IO opens the file on every rank at once, and an open failing on some ranks only can
+  // hang inside MPI_File_open: every rank first checks that it sees the file.
+  if (!attempt([&] {
+        std::error_code ec;
+        if (!std::filesystem::exists(tmp, ec)) {
+          throw H5Error(
+              "not visible from every rank (the final cube's collective write needs "
+              "its folder on a filesystem shared by all ranks)");
+        }
+      })) {
+    return error.empty() ? tmp + ": the collective write failed on another rank" : error;
+  }
+  Id file;
+  if (!attempt([&] { file = OpenFileParallel(tmp); })) {
+    return error.empty() ? tmp + ": the collective write failed on another rank" : error;
+  }
+  const std::string group = GroupPath(spec.name) + "/";
+  struct Column {
+    std::string name;
+    hid_t mem_type;
+    const void* values;
+  };
+  std::vector<Column> columns;
+  for (std::size_t r = 0; r < layout.responses.size(); ++r) {
+    columns.push_back(
+        {"responses/" + layout.responses[r].name, H5T_NATIVE_DOUBLE, data.responses[r].data()});
+  }
+  columns.push_back({"status", H5T_NATIVE_INT32, data.status.data()});
+  columns.push_back({"stats/run", H5T_NATIVE_INT32, data.run.data()});
+  columns.push_back({"stats/events", H5T_NATIVE_INT64, data.events.data()});
+  columns.push_back({"stats/steps", H5T_NATIVE_INT64, data.steps.data()});
+  columns.push_back({"stats/wall_s", H5T_NATIVE_DOUBLE, data.wall_s.data()});
+  columns.push_back({"done", H5T_NATIVE_UINT8, data.done.data()});
+  // Every rank takes the same steps: all_ok answers alike everywhere, so all stop together.
+  bool all_good = true;
+  for (const Column& c : columns) {
+    all_good = attempt([&] {
+      Id ds = OpenDataset(file.get(), group + c.name);
+      WriteSelectedCollective(ds.get(), c.mem_type, selection.get(), mine.cells.size(), c.values);
+    });
+    if (!all_good) break;
+  }
+  if (all_good) {
+    all_good = attempt([&] { Check(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), "H5Fflush (MPI-IO)"); });
+  }
+  file = Id();  // collective close
+  if (!all_good && error.empty()) {
+    return tmp + ": the collective write failed on another rank";
+  }
+  return error;
+}
+
+void CompleteFinalCube(const std::filesystem::path& path, const SweepSpec& spec) {
+  const std::filesystem::path tmp = path.string() + ".tmp";
+  try {
+    Id file = OpenFile(tmp.string(), true);
+    Id g = OpenGroup(file.get(), GroupPath(spec.name));
+    SetAttr(g.get(), "complete", static_cast<std::int64_t>(1));
+    g = Id();
+    FlushToDisk(file.get());
+  } catch (const H5Error& e) {
+    throw H5Error(tmp.string() + ": " + e.what());
+  }
   std::error_code ec;
   std::filesystem::rename(tmp, path, ec);
   if (ec) {

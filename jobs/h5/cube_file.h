@@ -104,7 +104,30 @@ void WriteFinalCube(const std::filesystem::path& path, const SweepSpec& spec,
                     const CubeLayout& layout, const CubeData& data, std::int32_t runs,
                     const std::string& created_utc,
                     const std::map<std::int32_t, std::string>& examples = {},
-                    const StudyTables* study = nullptr, const ChunkFarm* farm = nullptr);
+                    const StudyTables* study = nullptr, const ChunkFarm* farm = nullptr,
+                    bool cells_collectively = false);
+
+/// The cells one rank writes into the final cube collectively, in increasing cell order:
+/// cells[i] is the linear index of row i of data (data.Cells() == cells.size()).
+struct FinalCells {
+  std::vector<std::uint64_t> cells;  ///< increasing linear cell indices
+  CubeData data;                     ///< their columns, in the cube layout's response order
+};
+
+/// Collective over every rank of MPI_COMM_WORLD, after rank 0 wrote path + ".tmp" with
+/// WriteFinalCube(..., cells_collectively = true): each rank writes its cells into the
+/// per-cell datasets with parallel HDF5's filtered collective writes (each chunk gathered to
+/// one rank, filtered there, written through MPI-IO), so that no rank handles more than its
+/// share of the cube. all_ok(mine) must be collective and return whether every rank passed
+/// true; it is called after each step so that the ranks stop together. Returns "" or the
+/// failure (the same success on every rank; the text of this rank's failure, if any).
+std::string WriteFinalCellsCollective(const std::filesystem::path& path, const SweepSpec& spec,
+                                      const CubeLayout& layout, const FinalCells& mine,
+                                      const std::function<bool(bool)>& all_ok);
+
+/// Rank 0, after WriteFinalCellsCollective: sets complete = 1 in path + ".tmp", flushes it to
+/// disk and renames it to path. @throws H5Error on I/O failure.
+void CompleteFinalCube(const std::filesystem::path& path, const SweepSpec& spec);
 
 /// The stored (filtered) bytes of every chunk of one dataset of a sweep, in the order of the
 /// chunk grid (row-major), as HDF5 keeps them on disk: for tests comparing the two write paths.

@@ -312,6 +312,48 @@ constexpr std::size_t kShortestBoxRun = 8;
 
 }  // namespace
 
+Id OpenFileParallel(const std::string& path) {
+  SilenceErrorStack();
+  Id fapl = UnlockedAccess();
+  Check(H5Pset_fapl_mpio(fapl.get(), MPI_COMM_WORLD, MPI_INFO_NULL), "H5Pset_fapl_mpio " + path);
+  return Id(H5Fopen(path.c_str(), H5F_ACC_RDWR, fapl.get()), H5Fclose,
+            "open file (MPI-IO) " + path);
+}
+
+Id CellsSelection(std::span<const hsize_t> shape, std::span<const std::uint64_t> cells) {
+  Id space = Dataspace(shape);
+  Check(H5Sselect_none(space.get()), "H5Sselect_none");
+  std::vector<Box> boxes;
+  std::vector<hsize_t> prefix;
+  for (std::size_t i = 0; i < cells.size();) {
+    std::size_t j = i + 1;
+    while (j < cells.size() && cells[j] == cells[j - 1] + 1) {
+      ++j;
+    }
+    RangeBoxes(cells[i], cells[j - 1] + 1, shape, prefix, boxes);
+    i = j;
+  }
+  for (const Box& box : boxes) {
+    Check(H5Sselect_hyperslab(space.get(), H5S_SELECT_OR, box.start.data(), nullptr,
+                              box.count.data(), nullptr),
+          "H5Sselect_hyperslab");
+  }
+  return space;
+}
+
+void WriteSelectedCollective(hid_t dataset, hid_t mem_type, hid_t file_space, std::uint64_t count,
+                             const void* packed) {
+  const hsize_t n = count;
+  Id memory = Dataspace(std::span<const hsize_t>(&n, 1));
+  if (count == 0) {
+    Check(H5Sselect_none(memory.get()), "H5Sselect_none");
+  }
+  Id dxpl(H5Pcreate(H5P_DATASET_XFER), H5Pclose, "H5Pcreate(transfer)");
+  Check(H5Pset_dxpl_mpio(dxpl.get(), H5FD_MPIO_COLLECTIVE), "H5Pset_dxpl_mpio");
+  Check(H5Dwrite(dataset, mem_type, memory.get(), file_space, dxpl.get(), packed),
+        "H5Dwrite (collective) " + ObjectName(dataset));
+}
+
 void WriteCells(hid_t dataset, hid_t mem_type, std::size_t elem_size, const void* full,
                 std::span<const std::uint64_t> cells) {
   if (cells.empty()) {

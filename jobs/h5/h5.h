@@ -59,6 +59,16 @@ Id CreateFile(const std::string& path);
 Id CreateMemoryFile(const std::string& name);
 /// Opens an existing file read-only or read-write; @throws H5Error when not an HDF5 file.
 Id OpenFile(const std::string& path, bool writable);
+/// Collective over MPI_COMM_WORLD: opens an existing file read-write through MPI-IO (parallel
+/// HDF5; the communicator comes with <hdf5.h> of the parallel build). @throws H5Error.
+Id OpenFileParallel(const std::string& path);
+/// A dataspace of `shape` selecting the given cells (row-major linear indices, increasing) as
+/// the union of the boxes of their runs of consecutive cells; nothing selected when empty.
+Id CellsSelection(std::span<const hsize_t> shape, std::span<const std::uint64_t> cells);
+/// Collective (parallel HDF5): writes `count` packed values (in increasing cell order) into the
+/// cells selected in `file_space` (CellsSelection); every rank calls it, with or without cells.
+void WriteSelectedCollective(hid_t dataset, hid_t mem_type, hid_t file_space, std::uint64_t count,
+                             const void* packed);
 /// Creates a group (intermediate groups too).
 Id CreateGroup(hid_t parent, const std::string& name);
 /// Opens a group. @throws H5Error when absent.

@@ -150,6 +150,13 @@ class MpiTransport final : public Transport {
 
   ReceiveStats Received() const override { return received_; }
 
+  bool AllTrue(bool mine) override {
+    int flag = mine ? 1 : 0;
+    int all = 0;
+    CheckMpi(MPI_Allreduce(&flag, &all, 1, MPI_INT, MPI_LAND, comm_), "MPI_Allreduce");
+    return all != 0;
+  }
+
   // Rank 0 keeps kJobsInFlight jobs at every other rank and hands the next job to whichever
   // returns a result (dynamic, as the cells); then a zero-byte job tells each rank to stop.
   // MPI keeps the order of messages between two ranks, so a rank's results come back in the

@@ -5,7 +5,8 @@
 //  - what rank 0 spent per message and per cell (its CPU time, fitted over three chunk caps:
 //    busy = messages * c_msg + cells * c_cell), and the cells/s it sustains while busy;
 //  - the checkpoint and final-cube cost per cell: the final cube's chunks deflated by the other
-//    ranks (wall time, and rank 0's own CPU time in it), and by rank 0 alone for comparison;
+//    ranks (wall time, and rank 0's own CPU time in it), by rank 0 alone for comparison, and
+//    written collectively by every rank (parallel HDF5);
 //  - the latency of one claim on the shared counter (every rank claiming one cell at a time).
 // docs/performance.md turns these constants into the efficiency model at 1000 ranks.
 #include <mpi.h>
@@ -33,7 +34,7 @@ struct Run {
 };
 
 Run Sweep(const jobs::SweepSpec& spec, std::uint64_t max_chunk, const std::filesystem::path& out,
-          bool farm = true) {
+          bool farm = true, bool collective = false) {
   const jobs::testing::TestEvaluator evaluator(spec, 0, 0);
   jobs::SweepOptions options;
   options.out = out;
@@ -46,6 +47,7 @@ Run Sweep(const jobs::SweepSpec& spec, std::uint64_t max_chunk, const std::files
   options.checkpoint_cells = 400000;
   options.checkpoint_share = 1.0;
   options.farm_final_cube = farm;
+  options.collective_final_from_ranks = collective ? 2 : 1 << 30;
   auto transport = jobs::MakeMpiTransport();
   MPI_Barrier(MPI_COMM_WORLD);
   const auto start = std::chrono::steady_clock::now();
@@ -104,8 +106,11 @@ int main(int argc, char** argv) {
       "w0_over_wg = {logspace = [0.1, 10.0, " +
       std::to_string(per_row) + "]}\n";
   const jobs::SweepSpec spec = jobs::ParseSweepSpec(text, "bench.toml", ".");
+  // One name on every rank (rank 0's process id): the collective final write opens it on all.
+  long pid = static_cast<long>(::getpid());
+  MPI_Bcast(&pid, 1, MPI_LONG, 0, MPI_COMM_WORLD);
   const auto out = std::filesystem::temp_directory_path() /
-                   ("sb_scheduler_benchmark_" + std::to_string(::getpid()) + ".h5");
+                   ("sb_scheduler_benchmark_" + std::to_string(pid) + ".h5");
   const std::vector<std::uint64_t> caps = {16, 256, 65536};
   std::vector<Run> runs;
   for (const std::uint64_t cap : caps) {
@@ -113,6 +118,8 @@ int main(int argc, char** argv) {
   }
   // The final cube by rank 0 alone (HDF5's filters), against the farmed runs above.
   const Run alone = Sweep(spec, caps.back(), out, false);
+  // ... and by every rank collectively (parallel HDF5), each writing the cells it computed.
+  const Run together = Sweep(spec, caps.back(), out, true, true);
   const double claim_s = ClaimLatency(20000, mpi.Size());
   if (mpi.Rank() != 0) {
     return 0;
@@ -160,6 +167,8 @@ int main(int argc, char** argv) {
   std::printf(
       "\nfinal cube by rank 0 alone (HDF5's filters): %.0f ns/cell wall, %.0f ns/cell CPU\n",
       1e9 * alone.final_s / alone.cells, 1e9 * alone.final_cpu_s / alone.cells);
+  std::printf("final cube written collectively by the %d ranks: %.0f ns/cell wall\n", mpi.Size(),
+              1e9 * together.final_s / together.cells);
   std::printf("\nfit: c_msg = %.2f us per message, c_cell = %.2f ns per cell on rank 0\n",
               1e6 * c_msg, 1e9 * c_cell);
   std::printf("claim latency: %.2f us per Claim (%d ranks claiming at once)\n", 1e6 * claim_s,

@@ -144,6 +144,56 @@ TEST_P(Scheduler8, EveryCellOnceOneMessagePerChunkAndTheSerialCube) {
   std::filesystem::remove(serial.out);
 }
 
+// From collective_final_from_ranks on, every rank writes its own cells into the final cube with
+// parallel HDF5's filtered collective writes (rank 0 its own, as it computes cells too here):
+// the cube is the serial run's, value for value and stored byte for stored byte, complete,
+// and it reads back through its checksums.
+TEST(Scheduler8Collective, EveryRankWritesItsCellsAndTheCubeIsTheSerialOne) {
+  const SweepSpec spec = ParseSweepSpec(kSpec, "spec.toml", ".");
+  const testing::TestEvaluator evaluator(spec, 0, 0);
+  const auto dir = std::filesystem::temp_directory_path();
+  SweepOptions serial;
+  serial.out = dir / "sb_sched_serial_collective.h5";
+  serial.force = true;
+  if (Rank() == 0) {
+    auto alone = MakeInProcessTransport();
+    ASSERT_TRUE(RunSweep(spec, evaluator, *alone, serial).complete);
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+  SweepOptions options;
+  options.out = dir / "sb_sched_collective.h5";
+  options.force = true;
+  options.max_chunk = 700;  // many chunks per rank: scattered cells, edge boxes in every row
+  options.checkpoint_cells = 9000;
+  options.collective_final_from_ranks = 2;
+  auto transport = MakeMpiTransport();
+  const SweepReport report = RunSweep(spec, evaluator, *transport, options);
+  EXPECT_EQ(Sum(report.cells_this_rank), spec.CellCount());
+  if (Rank() != 0) {
+    return;
+  }
+  EXPECT_GT(report.cells_this_rank, 0u) << "rank 0 computes (and writes) cells too";
+  EXPECT_TRUE(report.complete);
+  EXPECT_FALSE(std::filesystem::exists(PartialPath(options.out)));
+  EXPECT_FALSE(std::filesystem::exists(options.out.string() + ".tmp"));
+  ASSERT_EQ(h5::SummarizeCube(options.out).size(), 1u);
+  EXPECT_TRUE(h5::SummarizeCube(options.out)[0].complete);
+  std::vector<std::string> names;
+  const CubeData parallel = h5::ReadCubeData(options.out, "scheduler", &names);  // checksums on
+  const CubeData alone = h5::ReadCubeData(serial.out, "scheduler", nullptr);
+  ExpectSameCube(parallel, alone);
+  std::vector<std::string> datasets = {"status", "done", "stats/run", "stats/events",
+                                       "stats/steps"};
+  for (const std::string& r : names) datasets.push_back("responses/" + r);
+  for (const std::string& name : datasets) {
+    EXPECT_TRUE(h5::ReadStoredChunks(options.out, "scheduler", name) ==
+                h5::ReadStoredChunks(serial.out, "scheduler", name))
+        << name;
+  }
+  std::filesystem::remove(options.out);
+  std::filesystem::remove(serial.out);
+}
+
 // Tiny chunks (a message every 1 to 5 cells) and large ones (time-capped, up to 65536 cells).
 INSTANTIATE_TEST_SUITE_P(Chunking, Scheduler8,
                          ::testing::Values(std::make_pair(std::uint64_t{5}, 0.05),
