@@ -289,22 +289,23 @@ class Writer {
     std::filesystem::remove(PartialPath(options_.out), ec);
   }
 
-  // Rank 0's cells for the collective final write: every cell but those the other ranks
-  // computed in this run (given as ranges of pending positions): its own and earlier runs'.
+  // Rank 0's cells for the collective final write: those of earlier runs (the gaps between
+  // the runs of the pending list) and the ones it computed itself (ranges of pending
+  // positions); O(those cells + runs), never a pass over the whole cube.
   h5::FinalCells RootCells(const PendingCells& pending,
-                           const std::vector<std::pair<std::uint64_t, std::uint64_t>>& others) {
-    std::vector<std::uint8_t> elsewhere(data_.Cells(), 0);
-    for (const auto& [begin, end] : others) {
-      for (std::uint64_t pos = begin; pos < end; ++pos) {
-        elsewhere[pending[pos]] = 1;
-      }
-    }
+                           const std::vector<std::pair<std::uint64_t, std::uint64_t>>& own) {
     h5::FinalCells mine;
-    for (std::uint64_t c = 0; c < data_.Cells(); ++c) {
-      if (elsewhere[c] == 0) {
-        mine.cells.push_back(c);
-      }
+    const std::vector<std::uint64_t> runs = pending.Flatten();  // (first cell, length) pairs
+    std::uint64_t next = 0;
+    for (std::size_t k = 0; k + 1 < runs.size(); k += 2) {
+      for (std::uint64_t c = next; c < runs[k]; ++c) mine.cells.push_back(c);
+      next = runs[k] + runs[k + 1];
     }
+    for (std::uint64_t c = next; c < data_.Cells(); ++c) mine.cells.push_back(c);
+    for (const auto& [begin, end] : own) {
+      for (std::uint64_t pos = begin; pos < end; ++pos) mine.cells.push_back(pending[pos]);
+    }
+    std::sort(mine.cells.begin(), mine.cells.end());
     mine.data.Reset(mine.cells.size(), data_.responses.size());
     for (std::size_t i = 0; i < mine.cells.size(); ++i) {
       const std::uint64_t c = mine.cells[i];
@@ -429,7 +430,7 @@ std::exception_ptr WriteFinalCollectively(
     const SweepSpec& spec, const CubeLayout& layout, const CellEvaluator& evaluator,
     Transport& transport, std::optional<Writer>& writer, const PendingCells& pending,
     const std::filesystem::path& out, std::vector<ResultBatch>& kept,
-    const std::vector<std::pair<std::uint64_t, std::uint64_t>>& from_others) {
+    const std::vector<std::pair<std::uint64_t, std::uint64_t>>& own) {
   const bool root = transport.Rank() == 0;
   std::exception_ptr failure;
   if (root) {
@@ -443,7 +444,7 @@ std::exception_ptr WriteFinalCollectively(
       transport.BroadcastText(root && !failure ? std::to_string(writer->run()) : "");
   if (!go.empty()) {
     const h5::FinalCells mine =
-        root ? writer->RootCells(pending, from_others)
+        root ? writer->RootCells(pending, own)
              : KeptCells(kept, pending, layout.responses.size(), std::stoi(go));
     const std::string error = h5::WriteFinalCellsCollective(
         out, spec, layout, mine, [&](bool ok) { return transport.AllTrue(ok); });
@@ -541,17 +542,13 @@ SweepReport RunSweep(const SweepSpec& spec, const CellEvaluator& evaluator, Tran
   };
 
   bool all_finished = transport.Size() == 1;
-  // The collective final write: every rank keeps what it computed, rank 0 what came from whom.
+  // The collective final write: every rank keeps what it computed (rank 0: where its cells are).
   const bool collective =
       transport.Size() > 1 && transport.Size() >= options.collective_final_from_ranks;
   std::vector<ResultBatch> kept;
-  std::vector<std::pair<std::uint64_t, std::uint64_t>> from_others;
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> own;
   const auto store = [&](std::span<const char> bytes) {
-    const BatchView view = UnpackBatch(bytes);
-    if (collective) {
-      from_others.emplace_back(view.begin, view.end);
-    }
-    writer->StoreBatch(view, pending);
+    writer->StoreBatch(UnpackBatch(bytes), pending);
   };
   auto service = [&](double wait_s) {
     if (!all_finished) {
@@ -605,6 +602,9 @@ SweepReport RunSweep(const SweepSpec& spec, const CellEvaluator& evaluator, Tran
     cell_s = std::max(1e-9, Seconds(chunk_start) / static_cast<double>(done));
     if (root) {
       writer->StoreBatch(ViewOf(batch), pending);
+      if (collective) {
+        own.emplace_back(batch.begin, batch.begin + done);
+      }
       service(0.0);
     } else {
       transport.Send(PackBatch(batch));
@@ -662,12 +662,12 @@ SweepReport RunSweep(const SweepSpec& spec, const CellEvaluator& evaluator, Tran
     const Clock::time_point final_start = Clock::now();
     const double final_cpu_start = ThreadCpuSeconds();
     failure = WriteFinalCollectively(spec, layout, evaluator, transport, writer, pending,
-                                     options.out, kept, from_others);
+                                     options.out, kept, own);
+    report.final_s = Seconds(final_start);  // on every rank: each does its share
+    report.final_cpu_s = ThreadCpuSeconds() - final_cpu_start;
     if (root) {
       progress(true);
       report.complete = !failure;
-      report.final_s = Seconds(final_start);
-      report.final_cpu_s = ThreadCpuSeconds() - final_cpu_start;
     } else {
       failure = nullptr;  // rank 0 reports it
     }

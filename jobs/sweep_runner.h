@@ -97,8 +97,10 @@ struct SweepReport {
   double receive_busy_s = 0.0;
   double checkpoint_s = 0.0;             ///< Rank 0: time spent writing checkpoints [s].
   std::uint64_t cells_checkpointed = 0;  ///< Rank 0: cells those checkpoints wrote.
-  double final_s = 0.0;      ///< Rank 0: time spent writing the final cube (study included) [s].
-  double final_cpu_s = 0.0;  ///< Rank 0: its own CPU time in that write (not the farm's) [s].
+  /// Rank 0 (every rank when the ranks write the final cube collectively): time spent writing
+  /// the final cube, study tables included [s], and this rank's own CPU time in it [s].
+  double final_s = 0.0;
+  double final_cpu_s = 0.0;
 };
 
 /// Runs (or resumes) a sweep on every rank of `transport`. Collective.

@@ -7,6 +7,7 @@
 #include <mpi.h>
 
 #include <algorithm>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -190,6 +191,60 @@ TEST(Scheduler8Collective, EveryRankWritesItsCellsAndTheCubeIsTheSerialOne) {
                 h5::ReadStoredChunks(serial.out, "scheduler", name))
         << name;
   }
+  std::filesystem::remove(options.out);
+  std::filesystem::remove(serial.out);
+}
+
+// A resumed sweep written collectively: rank 0 writes the cells of the first run (computed
+// alone, interrupted after 30 000 cells) beside its own of the second, the others theirs; the
+// cube is the serial one, and stats/run tells the runs apart.
+TEST(Scheduler8Collective, AResumedCubeHoldsBothRunsCells) {
+  const SweepSpec spec = ParseSweepSpec(kSpec, "spec.toml", ".");
+  const testing::TestEvaluator evaluator(spec, 0, 0);
+  const auto dir = std::filesystem::temp_directory_path();
+  SweepOptions serial;
+  serial.out = dir / "sb_sched_serial_resumed.h5";
+  serial.force = true;
+  SweepOptions options;
+  options.out = dir / "sb_sched_collective_resumed.h5";
+  options.force = true;
+  options.checkpoint_cells = 5000;
+  options.collective_final_from_ranks = 2;
+  if (Rank() == 0) {
+    auto alone = MakeInProcessTransport();
+    ASSERT_TRUE(RunSweep(spec, evaluator, *alone, serial).complete);
+    volatile std::sig_atomic_t flag = 0;
+    const testing::StoppingEvaluator stopping(evaluator, 30000, &flag);
+    SweepOptions first = options;
+    first.stop = &flag;
+    auto again = MakeInProcessTransport();
+    ASSERT_TRUE(RunSweep(spec, stopping, *again, first).interrupted);
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+  options.force = false;
+  options.resume = true;
+  options.max_chunk = 700;
+  auto transport = MakeMpiTransport();
+  const SweepReport report = RunSweep(spec, evaluator, *transport, options);
+  if (Rank() != 0) {
+    return;
+  }
+  EXPECT_TRUE(report.complete);
+  EXPECT_EQ(report.run, 2);
+  EXPECT_EQ(report.cells_computed, spec.CellCount() - 30000);
+  const CubeData resumed = h5::ReadCubeData(options.out, "scheduler", nullptr);
+  const CubeData alone = h5::ReadCubeData(serial.out, "scheduler", nullptr);
+  for (std::size_t r = 0; r < alone.responses.size(); ++r) {
+    EXPECT_TRUE(SameBytes(resumed.responses[r], alone.responses[r])) << "response " << r;
+  }
+  EXPECT_TRUE(SameBytes(resumed.status, alone.status));
+  EXPECT_TRUE(SameBytes(resumed.events, alone.events));
+  EXPECT_TRUE(SameBytes(resumed.done, alone.done));
+  const auto first_run = static_cast<std::uint64_t>(
+      std::count(resumed.run.begin(), resumed.run.end(), std::int32_t{1}));
+  EXPECT_EQ(first_run, 30000u);
+  EXPECT_EQ(std::count(resumed.run.begin(), resumed.run.end(), std::int32_t{2}),
+            static_cast<std::ptrdiff_t>(spec.CellCount() - 30000));
   std::filesystem::remove(options.out);
   std::filesystem::remove(serial.out);
 }
