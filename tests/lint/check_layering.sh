@@ -3,7 +3,9 @@
 #   solver/common  <- solver/{lcp,model,contact,dynamics}, records
 #   solver, records <- spectra <- jobs <- jobs/app
 # jobs (but jobs/app and the run output) includes no solver or records header but solver/common.
-# <mpi.h> only in jobs/mpi (and the MPI test main), <hdf5.h> only in jobs/h5.
+# <mpi.h> only in jobs/mpi (and the MPI test main), <hdf5.h> only in jobs/h5. jobs/h5 names
+# MPI_COMM_WORLD through parallel HDF5's own header for the collective final write, and nothing
+# else of MPI: every message goes through the Transport of jobs/mpi.
 set -u
 root=${1:?usage: check_layering.sh SOURCE_ROOT}
 cd "$root" || exit 2
