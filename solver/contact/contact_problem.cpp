@@ -8,6 +8,13 @@
 
 namespace skewbridge::contact {
 
+namespace {
+
+// Relative compliance of the normal rows in the retry of a degenerate problem (see Solve).
+constexpr double kContactCompliance = 1e-9;
+
+}  // namespace
+
 const char* ToString(ContactStatus status) {
   switch (status) {
     case ContactStatus::kSolved:
@@ -146,6 +153,26 @@ ContactStatus ContactProblem::Solve(const ContactKinematics& kinematics,
     // whether a solution exists, so a Painleve status means that none does.
     result.lcp_status =
         lcp::SolveByEnumeration(A, b, solutions_[static_cast<std::size_t>(A.rows())]);
+  }
+  if (result.lcp_status != lcp::LcpStatus::kSolved) {
+    // A deck clamped between two closed faces: the normal rows are dependent (a squeeze of both
+    // faces changes no acceleration), the complementary bases are singular, and neither method
+    // finds the solutions that exist. A compliance of kContactCompliance of the largest normal
+    // entry (d gamma_N/dt = -c lambda_N at a closed contact) makes the normal block regular and
+    // picks the solution without squeeze; it is used only where the rigid problem found none, so
+    // a genuine Painleve situation (no solution for any small compliance) still ends as one.
+    double top = 0.0;
+    for (int j = 0; j < k; ++j) {
+      top = std::max(top, std::abs(A(j, j)));
+    }
+    for (int j = 0; j < k; ++j) {
+      A(j, j) += kContactCompliance * top;
+    }
+    result.lcp_status = solver_.Solve(A, b, solutions_[static_cast<std::size_t>(A.rows())]);
+    if (result.lcp_status != lcp::LcpStatus::kSolved && n <= lcp::kMaxEnumerationSize) {
+      result.lcp_status =
+          lcp::SolveByEnumeration(A, b, solutions_[static_cast<std::size_t>(A.rows())]);
+    }
   }
   const lcp::LcpSolution& solution = solutions_[static_cast<std::size_t>(A.rows())];
   result.pivots = solution.pivots;

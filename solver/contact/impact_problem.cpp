@@ -7,6 +7,13 @@
 
 namespace skewbridge::contact {
 
+namespace {
+
+// Relative compliance of the normal rows in the retry of a degenerate impact (see Solve).
+constexpr double kImpactCompliance = 1e-9;
+
+}  // namespace
+
 ImpactProblem::ImpactProblem(const model::Model& model, lcp::LemkeOptions options,
                              Assembly assembly)
     : model_(model), solver_(options), sparse_(UsesSparseAssembly(model, assembly)) {
@@ -117,6 +124,26 @@ lcp::LcpStatus ImpactProblem::Solve(const ContactKinematics& kinematics,
     // Lemke's ray on a degenerate impact (identical tangent rows of two corners on one face)
     // proves nothing: the enumeration of the complementary bases decides.
     result.status = lcp::SolveByEnumeration(A, b, solutions_[static_cast<std::size_t>(A.rows())]);
+  }
+  if (result.status != lcp::LcpStatus::kSolved) {
+    // A deck clamped between two closed faces: the normal rows are dependent (a squeeze of
+    // both faces changes no velocity), the complementary bases are singular, and neither method
+    // finds the solutions that exist. A compliance of kImpactCompliance of the largest normal
+    // entry per unit impulse (gamma_N,E + eps gamma_N,A = -c Lambda_N at a closed contact) makes
+    // the normal block regular and picks the solution without squeeze: both faces cannot yield
+    // at once. It changes the impulses by that relative amount and only where the rigid problem
+    // found no solution.
+    double top = 0.0;
+    for (int j = 0; j < k; ++j) {
+      top = std::max(top, std::abs(A(j, j)));
+    }
+    for (int j = 0; j < k; ++j) {
+      A(j, j) += kImpactCompliance * top;
+    }
+    result.status = solver_.Solve(A, b, solutions_[static_cast<std::size_t>(A.rows())]);
+    if (result.status != lcp::LcpStatus::kSolved && 3 * k <= lcp::kMaxEnumerationSize) {
+      result.status = lcp::SolveByEnumeration(A, b, solutions_[static_cast<std::size_t>(A.rows())]);
+    }
   }
   const lcp::LcpSolution& solution = solutions_[static_cast<std::size_t>(A.rows())];
   result.pivots = solution.pivots;

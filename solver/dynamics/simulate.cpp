@@ -4,6 +4,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <Eigen/QR>
+#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -12,6 +13,7 @@
 
 #include "solver/common/error.h"
 #include "solver/dynamics/root_finding.h"
+#include "solver/lcp/small_lp.h"
 
 namespace skewbridge::dynamics {
 
@@ -60,9 +62,6 @@ constexpr double kStickBand = 2.0;
 // Probes t0 + (t1 - t0) 2^-k, k = 1..kTouchProbes, for a positive gamma_N of a contact that
 // starts a step at the face.
 constexpr int kTouchProbes = 40;
-// Ternary-search iterations per kernel coordinate in BalanceIndeterminateFriction ((2/3)^80 ~ 1e-14
-// of the search interval).
-constexpr int kTernaryIterations = 80;
 // Zeno: the largest ratio of successive approach speeds, and the longest flight between them as
 // a fraction of the shortest natural period, for which a contact's impacts are an accumulation.
 constexpr double kZenoRatio = 0.9;
@@ -131,6 +130,8 @@ class ActiveSystem {
   // Least-squares minimum-norm solution (a redundant constraint, such as a deck's four corners
   // on one straight face of two aligned decks, makes A singular).
   void Solve() {
+    rank_deficient_ = false;
+    symmetric_ = false;
     if (small_) {
       // LU with partial pivoting when A is clearly regular (the usual sliding active set), a
       // fraction of the orthogonal decomposition's cost; the decomposition for a singular A.
@@ -144,6 +145,7 @@ class ActiveSystem {
       }
       cod_small_.compute(a_small_);
       x_small_ = cod_small_.solve(b_small_.head(m_));
+      rank_deficient_ = m_ > 0 && cod_small_.rank() < m_;
     } else {
       cod_large_.compute(a_large_.topLeftCorner(m_, m_));
       x_large_.head(m_) = cod_large_.solve(b_large_.head(m_));
@@ -156,24 +158,41 @@ class ActiveSystem {
   void SolveSymmetric() {
     rank_deficient_ = false;
     if (small_ && m_ > 0) {
+      symmetric_ = true;
       ldlt_small_.compute(a_small_);
       const auto d = ldlt_small_.vectorD();
       if (ldlt_small_.info() == Eigen::Success && d.minCoeff() > kRankThreshold * d.maxCoeff()) {
         x_small_ = ldlt_small_.solve(b_small_.head(m_));
         return;
       }
+      Solve();
       rank_deficient_ = true;
+      symmetric_ = true;
+      return;
     }
     Solve();
   }
-  // True when the last SolveSymmetric met a singular A (small path only).
+  // True when the last Solve or SolveSymmetric met a singular A (small path only).
   bool rank_deficient() const { return rank_deficient_; }
-  // An orthonormal basis of the kernel of the last symmetric A (columns of `kernel`, at most
-  // `max_dim`); returns its dimension. The minimum-norm solution plus any combination of these
-  // columns solves A x = b as well.
+  // An orthonormal basis of the kernel of the last A (columns of `kernel`, at most `max_dim`);
+  // returns its dimension. The minimum-norm solution plus any combination of these columns
+  // solves A x = b as well (b is in the range of A for a consistent contact problem).
   int Kernel(Eigen::Ref<Eigen::MatrixXd> kernel, int max_dim) {
     if (!small_ || m_ == 0) {
       return 0;
+    }
+    if (!symmetric_) {
+      svd_small_.compute(a_small_, Eigen::ComputeFullV);
+      const auto& sv = svd_small_.singularValues();
+      const double top = sv.maxCoeff();
+      int d = 0;
+      for (int i = 0; i < m_ && d < max_dim; ++i) {
+        if (sv[i] <= kRankThreshold * top) {
+          kernel.col(d).head(m_) = svd_small_.matrixV().col(i);
+          ++d;
+        }
+      }
+      return d;
     }
     eig_small_.compute(a_small_);
     const auto& ev = eig_small_.eigenvalues();
@@ -209,7 +228,9 @@ class ActiveSystem {
   Eigen::LDLT<SmallMatrix> ldlt_small_;
   Eigen::PartialPivLU<SmallMatrix> lu_small_;
   Eigen::SelfAdjointEigenSolver<SmallMatrix> eig_small_;
+  Eigen::JacobiSVD<SmallMatrix> svd_small_;
   bool rank_deficient_ = false;
+  bool symmetric_ = false;  // the last solve was SolveSymmetric's (Kernel: eigenvectors)
   Eigen::MatrixXd a_large_;
   Eigen::VectorXd b_large_, x_large_;
   Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod_large_;
@@ -247,8 +268,9 @@ class Integrator {
   void ActiveForces(double t, const Eigen::Ref<const Vec>& q, const Eigen::Ref<const Vec>& u,
                     Eigen::Ref<Vec> du);
   void Rhs(double t, const Eigen::Ref<const Vec>& y, Eigen::Ref<Vec> dy);
-  // Moves a singular (statically indeterminate) sticking active set's solution along its kernel
-  // to the split of forces deepest inside the friction cones; k normal and m - k tangent rows.
+  // Moves a singular (statically indeterminate) active set's solution along its kernel: normal
+  // forces not negative and no squeeze, then the split of friction deepest inside the cones;
+  // k normal and m - k tangent rows.
   void BalanceIndeterminateFriction(int k, int m);
   // Event-function values of the closed contacts at the last ActiveForces call.
   void ClosedEventValues(Eigen::Ref<Vec> values) const;
@@ -332,6 +354,9 @@ class Integrator {
   Eigen::MatrixXd kernel_;  // kernel of a singular active set (columns)
   std::vector<int> normal_of_, tangent_of_;  // active-set layout for BalanceIndeterminateFriction
   Vec x_bal_, x_try_;                        // its solution and trial points
+  lcp::SmallLp lp_;                          // the split along the kernel (three small LPs)
+  Eigen::MatrixXd lp_G_;                     // their constraints G y <= h and objective c
+  Vec lp_h_, lp_c_, lp_y_;
   Vec u_proj_, u_proj_in_;       // projected velocities; velocities before the projection
   Eigen::MatrixXd rows_, cols_;  // n x 2 n_c constraint rows / force directions
 };
@@ -416,7 +441,10 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   if (ws.omega_max_radps_ > 0.0) {
     period_min_s_ = 2.0 * std::numbers::pi / ws.omega_max_radps_;
   }
-  kernel_ = Eigen::MatrixXd::Zero(sys_.capacity(), 4);
+  kernel_ = Eigen::MatrixXd::Zero(sys_.capacity(), sys_.capacity());
+  lp_G_ = Eigen::MatrixXd::Zero(3 * nc_ + 2, sys_.capacity() + 1);
+  lp_h_ = Vec::Zero(3 * nc_ + 2);
+  lp_c_ = lp_y_ = Vec::Zero(sys_.capacity() + 1);
   normal_of_.assign(static_cast<std::size_t>(nc_), 0);
   tangent_of_.assign(static_cast<std::size_t>(nc_), -1);
   x_bal_ = x_try_ = Vec::Zero(sys_.capacity());
@@ -870,11 +898,11 @@ void Integrator::ActiveForces(double t, const Eigen::Ref<const Vec>& qq,
   }
   if (symmetric) {
     sys_.SolveSymmetric();
-    if (sys_.rank_deficient() && m > k) {
-      BalanceIndeterminateFriction(k, m);
-    }
   } else {
     sys_.Solve();
+  }
+  if (sys_.rank_deficient()) {
+    BalanceIndeterminateFriction(k, m);
   }
   du = h_;
   for (int j = 0; j < m; ++j) {
@@ -907,17 +935,25 @@ void Integrator::ActiveForces(double t, const Eigen::Ref<const Vec>& qq,
 }
 
 void Integrator::BalanceIndeterminateFriction(int k, int m) {
-  // Two corners of a deck sticking on one face constrain its tangential motion twice: the active
-  // set is singular, and the normal and friction forces are fixed only up to a kernel direction
-  // (one corner's friction traded against the other's, with the normal forces balancing the
-  // moment). The minimum-norm solution splits the friction evenly, which can put a lightly loaded
-  // corner beyond its cone while another split keeps both inside, and the slip event would then
-  // fire although the contact problem (which finds such a split) says both stick. Of all the
-  // solutions, take the one deepest inside the cones: it maximises the smallest margin
-  // mu lambda_N + force_tol - |lambda_T| and lambda_N + force_tol, a concave function of the
-  // kernel coordinates (maximised one coordinate at a time by ternary search).
+  // A singular active set leaves the forces fixed only up to its kernel. Two corners of a deck
+  // sticking on one face constrain its tangential motion twice (one corner's friction can be
+  // traded against the other's); a deck clamped between two closed faces adds a squeeze (equal
+  // normal forces on both faces) and a couple of the normal forces, and with sliding contacts
+  // the squeeze also changes the friction drag. The minimum-norm solution can pull (a negative
+  // normal force on the unloaded face) or put a lightly loaded corner beyond its cone while
+  // another split keeps every contact inside, and the detachment or slip event would then fire
+  // at the same instant although the contact problem says the contact stays. Of all solutions
+  // x = x0 + K s, three small LPs over the kernel coordinates s choose
+  //   1. the largest smallest normal force, capped at 0 (negative only if no split is
+  //      compressive: the detachment event then fires, as it should);
+  //   2. the least total normal force with every normal force at least that floor: no squeeze,
+  //      since a joint closed at zero gap carries no prestress;
+  //   3. with that total (to rounding), the split deepest inside the friction cones: the largest
+  //      smallest margin mu lambda_N - |lambda_T| of the sticking contacts.
+  // A clamped deck thus sticks while the friction of its non-squeeze normal forces suffices, and
+  // the slip event fires when it no longer does.
   const int d = sys_.Kernel(kernel_, static_cast<int>(kernel_.cols()));
-  if (d == 0) {
+  if (d == 0 || d + 1 > lcp::SmallLp::kMaxVariables) {
     return;
   }
   // Unknown j < k: lambda_N of the j-th closed contact; k + i: lambda_T of the i-th sticking one.
@@ -933,49 +969,102 @@ void Integrator::BalanceIndeterminateFriction(int k, int m) {
     ++j;
   }
   SB_DEMAND(i == m && j == k, "BalanceIndeterminateFriction: active set layout changed");
-  for (int r = 0; r < m; ++r) {
-    x_bal_[r] = sys_.x(r);
-  }
-  const auto margin = [&](const Vec& x) {
-    double worst = kInf;
-    for (int jj = 0; jj < k; ++jj) {
-      const double normal = x[jj] + force_tol_;
-      worst = std::min(worst, normal);
-      const int t = tangent_of_[static_cast<std::size_t>(jj)];
-      if (t >= 0) {
-        const double mu = model_.contact(normal_of_[static_cast<std::size_t>(jj)]).friction;
-        worst = std::min(worst, mu * x[jj] + force_tol_ - std::abs(x[t]));
-      }
-    }
-    return worst;
-  };
+  // Order-one data for the LP tolerances.
   double scale = force_tol_;
   for (int r = 0; r < m; ++r) {
-    scale = std::max(scale, std::abs(x_bal_[r]));
-  }
-  for (int sweep = 0; sweep < (d == 1 ? 1 : 3); ++sweep) {
-    for (int e = 0; e < d; ++e) {
-      double lo = -4.0 * scale * std::sqrt(static_cast<double>(m)), hi = -lo;
-      const auto along = [&](double s_e) {
-        x_try_.head(m) = x_bal_.head(m) + s_e * kernel_.col(e).head(m);
-        return margin(x_try_);
-      };
-      for (int it = 0; it < kTernaryIterations; ++it) {
-        const double a = lo + (hi - lo) / 3.0, b = hi - (hi - lo) / 3.0;
-        if (along(a) < along(b)) {
-          lo = a;
-        } else {
-          hi = b;
-        }
-      }
-      const double s_best = 0.5 * (lo + hi);
-      if (along(s_best) > margin(x_bal_)) {
-        x_bal_.head(m) += s_best * kernel_.col(e).head(m);
-      }
-    }
+    scale = std::max(scale, std::abs(sys_.x(r)));
   }
   for (int r = 0; r < m; ++r) {
-    sys_.x_mutable(r) = x_bal_[r];
+    x_bal_[r] = sys_.x(r) / scale;
+  }
+  const auto K = kernel_.topLeftCorner(m, d);
+  bool normal_kernel = false;
+  for (int jj = 0; jj < k && !normal_kernel; ++jj) {
+    normal_kernel = K.row(jj).norm() > 1e-12;
+  }
+  if (!normal_kernel && m == k) {
+    return;
+  }
+  Eigen::Ref<Vec> s = lp_y_.head(d + 1);
+  s.setZero();
+  double floor = 0.0, total = 0.0;
+  // Rows jj < k: -K_j s <= x0_j - floor (lambda_N_j >= floor).
+  const auto normal_rows = [&](int cols) {
+    for (int jj = 0; jj < k; ++jj) {
+      lp_G_.row(jj).head(cols).setZero();
+      lp_G_.row(jj).head(d) = -K.row(jj);
+      lp_h_[jj] = x_bal_[jj] - floor;
+    }
+  };
+  if (normal_kernel) {
+    // 1. max tau, tau <= lambda_N_j, tau <= 0.
+    normal_rows(d + 1);
+    for (int jj = 0; jj < k; ++jj) {
+      lp_G_(jj, d) = 1.0;
+      lp_h_[jj] = x_bal_[jj];
+    }
+    lp_G_.row(k).head(d + 1).setZero();
+    lp_G_(k, d) = 1.0;
+    lp_h_[k] = 0.0;
+    lp_c_.head(d + 1).setZero();
+    lp_c_[d] = 1.0;
+    if (lp_.Maximize(lp_G_.topLeftCorner(k + 1, d + 1), lp_h_.head(k + 1), lp_c_.head(d + 1),
+                     lp_y_.head(d + 1)) != lcp::LpStatus::kOptimal) {
+      return;
+    }
+    floor = std::min(0.0, lp_y_[d]);
+    // 2. min sum lambda_N_j with lambda_N_j >= floor.
+    normal_rows(d);
+    for (int e = 0; e < d; ++e) {
+      lp_c_[e] = -K.col(e).head(k).sum();
+    }
+    if (lp_.Maximize(lp_G_.topLeftCorner(k, d), lp_h_.head(k), lp_c_.head(d), lp_y_.head(d)) !=
+        lcp::LpStatus::kOptimal) {
+      return;
+    }
+    total = x_bal_.head(k).sum();
+    for (int jj = 0; jj < k; ++jj) {
+      total += K.row(jj).dot(s.head(d));
+    }
+  }
+  x_try_.head(d) = s.head(d);  // the split of steps 1 and 2, should step 3 fail
+  if (m > k) {
+    // 3. max tau, tau <= mu lambda_N_j -+ lambda_T_j, lambda_N_j >= floor, sum lambda_N <= total.
+    int rows = 0;
+    if (normal_kernel) {
+      normal_rows(d + 1);
+      for (int jj = 0; jj < k; ++jj) {
+        lp_G_(jj, d) = 0.0;
+      }
+      rows = k;
+      lp_G_.row(rows).head(d + 1).setZero();
+      lp_G_.row(rows).head(d) = K.topRows(k).colwise().sum();
+      lp_h_[rows] = total * (1.0 + 1e-9) + 1e-9 - x_bal_.head(k).sum();
+      ++rows;
+    }
+    for (int jj = 0; jj < k; ++jj) {
+      const int t = tangent_of_[static_cast<std::size_t>(jj)];
+      if (t < 0) {
+        continue;
+      }
+      const double mu = model_.contact(normal_of_[static_cast<std::size_t>(jj)]).friction;
+      for (const double sign : {1.0, -1.0}) {
+        lp_G_.row(rows).head(d) = -mu * K.row(jj) + sign * K.row(t);
+        lp_G_(rows, d) = 1.0;
+        lp_h_[rows] = mu * x_bal_[jj] - sign * x_bal_[t];
+        ++rows;
+      }
+    }
+    lp_c_.head(d + 1).setZero();
+    lp_c_[d] = 1.0;
+    if (lp_.Maximize(lp_G_.topLeftCorner(rows, d + 1), lp_h_.head(rows), lp_c_.head(d + 1),
+                     lp_y_.head(d + 1)) != lcp::LpStatus::kOptimal) {
+      s.head(d) = x_try_.head(d);
+    }
+  }
+  x_bal_.head(m) += K * s.head(d);
+  for (int r = 0; r < m; ++r) {
+    sys_.x_mutable(r) = x_bal_[r] * scale;
   }
 }
 

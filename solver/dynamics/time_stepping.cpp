@@ -146,6 +146,9 @@ Eigen::Vector2d MeanAcceleration(const Excitation& excitation, double t0_s, doub
 
 namespace {
 
+// Relative compliance of the normal rows of the step's LCP (see Run).
+constexpr double kNormalCompliance = 1e-9;
+
 int StateOf(double P_N, double gamma_T, double v_tol) {
   if (P_N <= 0.0) {
     return static_cast<int>(ContactState::kOpen);
@@ -355,6 +358,22 @@ RunResult SimulateTimeStepping(const model::Model& model, const Excitation& exci
             contact::ColumnDot(model, c, WN.col(j), ws.u_free_) + ws.eps_[j] * ws.kin_.gamma_N[c];
         ws.b_[ka + j] = contact::ColumnDot(model, c, WT.col(j), ws.u_free_);
         ws.b_[2 * ka + j] = 0.0;
+      }
+      {
+        // A compliance of kNormalCompliance of the largest normal entry per unit impulse
+        // (gamma_N + eps gamma_N,A = -c P_N at a contact that carries): with a deck clamped
+        // between two closed faces the rigid problem has a squeeze of both faces among its
+        // solutions (it changes no velocity), and Lemke's algorithm may return one, a prestress
+        // whose friction locks the deck. With the compliance both faces cannot yield at once and
+        // the solution carries no squeeze, as the event-driven integrator's choice (the least
+        // total normal force). Elsewhere it moves the impulses by that relative amount.
+        double top = 0.0;
+        for (int j = 0; j < ka; ++j) {
+          top = std::max(top, std::abs(A(j, j)));
+        }
+        for (int j = 0; j < ka; ++j) {
+          A(j, j) += kNormalCompliance * top;
+        }
       }
       lcp::LcpSolution& sol = ws.solutions_[static_cast<std::size_t>(3 * ka)];
       lcp::LcpStatus status = ws.lemke_.Solve(A, ws.b_.head(3 * ka), sol);
