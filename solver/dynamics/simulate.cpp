@@ -1143,10 +1143,11 @@ void Integrator::ConstrainedStep() {
   ++result_.rk_steps;
   const double t1 = t_ + h;
   const Vec& y1 = rk.y_end();
-  ActiveForces(t1, y1.head(n_), y1.segment(n_, n_), du_);
+  // The last stage of the step was evaluated at (t1, y1) (first same as last): the closed
+  // contacts' forces and kinematics are those of the step's end, so their event functions need
+  // no further evaluation; the open contacts need only their gaps and normal rates.
   ClosedEventValues(f1_);
-  gap1_ = ws_.kin_.gap_m;
-  gN1_ = ws_.kin_.gamma_N;
+  GapsAndRates(y1.head(n_), y1.segment(n_, n_), gap1_, gN1_);
   const auto at = [&](double t, Vec& qq, Vec& uu) {
     rk.DenseAt(t, y_eval_);
     qq = y_eval_.head(n_);
