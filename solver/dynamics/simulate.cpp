@@ -135,7 +135,11 @@ class ActiveSystem {
     if (small_) {
       // LU with partial pivoting when A is clearly regular (the usual sliding active set), a
       // fraction of the orthogonal decomposition's cost; the decomposition for a singular A.
-      if (m_ > 0) {
+      if (m_ > 0 && m_ <= kDirectRows) {
+        if (SolveDirect()) {
+          return;
+        }
+      } else if (m_ > 0) {
         lu_small_.compute(a_small_);
         const auto diag = lu_small_.matrixLU().diagonal().cwiseAbs();
         if (diag.minCoeff() > kRankThreshold * diag.maxCoeff()) {
@@ -157,6 +161,18 @@ class ActiveSystem {
   // decomposition's cost on the small path.
   void SolveSymmetric() {
     rank_deficient_ = false;
+    if (small_ && m_ > 0 && m_ <= kDirectRows) {
+      // A symmetric A of a few rows: the written-out elimination (its pivots on the diagonal of
+      // a Gram matrix are those of LDL^T up to rounding), the decomposition when singular.
+      symmetric_ = true;
+      if (SolveDirect()) {
+        return;
+      }
+      Solve();
+      rank_deficient_ = true;
+      symmetric_ = true;
+      return;
+    }
     if (small_ && m_ > 0) {
       symmetric_ = true;
       ldlt_small_.compute(a_small_);
@@ -171,6 +187,62 @@ class ActiveSystem {
       return;
     }
     Solve();
+  }
+  // Gaussian elimination with partial pivoting, written out for the few rows of the usual
+  // active set (two to four): the blocked LU of a dynamic-size matrix spends most of its time in
+  // set-up at that size (17 % of a sliding cell's instructions). The same pivots, and the same
+  // regularity test on U's diagonal; false (x untouched) when A is not clearly regular.
+  bool SolveDirect() {
+    const int m = m_;
+    double lu[kDirectRows * kDirectRows];
+    double rhs[kDirectRows];
+    for (int j = 0; j < m; ++j) {
+      for (int i = 0; i < m; ++i) {
+        lu[i + j * m] = a_[i + j * a_stride_];
+      }
+      rhs[j] = b_[j];
+    }
+    double diag_min = kInf, diag_max = 0.0;
+    for (int k = 0; k < m; ++k) {
+      int pivot = k;
+      for (int i = k + 1; i < m; ++i) {
+        if (std::abs(lu[i + k * m]) > std::abs(lu[pivot + k * m])) {
+          pivot = i;
+        }
+      }
+      if (pivot != k) {
+        for (int j = 0; j < m; ++j) {
+          std::swap(lu[k + j * m], lu[pivot + j * m]);
+        }
+        std::swap(rhs[k], rhs[pivot]);
+      }
+      const double d = lu[k + k * m];
+      diag_min = std::min(diag_min, std::abs(d));
+      diag_max = std::max(diag_max, std::abs(d));
+      if (d == 0.0) {
+        return false;
+      }
+      for (int i = k + 1; i < m; ++i) {
+        const double f = lu[i + k * m] / d;
+        lu[i + k * m] = f;
+        for (int j = k + 1; j < m; ++j) {
+          lu[i + j * m] -= f * lu[k + j * m];
+        }
+        rhs[i] -= f * rhs[k];
+      }
+    }
+    if (!(diag_min > kRankThreshold * diag_max)) {
+      return false;
+    }
+    x_small_.resize(m);
+    for (int i = m - 1; i >= 0; --i) {
+      double v = rhs[i];
+      for (int j = i + 1; j < m; ++j) {
+        v -= lu[i + j * m] * x_small_[j];
+      }
+      x_small_[i] = v / lu[i + i * m];
+    }
+    return true;
   }
   // True when the last Solve or SolveSymmetric met a singular A (small path only).
   bool rank_deficient() const { return rank_deficient_; }
@@ -211,6 +283,7 @@ class ActiveSystem {
 
  private:
   static constexpr double kRankThreshold = 1e-10;
+  static constexpr int kDirectRows = 6;  // SolveDirect up to this many rows
   using SmallMatrix =
       Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kSmallCapacity, kSmallCapacity>;
   using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kSmallCapacity, 1>;
@@ -330,6 +403,8 @@ class Integrator {
   // evaluates the kinematics of the closed contacts only (the open ones' gaps are read at the
   // step's ends).
   bool closed_only_ = false;
+  // Set by GapRoot while it evaluates a gap: the free step's state_at may then leave u alone.
+  bool positions_only_ = false;
   std::vector<int> cone_sign_;  // per contact: slip sign of a sticking contact at the cone, or 0
   Vec lambda_N_, lambda_T_;     // per contact, from the last ActiveForces
   double friction_power_ = 0.0;
@@ -341,6 +416,7 @@ class Integrator {
   double next_output_t_ = kInf;
   double last_impact_t_ = -kInf;
   int events_here_ = 0;
+  bool jammed_here_ = false;  // a tangential impact (jam) was applied at last_event_t_
   double last_event_t_ = -kInf;
   RunResult result_;
   ActiveSystem sys_;                  // 2 n_c rows at most
@@ -647,6 +723,11 @@ void Integrator::FreeStep() {
   GapsAndRates(z_new_.head(n_), z_new_.segment(n_, n_), gap1_, gN1_);
   const auto at = [&](double t, Vec& qq, Vec& uu) {
     ensure_dense();
+    if (positions_only_) {
+      ws_.free_dense_.EvaluateHead(t - t_, n_, z_eval_);
+      qq = z_eval_.head(n_);
+      return;
+    }
     ws_.free_dense_.EvaluateHead(t - t_, 2 * n_, z_eval_);
     qq = z_eval_.head(n_);
     uu = z_eval_.segment(n_, n_);
@@ -717,7 +798,9 @@ template <class StateAt>
 double Integrator::GapRoot(int c, double t0, double t1, double g0, double gN0, double g1,
                            double gN1, StateAt&& at) {
   const auto gap = [&](double t) {
+    positions_only_ = true;  // the gap needs q alone: half the free flow's dense evaluation
     at(t, q_e_, u_e_);
+    positions_only_ = false;
     return contact::Gap(model_, c, q_e_);
   };
   const auto gamma_N = [&](double t) {
@@ -1307,6 +1390,7 @@ void Integrator::ResolveContacts(const std::vector<int>& forced) {
   } else {
     last_event_t_ = t_;
     events_here_ = 0;
+    jammed_here_ = false;
   }
   const double kinetic_before = Kinetic();
   // A sticking contact whose friction has reached the cone (the stick-slip event) is degenerate
@@ -1500,6 +1584,41 @@ bool Integrator::DecideContacts(const std::vector<int>& forced) {
     model_.AppliedForces(q(), u(), GroundAcceleration(t_), h_);
     const contact::ContactStatus status =
         ws_.contact_problem_.Solve(kin, closed_list_, h_, ws_.contact_result_);
+    if (status == contact::ContactStatus::kPainleve && !jammed_here_ && closed_list_.size() >= 2 &&
+        std::any_of(closed_list_.begin(), closed_list_.end(),
+                    [](const contact::ClosedContact& cc) { return cc.slip_sign != 0; })) {
+      // A jam: corners on two faces sliding (a deck wedged between its abutments, the friction
+      // of one corner pressing the other into its face) can leave the contact problem without
+      // a solution, as for a single corner, but here the deck wedges: the sliding stops at once
+      // by a tangential impact [Genot and Brogliato 1999; Pfeiffer and Glocker 1996, ch. 6].
+      // Its impulse is the velocity projection onto gamma_N = gamma_T = 0 of these contacts,
+      // with no restitution; the decision is then made again from the stopped state, once per
+      // instant (a second jam at the same instant is a Painleve situation).
+      jammed_here_ = true;
+      const double kinetic_before = Kinetic();
+      for (std::size_t j = 0; j < closed_list_.size(); ++j) {
+        const int c = closed_list_[j].contact;
+        mode_[static_cast<std::size_t>(c)] = model_.contact(c).friction == 0.0
+                                                 ? static_cast<int>(ClosedMode::kFrictionless)
+                                                 : static_cast<int>(ClosedMode::kStick);
+        cone_sign_[static_cast<std::size_t>(c)] = 0;
+      }
+      closed_ids_.clear();
+      closed_count_ = 0;
+      for (int c = 0; c < nc_; ++c) {
+        if (mode_[static_cast<std::size_t>(c)] >= 0) {
+          closed_ids_.push_back(c);
+          ++closed_count_;
+        }
+      }
+      Project();
+      ++result_.impacts;
+      const double loss = kinetic_before - Kinetic();
+      for (const contact::ClosedContact& cc : closed_list_) {
+        result_.events.push_back({t_, EventKind::kImpact, cc.contact, 0.0, 0.0, 0.0, 0.0, loss});
+      }
+      return DecideContacts(no_contacts_);
+    }
     if (status == contact::ContactStatus::kPainleve) {
       Fail(RunStatus::kPainleve, "Painleve situation (contact LCP on a secondary ray) at t = " +
                                      std::to_string(t_) + " s");
