@@ -371,7 +371,6 @@ class Integrator {
   template <class StateAt>
   void RecordOutputs(double t0, double t1, StateAt&& at);
   void RecordSample(double t, const Eigen::Ref<const Vec>& q, const Eigen::Ref<const Vec>& u);
-  void RefreshGaps();
   // 1/2 u^T M u (J), M diagonal.
   double Kinetic() { return 0.5 * u().dot(model_.mass_diagonal().cwiseProduct(u())); }
   // Gaps and normal rates of every contact at (q, u), without the rest of the kinematics.
@@ -632,12 +631,6 @@ void Integrator::GapsAndRates(const Eigen::Ref<const Vec>& qq, const Eigen::Ref<
     gap[c] = n.dot(position - contact.face.point_m);
     gamma_N[c] = n.dot(uu.segment<2>(i)) + uu[i + 2] * (n.y() * arm.x() - n.x() * arm.y());
   }
-}
-
-void Integrator::RefreshGaps() {
-  contact::Evaluate(model_, q(), u(), ws_.kin_);
-  gap0_ = ws_.kin_.gap_m;
-  gN0_ = ws_.kin_.gamma_N;
 }
 
 RunResult Integrator::Run() {
@@ -1293,7 +1286,8 @@ void Integrator::ConstrainedStep() {
 void Integrator::Project() {
   // Gauss-Newton in the M^-1 metric: positions onto g = 0 of the closed contacts, velocities
   // onto gamma_N = 0 (and gamma_T = 0 when sticking) [docs/theory.md §3, smooth phases]. Only the
-  // closed contacts' kinematics are needed; the next step or RefreshGaps evaluates all.
+  // closed contacts' kinematics are needed; the next step or the decision's last evaluation sees
+  // all.
   const Vec& inv_m = model_.inverse_mass_diagonal();
   for (int pass = 0; pass < 2; ++pass) {
     contact::EvaluateContacts(model_, q(), u(), closed_ids_, ws_.kin_);
@@ -1399,7 +1393,8 @@ void Integrator::ResolveContacts(const std::vector<int>& forced) {
   // instant. The event itself says which way: slip against the saturated friction force
   // [Pfeiffer and Glocker 1996, ch. 6], so such a contact enters the contact problem as sliding.
   std::fill(cone_sign_.begin(), cone_sign_.end(), 0);
-  if (AnyClosed()) {
+  if (std::any_of(mode_.begin(), mode_.end(),
+                  [](int mode) { return mode == static_cast<int>(ClosedMode::kStick); })) {
     ActiveForces(t_, q(), u(), du_);
     for (int c = 0; c < nc_; ++c) {
       if (mode_[static_cast<std::size_t>(c)] == static_cast<int>(ClosedMode::kStick) &&
@@ -1436,7 +1431,10 @@ void Integrator::ResolveContacts(const std::vector<int>& forced) {
   }
   const double kinetic_after = Kinetic();
   result_.energy.impact_J += kinetic_before - kinetic_after;
-  RefreshGaps();
+  // OpenContactApproaching evaluated every contact at this final state: the gaps of the next
+  // step's start need no further evaluation.
+  gap0_ = ws_.kin_.gap_m;
+  gN0_ = ws_.kin_.gamma_N;
 }
 
 bool Integrator::Accumulating(int c, double approach_mps) const {
