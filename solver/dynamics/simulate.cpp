@@ -353,6 +353,10 @@ class Integrator {
   // One pass of that decision: velocity-level problem, contact problem, projection. False when
   // the run failed (an LCP status).
   bool DecideContacts(const std::vector<int>& forced);
+  // True when the candidates of the contact problem (closed_list_) include two contacts on
+  // opposing faces (normals at more than 90 deg) and at least one of them slides: a deck that
+  // can wedge between its abutments.
+  bool Wedged() const;
   // True when an open contact at the face approaches it faster than v_tol_ (after a projection).
   bool OpenContactApproaching();
   // True when an impact of contact c at approach speed approach_mps continues a geometric
@@ -1456,6 +1460,18 @@ bool Integrator::Accumulating(int c, double approach_mps) const {
   return flight > 0.0 && flight <= kZenoFlight * period_min_s_ && ratio <= kZenoRatio;
 }
 
+bool Integrator::Wedged() const {
+  bool sliding = false, opposing = false;
+  for (std::size_t i = 0; i < closed_list_.size(); ++i) {
+    sliding = sliding || closed_list_[i].slip_sign != 0;
+    const Eigen::Vector2d& ni = model_.contact(closed_list_[i].contact).face.normal;
+    for (std::size_t j = i + 1; j < closed_list_.size() && !opposing; ++j) {
+      opposing = ni.dot(model_.contact(closed_list_[j].contact).face.normal) < 0.0;
+    }
+  }
+  return sliding && opposing;
+}
+
 bool Integrator::OpenContactApproaching() {
   contact::Evaluate(model_, q(), u(), ws_.kin_);
   for (int c = 0; c < nc_; ++c) {
@@ -1582,12 +1598,11 @@ bool Integrator::DecideContacts(const std::vector<int>& forced) {
     model_.AppliedForces(q(), u(), GroundAcceleration(t_), h_);
     const contact::ContactStatus status =
         ws_.contact_problem_.Solve(kin, closed_list_, h_, ws_.contact_result_);
-    if (status == contact::ContactStatus::kPainleve && !jammed_here_ && closed_list_.size() >= 2 &&
-        std::any_of(closed_list_.begin(), closed_list_.end(),
-                    [](const contact::ClosedContact& cc) { return cc.slip_sign != 0; })) {
-      // A jam: corners on two faces sliding (a deck wedged between its abutments, the friction
-      // of one corner pressing the other into its face) can leave the contact problem without
-      // a solution, as for a single corner, but here the deck wedges: the sliding stops at once
+    if (status == contact::ContactStatus::kPainleve && !jammed_here_ && Wedged()) {
+      // A jam: corners on two opposing faces, some sliding (a deck wedged between its
+      // abutments, the friction of one corner pressing the other into its face), can leave the
+      // contact problem without a solution, as for corners on one face, but here the deck
+      // wedges: the sliding stops at once
       // by a tangential impact [Genot and Brogliato 1999; Pfeiffer and Glocker 1996, ch. 6].
       // Its impulse is the velocity projection onto gamma_N = gamma_T = 0 of these contacts,
       // with no restitution; the decision is then made again from the stopped state, once per
