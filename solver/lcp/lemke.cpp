@@ -47,6 +47,33 @@ std::string ValidationMessage(const Eigen::Ref<const Eigen::MatrixXd>& M,
   return {};
 }
 
+/// True when (M, q) is a well-formed problem: the check of ValidationMessage without building a
+/// string, for the solve of every impact and contact problem.
+bool WellFormed(const Eigen::Ref<const Eigen::MatrixXd>& M,
+                const Eigen::Ref<const Eigen::VectorXd>& q) {
+  return M.rows() == M.cols() && q.size() == M.rows() && M.rows() != 0 && M.allFinite() &&
+         q.allFinite();
+}
+
+/// x 2^exponent: a product by the exact power of two when that power is a normal double (the
+/// same correctly rounded result as std::ldexp, without the library call), else std::ldexp.
+class PowerOfTwo {
+ public:
+  explicit PowerOfTwo(int exponent)
+      : exponent_(exponent),
+        factor_(exponent >= std::numeric_limits<double>::min_exponent - 1 &&
+                        exponent <= std::numeric_limits<double>::max_exponent - 1
+                    ? std::ldexp(1.0, exponent)
+                    : 0.0) {}
+  double operator()(double x) const {
+    return factor_ != 0.0 ? x * factor_ : std::ldexp(x, exponent_);
+  }
+
+ private:
+  int exponent_;
+  double factor_;  // 2^exponent, or 0 when it is not a normal double
+};
+
 void ResizeIfNeeded(Eigen::VectorXd& v, Eigen::Index n) {
   if (v.size() != n) v.resize(n);
 }
@@ -198,9 +225,9 @@ LcpStatus LemkeSolver::Solve(const Eigen::Ref<const Eigen::MatrixXd>& M,
   solution.complementarity = 0.0;
   solution.worst_violation = 0.0;
   solution.message.clear();
-  if (std::string problem = ValidationMessage(M, q); !problem.empty()) {
+  if (!WellFormed(M, q)) {
     solution.status = LcpStatus::kInvalidInput;
-    solution.message = std::move(problem);
+    solution.message = ValidationMessage(M, q);
     return solution.status;
   }
   const Eigen::Index n = M.rows();
@@ -216,6 +243,7 @@ LcpStatus LemkeSolver::Solve(const Eigen::Ref<const Eigen::MatrixXd>& M,
   // rounding residue only, as for a deck at rest).
   const double inv_s_m = std::ldexp(1.0, -ExponentAtLeast(M.cwiseAbs().maxCoeff()));
   const int q_exponent = ExponentAtLeast(q.cwiseAbs().maxCoeff());
+  const PowerOfTwo to_scaled(-q_exponent), from_scaled(q_exponent);
   // Entries of q' within twice the pivot tolerance of zero are zero to the solver. The first
   // pivot's tie test (tolerance tol (1 + |min q'|)) cannot tell them from 0: a tiny negative
   // q'_i tied with a zero entry could be passed over there, stay basic and negative, and end
@@ -224,7 +252,7 @@ LcpStatus LemkeSolver::Solve(const Eigen::Ref<const Eigen::MatrixXd>& M,
   // answer for the snapped q' solves the given problem within 2 tol max|q|.
   const double snap = 2.0 * tol;
   auto scaled_q = [&](Eigen::Index i) {
-    const double value = std::ldexp(q(i), -q_exponent);
+    const double value = to_scaled(q(i));
     return std::abs(value) <= snap ? 0.0 : value;
   };
   bool z_zero_solves = true;
@@ -329,7 +357,7 @@ LcpStatus LemkeSolver::Solve(const Eigen::Ref<const Eigen::MatrixXd>& M,
   // One step of iterative refinement on B x_B = q' with the original columns removes most of
   // the rounding the pivots accumulated: x_B += B^-1 (q' - B x_B).
   double* res = residual_.data();
-  for (Eigen::Index i = 0; i < n; ++i) res[i] = std::ldexp(q(i), -q_exponent);
+  for (Eigen::Index i = 0; i < n; ++i) res[i] = to_scaled(q(i));
   for (Eigen::Index k = 0; k < n; ++k) {
     const Eigen::Index var = basis[k];
     if (var < n) {
@@ -349,7 +377,7 @@ LcpStatus LemkeSolver::Solve(const Eigen::Ref<const Eigen::MatrixXd>& M,
 
   for (Eigen::Index k = 0; k < n; ++k) {
     const Eigen::Index var = basis[k];
-    if (var >= n) solution.z(var - n) = std::ldexp(std::max(0.0, x[k]) * inv_s_m, q_exponent);
+    if (var >= n) solution.z(var - n) = from_scaled(std::max(0.0, x[k]) * inv_s_m);
   }
   solution.w.noalias() = M * solution.z;
   solution.w += q;
@@ -373,11 +401,9 @@ void LemkeSolver::Prepare(Eigen::Index max_n, std::vector<LcpSolution>& solution
     solutions[n].w.setZero(static_cast<Eigen::Index>(n));
     solutions[n].message.reserve(128);
   }
-  // A trivial solve of the largest size sizes every buffer a solve touches, the pivoting's
-  // included.
-  if (max_n > 0) {
-    Solve(Eigen::MatrixXd::Identity(max_n, max_n), Eigen::VectorXd::Ones(max_n), solutions.back());
-  }
+  // The pivoting's buffers for the largest size: the first solve that pivots, inside a run's
+  // time loop, then allocates nothing either.
+  Reserve(max_n);
 }
 
 }  // namespace skewbridge::lcp

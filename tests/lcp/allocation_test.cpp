@@ -83,6 +83,33 @@ TEST(LemkeSolverAllocation, SteadyStateSolvesDoNotAllocate) {
   EXPECT_EQ(after - before, 0) << "allocations in steady state";
 }
 
+TEST(LemkeSolverAllocation, PreparedSolverDoesNotAllocateFromItsFirstSolve) {
+  // The contact and impact problems Prepare their solver once per model, before the time loop:
+  // the first impact of a run, which pivots, must find the pivoting's buffers already there.
+  std::mt19937 rng(11);
+  std::vector<Eigen::MatrixXd> matrices;
+  std::vector<Eigen::VectorXd> vectors;
+  for (int n : {12, 3, 6, 9}) {
+    matrices.push_back(testing::RandomSpd(n, rng));
+    Eigen::VectorXd q = testing::RandomVector(n, rng);
+    q(0) = -1.0;  // at least one negative entry: the solve pivots
+    vectors.push_back(q);
+  }
+  LemkeSolver solver;
+  std::vector<LcpSolution> solutions;
+  solver.Prepare(12, solutions);
+  const long before = g_allocations.load();
+  int pivoted = 0;
+  for (size_t k = 0; k < matrices.size(); ++k) {
+    LcpSolution& solution = solutions[static_cast<std::size_t>(matrices[k].rows())];
+    ASSERT_EQ(solver.Solve(matrices[k], vectors[k], solution), LcpStatus::kSolved);
+    pivoted += solution.pivots > 0;
+  }
+  const long after = g_allocations.load();
+  EXPECT_EQ(pivoted, static_cast<int>(matrices.size()));
+  EXPECT_EQ(after - before, 0) << "allocations in the first solves after Prepare";
+}
+
 TEST(LemkeSolverAllocation, CounterSeesEigenAllocations) {
   // The counter sees the allocations Eigen and the solver make: a fresh solver allocates.
   const Eigen::MatrixXd M = Eigen::MatrixXd::Identity(4, 4);
