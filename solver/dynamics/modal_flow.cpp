@@ -33,6 +33,16 @@ inline void RowWise(const double* a, Eigen::Index stride, int rows, int cols, co
   }
 }
 
+// 1 / (m + 1) for m < kModalMaxTerms, the same bits as the division (both correctly rounded):
+// the coefficient recursions take a product per term instead of a division.
+struct Reciprocals {
+  double value[kModalMaxTerms];
+  constexpr Reciprocals() : value() {
+    for (int m = 0; m < kModalMaxTerms; ++m) value[m] = 1.0 / (m + 1);
+  }
+};
+constexpr Reciprocals kInverseOf{};
+
 }  // namespace
 
 int ModalTermCount(double rho) {
@@ -145,7 +155,7 @@ void ModalFlow::ModeCoefficients(int k, double omega_radps, const double* y, int
   deta[0] = y[1];
   for (int m = 0; m + 1 < terms; ++m) {
     const double f = g + (m == 0 ? y[2] : 0.0) + (m == 1 ? y[3] : 0.0);
-    const double inv = 1.0 / (m + 1);
+    const double inv = kInverseOf.value[m];
     eta[m + 1] = deta[m] * inv;
     deta[m + 1] = (f - w2 * eta[m] - c * deta[m]) * inv;
     const double g_next = omega_radps * gt * inv;
@@ -183,7 +193,7 @@ void ModalFlow::Transitions(double tau_s, double omega_radps, Eigen::Ref<Eigen::
       v[0][j] = j == 1 ? 1.0 : 0.0;
     }
     for (int m = 0; m < terms; ++m) {
-      const double inv = 1.0 / (m + 1);
+      const double inv = kInverseOf.value[m];
       for (int j = 0; j < 6; ++j) {
         f[m][j] = g[j] + (m == 0 && j == 2 ? 1.0 : 0.0) + (m == 1 && j == 3 ? 1.0 : 0.0);
         if (m + 1 < terms) {

@@ -370,7 +370,8 @@ class Integrator {
   // component_at(t, i): entry i of (q, u) at t alone; the root search for a velocity zero needs
   // one entry, not the whole state.
   template <class ComponentAt>
-  void ScanMaxima(double t0, const Vec& q0, const Vec& u0, double t1, const Vec& q1, const Vec& u1,
+  void ScanMaxima(double t0, const Eigen::Ref<const Vec>& q0, const Eigen::Ref<const Vec>& u0,
+                  double t1, const Eigen::Ref<const Vec>& q1, const Eigen::Ref<const Vec>& u1,
                   ComponentAt&& component_at);
   template <class StateAt>
   void RecordOutputs(double t0, double t1, StateAt&& at);
@@ -729,6 +730,12 @@ void Integrator::FreeStep() {
     qq = z_eval_.head(n_);
     uu = z_eval_.segment(n_, n_);
   };
+  // q alone (half the modal series of at): what a gap needs.
+  const auto positions_at = [&](double t) {
+    ensure_dense();
+    ws_.free_dense_.EvaluateHead(t - t_, n_, z_eval_);
+    return z_eval_.head(n_);
+  };
   double t_event = kInf;
   for (int c = 0; c < nc_; ++c) {
     bool suspect = gap1_[c] < 0.0;
@@ -746,16 +753,14 @@ void Integrator::FreeStep() {
   forced_.clear();
   if (t_event < kInf) {
     // Near-simultaneous: contacts closed within the tolerance after the first are one impact.
-    at(std::min(t_event + control_.simultaneity_tolerance_s, t_next), q_b_, u_b_);
+    const auto q_late = positions_at(std::min(t_event + control_.simultaneity_tolerance_s, t_next));
     for (int c = 0; c < nc_; ++c) {
-      if (contact::Gap(model_, c, q_b_) <= gap_tol_) {
+      if (contact::Gap(model_, c, q_late) <= gap_tol_) {
         forced_.push_back(c);
       }
     }
     t_next = t_event;
-    at(t_next, q_b_, u_b_);
-    z_new_.head(n_) = q_b_;
-    z_new_.segment(n_, n_) = u_b_;
+    ws_.free_dense_.EvaluateHead(t_next - t_, 2 * n_, z_new_);  // what at(t_next) gives
   }
   if (ledger && (!full || t_event < kInf)) {
     // Energy of a partial step by Gauss-Legendre quadrature of the exact (Taylor) solution.
@@ -772,11 +777,8 @@ void Integrator::FreeStep() {
   }
   result_.energy.input_J += input;
   result_.energy.damping_J += damping;
-  q_a_ = q();
-  u_a_ = u();
-  q_b_ = z_new_.head(n_);
-  u_b_ = z_new_.segment(n_, n_);
-  ScanMaxima(t_, q_a_, u_a_, t_next, q_b_, u_b_, [&](double t, int i) {
+  // The step's ends in place (no copies): the velocity-zero search reads the dense output only.
+  ScanMaxima(t_, q(), u(), t_next, z_new_.head(n_), z_new_.segment(n_, n_), [&](double t, int i) {
     ensure_dense();
     return ws_.free_dense_.EvaluateComponent(t - t_, i);
   });
@@ -862,8 +864,10 @@ double Integrator::GapRoot(int c, double t0, double t1, double g0, double gN0, d
 }
 
 template <class ComponentAt>
-void Integrator::ScanMaxima(double t0, const Vec& q0, const Vec& u0, double t1, const Vec& q1,
-                            const Vec& u1, ComponentAt&& component_at) {
+void Integrator::ScanMaxima(double t0, const Eigen::Ref<const Vec>& q0,
+                            const Eigen::Ref<const Vec>& u0, double t1,
+                            const Eigen::Ref<const Vec>& q1, const Eigen::Ref<const Vec>& u1,
+                            ComponentAt&& component_at) {
   for (int i = 0; i < n_; ++i) {
     if (std::abs(q1[i]) > result_.max_abs_q[i]) {
       result_.max_abs_q[i] = std::abs(q1[i]);
