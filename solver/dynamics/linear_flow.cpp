@@ -292,12 +292,11 @@ void FreeDenseOutput::Build(const LinearFlow& flow, double omega_radps,
       const double rho =
           tau_max_s * (std::sqrt(modal.w2()[k]) + std::abs(modal.c()[k]) + std::abs(omega_radps));
       const int terms = ModalTermCount(rho);
-      const double y[6] = {Y_(k, 0), Y_(k, 1), Y_(k, 2), Y_(k, 3), Y_(k, 4), Y_(k, 5)};
-      modal.ModeCoefficients(k, omega_radps, y, terms, modal_coefficients_.col(k).data(),
-                             modal_coefficients_.col(n_ + k).data());
       mode_terms_[static_cast<std::size_t>(k)] = terms;
       terms_ = std::max(terms_, terms);
     }
+    modal.AllModeCoefficients(omega_radps, Y_, mode_terms_.data(), modal_coefficients_.data(),
+                              modal_coefficients_.col(n_).data(), modal_coefficients_.rows());
     return;
   }
   if (coefficients_.cols() != max_terms_) {
@@ -342,17 +341,42 @@ inline double Horner(const double* c, int terms, double tau) {
   return x;
 }
 
+// Horner on two series at once (ta and tb terms), each with Horner's operations in Horner's
+// order, so the same bits as two calls; the independent chains overlap in the processor.
+inline void Horner2(const double* a, int ta, const double* b, int tb, double tau, double& x_a,
+                    double& x_b) {
+  double xa = a[ta - 1], xb = b[tb - 1];
+  int ma = ta - 2, mb = tb - 2;
+  for (; ma > mb; --ma) xa = xa * tau + a[ma];
+  for (; mb > ma; --mb) xb = xb * tau + b[mb];
+  for (; ma >= 0; --ma) {
+    xa = xa * tau + a[ma];
+    xb = xb * tau + b[ma];
+  }
+  x_a = xa;
+  x_b = xb;
+}
+
 }  // namespace
 
 void FreeDenseOutput::ModalAt(double tau_s, bool velocities) {
   const Eigen::Index stride = modal_coefficients_.rows();
   const double* c = modal_coefficients_.data();
-  for (int k = 0; k < n_; ++k) {
-    const int terms = mode_terms_[static_cast<std::size_t>(k)];
-    eta_[k] = Horner(c + k * stride, terms, tau_s);
-    if (velocities) {
-      deta_[k] = Horner(c + (n_ + k) * stride, terms, tau_s);
+  if (velocities) {
+    // eta_k and eta_k' have the same number of terms: one loop, two independent chains.
+    for (int k = 0; k < n_; ++k) {
+      const int terms = mode_terms_[static_cast<std::size_t>(k)];
+      Horner2(c + k * stride, terms, c + (n_ + k) * stride, terms, tau_s, eta_[k], deta_[k]);
     }
+    return;
+  }
+  int k = 0;
+  for (; k + 1 < n_; k += 2) {
+    Horner2(c + k * stride, mode_terms_[static_cast<std::size_t>(k)], c + (k + 1) * stride,
+            mode_terms_[static_cast<std::size_t>(k + 1)], tau_s, eta_[k], eta_[k + 1]);
+  }
+  if (k < n_) {
+    eta_[k] = Horner(c + k * stride, mode_terms_[static_cast<std::size_t>(k)], tau_s);
   }
 }
 
@@ -418,8 +442,18 @@ double FreeDenseOutput::EvaluateComponent(double tau_s, int i) const {
       const int offset = i < n_ ? 0 : n_;
       const Eigen::Index stride = modal_coefficients_.rows();
       const double* c = modal_coefficients_.data();
+      // The modes' series two at a time (Horner2), summed in mode order as before.
       double x = 0.0;
-      for (int k = 0; k < n_; ++k) {
+      int k = 0;
+      for (; k + 1 < n_; k += 2) {
+        double ha = 0.0, hb = 0.0;
+        Horner2(c + (offset + k) * stride, mode_terms_[static_cast<std::size_t>(k)],
+                c + (offset + k + 1) * stride, mode_terms_[static_cast<std::size_t>(k + 1)], tau_s,
+                ha, hb);
+        x += Phi(row, k) * ha;
+        x += Phi(row, k + 1) * hb;
+      }
+      if (k < n_) {
         x += Phi(row, k) *
              Horner(c + (offset + k) * stride, mode_terms_[static_cast<std::size_t>(k)], tau_s);
       }

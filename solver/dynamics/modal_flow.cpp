@@ -164,6 +164,73 @@ void ModalFlow::ModeCoefficients(int k, double omega_radps, const double* y, int
   }
 }
 
+namespace {
+
+// ModeCoefficients' recursion for one mode, a term at a time, so that two modes can share a loop
+// with each mode's operations unchanged.
+struct ModeRecursion {
+  double w2, c, omega, y2, y3, g, gt;
+  double* eta;
+  double* deta;
+  void Start(double w2_k, double c_k, double omega_radps, const double y[6], double* eta_k,
+             double* deta_k) {
+    w2 = w2_k;
+    c = c_k;
+    omega = omega_radps;
+    y2 = y[2];
+    y3 = y[3];
+    g = y[4];
+    gt = y[5];
+    eta = eta_k;
+    deta = deta_k;
+    eta[0] = y[0];
+    deta[0] = y[1];
+  }
+  void Step(int m) {
+    const double f = g + (m == 0 ? y2 : 0.0) + (m == 1 ? y3 : 0.0);
+    const double inv = kInverseOf.value[m];
+    eta[m + 1] = deta[m] * inv;
+    deta[m + 1] = (f - w2 * eta[m] - c * deta[m]) * inv;
+    const double g_next = omega * gt * inv;
+    gt = -omega * g * inv;
+    g = g_next;
+  }
+};
+
+}  // namespace
+
+void ModalFlow::AllModeCoefficients(double omega_radps, const Eigen::Ref<const Eigen::MatrixXd>& Y,
+                                    const int* terms, double* eta, double* deta,
+                                    Eigen::Index stride) const {
+  const int n = n_modes();
+  SB_ASSERT(Y.rows() == n && Y.cols() == 6, "ModalFlow: Y must be n x 6");
+  int k = 0;
+  for (; k + 1 < n; k += 2) {
+    SB_ASSERT(terms[k] <= kModalMaxTerms && terms[k + 1] <= kModalMaxTerms,
+              "ModalFlow: too many terms");
+    const double ya[6] = {Y(k, 0), Y(k, 1), Y(k, 2), Y(k, 3), Y(k, 4), Y(k, 5)};
+    const double yb[6] = {Y(k + 1, 0), Y(k + 1, 1), Y(k + 1, 2),
+                          Y(k + 1, 3), Y(k + 1, 4), Y(k + 1, 5)};
+    ModeRecursion a, b;
+    a.Start(w2_[k], c_[k], omega_radps, ya, eta + k * stride, deta + k * stride);
+    b.Start(w2_[k + 1], c_[k + 1], omega_radps, yb, eta + (k + 1) * stride,
+            deta + (k + 1) * stride);
+    const int ta = terms[k], tb = terms[k + 1];
+    const int common = std::min(ta, tb);
+    int m = 0;
+    for (; m + 1 < common; ++m) {
+      a.Step(m);
+      b.Step(m);
+    }
+    for (int ma = m; ma + 1 < ta; ++ma) a.Step(ma);
+    for (int mb = m; mb + 1 < tb; ++mb) b.Step(mb);
+  }
+  if (k < n) {
+    const double y[6] = {Y(k, 0), Y(k, 1), Y(k, 2), Y(k, 3), Y(k, 4), Y(k, 5)};
+    ModeCoefficients(k, omega_radps, y, terms[k], eta + k * stride, deta + k * stride);
+  }
+}
+
 void ModalFlow::Transitions(double tau_s, double omega_radps, Eigen::Ref<Eigen::MatrixXd> rows,
                             Eigen::MatrixXd* input, Eigen::MatrixXd* damping) const {
   const int n = n_modes();

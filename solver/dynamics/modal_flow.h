@@ -92,6 +92,12 @@ class ModalFlow {
   void ModeCoefficients(int k, double omega_radps, const double* y, int terms, double* eta,
                         double* deta) const;
 
+  /// ModeCoefficients of every mode (the same bits), two modes per loop so that their
+  /// independent recursions overlap: mode k from row k of Y (n x 6), terms[k] coefficients into
+  /// eta + k stride and deta + k stride. @pre every terms[k] <= kModalMaxTerms.
+  void AllModeCoefficients(double omega_radps, const Eigen::Ref<const Eigen::MatrixXd>& Y,
+                           const int* terms, double* eta, double* deta, Eigen::Index stride) const;
+
  private:
   ModalFlow() = default;
 

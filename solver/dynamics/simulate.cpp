@@ -378,6 +378,9 @@ class Integrator {
   void RecordSample(double t, const Eigen::Ref<const Vec>& q, const Eigen::Ref<const Vec>& u);
   // 1/2 u^T M u (J), M diagonal.
   double Kinetic() { return 0.5 * u().dot(model_.mass_diagonal().cwiseProduct(u())); }
+  // The gap of contact c at q: contact::Gap's value (the same bits), with the ground face's
+  // formula inline (no rotation matrix, no face frame), for the event searches of the free phase.
+  double GapAt(int c, const Eigen::Ref<const Vec>& q) const;
   // Gaps and normal rates of every contact at (q, u), without the rest of the kinematics.
   void GapsAndRates(const Eigen::Ref<const Vec>& q, const Eigen::Ref<const Vec>& u, Vec& gap,
                     Vec& gamma_N);
@@ -638,6 +641,22 @@ void Integrator::GapsAndRates(const Eigen::Ref<const Vec>& qq, const Eigen::Ref<
   }
 }
 
+double Integrator::GapAt(int c, const Eigen::Ref<const Vec>& qq) const {
+  const model::Contact& contact = model_.contact(c);
+  if (contact.face.body != model::kGround) {
+    return contact::Gap(model_, c, qq);
+  }
+  // contact::Gap's operations in its order: arm = R(theta) p, P = (X + (x, y)) + arm,
+  // n . (P - A).
+  const int i = 3 * contact.body;
+  const double co = std::cos(qq[i + 2]), si = std::sin(qq[i + 2]);
+  const Eigen::Vector2d& p = contact.point_m;
+  const Eigen::Vector2d arm(co * p.x() - si * p.y(), si * p.x() + co * p.y());
+  const Eigen::Vector2d position =
+      model_.body(contact.body).rest_position_m + qq.segment<2>(i) + arm;
+  return contact.face.normal.dot(position - contact.face.point_m);
+}
+
 RunResult Integrator::Run() {
   ws_.flow_.SetGenerator(excitation_.PieceAt(0.0), 0.0, z_);
   result_.energy.initial_J = ws_.flow_.MechanicalEnergy(z_);
@@ -755,7 +774,7 @@ void Integrator::FreeStep() {
     // Near-simultaneous: contacts closed within the tolerance after the first are one impact.
     const auto q_late = positions_at(std::min(t_event + control_.simultaneity_tolerance_s, t_next));
     for (int c = 0; c < nc_; ++c) {
-      if (contact::Gap(model_, c, q_late) <= gap_tol_) {
+      if (GapAt(c, q_late) <= gap_tol_) {
         forced_.push_back(c);
       }
     }
@@ -800,7 +819,7 @@ double Integrator::GapRoot(int c, double t0, double t1, double g0, double gN0, d
     positions_only_ = true;  // the gap needs q alone: half the free flow's dense evaluation
     at(t, q_e_, u_e_);
     positions_only_ = false;
-    return contact::Gap(model_, c, q_e_);
+    return GapAt(c, q_e_);
   };
   const auto gamma_N = [&](double t) {
     at(t, q_e_, u_e_);

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <vector>
 
 #include "solver/dynamics/linear_flow.h"
 #include "solver/model/builders.h"
@@ -214,6 +215,11 @@ TEST_P(ModalAgainstAugmented, PropagatorsEnergyAndDenseOutputAgree) {
           dense.EvaluateHead(at, n, z_head);
           EXPECT_TRUE(z_head.head(n) == z_dense.head(n));
           for (int i = 0; i < N; ++i) {
+            if (i < 2 * n) {
+              // One component alone (the maxima search) sums the same products in the same
+              // order as the whole state: the same bits.
+              EXPECT_EQ(dense.EvaluateComponent(at, i), z_dense[i]) << what << " component " << i;
+            }
             const int block_begin = i < n ? 0 : i < 2 * n ? n : 2 * n;
             const int block_size = i < 2 * n ? n : kGeneratorSize;
             const double scale = z_at.segment(block_begin, block_size).cwiseAbs().maxCoeff();
@@ -286,6 +292,42 @@ TEST(ModalFlow, ClassicalFromASolvedBasisIsTheSameBits) {
     EXPECT_TRUE(direct->Phi() == shared->Phi()) << n;
     EXPECT_TRUE(direct->w2() == shared->w2()) << n;
     EXPECT_TRUE(direct->c() == shared->c()) << n;
+  }
+}
+
+TEST(ModalFlow, AllModeCoefficientsAreEachModesOwnBits) {
+  // The dense output builds every mode's series with AllModeCoefficients (two modes per loop);
+  // each mode must get ModeCoefficients' bits, whatever the two modes' term counts.
+  std::mt19937 rng(17u);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::uniform_int_distribution<int> term_count(1, kModalMaxTerms);
+  for (int n : {1, 2, 3, 5}) {
+    const RandomModel m = MakeModel(rng, n, n > 2 ? 1 : 0, {0.05, 0.4});
+    const auto flow = ModalFlow::Classical(m.M, m.K, m.C, m.r);
+    ASSERT_TRUE(flow.has_value());
+    for (int trial = 0; trial < 20; ++trial) {
+      const double omega = trial % 4 == 0 ? 0.0 : 30.0 * unit(rng);
+      Eigen::MatrixXd Y(n, 6);
+      for (int k = 0; k < n; ++k)
+        for (int j = 0; j < 6; ++j) Y(k, j) = unit(rng) * std::pow(10.0, 3.0 * unit(rng));
+      std::vector<int> terms(static_cast<std::size_t>(n));
+      for (int& t : terms) t = term_count(rng);
+      const int stride = kModalMaxTerms + 1;  // one guard entry after each mode's series
+      Eigen::MatrixXd eta = Eigen::MatrixXd::Constant(stride, n, 7.0), deta = eta;
+      flow->AllModeCoefficients(omega, Y, terms.data(), eta.data(), deta.data(), stride);
+      for (int k = 0; k < n; ++k) {
+        const int t = terms[static_cast<std::size_t>(k)];
+        double one_eta[kModalMaxTerms], one_deta[kModalMaxTerms];
+        const double y[6] = {Y(k, 0), Y(k, 1), Y(k, 2), Y(k, 3), Y(k, 4), Y(k, 5)};
+        flow->ModeCoefficients(k, omega, y, t, one_eta, one_deta);
+        for (int i = 0; i < t; ++i) {
+          EXPECT_EQ(eta(i, k), one_eta[i]) << n << " modes, mode " << k << ", term " << i;
+          EXPECT_EQ(deta(i, k), one_deta[i]) << n << " modes, mode " << k << ", term " << i;
+        }
+        EXPECT_EQ(eta(t, k), 7.0) << "wrote past mode " << k << "'s terms";
+        EXPECT_EQ(deta(t, k), 7.0) << "wrote past mode " << k << "'s terms";
+      }
+    }
   }
 }
 
