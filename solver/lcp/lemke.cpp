@@ -1,7 +1,9 @@
 #include "solver/lcp/lemke.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <string>
 
@@ -14,9 +16,26 @@ namespace {
 /// exact, so the scaled problem has the same solution bits up to the exponent.
 int ExponentAtLeast(double max_abs) {
   if (max_abs == 0.0) return 0;
+  const auto bits = std::bit_cast<std::uint64_t>(max_abs);
+  const int biased = static_cast<int>((bits >> 52) & 0x7ff);
+  if (biased != 0 && biased != 0x7ff) {
+    // A normal number 1.f 2^(biased - 1023): frexp's exponent is biased - 1022, its mantissa
+    // 0.5 exactly when f = 0 (read from the bits: no library call per solve).
+    const bool power_of_two = (bits & ((std::uint64_t{1} << 52) - 1)) == 0;
+    return power_of_two ? biased - 1023 : biased - 1022;
+  }
   int exponent = 0;
   const double mantissa = std::frexp(max_abs, &exponent);  // max_abs = mantissa 2^exponent
   return mantissa == 0.5 ? exponent - 1 : exponent;
+}
+
+/// 2^exponent, exactly std::ldexp(1.0, exponent): built from its bits when it is a normal double.
+double TwoToThe(int exponent) {
+  if (exponent >= std::numeric_limits<double>::min_exponent - 1 &&
+      exponent <= std::numeric_limits<double>::max_exponent - 1) {
+    return std::bit_cast<double>(static_cast<std::uint64_t>(exponent + 1023) << 52);
+  }
+  return std::ldexp(1.0, exponent);
 }
 
 /// "M(2, 3)" style position for messages.
@@ -63,7 +82,7 @@ class PowerOfTwo {
       : exponent_(exponent),
         factor_(exponent >= std::numeric_limits<double>::min_exponent - 1 &&
                         exponent <= std::numeric_limits<double>::max_exponent - 1
-                    ? std::ldexp(1.0, exponent)
+                    ? TwoToThe(exponent)
                     : 0.0) {}
   double operator()(double x) const {
     return factor_ != 0.0 ? x * factor_ : std::ldexp(x, exponent_);
@@ -241,7 +260,7 @@ LcpStatus LemkeSolver::Solve(const Eigen::Ref<const Eigen::MatrixXd>& M,
   // by powers of two changes no mantissa, so the pivots follow the same path for any units.
   // q is scaled by ldexp rather than by 1 / s_q, which overflows when q is subnormal (a q of
   // rounding residue only, as for a deck at rest).
-  const double inv_s_m = std::ldexp(1.0, -ExponentAtLeast(M.cwiseAbs().maxCoeff()));
+  const double inv_s_m = TwoToThe(-ExponentAtLeast(M.cwiseAbs().maxCoeff()));
   const int q_exponent = ExponentAtLeast(q.cwiseAbs().maxCoeff());
   const PowerOfTwo to_scaled(-q_exponent), from_scaled(q_exponent);
   // Entries of q' within twice the pivot tolerance of zero are zero to the solver. The first

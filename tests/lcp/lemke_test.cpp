@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "solver/lcp/lcp_check.h"
@@ -463,12 +464,18 @@ TEST(LemkeSolver, ScalingByPowersOfTwoIsExact) {
   LcpSolution b;
   for (int n : {3, 7, 15}) {
     const MatrixXd M = testing::RandomDiagonallyDominant(n, rng);
-    const VectorXd q = testing::RandomVector(n, rng);
+    VectorXd q = testing::RandomVector(n, rng);
+    if (n == 7) q /= q.cwiseAbs().maxCoeff();  // max|q| exactly 1: a power of two itself
     ASSERT_EQ(solver.Solve(M, q, a), LcpStatus::kSolved);
-    ASSERT_EQ(solver.Solve(std::ldexp(1.0, 20) * M, std::ldexp(1.0, -10) * q, b),
-              LcpStatus::kSolved);
-    EXPECT_EQ(std::ldexp(1.0, -30) * a.z, b.z);
-    EXPECT_EQ(a.pivots, b.pivots);
+    // Scales near the ends of the normal range too: the solver's powers of two must be exact
+    // there (its exponents read from the bits, its products by 2^e).
+    for (const auto& [e_m, e_q] : {std::pair{20, -10}, {-300, -1000}, {600, 900}, {-500, 300}}) {
+      SCOPED_TRACE(::testing::Message() << "M x 2^" << e_m << ", q x 2^" << e_q);
+      ASSERT_EQ(solver.Solve(std::ldexp(1.0, e_m) * M, std::ldexp(1.0, e_q) * q, b),
+                LcpStatus::kSolved);
+      EXPECT_EQ(std::ldexp(1.0, e_q - e_m) * a.z, b.z);
+      EXPECT_EQ(a.pivots, b.pivots);
+    }
   }
 }
 
