@@ -205,6 +205,28 @@ void ModalFlow::AllModeCoefficients(double omega_radps, const Eigen::Ref<const E
   const int n = n_modes();
   SB_ASSERT(Y.rows() == n && Y.cols() == 6, "ModalFlow: Y must be n x 6");
   int k = 0;
+  if (n % 2 == 1 && n >= 3) {
+    // An odd count (a deck's 3 modes): the first three in one loop, the rest in pairs.
+    ModeRecursion r[3];
+    int t[3];
+    for (int j = 0; j < 3; ++j) {
+      SB_ASSERT(terms[j] <= kModalMaxTerms, "ModalFlow: too many terms");
+      const double y[6] = {Y(j, 0), Y(j, 1), Y(j, 2), Y(j, 3), Y(j, 4), Y(j, 5)};
+      r[j].Start(w2_[j], c_[j], omega_radps, y, eta + j * stride, deta + j * stride);
+      t[j] = terms[j];
+    }
+    const int common = std::min({t[0], t[1], t[2]});
+    int m = 0;
+    for (; m + 1 < common; ++m) {
+      r[0].Step(m);
+      r[1].Step(m);
+      r[2].Step(m);
+    }
+    for (int j = 0; j < 3; ++j) {
+      for (int mj = m; mj + 1 < t[j]; ++mj) r[j].Step(mj);
+    }
+    k = 3;
+  }
   for (; k + 1 < n; k += 2) {
     SB_ASSERT(terms[k] <= kModalMaxTerms && terms[k + 1] <= kModalMaxTerms,
               "ModalFlow: too many terms");
