@@ -34,7 +34,11 @@ StudyTables MakeStudyTables(const SweepSpec& spec, const CubeLayout& layout, con
     }
   }
 
-  const std::optional<std::size_t> theta_col = ResponseColumn(layout, "theta_m");
+  // A model-file sweep names its responses per deck: with one deck, its rotation is the one.
+  std::optional<std::size_t> theta_col = ResponseColumn(layout, "theta_m");
+  if (!theta_col && !ResponseColumn(layout, "theta_m_d1")) {
+    theta_col = ResponseColumn(layout, "theta_m_d0");
+  }
   const std::optional<std::size_t> le_col = ResponseColumn(layout, "L_e");
   const Axis* record_axis = spec.FindAxis("record");
   if (record_axis == nullptr || spec.FindAxis("Pi_delta") == nullptr || !theta_col || !le_col) {
@@ -50,6 +54,7 @@ StudyTables MakeStudyTables(const SweepSpec& spec, const CubeLayout& layout, con
   CorrelationTable table =
       spectra::CorrelateOverRecords(spec, data.responses[*theta_col], data.responses[*le_col], band,
                                     usable, BandEdges(spec).size() + 1);
+  table.y = layout.responses[*theta_col].name;
   tables.correlation = std::move(table);
   return tables;
 }

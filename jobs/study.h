@@ -33,8 +33,9 @@ struct StudyTables {
 };
 
 /// Builds the tables from the whole cube (so a resumed sweep gets statistics of all its cells).
-/// The correlation table needs a record axis, a Pi_delta axis and the responses theta_m and L_e
-/// in the layout; the per-band statistics need the response band.
+/// The correlation table needs a record axis, a Pi_delta axis and the responses theta_m (or, for
+/// a one-deck model-file sweep, theta_m_d0) and L_e in the layout; the per-band statistics need
+/// the response band.
 /// `records`: LoadSweepRecords(spec) when the caller already holds them (the evaluator's, see
 /// CellEvaluator::Records), so that a synthetic suite is not made twice; nullptr to load them.
 /// @throws InputError as LoadSweepRecords.

@@ -65,6 +65,7 @@ double BandOf(double ratio, std::span<const double> edges);
 /// Statistics of theta_m against L_e over the record axis, one entry per combination of the
 /// other axes (row-major over their shape), per band entries [combination][band].
 struct CorrelationTable {
+  std::string y = "theta_m";            ///< the rotation response correlated (theta_m_d0: one deck)
   std::vector<std::string> axis_order;  ///< keys of the other axes, in cube order
   std::vector<std::size_t> shape;       ///< their sizes
   std::vector<std::int64_t> n;          ///< cells used: status ok, done, theta_m and L_e finite

@@ -403,10 +403,11 @@ void WriteCorrelation(hid_t sweep_group, const CorrelationTable& table,
                       const std::vector<double>& band_edges) {
   Id g = CreateGroup(sweep_group, "correlation");
   SetAttr(g.get(), "x", std::string("L_e"));
-  SetAttr(g.get(), "y", std::string("theta_m"));
+  SetAttr(g.get(), "y", table.y);
   SetAttr(g.get(), "over", std::string("record"));
   SetAttr(g.get(), "axis_order", table.axis_order);
-  SetDoublesAttr(g.get(), "band_edges", band_edges);
+  // Without the response band (not stored, or a family without it) there are no groups.
+  if (!band_edges.empty()) SetDoublesAttr(g.get(), "band_edges", band_edges);
   SetAttr(g.get(), "min_band_records", kMinBandRecords);
   SetAttr(g.get(), "loglog",
           std::string("log10(theta_m) = intercept + slope log10(L_e), least squares; "

@@ -152,6 +152,32 @@ for spec in deck spans sampled; do
   done
 done
 
+# --- the single deck under a synthetic suite: the record study's correlation of theta_m_d0 ------
+cat > deckrec-sweep.toml <<'TOML'
+[sweep]
+name = "deckrec"
+family = "model-file"
+model = "deck.toml"
+[records]
+synthetic = {count = 6, seed = 5}
+[axes]
+record = "*"
+Pi_delta = [0.5, 2.0]
+TOML
+"$exe" sweep deckrec-sweep.toml --out deckrec.h5 --quiet || fail "deckrec sweep"
+/usr/bin/python3 - <<'PY' || fail "one-deck correlation"
+import h5py, numpy as np
+g = h5py.File("deckrec.h5", "r")["sweeps/deckrec"]
+c = g["correlation"]
+assert c.attrs["y"] == "theta_m_d0", c.attrs["y"]
+assert "band_edges" not in c.attrs  # no response band in this family
+theta, le, status = g["responses/theta_m_d0"][()], g["responses/L_e"][()], g["status"][()]
+for p in range(2):  # record axis first, Pi_delta second
+    ok = status[:, p] == 0
+    r = np.corrcoef(le[ok, p], theta[ok, p])[0, 1]
+    assert c["n"][p] == ok.sum() and abs(c["pearson_theta_Le"][p] - r) <= 1e-12, (p, r)
+PY
+
 /usr/bin/python3 - "$exe" <<'PY' || fail "cube check"
 import itertools, math, re, subprocess, sys, h5py, numpy as np
 exe = sys.argv[1]

@@ -266,6 +266,42 @@ TEST(MakeStudyTables, TheEvaluatorsRecordsGiveTheTablesOfLoadingThemAgain) {
   EXPECT_EQ(shared.records_set, fresh.records_set);
 }
 
+// A one-deck model-file sweep names its rotation theta_m_d0: the statistics are those of that
+// column, and a two-deck layout (no single rotation) gets none.
+TEST(MakeStudyTables, AOneDeckModelFileSweepCorrelatesItsDecksRotation) {
+  const SweepSpec spec = ParseSweepSpec(
+      "[sweep]\nname = \"g\"\nfamily = \"pilot-bridge\"\n[records]\nsynthetic = {count = 5, "
+      "seed = 3}\n[axes]\nrecord = " +
+          Labels(3, 5) + "\nPi_delta = [0.5]\n",
+      "g.toml", fs::temp_directory_path());
+  CubeLayout layout;
+  layout.responses = {{"theta_m_d0", "rad", ""}, {"L_e", "m", ""}};
+  layout.source_index = {0, 1};
+  CubeData data;
+  data.Reset(spec.CellCount(), 2);
+  std::vector<double> x;
+  std::vector<double> y;
+  for (std::uint64_t c = 0; c < spec.CellCount(); ++c) {
+    const double le = 0.01 * static_cast<double>(1 + c);
+    const double theta = 1e-4 * le * le + 1e-7 * static_cast<double>((c * 3) % 4);
+    data.Store(c, kStatusOk, {theta, le}, CellStats{}, 1);
+    data.done[c] = 1;
+    x.push_back(le);
+    y.push_back(theta);
+  }
+  const StudyTables one = MakeStudyTables(spec, layout, data);
+  ASSERT_TRUE(one.correlation.has_value());
+  EXPECT_EQ(one.correlation->y, "theta_m_d0");
+  EXPECT_EQ(one.correlation->n[0], 5);
+  EXPECT_EQ(one.correlation->pearson[0], Pearson(x, y).value);
+  EXPECT_EQ(one.correlation->spearman[0], Spearman(x, y).value);
+
+  layout.responses.push_back({"theta_m_d1", "rad", ""});
+  layout.source_index.push_back(2);
+  data.Reset(spec.CellCount(), 3);
+  EXPECT_FALSE(MakeStudyTables(spec, layout, data).correlation.has_value());
+}
+
 // With an axis besides record and Pi_delta, each (Pi_delta, mu) pair gets its own statistics
 // over the records: the table equals the statistics of the cells picked by hand, and a failed
 // cell is left out.
