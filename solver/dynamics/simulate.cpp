@@ -440,8 +440,11 @@ class Integrator {
   lcp::SmallLp lp_;                          // the split along the kernel (three small LPs)
   Eigen::MatrixXd lp_G_;                     // their constraints G y <= h and objective c
   Vec lp_h_, lp_c_, lp_y_;
-  Vec u_proj_, u_proj_in_;       // projected velocities; velocities before the projection
-  Eigen::MatrixXd rows_, cols_;  // n x 2 n_c constraint rows / force directions
+  Vec u_proj_, u_proj_in_;             // projected velocities; velocities before the projection
+  Eigen::MatrixXd rows_, cols_;        // n x 2 n_c constraint rows / force directions
+  Eigen::MatrixXd m_cols_;             // M^-1 cols_ (ActiveForces)
+  Vec mh_;                             // M^-1 h (ActiveForces)
+  std::vector<const double*> row_of_;  // ActiveForces: the kinematics' column of each row
 };
 
 SimulationWorkspace::SimulationWorkspace(const model::Model& model)
@@ -515,7 +518,9 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   cone_sign_.assign(static_cast<std::size_t>(nc_), 0);
   cos_.assign(static_cast<std::size_t>(model.n_bodies()), 1.0);
   sin_.assign(static_cast<std::size_t>(model.n_bodies()), 0.0);
-  rows_ = cols_ = Eigen::MatrixXd::Zero(n_, sys_.capacity());
+  rows_ = cols_ = m_cols_ = Eigen::MatrixXd::Zero(n_, sys_.capacity());
+  mh_ = Vec::Zero(n_);
+  row_of_.assign(static_cast<std::size_t>(sys_.capacity()), nullptr);
   projection_rows_.assign(static_cast<std::size_t>(nc_), 0);
   tie_.assign(static_cast<std::size_t>(nc_), -2);
   bounce_t_.assign(static_cast<std::size_t>(nc_), -kInf);
@@ -959,7 +964,21 @@ void Integrator::ActiveForces(double t, const Eigen::Ref<const Vec>& qq,
     contact::Evaluate(model_, qq, uu, ws_.kin_);
   }
   const contact::ContactKinematics& kin = ws_.kin_;
-  const Vec& inv_m = model_.inverse_mass_diagonal();
+  // Raw loops over the n entries (a single deck: n = 3, one or two rows): the set-up of a
+  // dynamic-size Eigen expression costs more than its arithmetic at that size, and this runs in
+  // every Runge-Kutta stage of a constrained phase. The arithmetic is the same, element for
+  // element: M^-1 h and M^-1 times each force direction are formed once (not inside every dot
+  // product), and each dot product is still Eigen's, so the results keep their bits.
+  const int n = n_;
+  const double* inv_m = model_.inverse_mass_diagonal().data();
+  const double* h = h_.data();
+  double* mh = mh_.data();
+  for (int i = 0; i < n; ++i) {
+    mh[i] = inv_m[i] * h[i];
+  }
+  const auto dot = [n](const double* a, const double* b) {
+    return Eigen::Map<const Vec>(a, n).dot(Eigen::Map<const Vec>(b, n));
+  };
   // Unknowns: lambda_N of every closed contact, then lambda_T of every sticking one; rows: the
   // matching d gamma_N/dt = 0 and d gamma_T/dt = 0 [docs/theory.md §3, contact problem, with the
   // active set fixed].
@@ -971,32 +990,52 @@ void Integrator::ActiveForces(double t, const Eigen::Ref<const Vec>& qq,
       continue;
     }
     const double mu = model_.contact(c).friction;
-    rows_.col(m) = kin.W_N.col(c);
-    sys_.b(m) = -(kin.W_N.col(c).dot(inv_m.cwiseProduct(h_)) + kin.what_N[c]);
+    const double* w_n = kin.W_N.col(c).data();
+    const double* w_t = kin.W_T.col(c).data();
+    row_of_[static_cast<std::size_t>(m)] = w_n;
+    sys_.b(m) = -(dot(w_n, mh) + kin.what_N[c]);
+    double* col = cols_.col(m).data();
     if (mode == static_cast<int>(ClosedMode::kSlidePositive)) {
       symmetric = false;
-      cols_.col(m) = kin.W_N.col(c) - mu * kin.W_T.col(c);
+      for (int i = 0; i < n; ++i) {
+        col[i] = w_n[i] - mu * w_t[i];
+      }
     } else if (mode == static_cast<int>(ClosedMode::kSlideNegative)) {
       symmetric = false;
-      cols_.col(m) = kin.W_N.col(c) + mu * kin.W_T.col(c);
+      for (int i = 0; i < n; ++i) {
+        col[i] = w_n[i] + mu * w_t[i];
+      }
     } else {
-      cols_.col(m) = kin.W_N.col(c);
+      for (int i = 0; i < n; ++i) {
+        col[i] = w_n[i];
+      }
     }
     ++m;
   }
   const int k = m;
   for (int c = 0; c < nc_; ++c) {
     if (mode_[static_cast<std::size_t>(c)] == static_cast<int>(ClosedMode::kStick)) {
-      rows_.col(m) = kin.W_T.col(c);
-      cols_.col(m) = kin.W_T.col(c);
-      sys_.b(m) = -(kin.W_T.col(c).dot(inv_m.cwiseProduct(h_)) + kin.what_T[c]);
+      const double* w_t = kin.W_T.col(c).data();
+      row_of_[static_cast<std::size_t>(m)] = w_t;
+      double* col = cols_.col(m).data();
+      for (int i = 0; i < n; ++i) {
+        col[i] = w_t[i];
+      }
+      sys_.b(m) = -(dot(w_t, mh) + kin.what_T[c]);
       ++m;
+    }
+  }
+  for (int j = 0; j < m; ++j) {
+    const double* col = cols_.col(j).data();
+    double* m_col = m_cols_.col(j).data();
+    for (int i = 0; i < n; ++i) {
+      m_col[i] = inv_m[i] * col[i];
     }
   }
   sys_.Start(m);
   for (int i = 0; i < m; ++i) {
     for (int j = 0; j < m; ++j) {
-      sys_.A(i, j) = rows_.col(i).dot(inv_m.cwiseProduct(cols_.col(j)));
+      sys_.A(i, j) = dot(row_of_[static_cast<std::size_t>(i)], m_cols_.col(j).data());
     }
   }
   if (symmetric) {
@@ -1007,11 +1046,15 @@ void Integrator::ActiveForces(double t, const Eigen::Ref<const Vec>& qq,
   if (sys_.rank_deficient()) {
     BalanceIndeterminateFriction(k, m);
   }
-  du = h_;
-  for (int j = 0; j < m; ++j) {
-    du += cols_.col(j) * sys_.x(j);
+  // du = M^-1 (h + sum_j cols_j x_j), summed in that order.
+  double* d = du.data();
+  for (int i = 0; i < n; ++i) {
+    double v = h[i];
+    for (int j = 0; j < m; ++j) {
+      v += cols_(i, j) * sys_.x(j);
+    }
+    d[i] = inv_m[i] * v;
   }
-  du = inv_m.cwiseProduct(du);
   // Forces per contact and the friction power.
   friction_power_ = 0.0;
   int j = 0, js = k;

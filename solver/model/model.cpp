@@ -131,6 +131,13 @@ Model::Model(std::vector<Body> bodies, Eigen::MatrixXd K, Eigen::MatrixXd C, Eig
   if (r_.rows() != n || r_.cols() != 2 || !r_.allFinite()) {
     Fail(where, "r", "must be a finite " + std::to_string(n) + " x 2 ground-influence matrix");
   }
+  // M r, element by element: the products AppliedForces used to form on every call.
+  mass_r_.resize(n, 2);
+  for (int j = 0; j < 2; ++j) {
+    for (int i = 0; i < n; ++i) {
+      mass_r_(i, j) = mass_diagonal_[i] * r_(i, j);
+    }
+  }
 
   for (const Contact& c : contacts_) {
     const std::string field = "abutments.contacts." + c.name;
@@ -179,24 +186,28 @@ void Model::AppliedForces(const Eigen::Ref<const Eigen::VectorXd>& q,
                           const Eigen::Ref<const Eigen::VectorXd>& u,
                           const Eigen::Vector2d& a_g_mps2, Eigen::Ref<Eigen::VectorXd> h) const {
   const Eigen::Index n = h.size();
+  const double a_x = a_g_mps2(0), a_y = a_g_mps2(1);
   if (n <= 6) {
     // A single deck: plain loops, without the dispatch of a dynamic-size product (this runs in
-    // every Runge-Kutta stage of a constrained phase).
+    // every Runge-Kutta stage of a constrained phase). Per entry the operations of the general
+    // path in its order: -(C u + K q), minus a_x (M r)_x, minus a_y (M r)_y.
     for (Eigen::Index i = 0; i < n; ++i) {
       double sum = 0.0;
       for (Eigen::Index j = 0; j < n; ++j) {
         sum += C_(i, j) * u(j) + K_(i, j) * q(j);
       }
-      h(i) = -sum;
+      double v = -sum;
+      v -= a_x * mass_r_(i, 0);
+      v -= a_y * mass_r_(i, 1);
+      h(i) = v;
     }
-  } else {
-    h.noalias() = -C_ * u;
-    h.noalias() -= K_ * q;
+    return;
   }
-  // M r a_g column by column, M diagonal: no temporary.
-  for (int j = 0; j < 2; ++j) {
-    h.noalias() -= a_g_mps2(j) * mass_diagonal_.cwiseProduct(r_.col(j));
-  }
+  h.noalias() = -C_ * u;
+  h.noalias() -= K_ * q;
+  // M r a_g column by column (M r formed once): no temporary.
+  h.noalias() -= a_x * mass_r_.col(0);
+  h.noalias() -= a_y * mass_r_.col(1);
 }
 
 double Model::MechanicalEnergy(const Eigen::Ref<const Eigen::VectorXd>& q,

@@ -118,6 +118,7 @@ class Model {
   Eigen::MatrixXd K_;
   Eigen::MatrixXd C_;
   Eigen::MatrixXd r_;
+  Eigen::MatrixXd mass_r_;  // M r (n_dof x 2): the ground acceleration's force per unit a_g
   std::vector<Contact> contacts_;
   std::string source_;
   std::optional<Modes> modes_;
