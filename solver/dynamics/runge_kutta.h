@@ -102,6 +102,14 @@ class DormandPrince45 {
   /// Dense output at absolute time t in [t0, t0 + h].
   void DenseAt(double t, Eigen::Ref<Eigen::VectorXd> out) const { Dense((t - t0_) / h_, out); }
 
+  /// The first `count` entries of DenseAt(t) (the same bits), into out.head(count): an event
+  /// search on positions needs no velocities.
+  void DenseHeadAt(double t, int count, Eigen::Ref<Eigen::VectorXd> out) const {
+    const double s = (t - t0_) / h_, r = 1.0 - s;
+    const auto d = dense_.topRows(count);
+    out.head(count) = d.col(0) + s * (d.col(1) + r * (d.col(2) + s * (d.col(3) + r * d.col(4))));
+  }
+
   /// Component i of the dense output at absolute time t.
   double DenseComponentAt(double t, int i) const {
     const double s = (t - t0_) / h_, r = 1.0 - s;

@@ -746,8 +746,8 @@ void Integrator::FreeStep() {
   const auto at = [&](double t, Vec& qq, Vec& uu) {
     ensure_dense();
     if (positions_only_) {
-      ws_.free_dense_.EvaluateHead(t - t_, n_, z_eval_);
-      qq = z_eval_.head(n_);
+      // Straight into qq (n_ entries): no copy per evaluation of the impact search.
+      ws_.free_dense_.EvaluateHead(t - t_, n_, qq);
       return;
     }
     ws_.free_dense_.EvaluateHead(t - t_, 2 * n_, z_eval_);
@@ -1295,6 +1295,10 @@ void Integrator::ConstrainedStep() {
   ClosedEventValues(f1_);
   GapsAndRates(y1.head(n_), y1.segment(n_, n_), gap1_, gN1_);
   const auto at = [&](double t, Vec& qq, Vec& uu) {
+    if (positions_only_) {
+      rk.DenseHeadAt(t, n_, qq);  // a gap needs q alone
+      return;
+    }
     rk.DenseAt(t, y_eval_);
     qq = y_eval_.head(n_);
     uu = y_eval_.segment(n_, n_);
