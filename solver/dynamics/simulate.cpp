@@ -381,6 +381,9 @@ class Integrator {
   // The gap of contact c at q: contact::Gap's value (the same bits), with the ground face's
   // formula inline (no rotation matrix, no face frame), for the event searches of the free phase.
   double GapAt(int c, const Eigen::Ref<const Vec>& q) const;
+  // The normal rate gamma_N of contact c at (q, u): w_N . u (the same bits), without the
+  // Jacobians' zeroing and the tangent for a single deck against a ground face.
+  double NormalRateAt(int c, const Eigen::Ref<const Vec>& q, const Eigen::Ref<const Vec>& u);
   // Gaps and normal rates of every contact at (q, u), without the rest of the kinematics.
   void GapsAndRates(const Eigen::Ref<const Vec>& q, const Eigen::Ref<const Vec>& u, Vec& gap,
                     Vec& gamma_N);
@@ -646,6 +649,22 @@ void Integrator::GapsAndRates(const Eigen::Ref<const Vec>& qq, const Eigen::Ref<
   }
 }
 
+double Integrator::NormalRateAt(int c, const Eigen::Ref<const Vec>& qq,
+                                const Eigen::Ref<const Vec>& uu) {
+  const model::Contact& contact = model_.contact(c);
+  if (n_ != 3 || contact.face.body != model::kGround) {
+    contact::Jacobians(model_, c, qq, w_N_, w_T_);
+    return w_N_.dot(uu);
+  }
+  // A single deck against a ground face: w_N = (n, n . J R p) and w_N . u summed in the order of
+  // the three-entry dot product, as GapsAndRates does (the same bits).
+  const double co = std::cos(qq[2]), si = std::sin(qq[2]);
+  const Eigen::Vector2d& p = contact.point_m;
+  const Eigen::Vector2d arm(co * p.x() - si * p.y(), si * p.x() + co * p.y());
+  const Eigen::Vector2d& n = contact.face.normal;
+  return n.dot(uu.head<2>()) + uu[2] * (n.y() * arm.x() - n.x() * arm.y());
+}
+
 double Integrator::GapAt(int c, const Eigen::Ref<const Vec>& qq) const {
   const model::Contact& contact = model_.contact(c);
   if (contact.face.body != model::kGround) {
@@ -828,8 +847,7 @@ double Integrator::GapRoot(int c, double t0, double t1, double g0, double gN0, d
   };
   const auto gamma_N = [&](double t) {
     at(t, q_e_, u_e_);
-    contact::Jacobians(model_, c, q_e_, w_N_, w_T_);
-    return w_N_.dot(u_e_);
+    return NormalRateAt(c, q_e_, u_e_);
   };
   const double x_tol = 1e-15 * std::max(1.0, std::abs(t1)) + 1e-16;
   double a = t0, ga = g0, gNa = gN0;
