@@ -187,6 +187,24 @@ void Model::AppliedForces(const Eigen::Ref<const Eigen::VectorXd>& q,
                           const Eigen::Vector2d& a_g_mps2, Eigen::Ref<Eigen::VectorXd> h) const {
   const Eigen::Index n = h.size();
   const double a_x = a_g_mps2(0), a_y = a_g_mps2(1);
+  if (n == 3) {
+    // A single deck, the loops below unrolled (their operations in their order).
+    const double* C = C_.data();
+    const double* K = K_.data();
+    const double* mr = mass_r_.data();
+    const double u0 = u(0), u1 = u(1), u2 = u(2), q0 = q(0), q1 = q(1), q2 = q(2);
+    for (int i = 0; i < 3; ++i) {
+      double sum = 0.0;
+      sum += C[i] * u0 + K[i] * q0;
+      sum += C[i + 3] * u1 + K[i + 3] * q1;
+      sum += C[i + 6] * u2 + K[i + 6] * q2;
+      double v = -sum;
+      v -= a_x * mr[i];
+      v -= a_y * mr[i + 3];
+      h(i) = v;
+    }
+    return;
+  }
   if (n <= 6) {
     // A single deck: plain loops, without the dispatch of a dynamic-size product (this runs in
     // every Runge-Kutta stage of a constrained phase). Per entry the operations of the general
