@@ -184,8 +184,17 @@ void EvaluateOne(const model::Model& model, int c, const Eigen::Ref<const Eigen:
   const Geometry g = Compute(model, c, q);
   out.gap_m(c) = g.n.dot(g.P - g.A);
   JacobiansAt(contact, g, out.W_N.col(c), out.W_T.col(c));
-  out.gamma_N(c) = SparseDot(contact, out.W_N.col(c), u);
-  out.gamma_T(c) = SparseDot(contact, out.W_T.col(c), u);
+  if (u.size() == 3) {
+    // A single deck: the three-entry dot products written out, in the order of Eigen's (the
+    // first two entries paired, then the third), without a dynamic-size expression per call.
+    const double* w_N = out.W_N.col(c).data();
+    const double* w_T = out.W_T.col(c).data();
+    out.gamma_N(c) = (w_N[0] * u[0] + w_N[1] * u[1]) + w_N[2] * u[2];
+    out.gamma_T(c) = (w_T[0] * u[0] + w_T[1] * u[1]) + w_T[2] * u[2];
+  } else {
+    out.gamma_N(c) = SparseDot(contact, out.W_N.col(c), u);
+    out.gamma_T(c) = SparseDot(contact, out.W_T.col(c), u);
+  }
   VelocityTermsAt(contact, g, u, out.what_N(c), out.what_T(c));
 }
 
