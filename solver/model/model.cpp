@@ -206,7 +206,7 @@ void Model::AppliedForces(const Eigen::Ref<const Eigen::VectorXd>& q,
     return;
   }
   if (n <= 6) {
-    // A single deck: plain loops, without the dispatch of a dynamic-size product (this runs in
+    // Two decks: plain loops, without the dispatch of a dynamic-size product (this runs in
     // every Runge-Kutta stage of a constrained phase). Per entry the operations of the general
     // path in its order: -(C u + K q), minus a_x (M r)_x, minus a_y (M r)_y.
     for (Eigen::Index i = 0; i < n; ++i) {
