@@ -86,6 +86,19 @@ SweepSpec Spec(const std::string& body, const std::string& model = "deck.toml",
   return ParseSweepSpec(head + body, "spec.toml", Folder());
 }
 
+// The message of the spec parser's InputError for this body (the evaluator not built), or
+// "no error".
+std::string SpecErrorOf(const std::string& body) {
+  try {
+    Spec(body);
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;  // one line
+    return what;
+  }
+  return "no error";
+}
+
 std::string ErrorOf(const std::string& body, const std::string& model = "deck.toml",
                     const std::string& family = "model-file") {
   try {
@@ -103,30 +116,23 @@ TEST(ModelFileSpec, NewKeysTakeTheirRanges) {
       "[axes]\nw_g = [5.0, 10.0]\nscale = [0.5, 2]\ngap_m = [0, 0.01]\nk_factor = [0.5, 1, 4]\n");
   EXPECT_EQ(spec.CellCount(), 24u);
   EXPECT_NO_THROW(Spec("[axes]\nT_g = [0.3, 0.6]\n"));
-  const auto error = [](const std::string& body) {
-    try {
-      Spec(body);
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
-  EXPECT_THAT(error("[axes]\nw_g = [0.0]\n"),
+  EXPECT_THAT(SpecErrorOf("[axes]\nw_g = [0.0]\n"),
               HasSubstr("spec.toml:6: axes.w_g: must be a number > 0"));
-  EXPECT_THAT(error("[axes]\nT_g = [-1]\n"),
+  EXPECT_THAT(SpecErrorOf("[axes]\nT_g = [-1]\n"),
               HasSubstr("spec.toml:6: axes.T_g: must be a number > 0"));
-  EXPECT_THAT(error("[axes]\nscale = [0]\n"),
+  EXPECT_THAT(SpecErrorOf("[axes]\nscale = [0]\n"),
               HasSubstr("spec.toml:6: axes.scale: must be a number > 0"));
-  EXPECT_THAT(error("[axes]\nscale = [2e6]\n"),
+  EXPECT_THAT(SpecErrorOf("[axes]\nscale = [2e6]\n"),
               HasSubstr("axes.scale: must be a number > 0 and <= 1000000 (got 2000000)"));
-  EXPECT_THAT(error("[axes]\ngap_m = [-0.01]\n"),
+  EXPECT_THAT(SpecErrorOf("[axes]\ngap_m = [-0.01]\n"),
               HasSubstr("spec.toml:6: axes.gap_m: must be a number >= 0"));
-  EXPECT_THAT(error("[axes]\nk_factor = [0]\n"),
+  EXPECT_THAT(SpecErrorOf("[axes]\nk_factor = [0]\n"),
               HasSubstr("spec.toml:6: axes.k_factor: must be a number > 0"));
-  EXPECT_THAT(error("[axes]\nk_factor = [\"x\"]\n"), HasSubstr("axes.k_factor: must be a number"));
-  EXPECT_THAT(error("[axes]\nw_g = [5.0]\n[fixed]\nT_g = 0.5\n"),
+  EXPECT_THAT(SpecErrorOf("[axes]\nk_factor = [\"x\"]\n"),
+              HasSubstr("axes.k_factor: must be a number"));
+  EXPECT_THAT(SpecErrorOf("[axes]\nw_g = [5.0]\n[fixed]\nT_g = 0.5\n"),
               HasSubstr("spec.toml: T_g: give w_g or T_g, not both"));
-  EXPECT_THAT(error("[axes]\ngap_m = [0.01]\n[fixed]\nPi_delta = 1\n"),
+  EXPECT_THAT(SpecErrorOf("[axes]\ngap_m = [0.01]\n[fixed]\nPi_delta = 1\n"),
               HasSubstr("spec.toml: gap_m: give gap_m or Pi_delta, not both"));
   // The model-file keys mean nothing to the other families.
   for (const char* key : {"w_g", "T_g", "scale", "gap_m", "k_factor"}) {
@@ -177,26 +183,19 @@ TEST(ModelFileSpec, RecordStarTakesEveryRecordOfTheSetInSetOrder) {
 }
 
 TEST(ModelFileSpec, RecordStarErrorsNameTheKey) {
-  const auto error = [](const std::string& body) {
-    try {
-      Spec(body);
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
-  EXPECT_THAT(error("[axes]\nrecord = \"*\"\n"),
+  EXPECT_THAT(SpecErrorOf("[axes]\nrecord = \"*\"\n"),
               HasSubstr("spec.toml:6: axes.record: \"*\" (every record) needs [records] set"));
-  EXPECT_THAT(error("[records]\nset = \"set.toml\"\n[axes]\nrecord = \"a.txt\"\n"),
+  EXPECT_THAT(SpecErrorOf("[records]\nset = \"set.toml\"\n[axes]\nrecord = \"a.txt\"\n"),
               HasSubstr("spec.toml:8: axes.record: must be a list of record labels or \"*\""));
-  EXPECT_THAT(error("[records]\nset = \"set.toml\"\n[axes]\nrecord = [\"*\", \"a.txt\"]\n"),
+  EXPECT_THAT(SpecErrorOf("[records]\nset = \"set.toml\"\n[axes]\nrecord = [\"*\", \"a.txt\"]\n"),
               HasSubstr("spec.toml:8: axes.record: \"*\" stands alone"));
   EXPECT_THAT(
-      error("[records]\nset = \"set.toml\"\n[axes]\nscale = [1.0]\n[fixed]\nrecord = \"*\"\n"),
+      SpecErrorOf(
+          "[records]\nset = \"set.toml\"\n[axes]\nscale = [1.0]\n[fixed]\nrecord = \"*\"\n"),
       HasSubstr("spec.toml:10: fixed.record: a fixed record is one label"));
   // A folder set whose pattern matches nothing: the manifest's line and key.
   std::ofstream(Folder() / "none.toml") << "folder = \"recs\"\npattern = \"*.AT2\"\n";
-  EXPECT_THAT(error("[records]\nset = \"none.toml\"\n[axes]\nrecord = \"*\"\n"),
+  EXPECT_THAT(SpecErrorOf("[records]\nset = \"none.toml\"\n[axes]\nrecord = \"*\"\n"),
               HasSubstr("none.toml:2: pattern: no file of"));
 }
 
@@ -228,32 +227,25 @@ TEST(RecordsFolder, TakesTheFilesOfTheFolderLikeAManifest) {
 }
 
 TEST(RecordsFolder, ErrorsNameTheSpecLineAndKey) {
-  const auto error = [](const std::string& body) {
-    try {
-      Spec(body);
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
   const std::string axes = "[axes]\nscale = [1.0]\n";
-  EXPECT_THAT(error("[records]\nfolder = \"nope\"\npattern = \"*\"\n" + axes),
+  EXPECT_THAT(SpecErrorOf("[records]\nfolder = \"nope\"\npattern = \"*\"\n" + axes),
               HasSubstr("spec.toml:6: records.folder: not a folder"));
-  EXPECT_THAT(error("[records]\nfolder = \"recs\"\npattern = \"*.AT2\"\n" + axes),
+  EXPECT_THAT(SpecErrorOf("[records]\nfolder = \"recs\"\npattern = \"*.AT2\"\n" + axes),
               HasSubstr("spec.toml:7: records.pattern: no file of"));
-  EXPECT_THAT(error("[records]\nfolder = \"recs\"\npattern = \"[a\"\n" + axes),
+  EXPECT_THAT(SpecErrorOf("[records]\nfolder = \"recs\"\npattern = \"[a\"\n" + axes),
               HasSubstr("spec.toml:7: records.pattern: '[a' has an unclosed '['"));
-  EXPECT_THAT(error("[records]\nfolder = \"recs\"\n" + axes),
+  EXPECT_THAT(SpecErrorOf("[records]\nfolder = \"recs\"\n" + axes),
               HasSubstr("spec.toml:6: records.pattern: is required with folder"));
-  EXPECT_THAT(error("[records]\npattern = \"*\"\n" + axes),
+  EXPECT_THAT(SpecErrorOf("[records]\npattern = \"*\"\n" + axes),
               HasSubstr("spec.toml: records.folder: missing"));
-  EXPECT_THAT(error("[records]\nfolder = \"recs\"\npattern = \"*\"\nunits = \"ft\"\n" + axes),
+  EXPECT_THAT(SpecErrorOf("[records]\nfolder = \"recs\"\npattern = \"*\"\nunits = \"ft\"\n" + axes),
               HasSubstr("spec.toml:8: records.units: must be one of g, m/s^2, cm/s^2"));
-  EXPECT_THAT(error("[records]\nfolder = \"recs\"\npattern = \"*\"\ndt = 0\n" + axes),
+  EXPECT_THAT(SpecErrorOf("[records]\nfolder = \"recs\"\npattern = \"*\"\ndt = 0\n" + axes),
               HasSubstr("spec.toml:8: records.dt: must be a number > 0"));
-  EXPECT_THAT(error("[records]\nset = \"set.toml\"\nfolder = \"recs\"\npattern = \"*\"\n" + axes),
-              HasSubstr("spec.toml: records: give set"));
-  EXPECT_THAT(error("[records]\nset = \"set.toml\"\nunits = \"g\"\n" + axes),
+  EXPECT_THAT(
+      SpecErrorOf("[records]\nset = \"set.toml\"\nfolder = \"recs\"\npattern = \"*\"\n" + axes),
+      HasSubstr("spec.toml: records: give set"));
+  EXPECT_THAT(SpecErrorOf("[records]\nset = \"set.toml\"\nunits = \"g\"\n" + axes),
               HasSubstr("spec.toml:7: records.units: unknown key"));
 }
 
