@@ -35,8 +35,9 @@ const char* KindName(const model::ModelFile& file) {
   }
 }
 
-void PrintStiffnessCentre(const model::Model& model) {
-  const Eigen::Matrix3d K = model.K().topLeftCorner<3, 3>();
+// The stiffness analysis of deck b's own 3x3 block of K (its x, y, theta about its mass centre).
+void PrintStiffnessCentre(const model::Model& model, int b) {
+  const Eigen::Matrix3d K = model.K().block<3, 3>(3 * b, 3 * b);
   std::printf("stiffness about the mass centre (rows x, y, theta; N/m, N/rad, N m/rad):\n");
   for (int i = 0; i < 3; ++i) {
     std::printf("  %14.6e %14.6e %14.6e\n", K(i, 0), K(i, 1), K(i, 2));
@@ -94,9 +95,25 @@ void PrintModes(const model::Model& model) {
     std::printf("\n");
   }
   if (model.n_bodies() == 1) {
-    PrintStiffnessCentre(model);
-  } else {
-    std::printf("centre of rigidity and principal axes: printed for a single deck only\n");
+    PrintStiffnessCentre(model, 0);
+    return;
+  }
+  // Several decks: each deck's own centre of rigidity, when the substructure ties every deck to
+  // the ground alone (K block-diagonal); a spring between decks leaves no per-deck centre.
+  const Eigen::MatrixXd& K = model.K();
+  Eigen::MatrixXd coupling = K;
+  for (int b = 0; b < model.n_bodies(); ++b) {
+    coupling.block<3, 3>(3 * b, 3 * b).setZero();
+  }
+  if (coupling.cwiseAbs().maxCoeff() > 0.0) {
+    std::printf(
+        "centre of rigidity and principal axes: none per deck (the substructure couples the "
+        "decks)\n");
+    return;
+  }
+  for (int b = 0; b < model.n_bodies(); ++b) {
+    std::printf("deck %d:\n", b);
+    PrintStiffnessCentre(model, b);
   }
 }
 

@@ -37,6 +37,17 @@ grep -q "centre of rigidity: e_x = 0 m, e_y = 0 m" "$work/run" || fail "run: cen
 grep -q "centre of rigidity: e_x = -0.24 m, e_y = 0.01 m" "$work/pilot" ||
   fail "pilot: centre of rigidity not (-0.24, 0.01): $(cat "$work/pilot")"
 
+# Several decks on their own supports: each deck's centre of rigidity is its mass centre and its
+# torsion there is the k_theta the file gives that deck's [[support]].
+three="$root/docs/examples/three-span.toml"
+"$exe" modes "$three" >"$work/three" 2>&1 || fail "three-span: exit $?"
+expected=$(awk '/^k_theta/ {printf "%.6e\n", $3}' "$three")
+printed=$(awk '/^torsion about the centre of rigidity/ {print $7}' "$work/three")
+[ -n "$expected" ] && [ "$printed" = "$expected" ] ||
+  fail "three-span: torsion per deck '$printed', expected '$expected'"
+[ "$(grep -c "centre of rigidity: e_x = 0 m, e_y = 0 m" "$work/three")" -eq 3 ] ||
+  fail "three-span: not three centres at the mass centres: $(cat "$work/three")"
+
 sed 's/^k_weak_Npm = 81990e3/k_weak_Npm = -1/' "$model" >"$work/bad.toml"
 "$exe" modes "$work/bad.toml" >"$work/out3" 2>"$work/err3"
 status=$?
