@@ -1,4 +1,4 @@
-// The correlation statistics of jobs/correlation.h against hand-computed closed forms.
+// The correlation statistics of spectra/correlation.h against hand-computed closed forms.
 
 #include "spectra/correlation.h"
 
