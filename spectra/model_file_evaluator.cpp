@@ -361,14 +361,8 @@ CellOutcome ModelFileEvaluator::Evaluate(std::span<const std::size_t> axis_index
   const ModelFileCell c = MakeCell(axis_index, true);
   const model::Model& model = *c.model;
   // As `skewbridge run`: run.method picks the integrator, the file's [run] its controls.
-  dynamics::RunResult run;
-  if (c.control.method == "time-stepping") {
-    dynamics::TimeSteppingWorkspace workspace(model);
-    run = dynamics::SimulateTimeStepping(model, *c.excitation, c.control, workspace);
-  } else {
-    dynamics::SimulationWorkspace workspace(model);
-    run = dynamics::Simulate(model, *c.excitation, c.control, workspace);
-  }
+  const dynamics::RunResult run =
+      RunCellModel(model, *c.excitation, c.control, c.control.method == "time-stepping");
 
   CellOutcome out;
   out.status = CellStatusOf(run.status);

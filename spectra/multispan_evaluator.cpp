@@ -170,15 +170,8 @@ CellOutcome MultiSpanEvaluator::Evaluate(std::span<const std::size_t> axis_index
   // A cell stores maxima, not the energy ledger: its work integrals are not computed.
   control.energy_ledger = false;
   control.end_time_s = pulse.Duration() + 2.0 * std::max(excitation_period_s, natural_period_s);
-  dynamics::RunResult run;
-  if (c.time_stepping) {
-    control.time_step_s = 1e-4 * excitation_period_s;
-    dynamics::TimeSteppingWorkspace workspace(model);
-    run = dynamics::SimulateTimeStepping(model, pulse, control, workspace);
-  } else {
-    dynamics::SimulationWorkspace workspace(model);
-    run = dynamics::Simulate(model, pulse, control, workspace);
-  }
+  if (c.time_stepping) control.time_step_s = 1e-4 * excitation_period_s;
+  const dynamics::RunResult run = RunCellModel(model, pulse, control, c.time_stepping);
 
   CellOutcome out;
   out.status = CellStatusOf(run.status);
