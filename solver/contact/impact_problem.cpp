@@ -1,6 +1,7 @@
 #include "solver/contact/impact_problem.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "solver/common/error.h"
 #include "solver/lcp/enumeration.h"
@@ -11,6 +12,52 @@ namespace {
 
 // Relative compliance of the normal rows in the retry of a degenerate impact (see Solve).
 constexpr double kImpactCompliance = 1e-9;
+
+// The impact of one contact in closed form: the LCP of the header with k = 1, given the
+// Delassus entries G_nn = w_N^T M^-1 w_N, G_nt = w_N^T M^-1 w_T, G_tt = w_T^T M^-1 w_T (N^-1 s^-1
+// per unit impulse, in m/s per N s). Along the impulses that meet the normal law
+// (G_nn Lambda_N + G_nt Lambda_T = -(1 + eps) gamma_N,A), the post-impact slip grows strictly
+// with Lambda_T (det > 0) while Coulomb's graph falls, so stick or slip in one direction is the
+// unique solution when the friction interval -mu Lambda_N <= Lambda_T <= mu Lambda_N is proper on
+// that line: G_nn - mu |G_nt| > 0. Returns false where that does not hold, or where the contact
+// does not approach: Lemke (and the enumeration) decide those.
+bool SolveSingleImpact(double G_nn, double G_nt, double G_tt, double mu, double eps,
+                       double gamma_N_A, double gamma_T_A, double& Lambda_N, double& Lambda_T) {
+  if (!(gamma_N_A < 0.0) || !(G_nn > 0.0)) {
+    return false;
+  }
+  const double r = -(1.0 + eps) * gamma_N_A;  // G_nn Lambda_N + G_nt Lambda_T = r > 0
+  if (mu == 0.0) {
+    Lambda_N = r / G_nn;
+    Lambda_T = 0.0;
+    return true;
+  }
+  if (!(G_nn - mu * std::abs(G_nt) > 0.0)) {
+    return false;
+  }
+  const double det = G_nn * G_tt - G_nt * G_nt;
+  if (det > 0.0) {
+    // Stick: gamma_T,E = 0 as well.
+    const double n = (r * G_tt + G_nt * gamma_T_A) / det;
+    const double t = -(G_nn * gamma_T_A + G_nt * r) / det;
+    if (n > 0.0 && std::abs(t) <= mu * n) {
+      Lambda_N = n;
+      Lambda_T = t;
+      return true;
+    }
+  }
+  // Slip in direction s after the impact: Lambda_T = -s mu Lambda_N, s gamma_T,E >= 0.
+  for (const double s : {1.0, -1.0}) {
+    const double n = r / (G_nn - s * mu * G_nt);
+    const double gamma_T_E = gamma_T_A + (G_nt - s * mu * G_tt) * n;
+    if (s * gamma_T_E >= 0.0) {
+      Lambda_N = n;
+      Lambda_T = -s * mu * n;
+      return true;
+    }
+  }
+  return false;
+}
 
 }  // namespace
 
@@ -82,6 +129,9 @@ lcp::LcpStatus ImpactProblem::Solve(const ContactKinematics& kinematics,
   }
   if (k == 0) {
     result.status = lcp::LcpStatus::kSolved;
+    return result.status;
+  }
+  if (k == 1 && SolveOne(result)) {
     return result.status;
   }
   auto WN = WN_.leftCols(k);
@@ -159,6 +209,51 @@ lcp::LcpStatus ImpactProblem::Solve(const ContactKinematics& kinematics,
   result.gamma_N_E.head(k).noalias() = WN.transpose() * result.u_E;
   result.gamma_T_E.head(k).noalias() = WT.transpose() * result.u_E;
   return result.status;
+}
+
+bool ImpactProblem::SolveOne(ImpactResult& result) {
+  // Raw loops: at one contact the set-up of dynamic-size Eigen products costs more than their
+  // arithmetic. The sums run over every DOF in order; entries outside the contact's bodies are
+  // zero, so this is the Delassus entry the sparse assembly forms, to rounding.
+  const int n = model_.n_dof();
+  const double* inv_m = model_.inverse_mass_diagonal().data();
+  const double* w_n = WN_.col(0).data();
+  const double* w_t = WT_.col(0).data();
+  double* m_n = MinvWN_.col(0).data();
+  double* m_t = MinvWT_.col(0).data();
+  double G_nn = 0.0, G_nt = 0.0, G_tt = 0.0, gamma_T_A = 0.0;
+  const double* u_A = result.u_E.data();  // u_E = u_A on entry
+  for (int i = 0; i < n; ++i) {
+    m_n[i] = inv_m[i] * w_n[i];
+    m_t[i] = inv_m[i] * w_t[i];
+    G_nn += w_n[i] * m_n[i];
+    G_nt += w_n[i] * m_t[i];
+    G_tt += w_t[i] * m_t[i];
+    gamma_T_A += w_t[i] * u_A[i];
+  }
+  const double mu = mu_(0), eps = eps_(0), gamma_N_A = result.gamma_N_A(0);
+  // The 3 x 3 LCP as the general path assembles it, for last_A() and last_b().
+  A_.topLeftCorner(3, 3) << G_nn - mu * G_nt, G_nt, 0.0,  //
+      G_nt - mu * G_tt, G_tt, 1.0,                        //
+      2.0 * mu, -1.0, 0.0;
+  b_.head(3) << (1.0 + eps) * gamma_N_A, gamma_T_A, 0.0;
+  double Lambda_N = 0.0, Lambda_T = 0.0;
+  if (!SolveSingleImpact(G_nn, G_nt, G_tt, mu, eps, gamma_N_A, gamma_T_A, Lambda_N, Lambda_T)) {
+    return false;
+  }
+  result.status = lcp::LcpStatus::kSolved;
+  result.Lambda_N(0) = Lambda_N;
+  result.Lambda_T(0) = Lambda_T;
+  double* u_E = result.u_E.data();
+  double gamma_N_E = 0.0, gamma_T_E = 0.0;
+  for (int i = 0; i < n; ++i) {
+    u_E[i] += m_n[i] * Lambda_N + m_t[i] * Lambda_T;
+    gamma_N_E += w_n[i] * u_E[i];
+    gamma_T_E += w_t[i] * u_E[i];
+  }
+  result.gamma_N_E(0) = gamma_N_E;
+  result.gamma_T_E(0) = gamma_T_E;
+  return true;
 }
 
 }  // namespace skewbridge::contact

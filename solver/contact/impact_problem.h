@@ -11,7 +11,8 @@
 ///     b = ((E + eps) gamma_N,A, gamma_T,A, 0)
 ///     u_E = u_A + M^-1 (W_N Lambda_N + W_T Lambda_T),  Lambda_T = Lambda_R - mu Lambda_N
 ///
-/// solved with Lemke's algorithm (solver/lcp/lemke.h).
+/// solved with Lemke's algorithm (solver/lcp/lemke.h); a single contact, where the solution is
+/// unique (G_nn - mu |G_nt| > 0), in closed form (stick, or slip one way).
 ///
 /// Energy: without friction, or with eps_N = 0, an impact never creates kinetic energy. With
 /// both eps_N > 0 and friction, Newton's kinematic restitution can create energy when the
@@ -74,6 +75,10 @@ class ImpactProblem {
   Eigen::Ref<const Eigen::VectorXd> last_b() const;
 
  private:
+  // One contact in closed form (the index set's columns, mu_, eps_ and result.gamma_N_A set);
+  // false where Lemke must decide.
+  bool SolveOne(ImpactResult& result);
+
   const model::Model& model_;
   lcp::LemkeSolver solver_;
   // One solution per LCP size: LcpSolution resizes when n changes, so each size keeps its own

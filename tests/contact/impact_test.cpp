@@ -1,7 +1,8 @@
 // The impact problem through the contact layer, end to end: facts 1 and 2 of [docs/theory.md §4]
 // against their lever-arm criteria, single-contact impacts against the closed form
 // Lambda = -(1 + eps) gamma_N,A / (w_N^T M^-1 w_N), and, over 1000 seeded random impacts,
-// energy never created, Newton's law on active contacts and Coulomb's cone.
+// energy never created, Newton's law on active contacts and Coulomb's cone; the closed form of a
+// single contact's frictional impact against Lemke on the same LCP.
 #include "solver/contact/impact_problem.h"
 
 #include <gtest/gtest.h>
@@ -280,6 +281,65 @@ TEST(ImpactProblem, RandomImpactsObeyNewtonAndCoulombAndReportEnergyGains) {
   std::cout << "random frictional impacts: " << batch.impacts << " solved, " << batch.energy_gains
             << " gain energy (largest " << batch.largest_gain * 100.0 << " % of T_A), "
             << batch.unsolved << " without a solution\n";
+}
+
+TEST(ImpactProblem, SingleContactClosedFormEqualsLemke) {
+  // A single contact is solved in closed form where its LCP has a unique solution
+  // (G_nn - mu |G_nt| > 0); Lemke on the same LCP (last_A, last_b) is the second method. 1000
+  // seeded impacts of one corner, eps in [0, 1], mu in [0, 1] or [0, 3]: the impulses agree to
+  // 1e-10, and where the closed form does not apply the status is Lemke's.
+  std::mt19937_64 rng(4000);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int closed_form = 0, by_lemke = 0, stick = 0, slip = 0;
+  for (int trial = 0; trial < 1000; ++trial) {
+    // Every third trial with mu up to 3: some of those are not unique (G_nn < mu |G_nt|).
+    const double mu = trial % 10 == 0 ? 0.0 : (trial % 3 == 0 ? 3.0 : 1.0) * unit(rng);
+    const model::Model model =
+        testing::FreeDeck(5.0 + 70.0 * unit(rng), 0.3 + 3.7 * unit(rng), 10.0 + 40.0 * unit(rng),
+                          0.05, unit(rng), mu, model::AbutmentSet::kBoth, 1.0 + 1e3 * unit(rng));
+    const Eigen::Vector3d q(0.2 * (unit(rng) - 0.5), 0.2 * (unit(rng) - 0.5),
+                            0.1 * (unit(rng) - 0.5));
+    const Eigen::Vector3d u_A(2.0 * unit(rng) - 1.0, 2.0 * unit(rng) - 1.0,
+                              0.2 * (unit(rng) - 0.5));
+    ContactKinematics kin;
+    kin.Resize(model);
+    Evaluate(model, q, u_A, kin);
+    const int c = static_cast<int>(rng() % 4);
+    if (!(kin.gamma_N(c) < 0.0)) {
+      continue;
+    }
+    ImpactProblem problem(model);
+    ImpactResult r = problem.MakeResult();
+    const std::vector<int> one{c};
+    const lcp::LcpStatus status = problem.Solve(kin, one, u_A, r);
+    lcp::LemkeSolver lemke;
+    lcp::LcpSolution reference;
+    const lcp::LcpStatus expected = lemke.Solve(problem.last_A(), problem.last_b(), reference);
+    if (r.pivots > 0 || status != lcp::LcpStatus::kSolved) {
+      ++by_lemke;
+      EXPECT_EQ(status, expected) << "trial " << trial;
+      continue;
+    }
+    ++closed_form;
+    ASSERT_EQ(expected, lcp::LcpStatus::kSolved) << "trial " << trial;
+    const double Lambda_N = reference.z(0), Lambda_T = reference.z(1) - mu * reference.z(0);
+    const double scale = std::abs(Lambda_N) + std::abs(Lambda_T);
+    EXPECT_NEAR(r.Lambda_N(0), Lambda_N, 1e-10 * scale) << "trial " << trial;
+    EXPECT_NEAR(r.Lambda_T(0), Lambda_T, 1e-10 * scale) << "trial " << trial;
+    // The post-impact velocities as the general path forms them.
+    const Eigen::Vector3d u_E =
+        u_A + model.inverse_mass_diagonal().asDiagonal() *
+                  (kin.W_N.col(c) * r.Lambda_N(0) + kin.W_T.col(c) * r.Lambda_T(0));
+    EXPECT_LT((r.u_E - u_E).cwiseAbs().maxCoeff(), 1e-12 * (1.0 + u_A.cwiseAbs().maxCoeff()));
+    EXPECT_NEAR(r.gamma_N_E(0), kin.W_N.col(c).dot(r.u_E), 1e-12);
+    (std::abs(r.Lambda_T(0)) < mu * r.Lambda_N(0) * (1.0 - 1e-12) ? stick : slip) += 1;
+  }
+  EXPECT_GT(closed_form, 300);
+  EXPECT_GT(stick, 30);
+  EXPECT_GT(slip, 30);
+  EXPECT_GT(by_lemke, 5);
+  std::cout << "single-contact impacts: " << closed_form << " in closed form (" << stick
+            << " stick, " << slip << " slip), " << by_lemke << " by Lemke\n";
 }
 
 TEST(ImpactProblem, EmptyIndexSetLeavesTheVelocityUnchanged) {
