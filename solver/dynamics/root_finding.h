@@ -22,6 +22,10 @@ struct RootResult {
 
 /// Brent's method for f(x) = 0 on [a, b] given fa = f(a), fb = f(b) with fa fb <= 0.
 /// Stops when the bracket is shorter than 2 x_tolerance (absolute, > 0) or f(x) = 0.
+/// One change to Brent's rules: once a minimal step (x_tolerance-sized, taken where the
+/// interpolation puts the root within it) lands on the same side, f is flat at that resolution
+/// (rounding noise near the root, or a multiple root), and the rest of the search bisects. Brent
+/// would alternate such a step with a bisection, two evaluations per halving of the bracket.
 /// @pre a < b; f is continuous on [a, b].
 template <class Function>
 RootResult FindRootBrent(Function&& f, double a, double b, double fa, double fb, double x_tolerance,
@@ -42,6 +46,8 @@ RootResult FindRootBrent(Function&& f, double a, double b, double fa, double fb,
     return result;
   }
   double c = b, fc = fb, d = b - a, e = d;
+  bool minimal = false;  // the last step was a minimal one
+  bool flat = false;     // a minimal step stayed on its side: bisect from now on
   for (int iteration = 0; iteration < max_iterations; ++iteration) {
     if ((fb > 0.0) == (fc > 0.0)) {
       c = a;
@@ -61,7 +67,7 @@ RootResult FindRootBrent(Function&& f, double a, double b, double fa, double fb,
     if (std::abs(middle) <= tolerance || fb == 0.0) {
       break;
     }
-    if (std::abs(e) >= tolerance && std::abs(fa) > std::abs(fb)) {
+    if (!flat && std::abs(e) >= tolerance && std::abs(fa) > std::abs(fb)) {
       // Inverse quadratic interpolation (secant when only two distinct points).
       const double s = fb / fa;
       double p, q;
@@ -90,9 +96,11 @@ RootResult FindRootBrent(Function&& f, double a, double b, double fa, double fb,
     }
     a = b;
     fa = fb;
-    b += std::abs(d) > tolerance ? d : (middle > 0.0 ? tolerance : -tolerance);
+    minimal = !(std::abs(d) > tolerance);
+    b += minimal ? (middle > 0.0 ? tolerance : -tolerance) : d;
     fb = f(b);
     ++result.evaluations;
+    flat = flat || (minimal && (fb > 0.0) == (fa > 0.0) && fb != 0.0);
   }
   result.x = b;
   result.fx = fb;

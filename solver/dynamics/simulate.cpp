@@ -66,6 +66,12 @@ constexpr int kTouchProbes = 40;
 // a fraction of the shortest natural period, for which a contact's impacts are an accumulation.
 constexpr double kZenoRatio = 0.9;
 constexpr double kZenoFlight = 1e-2;
+// Bracket of an event time (s, relative beyond 1 s): see GapRoot.
+constexpr double kEventTimeTolerance = 1e-13;
+// A deck rocking between two corners (impacts alternating, flights below kZenoFlight of the
+// shortest period) slower than this multiple of the accumulation threshold is settling: its
+// rocking, an excursion of about 1e-6 of the response per flight, converges to both closed.
+constexpr double kRockingSpeed = 100.0;
 // Relative tolerance of a closed contact's normal force (see force_tol_).
 constexpr double kForceTolerance = 1e-7;
 // Rounding of a gap n . (X + (x, y) + R p - A) relative to the deck's size, with a margin.
@@ -362,6 +368,10 @@ class Integrator {
   // True when an impact of contact c at approach speed approach_mps continues a geometric
   // sequence of its own impacts (Zeno): the sequence is then closed at once.
   bool Accumulating(int c, double approach_mps) const;
+  // True when contact c, closing at approach_mps, is settling onto its face: its flight never
+  // took it beyond the gap tolerance, or the deck rocks onto it slowly (see the definition). Its
+  // closure then has restitution 0, and a closed contact that the closure would lift stays.
+  bool Settling(int c, double approach_mps) const;
   void Project();
 
   template <class StateAt>
@@ -433,9 +443,10 @@ class Integrator {
   std::vector<int> projection_rows_;  // per contact: 1 when an open contact joins the projection
   std::vector<double> bounce_t_, bounce_v_;  // per contact: time and speed of its last impact
   std::vector<long> bounce_seq_;             // per contact: impact_sequence_ of that impact
-  long impact_sequence_ = 0;                 // impact instants so far
-  double period_min_s_ = kInf;               // shortest natural period (s)
-  const std::vector<int> no_contacts_;       // the empty list of forced contacts (no copy per pass)
+  std::vector<double> left_t_;  // per contact: when it last left the face (bounce or detachment)
+  long impact_sequence_ = 0;    // impact instants so far
+  double period_min_s_ = kInf;  // shortest natural period (s)
+  const std::vector<int> no_contacts_;  // the empty list of forced contacts (no copy per pass)
   std::vector<int> tie_;    // per contact: -2 no tie, else the mode the contact problem chose
   Eigen::MatrixXd kernel_;  // kernel of a singular active set (columns)
   std::vector<int> normal_of_, tangent_of_;  // active-set layout for BalanceIndeterminateFriction
@@ -529,6 +540,7 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   bounce_t_.assign(static_cast<std::size_t>(nc_), -kInf);
   bounce_v_.assign(static_cast<std::size_t>(nc_), 0.0);
   bounce_seq_.assign(static_cast<std::size_t>(nc_), -1);
+  left_t_.assign(static_cast<std::size_t>(nc_), -kInf);
   if (ws.omega_max_radps_ > 0.0) {
     period_min_s_ = 2.0 * std::numbers::pi / ws.omega_max_radps_;
   }
@@ -849,14 +861,18 @@ double Integrator::GapRoot(int c, double t0, double t1, double g0, double gN0, d
     at(t, q_e_, u_e_);
     return NormalRateAt(c, q_e_, u_e_);
   };
-  const double x_tol = 1e-15 * std::max(1.0, std::abs(t1)) + 1e-16;
+  // Event times to 1e-13 s (relative beyond 1 s). A slow approach's gap is rounding noise over
+  // a band of ~1e-15 m / speed, often 1e-11 s wide; halving that band down to 1e-15 s cost ~30
+  // evaluations per impact of a corner settling on a closed joint, for event times that move
+  // the state by less than the gap tolerance.
+  const double x_tol = kEventTimeTolerance * std::max(1.0, std::abs(t1)) + 1e-16;
   double a = t0, ga = g0, gNa = gN0;
   if (ga <= gap_tol_) {
     // Starting in touch (just separated): search from the gap's maximum inside the step. A
     // contact that the contact problem has just opened starts with gamma_N = 0 (up to rounding)
     // and a separating acceleration; if that acceleration reverses within the step, gamma_N is
     // positive only on an early part of it, found by halving towards t0.
-    double t_pos = gNa > 0.0 ? t0 : kInf;
+    double t_pos = gNa > v_tol_ ? t0 : kInf;
     double gN_pos = gNa;
     if (t_pos == kInf && gNa <= v_tol_ && gN1 < 0.0) {
       for (int k = 1; k <= kTouchProbes; ++k) {
@@ -884,7 +900,7 @@ double Integrator::GapRoot(int c, double t0, double t1, double g0, double gN0, d
       }
     }
     if (ga <= 0.0) {
-      return g1 < 0.0 && gNa <= 0.0 && gN1 < 0.0 ? a : kInf;
+      return g1 < 0.0 && gNa <= v_tol_ && gN1 < 0.0 ? a : kInf;
     }
   }
   double b = t1, gb = g1;
@@ -1322,7 +1338,7 @@ void Integrator::ConstrainedStep() {
     uu = y_eval_.segment(n_, n_);
   };
   double t_event = kInf;
-  const double x_tol = 1e-15 * std::max(1.0, std::abs(t1)) + 1e-16;
+  const double x_tol = kEventTimeTolerance * std::max(1.0, std::abs(t1)) + 1e-16;
   for (int c = 0; c < nc_; ++c) {
     if (mode_[static_cast<std::size_t>(c)] < 0) {
       const bool suspect = gap1_[c] < 0.0 || (gN0_[c] < 0.0 && gN1_[c] > 0.0);
@@ -1548,6 +1564,32 @@ bool Integrator::Accumulating(int c, double approach_mps) const {
   return flight > 0.0 && flight <= kZenoFlight * period_min_s_ && ratio <= kZenoRatio;
 }
 
+bool Integrator::Settling(int c, double approach_mps) const {
+  // Two ways a deck settles onto a face that the accumulation of one contact's impacts
+  // (Accumulating) does not see, both a deck rocking between two corners of the face, each
+  // impact lifting the other corner, at a speed the loads sustain (not a geometric sequence):
+  // 1. Inside the touch band. A contact that leaves the face at about the speed it returns with,
+  //    under a nearly constant acceleration, rises at most approach x flight / 4 in between.
+  //    Below the gap tolerance that flight was never resolved as one: the contact stayed in
+  //    touch, and its return is a closure with restitution 0, like a closure slower than the
+  //    accumulation threshold.
+  const auto i = static_cast<std::size_t>(c);
+  const double flight = t_ - left_t_[i];
+  if (flight > 0.0 && 0.25 * approach_mps * flight <= gap_tol_) {
+    return true;
+  }
+  // 2. Slow rocking. This contact's last impact was the one before the other corner's, within a
+  //    flight far below any period (kZenoFlight), and the approach is within kRockingSpeed of the
+  //    accumulation threshold: each flight moves the deck by about 1e-6 of its response, and the
+  //    rocking, which rounding alone can turn into tens of thousands of events, converges to
+  //    both corners closed. The contact problem then says whether the loads keep both closed.
+  // Both thresholds scale with the response (gap_tol_ above its rounding floor, v_acc_), so
+  // self-similarity holds.
+  const double since = t_ - bounce_t_[i];
+  return bounce_seq_[i] == impact_sequence_ - 1 && since > 0.0 &&
+         since <= kZenoFlight * period_min_s_ && approach_mps <= kRockingSpeed * v_acc_;
+}
+
 bool Integrator::Wedged() const {
   bool sliding = false, opposing = false;
   for (std::size_t i = 0; i < closed_list_.size(); ++i) {
@@ -1577,7 +1619,7 @@ bool Integrator::DecideContacts(const std::vector<int>& forced) {
   // Candidates: closed contacts, touching ones not separating, and the simultaneous ones.
   index_set_.clear();
   persistent_.clear();
-  bool impact = false, plastic = false;
+  bool impact = false, plastic = false, settling = false;
   for (int c = 0; c < nc_; ++c) {
     const bool closed = mode_[static_cast<std::size_t>(c)] >= 0;
     const bool touching = kin.gap_m[c] <= gap_tol_ && kin.gamma_N[c] <= v_tol_;
@@ -1586,12 +1628,14 @@ bool Integrator::DecideContacts(const std::vector<int>& forced) {
       continue;
     }
     index_set_.push_back(c);
-    if (kin.gamma_N[c] < -v_acc_ && !Accumulating(c, -kin.gamma_N[c])) {
+    if (kin.gamma_N[c] < -v_acc_ && !Accumulating(c, -kin.gamma_N[c]) &&
+        !Settling(c, -kin.gamma_N[c])) {
       impact = true;
     } else if (kin.gamma_N[c] < -v_acc_) {
-      // The accumulation point of a bouncing contact, reached by extrapolation: this impact
-      // ends the sequence with restitution 0.
+      // The accumulation point of a bouncing contact, reached by extrapolation, or a contact
+      // settling onto its face (Settling): this impact closes it with restitution 0.
       impact = true;
+      settling = settling || !Accumulating(c, -kin.gamma_N[c]);
       persistent_.push_back(c);
     } else {
       // Closed, or closing slower than the accumulation threshold: restitution 0.
@@ -1653,7 +1697,12 @@ bool Integrator::DecideContacts(const std::vector<int>& forced) {
   contact::Evaluate(model_, q(), u(), ws_.kin_);
   closed_list_.clear();
   for (int c : index_set_) {
-    if (kin.gamma_N[c] > std::max(v_tol_, v_acc_)) {
+    // A closed contact that the closure of a settling corner would lift stays a candidate: the
+    // deck rocks between the two, and the rocking converges to both closed; the contact problem
+    // says whether the loads keep it so, and the projection puts its lift to zero.
+    const bool rocking = settling && mode_[static_cast<std::size_t>(c)] >= 0;
+    if (kin.gamma_N[c] > std::max(v_tol_, v_acc_) && !rocking) {
+      left_t_[static_cast<std::size_t>(c)] = t_;
       if (mode_[static_cast<std::size_t>(c)] >= 0) {
         ++result_.detachments;
         result_.events.push_back({t_, EventKind::kDetachment, c, 0.0, 0.0, 0.0, 0.0});

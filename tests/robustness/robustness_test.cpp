@@ -79,6 +79,32 @@ TEST(RobustnessGrid, FormerlyFailingCellsEndOkAndAgreeWithTimeStepping) {
   }
 }
 
+// A deck rocking between the two corners of one face at a closed joint, its impacts alternating
+// every 40-80 us at about 1.4 times the accumulation threshold (1e-6 of the response's velocity
+// scale), a speed the loads sustain: cell 2957 took 134 impacts and 153 detachments that way,
+// and rounding-level changes of its event times (another root search, other compiler flags)
+// turned the same rocking into 37 865 events, or an event cascade in a neighbouring cell. The
+// rocking now settles into both corners closed (Integrator::Settling); the maxima still
+// agree with Moreau-Jean. Cell 3568 rocks above that speed and decays by itself: it keeps its
+// impacts but must still end ok and agree.
+TEST(RobustnessGrid, RockingBetweenTwoCornersSettlesAndAgreesWithTimeStepping) {
+  const GridAxes grid;
+  for (const auto& [c, max_impacts] : {std::pair<std::int64_t, long>{2957, 40}, {3568, 300}}) {
+    const spectra::PointParameters p = grid.Cell(c);
+    SCOPED_TRACE("cell " + std::to_string(c) + " (" + Describe(p) + ")");
+    const dynamics::RunResult run = RunEventDriven(p);
+    ASSERT_EQ(run.status, dynamics::RunStatus::kOk) << run.message;
+    ExpectEachDecisionOnce(run);
+    EXPECT_LE(run.impacts, max_impacts);
+    const spectra::PointResult ed = Evaluate(p, spectra::Method::kEventDriven);
+    const spectra::PointResult ts = Evaluate(p, spectra::Method::kTimeStepping, 1e-5);
+    ASSERT_EQ(ts.status, dynamics::RunStatus::kOk) << ts.message;
+    ExpectAgree(ed.x_norm, ts.x_norm, 1e-6, "x_norm");
+    ExpectAgree(ed.y_norm, ts.y_norm, 1e-6, "y_norm");
+    ExpectAgree(ed.theta_norm, ts.theta_norm, 1e-6, "theta_norm");
+  }
+}
+
 // The reproduction of the closed joint with plastic impacts and friction: it ran into an event
 // cascade at t = 1.3097 s after stick and slip of P1 alternated dozens of times at
 // t = 0.274155 s. Now it reaches 3 s, decides each stick or slip once, and matches Moreau-Jean
@@ -160,9 +186,17 @@ TEST(PilotClosedJoints, AgreeWithTimeSteppingWhereItHasConverged) {
     ASSERT_EQ(ts.status, dynamics::RunStatus::kOk) << ts.message;
     std::printf("record %d Pi_delta %g: x %.6e / %.6e  y %.6e / %.6e  theta %.6e / %.6e\n", index,
                 Pi_delta, ed.x_norm, ts.x_norm, ed.y_norm, ts.y_norm, ed.theta_norm, ts.theta_norm);
-    ExpectAgree(ed.x_norm, ts.x_norm, 1e-6, "x_norm");
-    ExpectAgree(ed.y_norm, ts.y_norm, 1e-6, "y_norm");
-    ExpectAgree(ed.theta_norm, ts.theta_norm, 1e-6, "theta_norm");
+    // The clamped deck (Pi_delta = 0) is ill-conditioned in the event-driven method too: its
+    // maxima on record 7 moved by up to 1 % under changes of the event logic at rounding level
+    // (x_norm 1.1517e-2, 1.1580e-2, 1.1591e-2, 1.1611e-2, 1.1630e-2, 1.1635e-2 against
+    // Moreau-Jean's 1.1531e-2): there the bound is 2 %, at Pi_delta = 0.1 the 1 % of the grid.
+    const double tolerance = Pi_delta == 0.0 ? 0.02 : 0.01;
+    for (const auto& [name, e, t] :
+         {std::tuple{"x_norm", ed.x_norm, ts.x_norm}, std::tuple{"y_norm", ed.y_norm, ts.y_norm},
+          std::tuple{"theta_norm", ed.theta_norm, ts.theta_norm}}) {
+      EXPECT_LE(std::abs(e - t), std::max(tolerance * std::abs(t), 1e-6))
+          << name << ": event-driven " << e << ", time-stepping " << t;
+    }
   }
 }
 
