@@ -1,6 +1,8 @@
 #include "solver/contact/kinematics.h"
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 #include "solver/common/error.h"
 
@@ -61,8 +63,19 @@ void ContactKinematics::Resize(const model::Model& model) {
 }
 
 Eigen::Matrix2d Rotation(double theta_rad) {
-  const double c = std::cos(theta_rad);
-  const double s = std::sin(theta_rad);
+  // The contacts of a body share its angle, and an evaluation of all contacts asks for the same
+  // sine and cosine once per contact: the last angle's are kept (per thread), compared by their
+  // bits (so -0 and +0 stay apart), which gives the same values as computing them again.
+  thread_local std::uint64_t last_bits = 0;  // the bits of +0.0
+  thread_local double last_c = 1.0, last_s = 0.0;
+  const auto bits = std::bit_cast<std::uint64_t>(theta_rad);
+  if (bits != last_bits) {
+    last_c = std::cos(theta_rad);
+    last_s = std::sin(theta_rad);
+    last_bits = bits;
+  }
+  const double c = last_c;
+  const double s = last_s;
   Eigen::Matrix2d R;
   R << c, -s, s, c;
   return R;
