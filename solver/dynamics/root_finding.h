@@ -46,8 +46,7 @@ RootResult FindRootBrent(Function&& f, double a, double b, double fa, double fb,
     return result;
   }
   double c = b, fc = fb, d = b - a, e = d;
-  bool minimal = false;  // the last step was a minimal one
-  bool flat = false;     // a minimal step stayed on its side: bisect from now on
+  bool flat = false;  // a minimal step stayed on its side: bisect from now on
   for (int iteration = 0; iteration < max_iterations; ++iteration) {
     if ((fb > 0.0) == (fc > 0.0)) {
       c = a;
@@ -96,7 +95,7 @@ RootResult FindRootBrent(Function&& f, double a, double b, double fa, double fb,
     }
     a = b;
     fa = fb;
-    minimal = !(std::abs(d) > tolerance);
+    const bool minimal = !(std::abs(d) > tolerance);
     b += minimal ? (middle > 0.0 ? tolerance : -tolerance) : d;
     fb = f(b);
     ++result.evaluations;

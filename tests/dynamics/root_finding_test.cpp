@@ -30,6 +30,21 @@ TEST(FindRootBrent, KeepsTheBracketAroundTheRootOfAStepLikeFunction) {
   EXPECT_NEAR(root.x, 0.123456789, 1e-13);
 }
 
+TEST(FindRootBrent, BisectsOnceABracketIsFlatAtTheFunctionsResolution) {
+  // Flat at +1e-20 up to x0, then -1 (a slow approach's gap in its rounding band, against the
+  // far end of the bracket): every interpolation puts the root within the tolerance of the flat
+  // side, and plain Brent alternates those minimal steps with bisections, 72 evaluations here.
+  // Bisecting once a minimal step stays on its side takes one evaluation per halving:
+  // log2(1 / 2e-15) = 49, plus the first steps.
+  const double x0 = 0.7071067811865476;
+  const auto f = [x0](double x) { return x < x0 ? 1e-20 : -1.0; };
+  const RootResult root = FindRootBrent(f, 0.0, 1.0, f(0.0), f(1.0), 1e-15);
+  EXPECT_LE(root.evaluations, 55);
+  EXPECT_LE(root.lower, x0);
+  EXPECT_GE(root.upper, x0);
+  EXPECT_LE(root.upper - root.lower, 2e-15);
+}
+
 TEST(FindRootBrent, ReportsMissingSignChange) {
   const auto f = [](double x) { return 1.0 + x * x; };
   const RootResult root = FindRootBrent(f, -1.0, 1.0, f(-1.0), f(1.0), 1e-12);
