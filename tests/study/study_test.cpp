@@ -16,6 +16,7 @@
 #include <limits>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "jobs/h5/cube_file.h"
@@ -67,6 +68,26 @@ std::string Labels(int seed, int count) {
            std::string(3 - digits.size(), '0') + digits + "\"";
   }
   return out + "]";
+}
+
+// A pilot-bridge spec named `name` over `count` synthetic records of seed 3 (the record axis),
+// followed by `rest` (further axes, or a [fixed] table).
+SweepSpec SyntheticPilotSpec(const std::string& name, int count, const std::string& rest) {
+  return ParseSweepSpec("[sweep]\nname = \"" + name +
+                            "\"\nfamily = \"pilot-bridge\"\n[records]\nsynthetic = {count = " +
+                            std::to_string(count) +
+                            ", seed = 3}\n[axes]\nrecord = " + Labels(3, count) + "\n" + rest,
+                        name + ".toml", fs::temp_directory_path());
+}
+
+// A cube layout of `responses`, each stored in its own column in that order.
+CubeLayout OwnColumns(std::vector<ResponseInfo> responses) {
+  CubeLayout layout;
+  layout.responses = std::move(responses);
+  for (std::size_t i = 0; i < layout.responses.size(); ++i) {
+    layout.source_index.push_back(i);
+  }
+  return layout;
 }
 
 std::size_t Column(const std::vector<std::string>& names, const std::string& name) {
@@ -269,14 +290,8 @@ TEST(MakeStudyTables, TheEvaluatorsRecordsGiveTheTablesOfLoadingThemAgain) {
 // A one-deck model-file sweep names its rotation theta_m_d0: the statistics are those of that
 // column, and a two-deck layout (no single rotation) gets none.
 TEST(MakeStudyTables, AOneDeckModelFileSweepCorrelatesItsDecksRotation) {
-  const SweepSpec spec = ParseSweepSpec(
-      "[sweep]\nname = \"g\"\nfamily = \"pilot-bridge\"\n[records]\nsynthetic = {count = 5, "
-      "seed = 3}\n[axes]\nrecord = " +
-          Labels(3, 5) + "\nPi_delta = [0.5]\n",
-      "g.toml", fs::temp_directory_path());
-  CubeLayout layout;
-  layout.responses = {{"theta_m_d0", "rad", ""}, {"L_e", "m", ""}};
-  layout.source_index = {0, 1};
+  const SweepSpec spec = SyntheticPilotSpec("g", 5, "Pi_delta = [0.5]\n");
+  CubeLayout layout = OwnColumns({{"theta_m_d0", "rad", ""}, {"L_e", "m", ""}});
   CubeData data;
   data.Reset(spec.CellCount(), 2);
   std::vector<double> x;
@@ -306,17 +321,12 @@ TEST(MakeStudyTables, AOneDeckModelFileSweepCorrelatesItsDecksRotation) {
 // over the records: the table equals the statistics of the cells picked by hand, and a failed
 // cell is left out.
 TEST(MakeStudyTables, GroupsTheRecordAxisPerCombinationOfTheOtherAxes) {
-  const SweepSpec spec = ParseSweepSpec(
-      "[sweep]\nname = \"g\"\nfamily = \"pilot-bridge\"\n[records]\nsynthetic = {count = 4, "
-      "seed = 3}\n[axes]\nrecord = " +
-          Labels(3, 4) + "\nPi_delta = [0.5, 2.0]\nmu = [0.0, 0.3]\n",
-      "g.toml", fs::temp_directory_path());
+  const SweepSpec spec = SyntheticPilotSpec("g", 4, "Pi_delta = [0.5, 2.0]\nmu = [0.0, 0.3]\n");
   // Canonical axis order: record, mu, Pi_delta.
   ASSERT_EQ(spec.axes[0].key, "record");
   ASSERT_EQ(spec.axes[2].key, "Pi_delta");
-  CubeLayout layout;
-  layout.responses = {{"theta_m", "rad", ""}, {"L_e", "m", ""}, {"band", "1", ""}};
-  layout.source_index = {0, 1, 2};
+  const CubeLayout layout =
+      OwnColumns({{"theta_m", "rad", ""}, {"L_e", "m", ""}, {"band", "1", ""}});
   CubeData data;
   data.Reset(spec.CellCount(), 3);
   for (std::uint64_t c = 0; c < spec.CellCount(); ++c) {
@@ -366,14 +376,8 @@ TEST(MakeStudyTables, GroupsTheRecordAxisPerCombinationOfTheOtherAxes) {
 
 // A sweep without a Pi_delta axis gets the record table but no correlation table.
 TEST(MakeStudyTables, NeedsAPiDeltaAxisForTheCorrelation) {
-  const SweepSpec spec = ParseSweepSpec(
-      "[sweep]\nname = \"r\"\nfamily = \"pilot-bridge\"\n[records]\nsynthetic = {count = 2, "
-      "seed = 3}\n[axes]\nrecord = " +
-          Labels(3, 2) + "\n[fixed]\nPi_delta = 1.0\n",
-      "r.toml", fs::temp_directory_path());
-  CubeLayout layout;
-  layout.responses = {{"theta_m", "rad", ""}, {"L_e", "m", ""}};
-  layout.source_index = {0, 1};
+  const SweepSpec spec = SyntheticPilotSpec("r", 2, "[fixed]\nPi_delta = 1.0\n");
+  const CubeLayout layout = OwnColumns({{"theta_m", "rad", ""}, {"L_e", "m", ""}});
   CubeData data;
   data.Reset(spec.CellCount(), 2);
   const StudyTables tables = MakeStudyTables(spec, layout, data);
