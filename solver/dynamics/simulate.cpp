@@ -874,7 +874,7 @@ double Integrator::GapRoot(int c, double t0, double t1, double g0, double gN0, d
     // positive only on an early part of it, found by halving towards t0.
     double t_pos = gNa > v_tol_ ? t0 : kInf;
     double gN_pos = gNa;
-    if (t_pos == kInf && gNa <= v_tol_ && gN1 < 0.0) {
+    if (t_pos == kInf && gN1 < 0.0) {  // t_pos is infinite exactly when gNa <= v_tol_
       for (int k = 1; k <= kTouchProbes; ++k) {
         const double t = t0 + std::ldexp(t1 - t0, -k);
         if (!(t > t0)) {
