@@ -66,6 +66,10 @@ constexpr int kTouchProbes = 40;
 // a fraction of the shortest natural period, for which a contact's impacts are an accumulation.
 constexpr double kZenoRatio = 0.9;
 constexpr double kZenoFlight = 1e-2;
+// A rebound closed at once (AccumulatesAtOnce): its flight, predicted, is below this fraction of
+// the shortest period. A tenth of kZenoFlight: closing at once skips the whole accumulation
+// (flight / (1 - rho)), the Zeno rule only what follows its second impact.
+constexpr double kZenoFlightAtOnce = 1e-3;
 // Bracket of an event time (s, relative beyond 1 s): see GapRoot.
 constexpr double kEventTimeTolerance = 1e-13;
 // A deck rocking between two corners (impacts alternating, flights below kZenoFlight of the
@@ -372,6 +376,10 @@ class Integrator {
   // took it beyond the gap tolerance, or the deck rocks onto it slowly (see the definition). Its
   // closure then has restitution 0, and a closed contact that the closure would lift stays.
   bool Settling(int c, double approach_mps) const;
+  // True when contact c, which struck at approach_mps and leaves its face at gamma_N, would
+  // return under the loads (free normal acceleration from h_) within an accumulation's flight:
+  // the accumulation is closed at once.
+  bool AccumulatesAtOnce(int c, double approach_mps) const;
   void Project();
 
   template <class StateAt>
@@ -1593,6 +1601,32 @@ bool Integrator::Settling(int c, double approach_mps) const {
          since <= kZenoFlight * period_min_s_ && approach_mps <= kRockingSpeed * v_acc_;
 }
 
+bool Integrator::AccumulatesAtOnce(int c, double approach_mps) const {
+  // Accumulating, seen one flight earlier. A contact that struck at approach_mps and leaves at
+  // gamma_N = rho approach_mps (rho <= kZenoRatio) under a normal acceleration -a (a > 0, the
+  // loads pressing it back) returns after 2 gamma_N / a. Below kZenoFlightAtOnce of the shortest
+  // period that return is the second impact of an accumulation, which Accumulating would close;
+  // it is closed now instead: the contact stays a candidate, the contact problem says whether
+  // the loads keep it closed, and the projection puts its rebound to zero. Over the flight, the
+  // contact's normal impulse is the same either way (the rebound's share of the impact is then
+  // carried by the contact force); what moves is when, within a flight below 0.1 % of a period.
+  // The free acceleration is the estimate (every contact of the impact leaves it: see the
+  // caller). A deck rocking between two corners of a face at a speed its loads sustain (each
+  // impact lifting the other corner, which then swings back over a rotation, not a flight)
+  // bounced on the striking corner once per rock before this: half its impacts.
+  const contact::ContactKinematics& kin = ws_.kin_;
+  const double v = kin.gamma_N[c];
+  if (!(approach_mps > v_acc_) || !(v <= kZenoRatio * approach_mps)) {
+    return false;
+  }
+  const double* inv_m = model_.inverse_mass_diagonal().data();
+  double a = kin.what_N[c];
+  for (int i = 0; i < n_; ++i) {
+    a += kin.W_N(i, c) * (inv_m[i] * h_[i]);
+  }
+  return a < 0.0 && 2.0 * v <= -a * kZenoFlightAtOnce * period_min_s_;
+}
+
 bool Integrator::Wedged() const {
   bool sliding = false, opposing = false;
   for (std::size_t i = 0; i < closed_list_.size(); ++i) {
@@ -1698,13 +1732,28 @@ bool Integrator::DecideContacts(const std::vector<int>& forced) {
   // separates slower than the accumulation threshold stays a candidate: it is where an
   // accumulation of impacts (one corner, or a deck rocking between two) converges.
   contact::Evaluate(model_, q(), u(), ws_.kin_);
-  closed_list_.clear();
+  // AccumulatesAtOnce estimates a rebound's flight from the free acceleration: only sound when
+  // no contact stays closed after the impact (a deck clamped between two faces, or resting on
+  // another corner, returns at a time the free motion does not give).
+  bool all_leave = impact;
   for (int c : index_set_) {
+    all_leave = all_leave && kin.gamma_N[c] > std::max(v_tol_, v_acc_) &&
+                !(settling && mode_[static_cast<std::size_t>(c)] >= 0);
+  }
+  if (all_leave) {
+    model_.AppliedForces(q(), u(), GroundAcceleration(t_), h_);
+  }
+  closed_list_.clear();
+  for (std::size_t j = 0; j < index_set_.size(); ++j) {
+    const int c = index_set_[j];
     // A closed contact that the closure of a settling corner would lift stays a candidate: the
     // deck rocks between the two, and the rocking converges to both closed; the contact problem
     // says whether the loads keep it so, and the projection puts its lift to zero.
     const bool rocking = settling && mode_[static_cast<std::size_t>(c)] >= 0;
-    if (kin.gamma_N[c] > std::max(v_tol_, v_acc_) && !rocking) {
+    const bool accumulates =
+        all_leave &&
+        AccumulatesAtOnce(c, -ws_.impact_result_.gamma_N_A[static_cast<Eigen::Index>(j)]);
+    if (kin.gamma_N[c] > std::max(v_tol_, v_acc_) && !rocking && !accumulates) {
       left_t_[static_cast<std::size_t>(c)] = t_;
       if (mode_[static_cast<std::size_t>(c)] >= 0) {
         ++result_.detachments;
