@@ -76,6 +76,9 @@ constexpr double kEventTimeTolerance = 1e-13;
 // shortest period) slower than this multiple of the accumulation threshold is settling: its
 // rocking, an excursion of about 1e-6 of the response per flight, converges to both closed.
 constexpr double kRockingSpeed = 100.0;
+// Gaps of closed contacts, relative to the deck's size, below which one Gauss-Newton pass of the
+// projection leaves a residual below rounding (sqrt of the double epsilon).
+constexpr double kOnePassGap = 1.5e-8;
 // Relative tolerance of a closed contact's normal force (see force_tol_).
 constexpr double kForceTolerance = 1e-7;
 // Rounding of a gap n . (X + (x, y) + R p - A) relative to the deck's size, with a margin.
@@ -1411,16 +1414,23 @@ void Integrator::Project() {
   for (int pass = 0; pass < 2; ++pass) {
     contact::EvaluateContacts(model_, q(), u(), closed_ids_, ws_.kin_);
     int m = 0;
+    double largest_gap_m = 0.0;
     for (int c = 0; c < nc_; ++c) {
       if (mode_[static_cast<std::size_t>(c)] >= 0) {
         rows_.col(m) = ws_.kin_.W_N.col(c);
         sys_.b(m) = -ws_.kin_.gap_m[c];
+        largest_gap_m = std::max(largest_gap_m, std::abs(ws_.kin_.gap_m[c]));
         ++m;
       }
     }
     if (m == 0) {
       return;
     }
+    // The gap is linear in the translations and its curvature in the rotation is the arm, at
+    // most the deck's size: after one pass from gaps below sqrt(eps) of that size, the residual
+    // is below rounding and a second pass (an evaluation and a solve after every step of a
+    // constrained phase) changes nothing that a gap resolves.
+    const bool last_pass = largest_gap_m <= kOnePassGap * ws_.length_scale_m_;
     sys_.Start(m);
     for (int i = 0; i < m; ++i) {
       for (int j = 0; j < m; ++j) {
@@ -1430,6 +1440,9 @@ void Integrator::Project() {
     sys_.SolveSymmetric();
     for (int j = 0; j < m; ++j) {
       z_.head(n_) += inv_m.cwiseProduct(rows_.col(j)) * sys_.x(j);
+    }
+    if (last_pass) {
+      break;
     }
   }
   // Velocities: onto gamma_N = 0 of the closed contacts (gamma_T = 0 of the sticking ones), and
