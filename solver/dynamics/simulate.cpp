@@ -1748,25 +1748,25 @@ bool Integrator::DecideContacts(const std::vector<int>& forced) {
   // AccumulatesAtOnce estimates a rebound's flight from the free acceleration: only sound when
   // no contact stays closed after the impact (a deck clamped between two faces, or resting on
   // another corner, returns at a time the free motion does not give).
-  bool all_leave = impact;
-  for (int c : index_set_) {
-    all_leave = all_leave && kin.gamma_N[c] > std::max(v_tol_, v_acc_) &&
-                !(settling && mode_[static_cast<std::size_t>(c)] >= 0);
-  }
+  // A contact leaves when it separates faster than the thresholds, except a closed contact that
+  // the closure of a settling corner would lift: the deck rocks between the two, and the
+  // rocking converges to both closed; the contact problem says whether the loads keep it so,
+  // and the projection puts its lift to zero.
+  const auto leaves = [&](int c) {
+    const bool rocking = settling && mode_[static_cast<std::size_t>(c)] >= 0;
+    return kin.gamma_N[c] > std::max(v_tol_, v_acc_) && !rocking;
+  };
+  const bool all_leave = impact && std::all_of(index_set_.begin(), index_set_.end(), leaves);
   if (all_leave) {
     model_.AppliedForces(q(), u(), GroundAcceleration(t_), h_);
   }
   closed_list_.clear();
   for (std::size_t j = 0; j < index_set_.size(); ++j) {
     const int c = index_set_[j];
-    // A closed contact that the closure of a settling corner would lift stays a candidate: the
-    // deck rocks between the two, and the rocking converges to both closed; the contact problem
-    // says whether the loads keep it so, and the projection puts its lift to zero.
-    const bool rocking = settling && mode_[static_cast<std::size_t>(c)] >= 0;
     const bool accumulates =
         all_leave &&
         AccumulatesAtOnce(c, -ws_.impact_result_.gamma_N_A[static_cast<Eigen::Index>(j)]);
-    if (kin.gamma_N[c] > std::max(v_tol_, v_acc_) && !rocking && !accumulates) {
+    if (leaves(c) && !accumulates) {
       left_t_[static_cast<std::size_t>(c)] = t_;
       if (mode_[static_cast<std::size_t>(c)] >= 0) {
         ++result_.detachments;
