@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# Every slip a user makes gets the program's one line: each case exits 2 with exactly the line
+# given (stderr holds nothing else), prints nothing on stdout, and leaves no file behind.
+# Command-line mistakes of every sub-command; the parse error on 2 ranks prints one line.
+# usage: slips_test.sh SKEWBRIDGE MPIEXEC SOURCE_ROOT WORK_DIR
+set -uo pipefail
+exe=$1 mpiexec=$2 root=$3 work=$4
+rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
+fail() { echo "slips_test: FAIL: $*" >&2; exit 1; }
+cases=0
+snapshot() { find . -mindepth 1 -not -name out.txt -not -name err.txt | sort; }
+expect() {  # expect LINE ARGS...: exit 2, stderr exactly "skewbridge: error: LINE", no new file
+  local want="skewbridge: error: $1" status=0 before; shift
+  before=$(snapshot)
+  "$exe" "$@" > out.txt 2> err.txt || status=$?
+  [ "$status" -eq 2 ] || fail "$*: exit $status, expected 2: $(cat err.txt)"
+  [ "$(cat err.txt)" = "$want" ] || fail "$*:
+  got:  $(cat err.txt)
+  want: $want"
+  [ ! -s out.txt ] || fail "$*: printed on stdout: $(cat out.txt)"
+  [ "$(snapshot)" = "$before" ] || fail "$*: left $(comm -13 <(echo "$before") <(snapshot))"
+  cases=$((cases + 1))
+  echo "ok: $want"
+}
+ok() {  # ok ARGS...: exit 0
+  "$exe" "$@" > out.txt 2> err.txt || fail "$*: exit $?: $(cat err.txt)"
+  cases=$((cases + 1))
+}
+spec="$root/jobs/specs/default.toml"
+model="$root/docs/examples/subsystem.toml"
+cp "$model" model.toml
+
+# --- the command line, every sub-command ---
+commands="version, run, modes, sweep, inspect, records"
+expect "unknown sub-command 'swep'; allowed: $commands; did you mean \`sweep\`?" swep x
+expect "unknown sub-command 'frobnicate'; allowed: $commands" frobnicate
+expect "unknown option --bogus; allowed: --help, -h, --version, -V" --bogus
+expect "version: unexpected argument 'x' (see skewbridge version --help)" version x
+expect "run: MODEL is required (Model file (TOML, docs/model-format.md))" run
+expect "run: unknown option --cvs; allowed: --help, -h, --csv, --out, --output-interval; did you mean \`--csv\`?" \
+  run model.toml --cvs run.csv
+expect "run: --output-interval: 'abc' is not a number" run model.toml --output-interval abc
+expect "run: --output-interval needs a number" run model.toml --output-interval
+expect "run: unexpected argument 'model.toml' (see skewbridge run --help)" run model.toml model.toml
+expect "modes: MODEL is required (Model file (TOML, docs/model-format.md))" modes
+expect "modes: unknown option --out; allowed: --help, -h" modes model.toml --out x.h5
+expect "sweep: --out is required (Output cube FILE.h5 (checkpoints in FILE.h5.partial, lock in FILE.h5.lock))" \
+  sweep "$spec"
+expect "sweep: spec is required (Sweep specification (TOML, docs/sweep-format.md))" sweep --out out.h5
+expect "sweep: --max-cells: '-5' is not allowed; must be > 0" sweep "$spec" --out out.h5 --max-cells -5
+expect "sweep: --checkpoint-seconds: '0' is not allowed; must be > 0" \
+  sweep "$spec" --out out.h5 --checkpoint-seconds 0
+expect "sweep: --max-cells: 'many' is not a number" sweep "$spec" --out out.h5 --max-cells many
+expect "sweep: unknown option --resmue; allowed: --help, -h, --out, -o, --resume, --force, --quiet, -q, --checkpoint-seconds, --checkpoint-cells, --max-cells; did you mean \`--resume\`?" \
+  sweep "$spec" --out out.h5 --resmue
+expect "inspect: file is required (Cube FILE.h5 (or FILE.h5.partial))" inspect
+expect "records: a sub-command is required; allowed: info, synth" records
+expect "records: unknown sub-command 'inf'; allowed: info, synth; did you mean \`info\`?" records inf x
+expect "records info: path is required (record file, or record-set manifest (.toml))" records info
+expect "records info: --dt: 'abc' is not a number" records info x.txt --dt abc
+expect "records info: --channel: '1.5' is not a whole number" records info x.txt --channel 1.5
+expect "records info: --csv excludes --json (see skewbridge records info --help)" \
+  records info x.txt --csv --json
+expect "records synth: --seed is required (seed of the suite)" records synth --count 3 --out suite
+# --help and --version still exit 0.
+ok --help
+ok --version
+ok sweep --help
+ok records info --help
+# Under mpiexec the command line fails on every rank: one line, exit 2.
+status=0
+"$mpiexec" -n 2 --oversubscribe "$exe" sweep "$spec" > out.txt 2> err.txt || status=$?
+[ "$status" -eq 2 ] || fail "2 ranks: exit $status: $(cat err.txt)"
+[ "$(grep -c '^skewbridge: error: ' err.txt)" -eq 1 ] || fail "2 ranks: $(cat err.txt)"
+grep -qx "skewbridge: error: sweep: --out is required (.*)" err.txt || fail "2 ranks: $(cat err.txt)"
+cases=$((cases + 1))
+echo "slips_test: $cases cases ok"
