@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "solver/common/error.h"
+#include "solver/common/nearest.h"
 #include "spectra/study.h"
 
 namespace skewbridge::jobs {
@@ -117,11 +118,13 @@ class Parser {
     SweepSpec spec;
     spec.source = source_;
     spec.text = std::string(text);
+    RejectOtherKindOfFile(root);
     for (auto&& [key, node] : root) {
       const std::string k(key.str());
       if (k != "sweep" && k != "axes" && k != "fixed" && k != "records" && k != "study") {
         throw Error(key.source(), k,
-                    "unknown table; allowed: [sweep], [axes], [fixed], [records], [study]");
+                    "unknown table; allowed: [sweep], [axes], [fixed], [records], [study]" +
+                        DidYouMean(k, {"sweep", "axes", "fixed", "records", "study"}));
       }
       if (!node.is_table()) {
         throw Error(node.source(), k, "must be a table [" + k + "]");
@@ -183,6 +186,31 @@ class Parser {
   }
 
  private:
+  // A model file or a record-set manifest given where a sweep specification belongs is named
+  // as what it is, not by its first table foreign to a specification.
+  void RejectOtherKindOfFile(const toml::table& root) const {
+    if (root.contains("sweep")) {
+      return;
+    }
+    for (const char* table : {"deck", "substructure", "abutments", "excitation"}) {
+      if (root.contains(table)) {
+        throw InputError::AtLine(
+            source_, 0,
+            fmt::format("this is a model file ([{}] table), not a sweep specification "
+                        "(docs/sweep-format.md); `skewbridge run` and `skewbridge modes` take "
+                        "it, and a sweep of it names it in [sweep] model = \"FILE\" with "
+                        "family = \"model-file\"",
+                        table));
+      }
+    }
+    if (const toml::node* record = root.get("record"); record != nullptr && record->is_array()) {
+      throw InputError::AtLine(source_, 0,
+                               "this is a record-set manifest ([[record]] tables), not a sweep "
+                               "specification (docs/sweep-format.md); a sweep names it in "
+                               "[records] set = \"FILE\"");
+    }
+  }
+
   InputError Error(const toml::source_region& where, std::string_view field,
                    std::string_view problem) const {
     return InputError::AtField(Where(source_, where), field, problem);
@@ -221,7 +249,8 @@ class Parser {
       const std::string_view k = key.str();
       if (k != "name" && k != "family" && k != "model" && k != "responses" && k != "description") {
         throw Error(key.source(), "sweep." + std::string(k),
-                    "unknown key; allowed: name, family, model, responses, description");
+                    "unknown key; allowed: name, family, model, responses, description" +
+                        DidYouMean(k, {"name", "family", "model", "responses", "description"}));
       }
     }
     spec.name = RequireString(sweep, "sweep", "name");
@@ -284,7 +313,8 @@ class Parser {
       if (k != "set" && k != "synthetic" && !(folder_form && folder_key)) {
         throw Error(key.source(), "records." + std::string(k),
                     "unknown key; allowed: set, synthetic, or folder and pattern (with units, "
-                    "dt)");
+                    "dt)" +
+                        DidYouMean(k, {"set", "synthetic", "folder", "pattern", "units", "dt"}));
       }
     }
     if (static_cast<int>(records.contains("set")) +
@@ -398,6 +428,30 @@ class Parser {
     return spectra::AllRecordLabels(spec);
   }
 
+  // "; did you mean `a_deg` (skew angle a)?" for the parameter nearest to `word` by its key,
+  // its symbol or the model-file key of the same quantity (skew_deg), or "".
+  static std::string NearestParameter(const std::string& word) {
+    std::vector<std::string> names;
+    std::vector<const ParameterInfo*> owners;
+    for (const ParameterInfo& p : kParameters) {
+      names.emplace_back(p.key);
+      owners.push_back(&p);
+      if (p.symbol != p.key) {
+        names.emplace_back(p.symbol);
+        owners.push_back(&p);
+      }
+    }
+    names.emplace_back("skew_deg");  // [deck] skew_deg of a model file
+    owners.push_back(FindParameter("a_deg"));
+    const std::vector<std::string> nearest = NearestNames(word, names, 1, true);
+    if (nearest.empty()) {
+      return "";
+    }
+    const auto at = std::find(names.begin(), names.end(), nearest.front()) - names.begin();
+    const ParameterInfo& p = *owners[static_cast<std::size_t>(at)];
+    return fmt::format("; did you mean `{}` ({})?", p.key, p.description);
+  }
+
   const ParameterInfo& Known(const std::string& field, const std::string& key,
                              const toml::source_region& where) const {
     const ParameterInfo* info = FindParameter(key);
@@ -406,7 +460,7 @@ class Parser {
       for (const ParameterInfo& p : kParameters) {
         allowed += (allowed.empty() ? "" : ", ") + std::string(p.key);
       }
-      throw Error(where, field, "unknown parameter; allowed: " + allowed);
+      throw Error(where, field, "unknown parameter; allowed: " + allowed + NearestParameter(key));
     }
     return *info;
   }

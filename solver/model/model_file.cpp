@@ -2,6 +2,8 @@
 
 #include <toml++/toml.h>
 
+#include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <fstream>
@@ -9,8 +11,11 @@
 #include <numbers>
 #include <set>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 #include "solver/common/error.h"
+#include "solver/common/nearest.h"
 #include "solver/model/checks.h"
 
 namespace skewbridge::model {
@@ -53,8 +58,30 @@ std::string Join(std::initializer_list<std::string_view> names) {
   return out;
 }
 
+// The key names of an "allowed" text such as `kind, w0, W0 (with kind = "uncoupled")` or
+// `sections [[deck]], excitation`: the words between commas, without brackets and quotes.
+std::vector<std::string> AllowedNames(std::string_view allowed) {
+  if (const std::size_t paren = allowed.find(" ("); paren != std::string_view::npos) {
+    allowed = allowed.substr(0, paren);
+  }
+  if (allowed.rfind("sections ", 0) == 0) {
+    allowed.remove_prefix(9);
+  }
+  std::vector<std::string> names;
+  std::string name;
+  for (const char c : std::string(allowed) + ",") {
+    if (c == ',') {
+      if (!name.empty()) names.push_back(name);
+      name.clear();
+    } else if (c != ' ' && c != '[' && c != ']' && c != '"') {
+      name += c;
+    }
+  }
+  return names;
+}
+
 // One TOML table being read: remembers which keys were used so that any other key is reported
-// as unknown, with the key path and line.
+// as unknown, with the key path and line, the allowed keys and the nearest of them.
 class Section {
  public:
   Section(const toml::table& table, std::string path, std::string_view source)
@@ -90,7 +117,28 @@ class Section {
     return table_.get(key);
   }
 
+  // Declares the keys this table may hold (as Finish will): a required key found missing is
+  // then reported as a misspelling when the table holds an unknown key, which it most often
+  // is. `elsewhere` names other forms of the table and their keys (`kind = "principal"`,
+  // `w1, w2, w_theta`), for a key that is allowed only there.
+  void Expect(std::string_view allowed,
+              std::vector<std::pair<std::string, std::string>> elsewhere = {}) {
+    allowed_ = allowed;
+    elsewhere_ = std::move(elsewhere);
+  }
+
+  // Fails on a key outside the keys declared by Expect (nothing when none were declared).
+  void RejectUndeclared() const {
+    if (!allowed_.empty()) {
+      const std::vector<std::string> names = AllowedNames(allowed_);
+      RejectUnknown([&](std::string_view k) {
+        return std::find(names.begin(), names.end(), k) == names.end();
+      });
+    }
+  }
+
   [[noreturn]] void Missing(std::string_view key, std::string_view what) const {
+    RejectUndeclared();
     Fail(Where{source_, TableLine()}, Field(key),
          std::string("missing required key (").append(what).append(")"));
   }
@@ -153,13 +201,9 @@ class Section {
   }
 
   // Every key not read is unknown.
-  void Finish(std::string_view allowed) const {
-    for (auto&& [key, node] : table_) {
-      if (used_.count(std::string(key.str())) == 0) {
-        Fail(Where{source_, LineOf(node)}, Field(key.str()),
-             std::string("unknown key (allowed: ").append(allowed).append(")"));
-      }
-    }
+  void Finish(std::string_view allowed) {
+    allowed_ = allowed;
+    RejectUnknown([&](std::string_view k) { return used_.count(std::string(k)) == 0; });
   }
 
   // A key read only to be rejected in this context.
@@ -172,10 +216,41 @@ class Section {
   std::string_view source() const { return source_; }
 
  private:
+  // Fails on the first key (by line) for which `unknown` holds, naming the allowed keys, the
+  // nearest of them, or the form of the table that takes the key.
+  template <class Predicate>
+  void RejectUnknown(Predicate unknown) const {
+    const toml::node* first = nullptr;
+    std::string first_key;
+    for (auto&& [key, node] : table_) {
+      if (unknown(key.str()) && (first == nullptr || LineOf(node) < LineOf(*first))) {
+        first = &node;
+        first_key = key.str();
+      }
+    }
+    if (first == nullptr) {
+      return;
+    }
+    const bool sections = allowed_.rfind("sections ", 0) == 0;  // the file's top level
+    std::string problem = sections ? "unknown section (allowed: " + allowed_.substr(9) + ")"
+                                   : "unknown key (allowed: " + allowed_ + ")";
+    for (const auto& [form, keys] : elsewhere_) {
+      const std::vector<std::string> names = AllowedNames(keys);
+      if (std::find(names.begin(), names.end(), first_key) != names.end()) {
+        Fail(Where{source_, LineOf(*first)}, Field(first_key),
+             problem + "; it is a key of " + form);
+      }
+    }
+    Fail(Where{source_, LineOf(*first)}, Field(first_key),
+         problem + DidYouMean(first_key, AllowedNames(allowed_)));
+  }
+
   const toml::table& table_;
   std::string path_;
   std::string_view source_;
   std::set<std::string> used_;
+  std::string allowed_;  // the allowed keys as Finish names them, once known
+  std::vector<std::pair<std::string, std::string>> elsewhere_;
 };
 
 Eigen::Matrix3d Matrix3(Section& s, std::string_view key) {
@@ -232,6 +307,7 @@ std::string Indexed(std::string_view name, std::size_t i) {
 }
 
 void ReadDeck(Section& s, DeckSpec& spec) {
+  s.Expect("m, I_m, L, W, eta0, skew_deg");
   const double m = s.RequiredNumber("m", "deck mass, kg");
   CheckPositive(m, s.Field("m"), s.At("m"));
   spec.mass_kg = m;
@@ -309,6 +385,7 @@ void ReadElements(Section& s, DeckSpec& spec) {
   const std::vector<const toml::table*> piers = ArrayOfTables(s, "pier");
   for (std::size_t i = 0; i < piers.size(); ++i) {
     Section p(*piers[i], Indexed(s.Field("pier"), i), s.source());
+    p.Expect("x_m, y_m, k_Npm, k_strong_Npm, k_weak_Npm, strong_axis_deg");
     PierSpec pier;
     pier.position_m = {p.RequiredNumber("x_m", "pier axis x in the deck frame, m"),
                        p.RequiredNumber("y_m", "pier axis y in the deck frame, m")};
@@ -324,6 +401,7 @@ void ReadElements(Section& s, DeckSpec& spec) {
   std::vector<bool> carries(piers.size(), false);
   for (std::size_t i = 0; i < bearings.size(); ++i) {
     Section b(*bearings[i], Indexed(s.Field("bearing"), i), s.source());
+    b.Expect("pier, x_m, y_m, k_Npm, k_strong_Npm, k_weak_Npm, strong_axis_deg");
     BearingSpec bearing;
     if (const std::optional<double> pier = b.Number("pier")) {
       if (!(*pier >= 0.0) || *pier != std::floor(*pier) ||
@@ -358,9 +436,35 @@ void ReadElements(Section& s, DeckSpec& spec) {
   }
 }
 
+// The keys of [substructure] for each kind.
+constexpr std::array<std::pair<std::string_view, std::string_view>, 4> kSubstructureKeys{{
+    {"uncoupled", "kind, w0, w0x, w0y, W0, xi, C (with kind = \"uncoupled\")"},
+    {"principal", "kind, w1, w2, w_theta, axis_deg, e_x, e_y, xi, C (with kind = \"principal\")"},
+    {"elements", "kind, bearing, pier, xi, C (with kind = \"elements\")"},
+    {"matrix", "kind, K, xi, C (with kind = \"matrix\")"},
+}};
+
+// Declares the keys of `kind` among `forms` (kind, keys), the other kinds as where a key
+// foreign to this one belongs.
+template <std::size_t N>
+void ExpectForm(Section& s, std::string_view kind,
+                const std::array<std::pair<std::string_view, std::string_view>, N>& forms) {
+  std::string_view keys;
+  std::vector<std::pair<std::string, std::string>> elsewhere;
+  for (const auto& [k, text] : forms) {
+    if (k == kind) {
+      keys = text;
+    } else {
+      elsewhere.emplace_back("kind = \"" + std::string(k) + "\"", std::string(text));
+    }
+  }
+  s.Expect(keys, std::move(elsewhere));
+}
+
 void ReadSubstructure(Section& s, DeckSpec& spec) {
   const std::string kind =
       s.String("kind", {"uncoupled", "principal", "matrix", "elements"}).value_or("uncoupled");
+  ExpectForm(s, kind, kSubstructureKeys);
   if (kind == "uncoupled") {
     spec.stiffness = DeckSpec::StiffnessKind::kUncoupled;
     const std::optional<double> w0 = s.Number("w0");
@@ -407,14 +511,10 @@ void ReadSubstructure(Section& s, DeckSpec& spec) {
     spec.xi = s.Number("xi").value_or(0.05);
     CheckRange(spec.xi, 0.0, 1.0, true, s.Field("xi"), s.At("xi"));
   }
-  if (kind == "uncoupled") {
-    s.Finish("kind, w0, w0x, w0y, W0, xi, C (with kind = \"uncoupled\")");
-  } else if (kind == "principal") {
-    s.Finish("kind, w1, w2, w_theta, axis_deg, e_x, e_y, xi, C (with kind = \"principal\")");
-  } else if (kind == "elements") {
-    s.Finish("kind, bearing, pier, xi, C (with kind = \"elements\")");
-  } else {
-    s.Finish("kind, K, xi, C (with kind = \"matrix\")");
+  for (const auto& [k, keys] : kSubstructureKeys) {
+    if (k == kind) {
+      s.Finish(keys);
+    }
   }
 }
 
@@ -433,6 +533,8 @@ struct AbutmentParameters {
 // no per-contact table (its contacts are named by deck and corner).
 AbutmentParameters ReadAbutments(Section& s, bool multi_deck) {
   AbutmentParameters a;
+  s.Expect(multi_deck ? "set, gap_m, eps_N, mu (with [[deck]] tables)"
+                      : "set, gap_m, eps_N, mu, contacts");
   const std::optional<std::string> set =
       multi_deck ? s.String("set", {"both"}) : s.String("set", {"+x", "both"});
   if (!set && !multi_deck) {
@@ -444,6 +546,7 @@ AbutmentParameters ReadAbutments(Section& s, bool multi_deck) {
   }
   if (const toml::node* gap_node = s.Get("gap_m"); gap_node->is_table()) {
     Section g(*gap_node->as_table(), s.Field("gap_m"), s.source());
+    g.Expect(a.set == AbutmentSet::kBoth ? "\"+x\", \"-x\"" : "\"+x\" (with set = \"+x\")");
     a.gap_plus_m = g.RequiredNumber("+x", "gap of the +x abutment, m");
     CheckNonNegative(a.gap_plus_m, g.Field("+x"), g.At("+x"));
     if (a.set == AbutmentSet::kBoth) {
@@ -502,11 +605,22 @@ constexpr double kMaxAcceleration_mps2 = 1e6;
 // The largest factor on a sampled excitation's values.
 constexpr double kMaxScale = 1e6;
 
+// The keys of [excitation] for each kind.
+constexpr std::array<std::pair<std::string_view, std::string_view>, 2> kExcitationKeys{{
+    {"pulse", "kind, shape, a_g, a_g_g, w_g, T_g, direction, angle_deg (with kind = \"pulse\")"},
+    {"sampled",
+     "kind, file, values, dt_s, units, scale, direction, angle_deg (with kind = \"sampled\")"},
+}};
+
 void ReadExcitation(Section& s, const std::filesystem::path& base_dir, ExcitationSpec& spec) {
+  s.Expect(
+      "kind, shape, a_g, a_g_g, w_g, T_g, file, values, dt_s, units, scale, direction, "
+      "angle_deg");
   const std::optional<std::string> kind = s.String("kind", {"pulse", "sampled"});
   if (!kind) {
     s.Missing("kind", "\"pulse\" or \"sampled\"");
   }
+  ExpectForm(s, *kind, kExcitationKeys);
   // Direction: "x", "y" or an angle from x (CCW, deg).
   if (s.Has("direction")) {
     s.Reject("angle_deg", "give either direction or angle_deg, not both");
@@ -549,7 +663,7 @@ void ReadExcitation(Section& s, const std::filesystem::path& base_dir, Excitatio
     } else {
       s.Missing("w_g", "pulse frequency in rad/s, or T_g in s");
     }
-    s.Finish("kind, shape, a_g, a_g_g, w_g, T_g, direction, angle_deg (with kind = \"pulse\")");
+    s.Finish(kExcitationKeys[0].second);
     return;
   }
   spec.kind = ExcitationSpec::Kind::kSampled;
@@ -596,8 +710,7 @@ void ReadExcitation(Section& s, const std::filesystem::path& base_dir, Excitatio
   } else {
     s.Missing("file", "a two-column (time, acceleration) file, or inline values with dt_s");
   }
-  s.Finish(
-      "kind, file, values, dt_s, units, scale, direction, angle_deg (with kind = \"sampled\")");
+  s.Finish(kExcitationKeys[1].second);
 }
 
 void ReadRun(Section& s, RunControl& run) {
@@ -692,6 +805,7 @@ int DeckIndex(Section& s, std::string_view key, double value, std::size_t n_deck
 }
 
 void ReadSupport(Section& s, std::size_t n_decks, SupportSpec& support) {
+  s.Expect("deck, between, k_x, k_y, k_theta, c_x, c_y, c_theta, xi");
   if (s.Has("between")) {
     s.Reject("deck", "give either deck (to the ground) or between = [i, j] (a link), not both");
     const toml::node* node = s.Get("between");
@@ -766,6 +880,7 @@ MultiDeckSpec ReadMultiDeck(Section& top, std::string_view source) {
   }
   for (std::size_t i = 0; i < joints.size(); ++i) {
     Section s(*joints[i], Indexed("joint", i), source);
+    s.Expect("gap_m, eps_N, mu");
     JointSpec j;
     j.gap_m = s.RequiredNumber("gap_m", "joint gap along x, m");
     CheckNonNegative(j.gap_m, s.Field("gap_m"), s.At("gap_m"));
@@ -804,15 +919,40 @@ MultiDeckSpec ReadMultiDeck(Section& top, std::string_view source) {
   return spec;
 }
 
+// A sweep specification or a record-set manifest given where a model file belongs is named
+// as what it is, not by its first table foreign to a model file.
+void RejectOtherKindOfFile(const toml::table& root, std::string_view source) {
+  if (root.contains("deck") || root.contains("substructure")) {
+    return;
+  }
+  if (const toml::node* sweep = root.get("sweep"); sweep != nullptr && sweep->is_table()) {
+    throw InputError::AtLine(
+        source, 0,
+        "this is a sweep specification ([sweep] table), not a model file (docs/model-format.md); "
+        "`skewbridge sweep SPEC --out FILE.h5` takes it");
+  }
+  if (const toml::node* record = root.get("record"); record != nullptr && record->is_array()) {
+    throw InputError::AtLine(
+        source, 0,
+        "this is a record-set manifest ([[record]] tables), not a model file "
+        "(docs/model-format.md); `skewbridge records info` and a sweep's [records] set take it");
+  }
+}
+
 ModelFile Parse(const toml::table& root, std::string_view source,
                 const std::filesystem::path& base_dir, const std::filesystem::path& path) {
+  RejectOtherKindOfFile(root, source);
   Section top(root, "", source);
   DeckSpec deck;
   ExcitationSpec excitation;
   RunControl run;
+  const bool multi_deck = root.get("deck") != nullptr && root.get("deck")->is_array();
+  top.Expect(multi_deck ? "sections [[deck]], [[joint]], abutments, [[support]], excitation, run"
+                        : "sections deck, substructure, abutments, excitation, run");
   const auto required = [&](std::string_view name) -> const toml::table& {
     const toml::table* t = top.Table(name);
     if (t == nullptr) {
+      top.RejectUndeclared();  // a misspelt section is named as such
       Fail(Where{source, 0}, name, "missing required section [" + std::string(name) + "]");
     }
     return *t;

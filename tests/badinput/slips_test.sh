@@ -67,6 +67,34 @@ ok --help
 ok --version
 ok sweep --help
 ok records info --help
+# --- misspelt keys of model files and sweep specifications: unknown, with the nearest ---
+sed 's/^skew_deg = /skew = /' model.toml > skew.toml
+expect "skew.toml:12: deck.skew: unknown key (allowed: m, I_m, L, W, eta0, skew_deg); did you mean \`skew_deg\`?" \
+  run skew.toml --out run.h5 --csv run.csv
+sed 's/^W0 = /w_theta = /' model.toml > w_theta.toml
+expect "w_theta.toml:17: substructure.w_theta: unknown key (allowed: kind, w0, w0x, w0y, W0, xi, C (with kind = \"uncoupled\")); it is a key of kind = \"principal\"" \
+  modes w_theta.toml
+sed 's/^\[excitation\]/[excitaton]/' model.toml > section.toml
+expect "section.toml:26: excitaton: unknown section (allowed: deck, substructure, abutments, excitation, run); did you mean \`excitation\`?" \
+  run section.toml --out run.h5
+sed 's/^a_deg = /skew = /' "$spec" > skew_spec.toml
+expect "skew_spec.toml:10: axes.skew: unknown parameter; allowed: record, pulse, spans, a_g_g, w_g, T_g, scale, a_deg, eta0, W_over_L, delta_over_L, L_over_Le, W0_over_w0, xi, eps_N, mu, Pi_delta, gap_m, k_factor, seat_over_L, w0_over_wg, method; did you mean \`a_deg\` (skew angle a)?" \
+  sweep skew_spec.toml --out out.h5
+# --- the wrong kind of file, named as what it is ---
+cp "$spec" spec.toml
+for command in run modes; do
+  expect "spec.toml: this is a sweep specification ([sweep] table), not a model file (docs/model-format.md); \`skewbridge sweep SPEC --out FILE.h5\` takes it" \
+    $command spec.toml
+done
+expect "model.toml: this is a model file ([deck] table), not a sweep specification (docs/sweep-format.md); \`skewbridge run\` and \`skewbridge modes\` take it, and a sweep of it names it in [sweep] model = \"FILE\" with family = \"model-file\"" \
+  sweep model.toml --out out.h5
+printf '[sweep]\nname = "m"\nfamily = "model-file"\nmodel = "spec.toml"\n[axes]\nscale = [1.0, 2.0]\n' > of_spec.toml
+expect "spec.toml: this is a sweep specification ([sweep] table), not a model file (docs/model-format.md); \`skewbridge sweep SPEC --out FILE.h5\` takes it" \
+  sweep of_spec.toml --out out.h5
+printf 'name = "set"\n[[record]]\nfile = "a.AT2"\n' > set.toml
+expect "set.toml: this is a record-set manifest ([[record]] tables), not a model file (docs/model-format.md); \`skewbridge records info\` and a sweep's [records] set take it" \
+  run set.toml
+
 # Under mpiexec the command line fails on every rank: one line, exit 2.
 status=0
 "$mpiexec" -n 2 --oversubscribe "$exe" sweep "$spec" > out.txt 2> err.txt || status=$?

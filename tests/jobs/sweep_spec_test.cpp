@@ -103,6 +103,33 @@ TEST(SweepSpec, RefusesUnknownAxisNamingTheKey) {
               HasSubstr("spec.toml:8: axes.skew: unknown parameter; allowed:"));
 }
 
+// The nearest parameter by key, symbol or the model file's key of the same quantity.
+TEST(SweepSpec, UnknownNamesGetTheNearestAllowedOne) {
+  EXPECT_THAT(ErrorOf(Replace(kGood, "a_deg =", "skew =")),
+              HasSubstr("; did you mean `a_deg` (skew angle a)?"));
+  EXPECT_THAT(ErrorOf(Replace(kGood, "eta0 =", "eta =")),
+              HasSubstr("spec.toml:13: fixed.eta: unknown parameter; allowed: "));
+  EXPECT_THAT(ErrorOf(Replace(kGood, "eta0 =", "eta =")), HasSubstr("did you mean `eta0`"));
+  EXPECT_THAT(ErrorOf(Replace(kGood, "xi =", "zeta =")), ::testing::Not(HasSubstr("did you")));
+  EXPECT_THAT(ErrorOf(Replace(kGood, "[axes]", "[axis]")),
+              HasSubstr("spec.toml:6: axis: unknown table; allowed: [sweep], [axes], [fixed], "
+                        "[records], [study]; did you mean `axes`?"));
+  EXPECT_THAT(ErrorOf(Replace(kGood, "family =", "famly =")),
+              HasSubstr("sweep.famly: unknown key; allowed: name, family, model, responses, "
+                        "description; did you mean `family`?"));
+}
+
+// A model file or a record-set manifest is named as what it is.
+TEST(SweepSpec, OtherKindsOfFileAreNamed) {
+  EXPECT_EQ(ErrorOf("[deck]\nm = 1.0\n[substructure]\nw0 = 1.0\n"),
+            "spec.toml: this is a model file ([deck] table), not a sweep specification "
+            "(docs/sweep-format.md); `skewbridge run` and `skewbridge modes` take it, and a sweep "
+            "of it names it in [sweep] model = \"FILE\" with family = \"model-file\"");
+  EXPECT_THAT(ErrorOf("name = \"set\"\n[[record]]\nfile = \"a.AT2\"\n"),
+              HasSubstr("spec.toml: this is a record-set manifest ([[record]] tables), not a "
+                        "sweep specification"));
+}
+
 TEST(SweepSpec, RefusesEmptyAxis) {
   EXPECT_THAT(ErrorOf(Replace(kGood, "[15, 30, 45]", "[]")), HasSubstr("axes.a_deg: empty axis"));
 }

@@ -201,7 +201,8 @@ TEST(ModelFile, MatricesMustBeSymmetricAndPositiveSemiDefinite) {
 }
 
 TEST(ModelFile, UnknownKeysAreReportedAtEveryLevel) {
-  ExpectRejected(Replace(kValid, "[deck]", "colour = 1\n[deck]"), {":2:", "colour", "unknown key"});
+  ExpectRejected(Replace(kValid, "[deck]", "colour = 1\n[deck]"),
+                 {":2:", "colour", "unknown section (allowed: deck, substructure,"});
   ExpectRejected(Replace(kValid, "W = 5.0", "W = 5.0\nwidth = 5.0"),
                  {":6:", "deck.width", "unknown key", "allowed: m, I_m, L, W, eta0, skew_deg"});
   ExpectRejected(Replace(kValid, "xi = 0.05", "xi = 0.05\nw1 = 3"),
@@ -218,6 +219,36 @@ TEST(ModelFile, UnknownKeysAreReportedAtEveryLevel) {
                  {"excitation.file", "unknown key", "kind = \"pulse\""});
   ExpectRejected(Replace(kValid, "[excitation]", "[run]\ndt = 0.1\n[excitation]"),
                  {"run.dt", "unknown key", "end_time_s"});
+}
+
+// A misspelt required key is an unknown key with the allowed ones and the nearest of them (or
+// the form of the table that takes it), not a missing required key.
+TEST(ModelFile, MisspeltKeysAreNamedAsUnknownWithTheNearest) {
+  ExpectRejected(Replace(kValid, "skew_deg = 30.0", "skew = 30.0"),
+                 {"bridge.toml:6: deck.skew: unknown key (allowed: m, I_m, L, W, eta0, skew_deg); "
+                  "did you mean `skew_deg`?"});
+  ExpectRejected(Replace(kValid, "W0 = 12.0", "w_theta = 12"),
+                 {"bridge.toml:10: substructure.w_theta: unknown key (allowed: kind, w0, w0x, w0y, "
+                  "W0, xi, C (with kind = \"uncoupled\")); it is a key of kind = \"principal\""});
+  ExpectRejected(Replace(kValid, "w_g = 6.0", "wg = 6.0"),
+                 {"bridge.toml:23: excitation.wg: unknown key", "did you mean `w_g`?"});
+  ExpectRejected(Replace(kValid, "[deck]", "[dekc]"),
+                 {"bridge.toml:2: dekc: unknown section (allowed: deck, substructure, abutments, "
+                  "excitation, run); did you mean `deck`?"});
+  ExpectRejected(Replace(kValid, "set = \"+x\"", "sett = \"+x\""),
+                 {"abutments.sett: unknown key", "did you mean `set`?"});
+  // Nothing near: the allowed keys, no guess.
+  ExpectRejected(Replace(kValid, "L = 20.0", "length_of_deck = 20.0"),
+                 {"deck.length_of_deck: unknown key (allowed: m, I_m, L, W, eta0, skew_deg)"});
+}
+
+// A sweep specification or a record-set manifest is named as what it is.
+TEST(ModelFile, OtherKindsOfFileAreNamed) {
+  ExpectRejected("[sweep]\nname = \"s\"\nfamily = \"subsystem\"\n[axes]\na_deg = [10]\n",
+                 {"bridge.toml: this is a sweep specification ([sweep] table), not a model file"});
+  ExpectRejected("name = \"set\"\n[[record]]\nfile = \"a.AT2\"\n",
+                 {"bridge.toml: this is a record-set manifest ([[record]] tables), not a model "
+                  "file"});
 }
 
 TEST(ModelFile, MissingKeysAndSectionsAreNamed) {

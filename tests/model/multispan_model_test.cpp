@@ -232,6 +232,9 @@ TEST(MultiSpanModel, BadInputsNameTheirFieldInOneLine) {
       {TwoDeckFile("W = 8\n", "gap_m = -0.01\n", "deck = 1\n"),
        "bridge.toml:12: joint[0].gap_m: must be >= 0 (got -0.01)"},
       {TwoDeckFile("W = 8\n", "gap = 0.01\n", "deck = 1\n"),
+       "bridge.toml:12: joint[0].gap: unknown key (allowed: gap_m, eps_N, mu); did you mean "
+       "`gap_m`?"},
+      {TwoDeckFile("W = 8\n", "eps_N = 0.5\n", "deck = 1\n"),
        "joint[0].gap_m: missing required key"},
       {TwoDeckFile("W = 8\n", "gap_m = 0.01\n", "deck = 2\n"),
        "support[1].deck: must be a deck index, a whole number in [0, 2) (got 2)"},
