@@ -1,5 +1,6 @@
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -8,6 +9,7 @@
 
 #include "jobs/app/commands.h"
 #include "jobs/h5/cube_file.h"
+#include "jobs/sweep_spec.h"
 #include "solver/common/error.h"
 
 namespace skewbridge::app {
@@ -101,6 +103,42 @@ void PrintRecordStudy(const std::string& path, const jobs::h5::SweepSummary& s) 
   }
 }
 
+// A unit as printed after a value: nothing for dimensionless numbers and labels, the degree
+// sign for the skew angle, else the unit in brackets.
+std::string UnitSuffix(const std::string& unit) {
+  if (unit.empty() || unit == "1" || unit == "-") {
+    return "";
+  }
+  return " " + unit;
+}
+
+// The [fixed] parameters of the sweep with their units and the parameter table's meaning;
+// a parameter on no axis and not fixed takes the family's default (docs/sweep-format.md).
+void PrintFixed(const jobs::h5::SweepSummary& s) {
+  if (s.fixed.empty()) {
+    std::printf("  fixed: none (parameters on no axis take the family's defaults)\n");
+    return;
+  }
+  std::printf("  fixed (parameters on no axis and not listed take the family's defaults):\n");
+  for (const jobs::h5::FixedSummary& f : s.fixed) {
+    const std::string value =
+        f.is_label ? f.label : fmt::format("{:g}{}", f.value, UnitSuffix(f.unit));
+    const jobs::ParameterInfo* info = jobs::FindParameter(f.key);
+    std::printf("    %-14s %-16s %s\n", f.key.c_str(), value.c_str(),
+                info != nullptr ? std::string(info->description).c_str() : "");
+  }
+}
+
+// Limit-state results (the sweep's limit_states/ group): a cube without them says so, so that
+// their absence is never read as "no exceedance". The per-limit-state lines (demand, exceeded
+// cells, fragility median and beta) are printed here once that group's layout is fixed.
+void PrintLimitStates(const jobs::h5::SweepSummary& s) {
+  const bool stored =
+      std::find(s.children.begin(), s.children.end(), "limit_states") != s.children.end();
+  std::printf("  limit states: %s\n",
+              stored ? "stored in limit_states/ (read them with h5py)" : "none declared");
+}
+
 void PrintCube(const std::string& path) {
   for (const jobs::h5::SweepSummary& s : jobs::h5::SummarizeCube(path)) {
     std::printf("sweep %s (family %s, spec %s, created %s, skewbridge %s)\n", s.name.c_str(),
@@ -111,6 +149,7 @@ void PrintCube(const std::string& path) {
       std::printf("    %-14s %6zu  %s%s\n", a.name.c_str(), a.size, AxisRange(a).c_str(),
                   a.unit.empty() || a.unit == "1" ? "" : (" [" + a.unit + "]").c_str());
     }
+    PrintFixed(s);
     std::printf("  responses:\n");
     for (const jobs::ResponseInfo& r : s.responses) {
       std::printf("    %-14s [%s] %s\n", r.name.c_str(), r.unit.c_str(), r.description.c_str());
@@ -125,6 +164,7 @@ void PrintCube(const std::string& path) {
                   example == s.status_examples.end() ? "" : ("  e.g. " + example->second).c_str());
     }
     PrintRecordStudy(path, s);
+    PrintLimitStates(s);
   }
 }
 
@@ -133,7 +173,8 @@ void PrintCube(const std::string& path) {
 void AddInspectCommand(CLI::App& app) {
   auto path = std::make_shared<std::string>();
   CLI::App* cmd = app.add_subcommand(
-      "inspect", "Summarise a sweep cube: axes, responses, completion, record statistics");
+      "inspect",
+      "Summarise a sweep cube: axes, fixed parameters, responses, completion, record statistics");
   cmd->add_option("file", *path, "Cube FILE.h5 (or FILE.h5.partial)")->required();
   cmd->callback([path] { PrintCube(*path); });
 }

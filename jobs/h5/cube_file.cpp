@@ -1011,6 +1011,26 @@ std::vector<SweepSummary> SummarizeCubeIn(const std::filesystem::path& path) {
       }
       s.axes.push_back(std::move(a));
     }
+    s.children = ListChildren(g.get());
+    if (Exists(g.get(), "fixed")) {
+      Id fixed = OpenGroup(g.get(), "fixed");
+      if (HasAttr(fixed.get(), "keys")) {
+        const std::vector<std::string> keys = GetStringListAttr(fixed.get(), "keys");
+        const std::vector<std::string> units = GetStringListAttr(fixed.get(), "units");
+        for (std::size_t k = 0; k < keys.size(); ++k) {
+          FixedSummary f;
+          f.key = keys[k];
+          f.unit = k < units.size() ? units[k] : "";
+          f.is_label = IsStringAttr(fixed.get(), f.key);
+          if (f.is_label) {
+            f.label = GetStringAttr(fixed.get(), f.key);
+          } else {
+            f.value = GetDoubleAttr(fixed.get(), f.key);
+          }
+          s.fixed.push_back(std::move(f));
+        }
+      }
+    }
     Id responses = OpenGroup(g.get(), "responses");
     for (const std::string& r : GetStringListAttr(g.get(), "response_order")) {
       Id ds = OpenDataset(responses.get(), r);

@@ -145,6 +145,15 @@ struct AxisSummary {
   std::vector<std::string> labels;  ///< Label axes.
 };
 
+/// One parameter held constant over a sweep (`fixed/` of the cube), as stored.
+struct FixedSummary {
+  std::string key;   ///< The parameter key (jobs::KnownParameters()).
+  std::string unit;  ///< "1" when dimensionless, "" for labels, else e.g. "deg", "s".
+  bool is_label = false;
+  double value = 0.0;  ///< For numbers, in `unit`.
+  std::string label;   ///< For labels.
+};
+
 /// A sweep group as `skewbridge inspect` reports it.
 struct SweepSummary {
   std::string name;
@@ -155,6 +164,8 @@ struct SweepSummary {
   bool complete = false;
   std::int64_t runs = 0;
   std::vector<AxisSummary> axes;
+  std::vector<FixedSummary> fixed;    ///< In the order of fixed/ keys.
+  std::vector<std::string> children;  ///< Names of the sweep group's members (groups, datasets).
   std::vector<ResponseInfo> responses;
   std::uint64_t cells = 0;
   std::uint64_t done = 0;

@@ -530,6 +530,19 @@ std::int64_t GetIntAttr(hid_t obj, const std::string& name) {
   return v;
 }
 
+double GetDoubleAttr(hid_t obj, const std::string& name) {
+  Id attr = OpenAttr(obj, name);
+  double v = 0.0;
+  Check(H5Aread(attr.get(), H5T_NATIVE_DOUBLE, &v), "read attribute " + name);
+  return v;
+}
+
+bool IsStringAttr(hid_t obj, const std::string& name) {
+  Id attr = OpenAttr(obj, name);
+  Id type(H5Aget_type(attr.get()), H5Tclose, "H5Aget_type " + name);
+  return H5Tget_class(type.get()) == H5T_STRING;
+}
+
 std::vector<std::string> GetStringListAttr(hid_t obj, const std::string& name) {
   Id attr = OpenAttr(obj, name);
   Id type = StringType();

@@ -123,6 +123,10 @@ void SetAttr(hid_t obj, const std::string& name, const std::vector<std::int32_t>
 std::string GetStringAttr(hid_t obj, const std::string& name);
 /// Reads a scalar integer attribute. @throws H5Error when absent or not convertible.
 std::int64_t GetIntAttr(hid_t obj, const std::string& name);
+/// Reads a scalar floating-point attribute. @throws H5Error when absent or not convertible.
+double GetDoubleAttr(hid_t obj, const std::string& name);
+/// Whether the attribute `name` of obj holds strings. @throws H5Error when absent.
+bool IsStringAttr(hid_t obj, const std::string& name);
 /// Reads a 1-D string attribute. @throws H5Error when absent or not strings.
 std::vector<std::string> GetStringListAttr(hid_t obj, const std::string& name);
 /// Reads a 1-D integer attribute as int32. @throws H5Error when absent or not convertible.
