@@ -1,5 +1,6 @@
 #include "jobs/sweep_command.h"
 
+#include <chrono>
 #include <cstdio>
 #include <exception>
 #include <limits>
@@ -9,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "jobs/dry_run.h"
 #include "jobs/mpi/mpi_transport.h"
 #include "jobs/output_lock.h"
 #include "jobs/stop_signal.h"
@@ -80,9 +82,9 @@ class FinishWatch final : public Transport {
 void AddSweepArguments(CLI::App& cmd, SweepCommandArgs& args) {
   cmd.add_option("spec", args.spec_file, "Sweep specification (TOML, docs/sweep-format.md)")
       ->required();
-  cmd.add_option("--out,-o", args.options.out,
-                 "Output cube FILE.h5 (checkpoints in FILE.h5.partial, lock in FILE.h5.lock)")
-      ->required();
+  CLI::Option* out =
+      cmd.add_option("--out,-o", args.options.out,
+                     "Output cube FILE.h5 (checkpoints in FILE.h5.partial, lock in FILE.h5.lock)");
   cmd.add_flag("--resume", args.options.resume,
                "Continue FILE.h5.partial, recomputing only missing cells");
   cmd.add_flag("--force", args.options.force, "Replace an existing FILE.h5 / FILE.h5.partial");
@@ -98,10 +100,27 @@ void AddSweepArguments(CLI::App& cmd, SweepCommandArgs& args) {
                  "Refuse a grid of more cells than this before any work")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  cmd.add_flag("--dry-run", args.dry_run,
+               "Print the cell count, the records and a time estimate from a few cells timed "
+               "here; write nothing");
+  cmd.add_option("--ranks", args.ranks,
+                 "With --dry-run: estimate the time on this many ranks (default: the ranks "
+                 "it runs on)")
+      ->check(CLI::PositiveNumber);
+  cmd.add_option("--sample-cells", args.sample_cells, "With --dry-run: cells to time")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  // --out is required for a real run only: checked once every option is parsed.
+  cmd.parse_complete_callback([out, &args] {
+    if (!args.dry_run && out->count() == 0) {
+      throw CLI::RequiredError(out->get_name());
+    }
+  });
 }
 
 int RunSweepCommand(const SweepCommandArgs& args, const EvaluatorFactory& factory,
-                    const std::function<void(const std::string&)>& log) {
+                    const std::function<void(const std::string&)>& log,
+                    const std::function<void(const std::string&)>& print) {
   MpiSession mpi;
   const bool root = mpi.Rank() == 0;
   // The rank that found the problem prints it and flushes before any rank leaves, then all
@@ -120,22 +139,45 @@ int RunSweepCommand(const SweepCommandArgs& args, const EvaluatorFactory& factor
   std::unique_ptr<CellEvaluator> evaluator;
   std::optional<OutputLock> lock;
   std::string problem;
+  double setup_s = 0.0;
   try {
-    if (root) {
+    if (root && !args.dry_run) {
       CheckOutputPath(args.options.out);
     }
     spec.emplace(LoadSweepSpec(args.spec_file));
     CheckCellCount(*spec, args.max_cells);
-    if (root) {
+    if (root && !args.dry_run) {
       lock.emplace(args.options.out);  // held until the run has ended
     }
+    const auto start = std::chrono::steady_clock::now();
     evaluator = factory(*spec);
+    setup_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   } catch (const InputError& e) {
     problem = e.what();
   }
   const int first = mpi.FirstRankWith(!problem.empty());
   if (first < mpi.Size()) {
     return report(problem, mpi.Rank() == first);
+  }
+  if (args.dry_run) {
+    std::string text;
+    if (root) {
+      try {
+        text = DryRunReport(*spec, *evaluator, args.ranks > 0 ? args.ranks : mpi.Size(),
+                            args.sample_cells, args.options.root_computes_up_to_ranks, setup_s);
+      } catch (const InputError& e) {
+        problem = e.what();
+      }
+    }
+    if (!problem.empty()) {
+      return report(problem, root);
+    }
+    if (root) {
+      (print ? print : log)(text);
+      std::fflush(stdout);
+    }
+    mpi.Barrier();
+    return 0;
   }
 
   std::unique_ptr<FinishWatch> transport;
