@@ -7,7 +7,7 @@ import sys
 
 import numpy as np
 
-from . import figures
+from . import figures, generic
 from .data import ReportError, load_cube, load_run
 
 # Axes that are not curve parameters of a spectrum: the pulse is the column, w0/w_g the
@@ -193,6 +193,65 @@ SYMBOLS_MD = ["## Symbols", "",
               "peak may lie outside the grid.", ""]
 
 
+# Families whose responses are the user's own bridge (metres, radians, margins per deck): the
+# generic figures are drawn for them whatever else is.
+GENERIC_FAMILIES = ("model-file", "multi-span")
+
+
+def _unique(name, used):
+    name = _safe(name)
+    while name in used:
+        name += "_"
+    used.add(name)
+    return name
+
+
+def generic_sections(sweep, args, used, written, skipped_all):
+    """The generic figures of one sweep (generic.plan_generic) and its tables: the fixed
+    parameters, every response over the grid, the unseating margins, the record table."""
+    md = []
+    fixed = [(k, _fmt(v), generic.axis_unit(sweep, k) or
+              ("1" if sweep.fixed_units.get(k) == "1" else "–"))
+             for k, v in sweep.fixed.items()]
+    md += [f"## {sweep.name}: fixed parameters", "",
+           _table(["parameter", "value", "unit"], fixed) if fixed else
+           "None: the parameters on no axis take the family's defaults.", ""]
+    todo, skipped = generic.plan_generic(sweep)
+    for kind, reason in skipped:
+        skipped_all.append((sweep.name, kind, reason))
+    drawn, margins = generic.drawn_quantities(sweep)
+    for kind, x in todo:
+        pages = generic.layouts(sweep, x)
+        title = (f"responses against {x}" if kind == "response_vs_axis"
+                 else f"unseating margins against {x}")
+        md += [f"## {sweep.name}: {title}", ""]
+        for page, layout in enumerate(pages):
+            name = _unique(f"{kind}_{x}_{sweep.name}" + (f"_p{page + 1}" if len(pages) > 1
+                                                        else ""), used)
+            if kind == "response_vs_axis":
+                path, _ = generic.response_vs_axis(sweep, layout, drawn, args.out, name,
+                                                   args.pdf)
+            else:
+                path, _ = generic.unseating_margins(sweep, layout, margins[0], args.out, name,
+                                                    args.pdf)
+            written.append(path)
+            md += [f"![{name}]({os.path.basename(path)})", ""]
+        if len(pages) > 1:
+            md += [f"{len(pages)} pages of at most {generic.MAX_COLUMNS} columns each.", ""]
+    md += [f"## {sweep.name}: responses over the grid", "",
+           _table(["response", "unit", "cells with a value", "min", "median", "max",
+                   "cell of the max"], generic.response_table(sweep)), ""]
+    for q in margins:
+        md += [f"## {sweep.name}: unseating ({q.base})", "",
+               _table(["deck", "cells", "cells unseated (margin < 0)", "share",
+                       f"smallest margin [{generic._unit(q.unit) or '1'}]",
+                       "cell of the smallest"], generic.unseating_table(sweep, q)), ""]
+    records = generic.record_table(sweep)
+    if records:
+        md += [f"## {sweep.name}: records", "", _table(*records), ""]
+    return md
+
+
 def main(argv):
     parser = argparse.ArgumentParser(
         prog="report", description="Figures and a Markdown summary from skewbridge cubes "
@@ -202,6 +261,10 @@ def main(argv):
                         help="a run file with histories (repeatable)")
     parser.add_argument("--out", required=True, metavar="DIR", help="output folder")
     parser.add_argument("--pdf", action="store_true", help="also write each figure as PDF")
+    parser.add_argument("--generic", action="store_true",
+                        help="draw the responses against every numeric axis for every sweep "
+                        "(by default: model-file and multi-span sweeps, and sweeps that get no "
+                        "other figure)")
     parser.add_argument("--allow-partial", action="store_true",
                         help="accept incomplete cubes (complete = 0); missing cells are NaN")
     args = parser.parse_args(argv)
@@ -250,6 +313,8 @@ def run(args):
             md += [f"## {sweep.name}: {KIND_TITLE[kind]}", "",
                    f"![{name}]({os.path.basename(path)})", "",
                    _tables_for(kind, sweep, rows, curve_key), ""]
+        if args.generic or not todo or sweep.family in GENERIC_FAMILIES:
+            md += generic_sections(sweep, args, used, written, skipped_all)
     for r in runs:
         name = "history_" + _safe(os.path.splitext(os.path.basename(r.path))[0])
         while name in used:

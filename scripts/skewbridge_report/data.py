@@ -37,6 +37,8 @@ class Sweep:
     fixed: dict
     spec_text: str
     response_attrs: dict  # name -> {attribute: value} of responses/<name>
+    axis_attrs: dict = field(default_factory=dict)  # key -> {units, symbol, description}
+    fixed_units: dict = field(default_factory=dict)  # fixed key -> unit ("1", "", "deg", ...)
     extra: dict = field(default_factory=dict)  # optional groups (records/, correlation/)
 
     def shape(self):
@@ -94,8 +96,10 @@ def load_cube(path, allow_partial=False):
                 raise ReportError(f"{path}: sweep '{name}' is incomplete (complete = 0); "
                                   "finish it with --resume or pass --allow-partial")
             axis_order = [_text(k) for k in g.attrs["axis_order"]]
-            axes = {}
+            axes, axis_attrs = {}, {}
             for key in axis_order:
+                axis_attrs[key] = {k: _text(v) for k, v in g["axes"][key].attrs.items()
+                                   if k in ("units", "symbol", "description", "spacing")}
                 values = g["axes"][key][()]
                 if values.dtype.kind in "OSU":
                     axes[key] = [_text(v) for v in values]
@@ -110,7 +114,10 @@ def load_cube(path, allow_partial=False):
                 not_done = np.asarray(g["done"][()]) == 0
                 for values in responses.values():
                     values[not_done] = np.nan
-            fixed = {}
+            fixed, fixed_units = {}, {}
+            if "fixed" in g and "keys" in g["fixed"].attrs:
+                fixed_units = dict(zip((_text(k) for k in g["fixed"].attrs["keys"]),
+                                       (_text(u) for u in g["fixed"].attrs["units"])))
             if "fixed" in g:
                 for k in g["fixed"].attrs:
                     if k in ("keys", "units"):  # the units of the fixed parameters
@@ -122,13 +129,15 @@ def load_cube(path, allow_partial=False):
             for key in g["responses"]:
                 if key not in responses:
                     responses[key] = np.asarray(g["responses"][key][()], dtype=float)
-            response_attrs = {key: dict(g["responses"][key].attrs) for key in g["responses"]}
+            response_attrs = {key: {k: _text(v) if isinstance(v, (str, bytes)) else v
+                                    for k, v in g["responses"][key].attrs.items()}
+                              for key in g["responses"]}
             sweeps.append(Sweep(path=path, name=name, family=_text(g.attrs.get("family", "")),
                                 complete=complete, axis_order=axis_order, axes=axes,
                                 responses=responses, status=status, status_names=names,
                                 fixed=fixed, spec_text=_text(g.attrs.get("spec_text", "")),
-                                response_attrs=response_attrs,
-                                extra=extra))
+                                response_attrs=response_attrs, axis_attrs=axis_attrs,
+                                fixed_units=fixed_units, extra=extra))
         return sweeps
 
 

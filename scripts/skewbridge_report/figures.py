@@ -81,6 +81,15 @@ SYMBOLS = {
     "Le": "L_e = a_g/ω_g²: persistency of the record (m)",
     "eps": "ε_N: coefficient of restitution; μ: friction coefficient; ξ: damping ratio",
     "gap": "g_N: normal gap of a corner (m); γ_T: its tangential velocity (m/s)",
+    "end": "x_end, y_end, θ_end: residual displacements (m) and rotation (rad) at the end of "
+           "the run",
+    "decks": "worst deck: per-deck responses drawn as their envelope over the decks (the "
+             "largest maximum, the residual of largest magnitude, the smallest margin); "
+             "summary.md lists every deck",
+    "Tg": "T_g = 2π/ω_g: period of the pulse (s)",
+    "k": "K factor: multiplier on the substructure's stiffness K",
+    "records": "thin grey lines: one record each; thick line: the median over the records; "
+               "band: 16-84 % of the records at each abscissa",
 }
 
 

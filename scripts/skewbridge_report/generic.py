@@ -1,0 +1,543 @@
+"""Figures and tables for any sweep of any family, from what the cube itself says: its axes with
+their units, its responses with theirs, per deck where a response carries a deck suffix _d<i>.
+
+- plan_generic(): which quantities are drawn and against which axes (pure, from the cube);
+- response_vs_axis(): each drawn quantity (a row of panels) against one numeric axis, one curve
+  per value of a second axis, one column per combination of the others (small multiples, in
+  pages of at most MAX_COLUMNS columns); over a record axis, one thin line per record with the
+  median and the 16-84 % band of the records;
+- unseating_margins(): the unseating margins against one numeric axis with the line of zero
+  margin and the unseated side shaded;
+- response_table(), unseating_table(), record_table(): the Markdown tables of summary.md.
+
+Each figure function draws one figure kind and returns (path, table rows), as in figures.py,
+so that other figure kinds slot in beside them."""
+import itertools
+import re
+from dataclasses import dataclass
+
+import matplotlib.lines
+import numpy as np
+
+from . import figures
+from .figures import ZERO, plt
+
+# Responses that describe the cell's excitation, its geometry or the solver rather than the
+# bridge's demand: listed in the table of responses, not drawn against the axes.
+DESCRIPTORS = {"a_g", "w_g", "L_e", "delta", "L", "pga", "pgv", "pgd", "arias", "T_m", "D5_95",
+               "w0x_over_wg", "band", "min_impact_separation"}
+# A normalised response and its dimensional twin: where the cube has both, the dimensional one
+# (in metres and radians, as an engineer reads their own bridge) is drawn.
+NORMALISED_TWIN = {"x_norm": "x_m", "y_norm": "y_m", "theta_norm": "theta_m",
+                   "theta_end_norm": "theta_end", "margin_norm": "margin_m"}
+# Residual displacements: in the table; the residual rotation is drawn.
+TABLE_ONLY = {"x_end", "y_end"}
+MARGINS = ("margin_m", "margin_norm")
+DECK = re.compile(r"^(.+)_d(\d+)$")
+
+# Axis symbols for mathtext, beyond figures.AXIS_LABEL, and the units as printed.
+AXIS_SYMBOL = {"T_g": r"$T_g$", "w_g": r"$\omega_g$", "k_factor": r"$K$ factor",
+               "scale": "scale factor", "gap_m": r"$\delta$", "a_g_g": r"$a_g$",
+               "seat_over_L": "seat/$L$", "spans": "spans", "L_over_Le": r"$L/L_e$",
+               "method": "method", "pulse": "pulse", "record": "record"}
+UNIT_TEXT = {"deg": "°", "rad/s": "rad/s", "m/s^2": "m/s²"}
+QUANTITY_SYMBOL = {
+    "x_m": r"$x_m$", "y_m": r"$y_m$", "theta_m": r"$\theta_m$", "x_end": r"$x_{end}$",
+    "y_end": r"$y_{end}$", "theta_end": r"$\theta_{end}$", "margin_m": "unseating margin",
+    "margin_norm": r"unseating margin $\times\,\omega_g^2/a_g$", "impacts": "impacts",
+    "theta_norm_max": r"$\max_i\,\theta_{m,i}\,\rho_i\,\omega_g^2/a_g$",
+}
+QUANTITY_TEXT = {"x_m": "x_m", "y_m": "y_m", "theta_m": "θ_m", "x_end": "x_end",
+                 "y_end": "y_end", "theta_end": "θ_end", "margin_m": "unseating margin",
+                 "margin_norm": "unseating margin ω_g²/a_g", "impacts": "impacts",
+                 "x_norm": "x_m ω_g²/a_g", "y_norm": "y_m ω_g²/a_g",
+                 "theta_norm": "θ_m ρ ω_g²/a_g", "theta_end_norm": "θ_end ρ ω_g²/a_g",
+                 "theta_norm_max": "max over decks of θ_m ρ ω_g²/a_g"}
+# At most this many columns of panels in one figure; more combinations make more pages.
+MAX_COLUMNS = 6
+# One panel's size in inches; a figure is as large as its panels and legend need.
+PANEL_IN = (3.3, 2.3)
+
+
+@dataclass
+class Quantity:
+    """One response of the cube, or one response per deck (x_m_d0, x_m_d1, ...)."""
+
+    base: str  # the response name without the deck suffix
+    names: list  # dataset names, one per deck (or one)
+    decks: list  # deck indices, or [None]
+    unit: str
+    description: str
+
+    def dataset(self, deck):
+        return self.names[self.decks.index(deck)]
+
+
+def _unit(unit):
+    """A unit as printed in brackets, '' for dimensionless."""
+    if unit in ("", "1", "-", None):
+        return ""
+    return UNIT_TEXT.get(unit, unit)
+
+
+def axis_symbol(key):
+    return figures.AXIS_LABEL.get(key) or AXIS_SYMBOL.get(key) or key.replace("_", " ")
+
+
+def axis_unit(sweep, key):
+    unit = sweep.axis_attrs.get(key, {}).get("units")
+    if unit is None:
+        unit = sweep.fixed_units.get(key, "")
+    return _unit(unit)
+
+
+def axis_label(sweep, key):
+    """`α [°]`, `$T_g$ [s]`: the axis symbol with its unit from the cube's attributes."""
+    unit = axis_unit(sweep, key)
+    return axis_symbol(key) + (f" [{unit}]" if unit else "")
+
+
+def value_label(sweep, key, value):
+    """A legend or panel entry: `α = 30°`, `$T_g$ = 0.5 s`, `pulse: cosine`, `deck 1`."""
+    if key == "deck":
+        return f"deck {value}"
+    if isinstance(value, str):
+        return f"{axis_symbol(key)}: {value}"
+    unit = axis_unit(sweep, key)
+    sep = "" if unit == "°" else " "
+    return f"{axis_symbol(key)} = {value:g}" + (f"{sep}{unit}" if unit else "")
+
+
+def quantity_label(q, unit=None):
+    """The y label of a quantity: its symbol and unit (`unit` replaces the cube's: mm, mrad)."""
+    symbol = QUANTITY_SYMBOL.get(q.base) or figures.RESPONSE_LABEL.get(q.base)
+    if symbol is None:
+        symbol = q.base.replace("_", " ")
+    symbol = symbol.split(" [")[0]
+    unit = unit or _unit(q.unit)
+    return symbol + (f" [{unit}]" if unit else "")
+
+
+def quantity_text(q, deck=None):
+    text = QUANTITY_TEXT.get(q.base, q.base)
+    return text + (f" (deck {deck})" if deck is not None else "")
+
+
+def quantities(sweep):
+    """The cube's responses as quantities, in stored order, decks merged."""
+    out = {}
+    order = list(sweep.responses)
+    for name in order:
+        m = DECK.match(name)
+        base, deck = (m.group(1), int(m.group(2))) if m else (name, None)
+        attrs = sweep.response_attrs.get(name, {})
+        q = out.setdefault(base, Quantity(base, [], [], str(attrs.get("units", "")),
+                                          str(attrs.get("description", ""))))
+        q.names.append(name)
+        q.decks.append(deck)
+    return list(out.values())
+
+
+def drawn_quantities(sweep):
+    """(drawn, margins): the quantities drawn against the axes, and the unseating margins (drawn
+    by unseating_margins). A normalised response is drawn only when its dimensional twin is
+    missing; theta_norm_max only without per-deck rotations."""
+    qs = quantities(sweep)
+    bases = {q.base for q in qs}
+    drawn, margins = [], []
+    for q in qs:
+        if q.base in DESCRIPTORS or q.base in TABLE_ONLY:
+            continue
+        if NORMALISED_TWIN.get(q.base) in bases:
+            continue
+        if q.base == "theta_norm_max" and bases & {"theta_m", "theta_norm"}:
+            continue
+        if q.base in MARGINS:
+            margins.append(q)
+            continue
+        if not np.any(np.isfinite(np.concatenate(
+                [np.ravel(sweep.responses[n]) for n in q.names]))):
+            continue  # not computed in any cell (e.g. a response this family leaves NaN)
+        drawn.append(q)
+    return drawn, margins
+
+
+def numeric_axes(sweep):
+    """Axes with numbers and two or more values: the abscissas of the generic figures."""
+    return [k for k in sweep.axis_order
+            if sweep.has_axis(k, 2) and not isinstance(sweep.axes[k], list)]
+
+
+def plan_generic(sweep):
+    """[(kind, x_axis)] of the generic figures and [(kind, reason)] of those not made."""
+    todo, skipped = [], []
+    drawn, margins = drawn_quantities(sweep)
+    xs = numeric_axes(sweep)
+    if not xs:
+        skipped.append(("response_vs_axis", "no numeric axis with two or more values"))
+        return todo, skipped
+    if drawn:
+        todo += [("response_vs_axis", x) for x in xs]
+    else:
+        skipped.append(("response_vs_axis", "no response of the bridge's demand in the cube"))
+    if margins:
+        todo += [("unseating_margins", x) for x in xs]
+    else:
+        skipped.append(("unseating_margins", "the cube stores no unseating margin "
+                        "(give seat_over_L)"))
+    return todo, skipped
+
+
+@dataclass
+class Layout:
+    """How one figure spreads the grid: abscissa, curves, sample and columns of panels."""
+
+    x: str
+    curve: str  # axis key, or None for one curve
+    sample: bool  # curves over a record axis: thin lines, median and band
+    columns: list  # [(key, index)] per column: a combination of the remaining axes
+    fixed_text: str  # the axes of one value, as `key = value, ...`
+
+
+def _column_axes(sweep, x, curve):
+    keys = [k for k in sweep.axis_order
+            if k not in (x, curve) and sweep.has_axis(k, 2)]
+    return [(k, list(range(len(sweep.axes[k])))) for k in keys]
+
+
+def layouts(sweep, x):
+    """The pages of figures for abscissa x: curves over the first other numeric axis (else a
+    label axis; over the records when there is a record axis), columns over the rest."""
+    others = [k for k in sweep.axis_order if k != x and sweep.has_axis(k, 2)]
+    sample = "record" in others
+    if sample:
+        curve = "record"
+    else:
+        numeric = [k for k in others if not isinstance(sweep.axes[k], list)]
+        curve = (numeric or others or [None])[0]
+    col_axes = _column_axes(sweep, x, curve)
+    combos = list(itertools.product(*[[(key, i) for i in idx] for key, idx in col_axes])) or [()]
+    fixed = [value_label(sweep, k, sweep.axes[k][0]) for k in sweep.axis_order
+             if len(sweep.axes[k]) == 1]
+    pages = [combos[i:i + MAX_COLUMNS] for i in range(0, len(combos), MAX_COLUMNS)]
+    return [Layout(x, curve, sample, list(page), ", ".join(fixed)) for page in pages]
+
+
+def _combo_title(sweep, combo):
+    return ", ".join(value_label(sweep, key, sweep.axes[key][i]) for key, i in combo)
+
+
+def envelope(q, stacked):
+    """The worst deck of a per-deck quantity, cell by cell (axis 0 of `stacked` is the deck):
+    the smallest unseating margin, the residual of largest magnitude (its sign kept), else the
+    largest value. NaN only where every deck is NaN."""
+    if len(stacked) == 1:
+        return stacked[0]
+    with np.errstate(all="ignore"):
+        if q.base in MARGINS:
+            return np.nanmin(np.where(np.isnan(stacked), np.inf, stacked), axis=0).astype(float) \
+                if np.any(np.isfinite(stacked)) else stacked[0]
+        if q.base.endswith("_end"):
+            k = np.nanargmax(np.where(np.isnan(stacked), -1.0, np.abs(stacked)), axis=0)
+            return np.take_along_axis(stacked, k[np.newaxis], axis=0)[0]
+        return np.nanmax(np.where(np.isnan(stacked), -np.inf, stacked), axis=0)
+
+
+def _series(sweep, q, layout, combo):
+    """The quantity over [curve, x] (or [1, x]) at one column combination; a per-deck quantity
+    as its envelope over the decks (envelope())."""
+    at = dict(combo)
+    keep = ([layout.curve] if layout.curve else []) + [layout.x]
+    stacked = np.stack([figures.select(sweep, n, keep, at) for n in q.names])
+    values = envelope(q, stacked)
+    values = np.where(np.isinf(values), np.nan, values)
+    if not layout.curve:
+        values = values[np.newaxis, :]
+    return np.where(np.abs(values) < ZERO, 0.0, values), None
+
+
+def _caption_keys(sweep, layout, qs=()):
+    keys = ["x"] + (["end"] if any(q.base.endswith("_end") for q in qs) else [])
+    if any(len(q.decks) > 1 for q in qs):
+        keys.append("decks")
+    present = set(sweep.axis_order) | set(sweep.fixed)
+    if "a_deg" in present:
+        keys.append("alpha")
+    if present & {"T_g", "w_g", "a_g_g", "pulse", "Pi_delta", "record"}:
+        keys.append("ag")
+    if "T_g" in present:
+        keys.append("Tg")
+    if "Pi_delta" in present:
+        keys.append("Pi")
+    if present & {"eps_N", "mu", "xi"}:
+        keys.append("eps")
+    if "eta0" in present:
+        keys.append("eta0")
+    if "k_factor" in present:
+        keys.append("k")
+    if layout.sample:
+        keys.append("records")
+    return keys
+
+
+def _figure(n_rows, n_cols, legend_cols):
+    width = PANEL_IN[0] * n_cols + 1.9 + 0.2 * legend_cols
+    height = PANEL_IN[1] * n_rows + 1.4
+    return plt.subplots(n_rows, n_cols, figsize=(width, height), squeeze=False,
+                        sharex=True, constrained_layout=True)
+
+
+def _draw(ax, sweep, layout, values, styles, legend):
+    xs = np.asarray(sweep.axes[layout.x], dtype=float)
+    if layout.sample:
+        for row in values:
+            ax.plot(xs, row, color="0.65", lw=0.7)
+        finite = np.isfinite(values).sum(axis=0) > 0
+        if np.any(finite):
+            with np.errstate(all="ignore"):
+                med = np.nanmedian(values[:, finite], axis=0)
+                lo, hi = np.nanpercentile(values[:, finite], [16, 84], axis=0)
+            band = ax.fill_between(xs[finite], lo, hi, color="C0", alpha=0.25, lw=0)
+            line, = ax.plot(xs[finite], med, color="C0", lw=2.0, marker="o", ms=4)
+            legend.setdefault("median of the records", line)
+            legend.setdefault("16-84 % of the records", band)
+            legend.setdefault("one record", matplotlib.lines.Line2D([], [], color="0.65",
+                                                                     lw=0.7))
+        return
+    curves = list(sweep.axes[layout.curve]) if layout.curve else [None]
+    many = len(curves) > figures.MAX_LEGEND
+    for ic, value in enumerate(curves):
+        color, marker, ls = styles[ic]
+        if many:
+            ax.plot(xs, values[ic], color=color, lw=1.0)
+        else:
+            h, = ax.plot(xs, values[ic], color=color, ls=ls, marker=marker, ms=4,
+                         markevery=max(1, len(xs) // 8))
+            if value is not None:
+                legend.setdefault(value_label(sweep, layout.curve, value), h)
+
+
+def _x_scale(ax, sweep, key):
+    xs = np.asarray(sweep.axes[key], dtype=float)
+    spacing = sweep.axis_attrs.get(key, {}).get("spacing", "")
+    if spacing == "logspace" or (np.all(xs > 0) and xs.max() / xs.min() >= 20):
+        figures.log_axis(ax, "x")
+
+
+def _finish(fig, axes, sweep, layout, legend, title, extra_caption="", qs=()):
+    curves = list(sweep.axes[layout.curve]) if layout.curve and not layout.sample else []
+    if len(curves) > figures.MAX_LEGEND:
+        figures.curve_key_legend(fig, axes, layout.curve, curves)
+        cbar = fig.axes[-1]
+        cbar.set_ylabel(axis_label(sweep, layout.curve))
+    elif legend:
+        np.asarray(axes)[0, -1].legend(list(legend.values()), list(legend.keys()),
+                                       loc="upper left", bbox_to_anchor=(1.02, 1.0),
+                                       borderaxespad=0.0)
+    fixed = f" ({layout.fixed_text})" if layout.fixed_text else ""
+    fig.suptitle(f"{sweep.name}: {title}{fixed}", fontsize=10)
+    figures.caption(fig, _caption_keys(sweep, layout, qs), extra_caption)
+
+
+def display_scale(sweep, q):
+    """(factor, unit) to draw a quantity in, the same in every panel: mm and mrad when all its
+    values over the sweep are below 0.1 (m or rad), µm and µrad below 1e-4, so that the ticks
+    carry no power of ten; SI otherwise."""
+    values = np.concatenate([np.ravel(sweep.responses[n]) for n in q.names])
+    finite = np.abs(values[np.isfinite(values)])
+    largest = finite.max() if len(finite) else 1.0
+    for below, factor, prefix in ((1e-4, 1e6, "µ"), (0.1, 1e3, "m")):
+        if q.unit in ("m", "rad") and largest < below:
+            return factor, prefix + q.unit
+    return 1.0, None
+
+
+def _panel_grid(n_quantities, n_columns):
+    """(rows, cols, place) of the panels: a row per quantity and a column per combination, or,
+    with one combination, the quantities wrapped into two or three columns."""
+    if n_columns > 1:
+        return n_quantities, n_columns, lambda row, col: (row, col)
+    cols = 1 if n_quantities == 1 else (2 if n_quantities <= 4 else 3)
+    rows = int(np.ceil(n_quantities / cols))
+    return rows, cols, lambda row, col: (row // cols, row % cols)
+
+
+def response_vs_axis(sweep, layout, qs, out_dir, name, pdf):
+    """The quantities qs against layout.x: with several column combinations a row per quantity
+    and a column per combination, else the quantities wrapped into a grid. Returns table rows
+    (quantity text, column, curve value, peak, x at peak, at the grid edge, no response)."""
+    n_rows, n_cols, place = _panel_grid(len(qs), len(layout.columns))
+    fig, axes = _figure(n_rows, n_cols, 1)
+    curves = list(sweep.axes[layout.curve]) if layout.curve and not layout.sample else [None]
+    styles = figures.curve_styles(len(curves))
+    legend, table = {}, []
+    xs = np.asarray(sweep.axes[layout.x], dtype=float)
+    used = set()
+    for col, combo in enumerate(layout.columns):
+        for row, q in enumerate(qs):
+            r, c = place(row, col)
+            used.add((r, c))
+            ax = axes[r][c]
+            values, deck = _series(sweep, q, layout, combo)
+            factor, unit = display_scale(sweep, q)
+            _draw(ax, sweep, layout, values * factor, styles, legend)
+            if not np.any(np.isfinite(values)):
+                figures.no_data(ax)
+            elif not np.any(values[np.isfinite(values)]):
+                figures.no_data(ax, f"no response: 0 everywhere (below {ZERO:g})", y=0.6)
+            _x_scale(ax, sweep, layout.x)
+            if q.base == "impacts":
+                figures.integer_axis(ax)
+            if c == 0 or n_cols == 1 or len(layout.columns) == 1:
+                ax.set_ylabel(quantity_label(q, unit) + _deck_note(q))
+            if r == 0 and combo:
+                ax.set_title(_combo_title(sweep, combo), fontsize=9.5)
+            if not layout.sample:
+                for ic, value in enumerate(curves):
+                    peak, at, _, edge, zero = figures.peak_of(values[ic], xs)
+                    table.append((quantity_text(q, deck if len(q.decks) > 1 else None),
+                                  _combo_title(sweep, combo), value, peak, at, edge, zero))
+    for r in range(n_rows):
+        for c in range(n_cols):
+            if (r, c) not in used:
+                axes[r][c].remove()
+            elif (r + 1, c) not in used:
+                axes[r][c].set_xlabel(axis_label(sweep, layout.x))
+                axes[r][c].xaxis.set_tick_params(labelbottom=True)
+    _finish(fig, axes, sweep, layout, legend, f"responses against {axis_symbol(layout.x)}",
+            qs=qs)
+    return figures._save(fig, out_dir, name, pdf), table
+
+
+def _deck_note(q):
+    """What a y label adds for a quantity of several decks: that its worst deck is drawn."""
+    if len(q.decks) < 2:
+        return ""
+    return ",\nsmallest of the decks" if q.base in MARGINS else ",\nworst deck"
+
+
+def unseating_margins(sweep, layout, q, out_dir, name, pdf):
+    """The unseating margin of each deck against layout.x (a panel per column combination),
+    with the line of zero margin and the unseated side (margin < 0) shaded."""
+    n = len(layout.columns)
+    n_cols = min(n, 2) if n > 1 else 1
+    n_rows = int(np.ceil(n / n_cols))
+    fig, axes = _figure(n_rows, n_cols, 1)
+    curves = list(sweep.axes[layout.curve]) if layout.curve and not layout.sample else [None]
+    styles = figures.curve_styles(len(curves))
+    legend = {}
+    for k, combo in enumerate(layout.columns):
+        ax = axes[k // n_cols][k % n_cols]
+        values, _ = _series(sweep, q, layout, combo)
+        factor, unit = display_scale(sweep, q)
+        values = values * factor
+        _draw(ax, sweep, layout, values, styles, legend)
+        ax.axhline(0.0, color="C3", lw=1.1, ls=(0, (4, 3)))
+        finite = values[np.isfinite(values)]
+        if len(finite):
+            lo = min(finite.min(), 0.0)
+            span = max(finite.max(), 0.0) - lo
+            ax.set_ylim(lo - 0.08 * span - ZERO, max(finite.max(), 0.0) + 0.08 * span + ZERO)
+            ax.axhspan(ax.get_ylim()[0], 0.0, color="C3", alpha=0.08, lw=0)
+        else:
+            figures.no_data(ax)
+        _x_scale(ax, sweep, layout.x)
+        if combo:
+            ax.set_title(_combo_title(sweep, combo), fontsize=9.5)
+        ax.set_ylabel(quantity_label(q, unit) + _deck_note(q))
+        ax.set_xlabel(axis_label(sweep, layout.x))
+    for k in range(n, n_rows * n_cols):
+        axes[k // n_cols][k % n_cols].remove()
+    legend["margin = 0: a corner leaves its seat\n(shaded: unseated)"] = matplotlib.lines.Line2D(
+        [], [], color="C3", lw=1.1, ls=(0, (4, 3)))
+    _finish(fig, axes, sweep, layout, legend, f"unseating margins against "
+            f"{axis_symbol(layout.x)}", qs=[q], extra_caption="Unseating margin: seat width minus the largest travel "
+            "of a corner normal to the deck's end line; below 0 the corner has left its seat.")
+    return figures._save(fig, out_dir, name, pdf), []
+
+
+# Axis symbols in plain Unicode for the Markdown tables, beyond figures.AXIS_TEXT.
+AXIS_PLAIN = {"T_g": "T_g", "w_g": "ω_g", "k_factor": "K factor", "scale": "scale",
+              "gap_m": "δ", "a_g_g": "a_g", "record": "record", "method": "method"}
+
+
+def value_text(sweep, key, value):
+    """`α = 30°`, `T_g = 0.5 s`, `pulse: cosine` in plain text."""
+    symbol = figures.AXIS_TEXT.get(key) or AXIS_PLAIN.get(key, key)
+    if isinstance(value, str):
+        return f"{symbol}: {value}"
+    unit = axis_unit(sweep, key)
+    sep = "" if unit == "°" else " "
+    return f"{symbol} = {value:g}" + (f"{sep}{unit}" if unit else "")
+
+
+def cell_text(sweep, flat_index):
+    """The coordinates of a cell along its axes of two or more values, in plain text."""
+    idx = np.unravel_index(flat_index, sweep.shape())
+    return ", ".join(value_text(sweep, k, sweep.axes[k][i])
+                     for k, i in zip(sweep.axis_order, idx) if len(sweep.axes[k]) > 1)
+
+
+def response_table(sweep):
+    """Rows (response, unit, cells with a value, min, median, max, cell of the max) of every
+    response of the cube, descriptors included."""
+    rows = []
+    for name in sweep.responses:
+        values = np.asarray(sweep.responses[name], dtype=float)
+        finite = np.isfinite(values)
+        unit = _unit(str(sweep.response_attrs.get(name, {}).get("units", ""))) or "1"
+        if not np.any(finite):
+            rows.append((name, unit, 0, None, None, None, "–"))
+            continue
+        masked = np.where(finite, values, -np.inf)
+        k = int(np.argmax(masked))
+        rows.append((name, unit, int(finite.sum()), float(values[finite].min()),
+                     float(np.median(values[finite])), float(values.flat[k]),
+                     cell_text(sweep, k) or "the single cell"))
+    return rows
+
+
+def unseating_table(sweep, q):
+    """Rows (deck, cells, cells unseated, share, smallest margin, cell of the smallest)."""
+    rows = []
+    for deck, name in zip(q.decks, q.names):
+        values = np.asarray(sweep.responses[name], dtype=float)
+        finite = np.isfinite(values)
+        if not np.any(finite):
+            rows.append((deck, 0, 0, None, None, "–"))
+            continue
+        k = int(np.argmin(np.where(finite, values, np.inf)))
+        unseated = int(np.count_nonzero(values[finite] < 0))
+        rows.append((deck if deck is not None else "–", int(finite.sum()), unseated,
+                     f"{unseated / finite.sum():.0%}", float(values.flat[k]),
+                     cell_text(sweep, k) or "the single cell"))
+    return rows
+
+
+RECORD_COLUMNS = [("label", "record", None), ("component", "component", None),
+                  ("scale", "scale", None), ("pga_mps2", "PGA [m/s²]", None),
+                  ("pgv_mps", "PGV [m/s]", None), ("pgd_m", "PGD [m]", None),
+                  ("T_m_s", "T_m [s]", None), ("L_e_m", "L_e [m]", None),
+                  ("arias_mps", "Arias [m/s]", None), ("D5_95_s", "D5-95 [s]", None),
+                  ("file", "file", None)]
+
+
+def record_table(sweep):
+    """(header, rows) of the cube's record table (records/), columns it lacks left out; None
+    when the sweep has none."""
+    rec = sweep.extra.get("records")
+    if not rec:
+        return None
+    cols = [(key, title) for key, title, _ in RECORD_COLUMNS if key in rec]
+    extra = [k for k in rec if k != "attrs" and not k.endswith("@attrs")
+             and not isinstance(rec[k], dict) and k not in dict(cols)]
+    cols += [(k, k) for k in extra if np.ndim(rec[k]) == 1]
+    n = len(rec[cols[0][0]])
+    rows = []
+    for i in range(n):
+        row = []
+        for key, _ in cols:
+            v = rec[key][i]
+            row.append(v.decode() if isinstance(v, bytes) else v)
+        rows.append(row)
+    return [title for _, title in cols], rows

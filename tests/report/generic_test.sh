@@ -1,0 +1,86 @@
+#!/usr/bin/env bash
+# Every sweep of one's own bridge is seen: three real sweeps on 2 ranks (a model-file sweep of
+# the pilot bridge's model file over the skew angle and the pulse period, the README's
+# three-span example, a model-file sweep over 6 synthetic records and Pi_delta) go through
+# scripts/report, whose figures and tables check_generic.py checks against the cubes read by
+# h5py; `skewbridge inspect` must print the specification's fixed values with their units;
+# `skewbridge sweep --dry-run` must count the cells, time a sample and write no file.
+# usage: generic_test.sh SKEWBRIDGE MPIEXEC SOURCE_ROOT WORK_DIR
+set -euo pipefail
+exe=$1 mpiexec=$2 root=$3 work=$4
+rm -rf "$work" && mkdir -p "$work" && cd "$work"
+fail() { echo "generic_test: FAIL: $*" >&2; exit 1; }
+sweep() { "$mpiexec" -n 2 --oversubscribe "$exe" sweep "$@" --quiet; }
+report="$root/scripts/report"
+
+cat > own.toml <<TOML
+[sweep]
+name = "own"
+family = "model-file"
+model = "$root/docs/examples/pilot-bridge.toml"
+[axes]
+a_deg = [10, 20, 30, 40]
+T_g = [0.3, 0.5, 0.8, 1.2, 2.0]
+[fixed]
+pulse = "cosine"
+a_g_g = 0.4
+seat_over_L = 0.01
+TOML
+cat > rec.toml <<TOML
+[sweep]
+name = "rec"
+family = "model-file"
+model = "$root/docs/examples/pilot-bridge.toml"
+[records]
+synthetic = {count = 6, seed = 5}
+[axes]
+record = "*"
+Pi_delta = [0.5, 1.0, 2.0]
+[fixed]
+a_deg = 30.0
+TOML
+
+# --dry-run: the cell count is the product of the axis lengths, the estimate names the rank
+# count and how it is made, and no file is written (not even with --out).
+before=$(ls -A)
+"$exe" sweep --dry-run own.toml --ranks 4 --out dry.h5 >../dry.txt || fail "--dry-run exit status $?"
+mv ../dry.txt .
+[ "$(ls -A | grep -v '^dry.txt$')" = "$before" ] || fail "--dry-run wrote files: $(ls -A)"
+grep -q '^cells: 20 = T_g 5 x a_deg 4$' dry.txt || fail "dry run cell count: $(head -3 dry.txt)"
+grep -q '^estimate on 4 rank(s): ' dry.txt || fail "dry run estimate: $(cat dry.txt)"
+grep -q 'computing rank(s)' dry.txt || fail "dry run does not say how it estimates"
+[ "$(grep -c '^  cell ' dry.txt)" -eq 8 ] || fail "dry run did not time 8 cells"
+"$mpiexec" -n 2 --oversubscribe "$exe" sweep --dry-run "$root/jobs/specs/model-file-three-span.toml" \
+  >dry3.txt || fail "--dry-run on 2 ranks"
+grep -q '^cells: 72 = pulse 2 x a_deg 4 x Pi_delta 3 x k_factor 3$' dry3.txt ||
+  fail "three-span dry run: $(head -2 dry3.txt)"
+grep -q '^estimate on 2 rank(s)' dry3.txt || fail "the dry run under mpiexec -n 2 estimates for 2 ranks"
+"$exe" sweep --dry-run rec.toml --sample-cells 3 >dryrec.txt || fail "record dry run"
+grep -q '^cells: 18 = record 6 x Pi_delta 3$' dryrec.txt || fail "record dry run: $(head -2 dryrec.txt)"
+grep -q '^records: 6 from synthetic count=6 seed=5$' dryrec.txt || fail "dry run records"
+[ "$(grep -c '^  synth-5-00' dryrec.txt)" -eq 6 ] || fail "dry run does not list the 6 records"
+set +e
+"$exe" sweep own.toml >/dev/null 2>noout.txt
+status=$?
+set -e
+[ $status -ne 0 ] && grep -q -- "--out" noout.txt || fail "a real run without --out: status $status"
+
+sweep own.toml --out own.h5
+sweep "$root/jobs/specs/model-file-three-span.toml" --out three.h5
+sweep rec.toml --out rec.h5
+
+# inspect: each fixed value of the specification with its unit.
+"$exe" inspect own.h5 >inspect.txt
+grep -Eq '^    pulse +cosine ' inspect.txt || fail "inspect: pulse: $(cat inspect.txt)"
+grep -Eq '^    a_g_g +0\.4 g ' inspect.txt || fail "inspect: a_g_g with its unit"
+grep -Eq '^    seat_over_L +0\.01 ' inspect.txt || fail "inspect: seat_over_L"
+grep -Eq '^    a_deg +4  10 \.\. 40 \[deg\]' inspect.txt || fail "inspect: the a_deg axis"
+grep -q '^  limit states: none declared$' inspect.txt || fail "inspect: limit states line"
+"$exe" inspect three.h5 | grep -Eq '^    seat_over_L +0\.02 ' || fail "inspect three-span"
+
+"$report" own.h5 three.h5 rec.h5 --out out >report.log || fail "report exited with $?"
+/usr/bin/python3 "$root/tests/report/check_generic.py" out report.log own.h5 three.h5 rec.h5 ||
+  fail "figures or tables"
+/usr/bin/python3 "$root/tests/report/check_readability.py" "$root" readable own.h5 three.h5 \
+  rec.h5 || fail "readability"
+echo "generic_test: ok"
