@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 
 #include "records/record_set.h"
 #include "records/synthetic.h"
 #include "solver/common/error.h"
+#include "solver/common/nearest.h"
 #include "spectra/correlation.h"
 
 namespace skewbridge::spectra {
@@ -23,6 +25,34 @@ std::vector<std::string> WantedLabels(const CellGrid& spec) {
 void AddReason(std::string& reason, std::string_view what, const std::string& why) {
   if (why.empty()) return;
   reason += (reason.empty() ? "" : "; ") + std::string(what) + ": " + why;
+}
+
+// Why `label` names no record of `set`: the set, the nearest labels and, when the label is a
+// file name without its extension, that labels keep it.
+std::string UnknownLabel(const std::string& label, const CellGrid& spec,
+                         const records::RecordSet& set) {
+  std::vector<std::string> labels;
+  for (const records::RecordEntry& entry : set.records)
+    labels.push_back(records::RecordLabel(entry));
+  const std::string where = spec.record_folder.empty()
+                                ? "the record set " + set.manifest.string()
+                                : "the records of folder " + spec.record_folder + " (pattern " +
+                                      spec.record_pattern + ")";
+  std::string message = "label '" + label + "' is not in " + where + " of " +
+                        std::to_string(labels.size()) + " record(s); nearest: ";
+  const std::vector<std::string> nearest = NearestNames(label, labels, 3, false);
+  for (std::size_t i = 0; i < nearest.size(); ++i) {
+    message += (i ? ", " : "") + nearest[i];
+  }
+  const bool stem_of_a_label = std::any_of(labels.begin(), labels.end(), [&](const auto& l) {
+    return std::filesystem::path(l).stem().string() == label;
+  });
+  if (!spec.record_folder.empty()) {
+    message += "; the labels of a folder set are the file names, extension included";
+  } else if (stem_of_a_label) {
+    message += "; a record without label is labelled by its file name, extension included";
+  }
+  return message;
 }
 
 }  // namespace
@@ -79,9 +109,7 @@ std::vector<SweepRecord> LoadSweepRecords(const CellGrid& spec) {
       if (records::RecordLabel(entry) == label) found = &entry;
     }
     if (found == nullptr) {
-      throw InputError::AtField(
-          spec.source, "record",
-          "label '" + label + "' is not in the record set " + set.manifest.string());
+      throw InputError::AtField(spec.source, "record", UnknownLabel(label, spec, set));
     }
     SweepRecord record;
     record.label = label;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -176,7 +177,19 @@ void AddInspectCommand(CLI::App& app) {
       "inspect",
       "Summarise a sweep cube: axes, fixed parameters, responses, completion, record statistics");
   cmd->add_option("file", *path, "Cube FILE.h5 (or FILE.h5.partial)")->required();
-  cmd->callback([path] { PrintCube(*path); });
+  cmd->callback([path] {
+    std::error_code ec;
+    const std::filesystem::file_status status = std::filesystem::status(*path, ec);
+    if (status.type() == std::filesystem::file_type::not_found) {
+      throw InputError::AtLine(*path, 0, "the file does not exist");
+    }
+    if (status.type() == std::filesystem::file_type::directory) {
+      throw InputError::AtLine(*path, 0,
+                               "is a folder; `inspect` takes a cube file FILE.h5 (or "
+                               "FILE.h5.partial)");
+    }
+    PrintCube(*path);
+  });
 }
 
 }  // namespace skewbridge::app

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -25,6 +26,7 @@ struct InfoArgs {
   std::string path;
   bool csv = false;
   bool json = false;
+  bool dt_given = false;  ///< whether --dt was on the command line (0 is then refused)
   double dt_s = 0.0;
   std::string units;
   std::string format = "auto";
@@ -63,11 +65,33 @@ std::string CsvField(const std::string& text) {
   return out + "\"";
 }
 
+// What `records info` reads: a file that exists, not a folder.
+void CheckInfoPath(const std::filesystem::path& path) {
+  std::error_code ec;
+  const std::filesystem::file_status status = std::filesystem::status(path, ec);
+  if (status.type() == std::filesystem::file_type::not_found) {
+    throw InputError::AtLine(path.string(), 0,
+                             "the file does not exist (`records info` takes a record file or a "
+                             "record-set manifest .toml)");
+  }
+  if (status.type() == std::filesystem::file_type::directory) {
+    throw InputError::AtLine(path.string(), 0,
+                             "is a folder; `records info` takes a record file or a record-set "
+                             "manifest .toml (a folder of records is a set through a sweep's "
+                             "[records] folder and pattern)");
+  }
+}
+
 std::vector<Row> LoadRows(const InfoArgs& args) {
   std::vector<Row> rows;
   const std::filesystem::path path(args.path);
+  CheckInfoPath(path);
+  if (args.dt_given && !(args.dt_s > 0.0 && std::isfinite(args.dt_s))) {
+    throw InputError::AtField("records info", "--dt",
+                              fmt::format("must be a time step > 0 s (got {})", args.dt_s));
+  }
   if (path.extension() == ".toml") {
-    if (args.dt_s > 0.0 || !args.units.empty() || args.format != "auto") {
+    if (args.dt_given || !args.units.empty() || args.format != "auto") {
       throw InputError::AtField("records info", "--dt/--units/--format",
                                 "apply to a single file; give them per record in the set");
     }
@@ -80,7 +104,7 @@ std::vector<Row> LoadRows(const InfoArgs& args) {
     return rows;
   }
   records::ReadOptions options;
-  if (args.dt_s > 0.0) options.dt_s = args.dt_s;
+  if (args.dt_given) options.dt_s = args.dt_s;
   if (!args.units.empty()) {
     options.units = records::ParseUnits(args.units);
     if (!options.units) {
@@ -190,12 +214,15 @@ void AddRecordsCommand(CLI::App& app) {
       ->required();
   auto* csv = info_cmd->add_flag("--csv", info->csv, "comma-separated output");
   info_cmd->add_flag("--json", info->json, "JSON output")->excludes(csv);
-  info_cmd->add_option("--dt", info->dt_s, "time step (s) of a headerless file");
+  CLI::Option* dt = info_cmd->add_option("--dt", info->dt_s, "time step (s) of a headerless file");
   info_cmd->add_option("--units", info->units, "units where the file states none: g, m/s2, cm/s2");
   info_cmd->add_option("--format", info->format,
                        "auto, at2, esm, itsak, cosmos, csmip, smc, smtk, plain, time-acc");
   info_cmd->add_option("--channel", info->channel, "CSMIP V2 channel (1-based)");
-  info_cmd->callback([info] { PrintInfo(*info); });
+  info_cmd->callback([info, dt] {
+    info->dt_given = dt->count() > 0;
+    PrintInfo(*info);
+  });
 
   auto synth = std::make_shared<records::SynthOptions>();
   auto out = std::make_shared<std::string>();

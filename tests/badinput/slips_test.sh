@@ -95,6 +95,28 @@ printf 'name = "set"\n[[record]]\nfile = "a.AT2"\n' > set.toml
 expect "set.toml: this is a record-set manifest ([[record]] tables), not a model file (docs/model-format.md); \`skewbridge records info\` and a sweep's [records] set take it" \
   run set.toml
 
+# --- records info, inspect: what is really wrong ---
+awk 'BEGIN { for (i = 0; i < 200; i++) printf "%.6f\n", 0.1 * sin(0.1 * i) }' > bare.txt
+expect "records info: --dt: must be a time step > 0 s (got 0)" records info bare.txt --units g --dt 0
+expect "records info: --dt: must be a time step > 0 s (got -0.01)" records info bare.txt --units g --dt -0.01
+ok records info bare.txt --units g --dt 0.01
+mkdir recs
+cp "$root/tests/data/records/NIS090.AT2" "$root/tests/data/records/RSN763_LOMAP_GIL067.AT2" recs/
+expect "recs: is a folder; \`records info\` takes a record file or a record-set manifest .toml (a folder of records is a set through a sweep's [records] folder and pattern)" \
+  records info recs
+expect "nothere.AT2: the file does not exist (\`records info\` takes a record file or a record-set manifest .toml)" \
+  records info nothere.AT2
+expect "nothere.h5: the file does not exist" inspect nothere.h5
+expect "recs: is a folder; \`inspect\` takes a cube file FILE.h5 (or FILE.h5.partial)" inspect recs
+# --- an unknown record label: the nearest labels of the set, and that labels keep extensions ---
+printf '[sweep]\nname = "r"\nfamily = "pilot-bridge"\n[records]\nfolder = "recs"\npattern = "*.AT2"\n[axes]\nrecord = ["NIS090"]\nPi_delta = [1.0]\n' > folder_spec.toml
+expect "folder_spec.toml: record: label 'NIS090' is not in the records of folder recs (pattern *.AT2) of 2 record(s); nearest: NIS090.AT2, RSN763_LOMAP_GIL067.AT2; the labels of a folder set are the file names, extension included" \
+  sweep folder_spec.toml --out out.h5
+printf 'name = "s"\n[[record]]\nfile = "recs/NIS090.AT2"\n[[record]]\nfile = "recs/RSN763_LOMAP_GIL067.AT2"\nlabel = "LOMAP"\n' > labels.toml
+printf '[sweep]\nname = "r"\nfamily = "pilot-bridge"\n[records]\nset = "labels.toml"\n[axes]\nrecord = ["LOMA"]\nPi_delta = [1.0]\n' > set_spec.toml
+expect "set_spec.toml: record: label 'LOMA' is not in the record set labels.toml of 2 record(s); nearest: LOMAP, NIS090.AT2" \
+  sweep set_spec.toml --out out.h5
+
 # Under mpiexec the command line fails on every rank: one line, exit 2.
 status=0
 "$mpiexec" -n 2 --oversubscribe "$exe" sweep "$spec" > out.txt 2> err.txt || status=$?

@@ -58,7 +58,9 @@ grep -Eq "w0_over_wg +4  0.5 .. 2" inspect.txt || fail "inspect: w0_over_wg axis
 grep -Eq "pulse +2  cosine, sine" inspect.txt || fail "inspect: pulse axis"
 grep -q "x_peak" inspect.txt || fail "inspect: responses"
 grep -q "completion: 16/16 cells done (100.0%), complete" inspect.txt || fail "inspect: completion"
-expect_error "nothing.h5: cannot open as an HDF5 file" "$skewbridge" inspect nothing.h5
+expect_error "nothing.h5: the file does not exist" "$skewbridge" inspect nothing.h5
+printf 'not hdf5\n' > text.h5
+expect_error "text.h5: cannot open as an HDF5 file" "$skewbridge" inspect text.h5
 
 # A checkpoint from a program version without one response: interrupted (SIGTERM, as a batch
 # system would), one response dataset deleted with h5py, then --resume refuses before any work.
