@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// Correlation statistics of a response against an excitation measure over a set of records
-/// (theta_m against the persistency L_e in [Dimitrakopoulos 2011, §6]): Pearson's r, Spearman's
+/// (theta_m against the persistency L_e in [Dimitrakopoulos 2011, §4]): Pearson's r, Spearman's
 /// rho with average ranks for ties, and the least-squares line through (log10 x, log10 y).
 /// A statistic that cannot be computed is NaN with a one-line reason, never an exception.
 

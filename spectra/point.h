@@ -4,7 +4,7 @@
 /// dimensionless groups to a dimensional deck model and excitation, the run, and the
 /// normalisation of the maxima. This is the only place where normalisations live.
 ///
-/// The maxima depend on nine groups (Buckingham) [Dimitrakopoulos 2011, §5]:
+/// The maxima depend on nine groups (Buckingham) [Dimitrakopoulos 2011, §3]:
 ///
 ///     x_m w_g^2/a_g, y_m w_g^2/a_g, theta_m rho w_g^2/a_g
 ///         = Phi(w0/w_g, W0/w0, xi, Pi_delta = delta w_g^2/a_g, eps_N, mu, W/L, delta/L, a)
@@ -87,7 +87,7 @@ struct DimensionalPoint {
   double time_step_s = 0.0;              ///< time-stepping step h (s)
 };
 
-/// The pilot bridge of [docs/theory.md §6; Dimitrakopoulos 2011, §6]: m = 1547 t,
+/// The pilot bridge of [docs/theory.md §6; Dimitrakopoulos 2011, §4]: m = 1547 t,
 /// I_m = 1 079 100 t m^2, a = 20 deg, L = 89.14 m, W = 19.36 m (eta0 = 1.48), principal axes
 /// at +20 deg with 18 and 19 rad/s, torsion 26 rad/s about the centre of rigidity
 /// (-0.24, 0.01) m, xi = 5 %, eps_N = 0.5, mu = 0.3, both abutments, gaps 0 (set per point).

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// The record correlation sets of a record-driven sweep [docs/theory.md §6; Dimitrakopoulos 2011,
-/// §6]: the records of the sweep (read from a manifest or synthesised in memory) with their
+/// §4]: the records of the sweep (read from a manifest or synthesised in memory) with their
 /// measures, the w0x/w_g frequency-ratio groups, and the statistics of theta_m against the
 /// persistency L_e over the record axis, which rank 0 stores in the final cube
 /// (docs/hdf5-layout.md; jobs/study.h gathers them from the cube).

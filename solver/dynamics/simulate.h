@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// The event-driven integrator of [docs/theory.md §3; Pfeiffer and Glocker 1996, ch. 6-7;
-/// Dimitrakopoulos 2011, §3]:
+/// Dimitrakopoulos 2011, §2]:
 /// - no closed contact: the exact transition of the linear flow (solver/dynamics/linear_flow.h)
 ///   on a grid aligned with each excitation piece, steps at most 1/20 of the shortest natural
 ///   or excitation period, partial steps by the flow's Taylor dense output;
