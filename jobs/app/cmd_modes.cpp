@@ -1,7 +1,10 @@
 // `skewbridge modes MODEL.toml`: the natural frequencies and mode shapes of a model file's
 // substructure (without contacts), and for a single deck its stiffness about the mass centre,
 // the centre of rigidity, the principal stiffness axes and the torsional stiffness about the
-// centre. Nothing is integrated; the excitation is read only to validate the file.
+// centre. Nothing is integrated; the excitation is read only to validate the file. With --plan
+// it prints instead the model's plan geometry as JSON, for drawing (scripts/report --model).
+#include <fmt/core.h>
+
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -9,6 +12,7 @@
 #include <string>
 
 #include "jobs/app/commands.h"
+#include "solver/contact/kinematics.h"
 #include "solver/model/builders.h"
 #include "solver/model/model_file.h"
 #include "solver/model/substructure.h"
@@ -56,6 +60,109 @@ void PrintStiffnessCentre(const model::Model& model, int b) {
         "centre of rigidity: none (the translational stiffness is singular: a direction "
         "without stiffness)\n");
   }
+}
+
+std::string Json(const Eigen::Vector2d& v) { return fmt::format("[{}, {}]", v.x(), v.y()); }
+
+std::string Json(const std::string& text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      out += fmt::format("\\u{:04x}", static_cast<int>(c));
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+// A number, or null when it is not finite (JSON has no NaN).
+std::string Json(double v) { return std::isfinite(v) ? fmt::format("{}", v) : "null"; }
+
+std::string JsonSpring(const model::PlanSpring& k) {
+  return fmt::format("\"k_strong_Npm\": {}, \"k_weak_Npm\": {}, \"strong_axis_deg\": {}",
+                     Json(k.k_strong_Npm), Json(k.k_weak_Npm), Json(k.strong_axis_rad * kRadToDeg));
+}
+
+// The plan of a model file at rest (q = 0) in the ground frame (m): each deck's outline,
+// mass centre and stiffness analysis, each contact's corner and face with its gap, the bearings
+// and piers of the elements form (deck frame = ground frame for one deck) and the supports of
+// the [[deck]] form, as one JSON object (docs/model-format.md, `skewbridge modes --plan`).
+void PrintPlanJson(const model::ModelFile& file, const std::string& path) {
+  const model::Model& model = file.model;
+  std::string out = fmt::format("{{\n  \"model\": {},\n  \"decks\": [", Json(path));
+  const Eigen::VectorXd q0 = Eigen::VectorXd::Zero(model.n_dof());
+  for (int b = 0; b < model.n_bodies(); ++b) {
+    const model::Body& body = model.body(b);
+    const Eigen::Matrix3d K = model.K().block<3, 3>(3 * b, 3 * b);
+    const model::StiffnessCentre c = model::AnalyseStiffness(K);
+    std::string corners;
+    for (int k = 1; k <= 4; ++k) {
+      corners += (k > 1 ? ", " : "") + Json(body.rest_position_m + model::Corner(body.geometry, k));
+    }
+    out += fmt::format(
+        "{}\n    {{\"name\": {}, \"mass_kg\": {}, \"inertia_kgm2\": {}, \"L_m\": {}, "
+        "\"W_m\": {}, \"skew_deg\": {}, \"mass_centre_m\": {}, \"corners_m\": [{}], "
+        "\"centre_of_rigidity_m\": {}, \"principal_Npm\": {}, \"axis1_deg\": {}, "
+        "\"torsion_about_centre_Nmprad\": {}}}",
+        b > 0 ? "," : "", Json(body.name), Json(body.mass_kg), Json(body.inertia_kgm2),
+        Json(body.geometry.length_m), Json(body.geometry.width_m),
+        Json(body.geometry.skew_rad * kRadToDeg), Json(body.rest_position_m), corners,
+        c.has_centre ? Json(body.rest_position_m + c.centre_of_rigidity_m) : "null",
+        Json(c.principal_Npm), Json(c.axis1_rad * kRadToDeg), Json(c.torsion_about_centre_Nmprad));
+  }
+  out += "\n  ],\n  \"contacts\": [";
+  for (int i = 0; i < model.n_contacts(); ++i) {
+    const model::Contact& k = model.contact(i);
+    const Eigen::Vector2d shift = k.face.body == model::kGround
+                                      ? Eigen::Vector2d::Zero()
+                                      : Eigen::Vector2d(model.body(k.face.body).rest_position_m);
+    out += fmt::format(
+        "{}\n    {{\"name\": {}, \"deck\": {}, \"point_m\": {}, \"face_deck\": {}, "
+        "\"face_point_m\": {}, \"normal\": {}, \"tangent\": {}, \"gap_m\": {}, "
+        "\"eps_N\": {}, \"mu\": {}}}",
+        i > 0 ? "," : "", Json(k.name), k.body,
+        Json(model.body(k.body).rest_position_m + k.point_m),
+        k.face.body == model::kGround ? "null" : fmt::format("{}", k.face.body),
+        Json(shift + k.face.point_m), Json(k.face.normal), Json(k.face.tangent),
+        Json(contact::Gap(model, i, q0)), Json(k.restitution), Json(k.friction));
+  }
+  out += "\n  ],\n  \"piers\": [";
+  const bool elements =
+      !file.decks && file.deck.stiffness == model::DeckSpec::StiffnessKind::kElements;
+  if (elements) {
+    for (std::size_t i = 0; i < file.deck.piers.size(); ++i) {
+      const model::PierSpec& p = file.deck.piers[i];
+      out += fmt::format("{}\n    {{\"position_m\": {}, {}}}", i > 0 ? "," : "", Json(p.position_m),
+                         JsonSpring(p.spring));
+    }
+  }
+  out += "\n  ],\n  \"bearings\": [";
+  if (elements) {
+    for (std::size_t i = 0; i < file.deck.bearings.size(); ++i) {
+      const model::BearingSpec& bearing = file.deck.bearings[i];
+      out += fmt::format("{}\n    {{\"position_m\": {}, \"pier\": {}, {}}}", i > 0 ? "," : "",
+                         Json(bearing.position_m),
+                         bearing.pier < 0 ? "null" : fmt::format("{}", bearing.pier),
+                         JsonSpring(bearing.spring));
+    }
+  }
+  out += "\n  ],\n  \"supports\": [";
+  if (file.decks) {
+    for (std::size_t i = 0; i < file.decks->supports.size(); ++i) {
+      const model::SupportSpec& s = file.decks->supports[i];
+      out += fmt::format(
+          "{}\n    {{\"deck\": {}, \"other\": {}, \"k_x_Npm\": {}, \"k_y_Npm\": {}, "
+          "\"k_theta_Nmprad\": {}}}",
+          i > 0 ? "," : "", s.deck, s.other < 0 ? "null" : fmt::format("{}", s.other),
+          Json(s.stiffness.x()), Json(s.stiffness.y()), Json(s.stiffness.z()));
+    }
+  }
+  out += "\n  ]\n}\n";
+  std::fputs(out.c_str(), stdout);
 }
 
 }  // namespace
@@ -123,9 +230,17 @@ void AddModesCommand(CLI::App& app) {
       "Print a model file's natural frequencies, mode shapes, centre of rigidity and principal "
       "stiffness axes");
   auto model_path = std::make_shared<std::string>();
+  auto plan = std::make_shared<bool>(false);
   cmd->add_option("MODEL", *model_path, "Model file (TOML, docs/model-format.md)")->required();
-  cmd->callback([model_path] {
+  cmd->add_flag("--plan", *plan,
+                "Print instead the plan geometry at rest as JSON (decks, contacts with gaps, "
+                "bearings, piers, centres of rigidity), as scripts/report --model draws it");
+  cmd->callback([model_path, plan] {
     const model::ModelFile file = model::ParseModelFile(*model_path);
+    if (*plan) {
+      PrintPlanJson(file, *model_path);
+      return;
+    }
     const model::Model& model = file.model;
     std::printf("model %s: %d deck%s, %d DOFs, substructure %s\n", model_path->c_str(),
                 model.n_bodies(), model.n_bodies() == 1 ? "" : "s", model.n_dof(), KindName(file));

@@ -8,7 +8,10 @@ import sys
 import numpy as np
 
 from . import figures, generic
+from . import plan as plan_view
 from .data import ReportError, load_cube, load_run
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
 
 # Axes that are not curve parameters of a spectrum: the pulse is the column, w0/w_g the
 # abscissa, a record axis a sample of the suite.
@@ -259,6 +262,10 @@ def main(argv):
     parser.add_argument("cubes", nargs="*", metavar="CUBE.h5")
     parser.add_argument("--run", action="append", default=[], metavar="RUN.h5",
                         help="a run file with histories (repeatable)")
+    parser.add_argument("--model", action="append", default=[], metavar="MODEL.toml",
+                        help="a model file to draw in plan (repeatable)")
+    parser.add_argument("--exe", default=os.path.join(ROOT, "build", "release", "skewbridge"),
+                        help="the skewbridge program that reads --model files")
     parser.add_argument("--out", required=True, metavar="DIR", help="output folder")
     parser.add_argument("--pdf", action="store_true", help="also write each figure as PDF")
     parser.add_argument("--generic", action="store_true",
@@ -276,8 +283,9 @@ def main(argv):
 
 
 def run(args):
-    if not args.cubes and not args.run:
-        raise ReportError("nothing to do: give at least one CUBE.h5 or --run RUN.h5")
+    if not args.cubes and not args.run and not args.model:
+        raise ReportError("nothing to do: give at least one CUBE.h5, --run RUN.h5 or "
+                          "--model MODEL.toml")
     sweeps = [s for path in args.cubes for s in load_cube(path, args.allow_partial)]
     runs = [load_run(path) for path in args.run]
     if os.path.exists(args.out) and not os.path.isdir(args.out):
@@ -331,6 +339,16 @@ def run(args):
                         int(r.summary_attrs.get("plastic_closures", 0)),
                         float(r.summary_attrs.get("min_impact_separation_s", np.inf)))]), "",
                _table(["energy term", "J"], energy), ""]
+    for model_path in args.model:
+        name = "plan_" + _safe(os.path.splitext(os.path.basename(model_path))[0])
+        while name in used:
+            name += "_"
+        used.add(name)
+        path, rows = plan_view.draw_plan(plan_view.load_plan(args.exe, model_path), args.out,
+                                         name, args.pdf)
+        written.append(path)
+        md += [f"## Model {os.path.basename(model_path)} in plan", "",
+               f"![{name}]({os.path.basename(path)})", "", _table(["item", "value"], rows), ""]
     md += SYMBOLS_MD
     if skipped_all:
         md += ["## Figures not made", "",
