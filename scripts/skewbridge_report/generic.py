@@ -105,7 +105,7 @@ def value_label(sweep, key, value):
         return f"{axis_symbol(key)}: {value}"
     unit = axis_unit(sweep, key)
     sep = "" if unit == "°" else " "
-    return f"{axis_symbol(key)} = {value:g}" + (f"{sep}{unit}" if unit else "")
+    return f"{axis_symbol(key)} = {value:.4g}" + (f"{sep}{unit}" if unit else "")
 
 
 def quantity_label(q, unit=None):
@@ -206,14 +206,17 @@ def _column_axes(sweep, x, curve):
 
 
 def layouts(sweep, x):
-    """The pages of figures for abscissa x: curves over the first other numeric axis (else a
-    label axis; over the records when there is a record axis), columns over the rest."""
+    """The pages of figures for abscissa x: curves over the other numeric axis of most values
+    (else a label axis; over the records when there is a record axis), columns over the rest."""
     others = [k for k in sweep.axis_order if k != x and sweep.has_axis(k, 2)]
     sample = "record" in others
     if sample:
         curve = "record"
     else:
+        # the numeric axis of most values makes the curves (a colour bar beyond MAX_LEGEND),
+        # so that the fewest combinations are left for the columns
         numeric = [k for k in others if not isinstance(sweep.axes[k], list)]
+        numeric.sort(key=lambda k: -len(sweep.axes[k]))
         curve = (numeric or others or [None])[0]
     col_axes = _column_axes(sweep, x, curve)
     combos = list(itertools.product(*[[(key, i) for i in idx] for key, idx in col_axes])) or [()]
@@ -260,11 +263,18 @@ def _caption_keys(sweep, layout, qs=()):
     keys = ["x"] + (["end"] if any(q.base.endswith("_end") for q in qs) else [])
     if any(len(q.decks) > 1 for q in qs):
         keys.append("decks")
+    labels = " ".join(quantity_label(q) for q in qs)
+    if r"\rho" in labels:
+        keys.append("rho")
+    if "a_g" in labels and "ag" not in keys:
+        keys.append("ag")
     present = set(sweep.axis_order) | set(sweep.fixed)
     if "a_deg" in present:
         keys.append("alpha")
-    if present & {"T_g", "w_g", "a_g_g", "pulse", "Pi_delta", "record"}:
+    if present & {"T_g", "w_g", "a_g_g", "pulse", "Pi_delta", "record", "w0_over_wg"}:
         keys.append("ag")
+    if "w0_over_wg" in present:
+        keys.append("w0")
     if "T_g" in present:
         keys.append("Tg")
     if "Pi_delta" in present:
@@ -327,9 +337,12 @@ def _x_scale(ax, sweep, key):
 def _finish(fig, axes, sweep, layout, legend, title, extra_caption="", qs=()):
     curves = list(sweep.axes[layout.curve]) if layout.curve and not layout.sample else []
     if len(curves) > figures.MAX_LEGEND:
-        figures.curve_key_legend(fig, axes, layout.curve, curves)
-        cbar = fig.axes[-1]
-        cbar.set_ylabel(axis_label(sweep, layout.curve))
+        shown = np.array([ax for ax in np.ravel(axes) if ax in fig.axes], dtype=object)
+        figures.curve_key_legend(fig, shown, layout.curve, curves)
+        fig.axes[-1].set_ylabel(axis_label(sweep, layout.curve))
+        if legend:  # reference lines and sample entries still need their legend
+            shown[0].legend(list(legend.values()), list(legend.keys()), loc="lower left",
+                            bbox_to_anchor=(0.0, 1.08), ncol=len(legend), frameon=False)
     elif legend:
         np.asarray(axes)[0, -1].legend(list(legend.values()), list(legend.keys()),
                                        loc="upper left", bbox_to_anchor=(1.02, 1.0),
