@@ -210,7 +210,8 @@ std::string DryRunReport(const SweepSpec& spec, const CellEvaluator& evaluator, 
       Duration(e.setup_s), e.cells, Duration(e.mean_s), Duration(e.min_s), Duration(e.max_s),
       e.computing_ranks, e.computing_ranks < e.ranks ? " (rank 0 only gathers)" : "");
   out +=
-      "  the range is the mean -/+ 2 standard errors of the sample; it assumes cells cost what "
+      "  the range is the mean -/+ 2 standard errors of the sample (its low end at least the "
+      "shortest cell timed); it assumes cells cost what "
       "the sample did on this machine and one core per rank, and leaves out the final "
       "cube's write (about 1 us per cell)\n";
   return out;
