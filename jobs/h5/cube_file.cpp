@@ -3,11 +3,13 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <ctime>
 #include <limits>
 #include <stdexcept>
+#include <string_view>
 #include <type_traits>
 
 #include "jobs/h5/h5.h"
@@ -88,6 +90,11 @@ Datasets CreateLayout(const std::string& path, const SweepSpec& spec, const Cube
     response_order.push_back(r.name);
   }
   SetAttr(g, "response_order", response_order);
+  std::vector<std::string> response_links;
+  for (const ResponseInfo& r : layout.responses) {
+    response_links.push_back(ResponseLinkName(r.name, spec));
+  }
+  SetAttr(g, "response_links", response_links);
 
   Id fixed = CreateGroup(g, "fixed");
   std::vector<std::string> fixed_keys;
@@ -159,10 +166,12 @@ Datasets CreateLayout(const std::string& path, const SweepSpec& spec, const Cube
   for (const ResponseInfo& r : layout.responses) {
     d.responses.push_back(
         make(responses.get(), r.name, H5T_IEEE_F64LE, &nan, r.unit, r.description));
-    // ... and the responses beside their coordinates, so that one xarray Dataset holds both.
-    Check(H5Lcreate_hard(responses.get(), r.name.c_str(), g, r.name.c_str(), H5P_DEFAULT,
-                         H5P_DEFAULT),
-          "link responses/" + r.name);
+    // ... and the responses beside their coordinates, so that one xarray Dataset holds both;
+    // an axis keeps its own name there (ResponseLinkName).
+    const std::string link = ResponseLinkName(r.name, spec);
+    Check(
+        H5Lcreate_hard(responses.get(), r.name.c_str(), g, link.c_str(), H5P_DEFAULT, H5P_DEFAULT),
+        "link responses/" + r.name + " as " + link);
   }
   d.status = make(g, "status", H5T_STD_I32LE, &not_done, "1",
                   "cell status code; names in the attributes status_codes / status_names");
@@ -1121,6 +1130,15 @@ std::vector<SweepSummary> SummarizeCube(const std::filesystem::path& path) {
 CubeData ReadCubeData(const std::filesystem::path& path, const std::string& sweep,
                       std::vector<std::string>* response_names) {
   return NamingFile(path, [&] { return ReadCubeDataIn(path, sweep, response_names); });
+}
+
+std::string ResponseLinkName(const std::string& response, const SweepSpec& spec) {
+  static constexpr std::array<std::string_view, 9> kGroupMembers{
+      "axes", "responses", "fixed", "stats", "status", "done", "records", "correlation", "inputs"};
+  const bool taken =
+      spec.FindAxis(response) != nullptr ||
+      std::find(kGroupMembers.begin(), kGroupMembers.end(), response) != kGroupMembers.end();
+  return taken ? "response_" + response : response;
 }
 
 std::string UtcNow() {

@@ -189,6 +189,11 @@ CubeData ReadCubeData(const std::filesystem::path& path, const std::string& swee
 std::vector<double> ReadSweepArray(const std::filesystem::path& path, const std::string& sweep,
                                    const std::string& dataset);
 
+/// The name of a response's second link in the sweep group, beside the axis scales (the
+/// xarray view): the response's name, or "response_" + name when an axis or a member of the
+/// sweep group (axes, status, records, ...) has that name. responses/<name> always holds it.
+std::string ResponseLinkName(const std::string& response, const SweepSpec& spec);
+
 /// Current UTC time as "YYYY-MM-DDTHH:MM:SSZ".
 std::string UtcNow();
 
