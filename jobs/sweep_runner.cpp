@@ -117,7 +117,17 @@ class Writer {
       std::filesystem::remove(partial, ec);
     } else if (!partial_exists && out_exists) {
       for (const h5::SweepSummary& s : h5::SummarizeCube(options_.out)) {
-        if (s.name == spec_.name && s.spec_hash == spec_.Hash() && s.complete) {
+        if (s.name != spec_.name) continue;
+        // A result never outlives its inputs: name what changed since the cube was written.
+        const std::string change =
+            DescribeIdentityChange(s.spec_canonical, s.inputs_canonical, spec_);
+        if (!change.empty()) {
+          throw InputError::AtLine(options_.out.string(), 0,
+                                   "cannot resume: " + change +
+                                       "; restore it, write a new output file, or use --force "
+                                       "to recompute every cell from the inputs as they are now");
+        }
+        if (s.spec_hash == spec_.Hash() && s.complete) {
           data_.Reset(spec_.CellCount(), layout_.responses.size());
           return false;
         }
@@ -481,6 +491,14 @@ SweepReport RunSweep(const SweepSpec& spec, const CellEvaluator& evaluator, Tran
   report.ranks = transport.Size();
   const bool root = transport.Rank() == 0;
   const CubeLayout layout = MakeCubeLayout(evaluator, spec.responses, spec.source);
+
+  // Every rank read and checksummed the inputs itself: all must have seen rank 0's bytes.
+  const std::string root_identity = transport.BroadcastText(root ? spec.Hash() : "");
+  if (!transport.AllTrue(root_identity == spec.Hash())) {
+    throw InputError(spec.source +
+                     ": the ranks read different inputs (a file changed while they read it); "
+                     "run again once no input file is being written");
+  }
 
   // Setup errors surface on every rank before any work.
   std::optional<Writer> writer;

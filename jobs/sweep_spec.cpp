@@ -9,10 +9,13 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <sstream>
 
+#include "jobs/file_checksum.h"
 #include "solver/common/error.h"
 #include "solver/common/nearest.h"
+#include "spectra/inputs.h"
 #include "spectra/study.h"
 
 namespace skewbridge::jobs {
@@ -182,6 +185,7 @@ class Parser {
     }
     CheckCrossFields(spec);
     SortCanonically(spec);
+    CollectInputs(spec);
     return spec;
   }
 
@@ -270,14 +274,6 @@ class Parser {
     if (spec.family == "model-file") {
       spec.model_file = RequireString(sweep, "sweep", "model");
       spec.model_path = ExistingFile(sweep, "sweep", "model", spec.model_file);
-      std::ifstream in(spec.model_path, std::ios::binary);
-      std::stringstream bytes;
-      bytes << in.rdbuf();
-      if (!in) {
-        throw Error(sweep.get("model")->source(), "sweep.model",
-                    "cannot read " + spec.model_path.string());
-      }
-      spec.model_hash = Fnv1a(bytes.str());
     } else if (sweep.contains("model")) {
       throw Error(sweep.get("model")->source(), "sweep.model",
                   "only allowed with family = \"model-file\"");
@@ -662,6 +658,46 @@ class Parser {
     }
   }
 
+  // The name of an input in the cube and the identity: relative to the specification's folder
+  // when it was found from there, so that the identity does not depend on the working folder.
+  std::string RelativeName(const std::filesystem::path& path) const {
+    const std::filesystem::path file = path.lexically_normal();
+    const std::filesystem::path base =
+        base_dir_.empty() ? std::filesystem::path(".") : base_dir_.lexically_normal();
+    if (file.is_absolute() != base.is_absolute()) return file.generic_string();
+    const std::filesystem::path relative = file.lexically_relative(base);
+    return relative.empty() ? file.generic_string() : relative.generic_string();
+  }
+
+  // Reads and checksums one input file (once: a file named twice is listed once).
+  void AddInput(SweepSpec& spec, std::string role, const std::filesystem::path& path) const {
+    InputFile input;
+    input.file = RelativeName(path);
+    for (const InputFile& known : spec.inputs) {
+      if (known.file == input.file) return;
+    }
+    const FileChecksum sum = ChecksumFile(path);
+    input.role = std::move(role);
+    input.path = path;
+    input.sha256 = sum.sha256;
+    input.bytes = sum.bytes;
+    spec.inputs.push_back(std::move(input));
+  }
+
+  // The input manifest: every file the cells read, each hashed once here (not per cell).
+  void CollectInputs(SweepSpec& spec) const {
+    InputFile self;
+    self.role = "spec";
+    self.file = std::filesystem::path(source_).filename().generic_string();
+    self.path = source_;
+    self.sha256 = Sha256Hex(spec.text);
+    self.bytes = spec.text.size();
+    spec.inputs.push_back(std::move(self));
+    for (const spectra::GridInput& input : spectra::GridInputFiles(spec)) {
+      AddInput(spec, input.role, input.path);
+    }
+  }
+
   static void SortCanonically(SweepSpec& spec) {
     auto rank = [](std::string_view key) { return FindParameter(key) - kParameters.data(); };
     std::stable_sort(spec.axes.begin(), spec.axes.end(),
@@ -705,7 +741,6 @@ std::string SweepSpec::CanonicalText() const {
   out << "sweep.family = " << str(family) << "\n";
   if (!model_file.empty()) {
     out << "sweep.model = " << str(model_file) << "\n";
-    out << "sweep.model_hash = " << str(model_hash) << "\n";
   }
   if (!record_set.empty()) {
     out << "records.set = " << str(record_set) << "\n";
@@ -747,7 +782,105 @@ std::string SweepSpec::CanonicalText() const {
   return out.str();
 }
 
-std::string SweepSpec::Hash() const { return Fnv1a(CanonicalText()); }
+std::string SweepSpec::InputsText() const {
+  std::string out = fmt::format("program.version = \"{}\"\n", SKEWBRIDGE_VERSION);
+  for (const InputFile& input : inputs) {
+    if (input.role == "spec") continue;
+    out += fmt::format("{} \"{}\" = {}\n", input.role, input.file, input.sha256);
+  }
+  return out;
+}
+
+std::string SweepSpec::Hash() const { return Fnv1a(CanonicalText() + InputsText()); }
+
+namespace {
+
+// The lines of a canonical or input text as key -> value, in order. Keys of the specification
+// hold no space and end at the first " = "; a value of the input manifest (a hex checksum or a
+// quoted version) holds none, so an input's key ends at the last one.
+std::vector<std::pair<std::string, std::string>> KeyedLines(const std::string& text, bool inputs) {
+  std::vector<std::pair<std::string, std::string>> out;
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) {
+    const std::size_t at = inputs ? line.rfind(" = ") : line.find(" = ");
+    if (at == std::string::npos) {
+      out.emplace_back(line, "");
+    } else {
+      out.emplace_back(line.substr(0, at), line.substr(at + 3));
+    }
+  }
+  return out;
+}
+
+// The first key whose value differs between the two texts, present in either: {key, old, new}
+// with "(absent)" for a key that one side lacks; all empty when the texts agree.
+std::array<std::string, 3> FirstDifference(const std::string& before, const std::string& now,
+                                           bool inputs) {
+  const auto old_lines = KeyedLines(before, inputs);
+  const auto new_lines = KeyedLines(now, inputs);
+  auto find = [](const auto& lines, const std::string& key) -> const std::string* {
+    for (const auto& [k, v] : lines) {
+      if (k == key) return &v;
+    }
+    return nullptr;
+  };
+  for (const auto& [key, value] : new_lines) {
+    const std::string* was = find(old_lines, key);
+    if (was == nullptr) return {key, "(absent)", value};
+    if (*was != value) return {key, *was, value};
+  }
+  for (const auto& [key, value] : old_lines) {
+    if (find(new_lines, key) == nullptr) return {key, value, "(absent)"};
+  }
+  return {};
+}
+
+// A value for a message: whole when short, else its start and length.
+std::string Shortened(const std::string& value) {
+  constexpr std::size_t kMax = 72;
+  if (value.size() <= kMax) return value;
+  return value.substr(0, kMax) + fmt::format("... ({} characters)", value.size());
+}
+
+}  // namespace
+
+std::string DescribeIdentityChange(const std::string& stored_canonical,
+                                   const std::string& stored_inputs, const SweepSpec& spec) {
+  const auto spec_change = FirstDifference(stored_canonical, spec.CanonicalText(), false);
+  if (!spec_change[0].empty()) {
+    return fmt::format(
+        "{}: key {} differs from the specification the cube was computed with "
+        "(cube: {}; now: {})",
+        spec.source, spec_change[0], Shortened(spec_change[1]), Shortened(spec_change[2]));
+  }
+  const auto input_change = FirstDifference(stored_inputs, spec.InputsText(), true);
+  if (input_change[0].empty()) return "";
+  const std::string& key = input_change[0];
+  if (key == "program.version") {
+    return fmt::format(
+        "the cube was computed by skewbridge {}, this is {} (its results may "
+        "differ)",
+        input_change[1], input_change[2]);
+  }
+  // `ROLE "FILE"`: name the file where this run reads it.
+  const std::size_t quote = key.find('"');
+  const std::string role = key.substr(0, quote == std::string::npos ? key.size() : quote - 1);
+  const std::string file =
+      quote == std::string::npos ? key : key.substr(quote + 1, key.size() - quote - 2);
+  std::string where = file;
+  for (const InputFile& input : spec.inputs) {
+    if (input.file == file) where = input.path.string();
+  }
+  if (input_change[1] == "(absent)") {
+    return fmt::format("{} ({}) is an input the cube was not computed from", where, role);
+  }
+  if (input_change[2] == "(absent)") {
+    return fmt::format("{} ({}) was an input of the cube and is no longer one", where, role);
+  }
+  return fmt::format("{} ({}) has changed since the cube was computed from it (sha256 {}, now {})",
+                     where, role, input_change[1], input_change[2]);
+}
 
 SweepSpec ParseSweepSpec(std::string_view text, std::string_view source,
                          const std::filesystem::path& base_dir) {

@@ -46,23 +46,49 @@ const ParameterInfo* FindParameter(std::string_view name);
 /// The sweep families known to the specification parser (an evaluator may support fewer).
 std::span<const std::string_view> KnownFamilies();
 
+/// One file a sweep's results depend on, read when the specification is loaded.
+struct InputFile {
+  /// "spec", "model", "excitation" (the model file's excitation.file), "record-set" (a
+  /// manifest) or "record".
+  std::string role;
+  /// The path relative to the specification's folder ('/'-separated; absolute paths as given):
+  /// the name stored in the cube and in the identity, whatever the working directory.
+  std::string file;
+  std::filesystem::path path;  ///< Where it was read from (for messages).
+  std::string sha256;          ///< SHA-256 of its bytes (64 hex digits), as sha256sum prints it.
+  std::uint64_t bytes = 0;     ///< Its size [bytes].
+};
+
 /// A validated sweep specification: the grid the evaluator reads, plus what the sweep machinery
 /// alone needs. Axes are kept in the canonical order of KnownParameters(), whatever the order in
 /// the file, so equal specifications give equal cube layouts.
 struct SweepSpec : spectra::CellGrid {
   std::string text;  ///< The original text, stored verbatim in the cube.
   std::string name;  ///< [sweep] name: the HDF5 group name.
-  /// FNV-1a hash (16 hex digits) of the model file's bytes when it was read: part of the
-  /// identity, so that --resume refuses a cube of a model file that has changed since.
-  std::string model_hash;
+  /// Every file the results depend on: the specification itself first, then the model file,
+  /// its excitation file, the record-set manifest and each record file the sweep reads, once
+  /// each, checksummed once per sweep when the specification is loaded.
+  std::vector<InputFile> inputs;
   std::vector<std::string> responses;  ///< Requested responses; empty = all of the evaluator's.
 
   /// A normalised text of the specification (fixed key order, shortest round-trip numbers,
   /// expanded linspace/logspace): equal for specifications that define the same sweep.
   std::string CanonicalText() const;
-  /// 16 hex digits of the 64-bit FNV-1a hash of CanonicalText(): the resume identity.
+  /// The input manifest: the program's result-affecting version (the project VERSION) and one
+  /// line `ROLE "FILE" = SHA256` per input other than the specification (whose keys
+  /// CanonicalText holds, comments and formatting aside).
+  std::string InputsText() const;
+  /// 16 hex digits of the 64-bit FNV-1a hash of CanonicalText() + InputsText(): the resume
+  /// identity, which changes with any key of the specification and any byte of an input.
   std::string Hash() const;
 };
+
+/// Why a cube computed with the specification text `stored_canonical` and the input manifest
+/// `stored_inputs` (CanonicalText and InputsText when it was begun) cannot be continued by
+/// `spec`, in a few words naming the first key of the specification that differs (with both
+/// values) or else the first input file that changed; "" when both are equal.
+std::string DescribeIdentityChange(const std::string& stored_canonical,
+                                   const std::string& stored_inputs, const SweepSpec& spec);
 
 /// Parses and validates a specification held in memory; relative paths (model, record set) are
 /// resolved against base_dir and must exist.

@@ -8,7 +8,7 @@ packages=(
   g++ cmake ninja-build make pkg-config git
   # numerics and parallelism
   libeigen3-dev libopenmpi-dev openmpi-bin libhdf5-openmpi-dev hdf5-tools libsuitesparse-dev
-  libfftw3-dev zlib1g-dev
+  libfftw3-dev zlib1g-dev libssl-dev
   # input formats, command line, formatting
   libtomlplusplus-dev libcli11-dev libfmt-dev
   # tests and benchmarks

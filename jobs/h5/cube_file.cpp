@@ -74,6 +74,7 @@ Datasets CreateLayout(const std::string& path, const SweepSpec& spec, const Cube
   SetAttr(g, "spec_source", spec.source);
   SetAttr(g, "spec_canonical", spec.CanonicalText());
   SetAttr(g, "spec_hash", spec.Hash());
+  SetAttr(g, "inputs_canonical", spec.InputsText());
   SetAttr(g, "program_version", std::string(SKEWBRIDGE_VERSION));
   SetAttr(g, "source_revision", std::string(SKEWBRIDGE_GIT_REVISION));
   SetAttr(g, "created_utc", created_utc);
@@ -113,6 +114,29 @@ Datasets CreateLayout(const std::string& path, const SweepSpec& spec, const Cube
   if (!fixed_keys.empty()) {  // an empty string list is not a valid attribute
     SetAttr(fixed.get(), "keys", fixed_keys);
     SetAttr(fixed.get(), "units", fixed_units);
+  }
+
+  // The files the cells are computed from, one row each (the specification first).
+  Id inputs = CreateGroup(g, "inputs");
+  std::vector<std::string> roles;
+  std::vector<std::string> files;
+  std::vector<std::string> sums;
+  std::vector<std::int64_t> sizes;
+  for (const InputFile& input : spec.inputs) {
+    roles.push_back(input.role);
+    files.push_back(input.file);
+    sums.push_back(input.sha256);
+    sizes.push_back(static_cast<std::int64_t>(input.bytes));
+  }
+  if (!files.empty()) {  // a spec parsed in memory by a test may list none
+    WriteStrings(inputs.get(), "role", roles);
+    WriteStrings(inputs.get(), "file", files);
+    WriteStrings(inputs.get(), "sha256", sums);
+    const hsize_t n = sizes.size();
+    Id bytes = CreateDataset(inputs.get(), "bytes", H5T_STD_I64LE, std::span<const hsize_t>(&n, 1),
+                             {}, 0, nullptr);
+    WriteAll(bytes.get(), H5T_NATIVE_INT64, sizes.data());
+    SetAttr(bytes.get(), "units", std::string("byte"));
   }
 
   Id axes_group = CreateGroup(g, "axes");
@@ -612,6 +636,15 @@ void CheckResumable(const std::filesystem::path& path, const SweepSpec& spec,
   }
   Id g = OpenGroup(file.get(), group_path);
   const std::string hash = GetStringAttr(g.get(), "spec_hash");
+  const std::string change = DescribeIdentityChange(
+      HasAttr(g.get(), "spec_canonical") ? GetStringAttr(g.get(), "spec_canonical") : "",
+      HasAttr(g.get(), "inputs_canonical") ? GetStringAttr(g.get(), "inputs_canonical") : "", spec);
+  if (!change.empty()) {
+    throw InputError::AtLine(file_name, 0,
+                             "cannot resume: " + change +
+                                 "; restore it, write a new output file, or use --force to "
+                                 "recompute every cell from the inputs as they are now");
+  }
   if (hash != spec.Hash()) {
     throw InputError::AtLine(
         file_name, 0,
@@ -1000,6 +1033,12 @@ std::vector<SweepSummary> SummarizeCubeIn(const std::filesystem::path& path) {
     s.name = name;
     s.family = GetStringAttr(g.get(), "family");
     s.spec_hash = GetStringAttr(g.get(), "spec_hash");
+    if (HasAttr(g.get(), "spec_canonical")) {
+      s.spec_canonical = GetStringAttr(g.get(), "spec_canonical");
+    }
+    if (HasAttr(g.get(), "inputs_canonical")) {
+      s.inputs_canonical = GetStringAttr(g.get(), "inputs_canonical");
+    }
     s.created_utc = GetStringAttr(g.get(), "created_utc");
     s.program_version = GetStringAttr(g.get(), "program_version");
     s.complete = GetIntAttr(g.get(), "complete") != 0;

@@ -159,6 +159,8 @@ struct SweepSummary {
   std::string name;
   std::string family;
   std::string spec_hash;
+  std::string spec_canonical;    ///< SweepSpec::CanonicalText when the sweep was begun.
+  std::string inputs_canonical;  ///< SweepSpec::InputsText then ("" in older cubes).
   std::string created_utc;
   std::string program_version;
   bool complete = false;

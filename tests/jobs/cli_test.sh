@@ -46,7 +46,7 @@ spec good.toml 'a_deg = [10, 40]'
 expect_error "cube.h5: already exists; use --resume to continue it or --force" \
   "$driver" good.toml --out cube.h5
 spec other.toml 'a_deg = [10, 45]'
-expect_error "cube.h5: cannot resume: it holds no complete sweep of this specification" \
+expect_error "cube.h5: cannot resume: other.toml: key axes.a_deg differs from the specification the cube was computed with (cube: \[10, 40\]; now: \[10, 45\])" \
   "$driver" other.toml --out cube.h5 --resume
 cp cube.h5 copy.h5
 "$driver" good.toml --out cube.h5 --resume --quiet 2> err.txt

@@ -222,5 +222,87 @@ TEST(SweepSpec, CellCountIsTheProductOfTheAxisSizes) {
   EXPECT_EQ(Parse(kGood).CellCount(), 5u * 3u * 2u * 3u);
 }
 
+// A folder with a manifest of two records (bytes that only need hashing here) and a spec
+// sweeping the first of them.
+std::filesystem::path InputsFolder() {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "sb_spec_inputs";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir / "recs");
+  std::ofstream(dir / "set.toml") << "name = \"two\"\n[[record]]\nfile = \"recs/a.txt\"\n"
+                                     "label = \"A\"\n[[record]]\nfile = \"recs/b.txt\"\n"
+                                     "label = \"B\"\n";
+  std::ofstream(dir / "recs" / "a.txt") << "abc";
+  std::ofstream(dir / "recs" / "b.txt") << "0.0\n";
+  std::string text = Replace(kGood, "pulse = [\"cosine\", \"sine\"]", "record = [\"A\"]");
+  std::ofstream(dir / "spec.toml") << text << "\n[records]\nset = \"set.toml\"\n";
+  return dir;
+}
+
+// The input manifest lists the spec, the manifest and the record files the sweep reads (not B),
+// by their path from the spec's folder, with the FIPS 180-2 test vector SHA-256("abc").
+TEST(SweepSpec, InputsAreTheFilesTheSweepReadsWithTheirSha256) {
+  const std::filesystem::path dir = InputsFolder();
+  const SweepSpec spec = LoadSweepSpec(dir / "spec.toml");
+  ASSERT_EQ(spec.inputs.size(), 3u);
+  EXPECT_EQ(spec.inputs[0].role, "spec");
+  EXPECT_EQ(spec.inputs[0].file, "spec.toml");
+  EXPECT_EQ(spec.inputs[1].role, "record-set");
+  EXPECT_EQ(spec.inputs[1].file, "set.toml");
+  EXPECT_EQ(spec.inputs[2].role, "record");
+  EXPECT_EQ(spec.inputs[2].file, "recs/a.txt");
+  EXPECT_EQ(spec.inputs[2].bytes, 3u);
+  EXPECT_EQ(spec.inputs[2].sha256,
+            "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
+  EXPECT_THAT(spec.InputsText(),
+              HasSubstr("record \"recs/a.txt\" = "
+                        "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad\n"));
+  EXPECT_THAT(spec.InputsText(), ::testing::StartsWith("program.version = \""));
+  // The identity does not depend on the folder the spec is loaded from.
+  const std::filesystem::path here = std::filesystem::current_path();
+  std::filesystem::current_path(dir);
+  const std::string from_inside = LoadSweepSpec("spec.toml").Hash();
+  std::filesystem::current_path(here);
+  EXPECT_EQ(from_inside, spec.Hash());
+  std::filesystem::remove_all(dir);
+}
+
+// --resume's reason names the first key of the spec that differs, else the changed file.
+TEST(SweepSpec, IdentityChangeNamesTheKeyOrTheFile) {
+  const std::filesystem::path dir = InputsFolder();
+  const SweepSpec spec = LoadSweepSpec(dir / "spec.toml");
+  const std::string canonical = spec.CanonicalText();
+  const std::string inputs = spec.InputsText();
+  EXPECT_EQ(DescribeIdentityChange(canonical, inputs, spec), "");
+  // A comment changes the bytes, not the canonical text: no change.
+  std::ofstream(dir / "spec.toml", std::ios::app) << "# a comment\n";
+  EXPECT_EQ(DescribeIdentityChange(canonical, inputs, LoadSweepSpec(dir / "spec.toml")), "");
+  std::string text = Replace(kGood, "pulse = [\"cosine\", \"sine\"]", "record = [\"A\"]");
+  std::ofstream(dir / "spec.toml")
+      << Replace(text, "xi = 0.05", "xi = 0.02") << "\n[records]\nset = \"set.toml\"\n";
+  const SweepSpec xi = LoadSweepSpec(dir / "spec.toml");
+  EXPECT_THAT(DescribeIdentityChange(canonical, inputs, xi),
+              HasSubstr("spec.toml: key fixed.xi differs from the specification the cube was "
+                        "computed with (cube: 0.05; now: 0.02)"));
+  std::ofstream(dir / "spec.toml")
+      << Replace(text, "xi = 0.05\n", "") << "\n[records]\nset = \"set.toml\"\n";
+  EXPECT_THAT(DescribeIdentityChange(canonical, inputs, LoadSweepSpec(dir / "spec.toml")),
+              HasSubstr("key fixed.xi differs from the specification the cube was computed with "
+                        "(cube: 0.05; now: (absent))"));
+  std::ofstream(dir / "spec.toml") << text << "\n[records]\nset = \"set.toml\"\n";
+  std::ofstream(dir / "recs" / "a.txt") << "abd";
+  const SweepSpec edited = LoadSweepSpec(dir / "spec.toml");
+  EXPECT_EQ(edited.CanonicalText(), canonical);
+  EXPECT_NE(edited.Hash(), spec.Hash());
+  EXPECT_THAT(DescribeIdentityChange(canonical, inputs, edited),
+              HasSubstr((dir / "recs" / "a.txt").string() +
+                        " (record) has changed since the cube was computed from it (sha256 "
+                        "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad, now "));
+  // The unused record B is no input: editing it is no change.
+  std::ofstream(dir / "recs" / "a.txt") << "abc";
+  std::ofstream(dir / "recs" / "b.txt") << "1.0\n";
+  EXPECT_EQ(DescribeIdentityChange(canonical, inputs, LoadSweepSpec(dir / "spec.toml")), "");
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace skewbridge::jobs

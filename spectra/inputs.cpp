@@ -1,0 +1,60 @@
+#include "spectra/inputs.h"
+
+#include <optional>
+#include <system_error>
+
+#include "records/record_set.h"
+#include "solver/common/error.h"
+#include "solver/model/model_file.h"
+#include "spectra/study.h"
+
+namespace skewbridge::spectra {
+
+std::vector<GridInput> GridInputFiles(const CellGrid& grid) {
+  std::vector<GridInput> out;
+  auto add = [&out](const char* role, const std::filesystem::path& path) {
+    for (const GridInput& known : out) {
+      if (known.path.lexically_normal() == path.lexically_normal()) return;
+    }
+    out.push_back({role, path});
+  };
+  if (!grid.model_path.empty()) {
+    add("model", grid.model_path);
+    std::optional<model::ModelFile> file;
+    try {
+      file.emplace(model::ParseModelFile(grid.model_path));
+    } catch (const InputError&) {
+      // reported by the evaluator, with the sweep's context
+    }
+    if (file && !file->excitation.file.empty()) {
+      std::error_code ec;
+      if (!std::filesystem::is_regular_file(file->excitation.file, ec)) {
+        throw InputError::AtLine(
+            grid.model_path.string(), 0,
+            "excitation.file: file not found: " + file->excitation.file.string());
+      }
+      add("excitation", file->excitation.file);
+    }
+  }
+  if (grid.synthetic_count > 0) return out;  // made in memory from count and seed
+  std::vector<std::string> wanted;
+  if (const Axis* axis = grid.FindAxis("record")) wanted = axis->labels;
+  if (const FixedValue* fixed = grid.FindFixed("record")) wanted = {fixed->label};
+  if (wanted.empty()) return out;
+  if (!grid.record_set_path.empty()) add("record-set", grid.record_set_path);
+  std::optional<records::RecordSet> set;
+  try {
+    set.emplace(LoadSpecRecordSet(grid));
+  } catch (const InputError&) {
+    return out;  // reported by the evaluator, which needs the set
+  }
+  for (const std::string& label : wanted) {
+    for (const records::RecordEntry& entry : set->records) {
+      // An unknown label adds no file: the evaluator names it with the set's labels.
+      if (records::RecordLabel(entry) == label) add("record", entry.file);
+    }
+  }
+  return out;
+}
+
+}  // namespace skewbridge::spectra
