@@ -6,6 +6,7 @@
 #include <set>
 
 #include "solver/common/error.h"
+#include "solver/common/nearest.h"
 
 namespace skewbridge::records {
 namespace {
@@ -227,6 +228,10 @@ RecordSet MakeFolderSet(const std::filesystem::path& folder, std::string_view pa
 }
 
 RecordSet LoadRecordSet(const std::filesystem::path& manifest) {
+  std::error_code ec;
+  if (!std::filesystem::exists(manifest, ec)) {
+    throw InputError::AtLine(manifest.string(), 0, "the record-set manifest does not exist");
+  }
   toml::table root;
   try {
     root = toml::parse_file(manifest.string());
@@ -240,13 +245,32 @@ RecordSet LoadRecordSet(const std::filesystem::path& manifest) {
   const bool folder_form = root.contains("folder") || root.contains("pattern");
   static const std::set<std::string_view> kFolderKeys = {"name",  "folder", "pattern", "scale",
                                                          "units", "dt",     "format",  "channel"};
+  // A sweep specification or a model file is named as what it is, not by its first table.
+  if (!root.contains("record") && !folder_form) {
+    if (root.contains("sweep")) {
+      throw InputError::AtLine(manifest.string(), 0,
+                               "this is a sweep specification ([sweep] table), not a record-set "
+                               "manifest (docs/records.md); `skewbridge sweep SPEC --out "
+                               "FILE.h5` takes it");
+    }
+    if (root.contains("deck") || root.contains("substructure")) {
+      throw InputError::AtLine(manifest.string(), 0,
+                               "this is a model file ([deck] table), not a record-set manifest "
+                               "(docs/records.md); `skewbridge run` and `skewbridge modes` take "
+                               "it");
+    }
+  }
   for (const auto& [key, node] : root) {
     if (folder_form ? !kFolderKeys.contains(key.str()) : key != "name" && key != "record") {
+      const std::vector<std::string> allowed =
+          folder_form ? std::vector<std::string>(kFolderKeys.begin(), kFolderKeys.end())
+                      : std::vector<std::string>{"name", "record", "folder", "pattern"};
       throw InputError::AtField(
           Where(manifest, LineOf(node)), key.str(),
-          folder_form ? "unknown key of a folder set (allowed: name, folder, pattern, scale, "
-                        "units, dt, format, channel; [[record]] tables are the other form)"
-                      : "unknown key (allowed: name, [[record]], or folder and pattern)");
+          (folder_form ? "unknown key of a folder set (allowed: name, folder, pattern, scale, "
+                         "units, dt, format, channel; [[record]] tables are the other form)"
+                       : "unknown key (allowed: name, [[record]], or folder and pattern)") +
+              DidYouMean(key.str(), allowed));
     }
   }
   if (const toml::node* name = root.get("name")) {
@@ -274,9 +298,10 @@ RecordSet LoadRecordSet(const std::filesystem::path& manifest) {
     }
     for (const auto& [key, value] : *table) {
       if (!kKeys.contains(key.str())) {
-        throw InputError::AtField(Where(manifest, LineOf(value)), key.str(),
-                                  "unknown key (allowed: file, label, component, scale, units, "
-                                  "dt, format, channel)");
+        throw InputError::AtField(
+            Where(manifest, LineOf(value)), key.str(),
+            "unknown key (allowed: file, label, component, scale, units, dt, format, channel)" +
+                DidYouMean(key.str(), std::vector<std::string>(kKeys.begin(), kKeys.end())));
       }
     }
     RecordEntry entry;

@@ -95,6 +95,12 @@ printf 'name = "set"\n[[record]]\nfile = "a.AT2"\n' > set.toml
 expect "set.toml: this is a record-set manifest ([[record]] tables), not a model file (docs/model-format.md); \`skewbridge records info\` and a sweep's [records] set take it" \
   run set.toml
 
+expect "spec.toml: this is a sweep specification ([sweep] table), not a record-set manifest (docs/records.md); \`skewbridge sweep SPEC --out FILE.h5\` takes it" \
+  records info spec.toml
+printf 'name = "s"\n[[record]]\nfile = "a.AT2"\nlable = "A"\n' > lable.toml
+expect "lable.toml:4: lable: unknown key (allowed: file, label, component, scale, units, dt, format, channel); did you mean \`label\`?" \
+  records info lable.toml
+
 # --- records info, inspect: what is really wrong ---
 awk 'BEGIN { for (i = 0; i < 200; i++) printf "%.6f\n", 0.1 * sin(0.1 * i) }' > bare.txt
 expect "records info: --dt: must be a time step > 0 s (got 0)" records info bare.txt --units g --dt 0
