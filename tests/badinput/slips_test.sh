@@ -43,7 +43,7 @@ expect "run: --output-interval: 'abc' is not a number" run model.toml --output-i
 expect "run: --output-interval needs a number" run model.toml --output-interval
 expect "run: unexpected argument 'model.toml' (see skewbridge run --help)" run model.toml model.toml
 expect "modes: MODEL is required (Model file (TOML, docs/model-format.md))" modes
-expect "modes: unknown option --out; allowed: --help, -h" modes model.toml --out x.h5
+expect "modes: unknown option --out; allowed: --help, -h, --plan" modes model.toml --out x.h5
 expect "sweep: --out is required (Output cube FILE.h5 (checkpoints in FILE.h5.partial, lock in FILE.h5.lock))" \
   sweep "$spec"
 expect "sweep: spec is required (Sweep specification (TOML, docs/sweep-format.md))" sweep --out out.h5
