@@ -80,7 +80,7 @@ SYMBOLS = {
     "Pi": "Π_δ = δ ω_g²/a_g: joint gap δ in units of the persistency a_g/ω_g²",
     "Le": "L_e = a_g/ω_g²: persistency of the record (m)",
     "eps": "ε_N: coefficient of restitution; μ: friction coefficient; ξ: damping ratio",
-    "gap": "g_N: normal gap of a corner (m); γ_T: its tangential velocity (m/s)",
+    "gap": "g_N: normal gap of a corner (mm); γ_T: its tangential velocity (m/s)",
     "end": "x_end, y_end, θ_end: residual displacements (m) and rotation (rad) at the end of "
            "the run",
     "decks": "worst deck: per-deck responses drawn as their envelope over the decks (the "
@@ -650,11 +650,12 @@ def tangential_velocity(run):
     return out
 
 
-def history(run, out_dir, name, pdf):
+def history(run, out_dir, name, pdf, title=None):
     """The ground acceleration, x, y, theta of each body, the gaps g_N and tangential velocities
     gamma_T of the contacts against t, with impacts (open circles) and plastic closures (filled)
     on the curves, and a contact timeline: persistent contact (state != 0) filled, impacts
-    open. Returns rows (quantity, max abs, time of max)."""
+    open; `title` (the parameters of the run) before the status line. Returns rows (quantity,
+    max abs, time of max)."""
     has_gap = run.gap is not None
     gamma_t = tangential_velocity(run)
     a_g, a_note = ground_acceleration(run)
@@ -739,7 +740,7 @@ def history(run, out_dir, name, pdf):
         if entries:
             ax_of[key].legend(list(entries.values()), list(entries.keys()), loc="upper left",
                               bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
-    fig.suptitle(f"{os.path.basename(run.path)}: status {run.status}, "
+    fig.suptitle(f"{title or os.path.basename(run.path)}\nstatus {run.status}, "
                  f"{int(run.summary_attrs.get('impacts', 0))} impacts", fontsize=10)
     caption(fig, ["gap"], "x, y, θ: displacements and rotation of the deck relative to the "
             "ground; a_g: ground acceleration. The corners of one end share their face's "

@@ -70,7 +70,7 @@ def draw_plan(plan, out_dir, name, pdf, title=None):
         ax.plot(*m, marker="+", ms=9, color="k", mew=1.4, zorder=8)
         label = (f"L = {d['L_m']:.4g} m, W = {d['W_m']:.4g} m, α = {d['skew_deg']:.4g}°, "
                  f"m = {d['mass_kg'] / 1e3:.5g} t")
-        ax.text(m[0], m[1] - 0.22 * d["W_m"], f"{d['name']}\n" + label.replace(", α", "\nα"),
+        ax.text(m[0], c[:, 1].min() - 0.4 * size, f"{d['name']}: " + label.replace(", α", "\nα"),
                 ha="center", va="top", fontsize=8, color="0.2", zorder=9)
         rows.append((f"deck {i} ({d['name']})", label))
         cr = d.get("centre_of_rigidity_m")

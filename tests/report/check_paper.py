@@ -1,11 +1,12 @@
 #!/usr/bin/python3
 """Checks the output of `scripts/paper --quick` (paper_test.sh):
 
-- every figure of Figs. 5-11 and 13 exists as a PNG that is not blank;
+- every figure of Figs. 5-13 and the extension exists as a PNG that is not blank;
 - paper.md has one section per figure, each with the paper's statement, the parameters, the
   measured numbers and a verdict from the allowed set, and a summary table of the verdicts;
 - the numbers agree with the cubes read directly by h5py: Fig. 7 has no rotation at eta0 <= 1
-  (theory fact 1), Fig. 9's complementary angles at eta0 = 1 have the same transverse
+  (theory fact 1), Fig. 8's map has no rotation at mu = 0.08 and its mu = 0.1 run turns at an
+  impact of P2 alone with friction along +t (fact 2), the complementary angles at eta0 = 1 have the same transverse
   spectrum (exact when the deck does not turn) and paper.md says so; Fig. 5's deviation is the
   one computed here from the run files' histories.
 
@@ -18,10 +19,11 @@ import h5py
 import matplotlib.image
 import numpy as np
 
-FIGURES = ["fig05_self_similarity.png", "fig06_eta0-0.8.png", "fig06_eta0-2.png",
-           "fig07_rotation_vs_eta0.png", "fig08_eta0-2_mu-0.3.png",
-           "fig09_complementary_angles.png", "fig10_spectra_eta0-1.png",
-           "fig10_spectra_eta0-2.png", "fig11_pi_delta_family_eta0-2.png",
+FIGURES = ["fig05_self_similarity.png", "fig06_a30_eta0-0.87.png", "fig06_a20_eta0-1.07.png",
+           "fig07_rotation_vs_eta0.png", "fig08_map_where_the_deck_turns.png",
+           "fig08_mu-0.08.png", "fig08_mu-0.1.png", "fig09_spectra_eta0-1.png",
+           "fig10_spectra_eta0-2.png", "ext_complementary_angles.png",
+           "fig11_pi_delta_family_eta0-2.png", "fig12_pilot_bridge_plan.png",
            "fig13a_theta_vs_persistency.png", "fig13b_rotation_vs_w0x.png"]
 VERDICTS = {"reproduced", "partly", "not", "not tested"}
 
@@ -41,8 +43,8 @@ def main(out, work):
     md = open(os.path.join(out, "paper.md"), encoding="utf-8").read()
     sections = re.split(r"\n## ", md)[1:]
     numbers = [s.split(":")[0] for s in sections]
-    assert numbers == ["Fig. 5", "Fig. 6", "Fig. 7", "Fig. 8", "Fig. 9", "Fig. 10", "Fig. 11",
-                       "Fig. 13"], numbers
+    assert numbers == ["Fig. 5", "Fig. 6", "Fig. 7", "Fig. 8", "Fig. 9", "Fig. 10",
+                       "After Fig. 10", "Fig. 11", "Fig. 12", "Fig. 13"], numbers
     for s in sections:
         for part in ("**Paper.**", "**Here.**", "**Measured.**", "**Verdict: "):
             assert part in s, f"{s.splitlines()[0]}: no {part}"
@@ -50,7 +52,28 @@ def main(out, work):
         assert verdict in VERDICTS, verdict
         for image in re.findall(r"\]\(([^)]+\.png)\)", s):
             assert os.path.exists(os.path.join(out, image)), image
-    assert md.count("| Fig. ") == 8, "no summary table of the verdicts"
+    assert md.count("| Fig. ") == 9 and md.count("| after Fig. 10") == 1, "no verdict table"
+
+    # Fig. 8 (docs/theory.md §4, fact 2): at mu = 0.08 (eta1 = 0.99) no cell of the map turns;
+    # at mu = 0.1 the run turns at an impact that P2 alone takes with friction along +t.
+    g = sweep(work, "fig08")
+    order = [k.decode() if isinstance(k, bytes) else k for k in g.attrs["axis_order"]]
+    mus = list(g["axes/mu"][()])
+    theta = np.moveaxis(g["responses/theta_norm"][()], order.index("mu"), 0)
+    assert np.max(np.abs(theta[mus.index(0.08)])) < 1e-9
+    assert np.max(theta[mus.index(0.1)]) > 1e-3
+    assert "μ = 0.08: 0 %" in md
+    with h5py.File(os.path.join(work, "fig08_mu-0.08.h5"), "r") as f:
+        assert np.max(np.abs(f["histories/q"][()][:, 2])) < 1e-9
+    with h5py.File(os.path.join(work, "fig08_mu-0.1.h5"), "r") as f:
+        ev = f["events"]
+        t, contact, lt = ev["t_s"][()], ev["contact"][()], ev["impulse_T"][()]
+        alone = [ti for ti in np.unique(t) if list(contact[t == ti]) == [1]
+                 and lt[t == ti][0] > 0]
+        assert alone, "no impact of P2 alone with friction along +t"
+        q = f["histories/q"][()]
+        ts = f["histories/t_s"][()]
+        assert np.max(np.abs(q[ts < alone[0], 2])) < 1e-9 < np.max(np.abs(q[:, 2]))
 
     # Fig. 7: fact 1 (no rotation after a frictionless full-edge impact iff eta0 <= 1)
     g = sweep(work, "fig07")
@@ -62,7 +85,7 @@ def main(out, work):
     assert "at η_0 <= 1: 0." in md
 
     # Fig. 9: a and 90 - a at eta0 = 1 give the same y spectrum
-    g = sweep(work, "fig09")
+    g = sweep(work, "fig09")  # the complementary angles (an extension)
     angles = list(g["axes/a_deg"][()])
     order = [k.decode() if isinstance(k, bytes) else k for k in g.attrs["axis_order"]]
     y = np.moveaxis(g["responses/y_norm"][()], [order.index("eta0"), order.index("a_deg")],
