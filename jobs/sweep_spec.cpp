@@ -858,10 +858,18 @@ std::string DescribeIdentityChange(const std::string& stored_canonical,
   if (input_change[0].empty()) return "";
   const std::string& key = input_change[0];
   if (key == "program.version") {
+    if (input_change[1] == "(absent)") {
+      return "the cube holds no input manifest (it was written before the checksums of its "
+             "input files were stored), so its inputs cannot be checked";
+    }
+    auto bare = [](std::string v) {
+      v.erase(std::remove(v.begin(), v.end(), '"'), v.end());
+      return v;
+    };
     return fmt::format(
         "the cube was computed by skewbridge {}, this is {} (its results may "
         "differ)",
-        input_change[1], input_change[2]);
+        bare(input_change[1]), bare(input_change[2]));
   }
   // `ROLE "FILE"`: name the file where this run reads it.
   const std::size_t quote = key.find('"');

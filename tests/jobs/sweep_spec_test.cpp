@@ -297,6 +297,13 @@ TEST(SweepSpec, IdentityChangeNamesTheKeyOrTheFile) {
               HasSubstr((dir / "recs" / "a.txt").string() +
                         " (record) has changed since the cube was computed from it (sha256 "
                         "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad, now "));
+  // A cube of a program that stored no input manifest, or of another version, is refused.
+  EXPECT_THAT(DescribeIdentityChange(canonical, "", spec),
+              HasSubstr("the cube holds no input manifest"));
+  std::string older = inputs;
+  older.replace(0, older.find('\n'), "program.version = \"0.0.9\"");
+  EXPECT_THAT(DescribeIdentityChange(canonical, older, spec),
+              HasSubstr("the cube was computed by skewbridge 0.0.9, this is "));
   // The unused record B is no input: editing it is no change.
   std::ofstream(dir / "recs" / "a.txt") << "abc";
   std::ofstream(dir / "recs" / "b.txt") << "1.0\n";
