@@ -1,15 +1,26 @@
 #include "jobs/evaluator_factory.h"
 
+#include "spectra/limit_states.h"
 #include "spectra/model_file_evaluator.h"
 #include "spectra/multispan_evaluator.h"
 #include "spectra/spectra_evaluator.h"
 
 namespace skewbridge::jobs {
 
-std::unique_ptr<CellEvaluator> MakeEvaluator(const SweepSpec& spec) {
+namespace {
+
+std::unique_ptr<CellEvaluator> FamilyEvaluator(const SweepSpec& spec) {
   if (spec.family == "multi-span") return std::make_unique<spectra::MultiSpanEvaluator>(spec);
   if (spec.family == "model-file") return std::make_unique<spectra::ModelFileEvaluator>(spec);
   return std::make_unique<spectra::SpectraEvaluator>(spec);
+}
+
+}  // namespace
+
+std::unique_ptr<CellEvaluator> MakeEvaluator(const SweepSpec& spec) {
+  std::unique_ptr<CellEvaluator> family = FamilyEvaluator(spec);
+  if (spec.limit_states.empty()) return family;
+  return std::make_unique<spectra::LimitStateEvaluator>(std::move(family), spec);
 }
 
 }  // namespace skewbridge::jobs

@@ -3,6 +3,8 @@
 #include <optional>
 #include <string_view>
 
+#include "spectra/limit_states.h"
+
 namespace skewbridge::jobs {
 namespace {
 
@@ -11,6 +13,75 @@ std::optional<std::size_t> ResponseColumn(const CubeLayout& layout, std::string_
     if (layout.responses[r].name == name) return r;
   }
   return std::nullopt;
+}
+
+// The D / C of the cloud fit per cell, or empty with the reason why there is none.
+std::vector<double> DemandOverCapacity(const spectra::LimitState& ls,
+                                       const std::vector<double>& demand, std::string* why) {
+  using spectra::LimitStateKind;
+  if (ls.kind == LimitStateKind::kJointClosing) {
+    *why = "the demand is a count of impacts: no cloud regression";
+    return {};
+  }
+  const double capacity = ls.kind == LimitStateKind::kUnseating ? 1.0 : ls.threshold;
+  if (!(capacity > 0.0)) {
+    *why = "a threshold of 0 or less: no ln(demand / capacity)";
+    return {};
+  }
+  std::vector<double> out(demand.size());
+  for (std::size_t c = 0; c < demand.size(); ++c) out[c] = demand[c] / capacity;
+  return out;
+}
+
+std::vector<FragilityStudy> MakeFragility(const SweepSpec& spec, const CubeLayout& layout,
+                                          const CubeData& data) {
+  std::vector<FragilityStudy> out;
+  if (spec.limit_states.empty()) return out;
+  // The IM of every cell: the stripe axis im_g, else a_g / g of the cell.
+  std::vector<double> im(data.Cells());
+  std::string im_name, im_description, stripe_axis;
+  if (const Axis* stripes = spec.FindAxis("im_g")) {
+    std::size_t k = 0;
+    while (spec.axes[k].key != "im_g") ++k;
+    for (std::uint64_t c = 0; c < data.Cells(); ++c) {
+      im[c] = stripes->values[spec.AxisIndex(c)[k]];
+    }
+    im_name = "im_g";
+    im_description = "the cell's coordinate of the axis im_g (g): the records scaled to it";
+    stripe_axis = "im_g";
+  } else if (const std::optional<std::size_t> a_g = ResponseColumn(layout, "a_g")) {
+    for (std::uint64_t c = 0; c < data.Cells(); ++c) {
+      im[c] = data.responses[*a_g][c] / records::kStandardGravity_mps2;
+    }
+    im_name = "a_g";
+    im_description =
+        "the cell's a_g / g: the excitation's peak acceleration (a record's PGA "
+        "times scale) in g";
+    if (spec.FindAxis("scale") != nullptr) stripe_axis = "scale";
+  } else {
+    return out;  // no IM stored (a responses subset without a_g)
+  }
+  std::vector<std::uint8_t> usable(data.Cells());
+  for (std::uint64_t cell = 0; cell < data.Cells(); ++cell) {
+    usable[cell] = data.done[cell] != 0 && data.status[cell] == kStatusOk ? 1 : 0;
+  }
+  for (const spectra::LimitState& ls : spec.limit_states) {
+    const auto [demand_name, exceeded_name] = spectra::LimitStateResponseNames(ls);
+    const std::optional<std::size_t> demand = ResponseColumn(layout, demand_name);
+    const std::optional<std::size_t> exceeded = ResponseColumn(layout, exceeded_name);
+    if (!demand || !exceeded) continue;
+    FragilityStudy f;
+    f.ls = ls;
+    f.demand_unit = layout.responses[*demand].unit;
+    f.im = im_name;
+    f.im_description = im_description;
+    std::string no_cloud;
+    const std::vector<double> dc = DemandOverCapacity(ls, data.responses[*demand], &no_cloud);
+    f.table = spectra::FitFragilityOverCells(spec, stripe_axis,
+                                             {im, data.responses[*exceeded], dc, usable}, no_cloud);
+    out.push_back(std::move(f));
+  }
+  return out;
 }
 
 }  // namespace
@@ -33,6 +104,8 @@ StudyTables MakeStudyTables(const SweepSpec& spec, const CubeLayout& layout, con
                                : spec.record_folder + " (" + spec.record_pattern + ")";
     }
   }
+
+  tables.fragility = MakeFragility(spec, layout, data);
 
   // A model-file sweep names its responses per deck: with one deck, its rotation is the one.
   std::optional<std::size_t> theta_col = ResponseColumn(layout, "theta_m");

@@ -10,6 +10,7 @@
 
 #include "jobs/cube.h"
 #include "jobs/sweep_spec.h"
+#include "spectra/fragility_table.h"
 #include "spectra/study.h"
 
 namespace skewbridge::jobs {
@@ -18,10 +19,20 @@ namespace skewbridge::jobs {
 using spectra::BandEdges;
 using spectra::BandOf;
 using spectra::CorrelationTable;
+using spectra::FragilityTable;
 using spectra::kDefaultBandEdges;
 using spectra::kMinBandRecords;
 using spectra::LoadSweepRecords;
 using spectra::SweepRecord;
+
+/// The fragility of one limit state over the cube (docs/hdf5-layout.md, fragility/).
+struct FragilityStudy {
+  spectra::LimitState ls;      ///< the limit state as declared
+  std::string demand_unit;     ///< unit of its demand
+  std::string im;              ///< "im_g" (the stripe axis) or "a_g" (the cell's PGA x scale)
+  std::string im_description;  ///< how the IM of a cell is obtained
+  spectra::FragilityTable table;
+};
 
 /// What the final cube stores besides the cells for a record-driven or banded sweep.
 struct StudyTables {
@@ -30,6 +41,7 @@ struct StudyTables {
   std::string records_set;           ///< the manifest as written, or "synthetic count=N seed=S"
   std::vector<SweepRecord> records;  ///< LoadSweepRecords(spec)
   std::optional<CorrelationTable> correlation;  ///< with a record axis and a Pi_delta axis
+  std::vector<FragilityStudy> fragility;        ///< one per limit state, with an IM
 };
 
 /// Builds the tables from the whole cube (so a resumed sweep gets statistics of all its cells).
@@ -38,6 +50,10 @@ struct StudyTables {
 /// the response band.
 /// `records`: LoadSweepRecords(spec) when the caller already holds them (the evaluator's, see
 /// CellEvaluator::Records), so that a synthetic suite is not made twice; nullptr to load them.
+/// With limit states, each gets its fragility (spectra::FitFragilityOverCells): the IM of a cell
+/// is the coordinate of an `im_g` axis (records scaled to stripes of it, in g) when the sweep has
+/// one, else the cell's excitation amplitude a_g / g (a record's PGA times `scale`, with the
+/// `scale` axis as stripes when there is one; the records' own PGA for a cloud).
 /// @throws InputError as LoadSweepRecords.
 StudyTables MakeStudyTables(const SweepSpec& spec, const CubeLayout& layout, const CubeData& data,
                             const std::vector<SweepRecord>* records = nullptr);

@@ -16,6 +16,7 @@
 #include "solver/common/error.h"
 #include "solver/common/nearest.h"
 #include "spectra/inputs.h"
+#include "spectra/limit_states.h"
 #include "spectra/study.h"
 
 namespace skewbridge::jobs {
@@ -124,10 +125,13 @@ class Parser {
     RejectOtherKindOfFile(root);
     for (auto&& [key, node] : root) {
       const std::string k(key.str());
-      if (k != "sweep" && k != "axes" && k != "fixed" && k != "records" && k != "study") {
-        throw Error(key.source(), k,
-                    "unknown table; allowed: [sweep], [axes], [fixed], [records], [study]" +
-                        DidYouMean(k, {"sweep", "axes", "fixed", "records", "study"}));
+      if (k != "sweep" && k != "axes" && k != "fixed" && k != "records" && k != "study" &&
+          k != "limit_states") {
+        throw Error(
+            key.source(), k,
+            "unknown table; allowed: [sweep], [axes], [fixed], [records], [study], "
+            "[limit_states]" +
+                DidYouMean(k, {"sweep", "axes", "fixed", "records", "study", "limit_states"}));
       }
       if (!node.is_table()) {
         throw Error(node.source(), k, "must be a table [" + k + "]");
@@ -143,6 +147,9 @@ class Parser {
     }
     if (const toml::table* study = root["study"].as_table()) {
       ParseStudyTable(*study, spec);
+    }
+    if (const toml::table* limits = root["limit_states"].as_table()) {
+      ParseLimitStates(*limits, spec);
     }
     if (const toml::table* axes = root["axes"].as_table()) {
       for (auto&& [key, node] : *axes) {
@@ -184,6 +191,18 @@ class Parser {
                                 "give at least one axis (a single cell is `skewbridge run`)");
     }
     CheckCrossFields(spec);
+    // A subset of responses still stores every limit state's demand and exceedance.
+    if (!spec.responses.empty()) {
+      for (const spectra::LimitState& ls : spec.limit_states) {
+        const auto [demand, exceeded] = spectra::LimitStateResponseNames(ls);
+        for (const std::string& name : {demand, exceeded}) {
+          if (std::find(spec.responses.begin(), spec.responses.end(), name) ==
+              spec.responses.end()) {
+            spec.responses.push_back(name);
+          }
+        }
+      }
+    }
     SortCanonically(spec);
     CollectInputs(spec);
     return spec;
@@ -386,6 +405,108 @@ class Parser {
       spec.record_dt_s = *dt;
     }
     spectra::LoadSpecRecordSet(spec);
+  }
+
+  // A threshold of a limit state: a finite number >= 0.
+  double Threshold(const toml::node& node, const std::string& field, std::string_view unit) const {
+    const std::optional<double> v = node.value<double>();
+    if (!node.is_number() || !v || !std::isfinite(*v) || *v < 0.0) {
+      throw Error(node.source(), field, "must be a number >= 0 (" + std::string(unit) + ")");
+    }
+    return *v;
+  }
+
+  // A limit state given as `key = {above_<unit> = v}`.
+  double Above(const toml::node& node, const std::string& field, std::string_view key) const {
+    const toml::table* table = node.as_table();
+    if (table == nullptr || table->size() != 1 || !table->contains(key)) {
+      throw Error(node.source(), field,
+                  "must be a table {" + std::string(key) + " = VALUE} (the value it must exceed)");
+    }
+    return Threshold(*table->get(key), field + "." + std::string(key), key.substr(6));
+  }
+
+  // [limit_states] (docs/sweep-format.md): kept in canonical order, the responses by name.
+  void ParseLimitStates(const toml::table& limits, SweepSpec& spec) const {
+    using spectra::LimitState;
+    using spectra::LimitStateKind;
+    constexpr std::array<std::string_view, 6> kKeys{
+        "unseating", "rotation", "seat_displacement", "residual", "joint_closing", "response"};
+    const std::string allowed =
+        "unknown key; allowed: unseating, rotation, seat_displacement, residual, "
+        "joint_closing, response";
+    for (std::string_view k : kKeys) {
+      const toml::node* node = limits.get(k);
+      if (node == nullptr) continue;
+      const std::string field = "limit_states." + std::string(k);
+      LimitState ls;
+      ls.name = std::string(k);
+      ls.at = Where(source_, node->source());
+      if (k == "unseating" || k == "joint_closing") {
+        ls.kind = k == "unseating" ? LimitStateKind::kUnseating : LimitStateKind::kJointClosing;
+        const std::optional<bool> flag = node->value<bool>();
+        if (node->is_boolean() && flag && *flag) {
+          spec.limit_states.push_back(std::move(ls));
+          continue;
+        }
+        const toml::table* table = node->as_table();
+        if (k == "joint_closing" || table == nullptr || table->size() != 1 ||
+            !table->contains("seat_m")) {
+          throw Error(node->source(), field,
+                      k == "joint_closing"
+                          ? "must be true (any impact exceeds it)"
+                          : "must be true (the sweep's seat widths) or {seat_m = WIDTH} or "
+                            "{seat_m = [WIDTH, ...]} (m, one per support line)");
+        }
+        const toml::node* seat = table->get("seat_m");
+        if (const toml::array* list = seat->as_array()) {
+          if (list->empty()) {
+            throw Error(seat->source(), field + ".seat_m", "must not be empty");
+          }
+          for (const toml::node& item : *list) {
+            ls.seat_m.push_back(Threshold(item, field + ".seat_m", "m"));
+          }
+        } else {
+          ls.seat_m.push_back(Threshold(*seat, field + ".seat_m", "m"));
+        }
+      } else if (k == "rotation") {
+        ls.kind = LimitStateKind::kRotation;
+        ls.threshold = Above(*node, field, "above_rad");
+      } else if (k == "seat_displacement" || k == "residual") {
+        ls.kind = k == "residual" ? LimitStateKind::kResidual : LimitStateKind::kSeatDisplacement;
+        ls.threshold = Above(*node, field, "above_m");
+      } else {
+        const toml::table* table = node->as_table();
+        if (table == nullptr || table->empty()) {
+          throw Error(node->source(), field,
+                      "must be a table {RESPONSE = THRESHOLD, ...} (exceeded above it)");
+        }
+        std::vector<std::string> names;
+        for (auto&& [key, value] : *table) names.emplace_back(key.str());
+        std::sort(names.begin(), names.end());
+        for (const std::string& name : names) {
+          const toml::node* value = table->get(name);
+          LimitState r;
+          r.kind = LimitStateKind::kResponse;
+          r.name = r.response = name;
+          r.at = Where(source_, value->source());
+          r.threshold = value->value<double>().value_or(0.0);
+          if (!value->is_number() || !std::isfinite(r.threshold)) {
+            throw Error(value->source(), field + "." + name,
+                        "must be a finite number (the value the response must exceed)");
+          }
+          spec.limit_states.push_back(std::move(r));
+        }
+        continue;
+      }
+      spec.limit_states.push_back(std::move(ls));
+    }
+    for (auto&& [key, node] : limits) {
+      if (std::find(kKeys.begin(), kKeys.end(), key.str()) == kKeys.end()) {
+        throw Error(key.source(), "limit_states." + std::string(key.str()),
+                    allowed + DidYouMean(key.str(), {kKeys.begin(), kKeys.end()}));
+      }
+    }
   }
 
   void ParseStudyTable(const toml::table& study, SweepSpec& spec) const {
@@ -773,6 +894,13 @@ std::string SweepSpec::CanonicalText() const {
   for (const FixedValue& f : fixed) {
     out << "fixed." << f.key << " = "
         << (f.kind == ParameterKind::kNumber ? Fmt(f.value) : str(f.label)) << "\n";
+  }
+  for (const spectra::LimitState& ls : limit_states) {
+    out << "limit_states." << spectra::LimitStateKindName(ls.kind);
+    if (ls.kind == spectra::LimitStateKind::kResponse) out << "." << ls.response;
+    out << " = {threshold = " << Fmt(ls.threshold) << ", seat_m = [";
+    for (std::size_t i = 0; i < ls.seat_m.size(); ++i) out << (i ? ", " : "") << Fmt(ls.seat_m[i]);
+    out << "]}\n";
   }
   out << "sweep.responses = [";
   for (std::size_t i = 0; i < responses.size(); ++i) {

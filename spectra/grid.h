@@ -39,6 +39,28 @@ struct FixedValue {
   std::string label;   ///< For labels.
 };
 
+/// What a limit state compares (docs/sweep-format.md, [limit_states]).
+enum class LimitStateKind {
+  kUnseating,         ///< a corner's travel normal to its end line beyond its seat width
+  kRotation,          ///< max |theta| of any deck above a value (rad)
+  kSeatDisplacement,  ///< a corner's travel normal to its end line above a value (m)
+  kResidual,          ///< a corner's residual travel normal to its end line above a value (m)
+  kJointClosing,      ///< any impact (a gap closes)
+  kResponse,          ///< a stored response above a value (its unit)
+};
+
+/// One limit state of a sweep: each cell stores its demand and its exceedance (0/1).
+struct LimitState {
+  std::string name;  ///< "unseating", "rotation", ... or the response's name (kResponse)
+  LimitStateKind kind = LimitStateKind::kResponse;
+  double threshold = 0.0;  ///< rad, m or the response's unit; unused by unseating and joints
+  std::string response;    ///< kResponse: the response compared
+  /// kUnseating: seat widths (m) per support line (abutment, pier lines, abutment) or one for
+  /// all; empty: the sweep's own (seat_over_L or the model file's seat width).
+  std::vector<double> seat_m;
+  std::string at;  ///< "spec.toml:LINE" of its key, for messages
+};
+
 /// The validated grid of a sweep. Axes are in the canonical order of the parameter table,
 /// whatever the order in the file, so equal grids give equal cube layouts.
 struct CellGrid {
@@ -66,6 +88,7 @@ struct CellGrid {
   std::vector<double> study_bands;
   std::vector<Axis> axes;
   std::vector<FixedValue> fixed;
+  std::vector<LimitState> limit_states;  ///< [limit_states], in canonical order; may be empty
 
   /// The number of coordinates per axis, in axis order.
   std::vector<std::size_t> Shape() const;

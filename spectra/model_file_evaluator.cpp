@@ -132,6 +132,7 @@ ModelFileEvaluator::ModelFileEvaluator(const CellGrid& spec)
     }
   }
   seats_ = Mentions(spec, "seat_over_L") || (file_.decks && file_.decks->seat_width_m);
+  travel_ = !spec.limit_states.empty();
   if (by_record) records_ = LoadSweepRecords(spec);
   // Every cell's model is built now, so a bad combination fails before the file is touched.
   for (std::uint64_t cell = 0; cell < spec.CellCount(); ++cell) {
@@ -331,6 +332,13 @@ std::vector<ResponseInfo> ModelFileEvaluator::Responses() const {
                          "line (a lower bound)"});
       out.push_back({"margin_norm" + s, "1", "margin_m / L_e" + of});
     }
+    if (travel_) {
+      out.push_back({"travel_m" + s, "m",
+                     "largest corner travel" + of +
+                         " normal to its end line, from the maxima (seat width - margin_m)"});
+      out.push_back({"travel_end_m" + s, "m",
+                     "residual corner travel" + of + " normal to its end line at the end"});
+    }
   }
   out.push_back({"theta_norm_max", "1", "largest theta_norm over the decks"});
   out.push_back({"impacts", "1", "number of impact events (a multi-contact impact counts once)"});
@@ -387,6 +395,11 @@ CellOutcome ModelFileEvaluator::Evaluate(std::span<const std::size_t> axis_index
           model::UnseatingMargin(deck, c.seat_width_m[static_cast<std::size_t>(d)], q_max);
       out.responses.push_back(value(margin_m));
       out.responses.push_back(value(margin_m * to_norm));
+    }
+    if (travel_) {
+      // The margin of a zero seat is minus the travel (model::UnseatingMargin).
+      out.responses.push_back(value(-model::UnseatingMargin(deck, 0.0, q_max)));
+      out.responses.push_back(value(-model::UnseatingMargin(deck, 0.0, q_end.cwiseAbs())));
     }
   }
   out.responses.push_back(value(theta_max));

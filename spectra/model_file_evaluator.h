@@ -75,7 +75,8 @@ class ModelFileEvaluator final : public CellEvaluator {
   double samples_dt_s_ = 0.0;
   std::optional<records::IntensityMeasures> samples_measures_;
   int n_decks_ = 1;
-  bool seats_ = false;  ///< margins are stored (seat_over_L given, or the file's seat width)
+  bool seats_ = false;   ///< margins are stored (seat_over_L given, or the file's seat width)
+  bool travel_ = false;  ///< corner travels are stored (the sweep declares limit states)
 };
 
 }  // namespace skewbridge::spectra

@@ -14,6 +14,7 @@
 
 #include "jobs/h5/h5.h"
 #include "solver/common/error.h"
+#include "spectra/limit_states.h"
 
 namespace skewbridge::jobs::h5 {
 namespace {
@@ -488,6 +489,100 @@ void WriteCorrelation(hid_t sweep_group, const CorrelationTable& table,
                     "log-log R^2" + per_band));
 }
 
+void WriteFragility(hid_t sweep_group, const std::vector<FragilityStudy>& studies) {
+  Id g = CreateGroup(sweep_group, "fragility");
+  const FragilityStudy& first = studies.front();
+  std::vector<std::string> names;
+  for (const FragilityStudy& f : studies) names.push_back(f.ls.name);
+  SetAttr(g.get(), "limit_states", names);
+  SetAttr(g.get(), "im", first.im);
+  SetAttr(g.get(), "im_units", std::string("g"));
+  SetAttr(g.get(), "im_description", first.im_description);
+  SetAttr(g.get(), "stripe_axis", first.table.stripe_axis);
+  SetAttr(g.get(), "axis_order", first.table.axis_order);
+  SetAttr(g.get(), "model",
+          std::string("P(exceeded | IM = x) = Phi(ln(x / theta) / beta), lognormal"));
+  SetAttr(g.get(), "likelihood",
+          std::string("binomial over the cells, maximised by Newton's method; standard errors "
+                      "from the observed information [Baker 2015, Earthquake Spectra "
+                      "31(1):579-599]"));
+  SetAttr(g.get(), "cloud",
+          std::string("ln(D / C) = cloud_intercept + cloud_slope ln(IM), least squares; "
+                      "cloud_theta = exp(-intercept / slope), cloud_beta = sigma / slope "
+                      "[Cornell et al. 2002]"));
+  SetAttr(g.get(), "bootstrap",
+          std::string("records drawn with replacement (std::mt19937_64, seed per combination "
+                      "seeded from bootstrap_seed and its index), percentiles 2.5 and 97.5"));
+  SetAttr(g.get(), "bootstrap_resamples",
+          static_cast<std::int64_t>(first.table.bootstrap_resamples));
+  SetAttr(g.get(), "bootstrap_seed", static_cast<std::int64_t>(first.table.bootstrap_seed));
+  SetAttr(g.get(), "confidence", 0.95);
+  std::vector<Id> scales;
+  for (const std::string& key : first.table.axis_order) {
+    scales.push_back(OpenDataset(sweep_group, "axes/" + key));
+  }
+  for (const FragilityStudy& f : studies) {
+    const FragilityTable& t = f.table;
+    Id ls = CreateGroup(g.get(), f.ls.name);
+    SetAttr(ls.get(), "kind", spectra::LimitStateKindName(f.ls.kind));
+    SetAttr(ls.get(), "threshold", f.ls.threshold);
+    SetAttr(ls.get(), "demand_units", f.demand_unit);
+    if (!f.ls.seat_m.empty()) SetDoublesAttr(ls.get(), "seat_m", f.ls.seat_m);
+    if (f.ls.kind == spectra::LimitStateKind::kResponse)
+      SetAttr(ls.get(), "response", f.ls.response);
+    std::vector<hsize_t> shape(t.shape.begin(), t.shape.end());
+    if (shape.empty()) shape.push_back(1);
+    auto attach = [&](const Id& ds) {
+      for (std::size_t k = 0; k < scales.size(); ++k) {
+        AttachScale(ds.get(), scales[k].get(), static_cast<unsigned>(k), t.axis_order[k]);
+      }
+    };
+    auto put = [&](const std::string& name, const auto& values, const std::string& units,
+                   const std::string& description) {
+      attach(WriteArray(ls.get(), name, shape, values, units, description));
+    };
+    put("theta", t.theta, "g", "maximum-likelihood median IM of exceedance");
+    put("beta", t.beta, "1", "maximum-likelihood dispersion (log standard deviation)");
+    put("se_ln_theta", t.se_ln_theta, "1", "standard error of ln theta (observed information)");
+    put("se_beta", t.se_beta, "1", "standard error of beta (observed information)");
+    put("cov_ln_theta_beta", t.cov_ln_theta_beta, "1", "covariance of (ln theta, beta)");
+    put("theta_lo", t.theta_lo, "g", "95 % interval of theta: exp(ln theta - 1.96 se_ln_theta)");
+    put("theta_hi", t.theta_hi, "g", "95 % interval of theta: exp(ln theta + 1.96 se_ln_theta)");
+    put("beta_lo", t.beta_lo, "1", "95 % interval of beta: beta - 1.96 se_beta");
+    put("beta_hi", t.beta_hi, "1", "95 % interval of beta: beta + 1.96 se_beta");
+    put("boot_theta_lo", t.boot_theta_lo, "g", "2.5 % of theta over the bootstrap resamples");
+    put("boot_theta_hi", t.boot_theta_hi, "g", "97.5 % of theta over the bootstrap resamples");
+    put("boot_beta_lo", t.boot_beta_lo, "1", "2.5 % of beta over the bootstrap resamples");
+    put("boot_beta_hi", t.boot_beta_hi, "1", "97.5 % of beta over the bootstrap resamples");
+    put("boot_used", t.boot_used, "1", "bootstrap resamples that gave a fit (NaN bounds below 20)");
+    put("n_cells", t.n_cells, "1", "cells used: done, status ok");
+    put("n_exceeded", t.n_exceeded, "1", "cells among them that exceeded the limit state");
+    put("cloud_n", t.cloud_n, "1", "cells of the cloud fit: D / C > 0 and IM > 0, finite");
+    put("cloud_excluded", t.cloud_excluded, "1", "cells left out of the cloud fit");
+    put("cloud_intercept", t.cloud_intercept, "1", "intercept of ln(D / C) on ln(IM / 1 g)");
+    put("cloud_slope", t.cloud_slope, "1", "slope of ln(D / C) on ln(IM)");
+    put("cloud_sigma", t.cloud_sigma, "1", "residual standard deviation of ln(D / C)");
+    put("cloud_theta", t.cloud_theta, "g", "cloud median IM of D = C");
+    put("cloud_beta", t.cloud_beta, "1", "cloud dispersion sigma / slope");
+    WriteStrings(ls.get(), "reason", t.reason);
+    WriteStrings(ls.get(), "cloud_reason", t.cloud_reason);
+    if (t.stripes == 0) continue;
+    std::vector<hsize_t> stripe_shape(t.shape.begin(), t.shape.end());
+    stripe_shape.push_back(t.stripes);
+    Id stripe_scale = OpenDataset(sweep_group, "axes/" + t.stripe_axis);
+    auto put_stripes = [&](const std::string& name, const auto& values, const std::string& units,
+                           const std::string& description) {
+      Id ds = WriteArray(ls.get(), name, stripe_shape, values, units, description);
+      attach(ds);
+      AttachScale(ds.get(), stripe_scale.get(), static_cast<unsigned>(t.shape.size()),
+                  t.stripe_axis);
+    };
+    put_stripes("stripe_im", t.stripe_im, "g", "geometric mean IM of the stripe's cells");
+    put_stripes("stripe_n", t.stripe_n, "1", "cells of the stripe used");
+    put_stripes("stripe_exceeded", t.stripe_exceeded, "1", "cells of the stripe that exceeded");
+  }
+}
+
 void WriteStudyTables(const Datasets& d, const CubeLayout& layout, const StudyTables& study) {
   for (std::size_t r = 0; r < layout.responses.size(); ++r) {
     if (layout.responses[r].name == "band" && !study.band_edges.empty()) {
@@ -496,6 +591,7 @@ void WriteStudyTables(const Datasets& d, const CubeLayout& layout, const StudyTa
   }
   if (!study.records.empty()) WriteRecordTable(d.group.get(), study);
   if (study.correlation) WriteCorrelation(d.group.get(), *study.correlation, study.band_edges);
+  if (!study.fragility.empty()) WriteFragility(d.group.get(), study.fragility);
 }
 
 Datasets OpenLayout(const std::string& path, const std::string& sweep, bool writable,

@@ -313,3 +313,32 @@ TEST(SweepSpec, IdentityChangeNamesTheKeyOrTheFile) {
 
 }  // namespace
 }  // namespace skewbridge::jobs
+
+namespace skewbridge::jobs {
+namespace {
+
+TEST(SweepSpec, LimitStatesAreCanonicalAndPartOfTheIdentity) {
+  const std::string base = std::string(kGood) + "\n[limit_states]\n";
+  const SweepSpec a = ParseSweepSpec(base +
+                                         "joint_closing = true\nrotation = {above_rad = 0.01}\n"
+                                         "response = {x_m = 0.2, impacts = 3}\n",
+                                     "spec.toml", ".");
+  const SweepSpec b = ParseSweepSpec(base +
+                                         "response = {impacts = 3.0, x_m = 0.2}\n"
+                                         "rotation = {above_rad = 1e-2}\njoint_closing = true\n",
+                                     "spec.toml", ".");
+  ASSERT_EQ(a.limit_states.size(), 4u);
+  EXPECT_EQ(a.limit_states[0].name, "rotation");
+  EXPECT_EQ(a.limit_states[1].name, "joint_closing");
+  EXPECT_EQ(a.limit_states[2].name, "impacts");
+  EXPECT_EQ(a.Hash(), b.Hash());
+  EXPECT_NE(a.Hash(), ParseSweepSpec(kGood, "spec.toml", ".").Hash());
+  const SweepSpec c = ParseSweepSpec(base +
+                                         "joint_closing = true\nrotation = {above_rad = 0.02}\n"
+                                         "response = {x_m = 0.2, impacts = 3}\n",
+                                     "spec.toml", ".");
+  EXPECT_NE(a.Hash(), c.Hash());
+}
+
+}  // namespace
+}  // namespace skewbridge::jobs

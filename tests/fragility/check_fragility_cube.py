@@ -1,0 +1,121 @@
+"""Checks the fragility/ group of a sweep cube against an independent computation from the
+cube's own cells: the maximum-likelihood (theta, beta) against scipy.optimize.minimize on the
+binomial likelihood written out here (Baker 2015, eq. 11), the standard errors against a
+finite-difference Hessian of that likelihood, the cloud fit against numpy.polyfit, and the
+counts per stripe against the exceedance columns.
+
+usage: check_fragility_cube.py FILE.h5 SWEEP [MIN_FITTED]
+MIN_FITTED: fail unless at least this many (limit state, combination) pairs have a fit.
+"""
+import itertools
+import math
+import sys
+
+import h5py
+import numpy as np
+from scipy import optimize, stats
+
+G = 9.80665
+
+
+def negloglik(p, x, z):
+    ln_theta, beta = p
+    u = (np.log(x) - ln_theta) / beta
+    return -np.sum(z * stats.norm.logcdf(u) + (1 - z) * stats.norm.logcdf(-u))
+
+
+def close(a, b, rtol, what):
+    assert abs(a - b) <= rtol * abs(b), "%s: cube %r, independent %r" % (what, a, b)
+
+
+def main():
+    path, sweep = sys.argv[1], sys.argv[2]
+    min_fitted = int(sys.argv[3]) if len(sys.argv) > 3 else 1
+    g = h5py.File(path, "r")["sweeps/" + sweep]
+    axes = [a.decode() if isinstance(a, bytes) else a for a in g.attrs["axis_order"]]
+    f = g["fragility"]
+    combo_axes = list(f.attrs["axis_order"])
+    stripe_axis = f.attrs["stripe_axis"]
+    ok = (g["done"][()] == 1) & (g["status"][()] == 0)
+    if f.attrs["im"] == "im_g":
+        im = np.broadcast_to(g["axes/im_g"][()].reshape(
+            [-1 if a == "im_g" else 1 for a in axes]), ok.shape)
+    else:
+        im = g["responses/a_g"][()] / G
+    fitted = 0
+    for name in f.attrs["limit_states"]:
+        h = f[name]
+        z_all = g["responses/ls_" + name][()]
+        d_all = g["responses/ls_" + name + "_demand"][()]
+        kind = h.attrs["kind"]
+        cap = 1.0 if kind == "unseating" else float(h.attrs["threshold"])
+        reasons = [r.decode() for r in h["reason"][()]]
+        shape = [len(g["axes/" + a]) for a in combo_axes]
+        for flat, idx in enumerate(itertools.product(*[range(s) for s in shape])):
+            sel = [slice(None)] * len(axes)
+            for a, i in zip(combo_axes, idx):
+                sel[axes.index(a)] = i
+            sel = tuple(sel)
+            use = ok[sel] & np.isfinite(z_all[sel])
+            x, z, d = im[sel][use], z_all[sel][use], d_all[sel][use]
+            at = idx if idx else 0
+            assert int(h["n_cells"][at]) == len(x), "%s %s: n_cells" % (name, idx)
+            assert int(h["n_exceeded"][at]) == int(z.sum()), "%s %s: n_exceeded" % (name, idx)
+            assert set(np.unique(z)) <= {0.0, 1.0}, "exceedance not 0/1"
+            if stripe_axis:
+                k = axes.index(stripe_axis)
+                zs, xs = z_all[sel], im[sel]
+                # the stripe axis is the k'th of the remaining (non-combination) dimensions
+                rest = [a for a in axes if a not in combo_axes]
+                ks = rest.index(stripe_axis)
+                for s in range(len(g["axes/" + stripe_axis])):
+                    take = [slice(None)] * len(rest)
+                    take[ks] = s
+                    take = tuple(take)
+                    u = ok[sel][take] & np.isfinite(zs[take])
+                    assert h["stripe_n"][at][s] == u.sum(), "%s stripe_n" % name
+                    assert h["stripe_exceeded"][at][s] == zs[take][u].sum(), "%s stripe_exceeded" % name
+                    if u.any():
+                        close(h["stripe_im"][at][s], math.exp(np.log(xs[take][u]).mean()), 1e-12,
+                              "%s stripe_im" % name)
+            theta, beta = float(h["theta"][at]), float(h["beta"][at])
+            if reasons[flat]:
+                assert math.isnan(theta) and math.isnan(beta), "a reason and a number"
+            else:
+                fitted += 1
+                start = [np.log(x).mean(), max(np.log(x).std(), 0.1)]
+                res = optimize.minimize(negloglik, start, args=(x, z), method="Nelder-Mead",
+                                        options={"xatol": 1e-11, "fatol": 1e-13, "maxiter": 40000})
+                close(theta, math.exp(res.x[0]), 1e-6, "%s %s theta" % (name, idx))
+                close(beta, res.x[1], 1e-6, "%s %s beta" % (name, idx))
+                # observed information by central differences at the cube's optimum
+                p0, hstep = np.array([math.log(theta), beta]), 1e-4
+                H = np.zeros((2, 2))
+                for i in range(2):
+                    for j in range(2):
+                        ei, ej = np.eye(2)[i] * hstep, np.eye(2)[j] * hstep
+                        H[i, j] = (negloglik(p0 + ei + ej, x, z) - negloglik(p0 + ei - ej, x, z)
+                                   - negloglik(p0 - ei + ej, x, z) + negloglik(p0 - ei - ej, x, z)) / (4 * hstep ** 2)
+                cov = np.linalg.inv(H)
+                close(float(h["se_ln_theta"][at]), math.sqrt(cov[0, 0]), 1e-4, "se_ln_theta")
+                close(float(h["se_beta"][at]), math.sqrt(cov[1, 1]), 1e-4, "se_beta")
+                lo, hi = float(h["boot_theta_lo"][at]), float(h["boot_theta_hi"][at])
+                if not math.isnan(lo):
+                    assert lo <= hi and 0 < int(h["boot_used"][at]) <= int(f.attrs["bootstrap_resamples"])
+            cloud_reason = h["cloud_reason"][()][flat].decode()
+            if not cloud_reason:
+                keep = (d / cap > 0) & np.isfinite(d / cap)
+                b, a = np.polyfit(np.log(x[keep]), np.log(d[keep] / cap), 1)
+                r = np.log(d[keep] / cap) - a - b * np.log(x[keep])
+                s = math.sqrt((r ** 2).sum() / (keep.sum() - 2))
+                close(float(h["cloud_slope"][at]), b, 1e-9, "cloud slope")
+                close(float(h["cloud_sigma"][at]), s, 1e-9, "cloud sigma")
+                if b > 0:
+                    close(float(h["cloud_theta"][at]), math.exp(-a / b), 1e-9, "cloud theta")
+                    close(float(h["cloud_beta"][at]), s / b, 1e-9, "cloud beta")
+    assert fitted >= min_fitted, "only %d fits, expected at least %d" % (fitted, min_fitted)
+    print("fragility of %s: %d fits agree with scipy and numpy" % (sweep, fitted))
+
+
+if __name__ == "__main__":
+    main()

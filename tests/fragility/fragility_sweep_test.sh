@@ -1,0 +1,132 @@
+#!/usr/bin/env bash
+# Limit states and fragility end to end, through `skewbridge sweep` into real HDF5 files:
+#  1. the pilot bridge's model file under a 12-record synthetic suite scaled in 8 stripes, on 2
+#     ranks: check_fragility_cube.py refits every stored fragility with scipy.optimize;
+#  2. real records (tests/data/records) with gaps and seats larger than any response: no cell
+#     closes a joint or unseats, P = 0 at every stripe and the fit says why it gives no number;
+#  3. the same records with zero gaps and zero seats: every cell impacts and unseats (P = 1);
+#  4. bad [limit_states] keys: one line naming the key, exit status 2, no output file.
+# usage: fragility_sweep_test.sh SKEWBRIDGE MPIEXEC SOURCE_DIR WORK_DIR
+set -euo pipefail
+exe=$1 mpiexec=$2 src=$3 work=$4
+rm -rf "$work" && mkdir -p "$work/rec" && cd "$work"
+fail() { echo "fragility_sweep_test: FAIL: $*" >&2; exit 1; }
+cp "$src/docs/examples/pilot-bridge.toml" "$src/docs/examples/pilot-signal.txt" .
+cp "$src/tests/data/records/NIS090.AT2" "$src/tests/data/records/RSN763_LOMAP_GIL067.AT2" \
+   "$src/tests/data/records/0111a.smc" rec/
+
+cat > stripes.toml <<'TOML'
+[sweep]
+name = "stripes"
+family = "model-file"
+model = "pilot-bridge.toml"
+[records]
+synthetic = {count = 12, seed = 5}
+[axes]
+record = "*"
+scale = {logspace = [0.25, 6.0, 8]}
+a_deg = [20, 40]
+[fixed]
+gap_m = 0.02
+[limit_states]
+rotation = {above_rad = 0.0005}
+unseating = {seat_m = 0.1}
+joint_closing = true
+response = {x_m_d0 = 0.08}
+TOML
+"$mpiexec" -n 2 --oversubscribe "$exe" sweep stripes.toml --out stripes.h5 --quiet \
+  || fail "the stripes sweep failed"
+/usr/bin/python3 "$src/tests/fragility/check_fragility_cube.py" stripes.h5 stripes 3 \
+  || fail "stripes.h5: the stored fits differ from scipy's"
+
+# Gaps and seats of 100 m: no response reaches them.
+sed -e 's/^name = "stripes"/name = "wide"/' -e '/^\[records\]/,/^\[axes\]/c\[records]\nfolder = "rec"\npattern = "*"\n[axes]' \
+    -e 's/^gap_m = .*/gap_m = 100.0/' -e 's/^unseating = .*/unseating = {seat_m = 100.0}/' \
+    stripes.toml > wide.toml
+"$exe" sweep wide.toml --out wide.h5 --quiet || fail "the wide-gap sweep failed"
+# Zero gaps and zero seats: the deck touches both abutments from the start and slides off.
+sed -e 's/^name = "stripes"/name = "tight"/' -e '/^\[records\]/,/^\[axes\]/c\[records]\nfolder = "rec"\npattern = "*"\n[axes]' \
+    -e 's/^gap_m = .*/gap_m = 0.0/' -e 's/^unseating = .*/unseating = {seat_m = 0.0}/' \
+    -e 's/^scale = .*/scale = [0.5, 1.0, 2.0]/' -e 's/^a_deg = .*/a_deg = [20]/' \
+    stripes.toml > tight.toml
+"$exe" sweep tight.toml --out tight.h5 --quiet || fail "the zero-gap sweep failed"
+/usr/bin/python3 - wide.h5 tight.h5 <<'PY' || fail "the bounding bridges do not give P = 0 and P = 1"
+import sys, h5py, numpy as np
+w = h5py.File(sys.argv[1], "r")["sweeps/wide"]
+t = h5py.File(sys.argv[2], "r")["sweeps/tight"]
+assert len(w["axes/record"]) == 3 and w["status"][()].max() == 0
+for name in ("joint_closing", "unseating"):
+    z = w["responses/ls_" + name][()]
+    assert z.size == 48 and (z == 0).all(), "wide gap: %s exceeded in %d cells" % (name, (z != 0).sum())
+    f = w["fragility/" + name]
+    assert (f["stripe_exceeded"][()] == 0).all() and (f["stripe_n"][()] == 3).all()
+    assert np.isnan(f["theta"][()]).all()
+    assert all(r.decode().startswith("no exceedance in 24 cells") for r in f["reason"][()]), f["reason"][()]
+assert (w["responses/impacts"][()] == 0).all()
+for name in ("joint_closing", "unseating"):
+    z = t["responses/ls_" + name][()]
+    assert (z == 1).all(), "zero gap and seat: %s not exceeded in %d cells" % (name, (z != 1).sum())
+    f = t["fragility/" + name]
+    assert (f["stripe_exceeded"][()] == f["stripe_n"][()]).all()
+    assert all(r.decode().startswith("exceeded in all 9 cells") for r in f["reason"][()])
+print("wide gap: P = 0 in all 48 cells; zero gap and seat: P = 1 in all 9 cells")
+PY
+
+# Bad keys: one line each, status 2, no cube.
+check_bad() {  # check_bad NAME EXPECTED_TEXT < TOML
+  cat > "$1.toml"
+  set +e
+  "$exe" sweep "$1.toml" --out "$1.h5" > out.txt 2> err.txt
+  local status=$?
+  set -e
+  [ "$status" -eq 2 ] || fail "$1: exit status $status, expected 2"
+  [ "$(wc -l < err.txt)" -eq 1 ] || fail "$1: expected one line, got: $(cat err.txt)"
+  grep -qF -- "$2" err.txt || fail "$1: expected '$2' in: $(cat err.txt)"
+  [ ! -e "$1.h5" ] && [ ! -e "$1.h5.partial" ] || fail "$1: an output file was left"
+}
+head_spec='[sweep]
+name = "bad"
+family = "model-file"
+model = "pilot-bridge.toml"
+[axes]
+scale = [1.0, 2.0]'
+check_bad unknown_key "limit_states.rotatoin: unknown key; allowed: unseating, rotation" <<TOML
+$head_spec
+[limit_states]
+rotatoin = {above_rad = 0.01}
+TOML
+check_bad no_value "limit_states.rotation: must be a table {above_rad = VALUE}" <<TOML
+$head_spec
+[limit_states]
+rotation = 0.01
+TOML
+check_bad negative "limit_states.seat_displacement.above_m: must be a number >= 0 (m)" <<TOML
+$head_spec
+[limit_states]
+seat_displacement = {above_m = -1}
+TOML
+check_bad no_seats "limit_states.unseating: needs seat widths" <<TOML
+$head_spec
+[limit_states]
+unseating = true
+TOML
+check_bad seat_count "limit_states.unseating.seat_m: give one seat width or one per support line (2 for 1 deck" <<TOML
+$head_spec
+[limit_states]
+unseating = {seat_m = [0.5, 0.4, 0.3]}
+TOML
+check_bad response "limit_states.response.theta_max: unknown response; allowed: x_m_d0" <<TOML
+$head_spec
+[limit_states]
+response = {theta_max = 0.01}
+TOML
+check_bad family "limit_states.seat_displacement: needs the corner travel of each deck" <<TOML
+[sweep]
+name = "bad"
+family = "pilot-bridge"
+[axes]
+Pi_delta = [0.5, 1.0]
+[limit_states]
+seat_displacement = {above_m = 0.1}
+TOML
+echo "fragility_sweep_test: ok"
