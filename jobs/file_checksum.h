@@ -16,7 +16,7 @@ struct FileChecksum {
   std::uint64_t bytes = 0;  ///< the file's size [bytes]
 };
 
-/// Reads `path` once, in 1 MiB blocks, and returns its SHA-256 and size.
+/// Reads `path` once, in 64 KiB blocks, and returns its SHA-256 and size.
 /// @throws InputError naming the file when it cannot be read.
 FileChecksum ChecksumFile(const std::filesystem::path& path);
 

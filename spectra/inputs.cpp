@@ -1,6 +1,7 @@
 #include "spectra/inputs.h"
 
 #include <optional>
+#include <set>
 #include <system_error>
 
 #include "records/record_set.h"
@@ -12,11 +13,9 @@ namespace skewbridge::spectra {
 
 std::vector<GridInput> GridInputFiles(const CellGrid& grid) {
   std::vector<GridInput> out;
-  auto add = [&out](const char* role, const std::filesystem::path& path) {
-    for (const GridInput& known : out) {
-      if (known.path.lexically_normal() == path.lexically_normal()) return;
-    }
-    out.push_back({role, path});
+  std::set<std::filesystem::path> seen;  // normal forms of the paths in `out`
+  auto add = [&out, &seen](const char* role, const std::filesystem::path& path) {
+    if (seen.insert(path.lexically_normal()).second) out.push_back({role, path});
   };
   if (!grid.model_path.empty()) {
     add("model", grid.model_path);
