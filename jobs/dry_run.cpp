@@ -182,6 +182,12 @@ std::string DryRunReport(const SweepSpec& spec, const CellEvaluator& evaluator, 
       "timed here, one after another, on rank 0 ({} of {} cells, one drawn at "
       "random from each of {} equal slices of the cell list):\n",
       sample.size(), cells, sample.size());
+  // A sweep that scales each record per cell stores the factor as the response scale_factor;
+  // the timed cells show theirs.
+  std::size_t scale_at = responses.size();
+  for (std::size_t r = 0; r < responses.size(); ++r) {
+    scale_at = responses[r].name == "scale_factor" ? r : scale_at;
+  }
   std::vector<double> times;
   for (std::uint64_t c : sample) {
     const std::vector<std::size_t> index = spec.AxisIndex(c);
@@ -189,8 +195,11 @@ std::string DryRunReport(const SweepSpec& spec, const CellEvaluator& evaluator, 
     std::string note;
     try {  // a cell that throws is data in a sweep (status exception); here, a note
       const CellOutcome outcome = evaluator.Evaluate(index);
+      if (scale_at < outcome.responses.size()) {  // records scaled cell by cell (stripes)
+        note = fmt::format("  scale factor {:.4g}", outcome.responses[scale_at]);
+      }
       if (outcome.status != kStatusOk) {
-        note = fmt::format(" (status {}: {})", outcome.status, outcome.status_text);
+        note += fmt::format(" (status {}: {})", outcome.status, outcome.status_text);
       }
     } catch (const std::exception& err) {
       note = std::string(" (threw: ") + err.what() + ")";

@@ -1,8 +1,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -130,14 +133,99 @@ void PrintFixed(const jobs::h5::SweepSummary& s) {
   }
 }
 
-// Limit-state results (the sweep's limit_states/ group): a cube without them says so, so that
-// their absence is never read as "no exceedance". The per-limit-state lines (demand, exceeded
-// cells, fragility median and beta) are printed here once that group's layout is fixed.
-void PrintLimitStates(const jobs::h5::SweepSummary& s) {
-  const bool stored =
-      std::find(s.children.begin(), s.children.end(), "limit_states") != s.children.end();
-  std::printf("  limit states: %s\n",
-              stored ? "stored in limit_states/ (read them with h5py)" : "none declared");
+// The limit states of a sweep ([limit_states], docs/sweep-format.md): per limit state the cells
+// that exceeded it (response ls_<name>: 1 or 0, NaN for a failed cell) and the largest demand
+// (ls_<name>_demand); then, in a final cube, the fitted fragility (fragility/<name>/: median
+// theta [g], dispersion beta, cells and exceedances, per combination of the axes other than
+// record and the stripe axis). A cube without them says so, so that their absence is never
+// read as "no exceedance".
+void PrintLimitStates(const std::string& path, const jobs::h5::SweepSummary& s) {
+  std::vector<std::string> names;
+  std::map<std::string, std::string> demand_unit;
+  for (const jobs::ResponseInfo& r : s.responses) {
+    const bool demand = r.name.size() > 7 && r.name.ends_with("_demand");
+    if (r.name.starts_with("ls_") && !demand) {
+      names.push_back(r.name.substr(3));
+    } else if (r.name.starts_with("ls_")) {
+      demand_unit[r.name.substr(3, r.name.size() - 10)] = r.unit;
+    }
+  }
+  if (names.empty()) {
+    std::printf("  limit states: none declared\n");
+    return;
+  }
+  std::printf("  limit states (cells done with a value; largest demand):\n");
+  for (const std::string& name : names) {
+    const std::optional<std::vector<double>> exceeded =
+        ReadIfPresent(path, s.name, "responses/ls_" + name);
+    const std::optional<std::vector<double>> demand =
+        ReadIfPresent(path, s.name, "responses/ls_" + name + "_demand");
+    std::size_t with_value = 0;
+    std::size_t over = 0;
+    for (double e : exceeded.value_or(std::vector<double>{})) {
+      with_value += std::isfinite(e) ? 1 : 0;
+      over += e == 1.0 ? 1 : 0;
+    }
+    double largest = -std::numeric_limits<double>::infinity();
+    for (double d : demand.value_or(std::vector<double>{})) {
+      largest = std::isfinite(d) ? std::max(largest, d) : largest;
+    }
+    const std::string unit = demand_unit.count(name) ? demand_unit[name] : "";
+    std::printf("    %-18s exceeded in %zu of %zu cells; demand up to %s\n", name.c_str(), over,
+                with_value,
+                std::isfinite(largest) ? fmt::format("{:.6g}{}", largest, UnitSuffix(unit)).c_str()
+                                       : "- (no cell with a value)");
+  }
+  if (std::find(s.children.begin(), s.children.end(), "fragility") == s.children.end()) {
+    std::printf("  fragility: none (fitted into the final cube only)\n");
+    return;
+  }
+  // The combinations: the axes other than record and the stripe axis, row-major.
+  std::vector<const jobs::h5::AxisSummary*> others;
+  for (const jobs::h5::AxisSummary& a : s.axes) {
+    if (a.name != "record" && a.name != "im_g" && a.name != "scale") {
+      others.push_back(&a);
+    }
+  }
+  std::string row_label;
+  for (const jobs::h5::AxisSummary* a : others) {
+    row_label += (row_label.empty() ? "" : ",") + a->name;
+  }
+  std::printf("  fragility (fragility/): P = Phi(ln(IM / theta) / beta), theta [g], per %s\n",
+              row_label.empty() ? "sweep" : row_label.c_str());
+  std::printf("    %-18s %-22s %8s %9s %12s %10s %12s %12s\n", "limit state",
+              row_label.empty() ? "-" : row_label.c_str(), "cells", "exceeded", "theta", "beta",
+              "theta_lo", "theta_hi");
+  for (const std::string& name : names) {
+    const std::string g = "fragility/" + name + "/";
+    const std::optional<std::vector<double>> theta = ReadIfPresent(path, s.name, g + "theta");
+    const std::optional<std::vector<double>> beta = ReadIfPresent(path, s.name, g + "beta");
+    const std::optional<std::vector<double>> n = ReadIfPresent(path, s.name, g + "n_cells");
+    const std::optional<std::vector<double>> k = ReadIfPresent(path, s.name, g + "n_exceeded");
+    const std::optional<std::vector<double>> lo = ReadIfPresent(path, s.name, g + "theta_lo");
+    const std::optional<std::vector<double>> hi = ReadIfPresent(path, s.name, g + "theta_hi");
+    if (!theta || !beta || !n || !k || !lo || !hi) {
+      std::printf("    %-18s (not fitted)\n", name.c_str());
+      continue;
+    }
+    std::size_t combinations = 1;
+    for (const jobs::h5::AxisSummary* a : others) combinations *= a->size;
+    for (std::size_t row = 0; row < theta->size(); ++row) {
+      std::string label = "-";
+      if (!others.empty() && theta->size() == combinations) {
+        label.clear();
+        std::size_t rest = row;
+        for (std::size_t j = others.size(); j-- > 0;) {
+          const std::size_t size = others[j]->size;
+          label = Coordinate(*others[j], rest % size) + (label.empty() ? "" : "," + label);
+          rest /= size;
+        }
+      }
+      std::printf("    %-18s %-22s %8.0f %9.0f %12.6g %10.6g %12.6g %12.6g\n", name.c_str(),
+                  label.c_str(), (*n)[row], (*k)[row], (*theta)[row], (*beta)[row], (*lo)[row],
+                  (*hi)[row]);
+    }
+  }
 }
 
 void PrintCube(const std::string& path) {
@@ -165,7 +253,7 @@ void PrintCube(const std::string& path) {
                   example == s.status_examples.end() ? "" : ("  e.g. " + example->second).c_str());
     }
     PrintRecordStudy(path, s);
-    PrintLimitStates(s);
+    PrintLimitStates(path, s);
   }
 }
 

@@ -224,6 +224,15 @@ def generic_sections(sweep, args, used, written, skipped_all):
         skipped_all.append((sweep.name, kind, reason))
     drawn, margins = generic.drawn_quantities(sweep)
     for kind, x in todo:
+        if kind == "response_vs_intensity":
+            name = _unique(f"{kind}_{sweep.name}", used)
+            path, rows = generic.response_vs_intensity(sweep, drawn, args.out, name, args.pdf)
+            written.append(path)
+            text = generic.intensity_of(sweep)[2]
+            md += [f"## {sweep.name}: responses against the {text} of each record", "",
+                   f"![{name}]({os.path.basename(path)})", "",
+                   _table(["response", "cells", f"Spearman r_s with the {text}"], rows), ""]
+            continue
         pages = generic.layouts(sweep, x)
         title = (f"responses against {x}" if kind == "response_vs_axis"
                  else f"unseating margins against {x}")

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 import matplotlib.lines
 import numpy as np
 
-from . import figures
+from . import figures, stats
 from .figures import ZERO, plt
 
 # Responses that describe the cell's excitation, its geometry or the solver rather than the
@@ -168,11 +168,34 @@ def numeric_axes(sweep):
             if sweep.has_axis(k, 2) and not isinstance(sweep.axes[k], list)]
 
 
+def intensity_of(sweep):
+    """(values per cell, axis label, table text) of the intensity each cell of a record sweep
+    felt: the stored `im` (the measure as applied, records scaled to stripes), else the cell's
+    PGA (`pga`, or `a_g`, which is the PGA of a record), else the record table's PGA; None
+    without a record axis of two or more records."""
+    if not sweep.has_axis("record", 2):
+        return None
+    for name, label, text in (("im", "IM", "IM"), ("pga", "PGA", "PGA"), ("a_g", "PGA", "PGA")):
+        if name in sweep.responses and np.any(np.isfinite(sweep.responses[name])):
+            unit = _unit(str(sweep.response_attrs.get(name, {}).get("units", "")))
+            return (np.asarray(sweep.responses[name], dtype=float),
+                    label + (f" [{unit}]" if unit else ""), text)
+    rec = sweep.extra.get("records")
+    if rec and "pga_mps2" in rec:
+        pga = np.asarray(rec["pga_mps2"], dtype=float)
+        shape = [1] * len(sweep.axis_order)
+        shape[sweep.axis_order.index("record")] = len(pga)
+        return np.broadcast_to(pga.reshape(shape), sweep.shape()), "PGA [m/s²]", "PGA"
+    return None
+
+
 def plan_generic(sweep):
     """[(kind, x_axis)] of the generic figures and [(kind, reason)] of those not made."""
     todo, skipped = [], []
     drawn, margins = drawn_quantities(sweep)
     xs = numeric_axes(sweep)
+    if drawn and intensity_of(sweep) is not None:
+        todo.append(("response_vs_intensity", None))
     if not xs:
         skipped.append(("response_vs_axis", "no numeric axis with two or more values"))
         return todo, skipped
@@ -186,6 +209,63 @@ def plan_generic(sweep):
         skipped.append(("unseating_margins", "the cube stores no unseating margin "
                         "(give seat_over_L)"))
     return todo, skipped
+
+
+def response_vs_intensity(sweep, qs, out_dir, name, pdf):
+    """Each quantity (a panel) against the intensity of each cell's record (intensity_of): one
+    point per cell, told apart by the values of the sweep's numeric axis of most values.
+    Returns table rows (quantity, cells, Spearman rank correlation with the intensity)."""
+    im, im_label, _ = intensity_of(sweep)
+    numeric = sorted((k for k in numeric_axes(sweep)), key=lambda k: -len(sweep.axes[k]))
+    key = numeric[0] if numeric else None
+    groups = list(range(len(sweep.axes[key]))) if key else [None]
+    n_rows, n_cols, place = _panel_grid(len(qs), 1)
+    fig, axes = _figure(n_rows, n_cols, 1)
+    styles = figures.curve_styles(len(groups))
+    legend, table = {}, []
+    for row, q in enumerate(qs):
+        r, c = place(row, 0)
+        ax = axes[r][c]
+        stacked = np.stack([np.asarray(sweep.responses[n], dtype=float) for n in q.names])
+        values = envelope(q, stacked)
+        values = np.where(np.abs(values) < ZERO, 0.0, values)
+        factor, unit = display_scale(sweep, q)
+        for ig, gi in enumerate(groups):
+            sel = np.ones(sweep.shape(), dtype=bool)
+            if key is not None:
+                sel = np.zeros(sweep.shape(), dtype=bool)
+                index = [slice(None)] * len(sweep.axis_order)
+                index[sweep.axis_order.index(key)] = gi
+                sel[tuple(index)] = True
+            color, marker, _ = styles[ig]
+            many = len(groups) > figures.MAX_LEGEND
+            h, = ax.plot(im[sel], values[sel] * factor, marker if not many else "o", ms=4,
+                         ls="none", color=color, mfc="none" if not many else color)
+            if key is not None and not many:
+                legend.setdefault(value_label(sweep, key, sweep.axes[key][gi]), h)
+        finite = np.isfinite(values) & np.isfinite(im)
+        if not np.any(finite):
+            figures.no_data(ax)
+        if np.all(im[np.isfinite(im)] > 0) and np.nanmax(im) / np.nanmin(im) >= 5:
+            figures.log_axis(ax, "x")
+        if q.base == "impacts":
+            figures.integer_axis(ax)
+        ax.set_ylabel(quantity_label(q, unit) + _deck_note(q))
+        ax.set_xlabel(im_label)
+        ax.xaxis.set_tick_params(labelbottom=True)
+        x, y = im[finite], values[finite]
+        rho = stats.spearman(x, y) if len(x) >= 3 else float("nan")
+        table.append((quantity_text(q), int(finite.sum()), rho))
+    for rr in range(n_rows):
+        for cc in range(n_cols):
+            if rr * n_cols + cc >= len(qs):
+                axes[rr][cc].remove()
+    layout = Layout("record", key, False, [()], "")
+    if key is not None and len(groups) > figures.MAX_LEGEND:
+        legend = {}
+    _finish(fig, axes, sweep, layout, legend, "responses against the intensity of each record",
+            qs=qs)
+    return figures._save(fig, out_dir, name, pdf), table
 
 
 @dataclass

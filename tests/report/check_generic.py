@@ -10,6 +10,8 @@ cubes read directly with h5py (numpy only, none of the report's code):
 - the unseating table: per deck, the count of cells with a negative margin and the smallest
   margin equal the cube's;
 - the fixed parameters and the record table (PGA, T_m of each record) equal the cube's;
+- the Spearman correlation of each response with the record's PGA (scipy.stats) equals the
+  table under the figure of responses against the intensity;
 - the curves drawn: the report's figure code is run again in-process and the first curve of the
   first panel of each response figure must equal the envelope over the decks computed here.
 
@@ -21,6 +23,7 @@ import sys
 import h5py
 import matplotlib.image
 import numpy as np
+import scipy.stats
 
 EXPECTED = {
     "own": ["response_vs_axis_T_g_own.png", "response_vs_axis_a_deg_own.png",
@@ -28,7 +31,7 @@ EXPECTED = {
     "three-span": [f"{kind}_{x}_three-span.png" for kind in ("response_vs_axis",
                                                               "unseating_margins")
                    for x in ("a_deg", "Pi_delta", "k_factor")],
-    "rec": ["response_vs_axis_Pi_delta_rec.png"],
+    "rec": ["response_vs_axis_Pi_delta_rec.png", "response_vs_intensity_rec.png"],
 }
 EXPECTED_SKIPS = ["skipped unseating_margins for rec: the cube stores no unseating margin",
                   "skipped spectra for own: no w0_over_wg axis"]
@@ -133,6 +136,19 @@ def check_sweep(path, summary):
             for row, pga, tm in zip(rows, g["records/pga_mps2"][()], g["records/T_m_s"][()]):
                 assert same4(row[3], float(pga)) and same4(row[6], float(tm)), (row, pga, tm)
             print(f"{name}: record table agrees ({len(labels)} records)")
+            rows = summary[f"{name}: responses against the PGA of each record"]
+            pga = g["responses/pga"][()]
+            for row in rows:
+                r = {"x_m": "x_m_d0", "y_m": "y_m_d0", "θ_m": "theta_m_d0",
+                     "θ_end": "theta_end_d0", "impacts": "impacts"}[row[0]]
+                y = g["responses"][r][()]
+                y = np.where(np.abs(y) < 1e-9, 0.0, y)
+                ok = np.isfinite(y) & np.isfinite(pga)
+                rho = scipy.stats.spearmanr(pga[ok], y[ok]).statistic
+                assert int(row[1]) == int(ok.sum()), (row, ok.sum())
+                assert (row[2] == "–" and not np.isfinite(rho)) or same4(row[2], float(rho)), \
+                    (row, rho)
+            print(f"{name}: Spearman r_s of {len(rows)} responses with PGA agree with scipy")
 
 
 def check_curves(paths):
