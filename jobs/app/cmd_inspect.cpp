@@ -221,6 +221,11 @@ void PrintLimitStates(const std::string& path, const jobs::h5::SweepSummary& s) 
           rest /= size;
         }
       }
+      if (!std::isfinite((*theta)[row])) {  // its reason is a string: h5py reads it
+        std::printf("    %-18s %-22s %8.0f %9.0f  no fit (why: fragility/%s/reason)\n",
+                    name.c_str(), label.c_str(), (*n)[row], (*k)[row], name.c_str());
+        continue;
+      }
       std::printf("    %-18s %-22s %8.0f %9.0f %12.6g %10.6g %12.6g %12.6g\n", name.c_str(),
                   label.c_str(), (*n)[row], (*k)[row], (*theta)[row], (*beta)[row], (*lo)[row],
                   (*hi)[row]);
