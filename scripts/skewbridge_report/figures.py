@@ -87,6 +87,8 @@ SYMBOLS = {
              "largest maximum, the residual of largest magnitude, the smallest margin); "
              "summary.md lists every deck",
     "Tg": "T_g = 2π/ω_g: period of the pulse (s)",
+    "travel": "corner travel: the largest travel of a deck corner normal to the end line, the "
+              "demand on its seat",
     "k": "K factor: multiplier on the substructure's stiffness K",
     "records": "thin grey lines: one record each; thick line: the median over the records; "
                "band: 16-84 % of the records at each abscissa",

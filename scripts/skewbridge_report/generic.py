@@ -31,7 +31,10 @@ DESCRIPTORS = {"a_g", "w_g", "L_e", "delta", "L", "pga", "pgv", "pgd", "arias", 
 NORMALISED_TWIN = {"x_norm": "x_m", "y_norm": "y_m", "theta_norm": "theta_m",
                    "theta_end_norm": "theta_end", "margin_norm": "margin_m"}
 # Residual displacements: in the table; the residual rotation is drawn.
-TABLE_ONLY = {"x_end", "y_end"}
+TABLE_ONLY = {"x_end", "y_end", "travel_end_m"}
+# Limit-state responses (ls_<name>, ls_<name>_demand): their demands repeat drawn responses and
+# their exceedances are the fragility figures' business; they stay in the tables.
+LIMIT_STATE_PREFIX = "ls_"
 MARGINS = ("margin_m", "margin_norm")
 DECK = re.compile(r"^(.+)_d(\d+)$")
 
@@ -44,12 +47,14 @@ UNIT_TEXT = {"deg": "°", "rad/s": "rad/s", "m/s^2": "m/s²"}
 QUANTITY_SYMBOL = {
     "x_m": r"$x_m$", "y_m": r"$y_m$", "theta_m": r"$\theta_m$", "x_end": r"$x_{end}$",
     "y_end": r"$y_{end}$", "theta_end": r"$\theta_{end}$", "margin_m": "unseating margin",
+    "travel_m": "corner travel", "travel_end_m": "residual corner travel",
     "margin_norm": r"unseating margin $\times\,\omega_g^2/a_g$", "impacts": "impacts",
     "theta_norm_max": r"$\max_i\,\theta_{m,i}\,\rho_i\,\omega_g^2/a_g$",
 }
 QUANTITY_TEXT = {"x_m": "x_m", "y_m": "y_m", "theta_m": "θ_m", "x_end": "x_end",
                  "y_end": "y_end", "theta_end": "θ_end", "margin_m": "unseating margin",
                  "margin_norm": "unseating margin ω_g²/a_g", "impacts": "impacts",
+                 "travel_m": "corner travel",
                  "x_norm": "x_m ω_g²/a_g", "y_norm": "y_m ω_g²/a_g",
                  "theta_norm": "θ_m ρ ω_g²/a_g", "theta_end_norm": "θ_end ρ ω_g²/a_g",
                  "theta_norm_max": "max over decks of θ_m ρ ω_g²/a_g"}
@@ -146,7 +151,7 @@ def drawn_quantities(sweep):
     bases = {q.base for q in qs}
     drawn, margins = [], []
     for q in qs:
-        if q.base in DESCRIPTORS or q.base in TABLE_ONLY:
+        if q.base in DESCRIPTORS or q.base in TABLE_ONLY or q.base.startswith(LIMIT_STATE_PREFIX):
             continue
         if NORMALISED_TWIN.get(q.base) in bases:
             continue
@@ -343,6 +348,8 @@ def _caption_keys(sweep, layout, qs=()):
     keys = ["x"] + (["end"] if any(q.base.endswith("_end") for q in qs) else [])
     if any(len(q.decks) > 1 for q in qs):
         keys.append("decks")
+    if any(q.base == "travel_m" for q in qs):
+        keys.append("travel")
     labels = " ".join(quantity_label(q) for q in qs)
     if r"\rho" in labels:
         keys.append("rho")

@@ -3,7 +3,8 @@
 # the pilot bridge's model file over the skew angle and the pulse period, the README's
 # three-span example, a model-file sweep over 6 synthetic records and Pi_delta) go through
 # scripts/report, whose figures and tables check_generic.py checks against the cubes read by
-# h5py; `skewbridge inspect` must print the specification's fixed values with their units;
+# h5py; `skewbridge inspect` must print the specification's fixed values with their units and
+# a limit-state sweep's exceedances and fragility fits as the cube holds them;
 # `skewbridge sweep --dry-run` must count the cells, time a sample and write no file.
 # usage: generic_test.sh SKEWBRIDGE MPIEXEC SOURCE_ROOT WORK_DIR
 set -euo pipefail
@@ -77,6 +78,51 @@ grep -Eq '^    seat_over_L +0\.01 ' inspect.txt || fail "inspect: seat_over_L"
 grep -Eq '^    a_deg +4  10 \.\. 40 \[deg\]' inspect.txt || fail "inspect: the a_deg axis"
 grep -q '^  limit states: none declared$' inspect.txt || fail "inspect: limit states line"
 "$exe" inspect three.h5 | grep -Eq '^    seat_over_L +0\.02 ' || fail "inspect three-span"
+
+# inspect on a sweep with limit states: the exceedances, the largest demands and the fitted
+# medians and betas it prints equal the cube's (h5py).
+cat > ls.toml <<TOML
+[sweep]
+name = "ls"
+family = "model-file"
+model = "$root/docs/examples/pilot-bridge.toml"
+[records]
+synthetic = {count = 6, seed = 5}
+[axes]
+record = "*"
+scale = {logspace = [0.25, 6.0, 4]}
+a_deg = [20, 40]
+[fixed]
+gap_m = 0.02
+[limit_states]
+rotation = {above_rad = 0.0005}
+joint_closing = true
+TOML
+sweep ls.toml --out ls.h5
+"$exe" inspect ls.h5 >inspect-ls.txt
+/usr/bin/python3 - ls.h5 inspect-ls.txt <<'PY' || fail "inspect's limit states differ from the cube"
+import re, sys, h5py, numpy as np
+g = h5py.File(sys.argv[1], "r")["sweeps/ls"]
+text = open(sys.argv[2], encoding="utf-8").read()
+for name in ("rotation", "joint_closing"):
+    e = g["responses/ls_" + name][()]
+    d = g["responses/ls_" + name + "_demand"][()]
+    m = re.search(r"^    %s +exceeded in (\d+) of (\d+) cells; demand up to (\S+)" % name, text, re.M)
+    assert m, (name, text)
+    assert int(m.group(1)) == int((e == 1).sum()) and int(m.group(2)) == int(np.isfinite(e).sum()), m.groups()
+    assert float(m.group(3)) == float("%.6g" % np.nanmax(d)), (m.group(3), np.nanmax(d))
+    f = g["fragility/" + name]
+    for k, a in enumerate(g["axes/a_deg"][()]):
+        row = re.search(r"^    %s +%g +(\d+) +(\d+) +(.*)$" % (name, a), text, re.M)
+        assert row, (name, a)
+        assert int(row.group(1)) == f["n_cells"][k] and int(row.group(2)) == f["n_exceeded"][k]
+        if np.isfinite(f["theta"][k]):
+            theta, beta = (float(v) for v in row.group(3).split()[:2])
+            assert theta == float("%.6g" % f["theta"][k]) and beta == float("%.6g" % f["beta"][k])
+        else:
+            assert row.group(3).startswith("no fit"), row.group(3)
+print("inspect: limit states and fragility fits agree with the cube")
+PY
 
 "$report" own.h5 three.h5 rec.h5 --out out >report.log || fail "report exited with $?"
 /usr/bin/python3 "$root/tests/report/check_generic.py" out report.log own.h5 three.h5 rec.h5 ||
