@@ -37,28 +37,44 @@ std::vector<FragilityStudy> MakeFragility(const SweepSpec& spec, const CubeLayou
                                           const CubeData& data) {
   std::vector<FragilityStudy> out;
   if (spec.limit_states.empty()) return out;
-  // The IM of every cell: the stripe axis im_g, else a_g / g of the cell.
+  // The IM of every cell: a stripe axis (im_g, or im_mps for PGV), else the cell's stored
+  // measure `im` (records unscaled: a cloud), else its a_g / g.
   std::vector<double> im(data.Cells());
-  std::string im_name, im_description, stripe_axis;
-  if (const Axis* stripes = spec.FindAxis("im_g")) {
+  std::string im_name, im_units, im_description, stripe_axis;
+  const std::optional<std::size_t> im_col = ResponseColumn(layout, "im");
+  const std::optional<std::size_t> a_g = ResponseColumn(layout, "a_g");
+  for (const char* key : {"im_g", "im_mps"}) {
+    const Axis* stripes = spec.FindAxis(key);
+    if (stripes == nullptr) continue;
     std::size_t k = 0;
-    while (spec.axes[k].key != "im_g") ++k;
+    while (spec.axes[k].key != key) ++k;
     for (std::uint64_t c = 0; c < data.Cells(); ++c) {
       im[c] = stripes->values[spec.AxisIndex(c)[k]];
     }
-    im_name = "im_g";
-    im_description = "the cell's coordinate of the axis im_g (g): the records scaled to it";
-    stripe_axis = "im_g";
-  } else if (const std::optional<std::size_t> a_g = ResponseColumn(layout, "a_g")) {
+    im_name = stripe_axis = key;
+    im_units = stripe_axis == "im_g" ? "g" : "m/s";
+    im_description = "the cell's coordinate of the axis " + stripe_axis + " (" + im_units +
+                     "): the records scaled to it ([records] scale_to)";
+  }
+  if (im_name.empty() && im_col) {
+    im = data.responses[*im_col];
+    im_name = "im";
+    im_units = layout.responses[*im_col].unit;
+    im_description = "the cell's response im (" + im_units +
+                     "): the measure of [records] im "
+                     "of the record as applied";
+    if (spec.FindAxis("scale") != nullptr) stripe_axis = "scale";
+  } else if (im_name.empty() && a_g) {
     for (std::uint64_t c = 0; c < data.Cells(); ++c) {
       im[c] = data.responses[*a_g][c] / records::kStandardGravity_mps2;
     }
     im_name = "a_g";
+    im_units = "g";
     im_description =
         "the cell's a_g / g: the excitation's peak acceleration (a record's PGA "
         "times scale) in g";
     if (spec.FindAxis("scale") != nullptr) stripe_axis = "scale";
-  } else {
+  } else if (im_name.empty()) {
     return out;  // no IM stored (a responses subset without a_g)
   }
   std::vector<std::uint8_t> usable(data.Cells());
@@ -74,6 +90,7 @@ std::vector<FragilityStudy> MakeFragility(const SweepSpec& spec, const CubeLayou
     f.ls = ls;
     f.demand_unit = layout.responses[*demand].unit;
     f.im = im_name;
+    f.im_units = im_units;
     f.im_description = im_description;
     std::string no_cloud;
     const std::vector<double> dc = DemandOverCapacity(ls, data.responses[*demand], &no_cloud);

@@ -27,9 +27,10 @@ using spectra::SweepRecord;
 
 /// The fragility of one limit state over the cube (docs/hdf5-layout.md, fragility/).
 struct FragilityStudy {
-  spectra::LimitState ls;      ///< the limit state as declared
-  std::string demand_unit;     ///< unit of its demand
-  std::string im;              ///< "im_g" (the stripe axis) or "a_g" (the cell's PGA x scale)
+  spectra::LimitState ls;   ///< the limit state as declared
+  std::string demand_unit;  ///< unit of its demand
+  std::string im;  ///< "im_g" / "im_mps" (the stripe axis), "im" (the cell's measure) or "a_g"
+  std::string im_units;        ///< "g", or "m/s" for PGV
   std::string im_description;  ///< how the IM of a cell is obtained
   spectra::FragilityTable table;
 };
@@ -51,9 +52,10 @@ struct StudyTables {
 /// `records`: LoadSweepRecords(spec) when the caller already holds them (the evaluator's, see
 /// CellEvaluator::Records), so that a synthetic suite is not made twice; nullptr to load them.
 /// With limit states, each gets its fragility (spectra::FitFragilityOverCells): the IM of a cell
-/// is the coordinate of an `im_g` axis (records scaled to stripes of it, in g) when the sweep has
-/// one, else the cell's excitation amplitude a_g / g (a record's PGA times `scale`, with the
-/// `scale` axis as stripes when there is one; the records' own PGA for a cloud).
+/// is the coordinate of an `im_g` or `im_mps` axis (records scaled to stripes of it) when the
+/// sweep has one, else its response `im` ([records] im: the records' own measure, a cloud), else
+/// its excitation amplitude a_g / g (a record's PGA times `scale`, with the `scale` axis as
+/// stripes when there is one).
 /// @throws InputError as LoadSweepRecords.
 StudyTables MakeStudyTables(const SweepSpec& spec, const CubeLayout& layout, const CubeData& data,
                             const std::vector<SweepRecord>* records = nullptr);

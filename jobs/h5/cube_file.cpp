@@ -496,7 +496,7 @@ void WriteFragility(hid_t sweep_group, const std::vector<FragilityStudy>& studie
   for (const FragilityStudy& f : studies) names.push_back(f.ls.name);
   SetAttr(g.get(), "limit_states", names);
   SetAttr(g.get(), "im", first.im);
-  SetAttr(g.get(), "im_units", std::string("g"));
+  SetAttr(g.get(), "im_units", first.im_units);
   SetAttr(g.get(), "im_description", first.im_description);
   SetAttr(g.get(), "stripe_axis", first.table.stripe_axis);
   SetAttr(g.get(), "axis_order", first.table.axis_order);
@@ -537,8 +537,9 @@ void WriteFragility(hid_t sweep_group, const std::vector<FragilityStudy>& studie
         AttachScale(ds.get(), scales[k].get(), static_cast<unsigned>(k), t.axis_order[k]);
       }
     };
-    auto put = [&](const std::string& name, const auto& values, const std::string& units,
+    auto put = [&](const std::string& name, const auto& values, std::string units,
                    const std::string& description) {
+      if (units == "g") units = f.im_units;  // the unit of the IM
       attach(WriteArray(ls.get(), name, shape, values, units, description));
     };
     put("theta", t.theta, "g", "maximum-likelihood median IM of exceedance");
@@ -559,7 +560,8 @@ void WriteFragility(hid_t sweep_group, const std::vector<FragilityStudy>& studie
     put("n_exceeded", t.n_exceeded, "1", "cells among them that exceeded the limit state");
     put("cloud_n", t.cloud_n, "1", "cells of the cloud fit: D / C > 0 and IM > 0, finite");
     put("cloud_excluded", t.cloud_excluded, "1", "cells left out of the cloud fit");
-    put("cloud_intercept", t.cloud_intercept, "1", "intercept of ln(D / C) on ln(IM / 1 g)");
+    put("cloud_intercept", t.cloud_intercept, "1",
+        "intercept of ln(D / C) on ln(IM) (IM in im_units)");
     put("cloud_slope", t.cloud_slope, "1", "slope of ln(D / C) on ln(IM)");
     put("cloud_sigma", t.cloud_sigma, "1", "residual standard deviation of ln(D / C)");
     put("cloud_theta", t.cloud_theta, "g", "cloud median IM of D = C");
@@ -570,8 +572,9 @@ void WriteFragility(hid_t sweep_group, const std::vector<FragilityStudy>& studie
     std::vector<hsize_t> stripe_shape(t.shape.begin(), t.shape.end());
     stripe_shape.push_back(t.stripes);
     Id stripe_scale = OpenDataset(sweep_group, "axes/" + t.stripe_axis);
-    auto put_stripes = [&](const std::string& name, const auto& values, const std::string& units,
+    auto put_stripes = [&](const std::string& name, const auto& values, std::string units,
                            const std::string& description) {
+      if (units == "g") units = f.im_units;
       Id ds = WriteArray(ls.get(), name, stripe_shape, values, units, description);
       attach(ds);
       AttachScale(ds.get(), stripe_scale.get(), static_cast<unsigned>(t.shape.size()),

@@ -7,7 +7,7 @@ import sys
 
 import numpy as np
 
-from . import figures, generic
+from . import figures, fragility, generic
 from . import plan as plan_view
 from .data import ReportError, load_cube, load_run
 
@@ -264,6 +264,25 @@ def generic_sections(sweep, args, used, written, skipped_all):
     return md
 
 
+def fragility_sections(sweep, args, used, written):
+    """The fragility curves, the demand-IM cloud and the table of fits of a sweep with limit
+    states (fragility/ of the cube)."""
+    if "fragility" not in sweep.extra:
+        return []
+    name = _unique(f"fragility_{sweep.name}", used)
+    path, rows = fragility.fragility_curves(sweep, args.out, name, args.pdf)
+    written.append(path)
+    md = [f"## {sweep.name}: fragility functions", "", f"![{name}]({os.path.basename(path)})",
+          "", _table(fragility.table_header(sweep), rows), ""]
+    name = _unique(f"cloud_{sweep.name}", used)
+    path = fragility.cloud(sweep, args.out, name, args.pdf)
+    if path:
+        written.append(path)
+        md += [f"## {sweep.name}: demand against intensity (cloud)", "",
+               f"![{name}]({os.path.basename(path)})", ""]
+    return md
+
+
 def main(argv):
     parser = argparse.ArgumentParser(
         prog="report", description="Figures and a Markdown summary from skewbridge cubes "
@@ -332,6 +351,7 @@ def run(args):
                    _tables_for(kind, sweep, rows, curve_key), ""]
         if args.generic or not todo or sweep.family in GENERIC_FAMILIES:
             md += generic_sections(sweep, args, used, written, skipped_all)
+        md += fragility_sections(sweep, args, used, written)
     for r in runs:
         name = "history_" + _safe(os.path.splitext(os.path.basename(r.path))[0])
         while name in used:

@@ -5,6 +5,7 @@
 #  2. real records (tests/data/records) with gaps and seats larger than any response: no cell
 #     closes a joint or unseats, P = 0 at every stripe and the fit says why it gives no number;
 #  3. the same records with zero gaps and zero seats: every cell impacts and unseats (P = 1);
+#  the report draws both figures and tabulates the stored fits;
 #  4. bad [limit_states] keys: one line naming the key, exit status 2, no output file.
 # usage: fragility_sweep_test.sh SKEWBRIDGE MPIEXEC SOURCE_DIR WORK_DIR
 set -euo pipefail
@@ -38,6 +39,25 @@ TOML
   || fail "the stripes sweep failed"
 /usr/bin/python3 "$src/tests/fragility/check_fragility_cube.py" stripes.h5 stripes 3 \
   || fail "stripes.h5: the stored fits differ from scipy's"
+
+# The report draws the curves and the cloud and tabulates the stored fits.
+/usr/bin/python3 "$src/scripts/report" stripes.h5 --out report > report.txt \
+  || fail "scripts/report stripes.h5 failed"
+[ -s report/fragility_stripes.png ] && [ -s report/cloud_stripes.png ] \
+  || fail "no fragility or cloud figure"
+/usr/bin/python3 - stripes.h5 report/summary.md <<'PY' || fail "the report's table differs from the cube"
+import sys, h5py
+f = h5py.File(sys.argv[1], "r")["sweeps/stripes/fragility"]
+text = open(sys.argv[2], encoding="utf-8").read()
+assert "## stripes: fragility functions" in text
+rows = [l for l in text.splitlines() if l.startswith("| rotation | α = ")]
+assert len(rows) == 2, rows
+for k, row in enumerate(rows):
+    cells = [c.strip() for c in row.strip("|").split("|")]
+    assert int(cells[2]) == f["rotation/n_cells"][k] and int(cells[3]) == f["rotation/n_exceeded"][k]
+    assert abs(float(cells[4]) - f["rotation/theta"][k]) <= 5e-3 * f["rotation/theta"][k], cells
+print("report: the table holds the stored fits")
+PY
 
 # Gaps and seats of 100 m: no response reaches them.
 sed -e 's/^name = "stripes"/name = "wide"/' -e '/^\[records\]/,/^\[axes\]/c\[records]\nfolder = "rec"\npattern = "*"\n[axes]' \

@@ -1,0 +1,245 @@
+"""The fragility figures and tables of a sweep with limit states (docs/hdf5-layout.md,
+fragility/): per limit state, the maximum-likelihood lognormal curves with the observed fraction
+per stripe and the 95 % band of the likelihood, and the cloud of demand over capacity against
+the intensity measure with its regression line."""
+import math
+import textwrap
+
+import matplotlib.pyplot as plt
+import numpy as np
+from scipy.stats import norm
+
+from . import figures
+from .data import _text
+
+Z95 = 1.959963984540054
+MAX_COMBOS = 8  # curves per panel; more combinations are listed in the table only
+IM_TEXT = {"im_g": "IM: the stripe", "im_mps": "IM: the stripe", "im": "IM of the record",
+           "a_g": r"IM = $a_g/g$ (PGA × scale)"}
+
+
+def im_label(fa):
+    """The IM axis label: what the IM is and its unit (fragility/ attributes im, im_units)."""
+    return f"{IM_TEXT.get(fa['im'], 'IM')} [{fa.get('im_units', 'g')}]"
+
+
+def cell_im(sweep, fa):
+    """The IM of every cell, shaped like the cells (as jobs/study.cpp takes it)."""
+    if fa["im"] in ("im_g", "im_mps"):
+        axis = np.asarray(sweep.axes[fa["im"]], dtype=float)
+        return np.broadcast_to(axis.reshape([-1 if k == fa["im"] else 1
+                                             for k in sweep.axis_order]), sweep.shape())
+    if fa["im"] == "im":
+        return np.asarray(sweep.responses["im"], dtype=float)
+    return np.asarray(sweep.responses["a_g"], dtype=float) / 9.80665
+
+
+def _styles(n):
+    """(colour, marker, line style) per combination: combinations are categories, so the colours
+    are tab10's in order, with markers and line styles for grey print."""
+    return [(plt.get_cmap("tab10")(i % 10), figures.MARKERS[i % len(figures.MARKERS)],
+             figures.LINESTYLES[i % len(figures.LINESTYLES)]) for i in range(n)]
+
+
+def _attrs(tree):
+    return {k: _text(v) if isinstance(v, (str, bytes)) else v for k, v in tree["attrs"].items()}
+
+
+def _combos(sweep, order):
+    """(flat index, multi-index, label) of every combination of the fragility's axes."""
+    shape = [len(sweep.axes[k]) for k in order]
+    out = []
+    for flat, idx in enumerate(np.ndindex(*shape) if shape else [()]):
+        label = ", ".join(f"{figures.AXIS_TEXT.get(k, k)} = {sweep.axes[k][i]:g}"
+                          f"{figures.AXIS_UNIT.get(k, '')}" for k, i in zip(order, idx))
+        out.append((flat, idx, label or "all cells"))
+    return out
+
+
+def _at(array, idx):
+    return np.asarray(array)[idx] if idx else np.asarray(array).ravel()[0]
+
+
+def band(x, theta, beta, var_ln, var_beta, cov):
+    """The fitted curve and its pointwise 95 % band by the delta method on (ln theta, beta):
+    u = (ln x - ln theta) / beta, du/d ln theta = -1 / beta, du/d beta = -u / beta."""
+    u = (np.log(x) - math.log(theta)) / beta
+    g1, g2 = -1.0 / beta, -u / beta
+    sd = np.sqrt(np.maximum(g1 * g1 * var_ln + 2 * g1 * g2 * cov + g2 * g2 * var_beta, 0.0))
+    return norm.cdf(u), norm.cdf(u - Z95 * sd), norm.cdf(u + Z95 * sd)
+
+
+def _grid(n):
+    cols = min(n, 3)
+    rows = int(math.ceil(n / cols))
+    return rows, cols
+
+
+def _demand_text(name, group):
+    a = _attrs(group)
+    kind, thr = a.get("kind", ""), a.get("threshold", 0.0)
+    units = a.get("demand_units", "")
+    if kind == "unseating":
+        return "unseating: corner travel over seat > 1"
+    if kind == "joint_closing":
+        return "joint closing: an impact"
+    return f"{name}: demand > {thr:g} {units}"
+
+
+def fragility_curves(sweep, out_dir, name, pdf):
+    """One panel per limit state: fitted P(exceeded | IM) per combination, its 95 % band, and
+    the observed fraction per stripe (or each cell's 0/1 for a cloud). Returns table rows."""
+    f = sweep.extra["fragility"]
+    fa = _attrs(f)
+    names = [_text(n) for n in fa["limit_states"]]
+    order = [_text(k) for k in fa.get("axis_order", [])]
+    combos = _combos(sweep, order)
+    shown = combos[:MAX_COMBOS]
+    rows_n, cols_n = _grid(len(names))
+    fig, axes = plt.subplots(rows_n, cols_n, figsize=(4.2 * cols_n + 2.2, 3.6 * rows_n + 1.2),
+                             squeeze=False, layout="constrained")
+    styles = _styles(len(shown))
+    table = []
+    for k, ls in enumerate(names):
+        ax = axes[k // cols_n][k % cols_n]
+        g = f[ls]
+        im_vals = cell_im(sweep, fa).ravel()
+        lo = np.nanmin(im_vals[im_vals > 0]) if np.any(im_vals > 0) else 0.01
+        hi = np.nanmax(im_vals) if np.any(im_vals > 0) else 1.0
+        x = np.geomspace(lo / 1.5, hi * 1.5, 200)
+        notes = []
+        for (flat, idx, label), (color, marker, ls_style) in zip(shown, styles):
+            theta, beta = float(_at(g["theta"], idx)), float(_at(g["beta"], idx))
+            if "stripe_im" in g:
+                sx = np.asarray(g["stripe_im"])[idx] if idx else np.asarray(g["stripe_im"])[0]
+                sn = np.asarray(g["stripe_n"])[idx] if idx else np.asarray(g["stripe_n"])[0]
+                sz = (np.asarray(g["stripe_exceeded"])[idx] if idx
+                      else np.asarray(g["stripe_exceeded"])[0])
+                ok = sn > 0
+                ax.plot(sx[ok], sz[ok] / sn[ok], marker=marker, ls="none", color=color,
+                        mfc="none", ms=6, label=label)
+            else:
+                zc, xc = _cells_of(sweep, fa, ls, idx, order)
+                ax.plot(xc, zc + 0.02 * (2 * (flat % 2) - 1), marker=marker, ls="none",
+                        color=color, ms=3, alpha=0.5, label=label)
+            if math.isfinite(theta):
+                p, plo, phi = band(x, theta, beta, float(_at(g["se_ln_theta"], idx)) ** 2,
+                                   float(_at(g["se_beta"], idx)) ** 2,
+                                   float(_at(g["cov_ln_theta_beta"], idx)))
+                ax.plot(x, p, color=color, ls=ls_style)
+                ax.fill_between(x, plo, phi, color=color, alpha=0.15, lw=0)
+            else:
+                notes.append(_text(g["reason"][flat]))
+        reason_count = len(notes)
+        if reason_count:
+            text = "no fit: " + notes[0] + (f" (and {reason_count - 1} more)"
+                                           if reason_count > 1 else "")
+            ax.text(0.02, 0.97, "\n".join(textwrap.wrap(text, 48)), transform=ax.transAxes,
+                    va="top", fontsize=8, color="0.3")
+        figures.log_axis(ax, "x")
+        ax.set_ylim(-0.05, 1.05)
+        ax.set_xlabel(im_label(fa))
+        ax.set_ylabel("P(exceeded | IM)")
+        ax.set_title(_demand_text(ls, g), fontsize=10)
+        for flat, idx, label in combos:
+            table.append(_row(ls, g, flat, idx, label))
+    for k in range(len(names), rows_n * cols_n):
+        axes[k // cols_n][k % cols_n].set_visible(False)
+    figures.curve_key_legend(fig, axes, None, [], *axes[0][0].get_legend_handles_labels())
+    more = (f" Only the first {MAX_COMBOS} of {len(combos)} combinations are drawn; the table "
+            "lists all." if len(combos) > MAX_COMBOS else "")
+    fig.text(0.005, 0.004, "\n".join(textwrap.wrap(
+        "Markers: fraction of the cells of a stripe that exceeded the limit state (a cloud: each "
+        "cell's 0 or 1). Lines: the maximum-likelihood lognormal fragility "
+        "Φ(ln(IM/θ)/β) (binomial likelihood, Baker 2015); bands: its pointwise 95 % interval "
+        "from the observed information (delta method)." + more, 150)), fontsize=8, va="bottom",
+        color="0.2")
+    fig.get_layout_engine().set(rect=(0, 0.07, 1, 0.93))
+    return figures._save(fig, out_dir, name, pdf), table
+
+
+def _cells_of(sweep, fa, ls, idx, order):
+    """The 0/1 exceedance and IM of the cells of one combination (cloud panels)."""
+    z = np.asarray(sweep.responses["ls_" + ls], dtype=float)
+    im = cell_im(sweep, fa)
+    sel = [slice(None)] * len(sweep.axis_order)
+    for key, i in zip(order, idx):
+        sel[sweep.axis_order.index(key)] = i
+    z, im = z[tuple(sel)].ravel(), im[tuple(sel)].ravel()
+    ok = np.isfinite(z) & (im > 0)
+    return z[ok], im[ok]
+
+
+def _row(ls, g, flat, idx, label):
+    def num(key, fmt="{:.3g}"):
+        v = float(_at(g[key], idx))
+        return fmt.format(v) if math.isfinite(v) else "–"
+    theta = num("theta")
+    ci = (f"{num('theta_lo')}–{num('theta_hi')}" if theta != "–" else "–")
+    boot = (f"{num('boot_theta_lo')}–{num('boot_theta_hi')}"
+            if math.isfinite(float(_at(g["boot_theta_lo"], idx))) else "–")
+    reason = _text(g["reason"][flat]) or _text(g["cloud_reason"][flat])
+    return (ls, label, int(_at(g["n_cells"], idx)), int(_at(g["n_exceeded"], idx)), theta, ci,
+            boot, num("beta"), num("se_beta"), num("cloud_theta"), num("cloud_beta"), reason)
+
+
+def table_header(sweep):
+    """The header of the table of fits, θ in the unit of the IM."""
+    unit = _attrs(sweep.extra["fragility"]).get("im_units", "g")
+    return ["limit state", "combination", "cells", "exceeded", f"θ [{unit}]",
+            "θ 95 % (likelihood)", "θ 95 % (bootstrap)", "β", "se(β)", f"cloud θ [{unit}]",
+            "cloud β", "note"]
+
+
+def cloud(sweep, out_dir, name, pdf):
+    """One panel per limit state with a cloud fit: D / C of every cell against the IM (log-log)
+    with the regression line per combination and D / C = 1. Returns None when none has one."""
+    f = sweep.extra["fragility"]
+    fa = _attrs(f)
+    names = [_text(n) for n in fa["limit_states"]
+             if any(not _text(r) for r in f[_text(n)]["cloud_reason"])]
+    if not names:
+        return None
+    order = [_text(k) for k in fa.get("axis_order", [])]
+    shown = _combos(sweep, order)[:MAX_COMBOS]
+    styles = _styles(len(shown))
+    rows_n, cols_n = _grid(len(names))
+    fig, axes = plt.subplots(rows_n, cols_n, figsize=(4.2 * cols_n + 2.2, 3.6 * rows_n + 1.2),
+                             squeeze=False, layout="constrained")
+    for k, ls in enumerate(names):
+        ax = axes[k // cols_n][k % cols_n]
+        g = f[ls]
+        a = _attrs(g)
+        cap = 1.0 if a.get("kind") == "unseating" else float(a.get("threshold", 1.0))
+        d_all = np.asarray(sweep.responses["ls_" + ls + "_demand"], dtype=float) / cap
+        im_all = cell_im(sweep, fa)
+        for (flat, idx, label), (color, marker, ls_style) in zip(shown, styles):
+            sel = [slice(None)] * len(sweep.axis_order)
+            for key, i in zip(order, idx):
+                sel[sweep.axis_order.index(key)] = i
+            d, im = d_all[tuple(sel)].ravel(), im_all[tuple(sel)].ravel()
+            ok = np.isfinite(d) & (d > 0) & (im > 0)
+            ax.plot(im[ok], d[ok], marker=marker, ls="none", color=color, ms=4, alpha=0.6,
+                    mfc="none", label=label)
+            b, c = float(_at(g["cloud_slope"], idx)), float(_at(g["cloud_intercept"], idx))
+            if math.isfinite(b) and ok.any():
+                x = np.geomspace(im[ok].min(), im[ok].max(), 50)
+                ax.plot(x, np.exp(c + b * np.log(x)), color=color, ls=ls_style)
+        ax.axhline(1.0, color="k", lw=1.0, ls=":")
+        ax.text(0.02, 1.0, " D/C = 1", transform=ax.get_yaxis_transform(), ha="left",
+                va="bottom", fontsize=8)
+        figures.log_axis(ax, "x")
+        figures.log_axis(ax, "y")
+        ax.set_xlabel(im_label(fa))
+        ax.set_ylabel("demand / capacity D/C")
+        ax.set_title(_demand_text(ls, g), fontsize=10)
+    for k in range(len(names), rows_n * cols_n):
+        axes[k // cols_n][k % cols_n].set_visible(False)
+    figures.curve_key_legend(fig, axes, None, [], *axes[0][0].get_legend_handles_labels())
+    fig.text(0.005, 0.004, "\n".join(textwrap.wrap(
+        "Markers: each cell's demand over the limit state's capacity (unseating: corner travel "
+        "over seat width). Lines: least squares of ln(D/C) on ln(IM) per combination (cloud "
+        "analysis, Cornell et al. 2002); their crossing of D/C = 1 is the cloud median θ.",
+        150)), fontsize=8, va="bottom", color="0.2")
+    fig.get_layout_engine().set(rect=(0, 0.06, 1, 0.94))
+    return figures._save(fig, out_dir, name, pdf)
