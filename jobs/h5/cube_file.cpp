@@ -1271,8 +1271,9 @@ CubeData ReadCubeData(const std::filesystem::path& path, const std::string& swee
 }
 
 std::string ResponseLinkName(const std::string& response, const SweepSpec& spec) {
-  static constexpr std::array<std::string_view, 9> kGroupMembers{
-      "axes", "responses", "fixed", "stats", "status", "done", "records", "correlation", "inputs"};
+  static constexpr std::array<std::string_view, 10> kGroupMembers{
+      "axes", "responses", "fixed",       "stats",  "status",
+      "done", "records",   "correlation", "inputs", "fragility"};
   const bool taken =
       spec.FindAxis(response) != nullptr ||
       std::find(kGroupMembers.begin(), kGroupMembers.end(), response) != kGroupMembers.end();
