@@ -619,7 +619,8 @@ RECORD_COLUMNS = [("label", "record", None), ("component", "component", None),
                   ("pgv_mps", "PGV [m/s]", None), ("pgd_m", "PGD [m]", None),
                   ("T_m_s", "T_m [s]", None), ("L_e_m", "L_e [m]", None),
                   ("arias_mps", "Arias [m/s]", None), ("D5_95_s", "D5-95 [s]", None),
-                  ("file", "file", None)]
+                  ("w_g_radps", "ω_g [rad/s]", None), ("dt_s", "dt [s]", None),
+                  ("npts", "samples", None)]
 
 
 def record_table(sweep):
@@ -631,7 +632,13 @@ def record_table(sweep):
     cols = [(key, title) for key, title, _ in RECORD_COLUMNS if key in rec]
     extra = [k for k in rec if k != "attrs" and not k.endswith("@attrs")
              and not isinstance(rec[k], dict) and k not in dict(cols)]
-    cols += [(k, k) for k in extra if np.ndim(rec[k]) == 1]
+    for k in extra:  # columns other programs add (measures): titled with their units
+        if np.ndim(rec[k]) == 1 and k != "file":
+            unit = rec.get(k + "@attrs", {}).get("units", "")
+            unit = unit.decode() if isinstance(unit, bytes) else str(unit)
+            cols.append((k, k + (f" [{_unit(unit)}]" if _unit(unit) else "")))
+    if "file" in rec:
+        cols.append(("file", "file"))
     n = len(rec[cols[0][0]])
     rows = []
     for i in range(n):
