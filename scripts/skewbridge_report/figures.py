@@ -310,8 +310,11 @@ def spectra(sweep, curve_key, out_dir, name, pdf):
                 if many:
                     ax.plot(w, data[ic], color=color, lw=1.0)
                 else:
+                    # markers staggered per curve, so that coinciding curves (alpha and
+                    # 90 deg - alpha without rotation) each keep visible markers
+                    step = max(1, len(w) // 8)
                     ax.plot(w, data[ic], color=color, ls=ls, marker=marker, ms=4,
-                            markevery=max(1, len(w) // 8), label=label)
+                            markevery=(ic % step, step), label=label)
                 peak, at, _, edge, zero = peak_of(data[ic], w)
                 if np.isfinite(peak) or zero:
                     table.append((pulse, "" if value is None else f"{value:g}", resp, peak, at,
@@ -504,8 +507,8 @@ def correlation_theta_vs_le(sweep, out_dir, name, pdf):
     axes[0][-1].legend([handles[k] for k in keys], [names[k] for k in keys], loc="upper left",
                        bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)
     fig.suptitle(f"{sweep.name}: rotation against the persistency of each record", fontsize=10)
-    caption(fig, ["Le", "Pi"], "r: Pearson's correlation of θ_m with L_e; slope of "
-            "log10 θ_m against log10 L_e.")
+    caption(fig, ["Le", "Pi"], "r_log: Pearson's correlation of log10 θ_m with log10 L_e, the "
+            "variables of the fitted line; slope of log10 θ_m against log10 L_e.")
     return _save(fig, out_dir, name, pdf), table
 
 
@@ -513,7 +516,13 @@ def _fit_text(group, row):
     """`group, r = ..., slope ...`, or that the group is too small for a correlation."""
     if row["n_log"] < 3 or not np.isfinite(row["slope"]):
         return f"{group}: {row['n']} records, too few to fit"
-    return f"{group}, $r$ = {row['pearson']:.2f}, slope {row['slope']:.2f}"
+    return f"{group}, $r_{{log}}$ = {log_pearson(row):.2f}, slope {row['slope']:.2f}"
+
+
+def log_pearson(row):
+    """Pearson's r of log10 theta_m with log10 L_e: the correlation of the log-log fit drawn,
+    sign(slope) sqrt(R^2) of that least-squares line."""
+    return float(np.sign(row["slope"]) * np.sqrt(max(row["r2"], 0.0)))
 
 
 def stored_correlation(sweep, ipi):

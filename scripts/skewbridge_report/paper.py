@@ -585,11 +585,11 @@ def fig13(runner, out):
     parts = []
     signs_hit = []
     for pi, own, hit, _ in rows:
-        text = (f"Π_δ = {pi:g}: all {own['n']} records Pearson {own['pearson']:.2f}, "
-                f"slope {own['slope']:.2f}")
+        text = (f"Π_δ = {pi:g}: all {own['n']} records r_log "
+                f"{figures.log_pearson(own):.2f}, slope {own['slope']:.2f}")
         if hit is not None and hit["n_log"] >= 3:
-            text += (f"; the {hit['n']} that strike Pearson {hit['pearson']:.2f}, slope "
-                     f"{hit['slope']:.2f}")
+            text += (f"; the {hit['n']} that strike r_log {figures.log_pearson(hit):.2f}, "
+                     f"slope {hit['slope']:.2f}")
             signs_hit.append(hit["slope"] > 0)
         elif hit is not None:
             text += f"; {hit['n']} strike, too few to fit"
