@@ -197,8 +197,9 @@ def fig05(runner, out):
     levels = [0.25, 0.5, 1.0]
     runs = [load_run(pulse_run(runner, f"fig05-ag{a}", a, 2.0, 0.0)) for a in levels]
     w_g = 2 * np.pi / 0.5
-    fig, axes = plt.subplots(3, 1, figsize=(10, 8), sharex=True, constrained_layout=True)
+    fig, grid = plt.subplots(3, 2, figsize=(12, 8), sharex="col", constrained_layout=True)
     labels = [r"$x\,\omega_g^2/a_g$", r"$y\,\omega_g^2/a_g$", r"$\theta\,\rho\,\omega_g^2/a_g$"]
+    dim_labels = [r"$x$ [mm]", r"$y$ [mm]", r"$\theta$ [mrad]"]
     curves = []
     for (run, a_g_g), (color, marker, ls) in zip(zip(runs, levels), figures.curve_styles(3)):
         model = tomllib.loads(run.model_text)
@@ -207,11 +208,17 @@ def fig05(runner, out):
                                 run.q[:, 2] * _rho(model) * scale])
         curves.append(norm)
         for k in range(3):
-            axes[k].plot(w_g * run.t_s, norm[:, k], color=color, ls=ls, lw=1.6,
-                         label=f"$a_g$ = {a_g_g:g} g" if k == 0 else None)
+            grid[k][0].plot(run.t_s, run.q[:, k] * 1e3, color=color, ls=ls, lw=1.6)
+            grid[k][1].plot(w_g * run.t_s, norm[:, k], color=color, ls=ls, lw=1.6,
+                            label=f"$a_g$ = {a_g_g:g} g" if k == 0 else None)
     for k in range(3):
-        axes[k].set_ylabel(labels[k])
-    axes[-1].set_xlabel(r"$\omega_g t$")
+        grid[k][0].set_ylabel(dim_labels[k])
+        grid[k][1].set_ylabel(labels[k])
+    grid[0][0].set_title("dimensional: grows with a_g", fontsize=10)
+    grid[0][1].set_title("dimensionless: one curve", fontsize=10)
+    grid[-1][0].set_xlabel(r"$t$ [s]")
+    grid[-1][1].set_xlabel(r"$\omega_g t$")
+    axes = [row[1] for row in grid]
     axes[0].legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
     fig.suptitle(r"Fig. 5: self-similarity, $\Pi_\delta$ = 1, $\eta_0$ = 2, $\alpha$ = 30°, "
                  r"$\omega_0/\omega_g$ = 0.955, cosine pulse", fontsize=10)
