@@ -1,6 +1,6 @@
 """The `scripts/paper` command: the analogue of each result figure of Dimitrakopoulos (2011),
-Figs. 5 to 11 and 13, from sweeps (jobs/specs/paper/, jobs/specs/) and runs of
-jobs/specs/paper/subsystem-run.toml, with paper.md: per figure the paper's statement, this
+Figs. 5 to 13 (sections 3 and 4 of the paper) and one extension, from sweeps
+(jobs/specs/paper/, jobs/specs/) and runs of jobs/specs/paper/subsystem-run.toml, with paper.md: per figure the paper's statement, this
 reproduction's parameters, the measured numbers and a verdict (reproduced / partly / not).
 
 Every number in paper.md is computed here from the cubes and run files, so a re-run with another
