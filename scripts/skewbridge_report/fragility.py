@@ -14,7 +14,8 @@ from .data import _text
 
 Z95 = 1.959963984540054
 MAX_COMBOS = 8  # curves per panel; more combinations are listed in the table only
-IM_TEXT = {"im_g": "IM: the stripe", "im_mps": "IM: the stripe", "im": "IM of the record",
+IM_TEXT = {"im_g": "IM: the stripe im_g", "im_mps": "IM: the stripe im_mps",
+           "im": "IM of the record",
            "a_g": r"IM = $a_g/g$ (PGA × scale)"}
 
 
@@ -130,11 +131,11 @@ def fragility_curves(sweep, out_dir, name, pdf):
                 ax.fill_between(x, plo, phi, color=color, alpha=0.15, lw=0)
             else:
                 notes.append(_text(g["reason"][flat]))
-        reason_count = len(notes)
-        if reason_count:
-            text = "no fit: " + notes[0] + (f" (and {reason_count - 1} more)"
-                                           if reason_count > 1 else "")
-            ax.text(0.02, 0.97, "\n".join(textwrap.wrap(text, 48)), transform=ax.transAxes,
+        if notes:
+            # Where the curves are not: left of the steps, at mid height; the reasons are in
+            # the table.
+            ax.text(0.02, 0.62, f"no fit for {len(notes)} of {len(shown)}:\n"
+                    + "\n".join(textwrap.wrap(_short(notes[0]), 26)), transform=ax.transAxes,
                     va="top", fontsize=8, color="0.3")
         figures.log_axis(ax, "x")
         ax.set_ylim(-0.05, 1.05)
@@ -156,6 +157,11 @@ def fragility_curves(sweep, out_dir, name, pdf):
         color="0.2")
     fig.get_layout_engine().set(rect=(0, 0.07, 1, 0.93))
     return figures._save(fig, out_dir, name, pdf), table
+
+
+def _short(reason):
+    """The first clause of a reason: what happened, without the numbers that follow."""
+    return reason.split(" (")[0].split(":")[0]
 
 
 def _cells_of(sweep, fa, ls, idx, order):
