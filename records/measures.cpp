@@ -116,14 +116,16 @@ double SignificantDuration(std::span<const double> acc, double dt_s, double from
   return CrossingTime(cumulative, to * total, dt_s) - CrossingTime(cumulative, from * total, dt_s);
 }
 
-std::vector<double> PseudoAccelerationSpectrum(std::span<const double> acc, double dt_s,
-                                               std::span<const double> periods_s, double xi) {
+ResponseSpectrum ElasticResponseSpectrum(std::span<const double> acc, double dt_s,
+                                         std::span<const double> periods_s, double xi) {
   RequireRecord(acc, dt_s, "response spectrum");
   if (!(xi >= 0.0 && xi < 1.0)) {
-    throw InputError::AtField("response spectrum", "xi", "must be in [0, 1)");
+    throw InputError::AtField("response spectrum", "xi",
+                              "must be in [0, 1) (got " + std::to_string(xi) + ")");
   }
-  std::vector<double> sa;
-  sa.reserve(periods_s.size());
+  ResponseSpectrum out;
+  out.xi = xi;
+  out.periods_s.assign(periods_s.begin(), periods_s.end());
   const double h = dt_s;
   for (const double period : periods_s) {
     if (!(std::isfinite(period) && period > 0.0)) {
@@ -161,9 +163,61 @@ std::vector<double> PseudoAccelerationSpectrum(std::span<const double> acc, doub
       v = v_next;
       peak = std::max(peak, std::abs(u));
     }
-    sa.push_back(w * w * peak);
+    out.sd_m.push_back(peak);
+    out.psv_mps.push_back(w * peak);
+    out.psa_mps2.push_back(w * w * peak);
   }
-  return sa;
+  return out;
+}
+
+std::vector<double> PseudoAccelerationSpectrum(std::span<const double> acc, double dt_s,
+                                               std::span<const double> periods_s, double xi) {
+  return ElasticResponseSpectrum(acc, dt_s, periods_s, xi).psa_mps2;
+}
+
+std::vector<double> AvgSaPeriods(double t1_s, double from_t1, double to_t1, int count) {
+  if (!(std::isfinite(t1_s) && t1_s > 0.0)) {
+    throw InputError::AtField("AvgSa", "T1", "must be > 0 s (got " + std::to_string(t1_s) + ")");
+  }
+  if (!(std::isfinite(from_t1) && std::isfinite(to_t1) && 0.0 < from_t1 && from_t1 <= to_t1)) {
+    throw InputError::AtField("AvgSa", "range", "needs 0 < from <= to (multiples of T1)");
+  }
+  if (count < 1) throw InputError::AtField("AvgSa", "count", "must be a whole number >= 1");
+  std::vector<double> periods(static_cast<std::size_t>(count));
+  for (int i = 0; i < count; ++i) {
+    const double f = count == 1 ? 0.0 : static_cast<double>(i) / (count - 1);
+    periods[static_cast<std::size_t>(i)] = t1_s * (from_t1 + (to_t1 - from_t1) * f);
+  }
+  periods.back() = t1_s * (count == 1 ? from_t1 : to_t1);
+  return periods;
+}
+
+double AverageSpectralAcceleration(std::span<const double> acc, double dt_s,
+                                   std::span<const double> periods_s, double xi) {
+  if (periods_s.empty()) throw InputError::AtField("AvgSa", "periods", "must not be empty");
+  const ResponseSpectrum spectrum = ElasticResponseSpectrum(acc, dt_s, periods_s, xi);
+  double log_sum = 0.0;
+  for (const double sa : spectrum.psa_mps2) {
+    if (!(sa > 0.0)) return 0.0;
+    log_sum += std::log(sa);
+  }
+  return std::exp(log_sum / static_cast<double>(spectrum.psa_mps2.size()));
+}
+
+double CumulativeAbsoluteVelocity(std::span<const double> acc, double dt_s) {
+  RequireRecord(acc, dt_s, "cumulative absolute velocity");
+  double cav = 0.0;
+  for (std::size_t k = 1; k < acc.size(); ++k) {
+    const double a0 = acc[k - 1];
+    const double a1 = acc[k];
+    if ((a0 >= 0.0) == (a1 >= 0.0) || a0 == 0.0 || a1 == 0.0) {
+      cav += dt_s * std::abs(a0 + a1) / 2.0;
+    } else {
+      // A sign change at t0 + dt |a0| / (|a0| + |a1|): two triangles.
+      cav += dt_s * (a0 * a0 + a1 * a1) / (2.0 * (std::abs(a0) + std::abs(a1)));
+    }
+  }
+  return cav;
 }
 
 IntensityMeasures ComputeMeasures(const GroundMotion& motion) {
@@ -182,6 +236,7 @@ IntensityMeasures ComputeMeasures(const GroundMotion& motion) {
   m.persistency_m = m.pga_mps2 / (m.omega_g_radps * m.omega_g_radps);
   m.arias_mps = AriasIntensity(acc, motion.dt_s);
   m.significant_duration_s = SignificantDuration(acc, motion.dt_s);
+  m.cav_mps = CumulativeAbsoluteVelocity(acc, motion.dt_s);
   return m;
 }
 

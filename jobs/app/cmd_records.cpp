@@ -1,15 +1,21 @@
-// `skewbridge records`: intensity measures of records and record sets, and synthetic suites.
+// `skewbridge records`: intensity measures of records and record sets, response spectra, and
+// synthetic suites.
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include "jobs/app/commands.h"
+#include "jobs/h5/h5_error.h"
+#include "jobs/h5/spectrum_file.h"
 #include "records/ground_motion.h"
 #include "records/measures.h"
 #include "records/record_set.h"
@@ -31,6 +37,10 @@ struct InfoArgs {
   std::string units;
   std::string format = "auto";
   int channel = 1;
+  std::vector<std::string> periods;  ///< --periods: values or A:B:N (s)
+  double xi = 0.05;                  ///< --xi
+  double t1_s = 0.0;                 ///< --t1: Sa(T1) and AvgSa; 0 = not asked
+  std::string pattern = "*";         ///< --pattern: the files of a folder that are records
 };
 
 struct Row {
@@ -38,6 +48,7 @@ struct Row {
   GroundMotion motion;
   IntensityMeasures measures;
   int channel = 1;  ///< the CSMIP V2 channel read (meaningful for multi-channel files only)
+  std::string set;  ///< the set (manifest or folder) the record came from, "" alone
 };
 
 std::string JsonString(const std::string& text) {
@@ -65,6 +76,86 @@ std::string CsvField(const std::string& text) {
   return out + "\"";
 }
 
+// The read options --dt, --units, --format and --channel give for a file that states none.
+records::ReadOptions ReadOptionsOf(const InfoArgs& args, std::string_view command) {
+  if (args.dt_given && !(args.dt_s > 0.0 && std::isfinite(args.dt_s))) {
+    throw InputError::AtField(command, "--dt",
+                              fmt::format("must be a time step > 0 s (got {})", args.dt_s));
+  }
+  records::ReadOptions options;
+  if (args.dt_given) options.dt_s = args.dt_s;
+  if (!args.units.empty()) {
+    options.units = records::ParseUnits(args.units);
+    if (!options.units) {
+      throw InputError::AtField(command, "--units",
+                                "unknown units '" + args.units + "' (allowed: g, m/s2, cm/s2)");
+    }
+  }
+  const std::optional<records::Format> format = records::ParseFormat(args.format);
+  if (!format) {
+    throw InputError::AtField(command, "--format",
+                              "unknown format '" + args.format +
+                                  "' (allowed: auto, at2, esm, itsak, cosmos, csmip, smc, smtk, "
+                                  "plain, time-acc)");
+  }
+  options.format = *format;
+  options.channel = args.channel;
+  return options;
+}
+
+// Appends the records of one path: a set manifest (.toml), a folder (every file in it, in byte
+// order of the names, with the command's read options), or one record file; each measured.
+void LoadPath(const std::string& text, const InfoArgs& args, std::string_view command,
+              std::vector<Row>& rows) {
+  const std::filesystem::path path(text);
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) {
+    throw InputError::AtLine(text, 0,
+                             "the file does not exist (give record files, folders of records or "
+                             "record-set manifests .toml)");
+  }
+  if (path.extension() == ".toml") {
+    if (args.dt_given || !args.units.empty() || args.format != "auto") {
+      throw InputError::AtField(command, "--dt/--units/--format",
+                                "apply to a single file; give them per record in the set");
+    }
+    const records::RecordSet set = records::LoadRecordSet(path);
+    for (const records::RecordEntry& entry : set.records) {
+      Row row{records::RecordLabel(entry),
+              records::LoadRecord(entry),
+              {},
+              entry.options.channel,
+              set.name};
+      row.measures = records::ComputeMeasures(row.motion);
+      rows.push_back(std::move(row));
+    }
+    return;
+  }
+  if (std::filesystem::is_directory(path, ec)) {
+    records::RecordEntry defaults;
+    defaults.options = ReadOptionsOf(args, command);
+    const records::RecordSet set = records::MakeFolderSet(path, args.pattern, defaults,
+                                                          {text, text, std::string(command) + " "});
+    const std::string name = path.lexically_normal().filename().empty()
+                                 ? path.lexically_normal().parent_path().filename().string()
+                                 : path.lexically_normal().filename().string();
+    for (const records::RecordEntry& entry : set.records) {
+      Row row{
+          records::RecordLabel(entry), records::LoadRecord(entry), {}, entry.options.channel, name};
+      row.measures = records::ComputeMeasures(row.motion);
+      rows.push_back(std::move(row));
+    }
+    return;
+  }
+  Row row{path.filename().string(),
+          records::ReadRecord(path, ReadOptionsOf(args, command)),
+          {},
+          args.channel,
+          ""};
+  row.measures = records::ComputeMeasures(row.motion);
+  rows.push_back(std::move(row));
+}
+
 // What `records info` reads: a file that exists, not a folder.
 void CheckInfoPath(const std::filesystem::path& path) {
   std::error_code ec;
@@ -78,57 +169,106 @@ void CheckInfoPath(const std::filesystem::path& path) {
     throw InputError::AtLine(path.string(), 0,
                              "is a folder; `records info` takes a record file or a record-set "
                              "manifest .toml (a folder of records is a set through a sweep's "
-                             "[records] folder and pattern)");
+                             "[records] folder and pattern, or `records spectrum FOLDER`)");
   }
 }
 
 std::vector<Row> LoadRows(const InfoArgs& args) {
   std::vector<Row> rows;
-  const std::filesystem::path path(args.path);
-  CheckInfoPath(path);
-  if (args.dt_given && !(args.dt_s > 0.0 && std::isfinite(args.dt_s))) {
-    throw InputError::AtField("records info", "--dt",
-                              fmt::format("must be a time step > 0 s (got {})", args.dt_s));
-  }
-  if (path.extension() == ".toml") {
-    if (args.dt_given || !args.units.empty() || args.format != "auto") {
-      throw InputError::AtField("records info", "--dt/--units/--format",
-                                "apply to a single file; give them per record in the set");
-    }
-    const records::RecordSet set = records::LoadRecordSet(path);
-    for (const records::RecordEntry& entry : set.records) {
-      Row row{records::RecordLabel(entry), records::LoadRecord(entry), {}, entry.options.channel};
-      row.measures = records::ComputeMeasures(row.motion);
-      rows.push_back(std::move(row));
-    }
-    return rows;
-  }
-  records::ReadOptions options;
-  if (args.dt_given) options.dt_s = args.dt_s;
-  if (!args.units.empty()) {
-    options.units = records::ParseUnits(args.units);
-    if (!options.units) {
-      throw InputError::AtField("records info", "--units",
-                                "unknown units '" + args.units + "' (allowed: g, m/s2, cm/s2)");
-    }
-  }
-  const std::optional<records::Format> format = records::ParseFormat(args.format);
-  if (!format) {
-    throw InputError::AtField("records info", "--format",
-                              "unknown format '" + args.format +
-                                  "' (allowed: auto, at2, esm, itsak, cosmos, csmip, smc, smtk, "
-                                  "plain, time-acc)");
-  }
-  options.format = *format;
-  options.channel = args.channel;
-  Row row{path.filename().string(), records::ReadRecord(path, options), {}, args.channel};
-  row.measures = records::ComputeMeasures(row.motion);
-  rows.push_back(std::move(row));
+  CheckInfoPath(args.path);
+  LoadPath(args.path, args, "records info", rows);
   return rows;
 }
 
+// The periods of --periods: each token a period in s, or A:B:N for N periods from A to B
+// spaced geometrically (values, not decades; N >= 2); sorted, duplicates removed.
+std::vector<double> ParsePeriods(const std::vector<std::string>& tokens, std::string_view command) {
+  auto number = [&](std::string_view t) {
+    double v = 0.0;
+    const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+    if (ec != std::errc() || end != t.data() + t.size() || !std::isfinite(v) || !(v > 0.0)) {
+      throw InputError::AtField(command, "--periods",
+                                "'" + std::string(t) +
+                                    "' is not a period > 0 s (allowed: values in s, or A:B:N for "
+                                    "N geometrically spaced periods from A to B)");
+    }
+    return v;
+  };
+  std::vector<double> periods;
+  for (const std::string& token : tokens) {
+    const std::size_t c1 = token.find(':');
+    if (c1 == std::string::npos) {
+      periods.push_back(number(token));
+      continue;
+    }
+    const std::size_t c2 = token.find(':', c1 + 1);
+    const std::string_view t(token);
+    if (c2 == std::string::npos)
+      throw InputError::AtField(command, "--periods", "'" + token + "': give A:B:N");
+    const double a = number(t.substr(0, c1));
+    const double b = number(t.substr(c1 + 1, c2 - c1 - 1));
+    const double n_value = number(t.substr(c2 + 1));
+    if (n_value != std::floor(n_value) || n_value < 2 || n_value > 100000 || !(a < b)) {
+      throw InputError::AtField(
+          command, "--periods",
+          "'" + token + "': A:B:N needs A < B and N a whole number 2..100000");
+    }
+    const int n = static_cast<int>(n_value);
+    for (int i = 0; i < n; ++i) {
+      periods.push_back(i + 1 == n ? b : a * std::pow(b / a, static_cast<double>(i) / (n - 1)));
+    }
+  }
+  std::sort(periods.begin(), periods.end());
+  periods.erase(std::unique(periods.begin(), periods.end()), periods.end());
+  return periods;
+}
+
+void RequireDamping(double xi, std::string_view command) {
+  if (!(xi >= 0.0 && xi < 1.0)) {
+    throw InputError::AtField(command, "--xi",
+                              fmt::format("must be a damping ratio in [0, 1) (got {})", xi));
+  }
+}
+
+// The spectral measures `records info` adds for --periods, --xi and --t1.
+struct SpectralColumns {
+  std::vector<double> periods_s;
+  std::vector<records::ResponseSpectrum> spectra;  ///< per row
+  std::vector<double> sa_t1_mps2;                  ///< per row, with --t1
+  std::vector<double> avgsa_mps2;                  ///< per row, with --t1
+};
+
+SpectralColumns ComputeSpectralColumns(const InfoArgs& args, const std::vector<Row>& rows) {
+  SpectralColumns out;
+  RequireDamping(args.xi, "records info");
+  out.periods_s = ParsePeriods(args.periods, "records info");
+  const bool t1 = args.t1_s != 0.0;
+  if (t1 && !(std::isfinite(args.t1_s) && args.t1_s > 0.0)) {
+    throw InputError::AtField("records info", "--t1",
+                              fmt::format("must be a period > 0 s (got {})", args.t1_s));
+  }
+  for (const Row& r : rows) {
+    const std::span<const double> acc(r.motion.acc_mps2);
+    out.spectra.push_back(
+        records::ElasticResponseSpectrum(acc, r.motion.dt_s, out.periods_s, args.xi));
+    if (t1) {
+      const std::vector<double> one{args.t1_s};
+      out.sa_t1_mps2.push_back(
+          records::PseudoAccelerationSpectrum(acc, r.motion.dt_s, one, args.xi)[0]);
+      out.avgsa_mps2.push_back(records::AverageSpectralAcceleration(
+          acc, r.motion.dt_s, records::AvgSaPeriods(args.t1_s), args.xi));
+    }
+  }
+  return out;
+}
+
+// "0.3" for a period in a column name.
+std::string PeriodText(double t) { return fmt::format("{}", t); }
+
 void PrintInfo(const InfoArgs& args) {
   const std::vector<Row> rows = LoadRows(args);
+  const SpectralColumns sc = ComputeSpectralColumns(args, rows);
+  const bool t1 = !sc.sa_t1_mps2.empty();
   for (const Row& row : rows) {
     for (const std::string& note : row.motion.notes) {
       std::fprintf(stderr, "skewbridge: note: %s\n", note.c_str());
@@ -140,36 +280,65 @@ void PrintInfo(const InfoArgs& args) {
     for (std::size_t i = 0; i < rows.size(); ++i) {
       const Row& r = rows[i];
       const IntensityMeasures& m = r.measures;
+      std::string spectral;
+      if (!sc.periods_s.empty() || t1) spectral += fmt::format(", \"xi\": {}", args.xi);
+      if (!sc.periods_s.empty()) {
+        spectral += ", \"spectrum\": [";
+        for (std::size_t k = 0; k < sc.periods_s.size(); ++k) {
+          const records::ResponseSpectrum& s = sc.spectra[i];
+          spectral += fmt::format("{}{{\"T_s\": {}, \"sa_g\": {}, \"sv_mps\": {}, \"sd_m\": {}}}",
+                                  k ? ", " : "", sc.periods_s[k], s.psa_mps2[k] / g, s.psv_mps[k],
+                                  s.sd_m[k]);
+        }
+        spectral += "]";
+      }
+      if (t1) {
+        spectral += fmt::format(", \"t1_s\": {}, \"sa_t1_g\": {}, \"avgsa_g\": {}", args.t1_s,
+                                sc.sa_t1_mps2[i] / g, sc.avgsa_mps2[i] / g);
+      }
       std::printf(
           "%s",
           fmt::format("  {{\"label\": {}, \"file\": {}, \"format\": {}, \"event\": {}, "
                       "\"station\": {}, \"component\": {}, \"units_in_file\": {}, "
                       "\"npts\": {}, \"dt_s\": {}, \"pga_g\": {}, \"pga_mps2\": {}, "
                       "\"pgv_mps\": {}, \"pgd_m\": {}, \"tm_s\": {}, \"omega_g_radps\": {}, "
-                      "\"persistency_m\": {}, \"arias_mps\": {}, \"d5_95_s\": {}}}{}\n",
+                      "\"persistency_m\": {}, \"arias_mps\": {}, \"d5_95_s\": {}, "
+                      "\"cav_mps\": {}{}}}{}\n",
                       JsonString(r.label), JsonString(r.motion.file), JsonString(r.motion.format),
                       JsonString(r.motion.event), JsonString(r.motion.station),
                       JsonString(r.motion.component), JsonString(r.motion.original_units),
                       r.motion.npts(), r.motion.dt_s, m.pga_mps2 / g, m.pga_mps2, m.pgv_mps,
                       m.pgd_m, m.mean_period_s, m.omega_g_radps, m.persistency_m, m.arias_mps,
-                      m.significant_duration_s, i + 1 < rows.size() ? "," : "")
+                      m.significant_duration_s, m.cav_mps, spectral, i + 1 < rows.size() ? "," : "")
               .c_str());
     }
     std::printf("]\n");
     return;
   }
   if (args.csv) {
-    std::printf(
+    std::string header =
         "label,file,format,npts,dt_s,pga_g,pgv_mps,pgd_m,tm_s,omega_g_radps,persistency_m,"
-        "arias_mps,d5_95_s\n");
-    for (const Row& r : rows) {
+        "arias_mps,d5_95_s,cav_mps";
+    for (const double t : sc.periods_s) {
+      const std::string p = PeriodText(t);
+      header += ",sa_" + p + "s_g,sv_" + p + "s_mps,sd_" + p + "s_m";
+    }
+    if (t1) header += ",sa_t1_g,avgsa_g";
+    std::printf("%s\n", header.c_str());
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const Row& r = rows[i];
       const IntensityMeasures& m = r.measures;
-      std::printf(
-          "%s", fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{}\n", CsvField(r.label),
-                            CsvField(r.motion.file), r.motion.format, r.motion.npts(),
-                            r.motion.dt_s, m.pga_mps2 / g, m.pgv_mps, m.pgd_m, m.mean_period_s,
-                            m.omega_g_radps, m.persistency_m, m.arias_mps, m.significant_duration_s)
-                    .c_str());
+      std::string line =
+          fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{}", CsvField(r.label),
+                      CsvField(r.motion.file), r.motion.format, r.motion.npts(), r.motion.dt_s,
+                      m.pga_mps2 / g, m.pgv_mps, m.pgd_m, m.mean_period_s, m.omega_g_radps,
+                      m.persistency_m, m.arias_mps, m.significant_duration_s, m.cav_mps);
+      for (std::size_t k = 0; k < sc.periods_s.size(); ++k) {
+        const records::ResponseSpectrum& s = sc.spectra[i];
+        line += fmt::format(",{},{},{}", s.psa_mps2[k] / g, s.psv_mps[k], s.sd_m[k]);
+      }
+      if (t1) line += fmt::format(",{},{}", sc.sa_t1_mps2[i] / g, sc.avgsa_mps2[i] / g);
+      std::printf("%s\n", line.c_str());
     }
     return;
   }
@@ -177,27 +346,164 @@ void PrintInfo(const InfoArgs& args) {
   // network.station.location.channel, which a fixed 36-character column cut off.
   std::size_t width = 6;
   for (const Row& r : rows) width = std::max(width, std::min<std::size_t>(r.label.size(), 48));
-  std::printf(
-      "%s", fmt::format("{:<{}} {:<8} {:>7} {:>8} {:>7} {:>8} {:>8} {:>7} {:>8} {:>8} "
-                        "{:>8} {:>7}  {}\n",
-                        "record", width, "format", "npts", "dt[s]", "PGA[g]", "PGV[m/s]", "PGD[m]",
-                        "Tm[s]", "wg[r/s]", "Le[m]", "Ia[m/s]", "D5-95", "channel / component")
-                .c_str());
-  for (const Row& r : rows) {
+  std::string spectral_head;
+  for (const double t : sc.periods_s) {
+    spectral_head += fmt::format(" {:>9}", "Sa(" + PeriodText(t) + ")");
+  }
+  if (t1) spectral_head += fmt::format(" {:>9} {:>9}", "Sa(T1)", "AvgSa");
+  std::printf("%s", fmt::format("{:<{}} {:<8} {:>7} {:>8} {:>7} {:>8} {:>8} {:>7} {:>8} {:>8} "
+                                "{:>8} {:>7} {:>8}{}  {}\n",
+                                "record", width, "format", "npts", "dt[s]", "PGA[g]", "PGV[m/s]",
+                                "PGD[m]", "Tm[s]", "wg[r/s]", "Le[m]", "Ia[m/s]", "D5-95",
+                                "CAV[m/s]", spectral_head, "channel / component")
+                        .c_str());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const Row& r = rows[i];
     const IntensityMeasures& m = r.measures;
     std::string label = r.label;
     if (label.size() > width) label = label.substr(0, width - 3) + "...";
     // A CSMIP V2 file holds several channels: say which one was read (--channel picks another).
     std::string channel = r.motion.format == "csmip" ? fmt::format("ch {}", r.channel) : "-";
     if (!r.motion.component.empty()) channel += " / " + r.motion.component;
+    std::string spectral;
+    for (std::size_t k = 0; k < sc.periods_s.size(); ++k) {
+      spectral += fmt::format(" {:>9.4f}", sc.spectra[i].psa_mps2[k] / g);
+    }
+    if (t1) {
+      spectral += fmt::format(" {:>9.4f} {:>9.4f}", sc.sa_t1_mps2[i] / g, sc.avgsa_mps2[i] / g);
+    }
+    std::printf("%s", fmt::format("{:<{}} {:<8} {:>7} {:>8.5g} {:>7.4f} {:>8.4f} {:>8.4f} "
+                                  "{:>7.4f} {:>8.3f} {:>8.5f} {:>8.4f} {:>7.2f} {:>8.4f}{}  {}\n",
+                                  label, width, r.motion.format, r.motion.npts(), r.motion.dt_s,
+                                  m.pga_mps2 / g, m.pgv_mps, m.pgd_m, m.mean_period_s,
+                                  m.omega_g_radps, m.persistency_m, m.arias_mps,
+                                  m.significant_duration_s, m.cav_mps, spectral, channel)
+                          .c_str());
+  }
+  if (!sc.periods_s.empty() || t1) {
     std::printf("%s",
-                fmt::format("{:<{}} {:<8} {:>7} {:>8.5g} {:>7.4f} {:>8.4f} {:>8.4f} "
-                            "{:>7.4f} {:>8.3f} {:>8.5f} {:>8.4f} {:>7.2f}  {}\n",
-                            label, width, r.motion.format, r.motion.npts(), r.motion.dt_s,
-                            m.pga_mps2 / g, m.pgv_mps, m.pgd_m, m.mean_period_s, m.omega_g_radps,
-                            m.persistency_m, m.arias_mps, m.significant_duration_s, channel)
+                fmt::format("Sa(T): pseudo-acceleration in g at T in s, xi = {} [Nigam and "
+                            "Jennings 1969]{}; CAV = int |a| dt [EPRI 1988]\n",
+                            args.xi,
+                            t1 ? fmt::format("; T1 = {} s, AvgSa over {} periods equally spaced "
+                                             "in {}-{} T1 [Eads et al. 2015]",
+                                             args.t1_s, records::kAvgSaPeriodCount,
+                                             records::kAvgSaFromT1, records::kAvgSaToT1)
+                               : "")
                     .c_str());
   }
+}
+
+struct SpectrumArgs {
+  InfoArgs read;                   ///< --dt, --units, --format, --channel
+  std::vector<std::string> paths;  ///< records, folders or sets
+  std::vector<double> xi{0.05};
+  std::string out;
+};
+
+// `records spectrum`: Sd, PSv, PSa of every record at every period and damping ratio, as CSV
+// on stdout or in FILE.csv, or an HDF5 file for scripts/report.
+void WriteSpectra(const SpectrumArgs& args, const std::string& command_line) {
+  constexpr std::string_view kCommand = "records spectrum";
+  const std::filesystem::path out(args.out);
+  const std::string ext = out.extension().string();
+  if (!args.out.empty() && ext != ".csv" && ext != ".h5") {
+    throw InputError::AtField(kCommand, "--out", "'" + args.out + "' must end in .csv or .h5");
+  }
+  if (!args.out.empty()) {
+    std::error_code ec;
+    const std::filesystem::path folder = out.parent_path().empty() ? "." : out.parent_path();
+    if (!std::filesystem::is_directory(folder, ec)) {
+      throw InputError::AtField(kCommand, "--out", "no folder " + folder.string());
+    }
+    if (std::filesystem::is_directory(out, ec)) {
+      throw InputError::AtField(kCommand, "--out", args.out + " is a folder");
+    }
+  }
+  std::vector<double> xi = args.xi;
+  for (const double x : xi) RequireDamping(x, kCommand);
+  std::sort(xi.begin(), xi.end());
+  xi.erase(std::unique(xi.begin(), xi.end()), xi.end());
+  const std::vector<double> periods = ParsePeriods(
+      args.read.periods.empty() ? std::vector<std::string>{"0.01:10:100"} : args.read.periods,
+      kCommand);
+  std::vector<Row> rows;
+  for (const std::string& path : args.paths) LoadPath(path, args.read, kCommand, rows);
+  for (const Row& row : rows) {
+    for (const std::string& note : row.motion.notes) {
+      std::fprintf(stderr, "skewbridge: note: %s\n", note.c_str());
+    }
+  }
+  jobs::h5::SpectrumTable t;
+  t.command = command_line;
+  t.periods_s = periods;
+  t.xi = xi;
+  for (const Row& r : rows) {
+    t.label.push_back(r.label);
+    t.file.push_back(r.motion.file);
+    t.set.push_back(r.set);
+    t.dt_s.push_back(r.motion.dt_s);
+    t.pga_mps2.push_back(r.measures.pga_mps2);
+    for (const double x : xi) {
+      const records::ResponseSpectrum s =
+          records::ElasticResponseSpectrum(r.motion.acc_mps2, r.motion.dt_s, periods, x);
+      t.sd_m.insert(t.sd_m.end(), s.sd_m.begin(), s.sd_m.end());
+      t.psv_mps.insert(t.psv_mps.end(), s.psv_mps.begin(), s.psv_mps.end());
+      t.psa_mps2.insert(t.psa_mps2.end(), s.psa_mps2.begin(), s.psa_mps2.end());
+    }
+  }
+  if (ext == ".h5") {
+    try {
+      jobs::h5::WriteSpectrumFile(out, t);
+    } catch (const jobs::h5::H5Error& e) {
+      throw InputError::AtField(kCommand, "--out", std::string("cannot write: ") + e.what());
+    }
+    std::printf(
+        "%s", fmt::format("wrote {} spectra ({} records x {} damping ratios, {} periods) "
+                          "to {}\n",
+                          rows.size() * xi.size(), rows.size(), xi.size(), periods.size(), args.out)
+                  .c_str());
+    return;
+  }
+  std::string text = "label,set,xi,T_s,Sd_m,PSv_mps,PSa_mps2,PSa_g\n";
+  std::size_t k = 0;
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    for (const double x : xi) {
+      for (const double p : periods) {
+        text += fmt::format("{},{},{},{},{},{},{},{}\n", CsvField(t.label[r]), CsvField(t.set[r]),
+                            x, p, t.sd_m[k], t.psv_mps[k], t.psa_mps2[k],
+                            t.psa_mps2[k] / records::kStandardGravity_mps2);
+        ++k;
+      }
+    }
+  }
+  if (args.out.empty()) {
+    std::printf("%s", text.c_str());
+    return;
+  }
+  // Written whole to FILE.tmp, then renamed: never a partial file under the name.
+  const std::string tmp = args.out + ".tmp";
+  {
+    std::ofstream file(tmp, std::ios::binary | std::ios::trunc);
+    file << text;
+    file.flush();
+    if (!file) {
+      std::error_code ec;
+      std::filesystem::remove(tmp, ec);
+      throw InputError::AtField(kCommand, "--out", "cannot write " + tmp);
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, out, ec);
+  if (ec) {
+    std::filesystem::remove(tmp, ec);
+    throw InputError::AtField(kCommand, "--out", "cannot write " + args.out + ": " + ec.message());
+  }
+  std::printf("%s",
+              fmt::format("wrote {} spectra ({} records x {} damping ratios, {} periods) "
+                          "to {}\n",
+                          rows.size() * xi.size(), rows.size(), xi.size(), periods.size(), args.out)
+                  .c_str());
 }
 
 }  // namespace
@@ -209,7 +515,9 @@ void AddRecordsCommand(CLI::App& app) {
 
   auto info = std::make_shared<InfoArgs>();
   CLI::App* info_cmd = cmd->add_subcommand(
-      "info", "Print PGA, PGV, PGD, T_m, w_g, L_e, Arias and D5-95 of a record or a set (.toml)");
+      "info",
+      "Print PGA, PGV, PGD, T_m, w_g, L_e, Arias, D5-95, CAV (and Sa at --periods, Sa(T1) and "
+      "AvgSa with --t1) of a record or a set (.toml)");
   info_cmd->add_option("path", info->path, "record file, or record-set manifest (.toml)")
       ->required();
   auto* csv = info_cmd->add_flag("--csv", info->csv, "comma-separated output");
@@ -219,9 +527,50 @@ void AddRecordsCommand(CLI::App& app) {
   info_cmd->add_option("--format", info->format,
                        "auto, at2, esm, itsak, cosmos, csmip, smc, smtk, plain, time-acc");
   info_cmd->add_option("--channel", info->channel, "CSMIP V2 channel (1-based)");
+  info_cmd
+      ->add_option("--periods", info->periods,
+                   "periods (s) for Sa, Sv, Sd: values, or A:B:N for N periods from A to B "
+                   "spaced geometrically")
+      ->delimiter(',');
+  info_cmd->add_option("--xi", info->xi, "damping ratio of the spectra")->capture_default_str();
+  info_cmd->add_option("--t1", info->t1_s,
+                       "fundamental period T1 (s): adds Sa(T1) and AvgSa over 0.2-3 T1");
   info_cmd->callback([info, dt] {
     info->dt_given = dt->count() > 0;
     PrintInfo(*info);
+  });
+
+  auto spectrum = std::make_shared<SpectrumArgs>();
+  CLI::App* spectrum_cmd = cmd->add_subcommand(
+      "spectrum", "Elastic response spectra (Sd, PSv, PSa) of records, folders or sets");
+  spectrum_cmd->add_option("records", spectrum->paths, "record files, folders or sets (.toml)")
+      ->required();
+  spectrum_cmd
+      ->add_option("--periods", spectrum->read.periods,
+                   "periods (s): values, or A:B:N for N periods from A to B spaced geometrically "
+                   "(default 0.01:10:100)")
+      ->delimiter(',');
+  spectrum_cmd->add_option("--xi", spectrum->xi, "damping ratios (default 0.05)")->delimiter(',');
+  spectrum_cmd->add_option("--out", spectrum->out,
+                           "FILE.csv or FILE.h5 (default: CSV on standard output)");
+  CLI::Option* spectrum_dt =
+      spectrum_cmd->add_option("--dt", spectrum->read.dt_s, "time step (s) of headerless files");
+  spectrum_cmd->add_option("--units", spectrum->read.units,
+                           "units where a file states none: g, m/s2, cm/s2");
+  spectrum_cmd->add_option("--format", spectrum->read.format,
+                           "auto, at2, esm, itsak, cosmos, csmip, smc, smtk, plain, time-acc");
+  spectrum_cmd->add_option("--channel", spectrum->read.channel, "CSMIP V2 channel (1-based)");
+  spectrum_cmd
+      ->add_option("--pattern", spectrum->read.pattern,
+                   "file-name glob of the records in a folder (*, ?, [...])")
+      ->capture_default_str();
+  spectrum_cmd->callback([spectrum, spectrum_dt] {
+    spectrum->read.dt_given = spectrum_dt->count() > 0;
+    std::string line = "skewbridge records spectrum";
+    for (const std::string& p : spectrum->paths) line += " " + p;
+    for (const std::string& p : spectrum->read.periods) line += " --periods " + p;
+    for (const double x : spectrum->xi) line += fmt::format(" --xi {}", x);
+    WriteSpectra(*spectrum, line);
   });
 
   auto synth = std::make_shared<records::SynthOptions>();

@@ -7,7 +7,7 @@ import sys
 
 import numpy as np
 
-from . import figures, fragility, generic
+from . import figures, fragility, generic, response_spectra
 from . import plan as plan_view
 from .data import ReportError, load_cube, load_run
 
@@ -294,6 +294,9 @@ def main(argv):
                         help="a model file to draw in plan (repeatable)")
     parser.add_argument("--exe", default=os.path.join(ROOT, "build", "release", "skewbridge"),
                         help="the skewbridge program that reads --model files")
+    parser.add_argument("--spectra", action="append", default=[], metavar="SPECTRA.h5",
+                        help="response spectra of `skewbridge records spectrum --out` "
+                        "(repeatable)")
     parser.add_argument("--out", required=True, metavar="DIR", help="output folder")
     parser.add_argument("--pdf", action="store_true", help="also write each figure as PDF")
     parser.add_argument("--generic", action="store_true",
@@ -311,11 +314,12 @@ def main(argv):
 
 
 def run(args):
-    if not args.cubes and not args.run and not args.model:
-        raise ReportError("nothing to do: give at least one CUBE.h5, --run RUN.h5 or "
-                          "--model MODEL.toml")
+    if not args.cubes and not args.run and not args.model and not args.spectra:
+        raise ReportError("nothing to do: give at least one CUBE.h5, --run RUN.h5, "
+                          "--model MODEL.toml or --spectra SPECTRA.h5")
     sweeps = [s for path in args.cubes for s in load_cube(path, args.allow_partial)]
     runs = [load_run(path) for path in args.run]
+    spectra = [response_spectra.load_spectra(path) for path in args.spectra]
     if os.path.exists(args.out) and not os.path.isdir(args.out):
         raise ReportError(f"--out {args.out}: exists and is not a folder")
     os.makedirs(args.out, exist_ok=True)
@@ -378,6 +382,19 @@ def run(args):
         written.append(path)
         md += [f"## Model {os.path.basename(model_path)} in plan", "",
                f"![{name}]({os.path.basename(path)})", "", _table(["item", "value"], rows), ""]
+    for sp in spectra:
+        stem = _safe(os.path.splitext(os.path.basename(sp["path"]))[0])
+        for set_name, members in response_spectra.groups(sp):
+            name = f"response_spectra_{stem}_{_safe(set_name)}"
+            while name in used:
+                name += "_"
+            used.add(name)
+            path, rows = response_spectra.figure(sp, set_name, members, args.out, name, args.pdf)
+            written.append(path)
+            md += [f"## Response spectra of {set_name} ({os.path.basename(sp['path'])})", "",
+                   f"![{name}]({os.path.basename(path)})", "",
+                   _table(["set", "ξ", "records", "peak of the median S_a [g]", "at T [s]",
+                           "16 % there [g]", "84 % there [g]"], rows), ""]
     md += SYMBOLS_MD
     if skipped_all:
         md += ["## Figures not made", "",

@@ -2,6 +2,7 @@
 // pulses and sinusoids, and a fine-step Runge-Kutta integration for the elastic spectrum.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <filesystem>
@@ -169,6 +170,82 @@ TEST(PseudoAccelerationSpectrum, RejectsNonPositivePeriod) {
   const std::vector<double> acc = {0.0, 1.0};
   const std::vector<double> period = {0.0};
   EXPECT_THROW(PseudoAccelerationSpectrum(acc, 0.01, period), InputError);
+}
+
+TEST(ElasticResponseSpectrum, PseudoVelocityAndAccelerationAreWTimesSd) {
+  const GroundMotion m = ReadRecord(kData / "RSN763_LOMAP_GIL067.AT2");
+  const std::vector<double> periods = {0.02, 0.3, 1.0, 4.0};
+  const ResponseSpectrum s = ElasticResponseSpectrum(m.acc_mps2, m.dt_s, periods, 0.02);
+  ASSERT_EQ(s.sd_m.size(), periods.size());
+  for (std::size_t i = 0; i < periods.size(); ++i) {
+    const double w = 2.0 * pi / periods[i];
+    EXPECT_DOUBLE_EQ(s.psv_mps[i], w * s.sd_m[i]);
+    EXPECT_DOUBLE_EQ(s.psa_mps2[i], w * w * s.sd_m[i]);
+    const double oracle = PseudoAccelerationByRk4(m.acc_mps2, m.dt_s, periods[i], 0.02, 40);
+    EXPECT_NEAR(s.psa_mps2[i], oracle, 1e-6 * oracle) << periods[i];
+  }
+  // A very stiff oscillator follows the ground: PSa(T -> 0) -> PGA.
+  const std::vector<double> stiff = {1e-4};
+  double pga = 0.0;
+  for (const double a : m.acc_mps2) pga = std::max(pga, std::abs(a));
+  EXPECT_NEAR(ElasticResponseSpectrum(m.acc_mps2, m.dt_s, stiff).psa_mps2[0], pga, 1e-3 * pga);
+}
+
+TEST(ElasticResponseSpectrum, RejectsDampingOutsideZeroToOne) {
+  const std::vector<double> acc = {0.0, 1.0};
+  const std::vector<double> period = {1.0};
+  EXPECT_THROW(ElasticResponseSpectrum(acc, 0.01, period, 1.0), InputError);
+  EXPECT_THROW(ElasticResponseSpectrum(acc, 0.01, period, -0.1), InputError);
+}
+
+TEST(AvgSa, FiftyPeriodsAreEquallySpacedFromPoint2To3TimesT1) {
+  const std::vector<double> p = AvgSaPeriods(0.5);
+  ASSERT_EQ(p.size(), 50u);
+  EXPECT_DOUBLE_EQ(p.front(), 0.1);
+  EXPECT_DOUBLE_EQ(p.back(), 1.5);
+  for (std::size_t i = 1; i < p.size(); ++i) EXPECT_NEAR(p[i] - p[i - 1], 1.4 / 49.0, 1e-15);
+  EXPECT_EQ(AvgSaPeriods(2.0, 0.5, 0.5, 1), std::vector<double>{1.0});
+  EXPECT_THROW(AvgSaPeriods(0.0), InputError);
+  EXPECT_THROW(AvgSaPeriods(1.0, 3.0, 0.2), InputError);
+  EXPECT_THROW(AvgSaPeriods(1.0, 0.2, 3.0, 0), InputError);
+}
+
+TEST(AvgSa, IsTheGeometricMeanOfTheSpectrumAndOfOnePeriodItsSa) {
+  const GroundMotion m = ReadRecord(kData / "NIS090.AT2");
+  const std::vector<double> periods = AvgSaPeriods(0.8);
+  const std::vector<double> sa = PseudoAccelerationSpectrum(m.acc_mps2, m.dt_s, periods);
+  double product = 1.0;
+  for (const double v : sa) product *= v;
+  const double avg = AverageSpectralAcceleration(m.acc_mps2, m.dt_s, periods);
+  EXPECT_NEAR(avg, std::pow(product, 1.0 / 50.0), 1e-12 * avg);
+  EXPECT_GT(avg, *std::min_element(sa.begin(), sa.end()));
+  EXPECT_LT(avg, *std::max_element(sa.begin(), sa.end()));
+  const std::vector<double> one = {0.8};
+  EXPECT_DOUBLE_EQ(AverageSpectralAcceleration(m.acc_mps2, m.dt_s, one),
+                   PseudoAccelerationSpectrum(m.acc_mps2, m.dt_s, one)[0]);
+}
+
+TEST(CumulativeAbsoluteVelocity, TriangleWaveHasTheSumOfItsTriangles) {
+  // Vertices at the samples: +A, -A, +A, ... with dt: each step crosses zero at its middle and
+  // holds two triangles of area A dt / 4, so CAV = (n - 1) A dt / 2.
+  const double amplitude = 3.0;
+  const double dt = 0.02;
+  std::vector<double> acc(101);
+  for (std::size_t k = 0; k < acc.size(); ++k) acc[k] = k % 2 == 0 ? amplitude : -amplitude;
+  EXPECT_NEAR(CumulativeAbsoluteVelocity(acc, dt), 100 * amplitude * dt / 2.0, 1e-12);
+  // One sign: the trapezoid rule, as for velocity.
+  const std::vector<double> ramp = {0.0, 1.0, 2.0, 3.0};
+  EXPECT_NEAR(CumulativeAbsoluteVelocity(ramp, 0.5), 0.5 * 4.5, 1e-15);
+  // Uneven crossing: a from 1 to -3 over dt crosses at dt / 4: 1 dt / 8 + 3 (3 dt / 4) / 2.
+  const std::vector<double> step = {1.0, -3.0};
+  EXPECT_NEAR(CumulativeAbsoluteVelocity(step, 1.0), 1.0 / 8.0 + 9.0 / 8.0, 1e-15);
+}
+
+TEST(CumulativeAbsoluteVelocity, IsAtLeastPgvAndFillsComputeMeasures) {
+  const GroundMotion m = ReadRecord(kData / "0111a.smc");
+  const IntensityMeasures im = ComputeMeasures(m);
+  EXPECT_DOUBLE_EQ(im.cav_mps, CumulativeAbsoluteVelocity(m.acc_mps2, m.dt_s));
+  EXPECT_GE(im.cav_mps, im.pgv_mps);  // |v(t)| = |int a| <= int |a|
 }
 
 TEST(ComputeMeasures, DerivedQuantitiesFollowFromTm) {
