@@ -122,6 +122,14 @@ StudyTables MakeStudyTables(const SweepSpec& spec, const CubeLayout& layout, con
     }
   }
 
+  tables.im = spec.im;
+  if (const std::optional<std::size_t> col = ResponseColumn(layout, "scaled_too_far")) {
+    tables.scaled_too_far = 0;
+    for (std::uint64_t cell = 0; cell < data.Cells(); ++cell) {
+      if (data.done[cell] != 0 && data.responses[*col][cell] == 1.0) ++tables.scaled_too_far;
+    }
+  }
+
   tables.fragility = MakeFragility(spec, layout, data);
 
   // A model-file sweep names its responses per deck: with one deck, its rotation is the one.

@@ -43,6 +43,9 @@ struct StudyTables {
   std::vector<SweepRecord> records;  ///< LoadSweepRecords(spec)
   std::optional<CorrelationTable> correlation;  ///< with a record axis and a Pi_delta axis
   std::vector<FragilityStudy> fragility;        ///< one per limit state, with an IM
+  spectra::IntensityMeasureSpec im;             ///< [records] scale_to / im of the spec
+  /// Cells done with scaled_too_far = 1 (the response), -1 when the layout has no such response.
+  std::int64_t scaled_too_far = -1;
 };
 
 /// Builds the tables from the whole cube (so a resumed sweep gets statistics of all its cells).

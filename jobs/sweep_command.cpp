@@ -193,6 +193,7 @@ int RunSweepCommand(const SweepCommandArgs& args, const EvaluatorFactory& factor
     const SweepReport sweep = RunSweep(*spec, *evaluator, *transport, options);
     if (root) {
       log(FormatSummary(sweep));
+      for (const std::string& note : evaluator->Notes()) log("sweep: " + note);
     }
     if (stop.Received() != 0 && !sweep.complete) {
       return 128 + stop.Received();

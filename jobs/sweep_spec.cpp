@@ -27,7 +27,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // The one table of parameter names. The spectra mapping extends it here (and in
 // docs/sweep-format.md); the order is the canonical axis order of every cube.
 // clang-format off
-constexpr std::array<ParameterInfo, 22> kParameters{{
+constexpr std::array<ParameterInfo, 24> kParameters{{
   {"record", "record", "", "ground-motion record, by its label in the [records] set",
    ParameterKind::kLabel, 0, true, 0, true, false, ""},
   {"pulse", "pulse", "", "one cycle of a_g cos(w_g t) or a_g sin(w_g t) [docs/theory.md §5]",
@@ -42,6 +42,10 @@ constexpr std::array<ParameterInfo, 22> kParameters{{
    ParameterKind::kNumber, 0, false, kInf, false, false, ""},
   {"scale", "scale", "1", "factor on the excitation's accelerations (family model-file)",
    ParameterKind::kNumber, 0, false, 1e6, true, false, ""},
+  {"im_g", "IM", "g", "intensity the records are scaled to: Sa, AvgSa or PGA in g ([records] scale_to)",
+   ParameterKind::kNumber, 0, false, kInf, false, false, ""},
+  {"im_mps", "IM_v", "m/s", "intensity the records are scaled to: PGV in m/s ([records] scale_to)",
+   ParameterKind::kNumber, 0, false, kInf, false, false, ""},
   {"a_deg", "a", "deg", "skew angle a", ParameterKind::kNumber, 0, true, 90, false, false, ""},
   {"eta0", "eta0", "1", "skew ratio eta0 = sin 2a / (2 W/L)", ParameterKind::kNumber, 0, false,
    kInf, false, false, ""},
@@ -325,13 +329,16 @@ class Parser {
     for (auto&& [key, node] : records) {
       const std::string_view k = key.str();
       const bool folder_key = k == "folder" || k == "pattern" || k == "units" || k == "dt";
-      if (k != "set" && k != "synthetic" && !(folder_form && folder_key)) {
+      const bool im_key = k == "scale_to" || k == "im" || k == "max_scale";
+      if (k != "set" && k != "synthetic" && !im_key && !(folder_form && folder_key)) {
         throw Error(key.source(), "records." + std::string(k),
                     "unknown key; allowed: set, synthetic, or folder and pattern (with units, "
-                    "dt)" +
-                        DidYouMean(k, {"set", "synthetic", "folder", "pattern", "units", "dt"}));
+                    "dt); scale_to or im, max_scale" +
+                        DidYouMean(k, {"set", "synthetic", "folder", "pattern", "units", "dt",
+                                       "scale_to", "im", "max_scale"}));
       }
     }
+    ParseIntensityMeasure(records, spec);
     if (static_cast<int>(records.contains("set")) +
             static_cast<int>(records.contains("synthetic")) + static_cast<int>(folder_form) !=
         1) {
@@ -370,6 +377,92 @@ class Parser {
     }
     spec.synthetic_count = static_cast<int>(*count);
     spec.synthetic_seed = static_cast<std::uint64_t>(*seed);
+  }
+
+  // [records] scale_to = {measure, period, xi} (stripes) or im = {...} (cloud), and max_scale.
+  void ParseIntensityMeasure(const toml::table& records, SweepSpec& spec) const {
+    if (records.contains("scale_to") && records.contains("im")) {
+      throw Error(records.get("im")->source(), "records.im",
+                  "give scale_to (records scaled to the im axis) or im (records unscaled), "
+                  "not both");
+    }
+    const bool scale = records.contains("scale_to");
+    const std::string name = scale ? "records.scale_to" : "records.im";
+    if (const toml::node* node = records.get("max_scale")) {
+      if (!scale) {
+        throw Error(node->source(), "records.max_scale",
+                    "needs records.scale_to (only scaled records have a scale factor)");
+      }
+      const std::optional<double> v = node->value<double>();
+      if (!v || !std::isfinite(*v) || !(*v > 0.0)) {
+        throw Error(node->source(), "records.max_scale", "must be a number > 0");
+      }
+      spec.im.max_scale = *v;
+    }
+    const toml::node* node = records.get(scale ? "scale_to" : "im");
+    if (node == nullptr) return;
+    const toml::table* table = node->as_table();
+    if (table == nullptr) {
+      throw Error(node->source(), name,
+                  "must be a table {measure = \"Sa\", period = \"T1\", xi = 0.05}");
+    }
+    for (auto&& [key, value] : *table) {
+      const std::string_view k = key.str();
+      if (k != "measure" && k != "period" && k != "xi") {
+        throw Error(key.source(), name + "." + std::string(k),
+                    "unknown key; allowed: measure, period, xi" +
+                        DidYouMean(k, {"measure", "period", "xi"}));
+      }
+    }
+    spec.im.scale = scale;
+    const toml::node* measure = table->get("measure");
+    const std::optional<std::string> m = measure ? measure->value<std::string>() : std::nullopt;
+    if (!m) {
+      throw Error(measure ? measure->source() : node->source(), name + ".measure",
+                  "must be one of \"Sa\", \"AvgSa\", \"PGA\", \"PGV\"");
+    }
+    if (*m != "Sa" && *m != "AvgSa" && *m != "PGA" && *m != "PGV") {
+      throw Error(measure->source(), name + ".measure",
+                  "unknown measure '" + *m + "'; allowed: Sa, AvgSa, PGA, PGV");
+    }
+    spec.im.measure = *m;
+    const bool spectral = *m == "Sa" || *m == "AvgSa";
+    const toml::node* period = table->get("period");
+    const toml::node* xi = table->get("xi");
+    if (!spectral) {
+      if (period != nullptr || xi != nullptr) {
+        throw Error((period ? period : xi)->source(), name + (period ? ".period" : ".xi"),
+                    "only for Sa and AvgSa (" + *m + " has no period or damping)");
+      }
+      return;
+    }
+    if (period == nullptr) {
+      if (*m == "Sa") {
+        throw Error(node->source(), name + ".period",
+                    "missing: Sa needs a period in s or \"T1\" (the model's fundamental period)");
+      }
+      spec.im.at_t1 = true;  // AvgSa is conditioned on T1 unless told otherwise
+    } else if (const std::optional<std::string> text = period->value<std::string>()) {
+      if (*text != "T1") {
+        throw Error(period->source(), name + ".period",
+                    "'" + *text + "' is not a period; give a number of seconds > 0 or \"T1\"");
+      }
+      spec.im.at_t1 = true;
+    } else {
+      const std::optional<double> v = period->value<double>();
+      if (!v || !std::isfinite(*v) || !(*v > 0.0)) {
+        throw Error(period->source(), name + ".period",
+                    "must be a period > 0 s or \"T1\" (the model's fundamental period)");
+      }
+      spec.im.period_s = *v;
+    }
+    if (xi != nullptr) {
+      const std::optional<double> v = xi->value<double>();
+      if (!v || !(*v >= 0.0 && *v < 1.0)) {
+        throw Error(xi->source(), name + ".xi", "must be a damping ratio in [0, 1)");
+      }
+      spec.im.xi = *v;
+    }
   }
 
   // [records] folder and pattern: a folder set without a manifest; the folder is listed now,
@@ -777,6 +870,62 @@ class Parser {
       throw InputError::AtField(source_, "records.set",
                                 "missing: a record axis or value needs [records] set = \"FILE\"");
     }
+    CheckIntensityFields(spec, given);
+  }
+
+  // The intensity axis and [records] scale_to / im belong together (docs/sweep-format.md).
+  template <typename Given>
+  void CheckIntensityFields(const SweepSpec& spec, const Given& given) const {
+    const spectra::IntensityMeasureSpec& im = spec.im;
+    if (im.measure.empty()) {
+      for (std::string_view key : {"im_g", "im_mps"}) {
+        if (given(key)) {
+          throw InputError::AtField(source_, key,
+                                    "an intensity axis needs [records] scale_to = {measure = "
+                                    "\"Sa\", period = \"T1\", xi = 0.05} (or another measure) "
+                                    "to scale the records to it");
+        }
+      }
+      return;
+    }
+    const std::string name = im.scale ? "records.scale_to" : "records.im";
+    if (spec.family != "model-file") {
+      throw InputError::AtField(
+          source_, name,
+          "only for family \"model-file\": in \"" + spec.family +
+              "\" the gap is Pi_delta L_e of each record, so a scaled record gives the same "
+              "dimensionless responses (self-similarity, docs/theory.md §4); give the bridge as "
+              "a model file with gaps in metres");
+    }
+    if (!given("record")) {
+      throw InputError::AtField(source_, name,
+                                "needs records: a [records] set, folder or synthetic suite");
+    }
+    const std::string axis = im.AxisKey();
+    const std::string other = axis == "im_g" ? "im_mps" : "im_g";
+    if (given(other)) {
+      throw InputError::AtField(source_, other,
+                                "not the axis of " + im.measure + ": give " + axis + " (" +
+                                    (axis == "im_g" ? "g" : "m/s") + ")");
+    }
+    if (im.scale) {
+      if (!given(axis)) {
+        throw InputError::AtField(source_, "axes." + axis,
+                                  "missing: records.scale_to needs an intensity axis " + axis +
+                                      " = [...] (" + (axis == "im_g" ? "g" : "m/s") +
+                                      "), the values each record is scaled to");
+      }
+      if (given("scale")) {
+        throw InputError::AtField(source_, "scale",
+                                  "give scale or records.scale_to, not both (scale_to sets "
+                                  "each cell's factor)");
+      }
+    } else if (given(axis)) {
+      throw InputError::AtField(source_, axis,
+                                "records.im leaves the records unscaled (cloud); to scale them "
+                                "to " +
+                                    axis + " use records.scale_to");
+    }
   }
 
   // The name of an input in the cube and the identity: relative to the specification's folder
@@ -876,6 +1025,15 @@ std::string SweepSpec::CanonicalText() const {
     out << "records.synthetic = {count = " << synthetic_count << ", seed = " << synthetic_seed
         << "}\n";
   }
+  if (!im.measure.empty()) {
+    out << (im.scale ? "records.scale_to" : "records.im") << " = {measure = " << str(im.measure);
+    if (im.measure == "Sa" || im.measure == "AvgSa") {
+      out << ", period = " << (im.at_t1 ? std::string("\"T1\"") : Fmt(im.period_s))
+          << ", xi = " << Fmt(im.xi);
+    }
+    out << "}\n";
+  }
+  if (im.max_scale > 0.0) out << "records.max_scale = " << Fmt(im.max_scale) << "\n";
   if (!study_bands.empty()) {
     out << "study.bands = [";
     for (std::size_t i = 0; i < study_bands.size(); ++i) {

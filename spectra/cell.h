@@ -61,6 +61,9 @@ class CellEvaluator {
   /// order), so that rank 0 builds the final cube's record table without making them again;
   /// nullptr when it holds none (then rank 0 loads them itself).
   virtual const std::vector<SweepRecord>* Records() const { return nullptr; }
+  /// Facts about the sweep's cells decided at construction that its summary reports, one line
+  /// each (e.g. the cells whose records were scaled beyond max_scale); none by default.
+  virtual std::vector<std::string> Notes() const { return {}; }
 
   /// Evaluates one cell; axis_index[k] indexes axis k of the CellGrid (its canonical order).
   /// A failed cell returns a non-zero status; responses are then stored as NaN if absent.

@@ -61,6 +61,24 @@ struct LimitState {
   std::string at;  ///< "spec.toml:LINE" of its key, for messages
 };
 
+/// The intensity measure of a record-driven sweep's cells ([records] scale_to or im,
+/// docs/sweep-format.md): Sa(T, xi), AvgSa(T1, xi) over 0.2-3 T1 [Eads et al. 2015], PGA or PGV
+/// of the record as the cell applies it.
+struct IntensityMeasureSpec {
+  std::string measure;    ///< "Sa", "AvgSa", "PGA" or "PGV"; empty: none given
+  bool at_t1 = false;     ///< period = "T1": the fundamental period of each cell's model
+  double period_s = 0.0;  ///< the period (Sa) or conditioning period (AvgSa) when !at_t1 (s)
+  double xi = 0.05;       ///< damping ratio of the spectrum (Sa, AvgSa)
+  /// true: [records] scale_to, every record scaled so that its measure equals the cell's im_g
+  /// (or im_mps) coordinate (stripes); false: [records] im, records unscaled (cloud).
+  bool scale = false;
+  /// [records] max_scale: cells whose scale factor exceeds it are flagged scaled_too_far (and
+  /// still computed); 0 = no limit.
+  double max_scale = 0.0;
+  /// The axis (or fixed) key that carries the target: "im_g" (Sa, AvgSa, PGA) or "im_mps" (PGV).
+  std::string AxisKey() const { return measure == "PGV" ? "im_mps" : "im_g"; }
+};
+
 /// The validated grid of a sweep. Axes are in the canonical order of the parameter table,
 /// whatever the order in the file, so equal grids give equal cube layouts.
 struct CellGrid {
@@ -86,6 +104,7 @@ struct CellGrid {
   /// [study] bands: increasing, positive w0x/w_g edges of the frequency-ratio groups; empty
   /// when not given (the evaluator then uses 0.5, 1, 2) [docs/theory.md §6].
   std::vector<double> study_bands;
+  IntensityMeasureSpec im;  ///< [records] scale_to / im; im.measure empty when not given
   std::vector<Axis> axes;
   std::vector<FixedValue> fixed;
   std::vector<LimitState> limit_states;  ///< [limit_states], in canonical order; may be empty

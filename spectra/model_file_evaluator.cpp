@@ -13,6 +13,7 @@
 #include "solver/common/error.h"
 #include "solver/dynamics/simulate.h"
 #include "solver/dynamics/time_stepping.h"
+#include "solver/model/builders.h"
 #include "solver/model/deck.h"
 #include "solver/model/multispan.h"
 
@@ -66,6 +67,26 @@ model::ModelFile CheckedModelFile(const CellGrid& spec) {
 }
 
 }  // namespace
+
+double FundamentalPeriod(const model::Model& model) {
+  const model::Modes modes =
+      model.modes() != nullptr ? *model.modes() : model::ComputeModes(model.M(), model.K());
+  const double w1 = modes.omega_radps.size() > 0 ? modes.omega_radps.minCoeff() : 0.0;
+  return w1 > 0.0 ? 2.0 * std::numbers::pi / w1 : std::numeric_limits<double>::infinity();
+}
+
+std::uint64_t ModelFileEvaluator::CellIndex(std::span<const std::size_t> index) const {
+  std::uint64_t cell = 0;
+  for (std::size_t k = 0; k < spec_.axes.size(); ++k) cell = cell * spec_.axes[k].Size() + index[k];
+  return cell;
+}
+
+std::size_t ModelFileEvaluator::RecordIndex(std::span<const std::size_t> index) const {
+  for (std::size_t k = 0; k < spec_.axes.size(); ++k) {
+    if (spec_.axes[k].key == "record") return index[k];
+  }
+  return 0;  // a fixed record: the one loaded
+}
 
 ModelFileEvaluator::ModelFileEvaluator(const CellGrid& spec)
     : spec_(spec), file_(CheckedModelFile(spec)) {
@@ -134,10 +155,87 @@ ModelFileEvaluator::ModelFileEvaluator(const CellGrid& spec)
   seats_ = Mentions(spec, "seat_over_L") || (file_.decks && file_.decks->seat_width_m);
   travel_ = !spec.limit_states.empty();
   if (by_record) records_ = LoadSweepRecords(spec);
-  // Every cell's model is built now, so a bad combination fails before the file is touched.
+  // Every cell's model is built now, so a bad combination fails before the file is touched;
+  // with records, each cell's fundamental period is kept (a few distinct values: the axes that
+  // change the modes are a_deg, eta0 and k_factor).
+  const bool with_t1 = by_record;
+  if (with_t1) t1_of_cell_.resize(spec.CellCount());
   for (std::uint64_t cell = 0; cell < spec.CellCount(); ++cell) {
-    MakeCell(spec.AxisIndex(cell), false);
+    const ModelFileCell c = MakeCell(spec.AxisIndex(cell), false);
+    if (!with_t1) continue;
+    const double t1 = FundamentalPeriod(*c.model);
+    auto it = std::find(t1_values_s_.begin(), t1_values_s_.end(), t1);
+    if (it == t1_values_s_.end()) it = t1_values_s_.insert(t1_values_s_.end(), t1);
+    t1_of_cell_[cell] = static_cast<std::uint32_t>(it - t1_values_s_.begin());
   }
+  if (!with_t1) return;
+
+  // The records' spectral measures at T1 for the record table, when T1 is one for the sweep.
+  const IntensityMeasureSpec& im = spec.im;
+  if (t1_values_s_.size() == 1 && std::isfinite(t1_values_s_[0])) {
+    const double t1 = t1_values_s_[0];
+    const std::vector<double> one{t1};
+    for (SweepRecord& r : records_) {
+      r.t1_s = t1;
+      r.spectral_xi = im.measure.empty() ? 0.05 : im.xi;
+      r.sa_t1_mps2 = records::PseudoAccelerationSpectrum(r.motion.acc_mps2, r.motion.dt_s, one,
+                                                         r.spectral_xi)[0];
+      r.avgsa_mps2 = records::AverageSpectralAcceleration(r.motion.acc_mps2, r.motion.dt_s,
+                                                          records::AvgSaPeriods(t1), r.spectral_xi);
+    }
+  }
+  if (im.measure.empty()) return;
+
+  // Each record's measure once per distinct T1 (once when the period is given in s).
+  const std::string field = im.scale ? "records.scale_to" : "records.im";
+  if (im.at_t1) {
+    for (const double t1 : t1_values_s_) {
+      if (!std::isfinite(t1)) {
+        throw InputError::AtField(src, field + ".period",
+                                  "\"T1\" needs a model with stiffness in every direction: a "
+                                  "cell's lowest natural frequency is 0 (see `skewbridge modes`)");
+      }
+    }
+  }
+  const std::size_t n_t1 = t1_values_s_.size();
+  record_im_.resize(records_.size() * n_t1);
+  const bool per_t1 = im.at_t1 && (im.measure == "Sa" || im.measure == "AvgSa");
+  for (std::size_t r = 0; r < records_.size(); ++r) {
+    for (std::size_t t = 0; t < n_t1; ++t) {
+      record_im_[r * n_t1 + t] = per_t1 || t == 0
+                                     ? RecordIntensity(records_[r], im, t1_values_s_[t])
+                                     : record_im_[r * n_t1];
+    }
+  }
+  if (!im.scale) return;
+
+  // The scale factor of each cell: the stripe's value over the record's own measure.
+  scale_of_cell_.resize(spec.CellCount());
+  for (std::uint64_t cell = 0; cell < spec.CellCount(); ++cell) {
+    const std::vector<std::size_t> index = spec.AxisIndex(cell);
+    const std::size_t r = RecordIndex(index);
+    const double own = record_im_[r * n_t1 + t1_of_cell_[cell]];
+    if (!(own > 0.0) || !std::isfinite(own)) {
+      throw InputError::AtField(src, field,
+                                fmt::format("record '{}' has {} = {} {} at T1 = {} s: it cannot be "
+                                            "scaled to a value",
+                                            records_[r].label, im.measure, own, IntensityUnit(im),
+                                            t1_values_s_[t1_of_cell_[cell]]));
+    }
+    const double factor = NumberOf(spec, index, im.AxisKey(), 0.0) / own;
+    scale_of_cell_[cell] = factor;
+    if (im.max_scale > 0.0 && factor > im.max_scale) ++scaled_too_far_;
+  }
+}
+
+std::vector<std::string> ModelFileEvaluator::Notes() const {
+  if (!spec_.im.scale || !(spec_.im.max_scale > 0.0)) return {};
+  double largest = 0.0;
+  for (const double f : scale_of_cell_) largest = std::max(largest, f);
+  return {
+      fmt::format("{} of {} cells scaled beyond max_scale = {} (largest factor {:.4g}); "
+                  "flagged in the response scaled_too_far",
+                  scaled_too_far_, scale_of_cell_.size(), spec_.im.max_scale, largest)};
 }
 
 ModelFileCell ModelFileEvaluator::MakeCell(std::span<const std::size_t> index,
@@ -154,6 +252,7 @@ ModelFileCell ModelFileEvaluator::MakeCell(std::span<const std::size_t> index,
     c.control.method = method;
   }
   c.scale = NumberOf(spec_, index, "scale", 1.0);
+  if (!scale_of_cell_.empty()) c.scale = scale_of_cell_[CellIndex(index)];
 
   // The excitation and its scales a_g, w_g, L_e [docs/theory.md §5].
   const std::string label = LabelOf(spec_, index, "record");
@@ -357,6 +456,19 @@ std::vector<ResponseInfo> ModelFileEvaluator::Responses() const {
     out.push_back({"arias", "m/s", "Arias intensity of the record x scale^2"});
     out.push_back({"D5_95", "s", "significant duration D5-95 of the record"});
   }
+  if (!spec_.im.measure.empty()) {
+    const std::string unit = IntensityUnit(spec_.im);
+    const std::string what = IntensityDescription(spec_.im);
+    out.push_back(
+        {"T1", "s", "fundamental period of the cell's model, 2 pi / w_1 without contacts"});
+    out.push_back({"im", unit, "intensity of the record as applied (x scale_factor): " + what});
+    out.push_back({"im_unscaled", unit, "the record's own intensity: " + what});
+    out.push_back({"scale_factor", "1",
+                   spec_.im.scale ? "factor on the record's accelerations: im / im_unscaled"
+                                  : "1 (records.im: records unscaled, cloud analysis)"});
+    out.push_back({"scaled_too_far", "1",
+                   "1 when scale_factor > records.max_scale, else 0 (always 0 without it)"});
+  }
   return out;
 }
 
@@ -416,6 +528,17 @@ CellOutcome ModelFileEvaluator::Evaluate(std::span<const std::size_t> axis_index
                                                      m.pgd_m * s,         m.mean_period_s,
                                                      m.arias_mps * s * s, m.significant_duration_s};
     out.responses.insert(out.responses.end(), measures.begin(), measures.end());
+  }
+  if (!spec_.im.measure.empty()) {
+    const std::uint64_t cell = CellIndex(axis_index);
+    const std::size_t t = t1_of_cell_[cell];
+    const double own = record_im_[RecordIndex(axis_index) * t1_values_s_.size() + t];
+    // PGA, PGV, Sa and AvgSa are linear in the accelerations: the applied one is factor x own.
+    out.responses.push_back(t1_values_s_[t]);
+    out.responses.push_back(own * c.scale);
+    out.responses.push_back(own);
+    out.responses.push_back(c.scale);
+    out.responses.push_back(spec_.im.max_scale > 0.0 && c.scale > spec_.im.max_scale ? 1.0 : 0.0);
   }
   out.stats.events = static_cast<std::int64_t>(run.events.size());
   out.stats.steps = static_cast<std::int64_t>(run.free_steps + run.rk_steps);

@@ -39,6 +39,10 @@ struct ModelFileCell {
   double scale = 1.0;                      ///< factor on the accelerations
 };
 
+/// The fundamental period T1 = 2 pi / w_1 of a model (s): its lowest natural frequency without
+/// contacts (K phi = w^2 M phi, as `skewbridge modes` prints them); inf when w_1 <= 0.
+double FundamentalPeriod(const model::Model& model);
+
 /// Evaluates the cells of a model-file sweep. Immutable after construction: Evaluate is a pure
 /// function of the cell index.
 class ModelFileEvaluator final : public CellEvaluator {
@@ -64,6 +68,9 @@ class ModelFileEvaluator final : public CellEvaluator {
   /// @throws InputError naming the spec file and the key, as the constructor.
   ModelFileCell MakeCell(std::span<const std::size_t> axis_index, bool with_excitation) const;
 
+  /// The cells scaled beyond [records] max_scale, as one line for the sweep's summary.
+  std::vector<std::string> Notes() const override;
+
  private:
   CellGrid spec_;
   model::ModelFile file_;
@@ -77,6 +84,15 @@ class ModelFileEvaluator final : public CellEvaluator {
   int n_decks_ = 1;
   bool seats_ = false;   ///< margins are stored (seat_over_L given, or the file's seat width)
   bool travel_ = false;  ///< corner travels are stored (the sweep declares limit states)
+  // The intensity measure of the cells ([records] scale_to / im), fixed at construction: the
+  // records' measures are computed once per distinct T1, not per cell.
+  std::vector<double> t1_values_s_;        ///< distinct fundamental periods of the cells (s)
+  std::vector<std::uint32_t> t1_of_cell_;  ///< per cell (row-major): index into t1_values_s_
+  std::vector<double> record_im_;          ///< [record][T1 index]: unscaled measure (axis unit)
+  std::vector<double> scale_of_cell_;      ///< per cell with scale_to: im / unscaled measure
+  std::uint64_t scaled_too_far_ = 0;       ///< cells whose factor exceeds max_scale
+  std::uint64_t CellIndex(std::span<const std::size_t> axis_index) const;
+  std::size_t RecordIndex(std::span<const std::size_t> axis_index) const;
 };
 
 }  // namespace skewbridge::spectra

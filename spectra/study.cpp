@@ -1,5 +1,7 @@
 #include "spectra/study.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -120,6 +122,44 @@ std::vector<SweepRecord> LoadSweepRecords(const CellGrid& spec) {
     out.push_back(std::move(record));
   }
   return out;
+}
+
+double RecordIntensity(const SweepRecord& record, const IntensityMeasureSpec& im, double t1_s) {
+  constexpr double g = records::kStandardGravity_mps2;
+  if (im.measure == "PGA") return record.measures.pga_mps2 / g;
+  if (im.measure == "PGV") return record.measures.pgv_mps;
+  const double period = im.at_t1 ? t1_s : im.period_s;
+  const std::span<const double> acc(record.motion.acc_mps2);
+  if (im.measure == "Sa") {
+    const std::vector<double> one{period};
+    return records::PseudoAccelerationSpectrum(acc, record.motion.dt_s, one, im.xi)[0] / g;
+  }
+  SB_DEMAND(im.measure == "AvgSa", "unknown intensity measure");
+  return records::AverageSpectralAcceleration(acc, record.motion.dt_s,
+                                              records::AvgSaPeriods(period), im.xi) /
+         g;
+}
+
+std::string IntensityUnit(const IntensityMeasureSpec& im) {
+  return im.measure == "PGV" ? "m/s" : "g";
+}
+
+std::string IntensityDescription(const IntensityMeasureSpec& im) {
+  const std::string at = im.at_t1 ? "T1" : fmt::format("{} s", im.period_s);
+  if (im.measure == "Sa") {
+    return fmt::format(
+        "Sa({}, xi = {}): pseudo-spectral acceleration in g [Nigam and Jennings "
+        "1969]",
+        at, im.xi);
+  }
+  if (im.measure == "AvgSa") {
+    return fmt::format(
+        "AvgSa({}, xi = {}): geometric mean of Sa in g over {} periods equally "
+        "spaced from {} to {} times {} [Eads et al. 2015]",
+        at, im.xi, records::kAvgSaPeriodCount, records::kAvgSaFromT1, records::kAvgSaToT1, at);
+  }
+  if (im.measure == "PGA") return "PGA in g";
+  return "PGV in m/s (no baseline correction)";
 }
 
 records::RecordSet LoadSpecRecordSet(const CellGrid& spec) {

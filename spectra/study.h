@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <span>
 #include <string>
@@ -27,8 +28,27 @@ struct SweepRecord {
   std::string file;                     ///< as the manifest names it; "" when synthesised
   double scale = 1.0;                   ///< the manifest's factor on the accelerations
   records::GroundMotion motion;         ///< accelerations (m/s^2), scaled as the set says
-  records::IntensityMeasures measures;  ///< PGA, T_m, w_g, L_e, ...
+  records::IntensityMeasures measures;  ///< PGA, T_m, w_g, L_e, CAV, ...
+  /// The spectral measures at the sweep's fundamental period T1, when every cell of the sweep
+  /// has the same T1 (a model-file sweep whose axes leave the model's modes alone); NaN
+  /// otherwise (the cells then store T1 and their measure themselves).
+  double t1_s = std::numeric_limits<double>::quiet_NaN();
+  double spectral_xi = 0.05;  ///< damping ratio of sa_t1 and avgsa ([records] scale_to / im)
+  double sa_t1_mps2 = std::numeric_limits<double>::quiet_NaN();  ///< Sa(T1, xi) (m/s^2)
+  double avgsa_mps2 = std::numeric_limits<double>::quiet_NaN();  ///< AvgSa(T1, xi) (m/s^2)
 };
+
+/// The measure `im` names of a record as given (unscaled), at period t1_s where the measure
+/// takes "T1": Sa and AvgSa (0.2-3 T1, records::kAvgSaPeriodCount periods) in g, PGA in g,
+/// PGV in m/s: the unit of the intensity axis (im_g, im_mps).
+/// @pre im.measure is one of Sa, AvgSa, PGA, PGV; t1_s > 0 when im.at_t1.
+double RecordIntensity(const SweepRecord& record, const IntensityMeasureSpec& im, double t1_s);
+
+/// The unit of the measure's axis and of the cells' im: "g", or "m/s" for PGV.
+std::string IntensityUnit(const IntensityMeasureSpec& im);
+
+/// A one-line description of the measure: "Sa(T1, xi = 0.05): pseudo-spectral acceleration ...".
+std::string IntensityDescription(const IntensityMeasureSpec& im);
 
 /// The records named by the spec's record axis (or fixed record), in axis order: read from
 /// [records] set, or synthesised from [records] synthetic = {count, seed} exactly as

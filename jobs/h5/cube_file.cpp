@@ -392,7 +392,7 @@ void WriteRecordTable(hid_t sweep_group, const StudyTables& study) {
   std::vector<std::string> file;
   std::vector<std::string> component;
   std::vector<std::int64_t> npts;
-  std::vector<double> scale, dt, pga, pgv, pgd, tm, wg, le, arias, d595;
+  std::vector<double> scale, dt, pga, pgv, pgd, tm, wg, le, arias, d595, cav, sa_t1, avgsa;
   for (const SweepRecord& r : study.records) {
     label.push_back(r.label);
     file.push_back(r.file);
@@ -408,7 +408,14 @@ void WriteRecordTable(hid_t sweep_group, const StudyTables& study) {
     le.push_back(r.measures.persistency_m);
     arias.push_back(r.measures.arias_mps);
     d595.push_back(r.measures.significant_duration_s);
+    cav.push_back(r.measures.cav_mps);
+    sa_t1.push_back(r.sa_t1_mps2);
+    avgsa.push_back(r.avgsa_mps2);
   }
+  // T1 is one for the sweep (else NaN and the cells hold theirs): the group says which.
+  const SweepRecord& first = study.records.front();
+  SetAttr(g.get(), "T1_s", first.t1_s);
+  SetAttr(g.get(), "spectral_xi", first.spectral_xi);
   WriteStrings(g.get(), "label", label);
   WriteStrings(g.get(), "file", file);
   WriteStrings(g.get(), "component", component);
@@ -423,6 +430,16 @@ void WriteRecordTable(hid_t sweep_group, const StudyTables& study) {
   WriteArray(g.get(), "L_e_m", shape, le, "m", "persistency PGA / w_g^2");
   WriteArray(g.get(), "arias_mps", shape, arias, "m/s", "Arias intensity");
   WriteArray(g.get(), "D5_95_s", shape, d595, "s", "significant duration 5-95 % of Arias");
+  WriteArray(g.get(), "CAV_mps", shape, cav, "m/s",
+             "cumulative absolute velocity int |a| dt over the record [EPRI 1988]");
+  const std::string where_t1 =
+      " at the sweep's fundamental period T1 (attribute T1_s) and damping spectral_xi; NaN "
+      "when the cells' T1 differ (the cells store T1 and im) or the family has no model";
+  WriteArray(g.get(), "Sa_T1_mps2", shape, sa_t1, "m/s^2",
+             "pseudo-spectral acceleration Sa(T1)" + where_t1);
+  WriteArray(g.get(), "AvgSa_mps2", shape, avgsa, "m/s^2",
+             "AvgSa(T1): geometric mean of Sa over " + std::to_string(records::kAvgSaPeriodCount) +
+                 " periods equally spaced in 0.2-3 T1 [Eads et al. 2015]" + where_t1);
   // The table's rows are the record axis: attach its scale to every column (select by label).
   if (Exists(sweep_group, "axes/record")) {
     Id record_axis = OpenDataset(sweep_group, "axes/record");
@@ -593,6 +610,17 @@ void WriteStudyTables(const Datasets& d, const CubeLayout& layout, const StudyTa
     }
   }
   if (!study.records.empty()) WriteRecordTable(d.group.get(), study);
+  if (!study.im.measure.empty()) {
+    SetAttr(d.group.get(), "im_measure", study.im.measure);
+    SetAttr(d.group.get(), "im_description", spectra::IntensityDescription(study.im));
+    SetAttr(d.group.get(), "im_units", spectra::IntensityUnit(study.im));
+    SetAttr(d.group.get(), "im_scaled", static_cast<std::int64_t>(study.im.scale ? 1 : 0));
+    SetAttr(
+        d.group.get(), "max_scale",
+        study.im.max_scale > 0.0 ? study.im.max_scale : std::numeric_limits<double>::infinity());
+    if (study.scaled_too_far >= 0)
+      SetAttr(d.group.get(), "scaled_too_far_count", study.scaled_too_far);
+  }
   if (study.correlation) WriteCorrelation(d.group.get(), *study.correlation, study.band_edges);
   if (!study.fragility.empty()) WriteFragility(d.group.get(), study.fragility);
 }

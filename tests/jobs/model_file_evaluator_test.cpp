@@ -5,13 +5,18 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
 #include <string>
+#include <tuple>
 
 #include "jobs/sweep_spec.h"
+#include "records/measures.h"
 #include "records/synthetic.h"
 #include "solver/common/error.h"
 #include "solver/model/deck.h"
@@ -330,6 +335,174 @@ TEST(ModelFileEvaluator, CellModelFollowsTheDefinitions) {
   EXPECT_NEAR(from_file.persistency_m, cell.persistency_m, 1e-12 * cell.persistency_m);
   EXPECT_NEAR(from_file.gap_m, 2.0 * cell.persistency_m, 1e-12 * cell.persistency_m);
   EXPECT_EQ(from_file.excitation->Duration(), cell.excitation->Duration());
+}
+
+// Records scaled to stripes: the deck of kDeck has K = diag(m w0^2, m w0^2, I_m W0^2) with
+// w0 = 10 and W0 = 12 rad/s, so T1 = 2 pi / (10 sqrt(k_factor)) s in closed form.
+constexpr const char* kStripes =
+    "[records]\nset = \"set.toml\"\nscale_to = {measure = \"Sa\", period = \"T1\", xi = 0.05}\n"
+    "[axes]\nrecord = \"*\"\nim_g = [0.1, 0.5]\nk_factor = [1, 4]\n";
+
+TEST(Stripes, EveryScaledRecordHasTheStripesSaAtTheClosedFormT1) {
+  const ModelFileEvaluator evaluator(Spec(kStripes));
+  const SweepSpec spec = Spec(kStripes);
+  ASSERT_EQ(spec.CellCount(), 8u);
+  for (std::uint64_t cell = 0; cell < spec.CellCount(); ++cell) {
+    const std::vector<std::size_t> index = spec.AxisIndex(cell);  // record, im_g, k_factor
+    const ModelFileCell c = evaluator.MakeCell(index, true);
+    const double im_g = spec.axes[1].values[index[1]];
+    const double t1 = 2.0 * std::numbers::pi / (10.0 * std::sqrt(spec.axes[2].values[index[2]]));
+    std::vector<double> scaled = c.record->motion.acc_mps2;
+    for (double& a : scaled) a *= c.scale;
+    const std::vector<double> period{t1};
+    const double sa =
+        records::ElasticResponseSpectrum(scaled, c.record->motion.dt_s, period, 0.05).psa_mps2[0];
+    EXPECT_NEAR(sa, im_g * kG, 1e-9 * im_g * kG) << cell;
+    // The response columns say the same.
+    const CellOutcome out = evaluator.Evaluate(index);
+    ASSERT_EQ(out.status, kStatusOk);
+    const std::vector<spectra::ResponseInfo> names = evaluator.Responses();
+    auto column = [&](const std::string& name) {
+      for (std::size_t k = 0; k < names.size(); ++k) {
+        if (names[k].name == name) return out.responses[k];
+      }
+      ADD_FAILURE() << "no response " << name;
+      return 0.0;
+    };
+    EXPECT_NEAR(column("T1"), t1, 1e-12 * t1);
+    EXPECT_NEAR(column("im"), im_g, 1e-12 * im_g);
+    EXPECT_DOUBLE_EQ(column("scale_factor"), c.scale);
+    EXPECT_DOUBLE_EQ(column("im_unscaled") * c.scale, column("im"));
+    EXPECT_EQ(column("scaled_too_far"), 0.0);
+    EXPECT_NEAR(column("pga"), c.scale * c.record->measures.pga_mps2, 1e-12 * column("pga"));
+  }
+  // T1 varies with k_factor: no single Sa(T1) for the record table.
+  EXPECT_TRUE(std::isnan((*evaluator.Records())[0].sa_t1_mps2));
+  EXPECT_TRUE(evaluator.Notes().empty());  // no max_scale
+}
+
+TEST(Stripes, PgaPgvAndAvgSaScaleToTheirOwnMeasure) {
+  for (const auto& [measure, axis, unit] :
+       {std::tuple{"PGA", "im_g", kG}, std::tuple{"PGV", "im_mps", 1.0}}) {
+    const ModelFileEvaluator evaluator(Spec(std::string("[records]\nset = \"set.toml\"\n") +
+                                            "scale_to = {measure = \"" + measure + "\"}\n" +
+                                            "[axes]\nrecord = \"*\"\n" + axis + " = [0.3]\n"));
+    for (std::size_t r = 0; r < 2; ++r) {
+      const std::vector<std::size_t> index{r, 0};
+      const ModelFileCell c = evaluator.MakeCell(index, true);
+      const records::IntensityMeasures m = c.record->measures;
+      const double own = std::string(measure) == "PGA" ? m.pga_mps2 : m.pgv_mps;
+      EXPECT_NEAR(c.scale * own, 0.3 * unit, 1e-12) << measure;
+    }
+  }
+  // AvgSa at a given conditioning period: the geometric mean over 0.2-3 T of the scaled record.
+  const ModelFileEvaluator avg(
+      Spec("[records]\nset = \"set.toml\"\nscale_to = {measure = \"AvgSa\", period = 0.4, "
+           "xi = 0.02}\n[axes]\nrecord = \"*\"\nim_g = [0.2]\n"));
+  const std::vector<std::size_t> index{0, 0};
+  const ModelFileCell c = avg.MakeCell(index, true);
+  std::vector<double> scaled = c.record->motion.acc_mps2;
+  for (double& a : scaled) a *= c.scale;
+  const std::vector<double> periods = records::AvgSaPeriods(0.4);
+  const std::vector<double> sa =
+      records::ElasticResponseSpectrum(scaled, c.record->motion.dt_s, periods, 0.02).psa_mps2;
+  double log_sum = 0.0;
+  for (const double v : sa) log_sum += std::log(v);
+  EXPECT_NEAR(std::exp(log_sum / static_cast<double>(sa.size())), 0.2 * kG, 1e-9);
+  // One T1 for the sweep: the record table gets Sa(T1) and AvgSa(T1) at T1 = 2 pi / 10 s.
+  const SweepRecord& r = (*avg.Records())[0];
+  const double t1 = 2.0 * std::numbers::pi / 10.0;
+  EXPECT_NEAR(r.t1_s, t1, 1e-12);
+  EXPECT_EQ(r.spectral_xi, 0.02);
+  const std::vector<double> at_t1{t1};
+  EXPECT_DOUBLE_EQ(
+      r.sa_t1_mps2,
+      records::ElasticResponseSpectrum(r.motion.acc_mps2, r.motion.dt_s, at_t1, 0.02).psa_mps2[0]);
+  EXPECT_GT(r.avgsa_mps2, 0.0);
+}
+
+TEST(Stripes, MaxScaleFlagsTheCellsBeyondItAndCountsThem) {
+  const SweepSpec spec = Spec(kStripes);
+  const ModelFileEvaluator free(spec);
+  // The factors without a limit, then a limit between them.
+  std::vector<double> factors;
+  for (std::uint64_t cell = 0; cell < spec.CellCount(); ++cell) {
+    factors.push_back(free.MakeCell(spec.AxisIndex(cell), false).scale);
+  }
+  std::vector<double> sorted = factors;
+  std::sort(sorted.begin(), sorted.end());
+  const double limit = (sorted[4] + sorted[5]) / 2.0;  // three cells above it
+  std::string text = kStripes;
+  text.insert(text.find("[axes]"), "max_scale = " + fmt::format("{}", limit) + "\n");
+  const ModelFileEvaluator limited(Spec(text));
+  ASSERT_EQ(limited.Notes().size(), 1u);
+  EXPECT_THAT(limited.Notes()[0], HasSubstr("3 of 8 cells scaled beyond max_scale"));
+  for (std::uint64_t cell = 0; cell < spec.CellCount(); ++cell) {
+    const CellOutcome out = limited.Evaluate(spec.AxisIndex(cell));
+    EXPECT_EQ(out.responses.back(), factors[cell] > limit ? 1.0 : 0.0) << cell;
+  }
+}
+
+TEST(Stripes, ImLeavesTheRecordsUnscaled) {
+  const ModelFileEvaluator cloud(
+      Spec("[records]\nset = \"set.toml\"\nim = {measure = \"Sa\", period = 0.5}\n"
+           "[axes]\nrecord = \"*\"\n"));
+  const std::vector<std::size_t> index{1};
+  const CellOutcome out = cloud.Evaluate(index);
+  const ModelFileCell c = cloud.MakeCell(index, false);
+  EXPECT_EQ(c.scale, 1.0);
+  const std::vector<double> period{0.5};
+  const double sa =
+      records::ElasticResponseSpectrum(c.record->motion.acc_mps2, c.record->motion.dt_s, period)
+          .psa_mps2[0];
+  const std::size_t n = out.responses.size();
+  EXPECT_DOUBLE_EQ(out.responses[n - 4], sa / kG);  // im
+  EXPECT_DOUBLE_EQ(out.responses[n - 2], 1.0);      // scale_factor
+}
+
+TEST(Stripes, SpecErrorsNameTheKey) {
+  const std::string set = "[records]\nset = \"set.toml\"\n";
+  const std::string axes = "[axes]\nrecord = \"*\"\nim_g = [0.1]\n";
+  auto with = [&](const std::string& scale_to) { return set + scale_to + axes; };
+  EXPECT_THAT(SpecErrorOf(with("scale_to = {measure = \"Sd\", period = 1}\n")),
+              HasSubstr("spec.toml:7: records.scale_to.measure: unknown measure 'Sd'; allowed: "
+                        "Sa, AvgSa, PGA, PGV"));
+  EXPECT_THAT(SpecErrorOf(with("scale_to = {measure = \"Sa\", period = 0}\n")),
+              HasSubstr("records.scale_to.period: must be a period > 0 s or \"T1\""));
+  EXPECT_THAT(SpecErrorOf(with("scale_to = {measure = \"Sa\", period = \"T2\"}\n")),
+              HasSubstr("records.scale_to.period: 'T2' is not a period"));
+  EXPECT_THAT(SpecErrorOf(with("scale_to = {measure = \"Sa\"}\n")),
+              HasSubstr("records.scale_to.period: missing: Sa needs a period"));
+  EXPECT_THAT(SpecErrorOf(with("scale_to = {measure = \"PGA\", period = 1}\n")),
+              HasSubstr("records.scale_to.period: only for Sa and AvgSa"));
+  EXPECT_THAT(SpecErrorOf(with("scale_to = {measure = \"Sa\", period = 1, xi = 1}\n")),
+              HasSubstr("records.scale_to.xi: must be a damping ratio in [0, 1)"));
+  EXPECT_THAT(SpecErrorOf(with("scale_to = {measure = \"Sa\", period = 1, T = 1}\n")),
+              HasSubstr("records.scale_to.T: unknown key; allowed: measure, period, xi"));
+  EXPECT_THAT(SpecErrorOf(set + "scale_to = {measure = \"Sa\", period = 1}\n[axes]\nrecord = "
+                                "\"*\"\n"),
+              HasSubstr("spec.toml: axes.im_g: missing: records.scale_to needs an intensity "
+                        "axis im_g"));
+  EXPECT_THAT(SpecErrorOf(set + axes), HasSubstr("im_g: an intensity axis needs [records] "
+                                                 "scale_to"));
+  EXPECT_THAT(SpecErrorOf(set + "scale_to = {measure = \"PGV\"}\n" + axes),
+              HasSubstr("im_g: not the axis of PGV: give im_mps (m/s)"));
+  EXPECT_THAT(SpecErrorOf(with("scale_to = {measure = \"PGA\"}\n") + "scale = [2]\n"),
+              HasSubstr("scale: give scale or records.scale_to, not both"));
+  EXPECT_THAT(SpecErrorOf(with("scale_to = {measure = \"PGA\"}\nmax_scale = 0\n")),
+              HasSubstr("records.max_scale: must be a number > 0"));
+  EXPECT_THAT(SpecErrorOf(set + "max_scale = 4\n[axes]\nrecord = \"*\"\n"),
+              HasSubstr("records.max_scale: needs records.scale_to"));
+  EXPECT_THAT(SpecErrorOf(set + "im = {measure = \"PGA\"}\n" + axes),
+              HasSubstr("im_g: records.im leaves the records unscaled (cloud)"));
+  EXPECT_THAT(SpecErrorOf("[axes]\nim_g = [0.1]\n"), HasSubstr("im_g: an intensity axis needs"));
+  try {
+    Spec(set + "scale_to = {measure = \"PGA\"}\n[axes]\nrecord = \"*\"\nim_g = [0.1]\n", "",
+         "pilot-bridge");
+    ADD_FAILURE() << "pilot-bridge stripes accepted";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("records.scale_to: only for family \"model-file\""));
+  }
 }
 
 }  // namespace

@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# Records scaled to stripes through `skewbridge sweep` on 1 and 2 ranks: two real records of
+# tests/data/records scaled to Sa(T1) stripes of a one-deck model file at two stiffness factors
+# (so two T1), with a max_scale that some cells exceed. check_stripes.py checks the cube with
+# h5py against scipy (T1 in closed form, Sa by scipy.signal.lsim); the summary line names the
+# cells scaled too far; both cubes hold the same cells.
+# usage: stripes_test.sh SKEWBRIDGE MPIEXEC RECORDS_DIR CHECK_SCRIPT WORK_DIR
+set -euo pipefail
+exe=$1 mpiexec=$2 records=$3 check=$4 work=$5
+rm -rf "$work" && mkdir -p "$work" && cd "$work"
+fail() { echo "stripes_test: FAIL: $*" >&2; exit 1; }
+
+cat > deck.toml <<'TOML'
+[deck]
+m = 500e3
+I_m = "uniform"
+L = 30.0
+W = 12.0
+skew_deg = 30.0
+[substructure]
+kind = "uncoupled"
+w0 = 10.0
+W0 = 12.0
+xi = 0.05
+[abutments]
+set = "both"
+gap_m = 0.02
+[excitation]
+kind = "pulse"
+shape = "cosine"
+a_g_g = 0.5
+T_g = 0.6
+[run]
+tail_s = 0.5
+TOML
+cat > set.toml <<TOML
+name = "two"
+[[record]]
+file = "$records/NIS090.AT2"
+[[record]]
+file = "$records/RSN763_LOMAP_GIL067.AT2"
+TOML
+cat > spec.toml <<'TOML'
+[sweep]
+name = "stripes"
+family = "model-file"
+model = "deck.toml"
+[records]
+set = "set.toml"
+scale_to = { measure = "Sa", period = "T1", xi = 0.05 }
+max_scale = 1.5
+[axes]
+record = "*"
+im_g = [0.2, 0.6, 1.2]
+k_factor = [1, 4]
+TOML
+"$exe" sweep spec.toml --out one.h5 --quiet 2> one.err || { cat one.err; fail "1 rank"; }
+grep -q "^sweep: [0-9]* of 12 cells scaled beyond max_scale = 1.5 (largest factor" one.err ||
+  { cat one.err; fail "no max_scale line in the summary"; }
+"$mpiexec" -n 2 "$exe" sweep spec.toml --out two.h5 --quiet 2> two.err || { cat two.err; fail "2 ranks"; }
+/usr/bin/python3 "$check" one.h5 two.h5 "$records" "$(grep -o '^sweep: [0-9]*' one.err | cut -d' ' -f2)"
+
+# Bad keys: one line, status 2, no output.
+bad() {
+  local edit=$1 pattern=$2
+  sed "$edit" spec.toml > bad.toml
+  set +e; err=$("$exe" sweep bad.toml --out bad.h5 2>&1); status=$?; set -e
+  [ "$status" = 2 ] || fail "$edit: status $status"
+  [ "$(printf '%s\n' "$err" | wc -l)" = 1 ] || fail "$edit: not one line: $err"
+  printf '%s\n' "$err" | grep -q "$pattern" || fail "$edit: '$err' lacks '$pattern'"
+  [ ! -e bad.h5 ] && [ ! -e bad.h5.partial ] || fail "$edit: output left"
+}
+bad 's/measure = "Sa"/measure = "SA"/' "^skewbridge: error: bad.toml:7: records.scale_to.measure: unknown measure 'SA'"
+bad 's/period = "T1"/period = -0.5/' "records.scale_to.period: must be a period > 0 s"
+bad '/^im_g/d' "axes.im_g: missing: records.scale_to needs an intensity axis"
+bad 's/^max_scale = 1.5/max_scale = -1/' "records.max_scale: must be a number > 0"
+echo "stripes_test: ok"
