@@ -169,7 +169,7 @@ void CheckInfoPath(const std::filesystem::path& path) {
     throw InputError::AtLine(path.string(), 0,
                              "is a folder; `records info` takes a record file or a record-set "
                              "manifest .toml (a folder of records is a set through a sweep's "
-                             "[records] folder and pattern, or `records spectrum FOLDER`)");
+                             "[records] folder and pattern)");
   }
 }
 

@@ -54,8 +54,8 @@ expect "sweep: --max-cells: 'many' is not a number" sweep "$spec" --out out.h5 -
 expect "sweep: unknown option --resmue; allowed: --help, -h, --out, -o, --resume, --force, --quiet, -q, --checkpoint-seconds, --checkpoint-cells, --max-cells, --dry-run, --ranks, --sample-cells; did you mean \`--resume\`?" \
   sweep "$spec" --out out.h5 --resmue
 expect "inspect: file is required (Cube FILE.h5 (or FILE.h5.partial))" inspect
-expect "records: a sub-command is required; allowed: info, synth" records
-expect "records: unknown sub-command 'inf'; allowed: info, synth; did you mean \`info\`?" records inf x
+expect "records: a sub-command is required; allowed: info, spectrum, synth" records
+expect "records: unknown sub-command 'inf'; allowed: info, spectrum, synth; did you mean \`info\`?" records inf x
 expect "records info: path is required (record file, or record-set manifest (.toml))" records info
 expect "records info: --dt: 'abc' is not a number" records info x.txt --dt abc
 expect "records info: --channel: '1.5' is not a whole number" records info x.txt --channel 1.5
@@ -78,7 +78,7 @@ sed 's/^\[excitation\]/[excitaton]/' model.toml > section.toml
 expect "section.toml:26: excitaton: unknown section (allowed: deck, substructure, abutments, excitation, run); did you mean \`excitation\`?" \
   run section.toml --out run.h5
 sed 's/^a_deg = /skew = /' "$spec" > skew_spec.toml
-expect "skew_spec.toml:10: axes.skew: unknown parameter; allowed: record, pulse, spans, a_g_g, w_g, T_g, scale, a_deg, eta0, W_over_L, delta_over_L, L_over_Le, W0_over_w0, xi, eps_N, mu, Pi_delta, gap_m, k_factor, seat_over_L, w0_over_wg, method; did you mean \`a_deg\` (skew angle a)?" \
+expect "skew_spec.toml:10: axes.skew: unknown parameter; allowed: record, pulse, spans, a_g_g, w_g, T_g, scale, im_g, im_mps, a_deg, eta0, W_over_L, delta_over_L, L_over_Le, W0_over_w0, xi, eps_N, mu, Pi_delta, gap_m, k_factor, seat_over_L, w0_over_wg, method; did you mean \`a_deg\` (skew angle a)?" \
   sweep skew_spec.toml --out out.h5
 # --- the wrong kind of file, named as what it is ---
 cp "$spec" spec.toml
