@@ -202,9 +202,15 @@ ModelFileEvaluator::ModelFileEvaluator(const CellGrid& spec)
   const bool per_t1 = im.at_t1 && (im.measure == "Sa" || im.measure == "AvgSa");
   for (std::size_t r = 0; r < records_.size(); ++r) {
     for (std::size_t t = 0; t < n_t1; ++t) {
-      record_im_[r * n_t1 + t] = per_t1 || t == 0
-                                     ? RecordIntensity(records_[r], im, t1_values_s_[t])
-                                     : record_im_[r * n_t1];
+      const SweepRecord& record = records_[r];
+      // One T1: the record table's Sa(T1) and AvgSa(T1) are these very numbers (same calls).
+      if (per_t1 && n_t1 == 1 && record.t1_s == t1_values_s_[0] && record.spectral_xi == im.xi) {
+        record_im_[r] = (im.measure == "Sa" ? record.sa_t1_mps2 : record.avgsa_mps2) /
+                        records::kStandardGravity_mps2;
+        continue;
+      }
+      record_im_[r * n_t1 + t] =
+          per_t1 || t == 0 ? RecordIntensity(record, im, t1_values_s_[t]) : record_im_[r * n_t1];
     }
   }
   if (!im.scale) return;

@@ -419,6 +419,20 @@ TEST(Stripes, PgaPgvAndAvgSaScaleToTheirOwnMeasure) {
       r.sa_t1_mps2,
       records::ElasticResponseSpectrum(r.motion.acc_mps2, r.motion.dt_s, at_t1, 0.02).psa_mps2[0]);
   EXPECT_GT(r.avgsa_mps2, 0.0);
+  // AvgSa at "T1" with one T1 (taken from the record table's own value): the scaled record's
+  // AvgSa over 0.2-3 T1 is the stripe.
+  const ModelFileEvaluator conditioned(
+      Spec("[records]\nset = \"set.toml\"\nscale_to = {measure = \"AvgSa\", period = \"T1\"}\n"
+           "[axes]\nrecord = \"*\"\nim_g = [0.3]\n"));
+  for (std::size_t k = 0; k < 2; ++k) {
+    const std::vector<std::size_t> cell{k, 0};
+    const ModelFileCell one = conditioned.MakeCell(cell, true);
+    std::vector<double> acc = one.record->motion.acc_mps2;
+    for (double& a : acc) a *= one.scale;
+    EXPECT_NEAR(records::AverageSpectralAcceleration(acc, one.record->motion.dt_s,
+                                                     records::AvgSaPeriods(t1)),
+                0.3 * kG, 1e-9);
+  }
 }
 
 TEST(Stripes, MaxScaleFlagsTheCellsBeyondItAndCountsThem) {
