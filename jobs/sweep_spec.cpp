@@ -14,6 +14,7 @@
 
 #include "jobs/file_checksum.h"
 #include "solver/common/error.h"
+#include "solver/common/file_kind.h"
 #include "solver/common/nearest.h"
 #include "spectra/inputs.h"
 #include "spectra/limit_states.h"
@@ -116,12 +117,22 @@ class Parser {
       : source_(source), base_dir_(std::move(base_dir)) {}
 
   SweepSpec Parse(std::string_view text) {
+    if (HasHdf5Signature(text)) {
+      throw InputError::AtLine(source_, 0,
+                               "this is an HDF5 file (a sweep cube or a run file), not a sweep "
+                               "specification (TOML, docs/sweep-format.md); `skewbridge inspect` "
+                               "summarises a cube");
+    }
     toml::table root;
     try {
       root = toml::parse(text, source_);
     } catch (const toml::parse_error& e) {
-      throw InputError::AtLine(source_, static_cast<long>(e.source().begin.line),
-                               std::string(e.description()));
+      // A record or signal file given as the specification reads as bad TOML.
+      const bool toml_name = std::filesystem::path(source_).extension() == ".toml";
+      throw InputError::AtLine(
+          source_, static_cast<long>(e.source().begin.line),
+          std::string(e.description()) +
+              (toml_name ? "" : " (a sweep specification is TOML, docs/sweep-format.md)"));
     }
     SweepSpec spec;
     spec.source = source_;

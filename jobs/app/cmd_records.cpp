@@ -21,6 +21,7 @@
 #include "records/record_set.h"
 #include "records/synthetic.h"
 #include "solver/common/error.h"
+#include "solver/common/file_kind.h"
 
 namespace skewbridge::app {
 namespace {
@@ -170,6 +171,15 @@ void CheckInfoPath(const std::filesystem::path& path) {
                              "is a folder; `records info` takes a record file or a record-set "
                              "manifest .toml (a folder of records is a set through a sweep's "
                              "[records] folder and pattern)");
+  }
+  std::ifstream in(path, std::ios::binary);
+  std::string head(4096, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  if (HasHdf5Signature(head)) {
+    throw InputError::AtLine(path.string(), 0,
+                             "this is an HDF5 file (a sweep cube or a run file), not a record; "
+                             "`skewbridge inspect` summarises a cube");
   }
 }
 

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "solver/common/error.h"
+#include "solver/common/file_kind.h"
 #include "solver/common/nearest.h"
 #include "solver/model/checks.h"
 
@@ -1009,12 +1010,23 @@ ModelFile Parse(const toml::table& root, std::string_view source,
 
 ModelFile ParseModelString(std::string_view text, std::string_view source_name,
                            const std::filesystem::path& base_dir) {
+  if (HasHdf5Signature(text)) {
+    throw InputError::AtLine(source_name, 0,
+                             "this is an HDF5 file (a sweep cube or a run file), not a model file "
+                             "(TOML, docs/model-format.md); `skewbridge inspect` summarises a "
+                             "cube");
+  }
   toml::table root;
   try {
     root = toml::parse(text, source_name);
   } catch (const toml::parse_error& e) {
-    throw InputError::AtLine(source_name, static_cast<long>(e.source().begin.line),
-                             std::string("syntax error: ").append(e.description()));
+    // A record or signal file given as the model reads as bad TOML on its first line.
+    const bool toml_name = std::filesystem::path(source_name).extension() == ".toml";
+    throw InputError::AtLine(
+        source_name, static_cast<long>(e.source().begin.line),
+        std::string("syntax error: ")
+            .append(e.description())
+            .append(toml_name ? "" : " (a model file is TOML, docs/model-format.md)"));
   }
   return Parse(root, source_name, base_dir, {});
 }

@@ -101,6 +101,20 @@ printf 'name = "s"\n[[record]]\nfile = "a.AT2"\nlable = "A"\n' > lable.toml
 expect "lable.toml:4: lable: unknown key (allowed: file, label, component, scale, units, dt, format, channel); did you mean \`label\`?" \
   records info lable.toml
 
+# An HDF5 file (a run file here) or a record file where a TOML file belongs.
+"$exe" run model.toml --out cube.h5 > /dev/null || fail "run --out cube.h5"
+for command in run modes; do
+  expect "cube.h5: this is an HDF5 file (a sweep cube or a run file), not a model file (TOML, docs/model-format.md); \`skewbridge inspect\` summarises a cube" \
+    $command cube.h5
+done
+expect "cube.h5: this is an HDF5 file (a sweep cube or a run file), not a sweep specification (TOML, docs/sweep-format.md); \`skewbridge inspect\` summarises a cube" \
+  sweep cube.h5 --out out.h5
+expect "cube.h5: this is an HDF5 file (a sweep cube or a run file), not a record; \`skewbridge inspect\` summarises a cube" \
+  records info cube.h5
+cp "$root/tests/data/records/NIS090.AT2" .
+expect "NIS090.AT2:1: syntax error: Error while parsing key-value pair: expected '=', saw 'N' (a model file is TOML, docs/model-format.md)" \
+  run NIS090.AT2
+
 # --- records info, inspect: what is really wrong ---
 awk 'BEGIN { for (i = 0; i < 200; i++) printf "%.6f\n", 0.1 * sin(0.1 * i) }' > bare.txt
 expect "records info: --dt: must be a time step > 0 s (got 0)" records info bare.txt --units g --dt 0
