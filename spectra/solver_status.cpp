@@ -16,6 +16,8 @@ std::int32_t CellStatusOf(dynamics::RunStatus status) {
       return kStatusLcpFailure;
     case dynamics::RunStatus::kStepLimit:
       return kStatusStepLimit;
+    case dynamics::RunStatus::kNonFinite:
+      return kStatusNonFinite;
   }
   return kStatusStepLimit;  // unreachable: every enumerator is handled above
 }
@@ -33,7 +35,8 @@ dynamics::RunResult RunCellModel(const model::Model& model, const Excitation& ex
 std::vector<std::pair<std::int32_t, std::string>> SolverStatusNames() {
   return {{kStatusPainleve, dynamics::ToString(dynamics::RunStatus::kPainleve)},
           {kStatusLcpFailure, dynamics::ToString(dynamics::RunStatus::kLcpFailure)},
-          {kStatusStepLimit, dynamics::ToString(dynamics::RunStatus::kStepLimit)}};
+          {kStatusStepLimit, dynamics::ToString(dynamics::RunStatus::kStepLimit)},
+          {kStatusNonFinite, dynamics::ToString(dynamics::RunStatus::kNonFinite)}};
 }
 
 }  // namespace skewbridge::spectra

@@ -4,6 +4,7 @@
 /// maxima, residuals, counts, the event log, the energy ledger and optional time histories.
 
 #include <Eigen/Core>
+#include <cmath>
 #include <limits>
 #include <string>
 #include <vector>
@@ -16,10 +17,22 @@ enum class RunStatus {
   kPainleve,    ///< the contact problem ended on a secondary ray (no consistent forces)
   kLcpFailure,  ///< an impact or contact LCP hit its pivot limit or had invalid input
   kStepLimit,   ///< RunControl::max_steps steps (or an event cascade) without reaching the end
+  kNonFinite,   ///< the state (or its energy) stopped being finite: the run ends there
 };
 
-/// Human-readable name of a status ("ok", "painleve", "lcp-failure", "step-limit").
+/// Human-readable name of a status ("ok", "painleve", "lcp-failure", "step-limit",
+/// "non-finite").
 const char* ToString(RunStatus status);
+
+/// True when the squared norm of `z` is finite: false for a NaN, an Inf or an entry whose
+/// square overflows (|z_i| > 1.3e154, where no energy of the state is a number any more). One
+/// vectorised dot product: cheap enough for every step.
+inline bool StateFinite(const Eigen::Ref<const Eigen::VectorXd>& z) {
+  return std::isfinite(z.squaredNorm());
+}
+
+/// The message of a kNonFinite run whose state was finite at t_before_s and is not at t_s.
+std::string NonFiniteMessage(double t_before_s, double t_s);
 
 /// Kinds of events in the log.
 enum class EventKind {

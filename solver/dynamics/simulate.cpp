@@ -27,8 +27,16 @@ const char* ToString(RunStatus status) {
       return "lcp-failure";
     case RunStatus::kStepLimit:
       return "step-limit";
+    case RunStatus::kNonFinite:
+      return "non-finite";
   }
   return "unknown";
+}
+
+std::string NonFiniteMessage(double t_before_s, double t_s) {
+  return "the state (q, u) stopped being finite (or its square overflowed) between t = " +
+         std::to_string(t_before_s) + " s and t = " + std::to_string(t_s) +
+         " s (a load or a stiffness beyond any bridge)";
 }
 
 const char* ToString(EventKind kind) {
@@ -418,6 +426,9 @@ class Integrator {
   int n_, nc_;
   double t_ = 0.0, t_end_ = 0.0;
   long steps_ = 0;
+  // Steps between two checks that the state is finite (a power of two).
+  static constexpr long kFiniteCheckSteps = 16;
+  double t_finite_ = 0.0;  // the last time the state was checked finite (s)
   Vec z_, z_new_, z_eval_;
   Vec y_, dy_, y_eval_, atol_;
   Vec cu_;  // C u
@@ -724,6 +735,20 @@ RunResult Integrator::Run() {
     } else {
       FreeStep();
     }
+    // Every kFiniteCheckSteps steps (a fraction of a second of most runs) the state must still
+    // be finite; so the check costs a few instructions a step, and a run that went non-finite
+    // stops within that many steps, its message naming the window.
+    if ((steps_ & (kFiniteCheckSteps - 1)) == 0) {
+      if (!StateFinite(z_) || !std::isfinite(t_)) {
+        break;
+      }
+      t_finite_ = t_;
+    }
+  }
+  if (!StateFinite(z_) || !std::isfinite(t_)) {
+    // Whatever else stopped the run, a state that is no number is the first thing to report.
+    Fail(RunStatus::kNonFinite, NonFiniteMessage(t_finite_, t_));
+    t_ = std::isfinite(t_) ? t_ : t_finite_;
   }
   result_.end_time_s = t_;
   result_.q_end = q();
@@ -733,6 +758,11 @@ RunResult Integrator::Run() {
   e.strain_J = 0.5 * q().dot(model_.K() * q());
   e.balance_error_J = (e.kinetic_J + e.strain_J) -
                       (e.initial_J + e.input_J - e.damping_J - e.impact_J - e.friction_J);
+  if (!Failed() && !std::isfinite(e.kinetic_J + e.strain_J)) {
+    // A finite state whose energy overflows is no result either.
+    Fail(RunStatus::kNonFinite, "the energy of the state is not finite at t = " +
+                                    std::to_string(t_) + " s (the state overflows its squares)");
+  }
   if (!control_.energy_ledger) {
     // The free steps' work was not integrated: what remains would look like a ledger but is not.
     e.input_J = e.damping_J = e.balance_error_J = std::numeric_limits<double>::quiet_NaN();

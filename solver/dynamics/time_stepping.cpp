@@ -476,6 +476,12 @@ RunResult SimulateTimeStepping(const model::Model& model, const Excitation& exci
     record_until(t, q, u, t1, ws.q1_, ws.u1_, hk);
     q = ws.q1_;
     u = ws.u1_;
+    if (!StateFinite(q) || !StateFinite(u)) {
+      result.status = RunStatus::kNonFinite;
+      result.message = NonFiniteMessage(t, t1);
+      t = t1;
+      break;
+    }
     t = t1;
   }
 
@@ -492,6 +498,11 @@ RunResult SimulateTimeStepping(const model::Model& model, const Excitation& exci
   e.strain_J = 0.5 * q.dot(ws.work_);
   e.balance_error_J = (e.kinetic_J + e.strain_J) -
                       (e.initial_J + e.input_J - e.damping_J - e.impact_J - e.friction_J);
+  if (result.status == RunStatus::kOk && !std::isfinite(e.kinetic_J + e.strain_J)) {
+    result.status = RunStatus::kNonFinite;
+    result.message = "the energy of the state is not finite at t = " + std::to_string(t) +
+                     " s (the state overflows its squares)";
+  }
   return result;
 }
 
