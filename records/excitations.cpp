@@ -1,9 +1,7 @@
 #include "records/excitations.h"
 
 #include <cmath>
-#include <fstream>
 #include <numbers>
-#include <sstream>
 #include <string>
 
 #include "solver/common/error.h"
@@ -110,64 +108,6 @@ SampledExcitation ToExcitation(const GroundMotion& motion, Eigen::Vector2d direc
     for (std::size_t k = 0; k < ay.size(); ++k) ay[k] = direction.y() * motion.acc_mps2[k];
   }
   return SampledExcitation(motion.dt_s, std::move(ax), std::move(ay));
-}
-
-ExcitationSamples ReadExcitationSamples(const std::filesystem::path& path,
-                                        std::optional<double> dt_s, double to_mps2) {
-  std::ifstream in(path);
-  if (!in) {
-    throw InputError::AtLine(path.string(), 0, "cannot open the excitation file");
-  }
-  std::vector<double> t, a;
-  std::string line;
-  long number = 0;
-  while (std::getline(in, line)) {
-    ++number;
-    if (line.empty() || line[0] == '#') {
-      continue;
-    }
-    std::istringstream fields(line);
-    double x = 0.0, y = 0.0;
-    if (!(fields >> x)) {
-      throw InputError::AtLine(path.string(), number, "expected numbers (time acc, or acc)");
-    }
-    if (fields >> y) {
-      t.push_back(x);
-      a.push_back(y);
-    } else {
-      a.push_back(x);
-    }
-    if (!std::isfinite(a.back() * to_mps2) || (!t.empty() && !std::isfinite(t.back()))) {
-      throw InputError::AtLine(path.string(), number,
-                               "values must be finite (after units and scale: " +
-                                   std::to_string(a.back() * to_mps2) + " m/s^2)");
-    }
-    // A sampled excitation has one step: the times must advance by the first one.
-    if (t.size() >= 2 &&
-        !(t.back() > t[t.size() - 2] &&
-          std::abs((t.back() - t[t.size() - 2]) - (t[1] - t[0])) <= 1e-6 * (t[1] - t[0]))) {
-      throw InputError::AtLine(path.string(), number,
-                               "the time column must increase by a constant step (the first "
-                               "step is " +
-                                   std::to_string(t[1] - t[0]) + " s)");
-    }
-  }
-  if (a.size() < 2) {
-    throw InputError::AtLine(path.string(), 0, "needs at least two samples");
-  }
-  ExcitationSamples out;
-  if (dt_s) {
-    out.dt_s = *dt_s;
-  } else {
-    if (t.size() != a.size()) {
-      throw InputError::AtLine(path.string(), 0,
-                               "one-column files need excitation.dt_s in the model file");
-    }
-    out.dt_s = t[1] - t[0];
-  }
-  for (double& v : a) v *= to_mps2;
-  out.values_mps2 = std::move(a);
-  return out;
 }
 
 }  // namespace skewbridge::records

@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <filesystem>
 #include <optional>
+#include <string_view>
 #include <vector>
 
 #include "records/ground_motion.h"
@@ -71,13 +72,25 @@ struct ExcitationSamples {
   double dt_s = 0.0;                ///< the given dt, or the step of the time column
 };
 
-/// Reads a plain text excitation file: one column (acceleration) with `dt_s` given, or two
-/// (time, acceleration) whose times advance by one constant step (within 1e-6 of the first);
-/// '#' lines and empty lines are skipped. Each value is multiplied by `to_mps2` (units x scale)
-/// and must then be finite. `skewbridge run` and model-file sweeps read the file through here.
-/// @throws InputError naming the file and the line: unreadable file, a token that is not a
-/// number, a non-finite value, an uneven time column, fewer than two samples, or one column
-/// without dt_s.
+/// The most samples a sampled signal may hold (80 MB of doubles; 28 h at 100 Hz).
+inline constexpr std::size_t kMaxSignalSamples = 10'000'000;
+
+/// Parses the text of a model file's excitation file, as strictly as the record readers: every
+/// line is blank, a comment ('#' first) or a data line; the first data line fixes the columns,
+/// one (acceleration, with `dt_s` given) or two (time in s, acceleration; blanks or commas
+/// between), and every data line has as many; every token is a decimal number (NaN, Inf and
+/// trailing characters are refused on their line); the times increase on one uniform grid
+/// (within 1e-3 of a step, the rounding of a printed column) and its step must agree with a
+/// given `dt_s` (to 1e-9). Each value times `to_mps2` (units x scale) must be finite. At least
+/// two and at most kMaxSignalSamples samples. The first sample is applied at t = 0.
+/// @throws InputError "SOURCE:LINE: problem; allowed: ..." for the first line at fault.
+ExcitationSamples ParseExcitationSamples(std::string_view text, std::string_view source,
+                                         std::optional<double> dt_s, double to_mps2);
+
+/// Reads a model file's excitation file through ParseExcitationSamples. `skewbridge run` and
+/// model-file sweeps read the file through here.
+/// @throws InputError naming the file: unreadable, larger than 1 GiB, or as
+/// ParseExcitationSamples.
 ExcitationSamples ReadExcitationSamples(const std::filesystem::path& path,
                                         std::optional<double> dt_s, double to_mps2);
 

@@ -9,23 +9,23 @@
 #include <string_view>
 #include <vector>
 
+#include "solver/common/units.h"
+
 namespace skewbridge::records {
 
 /// Standard gravity (m/s^2) used for every g <-> m/s^2 conversion [CGPM 1901].
-inline constexpr double kStandardGravity_mps2 = 9.80665;
+inline constexpr double kStandardGravity_mps2 = skewbridge::kStandardGravity_mps2;
 
-/// Acceleration units found in record files.
-enum class Units { kG, kMetresPerSecond2, kCentimetresPerSecond2 };
+/// Acceleration units found in record files: the one vocabulary of solver/common/units.h.
+using Units = AccelerationUnits;
+using skewbridge::ToMetresPerSecond2;
+using skewbridge::UnitsName;
 
-/// The factor that turns a value in `units` into m/s^2.
-double ToMetresPerSecond2(Units units);
-
-/// Canonical short name of the units: "g", "m/s^2" or "cm/s^2".
-std::string_view UnitsName(Units units);
-
-/// Parses a unit spelling ("g", "m/s2", "m/s^2", "m/s/s", "cm/s2", "cm/s^2", "cm/sec2",
-/// "cm/sec/sec", "gal"; case-insensitive); std::nullopt when unknown.
-std::optional<Units> ParseUnits(std::string_view text);
+/// Parses a unit spelling (ParseAccelerationUnits: "g", "m/s2", "m/s^2", "mps2", "cm/s2",
+/// "gal", ...; case-insensitive); std::nullopt when unknown.
+inline std::optional<Units> ParseUnits(std::string_view text) {
+  return ParseAccelerationUnits(text);
+}
 
 /// The file formats the readers understand; kAuto asks for detection by content.
 enum class Format {
@@ -47,6 +47,9 @@ std::string_view FormatName(Format format);
 /// Parses a format name (see FormatName, plus "auto"); std::nullopt when unknown.
 std::optional<Format> ParseFormat(std::string_view text);
 
+/// The largest PGA a record may have unless the user raises the bound (g), solver/common/units.h.
+inline constexpr double kMaxPlausiblePga_g = skewbridge::kMaxPlausiblePga_g;
+
 /// What the user knows that a file may not say. A value given here that contradicts the file's
 /// own header is an error, never silently preferred.
 struct ReadOptions {
@@ -54,6 +57,9 @@ struct ReadOptions {
   std::optional<double> dt_s;     ///< required for headerless one- or multi-value files
   std::optional<Units> units;     ///< required where the file states none
   int channel = 1;                ///< CSMIP V2 channel (1-based) when a file holds several
+  /// The PGA above which the record is refused as implausible for its units (g; +inf: no
+  /// bound): `--max-pga-g` of `records info`, `max_pga_g` of a record set.
+  double max_pga_g = kMaxPlausiblePga_g;
 };
 
 /// One horizontal component, uniformly sampled from t = 0.
@@ -82,7 +88,7 @@ Format DetectFormat(std::string_view text, std::string_view source);
 /// Parses a record held in memory; `source` names it in error messages.
 /// @throws InputError "SOURCE:LINE: problem" for any malformed content: an NPTS that does not
 /// match the values, a non-numeric token, a missing or non-positive dt, a NaN, an empty file,
-/// unknown or missing units. Nothing is truncated or padded.
+/// unknown or missing units, a PGA above options.max_pga_g. Nothing is truncated or padded.
 GroundMotion ParseRecord(std::string_view text, std::string_view source,
                          const ReadOptions& options = {});
 

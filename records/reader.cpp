@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -50,43 +51,6 @@ bool LooksLikeTimeSeries(const std::vector<Line>& lines) {
 }
 
 }  // namespace
-
-double ToMetresPerSecond2(Units units) {
-  switch (units) {
-    case Units::kG:
-      return kStandardGravity_mps2;
-    case Units::kMetresPerSecond2:
-      return 1.0;
-    case Units::kCentimetresPerSecond2:
-      return 0.01;
-  }
-  return 1.0;
-}
-
-std::string_view UnitsName(Units units) {
-  switch (units) {
-    case Units::kG:
-      return "g";
-    case Units::kMetresPerSecond2:
-      return "m/s^2";
-    case Units::kCentimetresPerSecond2:
-      return "cm/s^2";
-  }
-  return "?";
-}
-
-std::optional<Units> ParseUnits(std::string_view text) {
-  const std::string s = Lowered(text);
-  if (s == "g") return Units::kG;
-  for (std::string_view m : {"m/s2", "m/s^2", "m/s/s", "m/sec2", "m/sec^2", "m/sec/sec", "mps2"}) {
-    if (s == m) return Units::kMetresPerSecond2;
-  }
-  for (std::string_view cm :
-       {"cm/s2", "cm/s^2", "cm/s/s", "cm/sec2", "cm/sec^2", "cm/sec/sec", "gal", "cmps2"}) {
-    if (s == cm) return Units::kCentimetresPerSecond2;
-  }
-  return std::nullopt;
-}
 
 std::string_view FormatName(Format format) {
   for (const auto& [f, name] : kFormatNames) {
@@ -152,8 +116,10 @@ Format DetectFormat(std::string_view text, std::string_view source) {
   return LooksLikeTimeSeries(lines) ? Format::kTimeSeries : Format::kPlainText;
 }
 
-GroundMotion ParseRecord(std::string_view text, std::string_view source,
-                         const ReadOptions& options) {
+namespace {
+
+GroundMotion ParseAnyFormat(std::string_view text, std::string_view source,
+                            const ReadOptions& options) {
   const Format format =
       options.format == Format::kAuto ? DetectFormat(text, source) : options.format;
   const std::vector<Line> lines = detail::SplitLines(text);
@@ -184,6 +150,34 @@ GroundMotion ParseRecord(std::string_view text, std::string_view source,
       break;
   }
   throw InputError::AtLine(source, 0, "no reader for the requested format");
+}
+
+std::string Shown(double value) {
+  std::ostringstream out;
+  out.precision(4);
+  out << value;
+  return out.str();
+}
+
+}  // namespace
+
+GroundMotion ParseRecord(std::string_view text, std::string_view source,
+                         const ReadOptions& options) {
+  GroundMotion motion = ParseAnyFormat(text, source, options);
+  double pga_mps2 = 0.0;
+  for (double a : motion.acc_mps2) pga_mps2 = std::max(pga_mps2, std::abs(a));
+  if (pga_mps2 > options.max_pga_g * kStandardGravity_mps2) {
+    throw InputError::AtLine(
+        source, 0,
+        "PGA " + Shown(pga_mps2) + " m/s^2 (" + Shown(pga_mps2 / kStandardGravity_mps2) +
+            " g) read in " + motion.original_units +
+            (options.units ? " as given" : " as the file states") + " is above " +
+            Shown(options.max_pga_g) +
+            " g, beyond any recorded ground motion; allowed: the record's true units (--units "
+            "of records info, units of a record set), or a larger max_pga_g (--max-pga-g) if "
+            "the record means it");
+  }
+  return motion;
 }
 
 GroundMotion ReadRecord(const std::filesystem::path& path, const ReadOptions& options) {

@@ -54,11 +54,21 @@ void ReadEntryOptions(const toml::table& table, const std::filesystem::path& man
                               "must be a number > 0 and at most 1e6");
   }
   entry.options.dt_s = PositiveNumber(table, "dt", manifest);
+  if (const toml::node* bound = table.get("max_pga_g")) {
+    // A number > 0, or inf for no bound (the user means the amplitudes as they are).
+    const std::optional<double> value = bound->value<double>();
+    if (!value || !(*value > 0.0)) {
+      throw InputError::AtField(Where(manifest, LineOf(*bound)), "max_pga_g",
+                                "must be a number > 0 (g), or inf for no bound");
+    }
+    entry.options.max_pga_g = *value;
+  }
   if (const std::string units = RequireString(table, "units", manifest, false); !units.empty()) {
     entry.options.units = ParseUnits(units);
     if (!entry.options.units) {
-      throw InputError::AtField(Where(manifest, LineOf(*table.get("units"))), "units",
-                                "unknown units '" + units + "' (allowed: g, m/s^2, cm/s^2)");
+      throw InputError::AtField(
+          Where(manifest, LineOf(*table.get("units"))), "units",
+          "unknown units '" + units + "' (allowed: " + std::string(AllowedUnitsText()) + ")");
     }
   }
   if (const std::string format = RequireString(table, "format", manifest, false); !format.empty()) {
@@ -243,8 +253,8 @@ RecordSet LoadRecordSet(const std::filesystem::path& manifest) {
   set.manifest = manifest;
   set.name = manifest.stem().string();
   const bool folder_form = root.contains("folder") || root.contains("pattern");
-  static const std::set<std::string_view> kFolderKeys = {"name",  "folder", "pattern", "scale",
-                                                         "units", "dt",     "format",  "channel"};
+  static const std::set<std::string_view> kFolderKeys = {
+      "name", "folder", "pattern", "scale", "units", "dt", "format", "channel", "max_pga_g"};
   // A sweep specification or a model file is named as what it is, not by its first table.
   if (!root.contains("record") && !folder_form) {
     if (root.contains("sweep")) {
@@ -268,7 +278,8 @@ RecordSet LoadRecordSet(const std::filesystem::path& manifest) {
       throw InputError::AtField(
           Where(manifest, LineOf(node)), key.str(),
           (folder_form ? "unknown key of a folder set (allowed: name, folder, pattern, scale, "
-                         "units, dt, format, channel; [[record]] tables are the other form)"
+                         "units, dt, format, channel, max_pga_g; [[record]] tables are the "
+                         "other form)"
                        : "unknown key (allowed: name, [[record]], or folder and pattern)") +
               DidYouMean(key.str(), allowed));
     }
@@ -288,8 +299,8 @@ RecordSet LoadRecordSet(const std::filesystem::path& manifest) {
     throw InputError::AtLine(manifest.string(), 0, "no [[record]] entries");
   }
   const std::filesystem::path base = manifest.parent_path();
-  static const std::set<std::string_view> kKeys = {"file",  "label", "component", "scale",
-                                                   "units", "dt",    "format",    "channel"};
+  static const std::set<std::string_view> kKeys = {
+      "file", "label", "component", "scale", "units", "dt", "format", "channel", "max_pga_g"};
   for (const toml::node& item : *records) {
     const toml::table* table = item.as_table();
     if (table == nullptr) {
@@ -300,7 +311,8 @@ RecordSet LoadRecordSet(const std::filesystem::path& manifest) {
       if (!kKeys.contains(key.str())) {
         throw InputError::AtField(
             Where(manifest, LineOf(value)), key.str(),
-            "unknown key (allowed: file, label, component, scale, units, dt, format, channel)" +
+            "unknown key (allowed: file, label, component, scale, units, dt, format, channel, "
+            "max_pga_g)" +
                 DidYouMean(key.str(), std::vector<std::string>(kKeys.begin(), kKeys.end())));
       }
     }

@@ -41,7 +41,7 @@ workflow release
 echo "== asan-ubsan: build and test (MPI off; see docs/architecture.md)"
 workflow asan-ubsan
 
-echo "== fuzz: each record reader under libFuzzer + ASan + UBSan for 12 s (docs/records.md)"
+echo "== fuzz: each record reader and the excitation-file reader under libFuzzer + ASan + UBSan for 12 s (docs/records.md)"
 fuzz_log="$logs/fuzz.log"
 if cmake --preset fuzz >"$fuzz_log" 2>&1 && cmake --build --preset fuzz >>"$fuzz_log" 2>&1; then
   fuzz_work=$(mktemp -d)
@@ -49,6 +49,8 @@ if cmake --preset fuzz >"$fuzz_log" 2>&1 && cmake --build --preset fuzz >>"$fuzz
     corpus="$fuzz_work/$(basename "$fuzzer")"
     mkdir -p "$corpus"
     find tests/data/records -type f ! -name '*.md' -exec cp {} "$corpus" \;
+    seeds="records/fuzz/corpus/$(basename "$fuzzer")"
+    if [ -d "$seeds" ]; then cp "$seeds"/* "$corpus"; fi
     if "$fuzzer" -max_total_time=12 -timeout=10 -max_len=8192 -artifact_prefix="$fuzz_work/" \
       "$corpus" >>"$fuzz_log" 2>&1; then
       passed=$((passed + 1))

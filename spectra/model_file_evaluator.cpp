@@ -114,6 +114,10 @@ ModelFileEvaluator::ModelFileEvaluator(const CellGrid& spec)
             records::ReadExcitationSamples(ex.file, ex.dt_s, ex.to_mps2);
         samples_mps2_ = std::move(samples.values_mps2);
         samples_dt_s_ = samples.dt_s;
+        double pga_mps2 = 0.0;
+        for (double a : samples_mps2_) pga_mps2 = std::max(pga_mps2, std::abs(a));
+        ex.CheckPga(pga_mps2, spec.model_path.string(), 0,
+                    "excitation.file (" + ex.file.string() + ")");
       }
       records::GroundMotion motion;
       motion.file = ex.file.empty() ? spec.model_path.string() : ex.file.string();
@@ -155,13 +159,24 @@ ModelFileEvaluator::ModelFileEvaluator(const CellGrid& spec)
   seats_ = Mentions(spec, "seat_over_L") || (file_.decks && file_.decks->seat_width_m);
   travel_ = !spec.limit_states.empty();
   if (by_record) records_ = LoadSweepRecords(spec);
-  // Every cell's model is built now, so a bad combination fails before the file is touched;
+  // Every cell's model is built and its run counted now, so a bad combination or a run that
+  // `skewbridge run` would refuse (a pulse period of 1e7 s) fails before the file is touched;
   // with records, each cell's fundamental period is kept (a few distinct values: the axes that
   // change the modes are a_deg, eta0 and k_factor).
   const bool with_t1 = by_record;
   if (with_t1) t1_of_cell_.resize(spec.CellCount());
   for (std::uint64_t cell = 0; cell < spec.CellCount(); ++cell) {
-    const ModelFileCell c = MakeCell(spec.AxisIndex(cell), false);
+    const std::vector<std::size_t> index = spec.AxisIndex(cell);
+    const ModelFileCell c = MakeCell(index, false);
+    try {
+      model::CheckRunSize(
+          c.control, c.excitation_duration_s, c.excitation_samples, spec.model_path.string(),
+          by_record                                                    ? "record"
+          : by_pulse || ex.kind == model::ExcitationSpec::Kind::kPulse ? "excitation"
+                                                                       : "excitation.file");
+    } catch (const InputError& e) {
+      throw InputError(src + ": cell " + CellText(spec, index) + ": " + e.what());
+    }
     if (!with_t1) continue;
     const double t1 = FundamentalPeriod(*c.model);
     auto it = std::find(t1_values_s_.begin(), t1_values_s_.end(), t1);
@@ -270,6 +285,8 @@ ModelFileCell ModelFileEvaluator::MakeCell(std::span<const std::size_t> index,
     c.a_g_mps2 = c.record->measures.pga_mps2 * c.scale;
     c.w_g_radps = c.record->measures.omega_g_radps;
     c.persistency_m = c.record->measures.persistency_m * c.scale;
+    c.excitation_samples = c.record->motion.npts();
+    c.excitation_duration_s = c.record->motion.dt_s * static_cast<double>(c.excitation_samples - 1);
     if (with_excitation) {
       std::vector<double> acc = c.record->motion.acc_mps2;
       if (c.scale != 1.0) {
@@ -286,6 +303,8 @@ ModelFileCell ModelFileEvaluator::MakeCell(std::span<const std::size_t> index,
     c.a_g_mps2 = samples_measures_->pga_mps2 * c.scale;
     c.w_g_radps = samples_measures_->omega_g_radps;
     c.persistency_m = samples_measures_->persistency_m * c.scale;
+    c.excitation_samples = samples_mps2_.size();
+    c.excitation_duration_s = samples_dt_s_ * static_cast<double>(c.excitation_samples - 1);
     if (with_excitation) {
       // As `skewbridge run` makes it: the samples times the direction, both components.
       std::vector<double> ax(samples_mps2_.size()), ay(samples_mps2_.size());
@@ -312,6 +331,7 @@ ModelFileCell ModelFileEvaluator::MakeCell(std::span<const std::size_t> index,
     const double T_g = NumberOf(spec_, index, "T_g", 0.0, &given);
     if (given) c.w_g_radps = 2.0 * std::numbers::pi / T_g;
     c.persistency_m = std::abs(c.a_g_mps2) / (c.w_g_radps * c.w_g_radps);
+    c.excitation_duration_s = 2.0 * std::numbers::pi / c.w_g_radps;
     if (with_excitation) {
       c.excitation = std::make_unique<records::PulseExcitation>(
           sine ? records::PulseShape::kSine : records::PulseShape::kCosine, c.a_g_mps2, c.w_g_radps,

@@ -37,6 +37,8 @@ struct ModelFileCell {
   std::vector<double> seat_width_m;        ///< per deck; empty without seat widths
   const SweepRecord* record = nullptr;     ///< the record of the cell, or nullptr
   double scale = 1.0;                      ///< factor on the accelerations
+  double excitation_duration_s = 0.0;      ///< the ground motion's duration (s)
+  std::size_t excitation_samples = 0;      ///< its samples (0 for a pulse)
 };
 
 /// The fundamental period T1 = 2 pi / w_1 of a model (s): its lowest natural frequency without

@@ -22,6 +22,7 @@
 #include "records/synthetic.h"
 #include "solver/common/error.h"
 #include "solver/common/file_kind.h"
+#include "solver/common/units.h"
 
 namespace skewbridge::app {
 namespace {
@@ -42,6 +43,7 @@ struct InfoArgs {
   double xi = 0.05;                  ///< --xi
   double t1_s = 0.0;                 ///< --t1: Sa(T1) and AvgSa; 0 = not asked
   std::string pattern = "*";         ///< --pattern: the files of a folder that are records
+  double max_pga_g = records::kMaxPlausiblePga_g;  ///< --max-pga-g (g)
 };
 
 struct Row {
@@ -88,8 +90,9 @@ records::ReadOptions ReadOptionsOf(const InfoArgs& args, std::string_view comman
   if (!args.units.empty()) {
     options.units = records::ParseUnits(args.units);
     if (!options.units) {
-      throw InputError::AtField(command, "--units",
-                                "unknown units '" + args.units + "' (allowed: g, m/s2, cm/s2)");
+      throw InputError::AtField(
+          command, "--units",
+          "unknown units '" + args.units + "' (allowed: " + std::string(AllowedUnitsText()) + ")");
     }
   }
   const std::optional<records::Format> format = records::ParseFormat(args.format);
@@ -101,6 +104,10 @@ records::ReadOptions ReadOptionsOf(const InfoArgs& args, std::string_view comman
   }
   options.format = *format;
   options.channel = args.channel;
+  if (!(args.max_pga_g > 0.0)) {
+    throw InputError::AtField(command, "--max-pga-g", "must be > 0 g (or inf for no bound)");
+  }
+  options.max_pga_g = args.max_pga_g;
   return options;
 }
 
@@ -116,8 +123,9 @@ void LoadPath(const std::string& text, const InfoArgs& args, std::string_view co
                              "record-set manifests .toml)");
   }
   if (path.extension() == ".toml") {
-    if (args.dt_given || !args.units.empty() || args.format != "auto") {
-      throw InputError::AtField(command, "--dt/--units/--format",
+    if (args.dt_given || !args.units.empty() || args.format != "auto" ||
+        args.max_pga_g != records::kMaxPlausiblePga_g) {
+      throw InputError::AtField(command, "--dt/--units/--format/--max-pga-g",
                                 "apply to a single file; give them per record in the set");
     }
     const records::RecordSet set = records::LoadRecordSet(path);
@@ -533,7 +541,9 @@ void AddRecordsCommand(CLI::App& app) {
   auto* csv = info_cmd->add_flag("--csv", info->csv, "comma-separated output");
   info_cmd->add_flag("--json", info->json, "JSON output")->excludes(csv);
   CLI::Option* dt = info_cmd->add_option("--dt", info->dt_s, "time step (s) of a headerless file");
-  info_cmd->add_option("--units", info->units, "units where the file states none: g, m/s2, cm/s2");
+  info_cmd->add_option(
+      "--units", info->units,
+      "units where the file states none: g, m/s^2 (m/s2, mps2), cm/s^2 (gal, cmps2)");
   info_cmd->add_option("--format", info->format,
                        "auto, at2, esm, itsak, cosmos, csmip, smc, smtk, plain, time-acc");
   info_cmd->add_option("--channel", info->channel, "CSMIP V2 channel (1-based)");
@@ -545,6 +555,8 @@ void AddRecordsCommand(CLI::App& app) {
   info_cmd->add_option("--xi", info->xi, "damping ratio of the spectra")->capture_default_str();
   info_cmd->add_option("--t1", info->t1_s,
                        "fundamental period T1 (s): adds Sa(T1) and AvgSa over 0.2-3 T1");
+  info_cmd->add_option("--max-pga-g", info->max_pga_g,
+                       "refuse a PGA above this (g; default 10, inf: no bound)");
   info_cmd->callback([info, dt] {
     info->dt_given = dt->count() > 0;
     PrintInfo(*info);

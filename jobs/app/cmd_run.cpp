@@ -2,6 +2,7 @@
 // method of run.method (event-driven or time-stepping); prints a summary, writes the time
 // histories as CSV and the whole run as HDF5 (docs/run-output.md), each to a temporary name
 // renamed on success. A run that stops with a status other than ok exits with status 3.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -27,7 +28,8 @@ namespace {
 // Exit status of a run that ended before its end time with a status other than ok.
 constexpr int kRunStoppedExitCode = 3;
 
-std::unique_ptr<Excitation> MakeExcitation(const model::ExcitationSpec& spec) {
+std::unique_ptr<Excitation> MakeExcitation(const model::ExcitationSpec& spec,
+                                           const std::string& model_path) {
   if (spec.kind == model::ExcitationSpec::Kind::kPulse) {
     const auto shape = spec.shape == model::ExcitationSpec::PulseShape::kCosine
                            ? records::PulseShape::kCosine
@@ -42,6 +44,9 @@ std::unique_ptr<Excitation> MakeExcitation(const model::ExcitationSpec& spec) {
         records::ReadExcitationSamples(spec.file, spec.dt_s, spec.to_mps2);
     values = std::move(samples.values_mps2);
     dt = samples.dt_s;
+    double pga_mps2 = 0.0;
+    for (double a : values) pga_mps2 = std::max(pga_mps2, std::abs(a));
+    spec.CheckPga(pga_mps2, model_path, 0, "excitation.file (" + spec.file.string() + ")");
   }
   std::vector<double> ax(values.size()), ay(values.size());
   for (std::size_t i = 0; i < values.size(); ++i) {
@@ -109,6 +114,17 @@ void WriteHdf5(const std::filesystem::path& path, const model::ModelFile& file,
   std::filesystem::rename(temporary, path);
 }
 
+// A number of the summary: printf's `format` when finite, else "not-finite" (a run that stops
+// with status non-finite keeps its last state; the summary never prints nan or inf).
+std::string Number(const char* format, double value) {
+  if (!std::isfinite(value)) {
+    return "not-finite";
+  }
+  char text[64];
+  std::snprintf(text, sizeof text, format, value);
+  return text;
+}
+
 }  // namespace
 
 void AddRunCommand(CLI::App& app) {
@@ -124,7 +140,7 @@ void AddRunCommand(CLI::App& app) {
                   "History sample interval in s (> 0), overriding run.output_interval_s");
   cmd->callback([model_path, csv_path, out_path, output_interval_s] {
     const model::ModelFile file = model::ParseModelFile(*model_path);
-    const std::unique_ptr<Excitation> excitation = MakeExcitation(file.excitation);
+    const std::unique_ptr<Excitation> excitation = MakeExcitation(file.excitation, *model_path);
     model::RunControl control = file.run;
     if (*output_interval_s < 0.0) {
       throw InputError::AtField("--output-interval", std::to_string(*output_interval_s),
@@ -136,6 +152,12 @@ void AddRunCommand(CLI::App& app) {
     if (!csv_path->empty() && control.output_interval_s <= 0.0) {
       control.output_interval_s = 0.01;
     }
+    // The run counted again with what is known now: the samples of an excitation file and the
+    // history interval of the command line.
+    const auto* sampled = dynamic_cast<const records::SampledExcitation*>(excitation.get());
+    model::CheckRunSize(control, excitation->Duration(), sampled ? sampled->ax_mps2().size() : 0,
+                        *model_path,
+                        file.excitation.file.empty() ? "excitation" : "excitation.file");
     // run.method: the event-driven integrator, or the Moreau-Jean scheme with run.time_step_s.
     const bool time_stepping = control.method == "time-stepping";
     dynamics::RunResult r;
@@ -150,8 +172,9 @@ void AddRunCommand(CLI::App& app) {
     if (time_stepping) {
       std::printf(" (h = %.6g s)", control.time_step_s);
     }
-    std::printf(", status %s%s%s, t_end %.6g s\n", dynamics::ToString(r.status),
-                r.message.empty() ? "" : " - ", r.message.c_str(), r.end_time_s);
+    std::printf(", status %s%s%s, t_end %s s\n", dynamics::ToString(r.status),
+                r.message.empty() ? "" : " - ", r.message.c_str(),
+                Number("%.6g", r.end_time_s).c_str());
     // Stiffness assembled from bearings and piers: its modes are a result worth seeing.
     if (!file.decks && file.deck.stiffness == model::DeckSpec::StiffnessKind::kElements) {
       PrintModes(file.model);
@@ -159,22 +182,26 @@ void AddRunCommand(CLI::App& app) {
     const char* names[3] = {"x", "y", "theta"};
     const char* units[3] = {"m", "m", "rad"};
     for (int i = 0; i < file.model.n_dof(); ++i) {
-      std::printf("  max|%s%d| = %.6e at %.6f s, residual %.6e (%s)\n", names[i % 3], i / 3,
-                  r.max_abs_q[i], r.time_of_max_s[i], r.q_end[i], units[i % 3]);
+      std::printf("  max|%s%d| = %s at %s s, residual %s (%s)\n", names[i % 3], i / 3,
+                  Number("%.6e", r.max_abs_q[i]).c_str(),
+                  Number("%.6f", r.time_of_max_s[i]).c_str(), Number("%.6e", r.q_end[i]).c_str(),
+                  units[i % 3]);
     }
     std::printf("  impacts %ld, plastic closures %ld, detachments %ld, stick %ld, slip %ld\n",
                 r.impacts, r.plastic_closures, r.detachments, r.stick_transitions,
                 r.slip_transitions);
     std::printf(
-        "  steps: exact %ld, Runge-Kutta %ld (+%ld rejected); smallest impact "
-        "separation %.3e s\n",
-        r.free_steps, r.rk_steps, r.rk_rejected, r.min_impact_separation_s);
+        "  steps: exact %ld, Runge-Kutta %ld (+%ld rejected); smallest impact separation %s\n",
+        r.free_steps, r.rk_steps, r.rk_rejected,
+        r.impacts < 2 ? "none (fewer than two impacts)"
+                      : (Number("%.3e", r.min_impact_separation_s) + " s").c_str());
     const dynamics::EnergyLedger& e = r.energy;
     std::printf(
-        "  energy (J): input %.6e, damping %.6e, impacts %.6e, friction %.6e, now %.6e, "
-        "balance error %.3e\n",
-        e.input_J, e.damping_J, e.impact_J, e.friction_J, e.kinetic_J + e.strain_J,
-        e.balance_error_J);
+        "  energy (J): input %s, damping %s, impacts %s, friction %s, now %s, balance error %s\n",
+        Number("%.6e", e.input_J).c_str(), Number("%.6e", e.damping_J).c_str(),
+        Number("%.6e", e.impact_J).c_str(), Number("%.6e", e.friction_J).c_str(),
+        Number("%.6e", e.kinetic_J + e.strain_J).c_str(),
+        Number("%.3e", e.balance_error_J).c_str());
     if (!csv_path->empty()) {
       WriteCsv(*csv_path, file.model, r.histories);
     }
@@ -182,7 +209,8 @@ void AddRunCommand(CLI::App& app) {
       WriteHdf5(*out_path, file, control, r);
     }
     if (r.status != dynamics::RunStatus::kOk) {
-      // An expected numerical outcome (Painleve, LCP failure, step limit): the summary and the
+      // An expected numerical outcome (Painleve, LCP failure, step limit, a state no longer
+      // finite): the summary and the
       // files hold the run up to where it stopped; the exit status tells scripts it stopped.
       std::fprintf(stderr, "skewbridge: run stopped: %s: %s\n", dynamics::ToString(r.status),
                    r.message.c_str());

@@ -139,6 +139,8 @@ bool IsNumericLine(std::string_view text) {
   return any && ok;
 }
 
+std::optional<double> TryParseNumber(std::string_view token) { return TryNumber(token); }
+
 double ParseNumber(std::string_view token, std::string_view source, long line) {
   if (const std::optional<double> value = TryNumber(token)) return *value;
   std::string lowered;
@@ -203,8 +205,9 @@ Units UnitsFromHeader(std::string_view spelling, std::string_view source, long l
     s = s.substr(0, paren);
   }
   if (const std::optional<Units> units = ParseUnits(s)) return *units;
-  throw InputError::AtLine(source, line,
-                           "unknown units " + Quote(spelling) + " (allowed: g, m/s^2, cm/s^2)");
+  throw InputError::AtLine(
+      source, line,
+      "unknown units " + Quote(spelling) + " (allowed: " + std::string(AllowedUnitsText()) + ")");
 }
 
 Units ResolveUnits(std::optional<Units> in_file, const ReadOptions& options,

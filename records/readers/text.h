@@ -37,6 +37,10 @@ bool IsBlank(std::string_view text);
 /// True when every token of the line parses as a finite number (and there is at least one).
 bool IsNumericLine(std::string_view text);
 
+/// One token as a finite number (the rules of ParseNumber), or nullopt: for readers that word
+/// their own message.
+std::optional<double> TryParseNumber(std::string_view token);
+
 /// Parses one token as a finite number: optional sign, digits with optional '.', optional
 /// exponent introduced by E, e, D or d.
 /// @throws InputError "SOURCE:LINE: ..." for a non-numeric token, NaN, infinity or overflow.

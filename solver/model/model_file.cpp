@@ -17,6 +17,7 @@
 #include "solver/common/error.h"
 #include "solver/common/file_kind.h"
 #include "solver/common/nearest.h"
+#include "solver/common/units.h"
 #include "solver/model/checks.h"
 
 namespace skewbridge::model {
@@ -36,6 +37,22 @@ std::optional<double> ExcitationSpec::Duration() const {
     return *dt_s * static_cast<double>(values.size() - 1);
   }
   return std::nullopt;
+}
+
+void ExcitationSpec::CheckPga(double pga_mps2, std::string_view source, long line,
+                              std::string_view field) const {
+  const double as_given_mps2 = scale != 0.0 ? pga_mps2 / std::abs(scale) : 0.0;
+  if (!(as_given_mps2 > max_pga_g * kStandardGravity_mps2)) {
+    return;
+  }
+  std::ostringstream text;
+  text.precision(4);
+  text << "PGA " << as_given_mps2 << " m/s^2 (" << as_given_mps2 / kStandardGravity_mps2
+       << " g) in the units " << UnitsName(units) << " is above max_pga_g = " << max_pga_g
+       << " g, beyond any recorded ground motion; allowed: the true excitation.units ("
+       << AllowedUnitsText() << "), or a larger excitation.max_pga_g (inf: no bound) if the "
+       << "motion means it";
+  Fail(Where{source, line}, field, text.str());
 }
 
 double RunControl::EndTime(double excitation_duration_s) const {
@@ -610,13 +627,14 @@ constexpr double kMaxScale = 1e6;
 constexpr std::array<std::pair<std::string_view, std::string_view>, 2> kExcitationKeys{{
     {"pulse", "kind, shape, a_g, a_g_g, w_g, T_g, direction, angle_deg (with kind = \"pulse\")"},
     {"sampled",
-     "kind, file, values, dt_s, units, scale, direction, angle_deg (with kind = \"sampled\")"},
+     "kind, file, values, dt_s, units, scale, max_pga_g, direction, angle_deg (with kind = "
+     "\"sampled\")"},
 }};
 
 void ReadExcitation(Section& s, const std::filesystem::path& base_dir, ExcitationSpec& spec) {
   s.Expect(
-      "kind, shape, a_g, a_g_g, w_g, T_g, file, values, dt_s, units, scale, direction, "
-      "angle_deg");
+      "kind, shape, a_g, a_g_g, w_g, T_g, file, values, dt_s, units, scale, max_pga_g, "
+      "direction, angle_deg");
   const std::optional<std::string> kind = s.String("kind", {"pulse", "sampled"});
   if (!kind) {
     s.Missing("kind", "\"pulse\" or \"sampled\"");
@@ -668,14 +686,35 @@ void ReadExcitation(Section& s, const std::filesystem::path& base_dir, Excitatio
     return;
   }
   spec.kind = ExcitationSpec::Kind::kSampled;
-  const std::string units = s.String("units", {"mps2", "g", "cmps2"}).value_or("mps2");
+  // The units vocabulary of every reader of accelerations (solver/common/units.h).
+  AccelerationUnits units = AccelerationUnits::kMetresPerSecond2;
+  if (const std::optional<std::string> name = s.String("units", {})) {
+    const std::optional<AccelerationUnits> parsed = ParseAccelerationUnits(*name);
+    if (!parsed) {
+      Fail(s.At("units"), s.Field("units"),
+           "unknown units \"" + *name + "\" (allowed: " + std::string(AllowedUnitsText()) + ")");
+    }
+    units = *parsed;
+  }
   const double scale = s.Number("scale").value_or(1.0);
   if (!(std::abs(scale) <= kMaxScale)) {
     Fail(s.At("scale"), s.Field("scale"),
          "must be finite and at most 1e6 in magnitude (got " + detail::Show(scale) + ")");
   }
-  const double unit_factor = units == "g" ? kStandardGravity_mps2 : (units == "cmps2" ? 0.01 : 1.0);
-  spec.to_mps2 = unit_factor * scale;
+  spec.units = units;
+  spec.scale = scale;
+  spec.to_mps2 = ToMetresPerSecond2(units) * scale;
+  if (const toml::node* bound = s.Get("max_pga_g")) {
+    // A number > 0 in g, or inf: the user means the amplitudes as they are.
+    const std::optional<double> value =
+        bound->is_integer() ? std::optional<double>(static_cast<double>(*bound->value<int64_t>()))
+                            : bound->value<double>();
+    if (!value || !(*value > 0.0)) {
+      Fail(s.At("max_pga_g"), s.Field("max_pga_g"),
+           "must be a number > 0 (g), or inf for no bound");
+    }
+    spec.max_pga_g = *value;
+  }
   if (const std::optional<double> dt = s.Number("dt_s")) {
     CheckPositive(*dt, s.Field("dt_s"), s.At("dt_s"));
     spec.dt_s = dt;
@@ -708,6 +747,9 @@ void ReadExcitation(Section& s, const std::filesystem::path& base_dir, Excitatio
     if (!spec.dt_s) {
       s.Missing("dt_s", "sample interval in s, required with values");
     }
+    double pga_mps2 = 0.0;
+    for (double a : spec.values) pga_mps2 = std::max(pga_mps2, std::abs(a));
+    spec.CheckPga(pga_mps2, s.source(), s.At("values").line, s.Field("values"));
   } else {
     s.Missing("file", "a two-column (time, acceleration) file, or inline values with dt_s");
   }
@@ -759,40 +801,16 @@ constexpr double kMaxEndTime_s = 1e6;
 // The most history samples a run may store (3 DOFs, positions and velocities: 0.5 GB).
 constexpr double kMaxHistorySamples = 1e7;
 
-// Counts, in floating point so that nothing overflows, what a run asks for before it starts:
-// its length, its history samples and (time-stepping) its steps. A sampled excitation read
-// from a file has no known duration here; its run is counted when the file is read.
+// Counts what a run asks for whose excitation's duration is known when the file is parsed
+// (a pulse, inline values, or an end time given); a file's samples are counted when read.
 void CheckRunLength(const ExcitationSpec& excitation, const RunControl& run,
                     std::string_view source) {
   const std::optional<double> duration = excitation.Duration();
   if (!run.end_time_s && !duration) {
     return;
   }
-  const Where where{source, 0};
-  const double t_end = run.EndTime(duration.value_or(0.0));
-  const std::string field = run.end_time_s ? "run.end_time_s" : "excitation";
-  if (!std::isfinite(t_end) || !(t_end <= kMaxEndTime_s)) {
-    Fail(where, field,
-         "the run would end at t = " + detail::Show(t_end) +
-             " s (the excitation's duration plus run.tail_s, or run.end_time_s); allowed: a "
-             "finite end time up to 1e6 s");
-  }
-  if (run.output_interval_s > 0.0) {
-    const double samples = t_end / run.output_interval_s;
-    if (!(samples <= kMaxHistorySamples)) {
-      Fail(where, "run.output_interval_s",
-           "the run of " + detail::Show(t_end) + " s would store " + detail::Show(samples) +
-               " history samples; allowed at most 1e7 (a larger interval, or 0 for none)");
-    }
-  }
-  if (run.method == "time-stepping") {
-    const double steps = t_end / run.time_step_s;
-    if (!(steps <= static_cast<double>(run.max_steps))) {
-      Fail(where, "run.time_step_s",
-           "the run of " + detail::Show(t_end) + " s would take " + detail::Show(steps) +
-               " steps, more than run.max_steps = " + std::to_string(run.max_steps));
-    }
-  }
+  const std::size_t samples = excitation.file.empty() ? excitation.values.size() : 0;
+  CheckRunSize(run, duration.value_or(0.0), samples, source, "excitation");
 }
 
 // A deck index: a whole number in [0, n_decks).
@@ -853,12 +871,24 @@ void ReadSupport(Section& s, std::size_t n_decks, SupportSpec& support) {
   s.Finish("deck, between, k_x, k_y, k_theta, c_x, c_y, c_theta, xi");
 }
 
+// The most decks of a [[deck]] file: 600 DOFs, 402 contacts. The integrators hold dense
+// matrices of (2 x DOFs)^2 entries (a dozen of 11.5 MB here); 1000 decks already take half a
+// minute to set up and 3000 do not fit in memory. A bridge of more spans is several models.
+constexpr std::size_t kMaxDecks = 200;
+
 // The [[deck]] form: decks in a row along x, joints between consecutive decks, supports.
 MultiDeckSpec ReadMultiDeck(Section& top, std::string_view source) {
   MultiDeckSpec spec;
   const std::vector<const toml::table*> decks = ArrayOfTables(top, "deck");
   if (decks.empty()) {
     Fail(Where{source, top.TableLine()}, "deck", "at least one [[deck]] table is required");
+  }
+  if (decks.size() > kMaxDecks) {
+    Fail(Where{source, LineOf(*decks[kMaxDecks])}, "deck",
+         std::to_string(decks.size()) + " [[deck]] tables (" + std::to_string(3 * decks.size()) +
+             " DOFs); allowed: at most " + std::to_string(kMaxDecks) + " decks (" +
+             std::to_string(3 * kMaxDecks) + " DOFs, " + std::to_string(2 * kMaxDecks + 2) +
+             " contacts)");
   }
   for (std::size_t i = 0; i < decks.size(); ++i) {
     Section s(*decks[i], Indexed("deck", i), source);
@@ -1007,6 +1037,43 @@ ModelFile Parse(const toml::table& root, std::string_view source,
 }
 
 }  // namespace
+
+void CheckRunSize(const RunControl& run, double excitation_duration_s,
+                  std::size_t excitation_samples, std::string_view source,
+                  std::string_view excitation_field) {
+  const Where where{source, 0};
+  const double t_end = run.EndTime(excitation_duration_s);
+  const std::string field = run.end_time_s ? "run.end_time_s" : std::string(excitation_field);
+  if (!std::isfinite(t_end) || !(t_end <= kMaxEndTime_s)) {
+    Fail(where, field,
+         "the run would end at t = " + detail::Show(t_end) +
+             " s (the excitation's duration plus run.tail_s, or run.end_time_s); allowed: a "
+             "finite end time up to 1e6 s");
+  }
+  if (run.output_interval_s > 0.0) {
+    const double samples = t_end / run.output_interval_s;
+    if (!(samples <= kMaxHistorySamples)) {
+      Fail(where, "run.output_interval_s",
+           "the run of " + detail::Show(t_end) + " s would store " + detail::Show(samples) +
+               " history samples; allowed at most 1e7 (a larger interval, or 0 for none)");
+    }
+  }
+  if (run.method == "time-stepping") {
+    const double steps = t_end / run.time_step_s;
+    if (!(steps <= static_cast<double>(run.max_steps))) {
+      Fail(where, "run.time_step_s",
+           "the run of " + detail::Show(t_end) + " s would take " + detail::Show(steps) +
+               " steps, more than run.max_steps = " + std::to_string(run.max_steps));
+    }
+  } else if (excitation_samples > 1 &&
+             static_cast<double>(excitation_samples - 1) > static_cast<double>(run.max_steps)) {
+    // Each sample is a kink of the ground motion, so each interval is one step at least.
+    Fail(where, std::string(excitation_field),
+         "its " + std::to_string(excitation_samples) +
+             " samples take one step each at least, more than run.max_steps = " +
+             std::to_string(run.max_steps));
+  }
+}
 
 ModelFile ParseModelString(std::string_view text, std::string_view source_name,
                            const std::filesystem::path& base_dir) {

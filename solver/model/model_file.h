@@ -13,6 +13,7 @@
 #include <string_view>
 #include <vector>
 
+#include "solver/common/units.h"
 #include "solver/model/builders.h"
 #include "solver/model/model.h"
 #include "solver/model/multispan.h"
@@ -20,7 +21,7 @@
 namespace skewbridge::model {
 
 /// Standard gravity (m/s^2), for accelerations given in g.
-inline constexpr double kStandardGravity_mps2 = 9.80665;
+inline constexpr double kStandardGravity_mps2 = skewbridge::kStandardGravity_mps2;
 
 /// The ground motion a model file asks for, as pure data (SI units).
 struct ExcitationSpec {
@@ -39,8 +40,18 @@ struct ExcitationSpec {
   // kind = "sampled": from `file` (resolved against the model file's folder) or inline values.
   std::filesystem::path file;  ///< empty when the values are inline
   std::optional<double> dt_s;  ///< sample interval; empty = from the file's time column
-  double to_mps2 = 1.0;        ///< factor from the file's numbers to m/s^2 (units x scale)
+  AccelerationUnits units = AccelerationUnits::kMetresPerSecond2;  ///< excitation.units
+  double to_mps2 = 1.0;  ///< factor from the file's numbers to m/s^2 (units x scale)
+  double scale = 1.0;    ///< excitation.scale
+  /// excitation.max_pga_g: the samples' PGA in their units (before scale) may not exceed it (g).
+  double max_pga_g = kMaxPlausiblePga_g;
   std::vector<double> values;  ///< inline samples, already multiplied by to_mps2
+
+  /// Refuses samples whose PGA, read in `units` (before scale), is above max_pga_g: the
+  /// accelerations are then in other units than stated. `pga_mps2` is the PGA after units and
+  /// scale, as the samples are stored.
+  /// @throws InputError "SOURCE[:LINE]: FIELD: PGA ... is above max_pga_g ...".
+  void CheckPga(double pga_mps2, std::string_view source, long line, std::string_view field) const;
 
   /// Duration (s) of a pulse, 2 pi / w_g; for inline samples (n - 1) dt; for a file, empty
   /// (the program knows it after reading the file).
@@ -92,6 +103,18 @@ ModelFile ParseModelFile(const std::filesystem::path& path);
 /// @throws InputError as ParseModelFile.
 ModelFile ParseModelString(std::string_view text, std::string_view source_name,
                            const std::filesystem::path& base_dir = {});
+
+/// Counts, in floating point so that nothing overflows, what a run asks for before it starts,
+/// once its excitation's duration (s) and sample count (0 for a pulse) are known: the end time
+/// (at most 1e6 s), the history samples (at most 1e7), the time steps of the time-stepping
+/// method and, for the event-driven one, one step per sample interval, both against
+/// run.max_steps. ParseModelFile applies it when the duration is known from the file itself;
+/// the program applies it again after reading an excitation file, and a sweep for each cell.
+/// @throws InputError "SOURCE: KEY: ..." naming run.end_time_s, run.output_interval_s,
+/// run.time_step_s or `excitation_field`.
+void CheckRunSize(const RunControl& run, double excitation_duration_s,
+                  std::size_t excitation_samples, std::string_view source,
+                  std::string_view excitation_field = "excitation");
 
 /// What a model file's [deck] (or each [[deck]]) wrote, beyond the DeckSpec it gave: whether the
 /// width came from eta0 and whether I_m was a number. A sweep that changes the skew angle needs

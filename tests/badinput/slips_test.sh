@@ -98,7 +98,7 @@ expect "set.toml: this is a record-set manifest ([[record]] tables), not a model
 expect "spec.toml: this is a sweep specification ([sweep] table), not a record-set manifest (docs/records.md); \`skewbridge sweep SPEC --out FILE.h5\` takes it" \
   records info spec.toml
 printf 'name = "s"\n[[record]]\nfile = "a.AT2"\nlable = "A"\n' > lable.toml
-expect "lable.toml:4: lable: unknown key (allowed: file, label, component, scale, units, dt, format, channel); did you mean \`label\`?" \
+expect "lable.toml:4: lable: unknown key (allowed: file, label, component, scale, units, dt, format, channel, max_pga_g); did you mean \`label\`?" \
   records info lable.toml
 
 # An HDF5 file (a run file here) or a record file where a TOML file belongs.
