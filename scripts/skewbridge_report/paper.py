@@ -873,7 +873,9 @@ def run(args):
           "` from sweeps of jobs/specs/paper/ and jobs/specs/ and runs of "
           "jobs/specs/paper/subsystem-run.toml, with the paper's statement, the numbers "
           "measured here and a verdict: **reproduced**, **partly** or **not**, with the reason. "
-          "Where the paper's text gives no parameter the choice is stated. Symbols are those "
+          "Where the paper's text gives no parameter the choice is stated. The **Paper.** "
+          "lines state the paper's claims in the symbols of this document; only the words in "
+          "quotation marks are the paper's own. Symbols are those "
           "of docs/theory.md; values below 1e-9 are printed as 0." +
           (" This is the --quick run: every grid is thinned, so the numbers are coarse." if
            args.quick else ""), ""]
