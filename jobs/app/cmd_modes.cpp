@@ -12,6 +12,7 @@
 #include <string>
 
 #include "jobs/app/commands.h"
+#include "jobs/app/json_text.h"
 #include "solver/contact/kinematics.h"
 #include "solver/model/builders.h"
 #include "solver/model/model_file.h"
@@ -64,20 +65,7 @@ void PrintStiffnessCentre(const model::Model& model, int b) {
 
 std::string Json(const Eigen::Vector2d& v) { return fmt::format("[{}, {}]", v.x(), v.y()); }
 
-std::string Json(const std::string& text) {
-  std::string out = "\"";
-  for (const char c : text) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      out += fmt::format("\\u{:04x}", static_cast<int>(c));
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
+std::string Json(const std::string& text) { return JsonString(text); }
 
 // A number, or null when it is not finite (JSON has no NaN).
 std::string Json(double v) { return std::isfinite(v) ? fmt::format("{}", v) : "null"; }

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "jobs/app/commands.h"
+#include "jobs/app/json_text.h"
 #include "jobs/h5/h5_error.h"
 #include "jobs/h5/spectrum_file.h"
 #include "records/ground_motion.h"
@@ -53,21 +54,6 @@ struct Row {
   int channel = 1;  ///< the CSMIP V2 channel read (meaningful for multi-channel files only)
   std::string set;  ///< the set (manifest or folder) the record came from, "" alone
 };
-
-std::string JsonString(const std::string& text) {
-  std::string out = "\"";
-  for (const char c : text) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      out += fmt::format("\\u{:04x}", static_cast<int>(c));
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
 
 std::string CsvField(const std::string& text) {
   if (text.find_first_of(",\"\n") == std::string::npos) return text;
