@@ -48,7 +48,7 @@ std::string Unit(std::string_view key) {
   if (info == nullptr || info->unit.empty() || info->unit == "1") {
     return "";
   }
-  return " " + std::string(info->unit);
+  return fmt::format(" {}", info->unit);
 }
 
 std::string AxisLine(const Axis& axis) {

@@ -547,7 +547,8 @@ void WriteFragility(hid_t sweep_group, const std::vector<FragilityStudy>& studie
     if (!f.ls.seat_m.empty()) SetDoublesAttr(ls.get(), "seat_m", f.ls.seat_m);
     if (f.ls.kind == spectra::LimitStateKind::kResponse)
       SetAttr(ls.get(), "response", f.ls.response);
-    std::vector<hsize_t> shape(t.shape.begin(), t.shape.end());
+    std::vector<hsize_t> shape;
+    for (const std::size_t n : t.shape) shape.push_back(n);
     if (shape.empty()) shape.push_back(1);
     auto attach = [&](const Id& ds) {
       for (std::size_t k = 0; k < scales.size(); ++k) {
