@@ -71,9 +71,9 @@ spec() {
 }
 folder='folder = "recs"\npattern = "r?.txt"\nunits = "m/s^2"\ndt = 0.01'
 spec folder-small.toml "$folder" '[0.5, 1.0]'
-spec folder-big.toml "$folder" '{linspace = [0.05, 3.0, 1500]}'
+spec folder-big.toml "$folder" '{linspace = [0.05, 3.0, 8000]}'
 spec set-small.toml 'set = "set.toml"' '[0.5, 1.0]'
-spec set-big.toml 'set = "set.toml"' '{linspace = [0.05, 3.0, 1500]}'
+spec set-big.toml 'set = "set.toml"' '{linspace = [0.05, 3.0, 8000]}'
 
 run() {  # run RANKS ARGS...: skewbridge, directly on 1 rank, through mpiexec on more
   local ranks=$1; shift
