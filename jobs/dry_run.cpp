@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <exception>
+#include <optional>
 #include <random>
 
 #include "spectra/study.h"
@@ -101,7 +102,173 @@ std::string RecordLines(const SweepSpec& spec, const CellEvaluator& evaluator) {
   return out;
 }
 
+// The median of `v` (the mean of the two middle values for an even count). @pre !v.empty()
+double Median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// A factor in a table cell: 4 significant digits, '*' after it beyond max_scale.
+std::string FactorText(double factor, bool too_far) {
+  return fmt::format("{:.4g}{}", factor, too_far ? "*" : " ");
+}
+
 }  // namespace
+
+std::string ScaleFactorReport(const SweepSpec& spec, const CellEvaluator& evaluator,
+                              bool full_table) {
+  const std::uint64_t cells = spec.CellCount();
+  if (cells == 0 || !evaluator.Scaling(spec.AxisIndex(0))) return {};
+  const spectra::IntensityMeasureSpec& im = spec.im;
+  const std::string im_key = im.AxisKey();
+  const std::string unit = spectra::IntensityUnit(im);
+  const std::size_t none = spec.axes.size();
+  std::size_t record_axis = none, im_axis = none;
+  for (std::size_t k = 0; k < spec.axes.size(); ++k) {
+    if (spec.axes[k].key == "record") record_axis = k;
+    if (spec.axes[k].key == im_key) im_axis = k;
+  }
+  const std::size_t n_records = record_axis == none ? 1 : spec.axes[record_axis].Size();
+  const std::size_t n_stripes = im_axis == none ? 1 : spec.axes[im_axis].Size();
+  // The other axes' combinations ("k_factor = 4, a_deg = 30"), numbered row-major.
+  std::vector<std::size_t> others;
+  std::uint64_t n_combos = 1;
+  for (std::size_t k = 0; k < spec.axes.size(); ++k) {
+    if (k != record_axis && k != im_axis) {
+      others.push_back(k);
+      n_combos *= spec.axes[k].Size();
+    }
+  }
+  struct Combo {
+    std::vector<double> own;      // per record: its own measure (unit)
+    std::vector<double> factor;   // [record][stripe]
+    std::vector<char> too_far;    // [record][stripe]
+    std::vector<double> targets;  // per stripe
+    double t1_s = 0.0;
+    std::string text;  // the other axes' coordinates
+  };
+  std::vector<Combo> combos(n_combos);
+  for (Combo& c : combos) {
+    c.own.assign(n_records, 0.0);
+    c.factor.assign(n_records * n_stripes, 0.0);
+    c.too_far.assign(n_records * n_stripes, 0);
+    c.targets.assign(n_stripes, 0.0);
+  }
+  std::uint64_t beyond = 0;
+  double largest = 0.0;
+  for (std::uint64_t cell = 0; cell < cells; ++cell) {
+    const std::vector<std::size_t> index = spec.AxisIndex(cell);
+    const std::optional<spectra::CellScaling> s = evaluator.Scaling(index);
+    if (!s) return {};
+    std::uint64_t combo = 0;
+    std::string text;
+    for (std::size_t k : others) {
+      combo = combo * spec.axes[k].Size() + index[k];
+      text += (text.empty() ? "" : ", ") + spec.axes[k].key + " = " +
+              Coordinate(spec.axes[k], index[k]);
+    }
+    const std::size_t r = record_axis == none ? 0 : index[record_axis];
+    const std::size_t j = im_axis == none ? 0 : index[im_axis];
+    Combo& c = combos[combo];
+    c.own[r] = s->unscaled;
+    c.factor[r * n_stripes + j] = s->factor;
+    c.too_far[r * n_stripes + j] = s->too_far ? 1 : 0;
+    c.targets[j] = s->target;
+    c.t1_s = s->t1_s;
+    c.text = text;
+    beyond += s->too_far ? 1 : 0;
+    largest = std::max(largest, s->factor);
+  }
+  // Combinations whose records have the same own measures share their factors: one group.
+  std::vector<std::vector<std::size_t>> groups;
+  for (std::size_t c = 0; c < combos.size(); ++c) {
+    auto same = std::find_if(groups.begin(), groups.end(), [&](const auto& g) {
+      return combos[g.front()].own == combos[c].own && combos[g.front()].t1_s == combos[c].t1_s;
+    });
+    if (same == groups.end()) {
+      groups.push_back({c});
+    } else {
+      same->push_back(c);
+    }
+  }
+
+  std::string measure = im.measure;
+  if (im.measure == "Sa" || im.measure == "AvgSa") {
+    measure += im.at_t1 ? fmt::format("(T1, xi = {:g})", im.xi)
+                        : fmt::format("({:g} s, xi = {:g})", im.period_s, im.xi);
+  }
+  std::string out = fmt::format(
+      "scale factors (records.scale_to): factor = {} / the record's own {} [{}]; max_scale = "
+      "{}\n",
+      im_key, measure, unit, im.max_scale > 0.0 ? fmt::format("{:g}", im.max_scale) : "none");
+  const bool table = full_table || n_records <= kScaleTableRecords;
+  for (const std::vector<std::size_t>& group : groups) {
+    const Combo& c = combos[group.front()];
+    std::string where;
+    if (!others.empty() && groups.size() == 1) {
+      where = " for every";
+      for (std::size_t k : others) where += (k == others.front() ? " " : ", ") + spec.axes[k].key;
+    } else if (!others.empty()) {
+      for (std::size_t i = 0; i < group.size() && i < 3; ++i) {
+        where += (i ? "; " : "") + combos[group[i]].text;
+      }
+      if (group.size() > 3) where += fmt::format("; and {} more", group.size() - 3);
+      where = " for " + where;
+    }
+    std::size_t group_beyond = 0;
+    for (char f : c.too_far) group_beyond += f ? 1 : 0;
+    out +=
+        fmt::format("  T1 = {:.5g} s{}: {} record(s) x {} stripe(s), {} of {} beyond max_scale\n",
+                    c.t1_s, where, n_records, n_stripes, group_beyond, c.too_far.size());
+    out += fmt::format("    {:>10} {:>10} {:>10} {:>10} {:>16}\n", im_key + " [" + unit + "]",
+                       "min", "median", "max", "beyond max_scale");
+    for (std::size_t j = 0; j < n_stripes; ++j) {
+      std::vector<double> f(n_records);
+      std::size_t far = 0;
+      for (std::size_t r = 0; r < n_records; ++r) {
+        f[r] = c.factor[r * n_stripes + j];
+        far += c.too_far[r * n_stripes + j] ? 1 : 0;
+      }
+      out += fmt::format("    {:>10.4g} {:>10.4g} {:>10.4g} {:>10.4g} {:>16}\n", c.targets[j],
+                         *std::min_element(f.begin(), f.end()), Median(f),
+                         *std::max_element(f.begin(), f.end()),
+                         fmt::format("{} of {}", far, n_records));
+    }
+    if (!table) continue;
+    std::size_t width = 6;
+    for (std::size_t r = 0; r < n_records; ++r) {
+      width = std::max(width, record_axis == none
+                                  ? spectra::LabelOf(spec, spec.AxisIndex(0), "record").size()
+                                  : spec.axes[record_axis].labels[r].size());
+    }
+    std::string head = fmt::format("    {:<{}} {:>11}", "record", width, "own [" + unit + "]");
+    for (std::size_t j = 0; j < n_stripes; ++j) head += fmt::format(" {:>9.4g} ", c.targets[j]);
+    out += head.substr(0, head.find_last_not_of(' ') + 1) + "\n";
+    for (std::size_t r = 0; r < n_records; ++r) {
+      const std::string label = record_axis == none
+                                    ? spectra::LabelOf(spec, spec.AxisIndex(0), "record")
+                                    : spec.axes[record_axis].labels[r];
+      std::string row = fmt::format("    {:<{}} {:>11.5g}", label, width, c.own[r]);
+      for (std::size_t j = 0; j < n_stripes; ++j) {
+        row += fmt::format(
+            " {:>10}", FactorText(c.factor[r * n_stripes + j], c.too_far[r * n_stripes + j] != 0));
+      }
+      out += row.substr(0, row.find_last_not_of(' ') + 1) + "\n";
+    }
+  }
+  if (table && im.max_scale > 0.0) out += "  (* beyond max_scale)\n";
+  if (!table) {
+    out += fmt::format("  the full table of the {} records x {} stripes: add --scale-table\n",
+                       n_records, n_stripes);
+  }
+  out += im.max_scale > 0.0
+             ? fmt::format("  {} of {} cells beyond max_scale = {:g} (largest factor {:.4g})\n",
+                           beyond, cells, im.max_scale, largest)
+             : fmt::format("  no max_scale given: no cell is flagged (largest factor {:.4g})\n",
+                           largest);
+  return out;
+}
 
 std::vector<std::uint64_t> SampleCells(std::uint64_t cells, std::size_t count, std::uint64_t seed) {
   std::vector<std::uint64_t> out;
@@ -153,7 +320,8 @@ DryRunEstimate EstimateSweepTime(std::uint64_t cells, const std::vector<double>&
 }
 
 std::string DryRunReport(const SweepSpec& spec, const CellEvaluator& evaluator, int ranks,
-                         std::size_t sample_cells, int root_computes_up_to_ranks, double setup_s) {
+                         std::size_t sample_cells, int root_computes_up_to_ranks, double setup_s,
+                         bool full_scale_table) {
   std::string out = fmt::format("dry run of {} (sweep {}, family {}): nothing is written\n",
                                 spec.source, spec.name, spec.family);
   std::string shape;
@@ -171,6 +339,7 @@ std::string DryRunReport(const SweepSpec& spec, const CellEvaluator& evaluator, 
         f.kind == ParameterKind::kLabel ? f.label : fmt::format("{:g}{}", f.value, Unit(f.key)));
   }
   out += RecordLines(spec, evaluator);
+  out += ScaleFactorReport(spec, evaluator, full_scale_table);
   const std::vector<ResponseInfo> responses = evaluator.Responses();
   std::string names;
   for (const ResponseInfo& r : responses) names += (names.empty() ? "" : ", ") + r.name;

@@ -44,12 +44,29 @@ struct DryRunEstimate {
 DryRunEstimate EstimateSweepTime(std::uint64_t cells, const std::vector<double>& times_s, int ranks,
                                  int root_computes_up_to_ranks, double setup_s);
 
+/// Records up to which the dry run prints the full record x stripe table of scale factors
+/// (above it, the per-stripe summary only, unless asked for the table).
+inline constexpr std::size_t kScaleTableRecords = 20;
+
+/// The scale factors of a sweep whose records are scaled to stripes ([records] scale_to), as
+/// `sweep --dry-run` prints them, from CellEvaluator::Scaling of every cell (no run): for each
+/// group of cells whose records have the same own measures (one group per T1 when another
+/// axis changes it), one line per stripe with the minimum, median and maximum factor over the
+/// records and how many exceed max_scale; then, with `full_table` or up to kScaleTableRecords
+/// records, a table of every record (rows: its label and own measure) by every stripe
+/// (columns: its factor, '*' beyond max_scale); and the count of cells beyond max_scale.
+/// Empty when the evaluator scales no record.
+std::string ScaleFactorReport(const SweepSpec& spec, const CellEvaluator& evaluator,
+                              bool full_table);
+
 /// Runs the dry run of `spec` with its evaluator: times `sample_cells` cells (SampleCells,
 /// seeded by the specification's hash) and returns the text printed by `sweep --dry-run`
-/// (grid, fixed values, records and scale factors, responses, the sampled cells and the
-/// estimate on `ranks` ranks with how it was made). Writes no file.
+/// (grid, fixed values, records, their scale factors (ScaleFactorReport, the full table with
+/// `full_scale_table`), responses, the sampled cells and the estimate on `ranks` ranks with how
+/// it was made). Writes no file.
 /// @pre ranks >= 1, sample_cells >= 1
 std::string DryRunReport(const SweepSpec& spec, const CellEvaluator& evaluator, int ranks,
-                         std::size_t sample_cells, int root_computes_up_to_ranks, double setup_s);
+                         std::size_t sample_cells, int root_computes_up_to_ranks, double setup_s,
+                         bool full_scale_table = false);
 
 }  // namespace skewbridge::jobs

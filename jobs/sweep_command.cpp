@@ -110,6 +110,9 @@ void AddSweepArguments(CLI::App& cmd, SweepCommandArgs& args) {
   cmd.add_option("--sample-cells", args.sample_cells, "With --dry-run: cells to time")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  cmd.add_flag("--scale-table", args.scale_table,
+               "With --dry-run: the full record x stripe table of scale factors (printed "
+               "anyway up to 20 records)");
   // --out is required for a real run only: checked once every option is parsed.
   cmd.parse_complete_callback([out, &args] {
     if (!args.dry_run && out->count() == 0) {
@@ -164,7 +167,8 @@ int RunSweepCommand(const SweepCommandArgs& args, const EvaluatorFactory& factor
     if (root) {
       try {
         text = DryRunReport(*spec, *evaluator, args.ranks > 0 ? args.ranks : mpi.Size(),
-                            args.sample_cells, args.options.root_computes_up_to_ranks, setup_s);
+                            args.sample_cells, args.options.root_computes_up_to_ranks, setup_s,
+                            args.scale_table);
       } catch (const InputError& e) {
         problem = e.what();
       }

@@ -29,6 +29,9 @@ struct SweepCommandArgs {
   int ranks = 0;
   /// --sample-cells: cells the dry run times.
   std::size_t sample_cells = 8;
+  /// --scale-table: with --dry-run, the full record x stripe table of scale factors whatever
+  /// the number of records.
+  bool scale_table = false;
 };
 
 /// Builds the evaluator of a specification (MakeEvaluator in the program, a test evaluator in
@@ -36,8 +39,8 @@ struct SweepCommandArgs {
 using EvaluatorFactory = std::function<std::unique_ptr<CellEvaluator>(const SweepSpec&)>;
 
 /// Declares SPEC, --out, --resume, --force, --quiet, --checkpoint-seconds, --checkpoint-cells,
-/// --max-cells, --dry-run, --ranks, --sample-cells on `cmd`, storing into `args`; --out is
-/// required unless --dry-run is given.
+/// --max-cells, --dry-run, --ranks, --sample-cells, --scale-table on `cmd`, storing into `args`;
+/// --out is required unless --dry-run is given.
 void AddSweepArguments(CLI::App& cmd, SweepCommandArgs& args);
 
 /// Runs the command: MPI_Init (only here); on every rank, before any work, the output path

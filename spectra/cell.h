@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <utility>
@@ -44,6 +45,16 @@ struct CellOutcome {
   CellStats stats;
 };
 
+/// How the record of one cell is scaled to its intensity stripe ([records] scale_to): the
+/// factor on the record's accelerations is target / unscaled (docs/sweep-format.md).
+struct CellScaling {
+  double t1_s = 0.0;      ///< fundamental period of the cell's model (s)
+  double unscaled = 0.0;  ///< the record's own intensity measure (g or m/s, the axis unit)
+  double target = 0.0;    ///< the cell's stripe: its im_g or im_mps coordinate (same unit)
+  double factor = 1.0;    ///< target / unscaled
+  bool too_far = false;   ///< factor > [records] max_scale (false without max_scale)
+};
+
 /// Computes cells of a sweep. Implementations must be pure: the outcome depends only on the
 /// axis indices (no state carried between cells), so that a cube is bit-identical whatever the
 /// number of ranks and the order of execution. Evaluate is called from one thread per process.
@@ -64,6 +75,12 @@ class CellEvaluator {
   /// Facts about the sweep's cells decided at construction that its summary reports, one line
   /// each (e.g. the cells whose records were scaled beyond max_scale); none by default.
   virtual std::vector<std::string> Notes() const { return {}; }
+
+  /// How the cell's record is scaled to its stripe, decided at construction (no run); empty
+  /// unless the sweep scales its records to an intensity axis.
+  virtual std::optional<CellScaling> Scaling(std::span<const std::size_t> /*axis_index*/) const {
+    return std::nullopt;
+  }
 
   /// Evaluates one cell; axis_index[k] indexes axis k of the CellGrid (its canonical order).
   /// A failed cell returns a non-zero status; responses are then stored as NaN if absent.

@@ -53,6 +53,10 @@ class LimitStateEvaluator final : public CellEvaluator {
     return inner_->StatusNames();
   }
   const std::vector<SweepRecord>* Records() const override { return inner_->Records(); }
+  std::vector<std::string> Notes() const override { return inner_->Notes(); }
+  std::optional<CellScaling> Scaling(std::span<const std::size_t> axis_index) const override {
+    return inner_->Scaling(axis_index);
+  }
   CellOutcome Evaluate(std::span<const std::size_t> axis_index) const override;
 
  private:

@@ -259,6 +259,20 @@ std::vector<std::string> ModelFileEvaluator::Notes() const {
                   scaled_too_far_, scale_of_cell_.size(), spec_.im.max_scale, largest)};
 }
 
+std::optional<CellScaling> ModelFileEvaluator::Scaling(
+    std::span<const std::size_t> axis_index) const {
+  if (scale_of_cell_.empty()) return std::nullopt;
+  const std::uint64_t cell = CellIndex(axis_index);
+  const std::size_t t = t1_of_cell_[cell];
+  CellScaling s;
+  s.t1_s = t1_values_s_[t];
+  s.unscaled = record_im_[RecordIndex(axis_index) * t1_values_s_.size() + t];
+  s.factor = scale_of_cell_[cell];
+  s.target = NumberOf(spec_, axis_index, spec_.im.AxisKey(), 0.0);
+  s.too_far = spec_.im.max_scale > 0.0 && s.factor > spec_.im.max_scale;
+  return s;
+}
+
 ModelFileCell ModelFileEvaluator::MakeCell(std::span<const std::size_t> index,
                                            bool with_excitation) const {
   const std::string& src = spec_.source;

@@ -72,6 +72,8 @@ class ModelFileEvaluator final : public CellEvaluator {
 
   /// The cells scaled beyond [records] max_scale, as one line for the sweep's summary.
   std::vector<std::string> Notes() const override;
+  /// The cell's stripe, its record's own measure at the cell's T1 and the factor between them.
+  std::optional<CellScaling> Scaling(std::span<const std::size_t> axis_index) const override;
 
  private:
   CellGrid spec_;

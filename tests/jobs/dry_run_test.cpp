@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -100,6 +101,70 @@ TEST(DryRun, ReportCountsTheCellsTimesTheSampleAndWritesNothing) {
     ++timed;
   }
   EXPECT_EQ(timed, 5u);
+}
+
+// Records scaled to stripes as ModelFileEvaluator scales them: record r (0-based) has its own
+// measure r + 1 g, so the factor of stripe s is s / (r + 1); no cell is run.
+class StripeEvaluator final : public CellEvaluator {
+ public:
+  explicit StripeEvaluator(const SweepSpec& spec) : spec_(spec) {}
+  std::vector<ResponseInfo> Responses() const override { return {{"x", "1", "unused"}}; }
+  CellOutcome Evaluate(std::span<const std::size_t>) const override { return {}; }
+  std::optional<spectra::CellScaling> Scaling(std::span<const std::size_t> index) const override {
+    spectra::CellScaling s;
+    s.t1_s = 0.5;
+    s.unscaled = static_cast<double>(index[0] + 1);
+    s.target = spec_.axes[1].values[index[1]];
+    s.factor = s.target / s.unscaled;
+    s.too_far = s.factor > spec_.im.max_scale;
+    return s;
+  }
+
+ private:
+  const SweepSpec& spec_;
+};
+
+// A grid of `records` records (labels r0, r1, ...) by the stripes 1 and 2 g of Sa(T1).
+SweepSpec StripeSpec(std::size_t records) {
+  SweepSpec spec;
+  spec.source = "spec.toml";
+  spec.family = "model-file";
+  spec.im.measure = "Sa";
+  spec.im.at_t1 = true;
+  spec.im.scale = true;
+  spec.im.max_scale = 0.5;
+  Axis record{"record", ParameterKind::kLabel, {}, {}, "all"};
+  for (std::size_t r = 0; r < records; ++r) record.labels.push_back("r" + std::to_string(r));
+  spec.axes = {record, Axis{"im_g", ParameterKind::kNumber, {1.0, 2.0}, {}, "list"}};
+  return spec;
+}
+
+TEST(DryRun, ScaleFactorsSummarisedPerStripeAndTabledOnlyWhenAskedAboveTwentyRecords) {
+  // 25 records: factors 1/(r + 1) and 2/(r + 1); the medians are those of record 12 (1/13,
+  // 2/13); beyond 0.5: record 0 at 1 g (1/2 is not beyond), records 0-2 at 2 g.
+  const SweepSpec spec = StripeSpec(25);
+  const StripeEvaluator evaluator(spec);
+  const std::string summary = ScaleFactorReport(spec, evaluator, false);
+  EXPECT_THAT(summary, HasSubstr("factor = im_g / the record's own Sa(T1, xi = 0.05) [g]; "
+                                 "max_scale = 0.5\n"));
+  EXPECT_THAT(summary, HasSubstr("T1 = 0.5 s: 25 record(s) x 2 stripe(s), 4 of 50 beyond"));
+  EXPECT_THAT(summary, HasSubstr("             1       0.04    0.07692          1          "
+                                 "1 of 25\n"));
+  EXPECT_THAT(summary, HasSubstr("             2       0.08     0.1538          2          "
+                                 "3 of 25\n"));
+  EXPECT_THAT(summary, HasSubstr("the full table of the 25 records x 2 stripes: add "
+                                 "--scale-table"));
+  EXPECT_THAT(summary, HasSubstr("4 of 50 cells beyond max_scale = 0.5 (largest factor 2)\n"));
+  EXPECT_THAT(summary, ::testing::Not(HasSubstr("r24")));
+  const std::string table = ScaleFactorReport(spec, evaluator, true);
+  EXPECT_THAT(table, HasSubstr("\n    r0               1         1*         2*\n"));
+  EXPECT_THAT(table, HasSubstr("\n    r1               2       0.5          1*\n"));
+  EXPECT_THAT(table, HasSubstr("\n    r24             25      0.04       0.08\n"));
+  EXPECT_THAT(table, ::testing::Not(HasSubstr("--scale-table")));
+  // Up to 20 records the table comes anyway; an evaluator without scaling prints nothing.
+  const SweepSpec small = StripeSpec(20);
+  EXPECT_THAT(ScaleFactorReport(small, StripeEvaluator(small), false), HasSubstr("\n    r19 "));
+  EXPECT_EQ(ScaleFactorReport(small, TestEvaluator(small, 1, 0), false), "");
 }
 
 }  // namespace

@@ -3,7 +3,8 @@
 # tests/data/records scaled to Sa(T1) stripes of a one-deck model file at two stiffness factors
 # (so two T1), with a max_scale that some cells exceed. check_stripes.py checks the cube with
 # h5py against scipy (T1 in closed form, Sa by scipy.signal.lsim); the summary line names the
-# cells scaled too far; both cubes hold the same cells.
+# cells scaled too far; both cubes hold the same cells. The dry run's table of scale factors
+# is checked against the 2-rank cube and `records spectrum` (check_dry_run_scales.py).
 # usage: stripes_test.sh SKEWBRIDGE MPIEXEC RECORDS_DIR CHECK_SCRIPT WORK_DIR
 set -euo pipefail
 exe=$1 mpiexec=$2 records=$3 check=$4 work=$5
@@ -59,6 +60,15 @@ grep -q "^sweep: [0-9]* of 12 cells scaled beyond max_scale = 1.5 (largest facto
   { cat one.err; fail "no max_scale line in the summary"; }
 "$mpiexec" -n 2 "$exe" sweep spec.toml --out two.h5 --quiet 2> two.err || { cat two.err; fail "2 ranks"; }
 /usr/bin/python3 "$check" one.h5 two.h5 "$records" "$(grep -o '^sweep: [0-9]*' one.err | cut -d' ' -f2)"
+
+# The dry run's record x stripe table of scale factors against the 2-rank cube and against
+# `records spectrum` at both T1 = 2 pi / (10 sqrt(k_factor)) s.
+"$exe" sweep --dry-run spec.toml > dry.txt || fail "dry run"
+"$exe" records spectrum set.toml --xi 0.05 \
+  --periods "$(/usr/bin/python3 -c 'import math; print(repr(2*math.pi/10), repr(2*math.pi/20), sep=",")')" \
+  > spectrum.csv || fail "records spectrum"
+/usr/bin/python3 "$(dirname "$check")/check_dry_run_scales.py" dry.txt two.h5 spectrum.csv ||
+  { cat dry.txt; fail "dry run's scale factors"; }
 
 # Bad keys: one line, status 2, no output.
 bad() {
