@@ -1,14 +1,12 @@
 /// @file
-/// The step-limit cells of jobs/specs/real/pilot-study-shared.toml (records RSN288_ITALY
-/// A-BRZ000, CHV1-20140203E, LXR1-20140203E and LXR1-20140203N, every Pi_delta): the run
-/// reached the last sample of the record and then took zero-length exact steps until
-/// max_steps. Cause (docs/validation.md, "Step-limit cells of the shared-record study"):
-/// SampledExcitation::PieceAt(t) at t = (n - 1) dt computed floor(t / dt) = n - 2 when the
-/// quotient rounds below n - 1, and its rounding guard then kept the last ramp
-/// [(n - 2) dt, (n - 1) dt) instead of the rest piece, so the integrator's next stop was t
-/// itself. It happens for 13548 x 0.005 (67.74 / 0.005 = 13547.999...), 12063 x 0.0029 and,
-/// with dt = 0.005, already for 30 samples. Fixed in records/excitations.cpp (PieceAt compares
-/// t with the end time itself); these tests keep it fixed.
+/// A sampled record whose end time (n - 1) dt, divided by dt, rounds below n - 1 (13548 x 0.005:
+/// 67.74 / 0.005 = 13547.999..., 12063 x 0.0029, and with dt = 0.005 already 30 samples; four
+/// records of jobs/specs/real/pilot-study-shared.toml, RSN288_ITALY_A-BRZ000, CHV1-20140203E,
+/// LXR1-20140203E and LXR1-20140203N). SampledExcitation::PieceAt(t) must return the rest piece
+/// for any t at or past the end time itself, not the last ramp [(n - 2) dt, (n - 1) dt) that
+/// floor(t / dt) = n - 2 points to: with that ramp the integrator's next stop is t itself, and it
+/// takes zero-length steps until max_steps (docs/validation.md, "Records whose last sample rounds
+/// down").
 
 #include <gtest/gtest.h>
 
