@@ -1,7 +1,7 @@
-// The robustness grid of the event-driven integrator (robustness_grid.h) and the reproductions
-// of the cells that failed before the consistent mode decision: every run ends ok, makes
-// progress in time (no decision repeated at one instant), and agrees with Moreau-Jean
-// time-stepping, the independent method [docs/theory.md §3].
+// The robustness grid of the event-driven integrator (robustness_grid.h) and runs that exercise
+// the rules of the mode decision [docs/theory.md §3.1-§3.15]: every run ends ok, makes progress
+// in time (no decision repeated at one instant), and agrees with Moreau-Jean time-stepping, the
+// independent method [docs/theory.md §3].
 
 #include <gtest/gtest.h>
 
@@ -66,8 +66,9 @@ TEST(RobustnessGrid, SeededSampleEndsOkEverywhere) {
   EXPECT_EQ(failed, 0);
 }
 
-// Cells that ended in an event cascade, a step limit, a false Painleve ray or a false impact ray
-// before, each against time-stepping at h = 1e-6 of the excitation period.
+// Cells that end in an event cascade, a step limit, a false Painleve ray or a false impact-LCP
+// ray without the consistent decision of docs/theory.md §3.1-§3.15 (enumeration of a degenerate
+// LCP: §3.15), each against time-stepping at h = 1e-6 of the excitation period.
 TEST(RobustnessGrid, FormerlyFailingCellsEndOkAndAgreeWithTimeStepping) {
   const GridAxes grid;
   for (std::int64_t c : {429, 465, 637, 1178, 1792, 3369, 3449, 11871}) {
@@ -86,12 +87,12 @@ TEST(RobustnessGrid, FormerlyFailingCellsEndOkAndAgreeWithTimeStepping) {
 
 // A deck rocking between the two corners of one face at a closed joint, its impacts alternating
 // every 40-80 us at about 1.4 times the accumulation threshold (1e-6 of the response's velocity
-// scale), a speed the loads sustain: cell 2957 took 134 impacts and 153 detachments that way,
-// and rounding-level changes of its event times (another root search, other compiler flags)
-// turned the same rocking into 37 865 events, or an event cascade in a neighbouring cell. The
-// rocking now settles into both corners closed (Integrator::Settling); the maxima still
-// agree with Moreau-Jean. Cell 3568 rocks above that speed and decays by itself: it keeps its
-// impacts but must still end ok and agree.
+// scale), a speed the loads sustain: resolved impact by impact it takes 134 impacts and 153
+// detachments, and rounding-level changes of its event times (another root search, other
+// compiler flags) turn the same rocking into tens of thousands of events or an event cascade.
+// It settles into both corners closed [docs/theory.md §3.5, settling and the rocking
+// exception], and the maxima agree with Moreau-Jean. Cell 3568 rocks above that speed and
+// decays by itself: it keeps its impacts but must end ok and agree.
 TEST(RobustnessGrid, RockingBetweenTwoCornersSettlesAndAgreesWithTimeStepping) {
   const GridAxes grid;
   for (const auto& [c, max_impacts] : {std::pair<std::int64_t, long>{2957, 40}, {3568, 300}}) {
@@ -105,11 +106,12 @@ TEST(RobustnessGrid, RockingBetweenTwoCornersSettlesAndAgreesWithTimeStepping) {
   }
 }
 
-// Cell 3599 (the grid's most event-rich): a deck pressed onto one face rocks between its two
-// corners there for 0.4 s, each impact (eps_N 0.5) lifting the other corner, and the striking
-// corner bounced once per rock for about 13 us before the Zeno rule closed it (173 returns
-// within 0.1 ms of the same corner's impact, 372 impacts). Integrator::AccumulatesAtOnce closes
-// such a bounce at its first impact; the maxima still agree with Moreau-Jean.
+// The grid's most event-rich cell: a deck pressed onto one face rocks between its two corners
+// there for 0.4 s, each impact (eps_N 0.5) lifting the other corner, and the striking corner
+// rebounds for about 13 us (1e-4 of the shortest period) after each rock. The bounce is closed
+// at its first impact [docs/theory.md §3.6, the predicted bounce]; closed by the Zeno rule at
+// its second (§3.4) it costs 372 impacts, 173 of them returns within 0.1 ms of the same corner's
+// impact. The maxima agree with Moreau-Jean.
 TEST(RobustnessGrid, ShortBounceOfARockingCornerClosesAtOnceAndAgreesWithTimeStepping) {
   const GridAxes grid;
   const spectra::PointParameters p = grid.Cell(3599);
@@ -131,10 +133,12 @@ TEST(RobustnessGrid, ShortBounceOfARockingCornerClosesAtOnceAndAgreesWithTimeSte
   ExpectMaximaAgreeWithTimeStepping(p, 1e-5);
 }
 
-// The reproduction of the closed joint with plastic impacts and friction: it ran into an event
-// cascade at t = 1.3097 s after stick and slip of P1 alternated dozens of times at
-// t = 0.274155 s. Now it reaches 3 s, decides each stick or slip once, and matches Moreau-Jean
-// at h = 1e-5 s.
+// A closed joint with plastic impacts and friction. Slow closures are plastic impacts
+// [docs/theory.md §3.3], and the stick or slip of P1 at t = 0.274155 s starts at zero slip or on
+// the cone, where the event-function bands and the tie bands decide it once (§3.7, §3.12);
+// without them stick and slip alternate dozens of times at that instant, and a slow closure
+// repeats at t = 1.3097 s until an event cascade. It reaches 3 s, decides each stick or slip
+// once, and matches Moreau-Jean at h = 1e-5 s.
 TEST(ClosedJointReproduction, RunsThroughWithOneDecisionPerInstantAndMatchesTimeStepping) {
   const model::ModelFile file = model::ParseModelFile(
       std::string(SKEWBRIDGE_TEST_DATA_DIR) + "/robustness/closed-joint-plastic-friction.toml");
@@ -166,9 +170,11 @@ TEST(ClosedJointReproduction, RunsThroughWithOneDecisionPerInstantAndMatchesTime
 
 // The pilot bridge clamped between both abutments (Pi_delta = 0: four closed corners on two
 // parallel faces, a singular active set with a squeeze among its kernel) under records of the
-// 62-record synthetic suite (seed 2011), as the sweep runs them: it ended in an event cascade
-// within the first 0.01 s on every record. Now each run ends ok, and agrees with Moreau-Jean at
-// h = 1e-5 T_m (tolerances in docs/validation.md, "Robustness").
+// 62-record synthetic suite (seed 2011), as the sweep runs them. The indeterminate forces take
+// the three-LP split [docs/theory.md §3.13], degenerate LCPs the compliance retry (§3.15) and a
+// wedged deck the jam (§3.9); without them every record ends in an event cascade within its
+// first 0.01 s. Each run ends ok, and agrees with Moreau-Jean at h = 1e-5 T_m (tolerances in
+// docs/validation.md, "Robustness").
 spectra::PointResult EvaluatePilotRecord(int index, double Pi_delta, spectra::Method method) {
   records::SynthOptions options;
   options.count = 62;
