@@ -35,7 +35,7 @@
 #include "solver/dynamics/run_result.h"
 #include "solver/dynamics/runge_kutta.h"
 #include "solver/model/model.h"
-#include "solver/model/model_file.h"
+#include "solver/model/run_control.h"
 
 namespace skewbridge::dynamics {
 

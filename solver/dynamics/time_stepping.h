@@ -56,7 +56,7 @@
 #include "solver/dynamics/simulate.h"
 #include "solver/lcp/lemke.h"
 #include "solver/model/model.h"
-#include "solver/model/model_file.h"
+#include "solver/model/run_control.h"
 
 namespace skewbridge::dynamics {
 

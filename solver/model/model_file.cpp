@@ -55,10 +55,6 @@ void ExcitationSpec::CheckPga(double pga_mps2, std::string_view source, long lin
   Fail(Where{source, line}, field, text.str());
 }
 
-double RunControl::EndTime(double excitation_duration_s) const {
-  return end_time_s ? *end_time_s : excitation_duration_s + tail_s;
-}
-
 namespace {
 
 constexpr double kDegToRad = std::numbers::pi / 180.0;
