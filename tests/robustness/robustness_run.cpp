@@ -4,9 +4,13 @@
 // Moreau-Jean at h = 1e-5 of the excitation period on the sample and reports the worst
 // disagreement of the maxima (docs/validation.md, docs/performance.md). With --repeat R the set
 // is run R times and each cell's cheapest run kept: a cell's cost without the interruptions of a
-// shared machine, which otherwise decide which single run is the slowest.
+// shared machine, which otherwise decide which single run is the slowest. With --dump-events FILE
+// the whole event-driven run of every cell of the set (status, counts, maxima, residuals and the
+// event log, every number as a C99 hexadecimal float) is written to FILE first: two dumps are the
+// same file exactly when the runs gave the same bits.
 //
 //   robustness_run [--sample N --seed S] [--compare] [--list K] [--repeat R]
+//                  [--dump-events FILE]
 
 #include <algorithm>
 #include <cstdio>
@@ -41,6 +45,25 @@ double CpuSeconds() {
 // Relative disagreement of two maxima, with an absolute floor of 1e-6 (normalised units: L_e).
 double Disagreement(double a, double b) { return std::abs(a - b) / std::max(std::abs(b), 1e-4); }
 
+// Writes every number of one cell's run `r` to `out` as hexadecimal floats (exact bits).
+void DumpRun(std::FILE* out, std::int64_t cell, const dynamics::RunResult& r) {
+  std::fprintf(out, "cell %lld %s t_end %a impacts %ld plastic %ld detach %ld stick %ld slip %ld",
+               static_cast<long long>(cell), dynamics::ToString(r.status), r.end_time_s, r.impacts,
+               r.plastic_closures, r.detachments, r.stick_transitions, r.slip_transitions);
+  std::fprintf(out, " free %ld rk %ld rejected %ld min_sep %a\n", r.free_steps, r.rk_steps,
+               r.rk_rejected, r.min_impact_separation_s);
+  std::fprintf(out, "  message %s\n", r.message.c_str());
+  for (Eigen::Index i = 0; i < r.max_abs_q.size(); ++i) {
+    std::fprintf(out, "  dof %ld max %a at %a end %a %a\n", static_cast<long>(i), r.max_abs_q[i],
+                 r.time_of_max_s[i], r.q_end[i], r.u_end[i]);
+  }
+  for (const dynamics::EventRecord& e : r.events) {
+    std::fprintf(out, "  %a %s c%d %a %a %a %a %a\n", e.t_s, dynamics::ToString(e.kind), e.contact,
+                 e.gamma_N_before_mps, e.gamma_N_after_mps, e.impulse_N_Ns, e.impulse_T_Ns,
+                 e.kinetic_loss_J);
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -50,6 +73,7 @@ int main(int argc, char** argv) {
   double ts_step = 1e-5;
   std::uint64_t seed = 12;
   bool compare = false;
+  const char* dump_path = nullptr;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--sample") && i + 1 < argc) {
       sample = std::atoi(argv[++i]);
@@ -61,6 +85,8 @@ int main(int argc, char** argv) {
       ts_step = std::atof(argv[++i]);
     } else if (!std::strcmp(argv[i], "--max-steps") && i + 1 < argc) {
       max_steps = std::atol(argv[++i]);
+    } else if (!std::strcmp(argv[i], "--dump-events") && i + 1 < argc) {
+      dump_path = argv[++i];
     } else if (!std::strcmp(argv[i], "--compare")) {
       compare = true;
     } else if (!std::strcmp(argv[i], "--list") && i + 1 < argc) {
@@ -70,7 +96,7 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(stderr,
                    "usage: robustness_run [--sample N --seed S] [--compare] [--list K] "
-                   "[--repeat R]\n");
+                   "[--repeat R] [--dump-events FILE]\n");
       return 2;
     }
   }
@@ -112,6 +138,20 @@ int main(int argc, char** argv) {
   } else {
     cells.resize(static_cast<std::size_t>(grid.size()));
     std::iota(cells.begin(), cells.end(), 0);
+  }
+  if (dump_path != nullptr) {
+    std::FILE* dump = std::fopen(dump_path, "w");
+    if (dump == nullptr) {
+      std::fprintf(stderr, "robustness_run: cannot write %s\n", dump_path);
+      return 2;
+    }
+    for (std::int64_t c : cells) {
+      DumpRun(dump, c, robustness::RunEventDriven(grid.Cell(c)));
+    }
+    if (std::fclose(dump) != 0) {
+      std::fprintf(stderr, "robustness_run: cannot write %s\n", dump_path);
+      return 2;
+    }
   }
   std::vector<CellOutcome> out;
   out.reserve(cells.size());
