@@ -18,6 +18,8 @@ std::int32_t CellStatusOf(dynamics::RunStatus status) {
       return kStatusStepLimit;
     case dynamics::RunStatus::kNonFinite:
       return kStatusNonFinite;
+    case dynamics::RunStatus::kEventCascade:
+      return kStatusEventCascade;
   }
   return kStatusStepLimit;  // unreachable: every enumerator is handled above
 }
@@ -36,7 +38,8 @@ std::vector<std::pair<std::int32_t, std::string>> SolverStatusNames() {
   return {{kStatusPainleve, dynamics::ToString(dynamics::RunStatus::kPainleve)},
           {kStatusLcpFailure, dynamics::ToString(dynamics::RunStatus::kLcpFailure)},
           {kStatusStepLimit, dynamics::ToString(dynamics::RunStatus::kStepLimit)},
-          {kStatusNonFinite, dynamics::ToString(dynamics::RunStatus::kNonFinite)}};
+          {kStatusNonFinite, dynamics::ToString(dynamics::RunStatus::kNonFinite)},
+          {kStatusEventCascade, dynamics::ToString(dynamics::RunStatus::kEventCascade)}};
 }
 
 }  // namespace skewbridge::spectra

@@ -19,8 +19,9 @@ namespace skewbridge::spectra {
 enum SolverStatus : std::int32_t {
   kStatusPainleve = 1,    ///< the contact problem had no consistent forces
   kStatusLcpFailure = 2,  ///< an LCP hit its pivot limit or had invalid input
-  kStatusStepLimit = 3,   ///< the run did not reach its end time (step budget, event cascade)
+  kStatusStepLimit = 3,   ///< the run did not reach its end time within its step budget
   kStatusNonFinite = 4,   ///< the state stopped being finite (NaN or Inf)
+  kStatusEventCascade = 5,  ///< the mode decision did not settle at one instant
 };
 
 /// The cell status of a run that ended with `status`.

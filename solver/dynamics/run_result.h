@@ -16,12 +16,15 @@ enum class RunStatus {
   kOk,          ///< reached the end time
   kPainleve,    ///< the contact problem ended on a secondary ray (no consistent forces)
   kLcpFailure,  ///< an impact or contact LCP hit its pivot limit or had invalid input
-  kStepLimit,   ///< RunControl::max_steps steps (or an event cascade) without reaching the end
+  kStepLimit,   ///< RunControl::max_steps steps without reaching the end
   kNonFinite,   ///< the state (or its energy) stopped being finite: the run ends there
+  /// more events at one instant than EventPolicy::max_events_at_one_instant: the mode decision
+  /// did not settle on a consistent set of closed contacts (time does not advance)
+  kEventCascade,
 };
 
 /// Human-readable name of a status ("ok", "painleve", "lcp-failure", "step-limit",
-/// "non-finite").
+/// "non-finite", "event-cascade").
 const char* ToString(RunStatus status);
 
 /// True when the squared norm of `z` is finite: false for a NaN, an Inf or an entry whose

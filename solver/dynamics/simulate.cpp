@@ -29,6 +29,8 @@ const char* ToString(RunStatus status) {
       return "step-limit";
     case RunStatus::kNonFinite:
       return "non-finite";
+    case RunStatus::kEventCascade:
+      return "event-cascade";
   }
   return "unknown";
 }
@@ -1538,7 +1540,7 @@ void Integrator::Project() {
 void Integrator::ResolveContacts(const std::vector<int>& forced) {
   if (t_ == last_event_t_) {
     if (++events_here_ > kMaxEventsAtOneInstant) {
-      Fail(RunStatus::kStepLimit, "event cascade: more than " +
+      Fail(RunStatus::kEventCascade, "event cascade: more than " +
                                       std::to_string(kMaxEventsAtOneInstant) +
                                       " events at t = " + std::to_string(t_) + " s");
       return;
