@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "jobs/h5/cube_file.h"
+#include "jobs/h5/event_policy_attrs.h"
 #include "jobs/h5/h5.h"
 #include "solver/common/error.h"
 
@@ -231,6 +232,9 @@ void WriteRunHdf5(const std::filesystem::path& path, const model::Model& model,
   h5::SetAttr(f, "n_bodies", static_cast<std::int64_t>(model.n_bodies()));
   h5::SetAttr(f, "n_dof", static_cast<std::int64_t>(model.n_dof()));
   h5::SetAttr(f, "contact_names", ContactNames(model));
+  // The thresholds and rules of the event-driven integrator (a run of either method stores
+  // them: they are part of the program that made the file).
+  h5::WriteEventPolicy(f, spectra::EvaluatorEventPolicy());
 
   const DofLabels labels = MakeDofLabels(model.n_bodies());
   WriteSummary(f, model, result, labels);

@@ -17,10 +17,10 @@ namespace skewbridge::spectra {
 
 /// Cell status codes of a solver run (0 is ok; spectra/cell.h reserves the negative ones).
 enum SolverStatus : std::int32_t {
-  kStatusPainleve = 1,    ///< the contact problem had no consistent forces
-  kStatusLcpFailure = 2,  ///< an LCP hit its pivot limit or had invalid input
-  kStatusStepLimit = 3,   ///< the run did not reach its end time within its step budget
-  kStatusNonFinite = 4,   ///< the state stopped being finite (NaN or Inf)
+  kStatusPainleve = 1,      ///< the contact problem had no consistent forces
+  kStatusLcpFailure = 2,    ///< an LCP hit its pivot limit or had invalid input
+  kStatusStepLimit = 3,     ///< the run did not reach its end time within its step budget
+  kStatusNonFinite = 4,     ///< the state stopped being finite (NaN or Inf)
   kStatusEventCascade = 5,  ///< the mode decision did not settle at one instant
 };
 

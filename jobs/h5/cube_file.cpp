@@ -12,6 +12,7 @@
 #include <string_view>
 #include <type_traits>
 
+#include "jobs/h5/event_policy_attrs.h"
 #include "jobs/h5/h5.h"
 #include "solver/common/error.h"
 #include "spectra/limit_states.h"
@@ -97,6 +98,8 @@ Datasets CreateLayout(const std::string& path, const SweepSpec& spec, const Cube
     response_links.push_back(ResponseLinkName(r.name, spec));
   }
   SetAttr(g, "response_links", response_links);
+  // The event-driven integrator's thresholds and rules that computed the cells.
+  WriteEventPolicy(g, spectra::EvaluatorEventPolicy());
 
   Id fixed = CreateGroup(g, "fixed");
   std::vector<std::string> fixed_keys;

@@ -59,40 +59,7 @@ const char* ToString(EventKind kind) {
 
 namespace {
 
-constexpr double kStepsPerPeriod = 20.0;
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr int kMaxEventsAtOneInstant = 64;
-// Decision passes at one instant (velocity-level problem, contact problem, projection) before the
-// integrator goes on; two suffice unless a projection disturbs a contact at the face.
-constexpr int kDecisionPasses = 4;
-// A closed contact whose slip speed is within kStickBand v_tol of zero may stick: the contact
-// problem decides. Wider than the band of the slip event (v_tol), so the contact that the slip
-// event stops is always offered the choice.
-constexpr double kStickBand = 2.0;
-// Probes t0 + (t1 - t0) 2^-k, k = 1..kTouchProbes, for a positive gamma_N of a contact that
-// starts a step at the face.
-constexpr int kTouchProbes = 40;
-// Zeno: the largest ratio of successive approach speeds, and the longest flight between them as
-// a fraction of the shortest natural period, for which a contact's impacts are an accumulation.
-constexpr double kZenoRatio = 0.9;
-constexpr double kZenoFlight = 1e-2;
-// A rebound closed at once (AccumulatesAtOnce): its flight, predicted, is below this fraction of
-// the shortest period. A tenth of kZenoFlight: closing at once skips the whole accumulation
-// (flight / (1 - rho)), the Zeno rule only what follows its second impact.
-constexpr double kZenoFlightAtOnce = 1e-3;
-// Bracket of an event time (s, relative beyond 1 s): see GapRoot.
-constexpr double kEventTimeTolerance = 1e-13;
-// A deck rocking between two corners (impacts alternating, flights below kZenoFlight of the
-// shortest period) slower than this multiple of the accumulation threshold is settling: its
-// rocking, an excursion of about 1e-6 of the response per flight, converges to both closed.
-constexpr double kRockingSpeed = 100.0;
-// Gaps of closed contacts, relative to the deck's size, below which one Gauss-Newton pass of the
-// projection leaves a residual below rounding (sqrt of the double epsilon).
-constexpr double kOnePassGap = 1.5e-8;
-// Relative tolerance of a closed contact's normal force (see force_tol_).
-constexpr double kForceTolerance = 1e-7;
-// Rounding of a gap n . (X + (x, y) + R p - A) relative to the deck's size, with a margin.
-constexpr double kGapRoundingUlps = 64.0;
 // Gauss-Legendre nodes and weights on [0, 1] (8 points: exact to degree 15).
 constexpr double kGaussNode[8] = {0.019855071751231856, 0.10166676129318664, 0.2372337950418355,
                                   0.4082826787521751,   0.5917173212478249,  0.7627662049581645,
@@ -110,13 +77,17 @@ class ActiveSystem {
  public:
   static constexpr int kSmallCapacity = 24;
 
-  explicit ActiveSystem(int capacity)
-      : capacity_(std::max(capacity, 1)), small_(capacity_ <= kSmallCapacity) {
+  // `rank_threshold`: pivots below it times the largest make A singular
+  // (EventPolicy::rank_threshold).
+  ActiveSystem(int capacity, double rank_threshold)
+      : rank_threshold_(rank_threshold),
+        capacity_(std::max(capacity, 1)),
+        small_(capacity_ <= kSmallCapacity) {
     if (small_) {
       a_small_.resize(kSmallCapacity, kSmallCapacity);
       b_small_.resize(kSmallCapacity);
       x_small_.resize(kSmallCapacity);
-      cod_small_.setThreshold(kRankThreshold);
+      cod_small_.setThreshold(rank_threshold_);
       a_ = a_small_.data();
       b_ = b_small_.data();
       x_ = x_small_.data();
@@ -124,7 +95,7 @@ class ActiveSystem {
       a_large_.resize(capacity_, capacity_);
       b_large_.resize(capacity_);
       x_large_.resize(capacity_);
-      cod_large_.setThreshold(kRankThreshold);
+      cod_large_.setThreshold(rank_threshold_);
       a_ = a_large_.data();
       a_stride_ = capacity_;
       b_ = b_large_.data();
@@ -165,7 +136,7 @@ class ActiveSystem {
       } else if (m_ > 0) {
         lu_small_.compute(a_small_);
         const auto diag = lu_small_.matrixLU().diagonal().cwiseAbs();
-        if (diag.minCoeff() > kRankThreshold * diag.maxCoeff()) {
+        if (diag.minCoeff() > rank_threshold_ * diag.maxCoeff()) {
           x_small_ = lu_small_.solve(b_small_.head(m_));
           return;
         }
@@ -200,7 +171,7 @@ class ActiveSystem {
       symmetric_ = true;
       ldlt_small_.compute(a_small_);
       const auto d = ldlt_small_.vectorD();
-      if (ldlt_small_.info() == Eigen::Success && d.minCoeff() > kRankThreshold * d.maxCoeff()) {
+      if (ldlt_small_.info() == Eigen::Success && d.minCoeff() > rank_threshold_ * d.maxCoeff()) {
         x_small_ = ldlt_small_.solve(b_small_.head(m_));
         return;
       }
@@ -254,7 +225,7 @@ class ActiveSystem {
         rhs[i] -= f * rhs[k];
       }
     }
-    if (!(diag_min > kRankThreshold * diag_max)) {
+    if (!(diag_min > rank_threshold_ * diag_max)) {
       return false;
     }
     x_small_.resize(m);
@@ -282,7 +253,7 @@ class ActiveSystem {
       const double top = sv.maxCoeff();
       int d = 0;
       for (int i = 0; i < m_ && d < max_dim; ++i) {
-        if (sv[i] <= kRankThreshold * top) {
+        if (sv[i] <= rank_threshold_ * top) {
           kernel.col(d).head(m_) = svd_small_.matrixV().col(i);
           ++d;
         }
@@ -294,7 +265,7 @@ class ActiveSystem {
     const double top = ev.cwiseAbs().maxCoeff();
     int d = 0;
     for (int i = 0; i < m_ && d < max_dim; ++i) {
-      if (std::abs(ev[i]) <= kRankThreshold * top) {
+      if (std::abs(ev[i]) <= rank_threshold_ * top) {
         kernel.col(d).head(m_) = eig_small_.eigenvectors().col(i);
         ++d;
       }
@@ -305,7 +276,7 @@ class ActiveSystem {
   double& x_mutable(int j) { return small_ ? x_small_[j] : x_large_[j]; }
 
  private:
-  static constexpr double kRankThreshold = 1e-10;
+  const double rank_threshold_;          // EventPolicy::rank_threshold
   static constexpr int kDirectRows = 6;  // SolveDirect up to this many rows
   using SmallMatrix =
       Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kSmallCapacity, kSmallCapacity>;
@@ -338,8 +309,8 @@ class ActiveSystem {
 class Integrator {
  public:
   Integrator(const model::Model& model, const Excitation& excitation,
-             const model::RunControl& control, SimulationWorkspace& ws,
-             const InitialState& initial);
+             const model::RunControl& control, SimulationWorkspace& ws, const InitialState& initial,
+             const EventPolicy& policy);
 
   RunResult Run();
 
@@ -424,12 +395,11 @@ class Integrator {
   const model::Model& model_;
   const Excitation& excitation_;
   const model::RunControl& control_;
+  const EventPolicy policy_;
   SimulationWorkspace& ws_;
   int n_, nc_;
   double t_ = 0.0, t_end_ = 0.0;
   long steps_ = 0;
-  // Steps between two checks that the state is finite (a power of two).
-  static constexpr long kFiniteCheckSteps = 16;
   double t_finite_ = 0.0;  // the last time the state was checked finite (s)
   Vec z_, z_new_, z_eval_;
   Vec y_, dy_, y_eval_, atol_;
@@ -515,14 +485,15 @@ SimulationWorkspace::SimulationWorkspace(const model::Model& model)
 
 Integrator::Integrator(const model::Model& model, const Excitation& excitation,
                        const model::RunControl& control, SimulationWorkspace& ws,
-                       const InitialState& initial)
+                       const InitialState& initial, const EventPolicy& policy)
     : model_(model),
       excitation_(excitation),
       control_(control),
+      policy_(policy),
       ws_(ws),
       n_(model.n_dof()),
       nc_(model.n_contacts()),
-      sys_(2 * model.n_contacts()) {
+      sys_(2 * model.n_contacts(), policy.rank_threshold) {
   SB_DEMAND(&ws.model() == &model, "Simulate: workspace built for another model");
   const int naug = ws.flow_.augmented_size();
   z_ = Vec::Zero(naug);
@@ -582,50 +553,52 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   double a_peak = 0.0;
   for (double t = 0.0; t < excitation.Duration();) {
     const ExcitationPiece piece = excitation.PieceAt(t);
-    a_peak =
-        std::max({a_peak, piece.a_begin.norm(),
-                  (piece.a_begin + piece.slope * std::min(piece.t_end - t, 1e3)).norm(),
-                  piece.a_begin.norm() + piece.cos_amplitude.norm() + piece.sin_amplitude.norm()});
+    a_peak = std::max(
+        {a_peak, piece.a_begin.norm(),
+         (piece.a_begin + piece.slope * std::min(piece.t_end - t, policy_.ramp_horizon_s)).norm(),
+         piece.a_begin.norm() + piece.cos_amplitude.norm() + piece.sin_amplitude.norm()});
     if (!(piece.t_end > t)) {
       break;
     }
     t = piece.t_end;
   }
-  const double omega_ref = ws.omega_min_radps_ > 0.0 ? ws.omega_min_radps_ : 1.0;
+  const double omega_ref =
+      ws.omega_min_radps_ > 0.0 ? ws.omega_min_radps_ : policy_.free_body_omega_radps;
   double v_ref = a_peak / omega_ref;
   v_ref = std::max(v_ref, z_.segment(n_, n_).cwiseAbs().maxCoeff());
   if (v_ref == 0.0) {
     v_ref = 1.0;
   }
   v_acc_ = control.accumulation_threshold * v_ref;
-  v_tol_ = 1e-10 * v_ref;
+  v_tol_ = policy_.velocity_tolerance * v_ref;
   // A closed contact that carries no load (two identical decks at a closed joint under uniform
   // excitation) has lambda_N = 0 up to the rounding of the active-set solve, of either sign.
   // Zero force with zero relative acceleration keeps the contact closed (the contact LCP's
   // complementarity allows it); a detachment needs lambda_N clearly negative, that is a
-  // separating acceleration of the order of kForceTolerance a_ref, well above the contact
-  // problem's tie tolerance (solver/contact/contact_problem.cpp), so that the contact problem
-  // at the event confirms it.
+  // separating acceleration of the order of EventPolicy::force_tolerance a_ref, well above the
+  // contact problem's tie tolerance (solver/contact/contact_problem.cpp), so that the contact
+  // problem at the event confirms it.
   double m_max = 0.0;
   for (int i = 0; i < n_; ++i) {
     if (i % 3 != 2) {
       m_max = std::max(m_max, model.mass_diagonal()[i]);
     }
   }
-  force_tol_ = kForceTolerance * m_max * v_ref * omega_ref;
-  a_detach_ = kForceTolerance * v_ref * omega_ref;
+  force_tol_ = policy_.force_tolerance * m_max * v_ref * omega_ref;
+  a_detach_ = policy_.force_tolerance * v_ref * omega_ref;
   // Gap tolerance from the response's own length scale, so that it scales with the excitation.
   // It never falls below the rounding of a gap computed from world coordinates (a few ulps of
   // the deck's size): at a tiny excitation a scaled tolerance under that floor would split a
   // full-edge impact, exactly simultaneous in the model, into two impacts by rounding noise
   // alone, and break the self-similarity of [docs/theory.md §4 fact 4].
-  gap_tol_ =
-      std::max(1e-12 * std::min(v_ref / omega_ref, ws.length_scale_m_),
-               kGapRoundingUlps * std::numeric_limits<double>::epsilon() * ws.length_scale_m_);
-  const double omega_top = std::max(ws.omega_max_radps_, 1e-3);
+  gap_tol_ = std::max(
+      policy_.gap_tolerance * std::min(v_ref / omega_ref, ws.length_scale_m_),
+      policy_.gap_rounding_ulps * std::numeric_limits<double>::epsilon() * ws.length_scale_m_);
+  const double omega_top = std::max(ws.omega_max_radps_, policy_.omega_floor_radps);
   atol_.head(n_).setConstant(control.absolute_tolerance);
   atol_.segment(n_, n_).setConstant(control.absolute_tolerance * omega_top);
-  h_rk_ = 2.0 * std::numbers::pi / omega_top / kStepsPerPeriod / 4.0;
+  h_rk_ =
+      2.0 * std::numbers::pi / omega_top / policy_.steps_per_period / policy_.first_rk_step_divisor;
 
   result_.max_abs_q = z_.head(n_).cwiseAbs();
   result_.time_of_max_s = Vec::Zero(n_);
@@ -647,8 +620,9 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
 }
 
 double Integrator::FreeStepSize(const ExcitationPiece& piece) const {
-  const double omega = std::max({ws_.omega_max_radps_, std::abs(piece.omega), 1e-3});
-  const double h_max = 2.0 * std::numbers::pi / omega / kStepsPerPeriod;
+  const double omega =
+      std::max({ws_.omega_max_radps_, std::abs(piece.omega), policy_.omega_floor_radps});
+  const double h_max = 2.0 * std::numbers::pi / omega / policy_.steps_per_period;
   if (std::isfinite(piece.t_end)) {
     const double length = piece.t_end - piece.t_begin;
     return length / std::ceil(length / h_max);
@@ -737,10 +711,10 @@ RunResult Integrator::Run() {
     } else {
       FreeStep();
     }
-    // Every kFiniteCheckSteps steps (a fraction of a second of most runs) the state must still
-    // be finite; so the check costs a few instructions a step, and a run that went non-finite
-    // stops within that many steps, its message naming the window.
-    if ((steps_ & (kFiniteCheckSteps - 1)) == 0) {
+    // Every finite_check_steps steps (a fraction of a second of most runs) the state must
+    // still be finite; so the check costs a few instructions a step, and a run that went
+    // non-finite stops within that many steps, its message naming the window.
+    if ((steps_ & (policy_.finite_check_steps - 1)) == 0) {
       if (!StateFinite(z_) || !std::isfinite(t_)) {
         break;
       }
@@ -783,18 +757,18 @@ void Integrator::FreeStep() {
   // Pieces of a sampled record differ in length by rounding (t_end - t_begin of i dt and
   // (i + 1) dt); one canonical step keeps the propagator cache hitting. The state moves by
   // e^{A h} over a step whose length differs from h by a few ulps, far below any tolerance.
-  if (std::abs(h - h_free_) <= 1e-12 * h) {
+  if (std::abs(h - h_free_) <= policy_.step_reuse_band * h) {
     h = h_free_;
   }
   h_free_ = h;
   const double s = (t_ - piece.t_begin) / h;
-  const double k = std::floor(s + 1e-9);
+  const double k = std::floor(s + policy_.step_snap_band);
   double t_next = piece.t_begin + (k + 1.0) * h;
-  if (t_next > t_stop - 1e-9 * h) {
+  if (t_next > t_stop - policy_.step_snap_band * h) {
     t_next = t_stop;
   }
   const double tau = t_next - t_;
-  const bool full = std::abs(tau - h) <= 1e-9 * h;
+  const bool full = std::abs(tau - h) <= policy_.step_snap_band * h;
   flow.SetGenerator(piece, t_, z_);
   bool dense_built = false;
   auto ensure_dense = [&]() {
@@ -840,7 +814,7 @@ void Integrator::FreeStep() {
     if (!suspect && gN0_[c] < 0.0 && gN1_[c] > 0.0) {
       // Hermite minimum bound: the gap cannot dip by more than |gN0| tau / 2 below a line.
       const double dip = 0.5 * std::max(-gN0_[c], gN1_[c]) * tau;
-      suspect = std::min(gap0_[c], gap1_[c]) <= 2.0 * dip;
+      suspect = std::min(gap0_[c], gap1_[c]) <= policy_.dip_margin * dip;
     }
     if (suspect) {
       ensure_dense();
@@ -908,7 +882,8 @@ double Integrator::GapRoot(int c, double t0, double t1, double g0, double gN0, d
   // a band of ~1e-15 m / speed, often 1e-11 s wide; halving that band down to 1e-15 s cost ~30
   // evaluations per impact of a corner settling on a closed joint, for event times that move
   // the state by less than the gap tolerance.
-  const double x_tol = kEventTimeTolerance * std::max(1.0, std::abs(t1)) + 1e-16;
+  const double x_tol =
+      policy_.event_time_tolerance * std::max(1.0, std::abs(t1)) + policy_.event_time_floor_s;
   double a = t0, ga = g0, gNa = gN0;
   if (ga <= gap_tol_) {
     // Starting in touch (just separated): search from the gap's maximum inside the step. A
@@ -918,7 +893,7 @@ double Integrator::GapRoot(int c, double t0, double t1, double g0, double gN0, d
     double t_pos = gNa > v_tol_ ? t0 : kInf;
     double gN_pos = gNa;
     if (t_pos == kInf && gN1 < 0.0) {  // t_pos is infinite exactly when gNa <= v_tol_
-      for (int k = 1; k <= kTouchProbes; ++k) {
+      for (int k = 1; k <= policy_.touch_probes; ++k) {
         const double t = t0 + std::ldexp(t1 - t0, -k);
         if (!(t > t0)) {
           break;
@@ -982,8 +957,10 @@ void Integrator::ScanMaxima(double t0, const Eigen::Ref<const Vec>& q0,
                            0.5 * (t1 - t0) * std::max(std::abs(u0[i]), std::abs(u1[i]));
       if (bound > result_.max_abs_q[i]) {
         const auto velocity = [&](double t) { return component_at(t, n_ + i); };
-        const RootResult peak = FindRootBrent(velocity, t0, t1, u0[i], u1[i],
-                                              1e-15 * std::max(1.0, std::abs(t1)) + 1e-16);
+        const RootResult peak =
+            FindRootBrent(velocity, t0, t1, u0[i], u1[i],
+                          policy_.maximum_time_tolerance * std::max(1.0, std::abs(t1)) +
+                              policy_.event_time_floor_s);
         const double q_peak = std::abs(component_at(peak.x, i));
         if (q_peak > result_.max_abs_q[i]) {
           result_.max_abs_q[i] = q_peak;
@@ -996,7 +973,8 @@ void Integrator::ScanMaxima(double t0, const Eigen::Ref<const Vec>& q0,
 
 template <class StateAt>
 void Integrator::RecordOutputs(double t0, double t1, StateAt&& at) {
-  while (next_output_t_ <= t1 + 1e-12 * std::max(1.0, t1) && next_output_t_ <= t_end_ + 1e-12) {
+  while (next_output_t_ <= t1 + policy_.output_time_band * std::max(1.0, t1) &&
+         next_output_t_ <= t_end_ + policy_.output_time_band) {
     const double t = std::max(t0, std::min(next_output_t_, t1));
     at(t, q_r_, u_r_);
     RecordSample(next_output_t_, q_r_, u_r_);
@@ -1206,7 +1184,7 @@ void Integrator::BalanceIndeterminateFriction(int k, int m) {
   const auto K = kernel_.topLeftCorner(m, d);
   bool normal_kernel = false;
   for (int jj = 0; jj < k && !normal_kernel; ++jj) {
-    normal_kernel = K.row(jj).norm() > 1e-12;
+    normal_kernel = K.row(jj).norm() > policy_.kernel_normal_threshold;
   }
   if (!normal_kernel && m == k) {
     return;
@@ -1265,7 +1243,8 @@ void Integrator::BalanceIndeterminateFriction(int k, int m) {
       rows = k;
       lp_G_.row(rows).head(d + 1).setZero();
       lp_G_.row(rows).head(d) = K.topRows(k).colwise().sum();
-      lp_h_[rows] = total * (1.0 + 1e-9) + 1e-9 - x_bal_.head(k).sum();
+      lp_h_[rows] = total * (1.0 + policy_.split_total_slack) + policy_.split_total_slack -
+                    x_bal_.head(k).sum();
       ++rows;
     }
     for (int jj = 0; jj < k; ++jj) {
@@ -1344,7 +1323,7 @@ void Integrator::ConstrainedStep() {
   SB_DEMAND(piece.t_end > t_, "Excitation::PieceAt(t) returned a piece that ends at or before t");
   const double t_stop = std::min(piece.t_end, t_end_);
   double h = std::min(h_rk_, t_stop - t_);
-  if (t_stop - t_ - h < 1e-9 * h) {
+  if (t_stop - t_ - h < policy_.step_snap_band * h) {
     h = t_stop - t_;
   }
   y_.head(2 * n_) = z_.head(2 * n_);
@@ -1363,7 +1342,8 @@ void Integrator::ConstrainedStep() {
   const double err = rk.ErrorNorm(atol_, control_.relative_tolerance);
   if (!(err <= 1.0)) {
     ++result_.rk_rejected;
-    h_rk_ = h * DormandPrince45::StepFactor(std::isfinite(err) ? err : 1e10);
+    h_rk_ =
+        h * DormandPrince45::StepFactor(std::isfinite(err) ? err : policy_.nonfinite_step_error);
     return;
   }
   ++result_.rk_steps;
@@ -1384,7 +1364,8 @@ void Integrator::ConstrainedStep() {
     uu = y_eval_.segment(n_, n_);
   };
   double t_event = kInf;
-  const double x_tol = kEventTimeTolerance * std::max(1.0, std::abs(t1)) + 1e-16;
+  const double x_tol =
+      policy_.event_time_tolerance * std::max(1.0, std::abs(t1)) + policy_.event_time_floor_s;
   for (int c = 0; c < nc_; ++c) {
     if (mode_[static_cast<std::size_t>(c)] < 0) {
       const bool suspect = gap1_[c] < 0.0 || (gN0_[c] < 0.0 && gN1_[c] > 0.0);
@@ -1443,7 +1424,7 @@ void Integrator::Project() {
   // closed contacts' kinematics are needed; the next step or the decision's last evaluation sees
   // all.
   const Vec& inv_m = model_.inverse_mass_diagonal();
-  for (int pass = 0; pass < 2; ++pass) {
+  for (int pass = 0; pass < policy_.position_passes; ++pass) {
     contact::EvaluateContacts(model_, q(), u(), closed_ids_, ws_.kin_);
     int m = 0;
     double largest_gap_m = 0.0;
@@ -1462,7 +1443,7 @@ void Integrator::Project() {
     // most the deck's size: after one pass from gaps below sqrt(eps) of that size, the residual
     // is below rounding and a second pass (an evaluation and a solve after every step of a
     // constrained phase) changes nothing that a gap resolves.
-    const bool last_pass = largest_gap_m <= kOnePassGap * ws_.length_scale_m_;
+    const bool last_pass = largest_gap_m <= policy_.one_pass_gap * ws_.length_scale_m_;
     sys_.Start(m);
     for (int i = 0; i < m; ++i) {
       for (int j = 0; j < m; ++j) {
@@ -1521,7 +1502,7 @@ void Integrator::Project() {
       if (in_set && mode < 0 && sys_.x(row) < 0.0) {
         projection_rows_[static_cast<std::size_t>(c)] = 0;
         changed = true;
-      } else if (!in_set && ws_.kin_.gap_m[c] <= gap_tol_ &&
+      } else if (policy_.open_contacts_in_projection && !in_set && ws_.kin_.gap_m[c] <= gap_tol_ &&
                  ws_.kin_.W_N.col(c).dot(u_proj_) < -v_tol_) {
         projection_rows_[static_cast<std::size_t>(c)] = 1;
         changed = true;
@@ -1539,10 +1520,10 @@ void Integrator::Project() {
 
 void Integrator::ResolveContacts(const std::vector<int>& forced) {
   if (t_ == last_event_t_) {
-    if (++events_here_ > kMaxEventsAtOneInstant) {
+    if (++events_here_ > policy_.max_events_at_one_instant) {
       Fail(RunStatus::kEventCascade, "event cascade: more than " +
-                                      std::to_string(kMaxEventsAtOneInstant) +
-                                      " events at t = " + std::to_string(t_) + " s");
+                                         std::to_string(policy_.max_events_at_one_instant) +
+                                         " events at t = " + std::to_string(t_) + " s");
       return;
     }
   } else {
@@ -1557,8 +1538,9 @@ void Integrator::ResolveContacts(const std::vector<int>& forced) {
   // instant. The event itself says which way: slip against the saturated friction force
   // [Pfeiffer and Glocker 1996, ch. 6], so such a contact enters the contact problem as sliding.
   std::fill(cone_sign_.begin(), cone_sign_.end(), 0);
-  if (std::any_of(mode_.begin(), mode_.end(),
-                  [](int mode) { return mode == static_cast<int>(ClosedMode::kStick); })) {
+  if (policy_.cone_sign && std::any_of(mode_.begin(), mode_.end(), [](int mode) {
+        return mode == static_cast<int>(ClosedMode::kStick);
+      })) {
     ActiveForces(t_, q(), u(), du_);
     for (int c = 0; c < nc_; ++c) {
       if (mode_[static_cast<std::size_t>(c)] == static_cast<int>(ClosedMode::kStick) &&
@@ -1574,7 +1556,7 @@ void Integrator::ResolveContacts(const std::vector<int>& forced) {
   // the order of the accumulation threshold (a deck rocking between two corners); the decision is
   // then made again at the same instant with that contact among the candidates, so the state the
   // integrator continues from is consistent and no event re-fires on it.
-  for (int pass = 0; pass < kDecisionPasses; ++pass) {
+  for (int pass = 0; pass < policy_.decision_passes; ++pass) {
     if (pass > 0) {
       // A contact that this instant's decision set sliding keeps its direction unless its slip
       // says otherwise (its slip velocity is still zero: the cone decides, not a new tie-break).
@@ -1607,17 +1589,18 @@ bool Integrator::Accumulating(int c, double approach_mps) const {
   // each time slower by a constant ratio rho (eps_N for a single contact), so its impacts
   // accumulate after a further time (t_k - t_{k-1}) rho / (1 - rho), at which it is closed. Two
   // consecutive impacts of the same contact, with no other impact between them, a ratio below
-  // kZenoRatio and a flight below kZenoFlight of the shortest period, identify the sequence;
+  // zeno_ratio and a flight below zeno_flight of the shortest period, identify the sequence;
   // its remaining impacts, each a fraction of a flight that is itself a small fraction of a
   // period, are replaced by closing the contact now. Without restitution there is no sequence,
   // with eps_N = 1 the ratio stays near 1 and nothing is extrapolated.
   const auto i = static_cast<std::size_t>(c);
-  if (bounce_seq_[i] != impact_sequence_ || !(bounce_v_[i] > 0.0)) {
+  if (!policy_.zeno_extrapolation || bounce_seq_[i] != impact_sequence_ || !(bounce_v_[i] > 0.0)) {
     return false;
   }
   const double flight = t_ - bounce_t_[i];
   const double ratio = approach_mps / bounce_v_[i];
-  return flight > 0.0 && flight <= kZenoFlight * period_min_s_ && ratio <= kZenoRatio;
+  return flight > 0.0 && flight <= policy_.zeno_flight * period_min_s_ &&
+         ratio <= policy_.zeno_ratio;
 }
 
 bool Integrator::Settling(int c, double approach_mps) const {
@@ -1631,25 +1614,26 @@ bool Integrator::Settling(int c, double approach_mps) const {
   //    accumulation threshold.
   const auto i = static_cast<std::size_t>(c);
   const double flight = t_ - left_t_[i];
-  if (flight > 0.0 && 0.25 * approach_mps * flight <= gap_tol_) {
+  if (policy_.settle_in_touch_band && flight > 0.0 && 0.25 * approach_mps * flight <= gap_tol_) {
     return true;
   }
   // 2. Slow rocking. This contact's last impact was the one before the other corner's, within a
-  //    flight far below any period (kZenoFlight), and the approach is within kRockingSpeed of the
+  //    flight far below any period (zeno_flight), and the approach is within rocking_speed of the
   //    accumulation threshold: each flight moves the deck by about 1e-6 of its response, and the
   //    rocking, which rounding alone can turn into tens of thousands of events, converges to
   //    both corners closed. The contact problem then says whether the loads keep both closed.
   // Both thresholds scale with the response (gap_tol_ above its rounding floor, v_acc_), so
   // self-similarity holds.
   const double since = t_ - bounce_t_[i];
-  return bounce_seq_[i] == impact_sequence_ - 1 && since > 0.0 &&
-         since <= kZenoFlight * period_min_s_ && approach_mps <= kRockingSpeed * v_acc_;
+  return policy_.slow_rocking && bounce_seq_[i] == impact_sequence_ - 1 && since > 0.0 &&
+         since <= policy_.zeno_flight * period_min_s_ &&
+         approach_mps <= policy_.rocking_speed * v_acc_;
 }
 
 bool Integrator::AccumulatesAtOnce(int c, double approach_mps) const {
   // Accumulating, seen one flight earlier. A contact that struck at approach_mps and leaves at
-  // gamma_N = rho approach_mps (rho <= kZenoRatio) under a normal acceleration -a (a > 0, the
-  // loads pressing it back) returns after 2 gamma_N / a. Below kZenoFlightAtOnce of the shortest
+  // gamma_N = rho approach_mps (rho <= zeno_ratio) under a normal acceleration -a (a > 0, the
+  // loads pressing it back) returns after 2 gamma_N / a. Below zeno_flight_at_once of the shortest
   // period that return is the second impact of an accumulation, which Accumulating would close;
   // it is closed now instead: the contact stays a candidate, the contact problem says whether
   // the loads keep it closed, and the projection puts its rebound to zero. Over the flight, the
@@ -1661,7 +1645,8 @@ bool Integrator::AccumulatesAtOnce(int c, double approach_mps) const {
   // bounced on the striking corner once per rock before this: half its impacts.
   const contact::ContactKinematics& kin = ws_.kin_;
   const double v = kin.gamma_N[c];
-  if (!(approach_mps > v_acc_) || !(v <= kZenoRatio * approach_mps)) {
+  if (!policy_.bounce_at_once || !(approach_mps > v_acc_) ||
+      !(v <= policy_.zeno_ratio * approach_mps)) {
     return false;
   }
   const double* inv_m = model_.inverse_mass_diagonal().data();
@@ -1669,7 +1654,7 @@ bool Integrator::AccumulatesAtOnce(int c, double approach_mps) const {
   for (int i = 0; i < n_; ++i) {
     a += kin.W_N(i, c) * (inv_m[i] * h_[i]);
   }
-  return a < 0.0 && 2.0 * v <= -a * kZenoFlightAtOnce * period_min_s_;
+  return a < 0.0 && 2.0 * v <= -a * policy_.zeno_flight_at_once * period_min_s_;
 }
 
 bool Integrator::Wedged() const {
@@ -1811,7 +1796,7 @@ bool Integrator::DecideContacts(const std::vector<int>& forced) {
     int sign = 0;
     if (mu == 0.0) {
       sign = 1;
-    } else if (std::abs(kin.gamma_T[c]) > kStickBand * v_tol_) {
+    } else if (std::abs(kin.gamma_T[c]) > policy_.stick_band * v_tol_) {
       sign = kin.gamma_T[c] > 0.0 ? 1 : -1;
     } else if (!impact) {
       sign = cone_sign_[static_cast<std::size_t>(c)];
@@ -1832,7 +1817,7 @@ bool Integrator::DecideContacts(const std::vector<int>& forced) {
     model_.AppliedForces(q(), u(), GroundAcceleration(t_), h_);
     const contact::ContactStatus status =
         ws_.contact_problem_.Solve(kin, closed_list_, h_, ws_.contact_result_);
-    if (status == contact::ContactStatus::kPainleve && !jammed_here_ && Wedged()) {
+    if (policy_.jam && status == contact::ContactStatus::kPainleve && !jammed_here_ && Wedged()) {
       // A jam: corners on two opposing faces, some sliding (a deck wedged between its
       // abutments, the friction of one corner pressing the other into its face), can leave the
       // contact problem without a solution, as for corners on one face, but here the deck
@@ -1890,11 +1875,13 @@ bool Integrator::DecideContacts(const std::vector<int>& forced) {
       // repeats at the same instant. Each tie is checked below against the constrained phase's
       // own event function, and falls back to the contact problem's answer if that fires.
       int fallback = -2;  // the mode the contact problem chose, for a tie; -2: no tie
-      if (outcome == contact::ContactOutcome::kDetaches && cr.gammadot_N(jj) <= a_detach_) {
+      if (policy_.tie_bands && outcome == contact::ContactOutcome::kDetaches &&
+          cr.gammadot_N(jj) <= a_detach_) {
         fallback = -1;
         outcome = cr.friction_outcome[j];
       }
-      if ((outcome == contact::ContactOutcome::kStartsSlipPositive ||
+      if (policy_.tie_bands &&
+          (outcome == contact::ContactOutcome::kStartsSlipPositive ||
            outcome == contact::ContactOutcome::kStartsSlipNegative) &&
           std::abs(cr.gammadot_T(jj)) <= a_detach_) {
         if (fallback == -2) {
@@ -2004,8 +1991,8 @@ bool Integrator::DecideContacts(const std::vector<int>& forced) {
 
 RunResult Simulate(const model::Model& model, const Excitation& excitation,
                    const model::RunControl& control, SimulationWorkspace& workspace,
-                   const InitialState& initial) {
-  Integrator integrator(model, excitation, control, workspace, initial);
+                   const InitialState& initial, const EventPolicy& policy) {
+  Integrator integrator(model, excitation, control, workspace, initial, policy);
   return integrator.Run();
 }
 

@@ -31,6 +31,7 @@
 #include "solver/contact/contact_problem.h"
 #include "solver/contact/impact_problem.h"
 #include "solver/contact/kinematics.h"
+#include "solver/dynamics/event_policy.h"
 #include "solver/dynamics/linear_flow.h"
 #include "solver/dynamics/run_result.h"
 #include "solver/dynamics/runge_kutta.h"
@@ -77,11 +78,12 @@ class SimulationWorkspace {
   double length_scale_m_ = 1.0;   // largest deck dimension or distance from the origin
 };
 
-/// Integrates one run of `model` under `excitation` with `control` from `initial`.
+/// Integrates one run of `model` under `excitation` with `control` from `initial`, its events
+/// decided by `policy` (the defaults unless a study of the rules asks otherwise).
 /// @pre workspace built for `model`; excitation duration finite.
 /// @throws InputError when the initial state has the wrong size.
 RunResult Simulate(const model::Model& model, const Excitation& excitation,
                    const model::RunControl& control, SimulationWorkspace& workspace,
-                   const InitialState& initial = {});
+                   const InitialState& initial = {}, const EventPolicy& policy = {});
 
 }  // namespace skewbridge::dynamics

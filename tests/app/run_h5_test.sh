@@ -35,6 +35,8 @@ sed 's/^output_interval_s.*/output_interval_s = 0.0/' "$model" >"$work/nohist.to
 import sys, h5py
 without, with_interval = (h5py.File(p, "r") for p in sys.argv[1:3])
 assert "histories" not in without, "histories written though none were requested"
+pol = without["event_policy"].attrs
+assert pol["zeno_ratio"] == 0.9 and pol["jam"] == 1, dict(pol)
 n = with_interval["histories/t_s"].shape[0]
 assert n == 251, "--output-interval 0.01 over 2.5 s gave %d samples, expected 251" % n
 PY

@@ -20,6 +20,10 @@ def main(path, name):
             assert key in g.attrs, key
         assert "[sweep]" in g.attrs["spec_text"]
         assert g.attrs["complete"] == 1
+        # The event policy that made the cells, with its documentation lists.
+        pol = g["event_policy"].attrs
+        assert pol["velocity_tolerance"] == 1e-10 and pol["decision_passes"] == 4, dict(pol)
+        assert len(pol["keys"]) == len(pol["units"]) == len(pol["relative_to"]) == len(pol) - 3
         axis_order = list(g.attrs["axis_order"])
         shape = tuple(g["axes"][k].shape[0] for k in axis_order)
         per_cell = [g["responses"][r] for r in g.attrs["response_order"]]

@@ -105,9 +105,10 @@ inline spectra::PointResult Evaluate(spectra::PointParameters p, spectra::Method
 }
 
 /// The whole run of a point with the event-driven integrator (event log included), with the
-/// controls of spectra::EvaluatePoint.
+/// controls of spectra::EvaluatePoint, its events decided by `policy`.
 inline dynamics::RunResult RunEventDriven(const spectra::PointParameters& p,
-                                          long max_steps = 10'000'000) {
+                                          long max_steps = 10'000'000,
+                                          const dynamics::EventPolicy& policy = {}) {
   const spectra::ExcitationScales scales = spectra::PulseScales(p);
   const spectra::DimensionalPoint point = spectra::ToDimensional(p, scales);
   const records::PulseExcitation pulse(p.pulse, scales.a_g_mps2, scales.w_g_radps);
@@ -121,7 +122,7 @@ inline dynamics::RunResult RunEventDriven(const spectra::PointParameters& p,
   control.end_time_s = pulse.Duration() + 2.0 * std::max(2.0 * std::numbers::pi / scales.w_g_radps,
                                                          2.0 * std::numbers::pi / w_min);
   dynamics::SimulationWorkspace workspace(model);
-  return dynamics::Simulate(model, pulse, control, workspace);
+  return dynamics::Simulate(model, pulse, control, workspace, {}, policy);
 }
 
 }  // namespace skewbridge::robustness
