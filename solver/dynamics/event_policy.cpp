@@ -30,6 +30,7 @@ std::vector<EventPolicyEntry> EventPolicyEntries(const EventPolicy& p) {
       real("event_time_floor_s", p.event_time_floor_s, "s", ""),
       real("maximum_time_tolerance", p.maximum_time_tolerance, "1", "max(1 s, |t|)"),
       real("dip_margin", p.dip_margin, "1", "Hermite bound of the dip"),
+      real("start_minimum_band", p.start_minimum_band, "1", "event-time bracket"),
       count("touch_probes", p.touch_probes),
       real("output_time_band", p.output_time_band, "1", "max(1 s, |t|)"),
       count("max_events_at_one_instant", p.max_events_at_one_instant),

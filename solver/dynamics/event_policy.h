@@ -1,9 +1,10 @@
 #pragma once
 /// @file
 /// Every threshold and heuristic rule of the event-driven integrator in one place
-/// [docs/theory.md §3]. Each member says its unit, the scale it is relative to and why it has
-/// its value. A run uses EventPolicy{} (the defaults below) unless a caller passes another; run
-/// files and cubes store the policy that made them (docs/hdf5-layout.md, docs/run-output.md).
+/// [docs/theory.md §3.1-§3.16; the table of §3.16]. Each member says its unit, the scale it is
+/// relative to and why it has its value. A run uses EventPolicy{} (the defaults below) unless a
+/// caller passes another; run files and cubes store the policy that made them (docs/hdf5-layout.md,
+/// docs/run-output.md).
 ///
 /// The run's scales (solver/dynamics/run_scales.h) make the tolerances relative to the
 /// response: v_ref = max(a_peak / omega_ref, |u(0)|_inf) (m/s), omega_ref the lowest natural
@@ -18,7 +19,7 @@ namespace skewbridge::dynamics {
 
 /// The integrator's thresholds and rules (defaults: the values every result so far used).
 struct EventPolicy {
-  // --- Tolerances of the run, relative to its scales ---
+  // --- Tolerances of the run, relative to its scales [docs/theory.md §3.2] ---
   /// v_tol = velocity_tolerance v_ref (1): a normal or slip velocity within v_tol of zero is
   /// zero. 1e-10 of the response's velocity is 6 decades above the rounding of a velocity from a
   /// Lemke solve (~1e-16 relative) and far below any approach that the response resolves.
@@ -45,7 +46,7 @@ struct EventPolicy {
   /// excitations of this tool end; 1e3 s exceeds any record.
   double ramp_horizon_s = 1e3;
 
-  // --- Steps ---
+  // --- Steps [docs/theory.md §3.14] ---
   /// Free (exact) steps at most 2 pi / omega / steps_per_period, omega the highest natural or
   /// excitation frequency (1): 20 steps per period make the gap's cubic Hermite model, which
   /// decides whether a step is searched for an impact, accurate to ~1e-4 of the response.
@@ -71,7 +72,7 @@ struct EventPolicy {
   /// step, and a run that went non-finite stops within that many steps.
   long finite_check_steps = 16;
 
-  // --- Event location [docs/theory.md §3, events] ---
+  // --- Event location [docs/theory.md §3.12] ---
   /// Event times are bracketed to event_time_tolerance max(1, |t|) + event_time_floor (s): a
   /// slow approach's gap is rounding noise over a band of ~1e-15 m / speed, often 1e-11 s wide;
   /// a tighter bracket costs ~30 evaluations per impact of a corner settling on a closed joint,
@@ -87,6 +88,10 @@ struct EventPolicy {
   /// (1): the factor 2 covers the error of the cubic model of the gap over a step of at most
   /// 1/20 of a period.
   double dip_margin = 2.0;
+  /// A gap's minimum found within start_minimum_band event-time brackets of the step's start is
+  /// the state the decision there has just opened, not an impact (1): the bracket's own width,
+  /// doubled, so that the decision is not repeated at the same instant.
+  double start_minimum_band = 2.0;
   /// Probes t0 + (t1 - t0) 2^-k, k = 1 .. touch_probes, for a positive gamma_N of a contact that
   /// starts a step at the face (1): 40 halvings reach 1e-12 of the step, below the event-time
   /// bracket.
@@ -95,7 +100,7 @@ struct EventPolicy {
   /// is taken from that step.
   double output_time_band = 1e-12;
 
-  // --- The mode decision at an instant [docs/theory.md §3] ---
+  // --- The mode decision at an instant [docs/theory.md §3.1, §3.7-§3.9, §3.11] ---
   /// More calls of the mode decision at one instant than this end the run with
   /// RunStatus::kEventCascade (1): a consistent decision needs a handful (an event, its
   /// re-decision, a tie fallback); dozens mean the rules disagree.
@@ -119,7 +124,7 @@ struct EventPolicy {
   /// has no solution, stops sliding by a tangential impact [Genot and Brogliato 1999].
   bool jam = true;
 
-  // --- Accumulation of impacts [docs/theory.md §3, accumulation] ---
+  // --- Accumulation of impacts [docs/theory.md §3.4-§3.6] ---
   /// Zeno: the largest ratio of successive approach speeds of one contact for which its impacts
   /// are an accumulation (1). eps_N for a single contact; 0.9 leaves eps_N = 1 (no
   /// accumulation) alone.
@@ -148,7 +153,7 @@ struct EventPolicy {
   /// its first impact.
   bool bounce_at_once = true;
 
-  // --- Projection and the active set [docs/theory.md §3, smooth phases] ---
+  // --- Projection and the active set [docs/theory.md §3.10, §3.13] ---
   /// Gauss-Newton passes of the position projection (1): the gap is linear in the translations,
   /// so two reach rounding from any gap a step leaves.
   int position_passes = 2;

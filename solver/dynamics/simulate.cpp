@@ -931,7 +931,7 @@ double Integrator::GapRoot(int c, double t0, double t1, double g0, double gN0, d
     // A minimum at the step's start (within the bracket tolerance) is the state the decision
     // there has just opened: its gap, taken from the dense output instead of the state, may sit
     // below zero by rounding, and an impact there would repeat that decision at the same instant.
-    if (gm >= 0.0 || bottom.x - t0 <= 2.0 * x_tol) {
+    if (gm >= 0.0 || bottom.x - t0 <= policy_.start_minimum_band * x_tol) {
       return kInf;
     }
     b = bottom.x;
