@@ -340,6 +340,16 @@ std::string DryRunReport(const SweepSpec& spec, const CellEvaluator& evaluator, 
   }
   out += RecordLines(spec, evaluator);
   out += ScaleFactorReport(spec, evaluator, full_scale_table);
+  if (spec.ida.enabled) {
+    const spectra::IdaSpec& ida = spec.ida;
+    const std::string unit = spectra::IntensityUnit(spec.im);
+    out += fmt::format(
+        "ida: each cell scales its record by hunt-and-fill: hunt from {:g} {} by steps of {:g} "
+        "{} growing by {:g} {} up to {:g} {}, bisect to {:g} {}, fill gaps; at most {} runs per "
+        "cell (a timed cell below is its whole search)\n",
+        ida.start, unit, ida.step, unit, ida.step_increase, unit, ida.max_im, unit, ida.tolerance,
+        unit, ida.max_runs);
+  }
   const std::vector<ResponseInfo> responses = evaluator.Responses();
   std::string names;
   for (const ResponseInfo& r : responses) names += (names.empty() ? "" : ", ") + r.name;

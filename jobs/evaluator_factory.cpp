@@ -1,5 +1,6 @@
 #include "jobs/evaluator_factory.h"
 
+#include "spectra/ida.h"
 #include "spectra/limit_states.h"
 #include "spectra/model_file_evaluator.h"
 #include "spectra/multispan_evaluator.h"
@@ -20,7 +21,9 @@ std::unique_ptr<CellEvaluator> FamilyEvaluator(const SweepSpec& spec) {
 std::unique_ptr<CellEvaluator> MakeEvaluator(const SweepSpec& spec) {
   std::unique_ptr<CellEvaluator> family = FamilyEvaluator(spec);
   if (spec.limit_states.empty()) return family;
-  return std::make_unique<spectra::LimitStateEvaluator>(std::move(family), spec);
+  auto limit_states = std::make_unique<spectra::LimitStateEvaluator>(std::move(family), spec);
+  if (!spec.ida.enabled) return limit_states;
+  return std::make_unique<spectra::IdaEvaluator>(std::move(limit_states), spec);
 }
 
 }  // namespace skewbridge::jobs

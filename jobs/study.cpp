@@ -3,6 +3,7 @@
 #include <optional>
 #include <string_view>
 
+#include "spectra/ida.h"
 #include "spectra/limit_states.h"
 
 namespace skewbridge::jobs {
@@ -103,6 +104,49 @@ std::vector<FragilityStudy> MakeFragility(const SweepSpec& spec, const CubeLayou
 
 }  // namespace
 
+// The lognormal fit of each limit state's capacities over the records, per combination of the
+// other axes (cells done with status ok only).
+std::vector<IdaFragilityStudy> MakeIdaFragility(const SweepSpec& spec, const CubeLayout& layout,
+                                                const CubeData& data) {
+  std::vector<IdaFragilityStudy> out;
+  if (!spec.ida.enabled) return out;
+  std::vector<std::size_t> combo_axes;
+  IdaFragilityStudy base;
+  base.im_units = spectra::IntensityUnit(spec.im);
+  for (std::size_t k = 0; k < spec.axes.size(); ++k) {
+    if (spec.axes[k].key == "record") continue;
+    combo_axes.push_back(k);
+    base.axis_order.push_back(spec.axes[k].key);
+    base.shape.push_back(spec.axes[k].Size());
+  }
+  std::size_t combos = 1;
+  for (std::size_t n : base.shape) combos *= n;
+  for (const spectra::LimitState& ls : spec.limit_states) {
+    const std::optional<std::size_t> col = ResponseColumn(layout, "ida_capacity_" + ls.name);
+    if (!col) continue;
+    std::vector<std::vector<double>> capacities(combos);
+    for (std::uint64_t c = 0; c < data.Cells(); ++c) {
+      if (data.done[c] == 0 || data.status[c] != kStatusOk) continue;
+      const std::vector<std::size_t> index = spec.AxisIndex(c);
+      std::size_t combo = 0;
+      for (std::size_t k : combo_axes) combo = combo * spec.axes[k].Size() + index[k];
+      capacities[combo].push_back(data.responses[*col][c]);
+    }
+    IdaFragilityStudy f = base;
+    f.ls = ls;
+    for (const std::vector<double>& cap : capacities) {
+      const spectra::CapacityFit fit = spectra::FitCapacities(cap);
+      f.theta.push_back(fit.theta);
+      f.beta.push_back(fit.beta);
+      f.n.push_back(fit.n);
+      f.censored.push_back(fit.censored);
+      f.reason.push_back(fit.reason);
+    }
+    out.push_back(std::move(f));
+  }
+  return out;
+}
+
 StudyTables MakeStudyTables(const SweepSpec& spec, const CubeLayout& layout, const CubeData& data,
                             const std::vector<SweepRecord>* records) {
   StudyTables tables;
@@ -131,6 +175,7 @@ StudyTables MakeStudyTables(const SweepSpec& spec, const CubeLayout& layout, con
   }
 
   tables.fragility = MakeFragility(spec, layout, data);
+  tables.ida_fragility = MakeIdaFragility(spec, layout, data);
 
   // A model-file sweep names its responses per deck: with one deck, its rotation is the one.
   std::optional<std::size_t> theta_col = ResponseColumn(layout, "theta_m");

@@ -35,15 +35,29 @@ struct FragilityStudy {
   spectra::FragilityTable table;
 };
 
+/// The fragility of one limit state from the capacities of an IDA sweep ([ida]): per
+/// combination of the axes other than `record`, the lognormal fit of the records' capacity
+/// intensities (spectra::FitCapacities; docs/hdf5-layout.md, fragility/).
+struct IdaFragilityStudy {
+  spectra::LimitState ls;                 ///< the limit state as declared
+  std::string im_units;                   ///< "g", or "m/s" for PGV
+  std::vector<std::string> axis_order;    ///< the combination axes, in cube order
+  std::vector<std::size_t> shape;         ///< their sizes ({} for one combination)
+  std::vector<double> theta, beta;        ///< per combination: median capacity, dispersion
+  std::vector<std::int64_t> n, censored;  ///< capacities used, capacities beyond max_im
+  std::vector<std::string> reason;        ///< "" or why theta and beta are NaN
+};
+
 /// What the final cube stores besides the cells for a record-driven or banded sweep.
 struct StudyTables {
   std::vector<double> band_edges;    ///< set when the layout holds the response "band"
   std::string records_source;        ///< "set" or "synthetic"; "" without records
   std::string records_set;           ///< the manifest as written, or "synthetic count=N seed=S"
   std::vector<SweepRecord> records;  ///< LoadSweepRecords(spec)
-  std::optional<CorrelationTable> correlation;  ///< with a record axis and a Pi_delta axis
-  std::vector<FragilityStudy> fragility;        ///< one per limit state, with an IM
-  spectra::IntensityMeasureSpec im;             ///< [records] scale_to / im of the spec
+  std::optional<CorrelationTable> correlation;   ///< with a record axis and a Pi_delta axis
+  std::vector<FragilityStudy> fragility;         ///< one per limit state, with an IM
+  std::vector<IdaFragilityStudy> ida_fragility;  ///< one per limit state of an IDA sweep
+  spectra::IntensityMeasureSpec im;              ///< [records] scale_to / im of the spec
   /// Cells done with scaled_too_far = 1 (the response), -1 when the layout has no such response.
   std::int64_t scaled_too_far = -1;
 };

@@ -141,12 +141,12 @@ class Parser {
     for (auto&& [key, node] : root) {
       const std::string k(key.str());
       if (k != "sweep" && k != "axes" && k != "fixed" && k != "records" && k != "study" &&
-          k != "limit_states") {
-        throw Error(
-            key.source(), k,
-            "unknown table; allowed: [sweep], [axes], [fixed], [records], [study], "
-            "[limit_states]" +
-                DidYouMean(k, {"sweep", "axes", "fixed", "records", "study", "limit_states"}));
+          k != "limit_states" && k != "ida") {
+        throw Error(key.source(), k,
+                    "unknown table; allowed: [sweep], [axes], [fixed], [records], [study], "
+                    "[limit_states], [ida]" +
+                        DidYouMean(k, {"sweep", "axes", "fixed", "records", "study", "limit_states",
+                                       "ida"}));
       }
       if (!node.is_table()) {
         throw Error(node.source(), k, "must be a table [" + k + "]");
@@ -165,6 +165,9 @@ class Parser {
     }
     if (const toml::table* limits = root["limit_states"].as_table()) {
       ParseLimitStates(*limits, spec);
+    }
+    if (const toml::table* ida = root["ida"].as_table()) {
+      ParseIda(*ida, spec);
     }
     if (const toml::table* axes = root["axes"].as_table()) {
       for (auto&& [key, node] : *axes) {
@@ -530,6 +533,50 @@ class Parser {
     return Threshold(*table->get(key), field + "." + std::string(key), key.substr(6));
   }
 
+  // [ida] (docs/sweep-format.md): the hunt-and-fill search's intensities, in the unit of the
+  // scale_to measure, and its run budget.
+  void ParseIda(const toml::table& table, SweepSpec& spec) const {
+    spectra::IdaSpec& ida = spec.ida;
+    ida.enabled = true;
+    const std::string allowed = "start, step, step_increase, tolerance, max_im, max_runs";
+    for (auto&& [key, node] : table) {
+      const std::string k(key.str());
+      const std::string field = "ida." + k;
+      double* target = k == "start"           ? &ida.start
+                       : k == "step"          ? &ida.step
+                       : k == "step_increase" ? &ida.step_increase
+                       : k == "tolerance"     ? &ida.tolerance
+                       : k == "max_im"        ? &ida.max_im
+                                              : nullptr;
+      if (k == "max_runs") {
+        const std::optional<std::int64_t> n = node.value<std::int64_t>();
+        if (!node.is_integer() || !n || *n < 2 || *n > 200) {
+          throw Error(node.source(), field, "must be a whole number of runs from 2 to 200");
+        }
+        ida.max_runs = static_cast<int>(*n);
+        continue;
+      }
+      if (target == nullptr) {
+        throw Error(key.source(), field,
+                    "unknown key; allowed: " + allowed +
+                        DidYouMean(k, {"start", "step", "step_increase", "tolerance", "max_im",
+                                       "max_runs"}));
+      }
+      const std::optional<double> v = node.value<double>();
+      const bool zero_ok = k == "step_increase";
+      if (!(node.is_number()) || !v || !std::isfinite(*v) || *v < 0.0 || (!zero_ok && *v == 0.0)) {
+        throw Error(node.source(), field,
+                    zero_ok ? "must be a number >= 0 (g, or m/s for PGV)"
+                            : "must be a number > 0 (g, or m/s for PGV)");
+      }
+      *target = *v;
+    }
+    if (!(ida.max_im > ida.start)) {
+      throw Error(table.source(), "ida.max_im",
+                  fmt::format("must exceed ida.start ({} <= {})", ida.max_im, ida.start));
+    }
+  }
+
   // [limit_states] (docs/sweep-format.md): kept in canonical order, the responses by name.
   void ParseLimitStates(const toml::table& limits, SweepSpec& spec) const {
     using spectra::LimitState;
@@ -844,6 +891,21 @@ class Parser {
     auto given = [&spec](std::string_view key) {
       return spec.FindAxis(key) != nullptr || spec.FindFixed(key) != nullptr;
     };
+    if (spec.ida.enabled && !(spec.im.scale && !spec.im.measure.empty())) {
+      throw InputError::AtField(source_, "ida",
+                                "needs [records] scale_to = {measure = \"Sa\", period = \"T1\", "
+                                "xi = 0.05} (or another measure): the intensity it scales to");
+    }
+    if (spec.ida.enabled && !spec.responses.empty()) {
+      throw InputError::AtField(source_, "sweep.responses",
+                                "not with [ida]: an IDA cell stores its search (the runs and the "
+                                "capacities), not the responses of one run");
+    }
+    if (spec.ida.enabled && spec.limit_states.empty()) {
+      throw InputError::AtField(source_, "ida",
+                                "needs [limit_states]: the search scales each record until they "
+                                "are exceeded");
+    }
     for (const Axis& axis : spec.axes) {
       if (spec.FindFixed(axis.key) != nullptr) {
         throw InputError::AtField(source_, "fixed." + axis.key, "is also an axis");
@@ -919,7 +981,17 @@ class Parser {
                                 "not the axis of " + im.measure + ": give " + axis + " (" +
                                     (axis == "im_g" ? "g" : "m/s") + ")");
     }
-    if (im.scale) {
+    if (im.scale && spec.ida.enabled) {
+      // The hunt-and-fill search chooses each cell's intensities: no stripes to give.
+      for (std::string_view key : {std::string_view(axis), std::string_view("scale")}) {
+        if (given(key)) {
+          throw InputError::AtField(source_, key,
+                                    "not with [ida]: the hunt-and-fill search chooses each "
+                                    "record's intensities (remove it, or remove [ida] for "
+                                    "stripes)");
+        }
+      }
+    } else if (im.scale) {
       if (!given(axis)) {
         throw InputError::AtField(source_, "axes." + axis,
                                   "missing: records.scale_to needs an intensity axis " + axis +
@@ -1045,6 +1117,11 @@ std::string SweepSpec::CanonicalText() const {
     out << "}\n";
   }
   if (im.max_scale > 0.0) out << "records.max_scale = " << Fmt(im.max_scale) << "\n";
+  if (ida.enabled) {
+    out << "ida = {start = " << Fmt(ida.start) << ", step = " << Fmt(ida.step)
+        << ", step_increase = " << Fmt(ida.step_increase) << ", tolerance = " << Fmt(ida.tolerance)
+        << ", max_im = " << Fmt(ida.max_im) << ", max_runs = " << ida.max_runs << "}\n";
+  }
   if (!study_bands.empty()) {
     out << "study.bands = [";
     for (std::size_t i = 0; i < study_bands.size(); ++i) {

@@ -5,8 +5,10 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -80,6 +82,21 @@ class CellEvaluator {
   /// unless the sweep scales its records to an intensity axis.
   virtual std::optional<CellScaling> Scaling(std::span<const std::size_t> /*axis_index*/) const {
     return std::nullopt;
+  }
+
+  /// The record's own intensity measure in the cell ([records] scale_to: g, or m/s for PGV, at
+  /// the cell's T1), NaN when the evaluator scales no record to an intensity.
+  virtual double UnscaledIntensity(std::span<const std::size_t> /*axis_index*/) const {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+
+  /// Evaluates the cell with its record's accelerations multiplied by `factor` in place of the
+  /// cell's own factor (incremental dynamic analysis runs one cell at many factors); the
+  /// responses are those of Evaluate. @throws std::logic_error for an evaluator that scales no
+  /// record (UnscaledIntensity NaN).
+  virtual CellOutcome EvaluateScaled(std::span<const std::size_t> /*axis_index*/,
+                                     double /*factor*/) const {
+    throw std::logic_error("this sweep family does not scale records to an intensity");
   }
 
   /// Evaluates one cell; axis_index[k] indexes axis k of the CellGrid (its canonical order).

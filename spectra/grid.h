@@ -79,6 +79,20 @@ struct IntensityMeasureSpec {
   std::string AxisKey() const { return measure == "PGV" ? "im_mps" : "im_g"; }
 };
 
+/// Incremental dynamic analysis ([ida], docs/sweep-format.md): each cell scales its record up
+/// through a sequence of intensities chosen by the hunt-and-fill search [Vamvatsikos and Cornell
+/// 2002, EESD 31:491-514; 2004, Earthquake Spectra 20(2):523-553] until every limit state is
+/// exceeded, in the unit of the [records] scale_to measure (g, or m/s for PGV).
+struct IdaSpec {
+  bool enabled = false;         ///< [ida] given
+  double start = 0.1;           ///< first intensity of the hunt (g or m/s)
+  double step = 0.1;            ///< first step of the hunt (g or m/s)
+  double step_increase = 0.05;  ///< added to the step after each hunting run (g or m/s)
+  double tolerance = 0.02;      ///< bisect until each capacity is bracketed this tightly
+  double max_im = 5.0;          ///< the hunt stops here: beyond, a capacity is not reached
+  int max_runs = 16;            ///< runs per cell: hunt, bisection, then filling of gaps
+};
+
 /// The validated grid of a sweep. Axes are in the canonical order of the parameter table,
 /// whatever the order in the file, so equal grids give equal cube layouts.
 struct CellGrid {
@@ -108,6 +122,7 @@ struct CellGrid {
   std::vector<Axis> axes;
   std::vector<FixedValue> fixed;
   std::vector<LimitState> limit_states;  ///< [limit_states], in canonical order; may be empty
+  IdaSpec ida;                           ///< [ida]; ida.enabled false when not given
 
   /// The number of coordinates per axis, in axis order.
   std::vector<std::size_t> Shape() const;

@@ -208,7 +208,15 @@ std::vector<ResponseInfo> LimitStateEvaluator::Responses() const {
 }
 
 CellOutcome LimitStateEvaluator::Evaluate(std::span<const std::size_t> axis_index) const {
-  CellOutcome out = inner_->Evaluate(axis_index);
+  return WithLimitStates(inner_->Evaluate(axis_index));
+}
+
+CellOutcome LimitStateEvaluator::EvaluateScaled(std::span<const std::size_t> axis_index,
+                                                double factor) const {
+  return WithLimitStates(inner_->EvaluateScaled(axis_index, factor));
+}
+
+CellOutcome LimitStateEvaluator::WithLimitStates(CellOutcome out) const {
   const bool ok = out.status == kStatusOk;
   out.responses.resize(inner_responses_.size(), kNaN);
   for (const Plan& p : plans_) {

@@ -58,6 +58,10 @@ class LimitStateEvaluator final : public CellEvaluator {
     return inner_->Scaling(axis_index);
   }
   CellOutcome Evaluate(std::span<const std::size_t> axis_index) const override;
+  double UnscaledIntensity(std::span<const std::size_t> axis_index) const override {
+    return inner_->UnscaledIntensity(axis_index);
+  }
+  CellOutcome EvaluateScaled(std::span<const std::size_t> axis_index, double factor) const override;
 
  private:
   // The columns of the inner responses one limit state reads.
@@ -67,6 +71,8 @@ class LimitStateEvaluator final : public CellEvaluator {
     std::vector<std::size_t> margins;  ///< unseating with the sweep's seats: margin_m_d<i>
     std::vector<double> seats_m;       ///< unseating with given seats: per deck
   };
+  // The inner outcome with every limit state's demand and exceedance appended.
+  CellOutcome WithLimitStates(CellOutcome out) const;
   std::unique_ptr<CellEvaluator> inner_;
   std::vector<ResponseInfo> inner_responses_;
   std::vector<Plan> plans_;

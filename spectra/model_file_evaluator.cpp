@@ -228,7 +228,8 @@ ModelFileEvaluator::ModelFileEvaluator(const CellGrid& spec)
           per_t1 || t == 0 ? RecordIntensity(record, im, t1_values_s_[t]) : record_im_[r * n_t1];
     }
   }
-  if (!im.scale) return;
+  // With [ida] the search chooses each run's factor: no stripes.
+  if (!im.scale || spec.ida.enabled) return;
 
   // The scale factor of each cell: the stripe's value over the record's own measure.
   scale_of_cell_.resize(spec.CellCount());
@@ -273,8 +274,8 @@ std::optional<CellScaling> ModelFileEvaluator::Scaling(
   return s;
 }
 
-ModelFileCell ModelFileEvaluator::MakeCell(std::span<const std::size_t> index,
-                                           bool with_excitation) const {
+ModelFileCell ModelFileEvaluator::MakeCell(std::span<const std::size_t> index, bool with_excitation,
+                                           std::optional<double> factor) const {
   const std::string& src = spec_.source;
   const std::string model_source = spec_.model_path.string();
   const model::ExcitationSpec& ex = file_.excitation;
@@ -288,6 +289,7 @@ ModelFileCell ModelFileEvaluator::MakeCell(std::span<const std::size_t> index,
   }
   c.scale = NumberOf(spec_, index, "scale", 1.0);
   if (!scale_of_cell_.empty()) c.scale = scale_of_cell_[CellIndex(index)];
+  if (factor) c.scale = *factor;
 
   // The excitation and its scales a_g, w_g, L_e [docs/theory.md §5].
   const std::string label = LabelOf(spec_, index, "record");
@@ -516,9 +518,26 @@ std::vector<std::pair<std::int32_t, std::string>> ModelFileEvaluator::StatusName
   return SolverStatusNames();
 }
 
+double ModelFileEvaluator::UnscaledIntensity(std::span<const std::size_t> axis_index) const {
+  if (record_im_.empty()) return kNaN;
+  const std::size_t t = t1_of_cell_[CellIndex(axis_index)];
+  return record_im_[RecordIndex(axis_index) * t1_values_s_.size() + t];
+}
+
 CellOutcome ModelFileEvaluator::Evaluate(std::span<const std::size_t> axis_index) const {
+  return EvaluateAt(axis_index, std::nullopt);
+}
+
+CellOutcome ModelFileEvaluator::EvaluateScaled(std::span<const std::size_t> axis_index,
+                                               double factor) const {
+  if (record_im_.empty()) return CellEvaluator::EvaluateScaled(axis_index, factor);
+  return EvaluateAt(axis_index, factor);
+}
+
+CellOutcome ModelFileEvaluator::EvaluateAt(std::span<const std::size_t> axis_index,
+                                           std::optional<double> factor) const {
   const auto start = std::chrono::steady_clock::now();
-  const ModelFileCell c = MakeCell(axis_index, true);
+  const ModelFileCell c = MakeCell(axis_index, true, factor);
   const model::Model& model = *c.model;
   // As `skewbridge run`: run.method picks the integrator, the file's [run] its controls.
   const dynamics::RunResult run =

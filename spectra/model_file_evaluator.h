@@ -66,14 +66,19 @@ class ModelFileEvaluator final : public CellEvaluator {
   }
 
   /// The model, excitation and run control of a cell (the excitation is made only when
-  /// `with_excitation`, so that checking every cell does not copy records).
+  /// `with_excitation`, so that checking every cell does not copy records); `factor`, when
+  /// given, replaces the cell's factor on the accelerations.
   /// @throws InputError naming the spec file and the key, as the constructor.
-  ModelFileCell MakeCell(std::span<const std::size_t> axis_index, bool with_excitation) const;
+  ModelFileCell MakeCell(std::span<const std::size_t> axis_index, bool with_excitation,
+                         std::optional<double> factor = std::nullopt) const;
 
   /// The cells scaled beyond [records] max_scale, as one line for the sweep's summary.
   std::vector<std::string> Notes() const override;
   /// The cell's stripe, its record's own measure at the cell's T1 and the factor between them.
   std::optional<CellScaling> Scaling(std::span<const std::size_t> axis_index) const override;
+  /// The record's own measure at the cell's T1 ([records] scale_to or im), else NaN.
+  double UnscaledIntensity(std::span<const std::size_t> axis_index) const override;
+  CellOutcome EvaluateScaled(std::span<const std::size_t> axis_index, double factor) const override;
 
  private:
   CellGrid spec_;
@@ -96,6 +101,8 @@ class ModelFileEvaluator final : public CellEvaluator {
   std::vector<double> scale_of_cell_;      ///< per cell with scale_to: im / unscaled measure
   std::uint64_t scaled_too_far_ = 0;       ///< cells whose factor exceeds max_scale
   std::uint64_t CellIndex(std::span<const std::size_t> axis_index) const;
+  CellOutcome EvaluateAt(std::span<const std::size_t> axis_index,
+                         std::optional<double> factor) const;
   std::size_t RecordIndex(std::span<const std::size_t> axis_index) const;
 };
 

@@ -515,6 +515,7 @@ void WriteFragility(hid_t sweep_group, const std::vector<FragilityStudy>& studie
   std::vector<std::string> names;
   for (const FragilityStudy& f : studies) names.push_back(f.ls.name);
   SetAttr(g.get(), "limit_states", names);
+  SetAttr(g.get(), "method", std::string(first.table.stripe_axis.empty() ? "cloud" : "stripes"));
   SetAttr(g.get(), "im", first.im);
   SetAttr(g.get(), "im_units", first.im_units);
   SetAttr(g.get(), "im_description", first.im_description);
@@ -607,6 +608,56 @@ void WriteFragility(hid_t sweep_group, const std::vector<FragilityStudy>& studie
   }
 }
 
+void WriteIdaFragility(hid_t sweep_group, const std::vector<IdaFragilityStudy>& studies) {
+  Id g = CreateGroup(sweep_group, "fragility");
+  const IdaFragilityStudy& first = studies.front();
+  std::vector<std::string> names;
+  for (const IdaFragilityStudy& f : studies) names.push_back(f.ls.name);
+  SetAttr(g.get(), "limit_states", names);
+  SetAttr(g.get(), "method", std::string("ida"));
+  SetAttr(g.get(), "im", std::string("ida_capacity"));
+  SetAttr(g.get(), "im_units", first.im_units);
+  SetAttr(g.get(), "im_description",
+          std::string("each record's capacity: the lowest intensity of its hunt-and-fill "
+                      "search at which the limit state is exceeded [Vamvatsikos and Cornell "
+                      "2002, 2004]"));
+  SetAttr(g.get(), "axis_order", first.axis_order);
+  SetAttr(g.get(), "model",
+          std::string("P(exceeded | IM = x) = Phi(ln(x / theta) / beta), lognormal"));
+  SetAttr(g.get(), "fit",
+          std::string("theta = exp(mean of ln IM_c), beta = standard deviation of ln IM_c "
+                      "with n - 1, over the records' finite capacities; capacities beyond "
+                      "ida.max_im are counted in n_censored and left out [Baker 2015, "
+                      "Earthquake Spectra 31(1):579-599]"));
+  std::vector<Id> scales;
+  for (const std::string& key : first.axis_order) {
+    scales.push_back(OpenDataset(sweep_group, "axes/" + key));
+  }
+  for (const IdaFragilityStudy& f : studies) {
+    Id ls = CreateGroup(g.get(), f.ls.name);
+    SetAttr(ls.get(), "kind", spectra::LimitStateKindName(f.ls.kind));
+    SetAttr(ls.get(), "threshold", f.ls.threshold);
+    if (!f.ls.seat_m.empty()) SetDoublesAttr(ls.get(), "seat_m", f.ls.seat_m);
+    if (f.ls.kind == spectra::LimitStateKind::kResponse)
+      SetAttr(ls.get(), "response", f.ls.response);
+    std::vector<hsize_t> shape;
+    for (const std::size_t n : f.shape) shape.push_back(n);
+    if (shape.empty()) shape.push_back(1);
+    auto put = [&](const std::string& name, const auto& values, const std::string& units,
+                   const std::string& description) {
+      Id ds = WriteArray(ls.get(), name, shape, values, units, description);
+      for (std::size_t k = 0; k < scales.size(); ++k) {
+        AttachScale(ds.get(), scales[k].get(), static_cast<unsigned>(k), f.axis_order[k]);
+      }
+    };
+    put("theta", f.theta, f.im_units, "median capacity: exp(mean ln IM_c)");
+    put("beta", f.beta, "1", "dispersion: standard deviation of ln IM_c (n - 1)");
+    put("n_records", f.n, "1", "records with a finite capacity (cells done, status ok)");
+    put("n_censored", f.censored, "1", "records not reaching the limit state up to ida.max_im");
+    WriteStrings(ls.get(), "reason", f.reason);
+  }
+}
+
 void WriteStudyTables(const Datasets& d, const CubeLayout& layout, const StudyTables& study) {
   for (std::size_t r = 0; r < layout.responses.size(); ++r) {
     if (layout.responses[r].name == "band" && !study.band_edges.empty()) {
@@ -627,6 +678,7 @@ void WriteStudyTables(const Datasets& d, const CubeLayout& layout, const StudyTa
   }
   if (study.correlation) WriteCorrelation(d.group.get(), *study.correlation, study.band_edges);
   if (!study.fragility.empty()) WriteFragility(d.group.get(), study.fragility);
+  if (!study.ida_fragility.empty()) WriteIdaFragility(d.group.get(), study.ida_fragility);
 }
 
 Datasets OpenLayout(const std::string& path, const std::string& sweep, bool writable,

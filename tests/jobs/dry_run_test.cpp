@@ -134,7 +134,10 @@ SweepSpec StripeSpec(std::size_t records) {
   spec.im.scale = true;
   spec.im.max_scale = 0.5;
   Axis record{"record", ParameterKind::kLabel, {}, {}, "all"};
-  for (std::size_t r = 0; r < records; ++r) record.labels.push_back("r" + std::to_string(r));
+  for (std::size_t r = 0; r < records; ++r) {
+    record.labels.push_back(std::to_string(r));
+    record.labels.back().insert(0, 1, 'r');  // "r" + ... trips GCC 12 -Wrestrict
+  }
   spec.axes = {record, Axis{"im_g", ParameterKind::kNumber, {1.0, 2.0}, {}, "list"}};
   return spec;
 }

@@ -1,0 +1,136 @@
+#!/usr/bin/env bash
+# Incremental dynamic analysis ([ida]) through `skewbridge sweep`, end to end:
+#  1. two real records of tests/data/records x two stiffness factors, hunt-and-fill on 1 and
+#     2 ranks: the same cells; check_ida.py compares each record's joint-closing capacity
+#     with a brute-force stripe sweep of the same bridge at 0.005 g steps (the first impact
+#     is monotone in the scale factor: the motion is linear until it), and the cube's
+#     fragility (theta, beta) with numpy's over the capacities;
+#  2. a synthetic suite of 160 records on 2 ranks stopped by SIGTERM once cells are
+#     checkpointed, then --resume: the cube equals the uninterrupted one and the cells done
+#     before the signal are not recomputed;
+#  3. bad [ida] input: one line, status 2, no output.
+# usage: ida_test.sh SKEWBRIDGE MPIEXEC RECORDS_DIR CHECK_SCRIPT WORK_DIR
+set -euo pipefail
+exe=$1 mpiexec=$2 records=$3 check=$4 work=$5
+rm -rf "$work" && mkdir -p "$work" && cd "$work"
+fail() { echo "ida_test: FAIL: $*" >&2; exit 1; }
+
+cat > deck.toml <<'TOML'
+[deck]
+m = 500e3
+I_m = "uniform"
+L = 30.0
+W = 12.0
+skew_deg = 30.0
+[substructure]
+kind = "uncoupled"
+w0 = 10.0
+W0 = 12.0
+xi = 0.05
+[abutments]
+set = "both"
+gap_m = 0.02
+[excitation]
+kind = "pulse"
+shape = "cosine"
+a_g_g = 0.5
+T_g = 0.6
+[run]
+tail_s = 0.5
+TOML
+cat > set.toml <<TOML
+name = "two"
+[[record]]
+file = "$records/NIS090.AT2"
+[[record]]
+file = "$records/RSN763_LOMAP_GIL067.AT2"
+TOML
+cat > ida.toml <<'TOML'
+[sweep]
+name = "ida"
+family = "model-file"
+model = "deck.toml"
+[records]
+set = "set.toml"
+scale_to = { measure = "Sa", period = "T1", xi = 0.05 }
+[limit_states]
+joint_closing = true
+rotation = { above_rad = 0.002 }
+[ida]
+start = 0.1
+step = 0.2
+step_increase = 0.1
+tolerance = 0.01
+max_im = 6
+max_runs = 30
+[axes]
+record = "*"
+k_factor = [1, 4]
+TOML
+# The brute force: the same bridge and records at stripes 0.005 g apart.
+sed -e '/^\[ida\]/,/^max_runs/d' -e 's/^k_factor = \[1, 4\]/k_factor = [1, 4]\nim_g = {linspace = [0.15, 1.2, 211]}/' \
+    -e 's/name = "ida"/name = "brute"/' -e '/^rotation =/d' ida.toml > brute.toml
+"$exe" sweep ida.toml --out one.h5 --quiet 2> one.err || { cat one.err; fail "1 rank"; }
+"$mpiexec" -n 2 "$exe" sweep ida.toml --out two.h5 --quiet 2> two.err || { cat two.err; fail "2 ranks"; }
+"$mpiexec" -n 2 "$exe" sweep brute.toml --out brute.h5 --quiet 2> brute.err ||
+  { cat brute.err; fail "brute-force stripes"; }
+/usr/bin/python3 "$check" one.h5 two.h5 brute.h5
+
+echo "== SIGTERM and --resume"
+sed -e 's/^set = "set.toml"/synthetic = { count = 160, seed = 7 }/' -e 's/name = "ida"/name = "idakill"/' \
+    -e 's/^max_runs = 30/max_runs = 12/' ida.toml > kill.toml
+"$mpiexec" -n 2 "$exe" sweep kill.toml --out ref.h5 --quiet 2> ref.err || { cat ref.err; fail "reference"; }
+py() { /usr/bin/python3 -c "import h5py,numpy as np,sys; g=h5py.File(sys.argv[1],'r')['sweeps/idakill']; $2" "$1"; }
+"$mpiexec" -n 2 "$exe" sweep kill.toml --out cut.h5 --quiet --checkpoint-seconds 0.1 2> cut.err &
+pid=$!
+done_cells=0
+for _ in $(seq 1 400); do
+  sleep 0.05
+  if [ -f cut.h5.partial ]; then
+    done_cells=$(py cut.h5.partial "print(int(g['done'][()].sum()))" 2>/dev/null || echo 0)
+    [ "$done_cells" -ge 20 ] && break
+  fi
+done
+[ "$done_cells" -ge 20 ] || fail "no checkpointed cells to stop after"
+kill -TERM "$pid"
+set +e; wait "$pid"; status=$?; set -e
+[ "$status" != 0 ] || fail "the sweep finished before SIGTERM reached it (status 0)"
+[ -f cut.h5.partial ] && [ ! -e cut.h5 ] || fail "SIGTERM left no partial cube (or a final one)"
+before=$(py cut.h5.partial "print(int(g['done'][()].sum()))")
+"$mpiexec" -n 2 "$exe" sweep kill.toml --out cut.h5 --quiet --resume 2> resume.err ||
+  { cat resume.err; fail "--resume"; }
+/usr/bin/python3 - ref.h5 cut.h5 "$before" <<'PY'
+import sys
+import h5py
+import numpy as np
+ref, cut, before = h5py.File(sys.argv[1])["sweeps/idakill"], h5py.File(sys.argv[2])["sweeps/idakill"], int(sys.argv[3])
+for name in ref["responses"]:
+    assert np.array_equal(ref["responses"][name][()], cut["responses"][name][()], equal_nan=True), name
+for ls in ref["fragility"].attrs["limit_states"]:
+    for k in ("theta", "beta", "n_records", "n_censored"):
+        assert np.array_equal(ref["fragility"][ls][k][()], cut["fragility"][ls][k][()], equal_nan=True), (ls, k)
+runs = cut["stats/run"][()]
+assert np.all(cut["status"][()] == 0) and np.all(cut["done"][()] == 1)
+kept = int((runs == 1).sum())
+assert kept == before and int((runs == 2).sum()) == runs.size - before, (kept, before)
+print(f"resume: equal to the uninterrupted cube; {before} cells done before SIGTERM, {kept} of them from run 1")
+PY
+
+echo "== bad input"
+bad() {
+  local edit=$1 pattern=$2
+  sed "$edit" ida.toml > bad.toml
+  set +e; err=$("$exe" sweep bad.toml --out bad.h5 2>&1); status=$?; set -e
+  [ "$status" = 2 ] || fail "$edit: status $status ($err)"
+  [ "$(printf '%s\n' "$err" | wc -l)" = 1 ] || fail "$edit: not one line: $err"
+  printf '%s\n' "$err" | grep -q "$pattern" || fail "$edit: '$err' lacks '$pattern'"
+  [ ! -e bad.h5 ] && [ ! -e bad.h5.partial ] || fail "$edit: output left"
+}
+bad 's/^tolerance = 0.01/tolerence = 0.01/' "^skewbridge: error: bad.toml:15: ida.tolerence: unknown key; allowed: start, step, step_increase, tolerance, max_im, max_runs; did you mean .tolerance.?$"
+bad 's/^max_runs = 30/max_runs = 1/' "bad.toml:17: ida.max_runs: must be a whole number of runs from 2 to 200"
+bad 's/^step = 0.2/step = -0.2/' "ida.step: must be a number > 0 (g, or m/s for PGV)"
+bad 's/^max_im = 6/max_im = 0.05/' "ida.max_im: must exceed ida.start"
+bad 's/^k_factor = \[1, 4\]/k_factor = [1, 4]\nim_g = [0.5]/' "im_g: not with \[ida\]: the hunt-and-fill search chooses each record's intensities"
+bad '/^scale_to/d' "ida: needs \[records\] scale_to"
+bad '/^joint_closing/d; /^rotation/d' "ida: needs \[limit_states\]"
+echo "ida_test: ok"
