@@ -9,9 +9,11 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <string>
 
 #include "solver/common/error.h"
+#include "solver/dynamics/contact_modes.h"
 #include "solver/dynamics/root_finding.h"
 #include "solver/lcp/small_lp.h"
 
@@ -319,7 +321,7 @@ class Integrator {
 
   auto q() { return z_.head(n_); }
   auto u() { return z_.segment(n_, n_); }
-  bool AnyClosed() const { return closed_count_ > 0; }
+  bool AnyClosed() const { return modes_.any_closed(); }
   bool Failed() const { return result_.status != RunStatus::kOk; }
   void Fail(RunStatus status, const std::string& message) {
     result_.status = status;
@@ -408,11 +410,9 @@ class Integrator {
   Vec gap0_, gN0_, gap1_, gN1_;
   std::vector<double> cos_, sin_;  // per body, of theta at the last GapsAndRates
   Vec f0_, f1_, f_eval_;           // closed-contact event functions: step start, end, trial
-  std::vector<int> mode_;          // -1 open, else ClosedMode
-  int closed_count_ = 0;
+  ContactModes modes_;             // every contact's mode and the closed set
   std::vector<contact::ClosedContact> closed_list_;
   std::vector<int> index_set_, persistent_, forced_;
-  std::vector<int> closed_ids_;  // the contacts with mode_ >= 0, ascending
   // Set inside Runge-Kutta stages and event searches of a constrained phase: ActiveForces then
   // evaluates the kinematics of the closed contacts only (the open ones' gaps are read at the
   // step's ends).
@@ -441,8 +441,11 @@ class Integrator {
   long impact_sequence_ = 0;    // impact instants so far
   double period_min_s_ = kInf;  // shortest natural period (s)
   const std::vector<int> no_contacts_;  // the empty list of forced contacts (no copy per pass)
-  std::vector<int> tie_;    // per contact: -2 no tie, else the mode the contact problem chose
-  Eigen::MatrixXd kernel_;  // kernel of a singular active set (columns)
+  // Per contact: a mode decided by a tie band (docs/theory.md §3.7) holds the mode the contact
+  // problem chose, to fall back on; no tie: empty.
+  std::vector<std::optional<ContactMode>> tie_;
+  std::vector<ContactMode> previous_;  // the modes of the contact problem's candidates before it
+  Eigen::MatrixXd kernel_;             // kernel of a singular active set (columns)
   std::vector<int> normal_of_, tangent_of_;  // active-set layout for BalanceIndeterminateFriction
   Vec x_bal_, x_try_;                        // its solution and trial points
   lcp::SmallLp lp_;                          // the split along the kernel (three small LPs)
@@ -493,6 +496,7 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
       ws_(ws),
       n_(model.n_dof()),
       nc_(model.n_contacts()),
+      modes_(model.n_contacts()),
       sys_(2 * model.n_contacts(), policy.rank_threshold) {
   SB_DEMAND(&ws.model() == &model, "Simulate: workspace built for another model");
   const int naug = ws.flow_.augmented_size();
@@ -518,12 +522,11 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   gap0_ = gN0_ = gap1_ = gN1_ = Vec::Zero(nc_);
   f0_ = f1_ = f_eval_ = Vec::Zero(2 * nc_);
   lambda_N_ = lambda_T_ = Vec::Zero(nc_);
-  mode_.assign(static_cast<std::size_t>(nc_), -1);
   closed_list_.reserve(static_cast<std::size_t>(nc_));
   index_set_.reserve(static_cast<std::size_t>(nc_));
   persistent_.reserve(static_cast<std::size_t>(nc_));
   forced_.reserve(static_cast<std::size_t>(nc_));
-  closed_ids_.reserve(static_cast<std::size_t>(nc_));
+  previous_.reserve(static_cast<std::size_t>(nc_));
   cone_sign_.assign(static_cast<std::size_t>(nc_), 0);
   cos_.assign(static_cast<std::size_t>(model.n_bodies()), 1.0);
   sin_.assign(static_cast<std::size_t>(model.n_bodies()), 0.0);
@@ -531,7 +534,7 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   mh_ = Vec::Zero(n_);
   row_of_.assign(static_cast<std::size_t>(sys_.capacity()), nullptr);
   projection_rows_.assign(static_cast<std::size_t>(nc_), 0);
-  tie_.assign(static_cast<std::size_t>(nc_), -2);
+  tie_.assign(static_cast<std::size_t>(nc_), std::nullopt);
   bounce_t_.assign(static_cast<std::size_t>(nc_), -kInf);
   bounce_v_.assign(static_cast<std::size_t>(nc_), 0.0);
   bounce_seq_.assign(static_cast<std::size_t>(nc_), -1);
@@ -995,21 +998,10 @@ void Integrator::RecordSample(double t, const Eigen::Ref<const Vec>& qq,
   }
   for (int c = 0; c < nc_; ++c) {
     hist.gap_m.push_back(contact::Gap(model_, c, qq));
-    const int m = mode_[static_cast<std::size_t>(c)];
-    const bool closed = m >= 0;
+    const bool closed = modes_.closed(c);
     hist.lambda_N.push_back(closed ? lambda_N_[c] : 0.0);
     hist.lambda_T.push_back(closed ? lambda_T_[c] : 0.0);
-    ContactState state = ContactState::kOpen;
-    if (m == static_cast<int>(ClosedMode::kStick)) {
-      state = ContactState::kStick;
-    } else if (m == static_cast<int>(ClosedMode::kSlidePositive)) {
-      state = ContactState::kSlidePositive;
-    } else if (m == static_cast<int>(ClosedMode::kSlideNegative)) {
-      state = ContactState::kSlideNegative;
-    } else if (m == static_cast<int>(ClosedMode::kFrictionless)) {
-      state = ContactState::kSlidePositive;
-    }
-    hist.state.push_back(static_cast<int>(state));
+    hist.state.push_back(static_cast<int>(HistoryState(modes_[c])));
   }
 }
 
@@ -1017,7 +1009,7 @@ void Integrator::ActiveForces(double t, const Eigen::Ref<const Vec>& qq,
                               const Eigen::Ref<const Vec>& uu, Eigen::Ref<Vec> du) {
   model_.AppliedForces(qq, uu, GroundAcceleration(t), h_);
   if (closed_only_) {
-    contact::EvaluateContacts(model_, qq, uu, closed_ids_, ws_.kin_);
+    contact::EvaluateContacts(model_, qq, uu, modes_.closed_ids(), ws_.kin_);
   } else {
     contact::Evaluate(model_, qq, uu, ws_.kin_);
   }
@@ -1043,8 +1035,8 @@ void Integrator::ActiveForces(double t, const Eigen::Ref<const Vec>& qq,
   int m = 0;
   bool symmetric = true;  // no sliding contact: force directions = constraint rows
   for (int c = 0; c < nc_; ++c) {
-    const int mode = mode_[static_cast<std::size_t>(c)];
-    if (mode < 0) {
+    const ContactMode mode = modes_[c];
+    if (!IsClosed(mode)) {
       continue;
     }
     const double mu = model_.contact(c).friction;
@@ -1053,12 +1045,12 @@ void Integrator::ActiveForces(double t, const Eigen::Ref<const Vec>& qq,
     row_of_[static_cast<std::size_t>(m)] = w_n;
     sys_.b(m) = -(dot(w_n, mh) + kin.what_N[c]);
     double* col = cols_.col(m).data();
-    if (mode == static_cast<int>(ClosedMode::kSlidePositive)) {
+    if (mode == ContactMode::kSlidePositive) {
       symmetric = false;
       for (int i = 0; i < n; ++i) {
         col[i] = w_n[i] - mu * w_t[i];
       }
-    } else if (mode == static_cast<int>(ClosedMode::kSlideNegative)) {
+    } else if (mode == ContactMode::kSlideNegative) {
       symmetric = false;
       for (int i = 0; i < n; ++i) {
         col[i] = w_n[i] + mu * w_t[i];
@@ -1072,7 +1064,7 @@ void Integrator::ActiveForces(double t, const Eigen::Ref<const Vec>& qq,
   }
   const int k = m;
   for (int c = 0; c < nc_; ++c) {
-    if (mode_[static_cast<std::size_t>(c)] == static_cast<int>(ClosedMode::kStick)) {
+    if (modes_[c] == ContactMode::kStick) {
       const double* w_t = kin.W_T.col(c).data();
       row_of_[static_cast<std::size_t>(m)] = w_t;
       double* col = cols_.col(m).data();
@@ -1117,18 +1109,18 @@ void Integrator::ActiveForces(double t, const Eigen::Ref<const Vec>& qq,
   friction_power_ = 0.0;
   int j = 0, js = k;
   for (int c = 0; c < nc_; ++c) {
-    const int mode = mode_[static_cast<std::size_t>(c)];
-    if (mode < 0) {
+    const ContactMode mode = modes_[c];
+    if (!IsClosed(mode)) {
       lambda_N_[c] = lambda_T_[c] = 0.0;
       continue;
     }
     const double mu = model_.contact(c).friction;
     lambda_N_[c] = sys_.x(j);
-    if (mode == static_cast<int>(ClosedMode::kSlidePositive)) {
+    if (mode == ContactMode::kSlidePositive) {
       lambda_T_[c] = -mu * sys_.x(j);
-    } else if (mode == static_cast<int>(ClosedMode::kSlideNegative)) {
+    } else if (mode == ContactMode::kSlideNegative) {
       lambda_T_[c] = mu * sys_.x(j);
-    } else if (mode == static_cast<int>(ClosedMode::kStick)) {
+    } else if (mode == ContactMode::kStick) {
       lambda_T_[c] = sys_.x(js++);
     } else {
       lambda_T_[c] = 0.0;
@@ -1163,13 +1155,12 @@ void Integrator::BalanceIndeterminateFriction(int k, int m) {
   // Unknown j < k: lambda_N of the j-th closed contact; k + i: lambda_T of the i-th sticking one.
   int j = 0, i = k;
   for (int c = 0; c < nc_; ++c) {
-    const int mode = mode_[static_cast<std::size_t>(c)];
-    if (mode < 0) {
+    const ContactMode mode = modes_[c];
+    if (!IsClosed(mode)) {
       continue;
     }
     normal_of_[static_cast<std::size_t>(j)] = c;
-    tangent_of_[static_cast<std::size_t>(j)] =
-        mode == static_cast<int>(ClosedMode::kStick) ? i++ : -1;
+    tangent_of_[static_cast<std::size_t>(j)] = mode == ContactMode::kStick ? i++ : -1;
     ++j;
   }
   SB_DEMAND(i == m && j == k, "BalanceIndeterminateFriction: active set layout changed");
@@ -1304,14 +1295,14 @@ void Integrator::ClosedEventValues(Eigen::Ref<Vec> values) const {
   // gamma_T = 0 and a stick may start with its friction on the cone, and a function that is
   // negative by rounding there would fire the same event again at the same instant.
   for (int c = 0; c < nc_; ++c) {
-    const int mode = mode_[static_cast<std::size_t>(c)];
-    values[2 * c] = mode < 0 ? 1.0 : lambda_N_[c] + force_tol_;
+    const ContactMode mode = modes_[c];
+    values[2 * c] = !IsClosed(mode) ? 1.0 : lambda_N_[c] + force_tol_;
     double f = 1.0;
-    if (mode == static_cast<int>(ClosedMode::kSlidePositive)) {
+    if (mode == ContactMode::kSlidePositive) {
       f = ws_.kin_.gamma_T[c] + v_tol_;
-    } else if (mode == static_cast<int>(ClosedMode::kSlideNegative)) {
+    } else if (mode == ContactMode::kSlideNegative) {
       f = -ws_.kin_.gamma_T[c] + v_tol_;
-    } else if (mode == static_cast<int>(ClosedMode::kStick)) {
+    } else if (mode == ContactMode::kStick) {
       f = model_.contact(c).friction * lambda_N_[c] + force_tol_ - std::abs(lambda_T_[c]);
     }
     values[2 * c + 1] = f;
@@ -1367,7 +1358,7 @@ void Integrator::ConstrainedStep() {
   const double x_tol =
       policy_.event_time_tolerance * std::max(1.0, std::abs(t1)) + policy_.event_time_floor_s;
   for (int c = 0; c < nc_; ++c) {
-    if (mode_[static_cast<std::size_t>(c)] < 0) {
+    if (!modes_.closed(c)) {
       const bool suspect = gap1_[c] < 0.0 || (gN0_[c] < 0.0 && gN1_[c] > 0.0);
       if (suspect) {
         t_event = std::min(t_event, GapRoot(c, t_, t1, gap0_[c], gN0_[c], gap1_[c], gN1_[c], at));
@@ -1425,11 +1416,11 @@ void Integrator::Project() {
   // all.
   const Vec& inv_m = model_.inverse_mass_diagonal();
   for (int pass = 0; pass < policy_.position_passes; ++pass) {
-    contact::EvaluateContacts(model_, q(), u(), closed_ids_, ws_.kin_);
+    contact::EvaluateContacts(model_, q(), u(), modes_.closed_ids(), ws_.kin_);
     int m = 0;
     double largest_gap_m = 0.0;
     for (int c = 0; c < nc_; ++c) {
-      if (mode_[static_cast<std::size_t>(c)] >= 0) {
+      if (modes_.closed(c)) {
         rows_.col(m) = ws_.kin_.W_N.col(c);
         sys_.b(m) = -ws_.kin_.gap_m[c];
         largest_gap_m = std::max(largest_gap_m, std::abs(ws_.kin_.gap_m[c]));
@@ -1471,10 +1462,10 @@ void Integrator::Project() {
   for (int pass = 0; pass <= nc_; ++pass) {
     int m = 0;
     for (int c = 0; c < nc_; ++c) {
-      const int mode = mode_[static_cast<std::size_t>(c)];
-      if (mode >= 0 || projection_rows_[static_cast<std::size_t>(c)] != 0) {
+      const ContactMode mode = modes_[c];
+      if (IsClosed(mode) || projection_rows_[static_cast<std::size_t>(c)] != 0) {
         rows_.col(m++) = ws_.kin_.W_N.col(c);
-        if (mode == static_cast<int>(ClosedMode::kStick)) {
+        if (mode == ContactMode::kStick) {
           rows_.col(m++) = ws_.kin_.W_T.col(c);
         }
       }
@@ -1497,9 +1488,9 @@ void Integrator::Project() {
     bool changed = false;
     int row = 0;
     for (int c = 0; c < nc_; ++c) {
-      const int mode = mode_[static_cast<std::size_t>(c)];
-      const bool in_set = mode >= 0 || projection_rows_[static_cast<std::size_t>(c)] != 0;
-      if (in_set && mode < 0 && sys_.x(row) < 0.0) {
+      const ContactMode mode = modes_[c];
+      const bool in_set = IsClosed(mode) || projection_rows_[static_cast<std::size_t>(c)] != 0;
+      if (in_set && !IsClosed(mode) && sys_.x(row) < 0.0) {
         projection_rows_[static_cast<std::size_t>(c)] = 0;
         changed = true;
       } else if (policy_.open_contacts_in_projection && !in_set && ws_.kin_.gap_m[c] <= gap_tol_ &&
@@ -1508,7 +1499,7 @@ void Integrator::Project() {
         changed = true;
       }
       if (in_set) {
-        row += mode == static_cast<int>(ClosedMode::kStick) ? 2 : 1;
+        row += mode == ContactMode::kStick ? 2 : 1;
       }
     }
     if (!changed) {
@@ -1538,13 +1529,10 @@ void Integrator::ResolveContacts(const std::vector<int>& forced) {
   // instant. The event itself says which way: slip against the saturated friction force
   // [Pfeiffer and Glocker 1996, ch. 6], so such a contact enters the contact problem as sliding.
   std::fill(cone_sign_.begin(), cone_sign_.end(), 0);
-  if (policy_.cone_sign && std::any_of(mode_.begin(), mode_.end(), [](int mode) {
-        return mode == static_cast<int>(ClosedMode::kStick);
-      })) {
+  if (policy_.cone_sign && modes_.any_stick()) {
     ActiveForces(t_, q(), u(), du_);
     for (int c = 0; c < nc_; ++c) {
-      if (mode_[static_cast<std::size_t>(c)] == static_cast<int>(ClosedMode::kStick) &&
-          lambda_T_[c] != 0.0 &&
+      if (modes_[c] == ContactMode::kStick && lambda_T_[c] != 0.0 &&
           model_.contact(c).friction * lambda_N_[c] + force_tol_ - std::abs(lambda_T_[c]) <= 0.0) {
         cone_sign_[static_cast<std::size_t>(c)] = lambda_T_[c] > 0.0 ? -1 : 1;
       }
@@ -1561,11 +1549,7 @@ void Integrator::ResolveContacts(const std::vector<int>& forced) {
       // A contact that this instant's decision set sliding keeps its direction unless its slip
       // says otherwise (its slip velocity is still zero: the cone decides, not a new tie-break).
       for (int c = 0; c < nc_; ++c) {
-        const int mode = mode_[static_cast<std::size_t>(c)];
-        cone_sign_[static_cast<std::size_t>(c)] =
-            mode == static_cast<int>(ClosedMode::kSlidePositive)   ? 1
-            : mode == static_cast<int>(ClosedMode::kSlideNegative) ? -1
-                                                                   : 0;
+        cone_sign_[static_cast<std::size_t>(c)] = SlipSign(modes_[c]);
       }
     }
     if (!DecideContacts(pass == 0 ? forced : no_contacts_)) {
@@ -1672,8 +1656,7 @@ bool Integrator::Wedged() const {
 bool Integrator::OpenContactApproaching() {
   contact::Evaluate(model_, q(), u(), ws_.kin_);
   for (int c = 0; c < nc_; ++c) {
-    if (mode_[static_cast<std::size_t>(c)] < 0 && ws_.kin_.gap_m[c] <= gap_tol_ &&
-        ws_.kin_.gamma_N[c] < -v_tol_) {
+    if (!modes_.closed(c) && ws_.kin_.gap_m[c] <= gap_tol_ && ws_.kin_.gamma_N[c] < -v_tol_) {
       return true;
     }
   }
@@ -1688,7 +1671,7 @@ bool Integrator::DecideContacts(const std::vector<int>& forced) {
   persistent_.clear();
   bool impact = false, plastic = false, settling = false;
   for (int c = 0; c < nc_; ++c) {
-    const bool closed = mode_[static_cast<std::size_t>(c)] >= 0;
+    const bool closed = modes_.closed(c);
     const bool touching = kin.gap_m[c] <= gap_tol_ && kin.gamma_N[c] <= v_tol_;
     const bool listed = std::find(forced.begin(), forced.end(), c) != forced.end();
     if (!(closed || touching || listed)) {
@@ -1770,7 +1753,7 @@ bool Integrator::DecideContacts(const std::vector<int>& forced) {
   // rocking converges to both closed; the contact problem says whether the loads keep it so,
   // and the projection puts its lift to zero.
   const auto leaves = [&](int c) {
-    const bool rocking = settling && mode_[static_cast<std::size_t>(c)] >= 0;
+    const bool rocking = settling && modes_.closed(c);
     return kin.gamma_N[c] > std::max(v_tol_, v_acc_) && !rocking;
   };
   const bool all_leave = impact && std::all_of(index_set_.begin(), index_set_.end(), leaves);
@@ -1785,11 +1768,11 @@ bool Integrator::DecideContacts(const std::vector<int>& forced) {
         AccumulatesAtOnce(c, -ws_.impact_result_.gamma_N_A[static_cast<Eigen::Index>(j)]);
     if (leaves(c) && !accumulates) {
       left_t_[static_cast<std::size_t>(c)] = t_;
-      if (mode_[static_cast<std::size_t>(c)] >= 0) {
+      if (modes_.closed(c)) {
         ++result_.detachments;
         result_.events.push_back({t_, EventKind::kDetachment, c, 0.0, 0.0, 0.0, 0.0});
       }
-      mode_[static_cast<std::size_t>(c)] = -1;
+      modes_.Set(c, ContactMode::kOpen);
       continue;
     }
     const double mu = model_.contact(c).friction;
@@ -1803,15 +1786,10 @@ bool Integrator::DecideContacts(const std::vector<int>& forced) {
     }
     closed_list_.push_back({c, sign});
   }
-  std::vector<int>& previous = persistent_;  // reuse: previous modes of the candidates
-  previous.clear();
+  previous_.clear();
   for (const contact::ClosedContact& cc : closed_list_) {
-    previous.push_back(mode_[static_cast<std::size_t>(cc.contact)]);
-    mode_[static_cast<std::size_t>(cc.contact)] = -1;
-  }
-  closed_count_ = 0;
-  for (int c = 0; c < nc_; ++c) {
-    closed_count_ += mode_[static_cast<std::size_t>(c)] >= 0 ? 1 : 0;
+    previous_.push_back(modes_[cc.contact]);
+    modes_.Set(cc.contact, ContactMode::kOpen);
   }
   if (!closed_list_.empty()) {
     model_.AppliedForces(q(), u(), GroundAcceleration(t_), h_);
@@ -1830,18 +1808,9 @@ bool Integrator::DecideContacts(const std::vector<int>& forced) {
       const double kinetic_before = Kinetic();
       for (std::size_t j = 0; j < closed_list_.size(); ++j) {
         const int c = closed_list_[j].contact;
-        mode_[static_cast<std::size_t>(c)] = model_.contact(c).friction == 0.0
-                                                 ? static_cast<int>(ClosedMode::kFrictionless)
-                                                 : static_cast<int>(ClosedMode::kStick);
+        modes_.Set(c, model_.contact(c).friction == 0.0 ? ContactMode::kFrictionless
+                                                        : ContactMode::kStick);
         cone_sign_[static_cast<std::size_t>(c)] = 0;
-      }
-      closed_ids_.clear();
-      closed_count_ = 0;
-      for (int c = 0; c < nc_; ++c) {
-        if (mode_[static_cast<std::size_t>(c)] >= 0) {
-          closed_ids_.push_back(c);
-          ++closed_count_;
-        }
       }
       Project();
       ++result_.impacts;
@@ -1874,52 +1843,50 @@ bool Integrator::DecideContacts(const std::vector<int>& forced) {
       // back within the first step, below any resolvable gap or slip, and the same decision
       // repeats at the same instant. Each tie is checked below against the constrained phase's
       // own event function, and falls back to the contact problem's answer if that fires.
-      int fallback = -2;  // the mode the contact problem chose, for a tie; -2: no tie
+      std::optional<ContactMode> fallback;  // the mode the contact problem chose, for a tie
       if (policy_.tie_bands && outcome == contact::ContactOutcome::kDetaches &&
           cr.gammadot_N(jj) <= a_detach_) {
-        fallback = -1;
+        fallback = ContactMode::kOpen;
         outcome = cr.friction_outcome[j];
       }
       if (policy_.tie_bands &&
           (outcome == contact::ContactOutcome::kStartsSlipPositive ||
            outcome == contact::ContactOutcome::kStartsSlipNegative) &&
           std::abs(cr.gammadot_T(jj)) <= a_detach_) {
-        if (fallback == -2) {
+        if (!fallback) {
           fallback = outcome == contact::ContactOutcome::kStartsSlipPositive
-                         ? static_cast<int>(ClosedMode::kSlidePositive)
-                         : static_cast<int>(ClosedMode::kSlideNegative);
+                         ? ContactMode::kSlidePositive
+                         : ContactMode::kSlideNegative;
         }
         outcome = contact::ContactOutcome::kSticks;
       }
-      int mode = -1;
+      ContactMode mode = ContactMode::kOpen;
       switch (outcome) {
         case contact::ContactOutcome::kDetaches:
-          mode = -1;
+          mode = ContactMode::kOpen;
           break;
         case contact::ContactOutcome::kSticks:
-          mode = static_cast<int>(ClosedMode::kStick);
+          mode = ContactMode::kStick;
           break;
         case contact::ContactOutcome::kStartsSlipPositive:
-          mode = static_cast<int>(ClosedMode::kSlidePositive);
+          mode = ContactMode::kSlidePositive;
           break;
         case contact::ContactOutcome::kStartsSlipNegative:
-          mode = static_cast<int>(ClosedMode::kSlideNegative);
+          mode = ContactMode::kSlideNegative;
           break;
         case contact::ContactOutcome::kSlides:
         case contact::ContactOutcome::kStaysClosed:
-          mode = closed_list_[j].slip_sign > 0   ? static_cast<int>(ClosedMode::kSlidePositive)
-                 : closed_list_[j].slip_sign < 0 ? static_cast<int>(ClosedMode::kSlideNegative)
-                                                 : static_cast<int>(ClosedMode::kStick);
+          mode = SlideOrStick(closed_list_[j].slip_sign);
           break;
       }
-      if (frictionless && mode >= 0) {
-        mode = static_cast<int>(ClosedMode::kFrictionless);
-        if (fallback >= 0) {
-          fallback = -2;  // no slip tie without friction
+      if (frictionless && IsClosed(mode)) {
+        mode = ContactMode::kFrictionless;
+        if (fallback && IsClosed(*fallback)) {
+          fallback.reset();  // no slip tie without friction
         }
       }
-      mode_[static_cast<std::size_t>(c)] = mode;
-      tie_[static_cast<std::size_t>(c)] = mode >= 0 ? fallback : -2;
+      modes_.Set(c, mode);
+      tie_[static_cast<std::size_t>(c)] = IsClosed(mode) ? fallback : std::nullopt;
     }
     // The ties against the constrained phase's event functions at this instant: a tie whose
     // function is not positive takes the contact problem's answer (one at a time, since each
@@ -1927,27 +1894,23 @@ bool Integrator::DecideContacts(const std::vector<int>& forced) {
     for (int pass = 0; pass < nc_; ++pass) {
       bool any_tie = false;
       for (int c = 0; c < nc_; ++c) {
-        any_tie = any_tie || tie_[static_cast<std::size_t>(c)] != -2;
+        any_tie = any_tie || tie_[static_cast<std::size_t>(c)].has_value();
       }
       if (!any_tie) {
         break;
-      }
-      closed_count_ = 0;
-      for (int c = 0; c < nc_; ++c) {
-        closed_count_ += mode_[static_cast<std::size_t>(c)] >= 0 ? 1 : 0;
       }
       ActiveForces(t_, q(), u(), du_);
       ClosedEventValues(f_eval_);
       bool changed = false;
       for (int c = 0; c < nc_ && !changed; ++c) {
-        const int fallback = tie_[static_cast<std::size_t>(c)];
-        if (fallback == -2) {
+        std::optional<ContactMode>& fallback = tie_[static_cast<std::size_t>(c)];
+        if (!fallback) {
           continue;
         }
-        const bool detach_tie = fallback == -1;
+        const bool detach_tie = *fallback == ContactMode::kOpen;
         if (!(f_eval_[2 * c] > 0.0) || (!detach_tie && !(f_eval_[2 * c + 1] > 0.0))) {
-          mode_[static_cast<std::size_t>(c)] = fallback;
-          tie_[static_cast<std::size_t>(c)] = -2;
+          modes_.Set(c, *fallback);
+          fallback.reset();
           changed = true;
         }
       }
@@ -1955,32 +1918,20 @@ bool Integrator::DecideContacts(const std::vector<int>& forced) {
         break;
       }
     }
-    closed_count_ = 0;
     for (std::size_t j = 0; j < closed_list_.size(); ++j) {
       const int c = closed_list_[j].contact;
-      const int before = previous[j];
-      const int mode = mode_[static_cast<std::size_t>(c)];
-      if (mode < 0 && before >= 0) {
+      const ContactMode before = previous_[j];
+      const ContactMode mode = modes_[c];
+      if (!IsClosed(mode) && IsClosed(before)) {
         ++result_.detachments;
         result_.events.push_back({t_, EventKind::kDetachment, c, 0.0, 0.0, 0.0, 0.0});
-      } else if (mode == static_cast<int>(ClosedMode::kStick) && before >= 0 && before != mode) {
+      } else if (mode == ContactMode::kStick && IsClosed(before) && before != mode) {
         ++result_.stick_transitions;
         result_.events.push_back({t_, EventKind::kStick, c, 0.0, 0.0, 0.0, 0.0});
-      } else if (mode >= 0 && mode != static_cast<int>(ClosedMode::kStick) &&
-                 mode != static_cast<int>(ClosedMode::kFrictionless) && before >= 0 &&
-                 before != mode) {
+      } else if (IsSliding(mode) && IsClosed(before) && before != mode) {
         ++result_.slip_transitions;
         result_.events.push_back({t_, EventKind::kSlip, c, 0.0, 0.0, 0.0, 0.0});
       }
-    }
-    for (int c = 0; c < nc_; ++c) {
-      closed_count_ += mode_[static_cast<std::size_t>(c)] >= 0 ? 1 : 0;
-    }
-  }
-  closed_ids_.clear();
-  for (int c = 0; c < nc_; ++c) {
-    if (mode_[static_cast<std::size_t>(c)] >= 0) {
-      closed_ids_.push_back(c);
     }
   }
   if (AnyClosed()) {

@@ -46,9 +46,6 @@ struct InitialState {
   Eigen::VectorXd u;  ///< n_dof, empty = zero
 };
 
-/// Mode of a closed contact in a constrained phase.
-enum class ClosedMode { kStick, kSlidePositive, kSlideNegative, kFrictionless };
-
 /// Scratch memory and caches of one model: build once, reuse for every run of that model (a
 /// sweep does thousands). Results never depend on what ran before (the caches are pure
 /// functions of the model). Keeps a reference to the model.
