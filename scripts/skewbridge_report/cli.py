@@ -7,7 +7,7 @@ import sys
 
 import numpy as np
 
-from . import figures, fragility, generic, response_spectra
+from . import figures, fragility, generic, ida, response_spectra
 from . import plan as plan_view
 from .data import ReportError, load_cube, load_run
 
@@ -269,6 +269,17 @@ def fragility_sections(sweep, args, used, written):
     states (fragility/ of the cube)."""
     if "fragility" not in sweep.extra:
         return []
+    if ida.is_ida(sweep):
+        name = _unique(f"ida_curves_{sweep.name}", used)
+        path = ida.curves(sweep, args.out, name, args.pdf)
+        written.append(path)
+        md = [f"## {sweep.name}: IDA curves", "", f"![{name}]({os.path.basename(path)})", ""]
+        name = _unique(f"fragility_{sweep.name}", used)
+        path, rows = ida.fragility(sweep, args.out, name, args.pdf)
+        written.append(path)
+        return md + [f"## {sweep.name}: fragility from the IDA capacities", "",
+                     f"![{name}]({os.path.basename(path)})", "",
+                     _table(ida.table_header(sweep), rows), ""]
     name = _unique(f"fragility_{sweep.name}", used)
     path, rows = fragility.fragility_curves(sweep, args.out, name, args.pdf)
     written.append(path)

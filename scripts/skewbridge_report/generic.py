@@ -35,6 +35,8 @@ TABLE_ONLY = {"x_end", "y_end", "travel_end_m"}
 # Limit-state responses (ls_<name>, ls_<name>_demand): their demands repeat drawn responses and
 # their exceedances are the fragility figures' business; they stay in the tables.
 LIMIT_STATE_PREFIX = "ls_"
+# IDA responses (ida_<...>, per run and per limit state): drawn by the IDA figures (ida.py).
+IDA_PREFIX = "ida_"
 MARGINS = ("margin_m", "margin_norm")
 DECK = re.compile(r"^(.+)_d(\d+)$")
 
@@ -151,7 +153,8 @@ def drawn_quantities(sweep):
     bases = {q.base for q in qs}
     drawn, margins = [], []
     for q in qs:
-        if q.base in DESCRIPTORS or q.base in TABLE_ONLY or q.base.startswith(LIMIT_STATE_PREFIX):
+        if (q.base in DESCRIPTORS or q.base in TABLE_ONLY or q.base.startswith(LIMIT_STATE_PREFIX)
+                or q.base.startswith(IDA_PREFIX)):
             continue
         if NORMALISED_TWIN.get(q.base) in bases:
             continue

@@ -75,6 +75,22 @@ sed -e '/^\[ida\]/,/^max_runs/d' -e 's/^k_factor = \[1, 4\]/k_factor = [1, 4]\ni
 "$mpiexec" -n 2 "$exe" sweep brute.toml --out brute.h5 --quiet 2> brute.err ||
   { cat brute.err; fail "brute-force stripes"; }
 /usr/bin/python3 "$check" one.h5 two.h5 brute.h5
+# The report draws the IDA curves and the fragility from the capacities, with theta and beta
+# of the cube in its table.
+/usr/bin/python3 "$(dirname "$check")/../../scripts/report" two.h5 --out report > report.log 2>&1 ||
+  { cat report.log; fail "report"; }
+[ -s report/ida_curves_ida.png ] && [ -s report/fragility_ida.png ] || fail "report: no IDA figures"
+/usr/bin/python3 - two.h5 report/summary.md <<'PY' || fail "report's table of the IDA fits"
+import sys
+import h5py
+g = h5py.File(sys.argv[1])["sweeps/ida/fragility"]
+text = open(sys.argv[2]).read()
+for ls in g.attrs["limit_states"]:
+    for k, kf in enumerate((1, 4)):
+        theta, beta = g[ls]["theta"][k], g[ls]["beta"][k]
+        row = f"| {ls} | k_factor = {kf} | 2 | 0 | {theta:.3g} | {beta:.3g} |"
+        assert row in text, (row, text)
+PY
 
 echo "== SIGTERM and --resume"
 sed -e 's/^set = "set.toml"/synthetic = { count = 160, seed = 7 }/' -e 's/name = "ida"/name = "idakill"/' \

@@ -1,0 +1,160 @@
+"""The figures and table of an incremental dynamic analysis ([ida], docs/sweep-format.md): per
+limit state the IDA curves (each record's demand against the intensity of its runs, V&C's
+axes: demand across, intensity up) with its capacity marked, and the fragility from the
+capacities (their empirical distribution and the lognormal fit stored in fragility/)."""
+import math
+import re
+import textwrap
+
+import matplotlib.pyplot as plt
+import numpy as np
+from scipy.stats import norm
+
+from . import figures
+from .data import _text
+from .fragility import _attrs, _combos, _demand_text, _grid, _styles
+
+MAX_COMBOS = 4  # columns of IDA curves; the table lists every combination
+RUN = re.compile(r"^ida_im_(\d+)$")
+
+
+def is_ida(sweep):
+    """Whether the cube is an IDA sweep (its fragility/ group's method is "ida")."""
+    f = sweep.extra.get("fragility")
+    return bool(f) and _attrs(f).get("method") == "ida"
+
+
+def _runs(sweep):
+    return sorted(int(m.group(1)) for n in sweep.responses if (m := RUN.match(n)))
+
+
+def _select(sweep, array, order, idx):
+    """The cells of one combination of the axes `order` (index `idx`): [record, ...] flat."""
+    sel = [slice(None)] * len(sweep.axis_order)
+    for key, i in zip(order, idx):
+        sel[sweep.axis_order.index(key)] = i
+    return np.asarray(array, dtype=float)[tuple(sel)].ravel()
+
+
+def curves(sweep, out_dir, name, pdf):
+    """Rows: limit states; columns: up to MAX_COMBOS combinations of the other axes. Each record
+    is one line through its runs sorted by intensity, its capacity a cross; the threshold is a
+    dotted line where the limit state has one."""
+    f = sweep.extra["fragility"]
+    fa = _attrs(f)
+    names = [_text(n) for n in fa["limit_states"]]
+    order = [_text(k) for k in fa.get("axis_order", [])]
+    combos = _combos(sweep, order)[:MAX_COMBOS]
+    runs = _runs(sweep)
+    unit = fa.get("im_units", "g")
+    fig, axes = plt.subplots(len(names), len(combos), squeeze=False, layout="constrained",
+                             figsize=(3.6 * len(combos) + 1.5, 3.0 * len(names) + 1.0))
+    n_records = len(sweep.axes["record"]) if "record" in sweep.axes else 1
+    colors = [plt.get_cmap("tab20")(i % 20) for i in range(n_records)]
+    for r, ls in enumerate(names):
+        a = _attrs(f[ls])
+        for c, (flat, idx, label) in enumerate(combos):
+            ax = axes[r][c]
+            im = np.stack([_select(sweep, sweep.responses[f"ida_im_{k:02d}"], order, idx)
+                           for k in runs])
+            d = np.stack([_select(sweep, sweep.responses[f"ida_demand_{ls}_{k:02d}"], order, idx)
+                          for k in runs])
+            cap = _select(sweep, sweep.responses[f"ida_capacity_{ls}"], order, idx)
+            for j in range(im.shape[1]):
+                ok = np.isfinite(im[:, j]) & np.isfinite(d[:, j])
+                o = np.argsort(im[ok, j])
+                x, y = d[ok, j][o], im[ok, j][o]
+                ax.plot(np.r_[0.0, x], np.r_[0.0, y], "-", lw=0.9, color=colors[j], marker=".",
+                        ms=3)
+                if math.isfinite(cap[j]):
+                    at = np.flatnonzero(y == cap[j])
+                    if at.size:
+                        ax.plot(x[at[0]], y[at[0]], "x", color="k", ms=6, mew=1.4)
+            if a.get("kind") not in ("unseating", "joint_closing"):
+                ax.axvline(float(a.get("threshold", 0.0)), color="k", ls=":", lw=1.0)
+            elif a.get("kind") == "unseating":
+                ax.axvline(1.0, color="k", ls=":", lw=1.0)
+            if r == len(names) - 1:
+                units = sweep.response_attrs.get(f"ida_demand_{ls}_00", {}).get("units", "")
+                ax.set_xlabel(f"demand [{_text(units) or '1'}]")
+            if c == 0:
+                ax.set_ylabel(f"intensity [{unit}]")
+            ax.set_title(f"{_demand_text(ls, f[ls])}\n{label}", fontsize=9)
+            ax.set_ylim(bottom=0.0)
+            ax.set_xlim(left=0.0)
+    fig.text(0.005, 0.004, "\n".join(textwrap.wrap(
+        "IDA curves [Vamvatsikos and Cornell 2002]: each line is one record, through the runs "
+        "of its hunt-and-fill search sorted by intensity (from 0, 0); a cross marks its "
+        "capacity, the lowest intensity at which the limit state is exceeded; the dotted line "
+        "is the limit state's threshold (the seat for unseating: demand ratio 1).", 140)),
+        fontsize=8, va="bottom", color="0.2")
+    fig.get_layout_engine().set(rect=(0, 0.06, 1, 0.94))
+    return figures._save(fig, out_dir, name, pdf)
+
+
+def fragility(sweep, out_dir, name, pdf):
+    """One panel per limit state: the empirical distribution of the capacities (steps) per
+    combination and the stored lognormal fit Φ(ln(IM/θ)/β). Returns the table rows."""
+    f = sweep.extra["fragility"]
+    fa = _attrs(f)
+    names = [_text(n) for n in fa["limit_states"]]
+    order = [_text(k) for k in fa.get("axis_order", [])]
+    combos = _combos(sweep, order)
+    shown = combos[:8]
+    styles = _styles(len(shown))
+    rows_n, cols_n = _grid(len(names))
+    fig, axes = plt.subplots(rows_n, cols_n, figsize=(4.2 * cols_n + 2.2, 3.6 * rows_n + 1.2),
+                             squeeze=False, layout="constrained")
+    table = []
+    for k, ls in enumerate(names):
+        ax = axes[k // cols_n][k % cols_n]
+        g = f[ls]
+        caps_all = np.asarray(sweep.responses[f"ida_capacity_{ls}"], dtype=float)
+        finite = caps_all[np.isfinite(caps_all) & (caps_all > 0)]
+        lo, hi = (finite.min(), finite.max()) if finite.size else (0.05, 5.0)
+        x = np.geomspace(lo / 2, hi * 2, 200)
+        for (flat, idx, label), (color, marker, ls_style) in zip(shown, styles):
+            cap = np.sort(_select(sweep, caps_all, order, idx))
+            n = np.count_nonzero(~np.isnan(cap))
+            fin = cap[np.isfinite(cap)]
+            if fin.size:
+                # Empirical: the share of records whose capacity is at most x (censored ones
+                # count in n, never reached).
+                ax.step(np.r_[x[0], fin], np.r_[0.0, np.arange(1, fin.size + 1) / n],
+                        where="post", color=color, lw=0.9)
+                ax.plot(fin, np.arange(1, fin.size + 1) / n, ls="none", color=color,
+                        marker=marker, mfc="none", ms=5, label=label)
+            theta = float(np.asarray(g["theta"]).ravel()[flat])
+            beta = float(np.asarray(g["beta"]).ravel()[flat])
+            if math.isfinite(theta) and math.isfinite(beta) and beta > 0:
+                ax.plot(x, norm.cdf(np.log(x / theta) / beta), color=color, ls=ls_style)
+        for flat, idx, label in combos:
+            theta = float(np.asarray(g["theta"]).ravel()[flat])
+            beta = float(np.asarray(g["beta"]).ravel()[flat])
+            table.append((ls, label, int(np.asarray(g["n_records"]).ravel()[flat]),
+                          int(np.asarray(g["n_censored"]).ravel()[flat]),
+                          f"{theta:.3g}" if math.isfinite(theta) else "–",
+                          f"{beta:.3g}" if math.isfinite(beta) else "–",
+                          _text(np.asarray(g["reason"]).ravel()[flat])))
+        figures.log_axis(ax, "x")
+        ax.set_ylim(-0.05, 1.05)
+        ax.set_xlabel(f"intensity [{fa.get('im_units', 'g')}]")
+        ax.set_ylabel("P(capacity ≤ IM)")
+        ax.set_title(_demand_text(ls, g), fontsize=10)
+    for k in range(len(names), rows_n * cols_n):
+        axes[k // cols_n][k % cols_n].set_visible(False)
+    figures.curve_key_legend(fig, axes, None, [], *axes[0][0].get_legend_handles_labels())
+    fig.text(0.005, 0.004, "\n".join(textwrap.wrap(
+        "Steps: the share of the records whose IDA capacity is at or below the intensity "
+        "(records that never reached the limit state count, never exceeded). Lines: the "
+        "lognormal fit Φ(ln(IM/θ)/β) with θ the geometric mean of the finite capacities and "
+        "β the standard deviation of their logarithms (Baker 2015).", 150)), fontsize=8,
+        va="bottom", color="0.2")
+    fig.get_layout_engine().set(rect=(0, 0.07, 1, 0.93))
+    return figures._save(fig, out_dir, name, pdf), table
+
+
+def table_header(sweep):
+    unit = _attrs(sweep.extra["fragility"]).get("im_units", "g")
+    return ["limit state", "combination", "records with a capacity", "beyond max_im",
+            f"θ [{unit}]", "β", "note"]
