@@ -16,6 +16,7 @@
 #include "solver/dynamics/active_system.h"
 #include "solver/dynamics/contact_modes.h"
 #include "solver/dynamics/root_finding.h"
+#include "solver/dynamics/run_scales.h"
 #include "solver/lcp/small_lp.h"
 
 namespace skewbridge::dynamics {
@@ -305,9 +306,6 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   bounce_v_.assign(static_cast<std::size_t>(nc_), 0.0);
   bounce_seq_.assign(static_cast<std::size_t>(nc_), -1);
   left_t_.assign(static_cast<std::size_t>(nc_), -kInf);
-  if (ws.omega_max_radps_ > 0.0) {
-    period_min_s_ = 2.0 * std::numbers::pi / ws.omega_max_radps_;
-  }
   kernel_ = Eigen::MatrixXd::Zero(sys_.capacity(), sys_.capacity());
   lp_G_ = Eigen::MatrixXd::Zero(3 * nc_ + 2, sys_.capacity() + 1);
   lp_h_ = Vec::Zero(3 * nc_ + 2);
@@ -318,56 +316,21 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   u_proj_ = u_proj_in_ = Vec::Zero(n_);
 
   t_end_ = control.EndTime(excitation.Duration());
-  // The excitation's peak from its pieces (kinks and harmonic amplitudes) sets the scales.
-  double a_peak = 0.0;
-  for (double t = 0.0; t < excitation.Duration();) {
-    const ExcitationPiece piece = excitation.PieceAt(t);
-    a_peak = std::max(
-        {a_peak, piece.a_begin.norm(),
-         (piece.a_begin + piece.slope * std::min(piece.t_end - t, policy_.ramp_horizon_s)).norm(),
-         piece.a_begin.norm() + piece.cos_amplitude.norm() + piece.sin_amplitude.norm()});
-    if (!(piece.t_end > t)) {
-      break;
-    }
-    t = piece.t_end;
-  }
-  const double omega_ref =
-      ws.omega_min_radps_ > 0.0 ? ws.omega_min_radps_ : policy_.free_body_omega_radps;
-  double v_ref = a_peak / omega_ref;
-  v_ref = std::max(v_ref, z_.segment(n_, n_).cwiseAbs().maxCoeff());
-  if (v_ref == 0.0) {
-    v_ref = 1.0;
-  }
-  v_acc_ = control.accumulation_threshold * v_ref;
-  v_tol_ = policy_.velocity_tolerance * v_ref;
-  // A closed contact that carries no load (two identical decks at a closed joint under uniform
-  // excitation) has lambda_N = 0 up to the rounding of the active-set solve, of either sign.
-  // Zero force with zero relative acceleration keeps the contact closed (the contact LCP's
-  // complementarity allows it); a detachment needs lambda_N clearly negative, that is a
-  // separating acceleration of the order of EventPolicy::force_tolerance a_ref, well above the
-  // contact problem's tie tolerance (solver/contact/contact_problem.cpp), so that the contact
-  // problem at the event confirms it.
-  double m_max = 0.0;
-  for (int i = 0; i < n_; ++i) {
-    if (i % 3 != 2) {
-      m_max = std::max(m_max, model.mass_diagonal()[i]);
-    }
-  }
-  force_tol_ = policy_.force_tolerance * m_max * v_ref * omega_ref;
-  a_detach_ = policy_.force_tolerance * v_ref * omega_ref;
-  // Gap tolerance from the response's own length scale, so that it scales with the excitation.
-  // It never falls below the rounding of a gap computed from world coordinates (a few ulps of
-  // the deck's size): at a tiny excitation a scaled tolerance under that floor would split a
-  // full-edge impact, exactly simultaneous in the model, into two impacts by rounding noise
-  // alone, and break the self-similarity of [docs/theory.md §4 fact 4].
-  gap_tol_ = std::max(
-      policy_.gap_tolerance * std::min(v_ref / omega_ref, ws.length_scale_m_),
-      policy_.gap_rounding_ulps * std::numeric_limits<double>::epsilon() * ws.length_scale_m_);
-  const double omega_top = std::max(ws.omega_max_radps_, policy_.omega_floor_radps);
+  // The scales of the response, and the tolerances relative to them [docs/theory.md §3.2].
+  const RunScales scales = ComputeRunScales(
+      ExcitationPeak(excitation, policy_.ramp_horizon_s), z_.segment(n_, n_).cwiseAbs().maxCoeff(),
+      {ws.omega_min_radps_, ws.omega_max_radps_, ws.length_scale_m_, MaxTranslationalMass(model)},
+      control.accumulation_threshold, policy_);
+  v_acc_ = scales.v_acc_mps;
+  v_tol_ = scales.v_tol_mps;
+  force_tol_ = scales.force_tol_N;
+  a_detach_ = scales.a_detach_mps2;
+  gap_tol_ = scales.gap_tol_m;
+  period_min_s_ = scales.period_min_s;
+  const double omega_top = scales.omega_top_radps;
   atol_.head(n_).setConstant(control.absolute_tolerance);
   atol_.segment(n_, n_).setConstant(control.absolute_tolerance * omega_top);
-  h_rk_ =
-      2.0 * std::numbers::pi / omega_top / policy_.steps_per_period / policy_.first_rk_step_divisor;
+  h_rk_ = scales.first_rk_step_s;
 
   result_.max_abs_q = z_.head(n_).cwiseAbs();
   result_.time_of_max_s = Vec::Zero(n_);
