@@ -51,7 +51,7 @@ expect "sweep: --max-cells: '-5' is not allowed; must be > 0" sweep "$spec" --ou
 expect "sweep: --checkpoint-seconds: '0' is not allowed; must be > 0" \
   sweep "$spec" --out out.h5 --checkpoint-seconds 0
 expect "sweep: --max-cells: 'many' is not a number" sweep "$spec" --out out.h5 --max-cells many
-expect "sweep: unknown option --resmue; allowed: --help, -h, --out, -o, --resume, --force, --quiet, -q, --checkpoint-seconds, --checkpoint-cells, --max-cells, --dry-run, --ranks, --sample-cells; did you mean \`--resume\`?" \
+expect "sweep: unknown option --resmue; allowed: --help, -h, --out, -o, --resume, --force, --quiet, -q, --checkpoint-seconds, --checkpoint-cells, --max-cells, --dry-run, --ranks, --sample-cells, --scale-table; did you mean \`--resume\`?" \
   sweep "$spec" --out out.h5 --resmue
 expect "inspect: file is required (Cube FILE.h5 (or FILE.h5.partial))" inspect
 expect "records: a sub-command is required; allowed: info, spectrum, synth" records
