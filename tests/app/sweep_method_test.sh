@@ -4,12 +4,9 @@
 # event-driven cell's (the canonical subsystem point w0/w_g = 0.5, Pi_delta = 0.5, a = 30 deg,
 # eta0 = 2; the Moreau-Jean step is 1e-4 of the pulse period).
 # usage: sweep_method_test.sh SKEWBRIDGE MPIEXEC
-set -u
-exe=${1:?usage: sweep_method_test.sh SKEWBRIDGE MPIEXEC}
-mpiexec=${2:?}
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
+args exe mpiexec -- "$@"
+temp_dir
 
 cat >"$work/spec.toml" <<'TOML'
 [sweep]
@@ -24,7 +21,7 @@ a_deg = 30.0
 eta0 = 2.0
 delta_over_L = 0.002
 TOML
-"$mpiexec" -n 1 --oversubscribe "$exe" sweep "$work/spec.toml" --out "$work/cube.h5" --quiet \
+on_ranks 1 "$exe" sweep "$work/spec.toml" --out "$work/cube.h5" --quiet \
   >"$work/out" 2>&1 || fail "sweep: exit $? ($(cat "$work/out"))"
 /usr/bin/python3 - "$work/cube.h5" <<'PY' || fail "cube check"
 import sys, h5py

@@ -8,10 +8,9 @@
 # uninterrupted one. Resumes run on 1 and 2 ranks. A damaged final cube makes `inspect` fail
 # with one line naming the file, the dataset and the checksum.
 # usage: checkpoint_corruption_test.sh SWEEP_DRIVER MPIEXEC CORRUPT_PY SKEWBRIDGE WORK_DIR
-set -euo pipefail
-driver=$1 mpiexec=$2 corrupt=$3 exe=$4 work=$5
-rm -rf "$work" && mkdir -p "$work" && cd "$work"
-fail() { echo "checkpoint_corruption_test: FAIL: $*" >&2; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
+args driver mpiexec corrupt exe work -- "$@"
+fresh_dir "$work"
 cat > spec.toml <<'TOML'
 [sweep]
 name = "bytes"
@@ -26,7 +25,7 @@ TOML
 run() {  # run RANKS ARGS...: 1 rank without mpiexec (whose banner would follow any failure)
   local n=$1; shift
   if [ "$n" -eq 1 ]; then "$driver" spec.toml --quiet "$@"
-  else "$mpiexec" -n "$n" --oversubscribe "$driver" spec.toml --quiet "$@"; fi
+  else on_ranks "$n" "$driver" spec.toml --quiet "$@"; fi
 }
 # The program's own lines on stderr (mpiexec adds its banner after a non-zero exit).
 own_lines() { grep -c "^[a-z_]*: error: " err.txt || true; }

@@ -6,13 +6,13 @@
 # kept; once there is room, --resume writes the cube identical to one written with room.
 # 1 and 2 ranks.
 # usage: full_disk_test.sh SWEEP_DRIVER MPIEXEC WORK_DIR
-set -euo pipefail
-driver=$1 mpiexec=$2 work=$3
+source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
+args driver mpiexec work -- "$@"
 if mountpoint -q "$work/disk" 2> /dev/null; then umount "$work/disk"; fi
-rm -rf "$work" && mkdir -p "$work/disk" && cd "$work"
-fail() { echo "full_disk_test: FAIL: $*" >&2; exit 1; }
-mount -t tmpfs -o size=64k tmpfs disk 2> /dev/null || { echo "full_disk_test: cannot mount a tmpfs here: skipped"; exit 77; }
-trap 'umount "$work/disk" 2> /dev/null || true' EXIT
+fresh_dir "$work"
+mkdir disk
+mount -t tmpfs -o size=64k tmpfs disk 2> /dev/null || { echo "$test_name: cannot mount a tmpfs here: skipped"; exit 77; }
+at_exit 'umount "$work/disk" 2> /dev/null || true'
 cat > spec.toml <<'TOML'
 [sweep]
 name = "disk"
@@ -27,7 +27,7 @@ TOML
 run() {
   local n=$1; shift
   if [ "$n" -eq 1 ]; then "$driver" spec.toml --quiet --work 5 "$@"
-  else "$mpiexec" -n "$n" --oversubscribe "$driver" spec.toml --quiet --work 5 "$@"; fi
+  else on_ranks "$n" "$driver" spec.toml --quiet --work 5 "$@"; fi
 }
 run 1 --out ref.h5 2> /dev/null
 resize() { mount -o "remount,size=$1" disk; }

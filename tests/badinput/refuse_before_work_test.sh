@@ -3,16 +3,15 @@
 # own naming the file (or option) at fault, and leaves no output, partial, lock or temporary
 # file. Sweep cases run on 1 rank (no mpiexec) and on 2 ranks (the line must survive mpiexec).
 # usage: refuse_before_work_test.sh SKEWBRIDGE MPIEXEC WORK_DIR
-set -euo pipefail
-exe=$1 mpiexec=$2 work=$3
-rm -rf "$work" && mkdir -p "$work" && cd "$work"
-fail() { echo "refuse_before_work_test: FAIL: $*" >&2; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
+args exe mpiexec work -- "$@"
+fresh_dir "$work"
 cases=0
 leftovers() { ls -d out.h5* run.h5* run.csv 2> /dev/null || true; }
 expect() {  # expect RANKS PATTERN ARGS...: exit 2, one own line matching PATTERN, nothing left
   local ranks=$1 pattern=$2 status=0; shift 2
   if [ "$ranks" -eq 1 ]; then "$exe" "$@" > out.txt 2> err.txt || status=$?
-  else "$mpiexec" -n "$ranks" --oversubscribe "$exe" "$@" > out.txt 2> err.txt || status=$?; fi
+  else on_ranks "$ranks" "$exe" "$@" > out.txt 2> err.txt || status=$?; fi
   [ "$status" -eq 2 ] || fail "$* ($ranks ranks): exit $status, expected 2: $(cat err.txt)"
   local own
   own=$(grep -c "^skewbridge: error: " err.txt || true)

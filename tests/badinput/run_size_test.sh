@@ -10,17 +10,16 @@
 #   with status non-finite (exit 3, one line naming the time), its summary prints no nan or inf,
 #   and a model-file sweep stores the cell as failed with the status name non-finite.
 # usage: run_size_test.sh SKEWBRIDGE MPIEXEC SUBSYSTEM_TOML WORK_DIR
-set -euo pipefail
-exe=$1 mpiexec=$2 base=$3 work=$4
-rm -rf "$work" && mkdir -p "$work" && cd "$work"
-fail() { echo "run_size_test: FAIL: $*" >&2; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
+args exe mpiexec base work -- "$@"
+fresh_dir "$work"
 cases=0
 leftovers() { ls -d out.h5* run.h5* run.csv* 2> /dev/null || true; }
 refused() {  # refused RANKS EXACT_LINE ARGS...: exit 2 within 20 s, exactly one line, no output
   local ranks=$1 line=$2 status=0; shift 2
   local start=$SECONDS
   if [ "$ranks" -eq 1 ]; then "$exe" "$@" > out.txt 2> err.txt || status=$?
-  else "$mpiexec" -n "$ranks" --oversubscribe "$exe" "$@" > out.txt 2> err.txt || status=$?; fi
+  else on_ranks "$ranks" "$exe" "$@" > out.txt 2> err.txt || status=$?; fi
   [ "$status" -eq 2 ] || fail "$*: exit $status, expected 2: $(head -c 600 err.txt)"
   [ $((SECONDS - start)) -le 20 ] || fail "$*: took $((SECONDS - start)) s to refuse"
   [ "$(grep -c '^skewbridge: error: ' err.txt)" -eq 1 ] || fail "$*: $(cat err.txt)"

@@ -4,10 +4,9 @@
 # allowed) and leaves no output behind; the well-formed variants (commas, comments, CR LF, one
 # column with dt_s) give the same summary as the plain two-column file.
 # usage: signal_file_test.sh SKEWBRIDGE SUBSYSTEM_TOML WORK_DIR
-set -euo pipefail
-exe=$1 base=$2 work=$3
-rm -rf "$work" && mkdir -p "$work" && cd "$work"
-fail() { echo "signal_file_test: FAIL: $*" >&2; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
+args exe base work -- "$@"
+fresh_dir "$work"
 cases=0
 leftovers() { ls -d run.h5* run.csv* 2> /dev/null || true; }
 model() {  # model FILE EXCITATION_LINES: the subsystem under a sampled excitation

@@ -3,10 +3,9 @@
 # given (stderr holds nothing else), prints nothing on stdout, and leaves no file behind.
 # Command-line mistakes of every sub-command; the parse error on 2 ranks prints one line.
 # usage: slips_test.sh SKEWBRIDGE MPIEXEC SOURCE_ROOT WORK_DIR
-set -uo pipefail
-exe=$1 mpiexec=$2 root=$3 work=$4
-rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
-fail() { echo "slips_test: FAIL: $*" >&2; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
+args exe mpiexec root work -- "$@"
+fresh_dir "$work"
 cases=0
 snapshot() { find . -mindepth 1 -not -name out.txt -not -name err.txt | sort; }
 expect() {  # expect LINE ARGS...: exit 2, stderr exactly "skewbridge: error: LINE", no new file
@@ -139,7 +138,7 @@ expect "set_spec.toml: record: label 'LOMA' is not in the record set labels.toml
 
 # Under mpiexec the command line fails on every rank: one line, exit 2.
 status=0
-"$mpiexec" -n 2 --oversubscribe "$exe" sweep "$spec" > out.txt 2> err.txt || status=$?
+on_ranks 2 "$exe" sweep "$spec" > out.txt 2> err.txt || status=$?
 [ "$status" -eq 2 ] || fail "2 ranks: exit $status: $(cat err.txt)"
 [ "$(grep -c '^skewbridge: error: ' err.txt)" -eq 1 ] || fail "2 ranks: $(cat err.txt)"
 grep -qx "skewbridge: error: sweep: --out is required (.*)" err.txt || fail "2 ranks: $(cat err.txt)"

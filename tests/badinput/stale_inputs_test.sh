@@ -8,10 +8,9 @@
 # lists every input with the SHA-256 that sha256sum prints; a comment added to the specification
 # is no change.
 # usage: stale_inputs_test.sh SKEWBRIDGE MPIEXEC WORK_DIR
-set -euo pipefail
-exe=$1 mpiexec=$2 work=$3
-rm -rf "$work" && mkdir -p "$work" && cd "$work"
-fail() { echo "stale_inputs_test: FAIL: $*" >&2; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
+args exe mpiexec work -- "$@"
+fresh_dir "$work"
 checks=0
 touch out.txt err.txt
 
@@ -77,7 +76,7 @@ spec set-big.toml 'set = "set.toml"' '{linspace = [0.05, 3.0, 8000]}'
 
 run() {  # run RANKS ARGS...: skewbridge, directly on 1 rank, through mpiexec on more
   local ranks=$1; shift
-  if [ "$ranks" -eq 1 ]; then "$exe" "$@"; else "$mpiexec" -n "$ranks" --oversubscribe "$exe" "$@"; fi
+  if [ "$ranks" -eq 1 ]; then "$exe" "$@"; else on_ranks "$ranks" "$exe" "$@"; fi
 }
 py() { /usr/bin/python3 -c "import h5py,numpy as np,sys; f=h5py.File(sys.argv[1],'r'); g=f['sweeps/stale']; $2" "$1"; }
 

@@ -5,10 +5,9 @@
 # with its holder. A stale lock (its holder killed with SIGKILL, or a file naming a dead
 # process) is taken over.
 # usage: writer_lock_test.sh SWEEP_DRIVER MPIEXEC WORK_DIR
-set -euo pipefail
-driver=$1 mpiexec=$2 work=$3
-rm -rf "$work" && mkdir -p "$work" && cd "$work"
-fail() { echo "writer_lock_test: FAIL: $*" >&2; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
+args driver mpiexec work -- "$@"
+fresh_dir "$work"
 cat > spec.toml <<'TOML'
 [sweep]
 name = "lock"
@@ -23,7 +22,7 @@ TOML
 run() {
   local n=$1; shift
   if [ "$n" -eq 1 ]; then "$driver" spec.toml --quiet "$@"
-  else "$mpiexec" -n "$n" --oversubscribe "$driver" spec.toml --quiet "$@"; fi
+  else on_ranks "$n" "$driver" spec.toml --quiet "$@"; fi
 }
 same_cube() {
   for ds in responses/x_peak responses/theta_peak status done stats/events stats/steps; do

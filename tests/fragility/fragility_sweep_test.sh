@@ -8,10 +8,10 @@
 #  the report draws both figures and tabulates the stored fits;
 #  4. bad [limit_states] keys: one line naming the key, exit status 2, no output file.
 # usage: fragility_sweep_test.sh SKEWBRIDGE MPIEXEC SOURCE_DIR WORK_DIR
-set -euo pipefail
-exe=$1 mpiexec=$2 src=$3 work=$4
-rm -rf "$work" && mkdir -p "$work/rec" && cd "$work"
-fail() { echo "fragility_sweep_test: FAIL: $*" >&2; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
+args exe mpiexec src work -- "$@"
+fresh_dir "$work"
+mkdir rec
 cp "$src/docs/examples/pilot-bridge.toml" "$src/docs/examples/pilot-signal.txt" .
 cp "$src/tests/data/records/NIS090.AT2" "$src/tests/data/records/RSN763_LOMAP_GIL067.AT2" \
    "$src/tests/data/records/0111a.smc" rec/
@@ -35,7 +35,7 @@ unseating = {seat_m = 0.1}
 joint_closing = true
 response = {x_m_d0 = 0.08}
 TOML
-"$mpiexec" -n 2 --oversubscribe "$exe" sweep stripes.toml --out stripes.h5 --quiet \
+on_ranks 2 "$exe" sweep stripes.toml --out stripes.h5 --quiet \
   || fail "the stripes sweep failed"
 /usr/bin/python3 "$src/tests/fragility/check_fragility_cube.py" stripes.h5 stripes 3 \
   || fail "stripes.h5: the stored fits differ from scipy's"

@@ -5,10 +5,9 @@
 # evaluator declares (one line naming it, exit 2, the file byte for byte unchanged); inspect
 # reports axes, responses and completion.
 # usage: cli_test.sh SKEWBRIDGE SWEEP_DRIVER WORK_DIR
-set -euo pipefail
-skewbridge=$1 driver=$2 work=$3
-rm -rf "$work" && mkdir -p "$work" && cd "$work"
-fail() { echo "cli_test: FAIL: $*" >&2; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
+args skewbridge driver work -- "$@"
+fresh_dir "$work"
 spec() {  # spec FILE EXTRA_AXIS_LINE
   cat > "$1" <<TOML
 [sweep]

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Writes a small cube with the test driver (one process, no mpiexec) and checks it from h5py.
 # usage: h5py_test.sh SWEEP_DRIVER CHECK_SCRIPT WORK_DIR
-set -euo pipefail
-driver=$1 check=$2 work=$3
+source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
+args driver check work -- "$@"
 rm -rf "$work" && mkdir -p "$work"
 cat > "$work/spec.toml" <<'TOML'
 [sweep]

@@ -6,9 +6,9 @@
 #  after each, --resume completes a cube identical to the uninterrupted one, and the cells
 #  that were checkpointed before the kill keep run = 1 (they were not recomputed).
 # usage: kill_resume_test.sh SWEEP_DRIVER MPIEXEC WORK_DIR
-set -euo pipefail
-driver=$1 mpiexec=$2 work=$3
-rm -rf "$work" && mkdir -p "$work" && cd "$work"
+source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
+args driver mpiexec work -- "$@"
+fresh_dir "$work"
 cat > spec.toml <<'TOML'
 [sweep]
 name = "kill"
@@ -21,8 +21,7 @@ w0_over_wg = {linspace = [0.25, 4.0, 30]}
 eta0 = 2.0
 TOML
 cells=240
-fail() { echo "kill_resume_test: FAIL: $*" >&2; exit 1; }
-run() { local n=$1; shift; "$mpiexec" -n "$n" --oversubscribe "$driver" spec.toml --quiet "$@"; }
+run() { local n=$1; shift; on_ranks "$n" "$driver" spec.toml --quiet "$@"; }
 same_cube() {  # same_cube A B: responses, status and solver statistics identical
   for ds in responses/x_peak responses/theta_peak responses/cell_echo status done stats/events \
             stats/steps; do

@@ -6,10 +6,9 @@
 # cube is byte-identical on 1 and 2 ranks, and every cell equals `skewbridge run` of a model file
 # written with the cell's values (maxima, residuals and impacts, to the printed 7 digits).
 # usage: model_file_sweep_test.sh SKEWBRIDGE MPIEXEC WORK_DIR
-set -euo pipefail
-exe=$1 mpiexec=$2 work=$3
-rm -rf "$work" && mkdir -p "$work" && cd "$work"
-fail() { echo "model_file_sweep_test: FAIL: $*" >&2; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
+args exe mpiexec work -- "$@"
+fresh_dir "$work"
 
 # --- the single deck: [deck] with eta0 (so a new skew angle changes W), uniform I_m -----------
 cat > deck.toml <<'TOML'
@@ -148,7 +147,7 @@ TOML
 
 for spec in deck spans sampled; do
   for n in 1 2; do
-    "$mpiexec" -n "$n" "$exe" sweep "$spec-sweep.toml" --out "$spec-$n.h5" --quiet
+    on_ranks "$n" "$exe" sweep "$spec-sweep.toml" --out "$spec-$n.h5" --quiet
   done
 done
 

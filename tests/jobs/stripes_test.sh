@@ -6,10 +6,9 @@
 # cells scaled too far; both cubes hold the same cells. The dry run's table of scale factors
 # is checked against the 2-rank cube and `records spectrum` (check_dry_run_scales.py).
 # usage: stripes_test.sh SKEWBRIDGE MPIEXEC RECORDS_DIR CHECK_SCRIPT WORK_DIR
-set -euo pipefail
-exe=$1 mpiexec=$2 records=$3 check=$4 work=$5
-rm -rf "$work" && mkdir -p "$work" && cd "$work"
-fail() { echo "stripes_test: FAIL: $*" >&2; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
+args exe mpiexec records check work -- "$@"
+fresh_dir "$work"
 
 cat > deck.toml <<'TOML'
 [deck]
@@ -58,7 +57,7 @@ TOML
 "$exe" sweep spec.toml --out one.h5 --quiet 2> one.err || { cat one.err; fail "1 rank"; }
 grep -q "^sweep: [0-9]* of 12 cells scaled beyond max_scale = 1.5 (largest factor" one.err ||
   { cat one.err; fail "no max_scale line in the summary"; }
-"$mpiexec" -n 2 "$exe" sweep spec.toml --out two.h5 --quiet 2> two.err || { cat two.err; fail "2 ranks"; }
+on_ranks 2 "$exe" sweep spec.toml --out two.h5 --quiet 2> two.err || { cat two.err; fail "2 ranks"; }
 /usr/bin/python3 "$check" one.h5 two.h5 "$records" "$(grep -o '^sweep: [0-9]*' one.err | cut -d' ' -f2)"
 
 # The dry run's record x stripe table of scale factors against the 2-rank cube and against

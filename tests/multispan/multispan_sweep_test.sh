@@ -5,10 +5,9 @@
 # the unseating margin is the seat width minus max |x| exactly; the skewed cells pound and rotate
 # at w0/w_g <= 1 and nothing pounds at w0/w_g = 2.
 # usage: multispan_sweep_test.sh SKEWBRIDGE MPIEXEC WORK_DIR
-set -euo pipefail
-exe=$1 mpiexec=$2 work=$3
-rm -rf "$work" && mkdir -p "$work" && cd "$work"
-fail() { echo "multispan_sweep_test: FAIL: $*" >&2; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
+args exe mpiexec work -- "$@"
+fresh_dir "$work"
 cat > spec.toml <<'TOML'
 [sweep]
 name = "ms"
@@ -24,7 +23,7 @@ delta_over_L = 0.002
 mu = 0.1
 seat_over_L = 0.02
 TOML
-for n in 1 2; do "$mpiexec" -n "$n" --oversubscribe "$exe" sweep spec.toml --out "r$n.h5" --quiet; done
+for n in 1 2; do on_ranks "$n" "$exe" sweep spec.toml --out "r$n.h5" --quiet; done
 /usr/bin/python3 - r1.h5 r2.h5 <<'PY' || fail "cube check"
 import sys, h5py, numpy as np
 a, b = (h5py.File(p, "r")["sweeps/ms"] for p in sys.argv[1:3])

@@ -7,11 +7,10 @@
 # a limit-state sweep's exceedances and fragility fits as the cube holds them;
 # `skewbridge sweep --dry-run` must count the cells, time a sample and write no file.
 # usage: generic_test.sh SKEWBRIDGE MPIEXEC SOURCE_ROOT WORK_DIR
-set -euo pipefail
-exe=$1 mpiexec=$2 root=$3 work=$4
-rm -rf "$work" && mkdir -p "$work" && cd "$work"
-fail() { echo "generic_test: FAIL: $*" >&2; exit 1; }
-sweep() { "$mpiexec" -n 2 --oversubscribe "$exe" sweep "$@" --quiet; }
+source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
+args exe mpiexec root work -- "$@"
+fresh_dir "$work"
+sweep() { on_ranks 2 "$exe" sweep "$@" --quiet; }
 report="$root/scripts/report"
 
 cat > own.toml <<TOML
@@ -51,7 +50,7 @@ grep -q '^cells: 20 = T_g 5 x a_deg 4$' dry.txt || fail "dry run cell count: $(h
 grep -q '^estimate on 4 rank(s): ' dry.txt || fail "dry run estimate: $(cat dry.txt)"
 grep -q 'computing rank(s)' dry.txt || fail "dry run does not say how it estimates"
 [ "$(grep -c '^  cell ' dry.txt)" -eq 8 ] || fail "dry run did not time 8 cells"
-"$mpiexec" -n 2 --oversubscribe "$exe" sweep --dry-run "$root/jobs/specs/model-file-three-span.toml" \
+on_ranks 2 "$exe" sweep --dry-run "$root/jobs/specs/model-file-three-span.toml" \
   >dry3.txt || fail "--dry-run on 2 ranks"
 grep -q '^cells: 72 = pulse 2 x a_deg 4 x Pi_delta 3 x k_factor 3$' dry3.txt ||
   fail "three-span dry run: $(head -2 dry3.txt)"

@@ -2,10 +2,9 @@
 # scripts/paper --quick end to end on 2 ranks: every figure and paper.md (check_paper.py), then
 # a second run that must reuse every cube and run file (their modification times unchanged).
 # usage: paper_test.sh SKEWBRIDGE MPIEXEC SOURCE_ROOT WORK_DIR
-set -euo pipefail
-exe=$1 mpiexec=$2 root=$3 work=$4
+source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
+args exe mpiexec root work -- "$@"
 rm -rf "$work" && mkdir -p "$work"
-fail() { echo "paper_test: FAIL: $*" >&2; exit 1; }
 paper() {
   "$root/scripts/paper" --quick --exe "$exe" --mpiexec "$mpiexec" --work "$work/cubes" \
     --out "$work/out" >"$work/paper.log" 2>&1 || fail "scripts/paper: $(tail -3 "$work/paper.log")"

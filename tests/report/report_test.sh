@@ -5,11 +5,10 @@
 # ending in persistent contact, tests/report/push.toml); check_report.py then checks the
 # figures, tables and statistics; bad inputs must exit with status 2 and one line.
 # usage: report_test.sh SKEWBRIDGE MPIEXEC SOURCE_ROOT WORK_DIR
-set -euo pipefail
-exe=$1 mpiexec=$2 root=$3 work=$4
-rm -rf "$work" && mkdir -p "$work" && cd "$work"
-fail() { echo "report_test: FAIL: $*" >&2; exit 1; }
-sweep() { "$mpiexec" -n 2 --oversubscribe "$exe" sweep "$@" --quiet; }
+source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
+args exe mpiexec root work -- "$@"
+fresh_dir "$work"
+sweep() { on_ranks 2 "$exe" sweep "$@" --quiet; }
 report="$root/scripts/report"
 
 cat > spectra.toml <<'TOML'

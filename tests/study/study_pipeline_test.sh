@@ -6,10 +6,9 @@
 # and the statistics per Pi_delta equal to h5py's values, and on a multi-span cube prints no
 # record section. (Resume: tests/study/study_test.cpp.)
 # usage: study_pipeline_test.sh SKEWBRIDGE MPIEXEC CHECK_SCRIPT WORK_DIR
-set -euo pipefail
-exe=$1 mpiexec=$2 check=$3 work=$4
-rm -rf "$work" && mkdir -p "$work" && cd "$work"
-fail() { echo "study_pipeline_test: FAIL: $*" >&2; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
+args exe mpiexec check work -- "$@"
+fresh_dir "$work"
 
 cat > study6.toml <<'TOML'
 [sweep]
@@ -25,7 +24,7 @@ record = ["synth-2011-000", "synth-2011-001", "synth-2011-002", "synth-2011-003"
 Pi_delta = [0.5, 1.0, 2.0]
 TOML
 
-"$mpiexec" -n 2 --oversubscribe "$exe" sweep study6.toml --out study6.h5 --quiet \
+on_ranks 2 "$exe" sweep study6.toml --out study6.h5 --quiet \
   || fail "the sweep failed"
 /usr/bin/python3 "$check" study6.h5 study6 || fail "study6.h5 does not check"
 
@@ -70,7 +69,7 @@ delta_over_L = 0.002
 mu = 0.1
 seat_over_L = 0.02
 TOML
-"$mpiexec" -n 2 --oversubscribe "$exe" sweep ms.toml --out ms.h5 --quiet || fail "multi-span sweep"
+on_ranks 2 "$exe" sweep ms.toml --out ms.h5 --quiet || fail "multi-span sweep"
 "$exe" inspect ms.h5 > ms_inspect.txt || fail "inspect ms.h5: exit status $?"
 grep -q "sweep ms (family multi-span" ms_inspect.txt || fail "inspect ms.h5: no sweep line"
 grep -q "completion: 2/2 cells done (100.0%), complete" ms_inspect.txt ||

@@ -11,11 +11,11 @@
 #  records    a sweep over a 3-record synthetic set stores a_g = PGA and w_g = 2 pi / T_m as
 #             `skewbridge records info --csv` reports them, L_e = a_g / w_g^2, delta = Pi_delta L_e.
 # usage: physics_sweep_test.sh MODE SKEWBRIDGE MPIEXEC WORK_DIR
-set -euo pipefail
-mode=$1 exe=$2 mpiexec=$3 work=$4
-rm -rf "$work" && mkdir -p "$work" && cd "$work"
-fail() { echo "physics_sweep_test $mode: FAIL: $*" >&2; exit 1; }
-run() { local n=$1; shift; "$mpiexec" -n "$n" --oversubscribe "$exe" sweep "$@" --quiet; }
+source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
+args mode exe mpiexec work -- "$@"
+fresh_dir "$work"
+test_name="physics_sweep_test $mode"
+run() { local n=$1; shift; on_ranks "$n" "$exe" sweep "$@" --quiet; }
 py() { /usr/bin/python3 - "$@"; }
 
 # same_cube A B NAME: every per-cell dataset except the wall times, byte for byte.
