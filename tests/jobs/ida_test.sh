@@ -10,10 +10,9 @@
 #     before the signal are not recomputed;
 #  3. bad [ida] input: one line, status 2, no output.
 # usage: ida_test.sh SKEWBRIDGE MPIEXEC RECORDS_DIR CHECK_SCRIPT WORK_DIR
-set -euo pipefail
-exe=$1 mpiexec=$2 records=$3 check=$4 work=$5
-rm -rf "$work" && mkdir -p "$work" && cd "$work"
-fail() { echo "ida_test: FAIL: $*" >&2; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
+args exe mpiexec records check work -- "$@"
+fresh_dir "$work"
 
 cat > deck.toml <<'TOML'
 [deck]
@@ -71,8 +70,8 @@ TOML
 sed -e '/^\[ida\]/,/^max_runs/d' -e 's/^k_factor = \[1, 4\]/k_factor = [1, 4]\nim_g = {linspace = [0.15, 1.2, 211]}/' \
     -e 's/name = "ida"/name = "brute"/' -e '/^rotation =/d' ida.toml > brute.toml
 "$exe" sweep ida.toml --out one.h5 --quiet 2> one.err || { cat one.err; fail "1 rank"; }
-"$mpiexec" -n 2 "$exe" sweep ida.toml --out two.h5 --quiet 2> two.err || { cat two.err; fail "2 ranks"; }
-"$mpiexec" -n 2 "$exe" sweep brute.toml --out brute.h5 --quiet 2> brute.err ||
+on_ranks 2 "$exe" sweep ida.toml --out two.h5 --quiet 2> two.err || { cat two.err; fail "2 ranks"; }
+on_ranks 2 "$exe" sweep brute.toml --out brute.h5 --quiet 2> brute.err ||
   { cat brute.err; fail "brute-force stripes"; }
 /usr/bin/python3 "$check" one.h5 two.h5 brute.h5
 # The report draws the IDA curves and the fragility from the capacities, with theta and beta
@@ -95,7 +94,7 @@ PY
 echo "== SIGTERM and --resume"
 sed -e 's/^set = "set.toml"/synthetic = { count = 160, seed = 7 }/' -e 's/name = "ida"/name = "idakill"/' \
     -e 's/^max_runs = 30/max_runs = 12/' ida.toml > kill.toml
-"$mpiexec" -n 2 "$exe" sweep kill.toml --out ref.h5 --quiet 2> ref.err || { cat ref.err; fail "reference"; }
+on_ranks 2 "$exe" sweep kill.toml --out ref.h5 --quiet 2> ref.err || { cat ref.err; fail "reference"; }
 py() { /usr/bin/python3 -c "import h5py,numpy as np,sys; g=h5py.File(sys.argv[1],'r')['sweeps/idakill']; $2" "$1"; }
 "$mpiexec" -n 2 "$exe" sweep kill.toml --out cut.h5 --quiet --checkpoint-seconds 0.1 2> cut.err &
 pid=$!
@@ -113,7 +112,7 @@ set +e; wait "$pid"; status=$?; set -e
 [ "$status" != 0 ] || fail "the sweep finished before SIGTERM reached it (status 0)"
 [ -f cut.h5.partial ] && [ ! -e cut.h5 ] || fail "SIGTERM left no partial cube (or a final one)"
 before=$(py cut.h5.partial "print(int(g['done'][()].sum()))")
-"$mpiexec" -n 2 "$exe" sweep kill.toml --out cut.h5 --quiet --resume 2> resume.err ||
+on_ranks 2 "$exe" sweep kill.toml --out cut.h5 --quiet --resume 2> resume.err ||
   { cat resume.err; fail "--resume"; }
 /usr/bin/python3 - ref.h5 cut.h5 "$before" <<'PY'
 import sys
