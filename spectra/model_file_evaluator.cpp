@@ -478,7 +478,7 @@ std::vector<ResponseInfo> ModelFileEvaluator::Responses() const {
                      "largest corner travel" + of +
                          " normal to its end line, from the maxima (seat width - margin_m)"});
       out.push_back({"travel_end_m" + s, "m",
-                     "residual corner travel" + of + " normal to its end line at the end"});
+                     "residual corner travel" + of + " normal to its end line at the end (exact)"});
     }
   }
   out.push_back({"theta_norm_max", "1", "largest theta_norm over the decks"});
@@ -568,9 +568,8 @@ CellOutcome ModelFileEvaluator::EvaluateAt(std::span<const std::size_t> axis_ind
       out.responses.push_back(value(margin_m * to_norm));
     }
     if (travel_) {
-      // The margin of a zero seat is minus the travel (model::UnseatingMargin).
-      out.responses.push_back(value(-model::UnseatingMargin(deck, 0.0, q_max)));
-      out.responses.push_back(value(-model::UnseatingMargin(deck, 0.0, q_end.cwiseAbs())));
+      out.responses.push_back(value(model::CornerTravelBound(deck.geometry, q_max)));
+      out.responses.push_back(value(model::CornerTravelAt(deck.geometry, q_end)));
     }
   }
   out.responses.push_back(value(theta_max));

@@ -1,5 +1,6 @@
 #include "solver/model/deck.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "solver/common/error.h"
@@ -22,6 +23,40 @@ Eigen::Vector2d Corner(const DeckGeometry& deck, int k) {
     default:
       return {-half_L + shift, half_W};
   }
+}
+
+double CornerTravelBound(const DeckGeometry& deck, const Eigen::Vector3d& max_abs_q) {
+  const double a = deck.skew_rad;
+  const Eigen::Vector2d n_e(std::cos(a), -std::sin(a));
+  double rotational = 0.0;
+  for (int k = 1; k <= 4; ++k) {
+    const Eigen::Vector2d P = Corner(deck, k);
+    for (double sign : {-1.0, 1.0}) {
+      const double th = sign * max_abs_q(2);
+      const Eigen::Vector2d moved(std::cos(th) * P.x() - std::sin(th) * P.y() - P.x(),
+                                  std::sin(th) * P.x() + std::cos(th) * P.y() - P.y());
+      rotational = std::max(rotational, std::abs(n_e.dot(moved)));
+    }
+  }
+  // The translation's largest normal component: x and y may reach their maxima with the signs
+  // that add up.
+  const double translational = std::cos(a) * max_abs_q(0) + std::sin(a) * max_abs_q(1);
+  return translational + rotational;
+}
+
+double CornerTravelAt(const DeckGeometry& deck, const Eigen::Vector3d& q) {
+  const double a = deck.skew_rad;
+  const Eigen::Vector2d n_e(std::cos(a), -std::sin(a));
+  const double c = std::cos(q(2));
+  const double s = std::sin(q(2));
+  double travel = 0.0;
+  for (int k = 1; k <= 4; ++k) {
+    const Eigen::Vector2d P = Corner(deck, k);
+    const Eigen::Vector2d moved(q(0) + c * P.x() - s * P.y() - P.x(),
+                                q(1) + s * P.x() + c * P.y() - P.y());
+    travel = std::max(travel, std::abs(n_e.dot(moved)));
+  }
+  return travel;
 }
 
 double UniformRadiusOfGyrationSquared(const DeckGeometry& deck) {

@@ -23,6 +23,21 @@ struct DeckGeometry {
 /// @pre 1 <= k <= 4 (SB_DEMAND).
 Eigen::Vector2d Corner(const DeckGeometry& deck, int k);
 
+/// Largest travel of a corner normal to its end line (m), bounded from the maxima of a
+/// response: with n_e = (cos a, -sin a) the unit normal of the end lines,
+///     t = cos a x_m + sin a y_m + max over corners P_k and s = +-1 of |n_e . (R(s theta_m) - E)
+///     P_k|,
+/// an upper bound of the true largest travel, since the three maxima need not coincide.
+/// Seat margins and the seat-displacement limit states of every sweep family use it.
+/// @param max_abs_q (x_m, y_m, theta_m): the deck's max |x|, |y| (m) and |theta| (rad).
+double CornerTravelBound(const DeckGeometry& deck, const Eigen::Vector3d& max_abs_q);
+
+/// Travel of the farthest corner normal to its end line at one instant (m), exact:
+///     max over corners P_k of |n_e . ((x, y) + (R(theta) - E) P_k)|,  n_e = (cos a, -sin a).
+/// The residual limit states of every sweep family use it with q = q(t_end).
+/// @param q (x, y, theta): the deck's displacement (m, m, rad) relative to its rest position.
+double CornerTravelAt(const DeckGeometry& deck, const Eigen::Vector3d& q);
+
 /// Radius of gyration squared of a uniform deck (m^2): rho^2 = (L^2 + W^2 / cos^2 a) / 12
 /// [docs/theory.md §2].
 double UniformRadiusOfGyrationSquared(const DeckGeometry& deck);

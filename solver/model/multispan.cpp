@@ -265,20 +265,7 @@ Model BuildMultiSpanBridge(const MultiSpanSpec& spec, const std::string& source)
 }
 
 double UnseatingMargin(const Body& deck, double seat_width_m, const Eigen::Vector3d& max_abs_q) {
-  const double a = deck.geometry.skew_rad;
-  const Eigen::Vector2d n_e(std::cos(a), -std::sin(a));
-  double rotational = 0.0;
-  for (int k = 1; k <= 4; ++k) {
-    const Eigen::Vector2d P = Corner(deck.geometry, k);
-    for (double sign : {-1.0, 1.0}) {
-      const double th = sign * max_abs_q(2);
-      const Eigen::Vector2d moved(std::cos(th) * P.x() - std::sin(th) * P.y() - P.x(),
-                                  std::sin(th) * P.x() + std::cos(th) * P.y() - P.y());
-      rotational = std::max(rotational, std::abs(n_e.dot(moved)));
-    }
-  }
-  const double translational = std::cos(a) * max_abs_q(0) + std::sin(a) * max_abs_q(1);
-  return seat_width_m - (translational + rotational);
+  return seat_width_m - CornerTravelBound(deck.geometry, max_abs_q);
 }
 
 }  // namespace skewbridge::model

@@ -101,9 +101,8 @@ MultiDeckSpec MultiSpanDecks(const MultiSpanSpec& spec, const std::string& sourc
 Model BuildMultiSpanBridge(const MultiSpanSpec& spec, const std::string& source = "model");
 
 /// Unseating margin of a deck's end seats (m) from the maxima of its response: seat width minus
-/// the largest displacement of a corner normal to its end line, n_e = (cos a, -sin a),
-/// bounded as d = cos a x_m + sin a y_m + max over corners P_k and s = +-1 of
-/// |n_e . (R(s theta_m) - E) P_k| (the maxima need not coincide, so the margin is a lower bound).
+/// the largest displacement of a corner normal to its end line, CornerTravelBound (the maxima
+/// need not coincide, so the margin is a lower bound).
 /// @param max_abs_q (x_m, y_m, theta_m) = the deck's max |x|, |y| (m), |theta| (rad).
 double UnseatingMargin(const Body& deck, double seat_width_m, const Eigen::Vector3d& max_abs_q);
 

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <random>
 
 #include "solver/model/deck.h"
 
@@ -87,6 +88,54 @@ TEST(DeckGeometry, FrictionalSkewRatioOfTheWorkedExample) {
   const DeckGeometry deck{1.0, WidthFromEta0(0.87, 30.0 * kDeg, 1.0), 30.0 * kDeg};
   EXPECT_NEAR(Eta1(deck, 0.08), 0.99, 0.005);
   EXPECT_NEAR(Eta1(deck, 0.10), 1.02, 0.005);
+}
+
+TEST(DeckGeometry, CornerTravelOfATranslationIsItsComponentNormalToTheEndLine) {
+  // a = 30 deg: n_e = (cos 30, -sin 30) = (0.8660254037844386, -0.5).
+  const DeckGeometry deck{30.0, 10.0, 30.0 * kDeg};
+  EXPECT_NEAR(CornerTravelAt(deck, {0.2, -0.1, 0.0}), 0.2 * 0.8660254037844386 + 0.05, 1e-15);
+  EXPECT_NEAR(CornerTravelAt(deck, {0.2, 0.1, 0.0}), 0.2 * 0.8660254037844386 - 0.05, 1e-15);
+  // The bound from the maxima adds the two components whatever their signs were.
+  EXPECT_NEAR(CornerTravelBound(deck, {0.2, 0.1, 0.0}), 0.2 * 0.8660254037844386 + 0.05, 1e-15);
+}
+
+TEST(DeckGeometry, CornerTravelOfARotationFollowsTheLeverArmsOfTheAcuteCorner) {
+  // Turned by theta about its mass centre, corner P1 moves normal to the end line by
+  // n_e . (R - E) P1 = (cos theta - 1) r_T - sin theta r_1 (n_e . P1 = r_T = L cos a / 2,
+  // n_e . (-P1y, P1x) = -r_1), the obtuse P2 by the same with r_2, P3 and P4 by the opposite;
+  // |r_2| < r_1, so the travel is r_1 |sin theta| + sign(theta) r_T (1 - cos theta), and the
+  // bound over both signs r_1 |sin theta| + r_T (1 - cos theta) [docs/theory.md §2 lever arms].
+  // L = 30, W = 10, a = 30 deg: r_1 = (15 + 10 / cos 30) / 2 = 13.273502691896258,
+  // r_T = 15 cos 30 = 12.99038105676658.
+  const DeckGeometry deck{30.0, 10.0, 30.0 * kDeg};
+  for (double theta : {0.02, -0.02, 0.3, -0.3}) {
+    const double lever = 13.273502691896258 * std::abs(std::sin(theta));
+    const double chord = 12.99038105676658 * (1.0 - std::cos(theta));
+    EXPECT_NEAR(CornerTravelAt(deck, {0.0, 0.0, theta}), lever + std::copysign(chord, theta), 1e-13)
+        << theta;
+    EXPECT_NEAR(CornerTravelBound(deck, {0.0, 0.0, std::abs(theta)}), lever + chord, 1e-13)
+        << theta;
+  }
+}
+
+TEST(DeckGeometry, CornerTravelOfATranslatedAndRotatedRectangleByHand) {
+  // a = 0, L = 30, W = 10: n_e = x; corner (-15, -5) moves x - 15 (cos - 1) + 5 sin, the most.
+  const DeckGeometry deck{30.0, 10.0, 0.0};
+  const double theta = 0.01;
+  EXPECT_NEAR(CornerTravelAt(deck, {0.1, 0.3, theta}),
+              0.1 - 15.0 * (std::cos(theta) - 1.0) + 5.0 * std::sin(theta), 1e-15);
+}
+
+TEST(DeckGeometry, CornerTravelBoundFromTheMaximaCoversEveryInstant) {
+  // Any state q is within its own maxima |q|, so the bound is never below the exact travel.
+  const DeckGeometry deck{40.0, 12.0, 45.0 * kDeg};
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int i = 0; i < 1000; ++i) {
+    const Eigen::Vector3d q(0.3 * u(rng), 0.3 * u(rng), 0.05 * u(rng));
+    const double exact = CornerTravelAt(deck, q);
+    EXPECT_GE(CornerTravelBound(deck, q.cwiseAbs()), exact * (1.0 - 1e-14));
+  }
 }
 
 }  // namespace
