@@ -74,7 +74,12 @@ std::vector<FragilityStudy> MakeFragility(const SweepSpec& spec, const CubeLayou
     im_description =
         "the cell's a_g / g: the excitation's peak acceleration (a record's PGA "
         "times scale) in g";
-    if (spec.FindAxis("scale") != nullptr) stripe_axis = "scale";
+    // Records scaled by a factor, or pulses of a given amplitude: each value is a stripe.
+    if (spec.FindAxis("scale") != nullptr) {
+      stripe_axis = "scale";
+    } else if (spec.FindAxis("a_g_g") != nullptr) {
+      stripe_axis = "a_g_g";
+    }
   } else if (im_name.empty()) {
     return out;  // no IM stored (a responses subset without a_g)
   }

@@ -70,7 +70,7 @@ constexpr std::array<ParameterInfo, 24> kParameters{{
    ParameterKind::kNumber, 0, true, kInf, false, false, ""},
   {"k_factor", "k_factor", "1", "factor on the substructure stiffness K (family model-file)",
    ParameterKind::kNumber, 0, false, 1e6, true, false, ""},
-  {"seat_over_L", "seat/L", "1", "support seat width over span length (multi-span unseating margins)",
+  {"seat_over_L", "seat/L", "1", "support seat width over span length (unseating margins)",
    ParameterKind::kNumber, 0, false, kInf, false, false, ""},
   {"w0_over_wg", "w0/w_g", "1", "substructure over excitation frequency w0 / w_g",
    ParameterKind::kNumber, 0, false, kInf, false, false, ""},

@@ -22,9 +22,11 @@ std::optional<std::size_t> Column(std::span<const ResponseInfo> responses, std::
   return std::nullopt;
 }
 
-// The columns `<stem>_d0`, `<stem>_d1`, ... in deck order (none when `_d0` is absent).
+// The column `<stem>` of a single-deck family, else the columns `<stem>_d0`, `<stem>_d1`, ... in
+// deck order (none when both are absent).
 std::vector<std::size_t> DeckColumns(std::span<const ResponseInfo> responses,
                                      const std::string& stem) {
+  if (const std::optional<std::size_t> c = Column(responses, stem)) return {*c};
   std::vector<std::size_t> out;
   for (int d = 0;; ++d) {
     const std::optional<std::size_t> c = Column(responses, stem + "_d" + std::to_string(d));
@@ -90,11 +92,7 @@ LimitStateEvaluator::LimitStateEvaluator(std::unique_ptr<CellEvaluator> inner, c
     const std::string field = Field(ls);
     switch (ls.kind) {
       case LimitStateKind::kRotation:
-        if (const std::optional<std::size_t> c = Column(r, "theta_m")) {
-          plan.columns = {*c};
-        } else {
-          plan.columns = DeckColumns(r, "theta_m");
-        }
+        plan.columns = DeckColumns(r, "theta_m");
         if (plan.columns.empty()) {
           throw InputError::AtField(ls.at, field,
                                     family +
@@ -110,23 +108,30 @@ LimitStateEvaluator::LimitStateEvaluator(std::unique_ptr<CellEvaluator> inner, c
         if (plan.columns.empty()) {
           throw InputError::AtField(ls.at, field,
                                     "needs the corner travel of each deck relative to its "
-                                    "seat, which family 'model-file' stores and " +
+                                    "seat, which " +
                                         family +
-                                        " does not; allowed here: rotation, joint_closing, "
-                                        "response");
+                                        " does not store; allowed here: rotation, "
+                                        "joint_closing, response");
         }
         if (ls.kind != LimitStateKind::kUnseating) break;
         const std::size_t decks = plan.columns.size();
         if (ls.seat_m.empty()) {
           plan.margins = DeckColumns(r, "margin_m");
           if (plan.margins.size() != decks) {
-            throw InputError::AtField(ls.at, field,
-                                      "needs seat widths: give seat_over_L (axis or fixed), a "
-                                      "seat width in the model file, or unseating = {seat_m = "
-                                      "[...]} (m, per support line)");
+            throw InputError::AtField(
+                ls.at, field,
+                std::string("needs seat widths: give seat_over_L (axis or fixed), ") +
+                    (grid.family == "model-file" ? "a seat width in the model file, " : "") +
+                    "or unseating = {seat_m = [...]} (m, one or one per support line)");
           }
         } else if (ls.seat_m.size() == 1) {
           plan.seats_m.assign(decks, ls.seat_m.front());
+        } else if (grid.FindAxis("spans") != nullptr) {
+          // The last abutment is line 1, 2, ... as the cell has 1, 2, ... spans.
+          throw InputError::AtField(ls.at, field + ".seat_m",
+                                    "one seat width per support line needs a fixed number of "
+                                    "spans (spans is an axis); give one seat width or "
+                                    "seat_over_L");
         } else if (ls.seat_m.size() == decks + 1) {
           // Deck i rests on support lines i and i + 1; its corners are all bounded by the same
           // travel, so the narrower seat governs.

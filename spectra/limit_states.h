@@ -34,10 +34,12 @@ std::string LimitStateKindName(LimitStateKind kind);
 /// Wraps the evaluator of a family and appends the limit states' demands and exceedances to
 /// every cell's responses:
 ///  - unseating: demand max_i t_i / s_i, the corner travel t_i of deck i normal to its end line
-///    (`travel_m_d<i>`) over its seat width s_i; exceeded when t_i > s_i for any deck (the stored
-///    margin_m_d<i> < 0 when the seats are the sweep's own);
-///  - rotation: max over the decks of theta_m (rad), exceeded above the threshold;
-///  - seat_displacement, residual: max over the decks of travel_m_d<i> or travel_end_m_d<i> (m);
+///    (`travel_m_d<i>`, or `travel_m` in a single-deck family) over its seat width s_i; exceeded
+///    when t_i > s_i for any deck (the stored margin_m[_d<i>] < 0 when the seats are the
+///    sweep's own);
+///  - rotation: max over the decks of theta_m[_d<i>] (rad), exceeded above the threshold;
+///  - seat_displacement, residual: max over the decks of travel_m[_d<i>] or travel_end_m[_d<i>]
+///    (m);
 ///  - joint_closing: the number of impacts, exceeded from 1 on;
 ///  - response: the response's value, exceeded above the threshold.
 /// Immutable after construction, as the evaluator it wraps.

@@ -115,6 +115,7 @@ MultiSpanEvaluator::MultiSpanEvaluator(const CellGrid& spec) : spec_(spec) {
                               "give either delta_over_L or L_over_Le, not both");
   }
   max_spans_ = MaxSpans(spec);
+  travel_ = !spec.limit_states.empty();
   // Every cell is mapped and its model built now, so a bad combination fails before any output.
   for (std::uint64_t cell = 0; cell < spec.CellCount(); ++cell) {
     const std::vector<std::size_t> index = spec.AxisIndex(cell);
@@ -142,12 +143,27 @@ std::vector<ResponseInfo> MultiSpanEvaluator::Responses() const {
                      "w_g^2 / a_g" +
                          of});
     }
+    if (travel_) {
+      out.push_back({"theta_m" + s, "rad", "max |theta|" + of});
+      out.push_back({"travel_m" + s, "m",
+                     "largest corner travel normal to the end line, bounded from the maxima" + of});
+      out.push_back({"travel_end_m" + s, "m",
+                     "corner travel normal to the end line at the end of the run" + of});
+      if (seat) {
+        out.push_back(
+            {"margin_m" + s, "m", "unseating margin: seat width - travel_m (a lower bound)" + of});
+      }
+    }
   }
   out.push_back({"theta_norm_max", "1", "largest theta_norm over the decks"});
   out.push_back({"impacts", "1", "number of impact events (a multi-contact impact counts once)"});
   out.push_back({"L_e", "m", "persistency a_g / w_g^2"});
   out.push_back({"L", "m", "span length"});
   out.push_back({"delta", "m", "gap of every joint and abutment, along x: Pi_delta L_e"});
+  if (travel_) {
+    // The intensity of the fragility functions (jobs/study.cpp takes a_g / g without stripes).
+    out.push_back({"a_g", "m/s^2", "pulse amplitude a_g = a_g_g g"});
+  }
   return out;
 }
 
@@ -179,23 +195,29 @@ CellOutcome MultiSpanEvaluator::Evaluate(std::span<const std::size_t> axis_index
   const bool ok = out.status == kStatusOk;
   const bool seat = Mentions(spec_, "seat_over_L");
   const double to_norm = 1.0 / c.persistency_m;
+  const std::size_t per_deck = (seat ? 4 : 3) + (travel_ ? (seat ? 4 : 3) : 0);
   double theta_max = 0.0;
   for (int d = 0; d < max_spans_; ++d) {
     if (!ok || d >= model.n_bodies()) {
-      out.responses.insert(out.responses.end(), seat ? 4 : 3, kNaN);
+      out.responses.insert(out.responses.end(), per_deck, kNaN);
       continue;
     }
     const model::Body& deck = model.body(d);
     const Eigen::Vector3d q_max = run.max_abs_q.segment<3>(3 * d);
+    const double travel_m = model::CornerTravelBound(deck.geometry, q_max);
     const double rho_m = std::sqrt(deck.inertia_kgm2 / deck.mass_kg);
     const double theta_norm = q_max(2) * rho_m * to_norm;
     theta_max = std::max(theta_max, theta_norm);
     out.responses.push_back(q_max(0) * to_norm);
     out.responses.push_back(q_max(1) * to_norm);
     out.responses.push_back(theta_norm);
-    if (seat) {
-      out.responses.push_back(model::UnseatingMargin(deck, *c.bridge.seat_width_m, q_max) *
-                              to_norm);
+    if (seat) out.responses.push_back((*c.bridge.seat_width_m - travel_m) * to_norm);
+    if (travel_) {
+      out.responses.push_back(q_max(2));
+      out.responses.push_back(travel_m);
+      out.responses.push_back(
+          model::CornerTravelAt(deck.geometry, run.q_end.segment<3>(3 * d).eval()));
+      if (seat) out.responses.push_back(*c.bridge.seat_width_m - travel_m);
     }
   }
   out.responses.push_back(ok ? theta_max : kNaN);
@@ -203,6 +225,7 @@ CellOutcome MultiSpanEvaluator::Evaluate(std::span<const std::size_t> axis_index
   out.responses.push_back(c.persistency_m);
   out.responses.push_back(c.bridge.span_lengths_m[0]);
   out.responses.push_back(c.bridge.joint_gap_m);
+  if (travel_) out.responses.push_back(c.a_g_mps2);
   out.stats.events = static_cast<std::int64_t>(run.events.size());
   out.stats.steps = static_cast<std::int64_t>(run.free_steps + run.rk_steps);
   out.stats.wall_s =

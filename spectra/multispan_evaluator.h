@@ -6,7 +6,9 @@
 /// W0 in torsion, damping ratio xi), under a one-cycle pulse along x. The number of spans is a
 /// parameter (`spans`, an axis or fixed). Responses are stored per deck with a suffix _d<i>
 /// for i up to the largest span count of the sweep; a cell with fewer spans stores NaN for the
-/// decks it does not have (docs/hdf5-layout.md, multi-span responses).
+/// decks it does not have (docs/hdf5-layout.md, multi-span responses). With limit states each
+/// deck also stores its rotation in rad and its corner travels (model::CornerTravelBound,
+/// model::CornerTravelAt), which spectra::LimitStateEvaluator reads.
 
 #include <cstdint>
 #include <string>
@@ -35,6 +37,9 @@ class MultiSpanEvaluator final : public CellEvaluator {
  private:
   CellGrid spec_;
   int max_spans_ = 1;  ///< the largest span count over the cells: the number of deck suffixes
+  /// The sweep declares limit states: theta_m, travel_m, travel_end_m (and margin_m with
+  /// seat_over_L) are stored per deck.
+  bool travel_ = false;
 };
 
 }  // namespace skewbridge::spectra

@@ -233,6 +233,8 @@ PointResult EvaluatePoint(const DimensionalPoint& point, const Excitation& excit
   r.x_m = run.max_abs_q(0);
   r.y_m = run.max_abs_q(1);
   r.theta_rad = run.max_abs_q(2);
+  r.x_end_m = run.q_end(0);
+  r.y_end_m = run.q_end(1);
   r.theta_end_rad = run.q_end(2);
   // [docs/theory.md §5]: lengths over the persistency a_g / w_g^2, rotations times rho.
   const double to_norm = 1.0 / point.persistency_m;

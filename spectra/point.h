@@ -122,6 +122,8 @@ struct PointResult {
   double x_m = 0.0;                      ///< max |x| (m)
   double y_m = 0.0;                      ///< max |y| (m)
   double theta_rad = 0.0;                ///< max |theta| (rad)
+  double x_end_m = 0.0;                  ///< residual x(t_end) (m)
+  double y_end_m = 0.0;                  ///< residual y(t_end) (m)
   double theta_end_rad = 0.0;            ///< residual rotation theta(t_end) (rad)
   double x_norm = 0.0;                   ///< x_m w_g^2 / a_g
   double y_norm = 0.0;                   ///< y_m w_g^2 / a_g

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "solver/common/error.h"
+#include "solver/model/deck.h"
 
 namespace skewbridge::spectra {
 namespace {
@@ -82,6 +83,8 @@ SpectraEvaluator::SpectraEvaluator(const CellGrid& spec) : spec_(spec) {
     records_ = LoadSweepRecords(spec);
   }
   band_edges_ = BandEdges(spec);
+  seats_ = Mentions(spec, "seat_over_L");
+  travel_ = !spec.limit_states.empty();
   // Every cell's mapping is checked now, so a bad combination fails before the file is touched.
   std::vector<std::size_t> index(spec.axes.size(), 0);
   for (std::uint64_t cell = 0; cell < spec.CellCount(); ++cell) {
@@ -140,7 +143,22 @@ spectra::PointParameters SpectraEvaluator::Parameters(std::span<const std::size_
   return p;
 }
 
-std::vector<ResponseInfo> SpectraEvaluator::Responses() const { return ResponseTable(); }
+std::vector<ResponseInfo> SpectraEvaluator::Responses() const {
+  std::vector<ResponseInfo> out = ResponseTable();
+  if (seats_) {
+    out.push_back({"margin_m", "m",
+                   "unseating margin: seat width (seat_over_L L) - corner travel normal to the "
+                   "end line (a lower bound from the maxima)"});
+    out.push_back({"margin_norm", "1", "margin_m w_g^2 / a_g"});
+  }
+  if (travel_) {
+    out.push_back(
+        {"travel_m", "m", "largest corner travel normal to the end line, bounded from the maxima"});
+    out.push_back({"travel_end_m", "m",
+                   "corner travel normal to the end line at the end of the run (residual)"});
+  }
+  return out;
+}
 
 std::vector<std::pair<std::int32_t, std::string>> SpectraEvaluator::StatusNames() const {
   return SolverStatusNames();
@@ -187,6 +205,21 @@ CellOutcome SpectraEvaluator::Evaluate(std::span<const std::size_t> axis_index) 
                    point.delta_m,
                    point.w0x_radps / s.w_g_radps,
                    BandOf(point.w0x_radps / s.w_g_radps, band_edges_)};
+  if (seats_ || travel_) {
+    const model::DeckGeometry& g = point.deck.geometry;
+    const double travel_m = model::CornerTravelBound(g, {r.x_m, r.y_m, r.theta_rad});
+    if (seats_) {
+      const double margin_m =
+          NumberOf(spec_, axis_index, "seat_over_L", 0.0) * g.length_m - travel_m;
+      out.responses.push_back(value(margin_m));
+      out.responses.push_back(value(margin_m / point.persistency_m));
+    }
+    if (travel_) {
+      out.responses.push_back(value(travel_m));
+      out.responses.push_back(
+          value(model::CornerTravelAt(g, {r.x_end_m, r.y_end_m, r.theta_end_rad})));
+    }
+  }
   out.stats.events = r.events;
   out.stats.steps = r.steps;
   out.stats.wall_s =

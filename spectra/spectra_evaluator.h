@@ -2,8 +2,9 @@
 /// @file
 /// The physics behind a sweep: evaluates a cell of a "subsystem" or "pilot-bridge" sweep by
 /// mapping its coordinates to a spectra::PointParameters, running the deck solver under the
-/// cell's pulse or record, and returning the dimensional and dimensionless maxima
-/// (docs/sweep-format.md lists the responses).
+/// cell's pulse or record, and returning the dimensional and dimensionless maxima, the unseating
+/// margin with seat_over_L and the corner travels with limit states (docs/sweep-format.md lists
+/// the responses).
 
 #include <memory>
 #include <string>
@@ -46,6 +47,8 @@ class SpectraEvaluator final : public CellEvaluator {
   spectra::Family family_;
   std::vector<SweepRecord> records_;  ///< LoadSweepRecords(spec_), read once per rank
   std::vector<double> band_edges_;    ///< BandEdges(spec_), for the response band
+  bool seats_ = false;                ///< seat_over_L is given: margin_m, margin_norm are stored
+  bool travel_ = false;  ///< the sweep declares limit states: travel_m, travel_end_m are stored
 };
 
 }  // namespace skewbridge::spectra

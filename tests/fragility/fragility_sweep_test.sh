@@ -140,13 +140,4 @@ $head_spec
 [limit_states]
 response = {theta_max = 0.01}
 TOML
-check_bad family "limit_states.seat_displacement: needs the corner travel of each deck" <<TOML
-[sweep]
-name = "bad"
-family = "pilot-bridge"
-[axes]
-Pi_delta = [0.5, 1.0]
-[limit_states]
-seat_displacement = {above_m = 0.1}
-TOML
 echo "fragility_sweep_test: ok"
