@@ -12,14 +12,14 @@
 #     the same travel, margin, rotation and limit states per deck;
 #  4. bad [limit_states] in these families: one line naming the key, status 2, no cube.
 # usage: families_test.sh SKEWBRIDGE MPIEXEC SOURCE_DIR WORK_DIR
-set -euo pipefail
-exe=$1 mpiexec=$2 src=$3 work=$4
-rm -rf "$work" && mkdir -p "$work/rec" && cd "$work"
-fail() { echo "families_test: FAIL: $*" >&2; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
+args exe mpiexec src work -- "$@"
+fresh_dir "$work"
+mkdir rec
 cp "$src/tests/data/records/NIS090.AT2" "$src/tests/data/records/RSN763_LOMAP_GIL067.AT2" \
    "$src/tests/data/records/0111a.smc" rec/
 sweep() {  # sweep SPEC OUT: on 2 ranks
-  "$mpiexec" -n 2 --oversubscribe "$exe" sweep "$1" --out "$2" --quiet || fail "$1: sweep failed"
+  on_ranks 2 "$exe" sweep "$1" --out "$2" --quiet || fail "$1: sweep failed"
 }
 
 # spec FAMILY NAME GAP_KIND: the family's axes, then [limit_states] for wide or tight gaps.
@@ -216,10 +216,8 @@ PY
 # Bad keys: one line each, status 2, no cube.
 check_bad() {  # check_bad NAME EXPECTED_TEXT < TOML
   cat > "$1.toml"
-  set +e
-  "$exe" sweep "$1.toml" --out "$1.h5" > out.txt 2> err.txt
-  local status=$?
-  set -e
+  local status=0
+  "$exe" sweep "$1.toml" --out "$1.h5" > out.txt 2> err.txt || status=$?
   [ "$status" -eq 2 ] || fail "$1: exit status $status, expected 2"
   [ "$(wc -l < err.txt)" -eq 1 ] || fail "$1: expected one line, got: $(cat err.txt)"
   grep -qF -- "$2" err.txt || fail "$1: expected '$2' in: $(cat err.txt)"
