@@ -25,32 +25,9 @@ for name, amp, period in (("recs/r1.txt", 3.0, 0.5), ("recs/r2.txt", 4.5, 0.8),
             t = 0.01 * k
             f.write("%.17g\n" % (amp * math.sin(2 * math.pi * t / period) * math.exp(-t / 8.0)))
 PY
-cat > deck.toml <<'TOML'
-[deck]
-m = 500e3
-I_m = "uniform"
-L = 30.0
-eta0 = 1.5
-skew_deg = 30.0
-[substructure]
-kind = "uncoupled"
-w0 = 10.0
-W0 = 12.0
-xi = 0.05
-[abutments]
-set = "both"
-gap_m = 0.03
-eps_N = 0.5
-mu = 0.0
-[excitation]
-kind = "sampled"
-file = "exc/ground.txt"
-dt_s = 0.01
-units = "mps2"
-direction = "x"
-[run]
-tail_s = 1.0
-TOML
+# The one-deck model of the model-file sweep tests under the samples of exc/ground.txt.
+sed -e 's/^kind = "pulse"/kind = "sampled"\nfile = "exc\/ground.txt"\ndt_s = 0.01\nunits = "mps2"/' \
+    -e '/^shape = /d' -e '/^a_g_g = /d' -e '/^T_g = /d' "$test_data/models/one-deck-pulse.toml" > deck.toml
 cat > set.toml <<'TOML'
 name = "two"
 [[record]]

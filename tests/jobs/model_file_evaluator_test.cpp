@@ -12,6 +12,8 @@
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <sstream>
+#include <stdexcept>
 #include <string>
 #include <tuple>
 
@@ -35,28 +37,16 @@ using ::testing::HasSubstr;
 
 constexpr double kG = 9.80665;
 
-const char* kDeck = R"([deck]
-m = 500e3
-I_m = "uniform"
-L = 30.0
-eta0 = 1.5
-skew_deg = 30.0
-[substructure]
-kind = "uncoupled"
-w0 = 10.0
-W0 = 12.0
-xi = 0.05
-[abutments]
-set = "both"
-gap_m = 0.03
-[excitation]
-kind = "pulse"
-shape = "cosine"
-a_g_g = 0.5
-T_g = 0.6
-[run]
-tail_s = 1.0
-)";
+// The text of the one-deck model of the model-file sweep tests.
+std::string DeckText() {
+  const std::filesystem::path path =
+      std::filesystem::path(SKEWBRIDGE_TEST_DATA_DIR) / "models" / "one-deck-pulse.toml";
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot open " + path.string());
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
 
 // A folder holding the model file, a folder set of two plain records and its manifest.
 std::filesystem::path Folder() {
@@ -64,11 +54,11 @@ std::filesystem::path Folder() {
     const std::filesystem::path d = std::filesystem::path(::testing::TempDir()) / "model-file";
     std::filesystem::remove_all(d);
     std::filesystem::create_directories(d / "recs");
-    std::ofstream(d / "deck.toml") << kDeck;
-    std::string with_c = kDeck;
+    std::ofstream(d / "deck.toml") << DeckText();
+    std::string with_c = DeckText();
     with_c.replace(with_c.find("xi = 0.05"), 9, "C = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]");
     std::ofstream(d / "deck-c.toml") << with_c;
-    std::string sampled = kDeck;
+    std::string sampled = DeckText();
     sampled.replace(sampled.find("kind = \"pulse\""),
                     sampled.size() - sampled.find("kind = \"pulse\""),
                     "kind = \"sampled\"\nfile = \"recs/b.txt\"\ndt_s = 0.01\n");
@@ -153,10 +143,10 @@ TEST(ModelFileSpec, NewKeysTakeTheirRanges) {
 
 // The model file's bytes are part of the identity: --resume refuses a changed model.
 TEST(ModelFileSpec, HashFollowsTheModelFileContent) {
-  std::ofstream(Folder() / "copy.toml") << kDeck;
+  std::ofstream(Folder() / "copy.toml") << DeckText();
   const std::string before = Spec("[axes]\nmu = [0.1]\n", "copy.toml").Hash();
   EXPECT_EQ(Spec("[axes]\nmu = [0.1]\n", "copy.toml").Hash(), before);
-  std::ofstream(Folder() / "copy.toml") << kDeck << "# edited\n";
+  std::ofstream(Folder() / "copy.toml") << DeckText() << "# edited\n";
   EXPECT_NE(Spec("[axes]\nmu = [0.1]\n", "copy.toml").Hash(), before);
 }
 
@@ -281,7 +271,7 @@ TEST(ModelFileEvaluator, RefusesKeysAndCombinationsNamingFileAndKey) {
 // Inline samples without a mean period (all zero) have no L_e: Pi_delta is refused, naming it;
 // other keys run with NaN scales.
 TEST(ModelFileEvaluator, SamplesWithoutMeanPeriodRefuseOnlyPiDelta) {
-  std::string still = kDeck;
+  std::string still = DeckText();
   still.replace(still.find("kind = \"pulse\""), still.size() - still.find("kind = \"pulse\""),
                 "kind = \"sampled\"\nvalues = [0.0, 0.0, 0.0, 0.0]\ndt_s = 0.01\n");
   std::ofstream(Folder() / "still.toml") << still;
@@ -337,7 +327,7 @@ TEST(ModelFileEvaluator, CellModelFollowsTheDefinitions) {
   EXPECT_EQ(from_file.excitation->Duration(), cell.excitation->Duration());
 }
 
-// Records scaled to stripes: the deck of kDeck has K = diag(m w0^2, m w0^2, I_m W0^2) with
+// Records scaled to stripes: the deck of DeckText() has K = diag(m w0^2, m w0^2, I_m W0^2) with
 // w0 = 10 and W0 = 12 rad/s, so T1 = 2 pi / (10 sqrt(k_factor)) s in closed form.
 constexpr const char* kStripes =
     "[records]\nset = \"set.toml\"\nscale_to = {measure = \"Sa\", period = \"T1\", xi = 0.05}\n"

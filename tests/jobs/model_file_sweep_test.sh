@@ -11,32 +11,7 @@ args exe mpiexec work -- "$@"
 fresh_dir "$work"
 
 # --- the single deck: [deck] with eta0 (so a new skew angle changes W), uniform I_m -----------
-cat > deck.toml <<'TOML'
-[deck]
-m = 500e3
-I_m = "uniform"
-L = 30.0
-eta0 = 1.5
-skew_deg = 30.0
-[substructure]
-kind = "uncoupled"
-w0 = 10.0
-W0 = 12.0
-xi = 0.05
-[abutments]
-set = "both"
-gap_m = 0.03
-eps_N = 0.5
-mu = 0.0
-[excitation]
-kind = "pulse"
-shape = "cosine"
-a_g_g = 0.5
-T_g = 0.6
-direction = "x"
-[run]
-tail_s = 1.0
-TOML
+cp "$test_data/models/one-deck-pulse.toml" deck.toml
 cat > deck-sweep.toml <<'TOML'
 [sweep]
 name = "deck"

@@ -10,29 +10,7 @@ source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
 args exe mpiexec records check work -- "$@"
 fresh_dir "$work"
 
-cat > deck.toml <<'TOML'
-[deck]
-m = 500e3
-I_m = "uniform"
-L = 30.0
-W = 12.0
-skew_deg = 30.0
-[substructure]
-kind = "uncoupled"
-w0 = 10.0
-W0 = 12.0
-xi = 0.05
-[abutments]
-set = "both"
-gap_m = 0.02
-[excitation]
-kind = "pulse"
-shape = "cosine"
-a_g_g = 0.5
-T_g = 0.6
-[run]
-tail_s = 0.5
-TOML
+cp "$test_data/models/one-deck-records.toml" deck.toml
 cat > set.toml <<TOML
 name = "two"
 [[record]]

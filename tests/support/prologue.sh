@@ -9,6 +9,7 @@
 #  - stdin from /dev/null: nothing waits for a terminal that CI does not have;
 #  - fail MESSAGE: one line "TEST: FAIL: MESSAGE" on stderr, exit status 1 (TEST is test_name,
 #    the script's name without .sh; a test may set it to say more, e.g. its mode);
+#  - test_data: the absolute path of tests/data (shared model files and records);
 #  - at_exit COMMAND: COMMAND (a string, evaluated) runs when the test exits, whatever the
 #    status; commands run in the order given;
 #  - Open MPI's permission to run as root and to oversubscribe the cores, exported, and
@@ -19,6 +20,8 @@ set -euo pipefail
 exec </dev/null
 
 test_name=$(basename "$0" .sh)
+# The source tree's tests/data (models, records), found from this file's place.
+test_data=$(cd "$(dirname "${BASH_SOURCE[0]}")/../data" && pwd)
 
 # fail MESSAGE...: one line naming the test on stderr, exit status 1.
 fail() {

@@ -32,31 +32,9 @@ VALUES = {
     "w0_over_wg": [0.5, 2.0], "method": ["event-driven", "time-stepping"],
 }
 
-MODEL = """[deck]
-m = 500e3
-I_m = "uniform"
-L = 30.0
-eta0 = 1.5
-skew_deg = 30.0
-[substructure]
-kind = "uncoupled"
-w0 = 10.0
-W0 = 12.0
-xi = 0.05
-[abutments]
-set = "both"
-gap_m = 0.03
-eps_N = 0.5
-mu = 0.0
-[excitation]
-kind = "pulse"
-shape = "cosine"
-a_g_g = 0.5
-T_g = 0.6
-direction = "x"
-[run]
-tail_s = 1.0
-"""
+# The one-deck model of the model-file sweep tests (tests/data/models), beside docs/.
+MODEL_FILE = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(docs))), "tests", "data",
+                          "models", "one-deck-pulse.toml")
 
 
 def documented_axes(path):
@@ -146,8 +124,7 @@ def main():
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(os.path.join(work, "recs"))
     os.chdir(work)
-    with open("deck.toml", "w") as f:
-        f.write(MODEL)
+    shutil.copyfile(MODEL_FILE, "deck.toml")
     for name, amp, period in (("r1.txt", 3.0, 0.5), ("r2.txt", 4.5, 0.8)):
         with open(os.path.join("recs", name), "w") as f:
             for k in range(300):
