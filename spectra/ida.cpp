@@ -72,33 +72,32 @@ IdaTrace HuntAndFill(const IdaSpec& spec, std::size_t limit_states,
     im = std::min(im + step, spec.max_im);
     step += spec.step_increase;
   }
-  // Bisect the widest bracket until each is within the tolerance.
+  // Bisect the widest bracket while one is wider than the tolerance, else fill the widest gap
+  // of the curve below the highest capacity (or the highest run): a filling run that exceeds a
+  // limit state below its capacity (a demand that is not monotone) opens a bracket again.
   while (!failed && t.im.size() < budget) {
-    double widest = spec.tolerance, middle = 0.0;
-    for (const IdaCapacity& c : IdaCapacities(t, limit_states)) {
-      if (std::isfinite(c.im) && c.im - c.below > widest) {
+    const std::vector<IdaCapacity> caps = IdaCapacities(t, limit_states);
+    double widest = spec.tolerance, middle = 0.0, top = 0.0;
+    for (const IdaCapacity& c : caps) {
+      if (!std::isfinite(c.im)) continue;
+      top = std::max(top, c.im);
+      if (c.im - c.below > widest) {
         widest = c.im - c.below;
         middle = 0.5 * (c.im + c.below);
       }
     }
-    if (middle == 0.0 || !add(middle)) break;
-  }
-  // Fill the widest gap of the curve below the highest capacity (or the highest run).
-  while (!failed && t.im.size() < budget) {
-    double top = 0.0;
-    for (const IdaCapacity& c : IdaCapacities(t, limit_states)) {
-      if (std::isfinite(c.im)) top = std::max(top, c.im);
-    }
-    std::vector<double> ims{0.0};
-    for (double x : t.im) {
-      if (x <= top || top == 0.0) ims.push_back(x);
-    }
-    std::sort(ims.begin(), ims.end());
-    double gap = spec.tolerance, middle = 0.0;
-    for (std::size_t i = 1; i < ims.size(); ++i) {
-      if (ims[i] - ims[i - 1] > gap) {
-        gap = ims[i] - ims[i - 1];
-        middle = 0.5 * (ims[i] + ims[i - 1]);
+    if (middle == 0.0) {
+      std::vector<double> ims{0.0};
+      for (double x : t.im) {
+        if (x <= top || top == 0.0) ims.push_back(x);
+      }
+      std::sort(ims.begin(), ims.end());
+      double gap = spec.tolerance;
+      for (std::size_t i = 1; i < ims.size(); ++i) {
+        if (ims[i] - ims[i - 1] > gap) {
+          gap = ims[i] - ims[i - 1];
+          middle = 0.5 * (ims[i] + ims[i - 1]);
+        }
       }
     }
     if (middle == 0.0 || !add(middle)) break;
@@ -119,6 +118,16 @@ CapacityFit FitCapacities(std::span<const double> capacities) {
     }
   }
   f.n = static_cast<std::int64_t>(logs.size());
+  if (f.censored > 0) {
+    // The records that never reach the limit state are its strongest: leaving them out would
+    // put the median too low, and the fit of right-censored data is another likelihood.
+    f.theta = f.beta = kNaN;
+    f.reason = fmt::format(
+        "{} of {} records never reach the limit state up to ida.max_im: a fit of the other {} "
+        "alone would put the median too low; raise ida.max_im",
+        f.censored, f.censored + f.n, f.n);
+    return f;
+  }
   if (logs.size() < 2) {
     f.theta = f.beta = kNaN;
     f.reason = fmt::format("{} finite capacities ({} beyond the search's max_im): a fit needs 2",

@@ -59,8 +59,10 @@ std::vector<IdaCapacity> IdaCapacities(const IdaTrace& trace, std::size_t limit_
 ///    run, until every limit state has been exceeded or the run at max_im is made;
 ///  - bracket and bisect: while a limit state's (below, im] is wider than tolerance, a run at
 ///    its middle (the widest bracket first);
-///  - fill: the runs left fill the widest gap between consecutive intensities (0 included) up
-///    to the highest capacity found, while a gap is wider than tolerance;
+///  - fill: otherwise a run halves the widest gap between consecutive intensities (0 included)
+///    up to the highest capacity found, while a gap is wider than tolerance; a filling run
+///    that exceeds a limit state below its capacity (a demand not monotone in the intensity)
+///    lowers that capacity and opens its bracket, which is bisected again;
 /// never more than max_runs runs. `run(im)` makes one run; a failed run ends the search.
 /// @pre spec.enabled, limit_states >= 1
 IdaTrace HuntAndFill(const IdaSpec& spec, std::size_t limit_states,
@@ -72,11 +74,13 @@ struct CapacityFit {
   double theta = 0.0;         ///< median capacity (g or m/s); NaN when not fitted
   double beta = 0.0;          ///< dispersion of ln IM_c; NaN when not fitted
   std::int64_t n = 0;         ///< finite capacities used
-  std::int64_t censored = 0;  ///< capacities beyond the search (+inf), left out
+  std::int64_t censored = 0;  ///< capacities beyond the search (+inf): no fit when > 0
   std::string reason;         ///< "" or why theta and beta are NaN
 };
 
-/// Fits CapacityFit to `capacities` (NaN entries are failed cells, skipped; +inf censored).
+/// Fits CapacityFit to `capacities` (NaN entries are failed cells, skipped). Any +inf (a record
+/// that never reaches the limit state up to ida.max_im) leaves theta and beta NaN with the
+/// reason: the finite ones alone would bias the median low.
 CapacityFit FitCapacities(std::span<const double> capacities);
 
 /// A sweep of IDA cells ([ida]): wraps the evaluator of the limit states (LimitStateEvaluator

@@ -626,9 +626,9 @@ void WriteIdaFragility(hid_t sweep_group, const std::vector<IdaFragilityStudy>& 
           std::string("P(exceeded | IM = x) = Phi(ln(x / theta) / beta), lognormal"));
   SetAttr(g.get(), "fit",
           std::string("theta = exp(mean of ln IM_c), beta = standard deviation of ln IM_c "
-                      "with n - 1, over the records' finite capacities; capacities beyond "
-                      "ida.max_im are counted in n_censored and left out [Baker 2015, "
-                      "Earthquake Spectra 31(1):579-599]"));
+                      "with n - 1, over the records' capacities [Baker 2015, Earthquake "
+                      "Spectra 31(1):579-599]; NaN (with the reason) when a record never "
+                      "reaches the limit state up to ida.max_im (n_censored > 0)"));
   std::vector<Id> scales;
   for (const std::string& key : first.axis_order) {
     scales.push_back(OpenDataset(sweep_group, "axes/" + key));
@@ -653,7 +653,8 @@ void WriteIdaFragility(hid_t sweep_group, const std::vector<IdaFragilityStudy>& 
     put("theta", f.theta, f.im_units, "median capacity: exp(mean ln IM_c)");
     put("beta", f.beta, "1", "dispersion: standard deviation of ln IM_c (n - 1)");
     put("n_records", f.n, "1", "records with a finite capacity (cells done, status ok)");
-    put("n_censored", f.censored, "1", "records not reaching the limit state up to ida.max_im");
+    put("n_censored", f.censored, "1",
+        "records not reaching the limit state up to ida.max_im (then no fit)");
     WriteStrings(ls.get(), "reason", f.reason);
   }
 }

@@ -71,6 +71,24 @@ TEST(Ida, CapacityOfAMonotoneDemandIsWithinTheToleranceForManyThresholds) {
   }
 }
 
+TEST(Ida, AFillingRunThatExceedsBelowTheCapacityOpensABracketThatIsBisectedAgain) {
+  // Exceeded from 2 on, and also in the window |IM - 0.8| < 0.01 that only the filling run at
+  // 0.8 (the middle of the hunt's gap 0.6-1.0) finds: the capacity drops to the window's lower
+  // edge 0.79, bracketed again within the tolerance.
+  IdaSpec spec = Spec();
+  spec.max_runs = 30;
+  const IdaTrace t = HuntAndFill(spec, 1, [](double im) {
+    IdaPoint p;
+    p.demand = {im};
+    p.exceeded = {im >= 2.0 || std::abs(im - 0.8) < 0.01 ? 1.0 : 0.0};
+    return p;
+  });
+  EXPECT_GE(t.capacity[0].im, 0.79);
+  EXPECT_LE(t.capacity[0].im, 0.8);
+  EXPECT_LE(t.capacity[0].below, 0.79);
+  EXPECT_LE(t.capacity[0].im - t.capacity[0].below, spec.tolerance);
+}
+
 TEST(Ida, TwoLimitStatesEachGetTheirBracketAndTheHuntGoesOnToTheLast) {
   IdaSpec spec = Spec();
   spec.max_runs = 30;
@@ -125,16 +143,22 @@ TEST(Ida, CapacityFitIsTheGeometricMeanAndTheSampleLogDeviation) {
   // ln of 1, e, e^2: mean 1, sample variance ((1)^2 + 0 + 1^2) / 2 = 1.
   const double e = std::exp(1.0), inf = std::numeric_limits<double>::infinity();
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  const std::vector<double> caps{1.0, e, e * e, inf, nan};
+  const std::vector<double> caps{1.0, e, e * e, nan};
   const CapacityFit f = FitCapacities(caps);
   EXPECT_NEAR(f.theta, e, 1e-14);
   EXPECT_NEAR(f.beta, 1.0, 1e-14);
   EXPECT_EQ(f.n, 3);
-  EXPECT_EQ(f.censored, 1);
+  EXPECT_EQ(f.censored, 0);
   EXPECT_TRUE(f.reason.empty());
-  const CapacityFit one = FitCapacities(std::vector<double>{2.0, inf});
+  // A record beyond the search: no number, the reason instead.
+  const CapacityFit censored = FitCapacities(std::vector<double>{1.0, e, e * e, inf});
+  EXPECT_TRUE(std::isnan(censored.theta) && std::isnan(censored.beta));
+  EXPECT_EQ(censored.censored, 1);
+  EXPECT_NE(censored.reason.find("1 of 4 records never reach the limit state"), std::string::npos)
+      << censored.reason;
+  const CapacityFit one = FitCapacities(std::vector<double>{2.0, nan});
   EXPECT_TRUE(std::isnan(one.theta));
-  EXPECT_NE(one.reason.find("1 finite capacities (1 beyond"), std::string::npos) << one.reason;
+  EXPECT_NE(one.reason.find("1 finite capacities"), std::string::npos) << one.reason;
 }
 
 }  // namespace
