@@ -15,6 +15,7 @@
 #include "solver/common/error.h"
 #include "solver/dynamics/active_system.h"
 #include "solver/dynamics/contact_modes.h"
+#include "solver/dynamics/impact_history.h"
 #include "solver/dynamics/root_finding.h"
 #include "solver/dynamics/run_scales.h"
 #include "solver/lcp/small_lp.h"
@@ -123,15 +124,15 @@ class Integrator {
   // True when an open contact at the face approaches it faster than v_tol_ (after a projection).
   bool OpenContactApproaching();
   // True when an impact of contact c at approach speed approach_mps continues a geometric
-  // sequence of its own impacts (Zeno): the sequence is then closed at once.
+  // sequence of its own impacts (Zeno, docs/theory.md §3.4): the sequence is closed at once.
   bool Accumulating(int c, double approach_mps) const;
   // True when contact c, closing at approach_mps, is settling onto its face: its flight never
-  // took it beyond the gap tolerance, or the deck rocks onto it slowly (see the definition). Its
-  // closure then has restitution 0, and a closed contact that the closure would lift stays.
+  // took it beyond the gap tolerance, or the deck rocks onto it slowly (docs/theory.md §3.5).
+  // Its closure then has restitution 0, and a closed contact that the closure would lift stays.
   bool Settling(int c, double approach_mps) const;
   // True when contact c, which struck at approach_mps and leaves its face at gamma_N, would
   // return under the loads (free normal acceleration from h_) within an accumulation's flight:
-  // the accumulation is closed at once.
+  // the accumulation is closed at once (docs/theory.md §3.6).
   bool AccumulatesAtOnce(int c, double approach_mps) const;
   void Project();
 
@@ -200,13 +201,11 @@ class Integrator {
   bool jammed_here_ = false;  // a tangential impact (jam) was applied at last_event_t_
   double last_event_t_ = -kInf;
   RunResult result_;
-  ActiveSystem sys_;                  // 2 n_c rows at most
-  std::vector<int> projection_rows_;  // per contact: 1 when an open contact joins the projection
-  std::vector<double> bounce_t_, bounce_v_;  // per contact: time and speed of its last impact
-  std::vector<long> bounce_seq_;             // per contact: impact_sequence_ of that impact
-  std::vector<double> left_t_;  // per contact: when it last left the face (bounce or detachment)
-  long impact_sequence_ = 0;    // impact instants so far
-  double period_min_s_ = kInf;  // shortest natural period (s)
+  ActiveSystem sys_;                    // 2 n_c rows at most
+  std::vector<int> projection_rows_;    // per contact: 1 when an open contact joins the projection
+  std::vector<ImpactHistory> history_;  // per contact: its last impact and when it left
+  long impact_sequence_ = 0;            // impact instants so far
+  double period_min_s_ = kInf;          // shortest natural period (s)
   const std::vector<int> no_contacts_;  // the empty list of forced contacts (no copy per pass)
   // Per contact: a mode decided by a tie band (docs/theory.md §3.7) holds the mode the contact
   // problem chose, to fall back on; no tie: empty.
@@ -302,10 +301,7 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   row_of_.assign(static_cast<std::size_t>(sys_.capacity()), nullptr);
   projection_rows_.assign(static_cast<std::size_t>(nc_), 0);
   tie_.assign(static_cast<std::size_t>(nc_), std::nullopt);
-  bounce_t_.assign(static_cast<std::size_t>(nc_), -kInf);
-  bounce_v_.assign(static_cast<std::size_t>(nc_), 0.0);
-  bounce_seq_.assign(static_cast<std::size_t>(nc_), -1);
-  left_t_.assign(static_cast<std::size_t>(nc_), -kInf);
+  history_.assign(static_cast<std::size_t>(nc_), ImpactHistory{});
   kernel_ = Eigen::MatrixXd::Zero(sys_.capacity(), sys_.capacity());
   lp_G_ = Eigen::MatrixXd::Zero(3 * nc_ + 2, sys_.capacity() + 1);
   lp_h_ = Vec::Zero(3 * nc_ + 2);
@@ -1297,77 +1293,32 @@ void Integrator::ResolveContacts(const std::vector<int>& forced) {
 }
 
 bool Integrator::Accumulating(int c, double approach_mps) const {
-  // Zeno [docs/theory.md §3, accumulation; Acary and Brogliato 2008, §2.1]: a contact bouncing
-  // under a nearly constant force returns after a flight much shorter than any period of the model,
-  // each time slower by a constant ratio rho (eps_N for a single contact), so its impacts
-  // accumulate after a further time (t_k - t_{k-1}) rho / (1 - rho), at which it is closed. Two
-  // consecutive impacts of the same contact, with no other impact between them, a ratio below
-  // zeno_ratio and a flight below zeno_flight of the shortest period, identify the sequence;
-  // its remaining impacts, each a fraction of a flight that is itself a small fraction of a
-  // period, are replaced by closing the contact now. Without restitution there is no sequence,
-  // with eps_N = 1 the ratio stays near 1 and nothing is extrapolated.
-  const auto i = static_cast<std::size_t>(c);
-  if (!policy_.zeno_extrapolation || bounce_seq_[i] != impact_sequence_ || !(bounce_v_[i] > 0.0)) {
-    return false;
-  }
-  const double flight = t_ - bounce_t_[i];
-  const double ratio = approach_mps / bounce_v_[i];
-  return flight > 0.0 && flight <= policy_.zeno_flight * period_min_s_ &&
-         ratio <= policy_.zeno_ratio;
+  return dynamics::Accumulating(history_[static_cast<std::size_t>(c)], impact_sequence_, t_,
+                                approach_mps, {period_min_s_, gap_tol_, v_acc_}, policy_);
 }
 
 bool Integrator::Settling(int c, double approach_mps) const {
-  // Two ways a deck settles onto a face that the accumulation of one contact's impacts
-  // (Accumulating) does not see, both a deck rocking between two corners of the face, each
-  // impact lifting the other corner, at a speed the loads sustain (not a geometric sequence):
-  // 1. Inside the touch band. A contact that leaves the face at about the speed it returns with,
-  //    under a nearly constant acceleration, rises at most approach x flight / 4 in between.
-  //    Below the gap tolerance that flight was never resolved as one: the contact stayed in
-  //    touch, and its return is a closure with restitution 0, like a closure slower than the
-  //    accumulation threshold.
-  const auto i = static_cast<std::size_t>(c);
-  const double flight = t_ - left_t_[i];
-  if (policy_.settle_in_touch_band && flight > 0.0 && 0.25 * approach_mps * flight <= gap_tol_) {
-    return true;
-  }
-  // 2. Slow rocking. This contact's last impact was the one before the other corner's, within a
-  //    flight far below any period (zeno_flight), and the approach is within rocking_speed of the
-  //    accumulation threshold: each flight moves the deck by about 1e-6 of its response, and the
-  //    rocking, which rounding alone can turn into tens of thousands of events, converges to
-  //    both corners closed. The contact problem then says whether the loads keep both closed.
-  // Both thresholds scale with the response (gap_tol_ above its rounding floor, v_acc_), so
-  // self-similarity holds.
-  const double since = t_ - bounce_t_[i];
-  return policy_.slow_rocking && bounce_seq_[i] == impact_sequence_ - 1 && since > 0.0 &&
-         since <= policy_.zeno_flight * period_min_s_ &&
-         approach_mps <= policy_.rocking_speed * v_acc_;
+  return dynamics::Settling(history_[static_cast<std::size_t>(c)], impact_sequence_, t_,
+                            approach_mps, {period_min_s_, gap_tol_, v_acc_}, policy_);
 }
 
 bool Integrator::AccumulatesAtOnce(int c, double approach_mps) const {
-  // Accumulating, seen one flight earlier. A contact that struck at approach_mps and leaves at
-  // gamma_N = rho approach_mps (rho <= zeno_ratio) under a normal acceleration -a (a > 0, the
-  // loads pressing it back) returns after 2 gamma_N / a. Below zeno_flight_at_once of the shortest
-  // period that return is the second impact of an accumulation, which Accumulating would close;
-  // it is closed now instead: the contact stays a candidate, the contact problem says whether
-  // the loads keep it closed, and the projection puts its rebound to zero. Over the flight, the
-  // contact's normal impulse is the same either way (the rebound's share of the impact is then
-  // carried by the contact force); what moves is when, within a flight below 0.1 % of a period.
-  // The free acceleration is the estimate (every contact of the impact leaves it: see the
-  // caller). A deck rocking between two corners of a face at a speed its loads sustain (each
-  // impact lifting the other corner, which then swings back over a rotation, not a flight)
-  // bounced on the striking corner once per rock before this: half its impacts.
+  // The free acceleration of the contact's normal gap is the estimate of its return (every
+  // contact of the impact leaves: see the caller). A deck rocking between two corners of a face
+  // at a speed its loads sustain (each impact lifting the other corner, which then swings back
+  // over a rotation, not a flight) bounced on the striking corner once per rock before this
+  // rule: half its impacts.
   const contact::ContactKinematics& kin = ws_.kin_;
-  const double v = kin.gamma_N[c];
-  if (!policy_.bounce_at_once || !(approach_mps > v_acc_) ||
-      !(v <= policy_.zeno_ratio * approach_mps)) {
-    return false;
-  }
-  const double* inv_m = model_.inverse_mass_diagonal().data();
-  double a = kin.what_N[c];
-  for (int i = 0; i < n_; ++i) {
-    a += kin.W_N(i, c) * (inv_m[i] * h_[i]);
-  }
-  return a < 0.0 && 2.0 * v <= -a * policy_.zeno_flight_at_once * period_min_s_;
+  const auto normal_accel = [&]() {
+    const double* inv_m = model_.inverse_mass_diagonal().data();
+    double a = kin.what_N[c];
+    for (int i = 0; i < n_; ++i) {
+      a += kin.W_N(i, c) * (inv_m[i] * h_[i]);
+    }
+    return a;
+  };
+  return BounceClosesAtOnce(approach_mps, kin.gamma_N[c], normal_accel,
+                            {period_min_s_, gap_tol_, v_acc_}, policy_);
 }
 
 bool Integrator::Wedged() const {
@@ -1449,9 +1400,10 @@ bool Integrator::DecideContacts(const std::vector<int>& forced) {
       for (int j = 0; j < ir.k; ++j) {
         const int c = index_set_[static_cast<std::size_t>(j)];
         if (ir.gamma_N_A[j] < -v_acc_) {
-          bounce_t_[static_cast<std::size_t>(c)] = t_;
-          bounce_v_[static_cast<std::size_t>(c)] = -ir.gamma_N_A[j];
-          bounce_seq_[static_cast<std::size_t>(c)] = impact_sequence_;
+          ImpactHistory& h = history_[static_cast<std::size_t>(c)];
+          h.bounce_t_s = t_;
+          h.bounce_v_mps = -ir.gamma_N_A[j];
+          h.bounce_seq = impact_sequence_;
         }
         if (ir.Lambda_N[j] > 0.0) {
           result_.events.push_back({t_, EventKind::kImpact, index_set_[static_cast<std::size_t>(j)],
@@ -1496,7 +1448,7 @@ bool Integrator::DecideContacts(const std::vector<int>& forced) {
         all_leave &&
         AccumulatesAtOnce(c, -ws_.impact_result_.gamma_N_A[static_cast<Eigen::Index>(j)]);
     if (leaves(c) && !accumulates) {
-      left_t_[static_cast<std::size_t>(c)] = t_;
+      history_[static_cast<std::size_t>(c)].left_t_s = t_;
       if (modes_.closed(c)) {
         ++result_.detachments;
         result_.events.push_back({t_, EventKind::kDetachment, c, 0.0, 0.0, 0.0, 0.0});
