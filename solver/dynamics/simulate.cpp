@@ -15,6 +15,7 @@
 #include "solver/common/error.h"
 #include "solver/dynamics/active_system.h"
 #include "solver/dynamics/contact_modes.h"
+#include "solver/dynamics/event_location.h"
 #include "solver/dynamics/impact_history.h"
 #include "solver/dynamics/root_finding.h"
 #include "solver/dynamics/run_scales.h"
@@ -606,68 +607,7 @@ double Integrator::GapRoot(int c, double t0, double t1, double g0, double gN0, d
     at(t, q_e_, u_e_);
     return NormalRateAt(c, q_e_, u_e_);
   };
-  // Event times to 1e-13 s (relative beyond 1 s). A slow approach's gap is rounding noise over
-  // a band of ~1e-15 m / speed, often 1e-11 s wide; halving that band down to 1e-15 s cost ~30
-  // evaluations per impact of a corner settling on a closed joint, for event times that move
-  // the state by less than the gap tolerance.
-  const double x_tol =
-      policy_.event_time_tolerance * std::max(1.0, std::abs(t1)) + policy_.event_time_floor_s;
-  double a = t0, ga = g0, gNa = gN0;
-  if (ga <= gap_tol_) {
-    // Starting in touch (just separated): search from the gap's maximum inside the step. A
-    // contact that the contact problem has just opened starts with gamma_N = 0 (up to rounding)
-    // and a separating acceleration; if that acceleration reverses within the step, gamma_N is
-    // positive only on an early part of it, found by halving towards t0.
-    double t_pos = gNa > v_tol_ ? t0 : kInf;
-    double gN_pos = gNa;
-    if (t_pos == kInf && gN1 < 0.0) {  // t_pos is infinite exactly when gNa <= v_tol_
-      for (int k = 1; k <= policy_.touch_probes; ++k) {
-        const double t = t0 + std::ldexp(t1 - t0, -k);
-        if (!(t > t0)) {
-          break;
-        }
-        const double v = gamma_N(t);
-        if (v > 0.0) {
-          t_pos = t;
-          gN_pos = v;
-          break;
-        }
-      }
-    }
-    if (t_pos < kInf && gN1 < 0.0) {
-      const RootResult top = FindRootBrent(gamma_N, t_pos, t1, gN_pos, gN1, x_tol);
-      a = top.x;
-      ga = gap(a);
-      gNa = 0.0;
-      if (ga <= 0.0 && a > t0) {
-        // The gap never opened beyond rounding: the contact closes again where its separation
-        // turns round, later than t0, and the contact problem there sees it approaching.
-        return a;
-      }
-    }
-    if (ga <= 0.0) {
-      return g1 < 0.0 && gNa <= v_tol_ && gN1 < 0.0 ? a : kInf;
-    }
-  }
-  double b = t1, gb = g1;
-  if (gb >= 0.0) {
-    if (!(gNa < 0.0 && gN1 > 0.0)) {
-      return kInf;
-    }
-    const RootResult bottom = FindRootBrent(gamma_N, a, t1, gNa, gN1, x_tol);
-    const double gm = gap(bottom.x);
-    // A minimum at the step's start (within the bracket tolerance) is the state the decision
-    // there has just opened: its gap, taken from the dense output instead of the state, may sit
-    // below zero by rounding, and an impact there would repeat that decision at the same instant.
-    if (gm >= 0.0 || bottom.x - t0 <= policy_.start_minimum_band * x_tol) {
-      return kInf;
-    }
-    b = bottom.x;
-    gb = gm;
-  }
-  const RootResult root = FindRootBrent(gap, a, b, ga, gb, x_tol);
-  // The side where the gap has closed, so the impact sees g <= 0.
-  return root.fx <= 0.0 ? root.x : root.upper;
+  return FirstGapRoot(t0, t1, g0, gN0, g1, gN1, gap, gamma_N, gap_tol_, v_tol_, policy_);
 }
 
 template <class ComponentAt>
@@ -1080,8 +1020,7 @@ void Integrator::ConstrainedStep() {
     uu = y_eval_.segment(n_, n_);
   };
   double t_event = kInf;
-  const double x_tol =
-      policy_.event_time_tolerance * std::max(1.0, std::abs(t1)) + policy_.event_time_floor_s;
+  const double x_tol = EventTimeBracket(t1, policy_);
   for (int c = 0; c < nc_; ++c) {
     if (!modes_.closed(c)) {
       const bool suspect = gap1_[c] < 0.0 || (gN0_[c] < 0.0 && gN1_[c] > 0.0);

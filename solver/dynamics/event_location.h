@@ -1,0 +1,98 @@
+#pragma once
+/// @file
+/// Where an open contact's gap closes inside a step [docs/theory.md §3.12]: the first time in
+/// (t0, t1] at which g reaches zero, given g and its rate gamma_N at both ends and the dense
+/// output as two functions of time, with the touch probes and the start-of-step minimum of the
+/// EventPolicy. Independent of how the state is interpolated (exact flow or Runge-Kutta).
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "solver/dynamics/event_policy.h"
+#include "solver/dynamics/root_finding.h"
+
+namespace skewbridge::dynamics {
+
+/// The bracket of an event time ending at t1 (s): event_time_tolerance relative beyond 1 s,
+/// plus the absolute floor. A slow approach's gap is rounding noise over a band of ~1e-15 m /
+/// speed, often 1e-11 s wide; a tighter bracket costs evaluations for event times that move the
+/// state by less than the gap tolerance.
+inline double EventTimeBracket(double t1, const EventPolicy& policy) {
+  return policy.event_time_tolerance * std::max(1.0, std::abs(t1)) + policy.event_time_floor_s;
+}
+
+/// The first impact time of a contact in the step [t0, t1] (s), or +inf when its gap does not
+/// close there. g0, g1 (m) and gN0, gN1 (m/s) are the gap and its rate at the step's ends;
+/// gap(t) and gamma_N(t) evaluate them inside. `gap_tol_m` is the touch band of a gap,
+/// `v_tol_mps` the zero of a velocity (solver/dynamics/run_scales.h).
+///
+/// - A step that ends with g1 < 0 has a root in it (Brent on g).
+/// - A step that ends open but whose rate turns from - to + may dip below zero: the minimum of g
+///   (Brent on gamma_N) brackets the root when it is negative. A minimum within
+///   start_minimum_band brackets of t0 is the state the decision there has just opened, not an
+///   impact.
+/// - A contact starting in touch (g0 <= gap_tol) searches from the maximum of its gap inside the
+///   step: a contact the contact problem has just opened starts with gamma_N = 0 and a
+///   separating acceleration, and if that acceleration reverses within the step, gamma_N is
+///   positive only on an early part of it, found by halving towards t0 (touch_probes).
+/// The returned time is on the side where the gap has closed, so the impact sees g <= 0.
+template <class Gap, class Rate>
+double FirstGapRoot(double t0, double t1, double g0, double gN0, double g1, double gN1, Gap&& gap,
+                    Rate&& gamma_N, double gap_tol_m, double v_tol_mps, const EventPolicy& policy) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  const double x_tol = EventTimeBracket(t1, policy);
+  double a = t0, ga = g0, gNa = gN0;
+  if (ga <= gap_tol_m) {
+    double t_pos = gNa > v_tol_mps ? t0 : kInf;
+    double gN_pos = gNa;
+    if (t_pos == kInf && gN1 < 0.0) {  // t_pos is infinite exactly when gNa <= v_tol
+      for (int k = 1; k <= policy.touch_probes; ++k) {
+        const double t = t0 + std::ldexp(t1 - t0, -k);
+        if (!(t > t0)) {
+          break;
+        }
+        const double v = gamma_N(t);
+        if (v > 0.0) {
+          t_pos = t;
+          gN_pos = v;
+          break;
+        }
+      }
+    }
+    if (t_pos < kInf && gN1 < 0.0) {
+      const RootResult top = FindRootBrent(gamma_N, t_pos, t1, gN_pos, gN1, x_tol);
+      a = top.x;
+      ga = gap(a);
+      gNa = 0.0;
+      if (ga <= 0.0 && a > t0) {
+        // The gap never opened beyond rounding: the contact closes again where its separation
+        // turns round, later than t0, and the contact problem there sees it approaching.
+        return a;
+      }
+    }
+    if (ga <= 0.0) {
+      return g1 < 0.0 && gNa <= v_tol_mps && gN1 < 0.0 ? a : kInf;
+    }
+  }
+  double b = t1, gb = g1;
+  if (gb >= 0.0) {
+    if (!(gNa < 0.0 && gN1 > 0.0)) {
+      return kInf;
+    }
+    const RootResult bottom = FindRootBrent(gamma_N, a, t1, gNa, gN1, x_tol);
+    const double gm = gap(bottom.x);
+    // A minimum at the step's start (within the bracket) is the state the decision there has
+    // just opened: its gap, taken from the dense output instead of the state, may sit below
+    // zero by rounding, and an impact there would repeat that decision at the same instant.
+    if (gm >= 0.0 || bottom.x - t0 <= policy.start_minimum_band * x_tol) {
+      return kInf;
+    }
+    b = bottom.x;
+    gb = gm;
+  }
+  const RootResult root = FindRootBrent(gap, a, b, ga, gb, x_tol);
+  return root.fx <= 0.0 ? root.x : root.upper;
+}
+
+}  // namespace skewbridge::dynamics
