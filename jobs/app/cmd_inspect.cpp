@@ -133,6 +133,87 @@ void PrintFixed(const jobs::h5::SweepSummary& s) {
   }
 }
 
+// The limit states of an IDA sweep ([ida], docs/sweep-format.md): per limit state the records
+// whose search reached it and the range of their capacities, then, in a final cube, the
+// lognormal fit of the capacities (fragility/<name>/: theta, beta, records, censored) per
+// combination of the axes other than record. False when the cube holds no IDA capacities.
+bool PrintIdaLimitStates(const std::string& path, const jobs::h5::SweepSummary& s) {
+  std::vector<std::string> names;
+  std::string unit;
+  for (const jobs::ResponseInfo& r : s.responses) {
+    if (r.name.starts_with("ida_capacity_") && !r.name.starts_with("ida_capacity_below_") &&
+        !r.name.starts_with("ida_capacity_scale_")) {
+      names.push_back(r.name.substr(13));
+      unit = r.unit;
+    }
+  }
+  if (names.empty()) return false;
+  std::printf("  limit states (IDA, hunt-and-fill; capacity = lowest intensity exceeding it):\n");
+  for (const std::string& name : names) {
+    const std::vector<double> cap = ReadIfPresent(path, s.name, "responses/ida_capacity_" + name)
+                                        .value_or(std::vector<double>{});
+    std::size_t reached = 0, beyond = 0;
+    double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
+    for (double c : cap) {
+      if (std::isinf(c)) ++beyond;
+      if (!std::isfinite(c)) continue;
+      ++reached;
+      lo = std::min(lo, c);
+      hi = std::max(hi, c);
+    }
+    std::printf("    %-18s reached by %zu cells (capacity %s), not up to ida.max_im by %zu\n",
+                name.c_str(), reached,
+                reached ? fmt::format("{:.4g} to {:.4g}{}", lo, hi, UnitSuffix(unit)).c_str() : "-",
+                beyond);
+  }
+  if (std::find(s.children.begin(), s.children.end(), "fragility") == s.children.end()) {
+    std::printf("  fragility: none (fitted into the final cube only)\n");
+    return true;
+  }
+  std::string row_label;
+  std::vector<const jobs::h5::AxisSummary*> others;
+  for (const jobs::h5::AxisSummary& a : s.axes) {
+    if (a.name == "record") continue;
+    others.push_back(&a);
+    row_label += (row_label.empty() ? "" : ",") + a.name;
+  }
+  std::printf(
+      "  fragility (fragility/, method ida): theta [%s] = geometric mean of the capacities, "
+      "beta = std of their logs, per %s\n",
+      unit.c_str(), row_label.empty() ? "sweep" : row_label.c_str());
+  std::printf("    %-18s %-22s %8s %9s %12s %10s\n", "limit state",
+              row_label.empty() ? "-" : row_label.c_str(), "records", "censored", "theta", "beta");
+  for (const std::string& name : names) {
+    const std::string g = "fragility/" + name + "/";
+    const auto theta = ReadIfPresent(path, s.name, g + "theta");
+    const auto beta = ReadIfPresent(path, s.name, g + "beta");
+    const auto n = ReadIfPresent(path, s.name, g + "n_records");
+    const auto censored = ReadIfPresent(path, s.name, g + "n_censored");
+    if (!theta || !beta || !n || !censored) {
+      std::printf("    %-18s (not fitted)\n", name.c_str());
+      continue;
+    }
+    for (std::size_t row = 0; row < theta->size(); ++row) {
+      std::string label;
+      std::size_t rest = row;
+      for (std::size_t j = others.size(); j-- > 0;) {
+        const std::size_t size = others[j]->size;
+        label = Coordinate(*others[j], rest % size) + (label.empty() ? "" : "," + label);
+        rest /= size;
+      }
+      if (label.empty()) label = "-";
+      if (!std::isfinite((*theta)[row])) {
+        std::printf("    %-18s %-22s %8.0f %9.0f  no fit (why: fragility/%s/reason)\n",
+                    name.c_str(), label.c_str(), (*n)[row], (*censored)[row], name.c_str());
+        continue;
+      }
+      std::printf("    %-18s %-22s %8.0f %9.0f %12.6g %10.6g\n", name.c_str(), label.c_str(),
+                  (*n)[row], (*censored)[row], (*theta)[row], (*beta)[row]);
+    }
+  }
+  return true;
+}
+
 // The limit states of a sweep ([limit_states], docs/sweep-format.md): per limit state the cells
 // that exceeded it (response ls_<name>: 1 or 0, NaN for a failed cell) and the largest demand
 // (ls_<name>_demand); then, in a final cube, the fitted fragility (fragility/<name>/: median
@@ -150,6 +231,7 @@ void PrintLimitStates(const std::string& path, const jobs::h5::SweepSummary& s) 
       demand_unit[r.name.substr(3, r.name.size() - 10)] = r.unit;
     }
   }
+  if (names.empty() && PrintIdaLimitStates(path, s)) return;
   if (names.empty()) {
     std::printf("  limit states: none declared\n");
     return;

@@ -69,6 +69,20 @@ for ls in g.attrs["limit_states"]:
         assert row in text, (row, text)
 PY
 
+# inspect prints each limit state's fit per k_factor with the cube's theta and beta.
+"$exe" inspect two.h5 > inspect.txt || fail "inspect"
+/usr/bin/python3 - two.h5 inspect.txt <<'PY' || { cat inspect.txt; fail "inspect's IDA fits"; }
+import sys
+import h5py
+g = h5py.File(sys.argv[1])["sweeps/ida/fragility"]
+lines = open(sys.argv[2]).read().splitlines()
+for ls in g.attrs["limit_states"]:
+    for k, kf in enumerate((1, 4)):
+        theta, beta = g[ls]["theta"][k], g[ls]["beta"][k]
+        want = [ls, str(kf), "2", "0", f"{theta:.6g}", f"{beta:.6g}"]
+        assert any(line.split() == want for line in lines), (want, lines[-8:])
+PY
+
 echo "== SIGTERM and --resume"
 sed -e 's/^set = "set.toml"/synthetic = { count = 160, seed = 7 }/' -e 's/name = "ida"/name = "idakill"/' \
     -e 's/^max_runs = 30/max_runs = 12/' ida.toml > kill.toml
