@@ -37,6 +37,7 @@ TABLE_ONLY = {"x_end", "y_end", "travel_end_m"}
 LIMIT_STATE_PREFIX = "ls_"
 # IDA responses (ida_<...>, per run and per limit state): drawn by the IDA figures (ida.py).
 IDA_PREFIX = "ida_"
+IDA_RUN = re.compile(r"^ida_.*_\d+$")
 MARGINS = ("margin_m", "margin_norm")
 DECK = re.compile(r"^(.+)_d(\d+)$")
 
@@ -583,9 +584,12 @@ def cell_text(sweep, flat_index):
 
 def response_table(sweep):
     """Rows (response, unit, cells with a value, min, median, max, cell of the max) of every
-    response of the cube, descriptors included."""
+    response of the cube, descriptors included; the per-run responses of an IDA search
+    (ida_..._NN, shown by the IDA curves) are left out."""
     rows = []
     for name in sweep.responses:
+        if IDA_RUN.match(name):
+            continue
         values = np.asarray(sweep.responses[name], dtype=float)
         finite = np.isfinite(values)
         unit = _unit(str(sweep.response_attrs.get(name, {}).get("units", ""))) or "1"
