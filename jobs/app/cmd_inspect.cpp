@@ -250,22 +250,31 @@ void PrintLimitStates(const std::string& path, const jobs::h5::SweepSummary& s) 
     }
     double largest = -std::numeric_limits<double>::infinity();
     for (double d : demand.value_or(std::vector<double>{})) {
-      largest = std::isfinite(d) ? std::max(largest, d) : largest;
+      // +inf is a value: any travel over a zero seat.
+      largest = std::isnan(d) ? largest : std::max(largest, d);
     }
     const std::string unit = demand_unit.count(name) ? demand_unit[name] : "";
     std::printf("    %-18s exceeded in %zu of %zu cells; demand up to %s\n", name.c_str(), over,
                 with_value,
-                std::isfinite(largest) ? fmt::format("{:.6g}{}", largest, UnitSuffix(unit)).c_str()
-                                       : "- (no cell with a value)");
+                largest > -std::numeric_limits<double>::infinity()
+                    ? fmt::format("{:.6g}{}", largest, UnitSuffix(unit)).c_str()
+                    : "- (no cell with a value)");
   }
   if (std::find(s.children.begin(), s.children.end(), "fragility") == s.children.end()) {
     std::printf("  fragility: none (fitted into the final cube only)\n");
     return;
   }
-  // The combinations: the axes other than record and the stripe axis, row-major.
+  // The combinations: the axes other than record and the stripe axis, row-major. The stripes
+  // are im_g or im_mps, else scale, else a pulse family's a_g_g (jobs/study.cpp).
+  const auto has_axis = [&s](std::string_view name) {
+    return std::any_of(s.axes.begin(), s.axes.end(),
+                       [name](const jobs::h5::AxisSummary& a) { return a.name == name; });
+  };
+  const bool a_g_g_stripes = !has_axis("im_g") && !has_axis("im_mps") && !has_axis("scale");
   std::vector<const jobs::h5::AxisSummary*> others;
   for (const jobs::h5::AxisSummary& a : s.axes) {
-    if (a.name != "record" && a.name != "im_g" && a.name != "scale") {
+    if (a.name != "record" && a.name != "im_g" && a.name != "im_mps" && a.name != "scale" &&
+        !(a.name == "a_g_g" && a_g_g_stripes)) {
       others.push_back(&a);
     }
   }

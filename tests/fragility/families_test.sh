@@ -10,7 +10,8 @@
 #     responses it is made of;
 #  3. a three-span row as a multi-span cell and as a model file written with the same values:
 #     the same travel, margin, rotation and limit states per deck;
-#  4. bad [limit_states] in these families: one line naming the key, status 2, no cube.
+#  4. `skewbridge inspect` of these cubes: the fits per combination without the stripe axis;
+#  5. bad [limit_states] in these families: one line naming the key, status 2, no cube.
 # usage: families_test.sh SKEWBRIDGE MPIEXEC SOURCE_DIR WORK_DIR
 source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
 args exe mpiexec src work -- "$@"
@@ -143,6 +144,14 @@ for family in ("subsystem", "pilot-bridge", "multi-span"):
             assert np.isinf(r["ls_unseating_demand"]).all()  # any travel over a zero seat
 print("bounding bridges: P = 0 and P = 1 in three families;", checked, "deck travels by brute force")
 PY
+
+# inspect names the combinations without the stripe axis a_g_g, and a zero seat's demand as inf.
+"$exe" inspect multi-span-wide.h5 > inspect.txt
+grep -qF "theta [g], per spans,a_deg,w0_over_wg" inspect.txt || fail "inspect: combinations of multi-span"
+grep -Eq '^    unseating +1,20,0.5 +2 +0 ' inspect.txt || fail "inspect: a multi-span combination row"
+"$exe" inspect subsystem-tight.h5 > inspect.txt
+grep -Eq '^    unseating +exceeded in 6 of 6 cells; demand up to inf$' inspect.txt \
+  || fail "inspect: the demand of a zero seat"
 
 # A three-span row as a multi-span cell and as a model file with the same values.
 cat > ms.toml <<'TOML'
