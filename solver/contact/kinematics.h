@@ -17,6 +17,7 @@
 
 #include <Eigen/Core>
 #include <span>
+#include <vector>
 
 #include "solver/model/model.h"
 
@@ -63,6 +64,55 @@ void VelocityTerms(const model::Model& model, int c, const Eigen::Ref<const Eige
 /// bodies only, which are its only non-zeros; for a single deck the same sum as w.dot(u).
 double ColumnDot(const model::Model& model, int c, const Eigen::Ref<const Eigen::VectorXd>& w,
                  const Eigen::Ref<const Eigen::VectorXd>& u);
+
+/// Scratch of the gap-and-rate path (GapsAndRates, NormalRate): a sine and cosine per body and
+/// two Jacobian columns; sized once per model.
+struct GapRateScratch {
+  std::vector<double> cos, sin;  ///< per body, of theta at the last GapsAndRates
+  Eigen::VectorXd w_N, w_T;      ///< n_dof: Jacobian columns for a face on a body
+
+  /// Allocates for a model (bodies, n_dof).
+  void Resize(const model::Model& model);
+};
+
+/// The arm R(theta) p (m) from cos(theta) and sin(theta), entry by entry as Rotation(theta) p
+/// (the same bits).
+inline Eigen::Vector2d RotatedArm(double cos_theta, double sin_theta, const Eigen::Vector2d& p) {
+  return {cos_theta * p.x() - sin_theta * p.y(), sin_theta * p.x() + cos_theta * p.y()};
+}
+
+/// The gap of a point against a ground face, n . ((X + (x, y)) + arm - A) (m), its body at
+/// q_body = (x, y, ...) with `arm` = R(theta) p: what Gap computes for a ground face.
+inline double GroundFaceGap(const model::Model& model, const model::Contact& contact,
+                            const Eigen::Ref<const Eigen::VectorXd>& q,
+                            const Eigen::Vector2d& arm) {
+  const int i = 3 * contact.body;
+  const Eigen::Vector2d position = model.body(contact.body).rest_position_m + q.segment<2>(i) + arm;
+  return contact.face.normal.dot(position - contact.face.point_m);
+}
+
+/// The normal rate against a ground face, n . (v + thetadot J arm) (m/s), summed as w_N . u of
+/// Evaluate (the same bits).
+inline double GroundFaceNormalRate(const model::Contact& contact,
+                                   const Eigen::Ref<const Eigen::VectorXd>& u,
+                                   const Eigen::Vector2d& arm) {
+  const int i = 3 * contact.body;
+  const Eigen::Vector2d& n = contact.face.normal;
+  return n.dot(u.segment<2>(i)) + u[i + 2] * (n.y() * arm.x() - n.x() * arm.y());
+}
+
+/// The gap g (m) and normal rate gamma_N (m/s) of every contact at (q, u), the same bits as Gap
+/// and Evaluate's gamma_N, for the event searches of the integrator: one sine and cosine per
+/// body, and a ground face without its rotation matrix, face frame or Jacobian columns. A face
+/// on a body takes the general path. No allocation once `scratch` is sized.
+void GapsAndRates(const model::Model& model, const Eigen::Ref<const Eigen::VectorXd>& q,
+                  const Eigen::Ref<const Eigen::VectorXd>& u, Eigen::VectorXd& gap,
+                  Eigen::VectorXd& gamma_N, GapRateScratch& scratch);
+
+/// The normal rate gamma_N (m/s) of contact c at (q, u): a single deck against a ground face
+/// without the Jacobians, otherwise w_N . u over the whole column (the same bits).
+double NormalRate(const model::Model& model, int c, const Eigen::Ref<const Eigen::VectorXd>& q,
+                  const Eigen::Ref<const Eigen::VectorXd>& u, GapRateScratch& scratch);
 
 /// Fills every field of `out` for the state (q, u). No allocation once `out` is sized. Writes
 /// only the rows of each contact's bodies (at most 6 per column): the others keep the zeros of

@@ -151,15 +151,16 @@ class Integrator {
   void RecordSample(double t, const Eigen::Ref<const Vec>& q, const Eigen::Ref<const Vec>& u);
   // 1/2 u^T M u (J), M diagonal.
   double Kinetic() { return 0.5 * u().dot(model_.mass_diagonal().cwiseProduct(u())); }
-  // The gap of contact c at q: contact::Gap's value (the same bits), with the ground face's
-  // formula inline (no rotation matrix, no face frame), for the event searches of the free phase.
-  double GapAt(int c, const Eigen::Ref<const Vec>& q) const;
-  // The normal rate gamma_N of contact c at (q, u): w_N . u (the same bits), without the
-  // Jacobians' zeroing and the tangent for a single deck against a ground face.
-  double NormalRateAt(int c, const Eigen::Ref<const Vec>& q, const Eigen::Ref<const Vec>& u);
+  // The gap of contact c at q, and its normal rate gamma_N at (q, u), for the event searches.
+  double GapAt(int c, const Eigen::Ref<const Vec>& q) const { return contact::Gap(model_, c, q); }
+  double NormalRateAt(int c, const Eigen::Ref<const Vec>& q, const Eigen::Ref<const Vec>& u) {
+    return contact::NormalRate(model_, c, q, u, rates_);
+  }
   // Gaps and normal rates of every contact at (q, u), without the rest of the kinematics.
   void GapsAndRates(const Eigen::Ref<const Vec>& q, const Eigen::Ref<const Vec>& u, Vec& gap,
-                    Vec& gamma_N);
+                    Vec& gamma_N) {
+    contact::GapsAndRates(model_, q, u, gap, gamma_N, rates_);
+  }
   double FreeStepSize(const ExcitationPiece& piece) const;
   Eigen::Vector2d GroundAcceleration(double t) const { return excitation_.At(t); }
 
@@ -175,9 +176,9 @@ class Integrator {
   Vec z_, z_new_, z_eval_;
   Vec y_, dy_, y_eval_, atol_;
   Vec cu_;  // C u
-  Vec q_a_, u_a_, q_b_, u_b_, q_e_, u_e_, q_r_, u_r_, h_, du_, w_N_, w_T_;
+  Vec q_a_, u_a_, q_b_, u_b_, q_e_, u_e_, q_r_, u_r_, h_, du_;
   Vec gap0_, gN0_, gap1_, gN1_;
-  std::vector<double> cos_, sin_;  // per body, of theta at the last GapsAndRates
+  contact::GapRateScratch rates_;  // scratch of the gaps and normal rates
   Vec f0_, f1_, f_eval_;           // closed-contact event functions: step start, end, trial
   ContactModes modes_;             // every contact's mode and the closed set
   std::vector<contact::ClosedContact> closed_list_;
@@ -284,8 +285,7 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   y_ = Vec::Zero(2 * n_ + 3);
   dy_ = y_eval_ = y_;
   atol_ = Vec::Constant(2 * n_ + 3, kInf);
-  q_a_ = u_a_ = q_b_ = u_b_ = q_e_ = u_e_ = q_r_ = u_r_ = h_ = du_ = w_N_ = w_T_ = cu_ =
-      Vec::Zero(n_);
+  q_a_ = u_a_ = q_b_ = u_b_ = q_e_ = u_e_ = q_r_ = u_r_ = h_ = du_ = cu_ = Vec::Zero(n_);
   gap0_ = gN0_ = gap1_ = gN1_ = Vec::Zero(nc_);
   f0_ = f1_ = f_eval_ = Vec::Zero(2 * nc_);
   lambda_N_ = lambda_T_ = Vec::Zero(nc_);
@@ -295,8 +295,7 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   forced_.reserve(static_cast<std::size_t>(nc_));
   previous_.reserve(static_cast<std::size_t>(nc_));
   cone_sign_.assign(static_cast<std::size_t>(nc_), 0);
-  cos_.assign(static_cast<std::size_t>(model.n_bodies()), 1.0);
-  sin_.assign(static_cast<std::size_t>(model.n_bodies()), 0.0);
+  rates_.Resize(model);
   rows_ = cols_ = m_cols_ = Eigen::MatrixXd::Zero(n_, sys_.capacity());
   mh_ = Vec::Zero(n_);
   row_of_.assign(static_cast<std::size_t>(sys_.capacity()), nullptr);
@@ -357,67 +356,6 @@ double Integrator::FreeStepSize(const ExcitationPiece& piece) const {
     return length / std::ceil(length / h_max);
   }
   return h_max;
-}
-
-void Integrator::GapsAndRates(const Eigen::Ref<const Vec>& qq, const Eigen::Ref<const Vec>& uu,
-                              Vec& gap, Vec& gamma_N) {
-  // One sine and cosine per body; a ground face needs only n . (X + (x, y) + R p - A) and
-  // n . (v + thetadot J R p) [docs/theory.md §2]. A face on a body takes the general path.
-  const int nb = model_.n_bodies();
-  for (int b = 0; b < nb; ++b) {
-    cos_[b] = std::cos(qq[3 * b + 2]);
-    sin_[b] = std::sin(qq[3 * b + 2]);
-  }
-  for (int c = 0; c < nc_; ++c) {
-    const model::Contact& contact = model_.contact(c);
-    if (contact.face.body != model::kGround) {
-      gap[c] = contact::Gap(model_, c, qq);
-      contact::Jacobians(model_, c, qq, w_N_, w_T_);
-      gamma_N[c] = w_N_.dot(uu);
-      continue;
-    }
-    const int i = 3 * contact.body;
-    const double co = cos_[contact.body], si = sin_[contact.body];
-    const Eigen::Vector2d& p = contact.point_m;
-    const Eigen::Vector2d arm(co * p.x() - si * p.y(), si * p.x() + co * p.y());
-    const Eigen::Vector2d& n = contact.face.normal;
-    const Eigen::Vector2d position =
-        model_.body(contact.body).rest_position_m + qq.segment<2>(i) + arm;
-    gap[c] = n.dot(position - contact.face.point_m);
-    gamma_N[c] = n.dot(uu.segment<2>(i)) + uu[i + 2] * (n.y() * arm.x() - n.x() * arm.y());
-  }
-}
-
-double Integrator::NormalRateAt(int c, const Eigen::Ref<const Vec>& qq,
-                                const Eigen::Ref<const Vec>& uu) {
-  const model::Contact& contact = model_.contact(c);
-  if (n_ != 3 || contact.face.body != model::kGround) {
-    contact::Jacobians(model_, c, qq, w_N_, w_T_);
-    return w_N_.dot(uu);
-  }
-  // A single deck against a ground face: w_N = (n, n . J R p) and w_N . u summed in the order of
-  // the three-entry dot product, as GapsAndRates does (the same bits).
-  const double co = std::cos(qq[2]), si = std::sin(qq[2]);
-  const Eigen::Vector2d& p = contact.point_m;
-  const Eigen::Vector2d arm(co * p.x() - si * p.y(), si * p.x() + co * p.y());
-  const Eigen::Vector2d& n = contact.face.normal;
-  return n.dot(uu.head<2>()) + uu[2] * (n.y() * arm.x() - n.x() * arm.y());
-}
-
-double Integrator::GapAt(int c, const Eigen::Ref<const Vec>& qq) const {
-  const model::Contact& contact = model_.contact(c);
-  if (contact.face.body != model::kGround) {
-    return contact::Gap(model_, c, qq);
-  }
-  // contact::Gap's operations in its order: arm = R(theta) p, P = (X + (x, y)) + arm,
-  // n . (P - A).
-  const int i = 3 * contact.body;
-  const double co = std::cos(qq[i + 2]), si = std::sin(qq[i + 2]);
-  const Eigen::Vector2d& p = contact.point_m;
-  const Eigen::Vector2d arm(co * p.x() - si * p.y(), si * p.x() + co * p.y());
-  const Eigen::Vector2d position =
-      model_.body(contact.body).rest_position_m + qq.segment<2>(i) + arm;
-  return contact.face.normal.dot(position - contact.face.point_m);
 }
 
 RunResult Integrator::Run() {
