@@ -1,5 +1,6 @@
 #include "jobs/study.h"
 
+#include <limits>
 #include <optional>
 #include <string_view>
 
@@ -129,23 +130,30 @@ std::vector<IdaFragilityStudy> MakeIdaFragility(const SweepSpec& spec, const Cub
   for (const spectra::LimitState& ls : spec.limit_states) {
     const std::optional<std::size_t> col = ResponseColumn(layout, "ida_capacity_" + ls.name);
     if (!col) continue;
-    std::vector<std::vector<double>> capacities(combos);
+    const std::optional<std::size_t> below_col =
+        ResponseColumn(layout, "ida_capacity_below_" + ls.name);
+    std::vector<std::vector<double>> capacities(combos), censor_at(combos);
     for (std::uint64_t c = 0; c < data.Cells(); ++c) {
       if (data.done[c] == 0 || data.status[c] != kStatusOk) continue;
       const std::vector<std::size_t> index = spec.AxisIndex(c);
       std::size_t combo = 0;
       for (std::size_t k : combo_axes) combo = combo * spec.axes[k].Size() + index[k];
       capacities[combo].push_back(data.responses[*col][c]);
+      // A record that never exceeds the limit state is censored at its highest run (max_im
+      // unless the run budget ended the hunt first).
+      censor_at[combo].push_back(below_col ? data.responses[*below_col][c]
+                                           : std::numeric_limits<double>::quiet_NaN());
     }
     IdaFragilityStudy f = base;
     f.ls = ls;
-    for (const std::vector<double>& cap : capacities) {
-      const spectra::CapacityFit fit = spectra::FitCapacities(cap);
+    for (std::size_t combo = 0; combo < combos; ++combo) {
+      const spectra::CapacityFit fit = spectra::FitCapacities(capacities[combo], censor_at[combo]);
       f.theta.push_back(fit.theta);
       f.beta.push_back(fit.beta);
       f.n.push_back(fit.n);
       f.censored.push_back(fit.censored);
       f.reason.push_back(fit.reason);
+      f.note.push_back(fit.note);
     }
     out.push_back(std::move(f));
   }

@@ -46,6 +46,7 @@ struct IdaFragilityStudy {
   std::vector<double> theta, beta;        ///< per combination: median capacity, dispersion
   std::vector<std::int64_t> n, censored;  ///< capacities used, capacities beyond max_im
   std::vector<std::string> reason;        ///< "" or why theta and beta are NaN
+  std::vector<std::string> note;          ///< "" or how censored records entered the fit
 };
 
 /// What the final cube stores besides the cells for a record-driven or banded sweep.

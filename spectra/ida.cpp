@@ -5,6 +5,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
 
 #include "solver/common/error.h"
 #include "spectra/limit_states.h"
@@ -106,32 +110,67 @@ IdaTrace HuntAndFill(const IdaSpec& spec, std::size_t limit_states,
   return t;
 }
 
-CapacityFit FitCapacities(std::span<const double> capacities) {
+namespace {
+
+// phi(z) / (1 - Phi(z)), the hazard of the standard normal (its inverse Mills ratio), with the
+// asymptotic series where 1 - Phi underflows.
+double NormalHazard(double z) {
+  if (z > 30.0) return z + 1.0 / z - 2.0 / (z * z * z);
+  const double q = 0.5 * std::erfc(z / std::sqrt(2.0));
+  return std::exp(-0.5 * z * z) / std::sqrt(2.0 * std::numbers::pi) / q;
+}
+
+// ln(1 - Phi(z)) of the standard normal.
+double LogNormalSurvival(double z) {
+  if (z > 30.0) return -0.5 * z * z - std::log(z * std::sqrt(2.0 * std::numbers::pi));
+  return std::log(0.5 * std::erfc(z / std::sqrt(2.0)));
+}
+
+// The log-likelihood, without its constants, of a normal (mu, sigma = exp(s)) over the
+// observed `y` and the right-censored `u` (each known only to exceed u_j).
+double CensoredLogLikelihood(std::span<const double> y, std::span<const double> u, double mu,
+                             double s) {
+  const double sigma = std::exp(s);
+  double ll = 0.0;
+  for (double v : y) ll += -s - 0.5 * (v - mu) * (v - mu) / (sigma * sigma);
+  for (double v : u) ll += LogNormalSurvival((v - mu) / sigma);
+  return ll;
+}
+
+}  // namespace
+
+CapacityFit FitCapacities(std::span<const double> capacities, std::span<const double> censor_at) {
+  SB_DEMAND(censor_at.empty() || censor_at.size() == capacities.size(),
+            "FitCapacities: censor_at must be empty or one per capacity");
   CapacityFit f;
-  std::vector<double> logs;
-  for (double c : capacities) {
+  std::vector<double> logs, cens;
+  for (std::size_t i = 0; i < capacities.size(); ++i) {
+    const double c = capacities[i];
     if (std::isnan(c)) continue;
     if (std::isinf(c)) {
       ++f.censored;
+      const double at = censor_at.empty() ? kNaN : censor_at[i];
+      if (at > 0.0 && std::isfinite(at)) cens.push_back(std::log(at));
     } else if (c > 0.0) {
       logs.push_back(std::log(c));
     }
   }
   f.n = static_cast<std::int64_t>(logs.size());
-  if (f.censored > 0) {
-    // The records that never reach the limit state are its strongest: leaving them out would
-    // put the median too low, and the fit of right-censored data is another likelihood.
+  const std::int64_t total = f.n + f.censored;
+  if (f.censored > static_cast<std::int64_t>(cens.size())) {
     f.theta = f.beta = kNaN;
     f.reason = fmt::format(
-        "{} of {} records never reach the limit state up to ida.max_im: a fit of the other {} "
-        "alone would put the median too low; raise ida.max_im",
-        f.censored, f.censored + f.n, f.n);
+        "{} of {} records never reach the limit state and the highest intensity run is not "
+        "known for {} of them: no censored fit",
+        f.censored, total, f.censored - static_cast<std::int64_t>(cens.size()));
     return f;
   }
   if (logs.size() < 2) {
     f.theta = f.beta = kNaN;
-    f.reason = fmt::format("{} finite capacities ({} beyond the search's max_im): a fit needs 2",
-                           logs.size(), f.censored);
+    f.reason = fmt::format(
+        "{} finite capacities ({} of {} records never reach the limit state up to "
+        "ida.max_im): a fit needs 2; raise ida.max_im",
+        logs.size(), f.censored, total);
     return f;
   }
   double mean = 0.0;
@@ -139,8 +178,83 @@ CapacityFit FitCapacities(std::span<const double> capacities) {
   mean /= static_cast<double>(logs.size());
   double ss = 0.0;
   for (double x : logs) ss += (x - mean) * (x - mean);
-  f.theta = std::exp(mean);
-  f.beta = std::sqrt(ss / static_cast<double>(logs.size() - 1));
+  if (f.censored == 0) {
+    // The method of moments: theta the geometric mean, beta with n - 1 (the uncensored
+    // maximum-likelihood beta is this times sqrt((n - 1) / n)).
+    f.theta = std::exp(mean);
+    f.beta = std::sqrt(ss / static_cast<double>(logs.size() - 1));
+    return f;
+  }
+  if (ss <= 0.0) {
+    f.theta = f.beta = kNaN;
+    f.reason = fmt::format(
+        "the {} finite capacities are all equal and {} records are censored: the censored "
+        "likelihood has no maximum (beta -> 0)",
+        logs.size(), f.censored);
+    return f;
+  }
+  // Maximum likelihood with right-censored capacities [e.g. Klein and Moeschberger 2003,
+  // Survival Analysis, §3.5]: each capacity contributes the lognormal density, each censored
+  // record 1 - Phi((ln u_j - mu) / sigma), u_j its highest intensity run. Newton's method on
+  // (mu, s = ln sigma) with step halving, from the moments of the finite capacities.
+  double mu = mean, s = 0.5 * std::log(ss / static_cast<double>(logs.size()));
+  double ll = CensoredLogLikelihood(logs, cens, mu, s);
+  bool converged = false;
+  for (int it = 0; it < 200 && !converged; ++it) {
+    const double sigma = std::exp(s);
+    Eigen::Vector2d g = Eigen::Vector2d::Zero();
+    Eigen::Matrix2d h = Eigen::Matrix2d::Zero();
+    for (double v : logs) {
+      const double r = (v - mu) / sigma;
+      g(0) += r / sigma;
+      g(1) += r * r - 1.0;
+      h(0, 0) -= 1.0 / (sigma * sigma);
+      h(0, 1) -= 2.0 * r / sigma;
+      h(1, 1) -= 2.0 * r * r;
+    }
+    for (double v : cens) {
+      const double z = (v - mu) / sigma;
+      const double m = NormalHazard(z), dm = m * (m - z);
+      g(0) += m / sigma;
+      g(1) += m * z;
+      h(0, 0) -= dm / (sigma * sigma);
+      h(0, 1) -= (dm * z + m) / sigma;
+      h(1, 1) -= z * (dm * z + m);
+    }
+    h(1, 0) = h(0, 1);
+    // Newton's step where the Hessian is negative definite, else the gradient's.
+    Eigen::Vector2d step = g;
+    const Eigen::LLT<Eigen::Matrix2d> llt(-h);
+    if (llt.info() == Eigen::Success) step = llt.solve(g);
+    double t = 1.0;
+    for (int k = 0; k < 60; ++k, t *= 0.5) {
+      const double mu1 = mu + t * step(0), s1 = s + t * step(1);
+      const double ll1 = CensoredLogLikelihood(logs, cens, mu1, s1);
+      if (ll1 >= ll) {
+        converged = std::abs(t * step(0)) < 1e-13 && std::abs(t * step(1)) < 1e-13;
+        mu = mu1;
+        s = s1;
+        ll = ll1;
+        break;
+      }
+      if (k == 59) converged = true;  // no ascent left at double precision
+    }
+    if (g.lpNorm<Eigen::Infinity>() < 1e-12) converged = true;
+  }
+  if (!converged || !std::isfinite(mu) || !std::isfinite(s)) {
+    f.theta = f.beta = kNaN;
+    f.reason = fmt::format(
+        "the censored likelihood of {} capacities and {} censored records "
+        "did not converge",
+        logs.size(), f.censored);
+    return f;
+  }
+  f.theta = std::exp(mu);
+  f.beta = std::exp(s);
+  f.note = fmt::format(
+      "{} of {} records never reach the limit state up to their highest run: maximum-likelihood "
+      "fit with right-censored capacities (beta with n)",
+      f.censored, total);
   return f;
 }
 

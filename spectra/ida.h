@@ -69,19 +69,25 @@ IdaTrace HuntAndFill(const IdaSpec& spec, std::size_t limit_states,
                      const std::function<IdaPoint(double)>& run);
 
 /// The lognormal fragility of a set of capacities [Baker 2015, Earthquake Spectra 31(1):579-599,
-/// eqs. 2-3]: theta = exp(mean ln IM_c), beta = the standard deviation of ln IM_c with n - 1.
+/// eqs. 2-3]: with every capacity finite, theta = exp(mean ln IM_c) and beta = the standard
+/// deviation of ln IM_c with n - 1; with some records censored (never reaching the limit state),
+/// the maximum-likelihood theta and beta of right-censored lognormal data.
 struct CapacityFit {
   double theta = 0.0;         ///< median capacity (g or m/s); NaN when not fitted
   double beta = 0.0;          ///< dispersion of ln IM_c; NaN when not fitted
   std::int64_t n = 0;         ///< finite capacities used
-  std::int64_t censored = 0;  ///< capacities beyond the search (+inf): no fit when > 0
+  std::int64_t censored = 0;  ///< records beyond the search (+inf capacity), censored in the fit
   std::string reason;         ///< "" or why theta and beta are NaN
+  std::string note;           ///< "" or how censored records entered the fit
 };
 
-/// Fits CapacityFit to `capacities` (NaN entries are failed cells, skipped). Any +inf (a record
-/// that never reaches the limit state up to ida.max_im) leaves theta and beta NaN with the
-/// reason: the finite ones alone would bias the median low.
-CapacityFit FitCapacities(std::span<const double> capacities);
+/// Fits CapacityFit to `capacities` (NaN entries are failed cells, skipped). A +inf capacity (a
+/// record that never reaches the limit state) is right-censored at `censor_at` of the same
+/// index (the highest intensity run, g or m/s; empty when none is censored). theta and beta
+/// are NaN with the reason when fewer than 2 capacities are finite, or the censored likelihood
+/// has no maximum (finite capacities all equal).
+CapacityFit FitCapacities(std::span<const double> capacities,
+                          std::span<const double> censor_at = {});
 
 /// A sweep of IDA cells ([ida]): wraps the evaluator of the limit states (LimitStateEvaluator
 /// over a model-file evaluator) and makes each cell one HuntAndFill over its record. Stores per

@@ -625,10 +625,12 @@ void WriteIdaFragility(hid_t sweep_group, const std::vector<IdaFragilityStudy>& 
   SetAttr(g.get(), "model",
           std::string("P(exceeded | IM = x) = Phi(ln(x / theta) / beta), lognormal"));
   SetAttr(g.get(), "fit",
-          std::string("theta = exp(mean of ln IM_c), beta = standard deviation of ln IM_c "
-                      "with n - 1, over the records' capacities [Baker 2015, Earthquake "
-                      "Spectra 31(1):579-599]; NaN (with the reason) when a record never "
-                      "reaches the limit state up to ida.max_im (n_censored > 0)"));
+          std::string("every capacity finite: theta = exp(mean of ln IM_c), beta = standard "
+                      "deviation of ln IM_c with n - 1, over the records' capacities [Baker "
+                      "2015, Earthquake Spectra 31(1):579-599]; n_censored > 0: the "
+                      "maximum-likelihood theta and beta (n) of the lognormal with the records "
+                      "that never reach the limit state right-censored at their highest run "
+                      "(note); NaN (with the reason) when fewer than 2 capacities are finite"));
   std::vector<Id> scales;
   for (const std::string& key : first.axis_order) {
     scales.push_back(OpenDataset(sweep_group, "axes/" + key));
@@ -650,12 +652,16 @@ void WriteIdaFragility(hid_t sweep_group, const std::vector<IdaFragilityStudy>& 
         AttachScale(ds.get(), scales[k].get(), static_cast<unsigned>(k), f.axis_order[k]);
       }
     };
-    put("theta", f.theta, f.im_units, "median capacity: exp(mean ln IM_c)");
-    put("beta", f.beta, "1", "dispersion: standard deviation of ln IM_c (n - 1)");
+    put("theta", f.theta, f.im_units,
+        "median capacity: exp(mean ln IM_c), or the censored maximum likelihood's");
+    put("beta", f.beta, "1",
+        "dispersion: standard deviation of ln IM_c (n - 1), or the censored maximum "
+        "likelihood's");
     put("n_records", f.n, "1", "records with a finite capacity (cells done, status ok)");
     put("n_censored", f.censored, "1",
-        "records not reaching the limit state up to ida.max_im (then no fit)");
+        "records not reaching the limit state up to ida.max_im (censored in the fit)");
     WriteStrings(ls.get(), "reason", f.reason);
+    WriteStrings(ls.get(), "note", f.note);
   }
 }
 
