@@ -179,7 +179,7 @@ bool PrintIdaLimitStates(const std::string& path, const jobs::h5::SweepSummary& 
   }
   std::printf(
       "  fragility (fragility/, method ida): theta [%s] = geometric mean of the capacities, "
-      "beta = std of their logs, per %s\n",
+      "beta = std of their logs (censored records: maximum likelihood), per %s\n",
       unit.c_str(), row_label.empty() ? "sweep" : row_label.c_str());
   std::printf("    %-18s %-22s %8s %9s %12s %10s\n", "limit state",
               row_label.empty() ? "-" : row_label.c_str(), "records", "censored", "theta", "beta");

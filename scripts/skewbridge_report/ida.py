@@ -148,10 +148,12 @@ def fragility(sweep, out_dir, name, pdf):
         "Steps: the share of the records whose IDA capacity is at or below the intensity "
         "(records that never reached the limit state count, never exceeded). Lines: the "
         "lognormal fit Φ(ln(IM/θ)/β) with θ the geometric mean of the capacities and β the "
-        "standard deviation of their logarithms (Baker 2015); none where a record never "
-        "reached the limit state up to ida.max_im (the table says why).", 150)), fontsize=8,
+        "standard deviation of their logarithms (Baker 2015), or, where some records never "
+        "reached it, the maximum-likelihood fit with those right-censored at their highest "
+        "run; none where fewer than 2 capacities are finite (the table says why).", 150)),
+        fontsize=8,
         va="bottom", color="0.2")
-    fig.get_layout_engine().set(rect=(0, 0.07, 1, 0.93))
+    fig.get_layout_engine().set(rect=(0, 0.1, 1, 0.9))
     return figures._save(fig, out_dir, name, pdf), table
 
 
