@@ -1,5 +1,9 @@
 #include "jobs/study.h"
 
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <optional>
 #include <string_view>
@@ -132,17 +136,32 @@ std::vector<IdaFragilityStudy> MakeIdaFragility(const SweepSpec& spec, const Cub
     if (!col) continue;
     const std::optional<std::size_t> below_col =
         ResponseColumn(layout, "ida_capacity_below_" + ls.name);
+    const std::optional<std::size_t> own_col = ResponseColumn(layout, "im_unscaled");
+    const double max_scale = spec.im.max_scale;
     std::vector<std::vector<double>> capacities(combos), censor_at(combos);
+    std::vector<std::int64_t> too_far(combos, 0);
     for (std::uint64_t c = 0; c < data.Cells(); ++c) {
       if (data.done[c] == 0 || data.status[c] != kStatusOk) continue;
       const std::vector<std::size_t> index = spec.AxisIndex(c);
       std::size_t combo = 0;
       for (std::size_t k : combo_axes) combo = combo * spec.axes[k].Size() + index[k];
-      capacities[combo].push_back(data.responses[*col][c]);
+      double capacity = data.responses[*col][c];
       // A record that never exceeds the limit state is censored at its highest run (max_im
       // unless the run budget ended the hunt first).
-      censor_at[combo].push_back(below_col ? data.responses[*below_col][c]
-                                           : std::numeric_limits<double>::quiet_NaN());
+      double at =
+          below_col ? data.responses[*below_col][c] : std::numeric_limits<double>::quiet_NaN();
+      if (max_scale > 0.0 && own_col) {
+        // Runs scaled beyond max_scale are not trusted: a capacity reached there is flagged
+        // and censored at the highest trusted intensity, as is a record never exceeding it.
+        const double trusted = max_scale * data.responses[*own_col][c];
+        if (std::isfinite(capacity) && capacity > trusted) {
+          ++too_far[combo];
+          capacity = std::numeric_limits<double>::infinity();
+        }
+        if (std::isinf(capacity)) at = std::min(at, trusted);
+      }
+      capacities[combo].push_back(capacity);
+      censor_at[combo].push_back(at);
     }
     IdaFragilityStudy f = base;
     f.ls = ls;
@@ -152,8 +171,17 @@ std::vector<IdaFragilityStudy> MakeIdaFragility(const SweepSpec& spec, const Cub
       f.beta.push_back(fit.beta);
       f.n.push_back(fit.n);
       f.censored.push_back(fit.censored);
-      f.reason.push_back(fit.reason);
-      f.note.push_back(fit.note);
+      std::string why = fit.reason, note = fit.note;
+      if (too_far[combo] > 0) {
+        const std::string far = fmt::format(
+            "; {} of the censored reached it only beyond records.max_scale = {} (censored there)",
+            too_far[combo], max_scale);
+        if (!why.empty()) why += far;
+        if (!note.empty()) note += far;
+      }
+      f.reason.push_back(why);
+      f.note.push_back(note);
+      f.too_far.push_back(too_far[combo]);
     }
     out.push_back(std::move(f));
   }

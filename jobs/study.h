@@ -47,6 +47,9 @@ struct IdaFragilityStudy {
   std::vector<std::int64_t> n, censored;  ///< capacities used, capacities beyond max_im
   std::vector<std::string> reason;        ///< "" or why theta and beta are NaN
   std::vector<std::string> note;          ///< "" or how censored records entered the fit
+  /// Per combination: capacities reached at a scale factor above [records] max_scale (flagged,
+  /// censored at max_scale in the fit; counted in n_censored too).
+  std::vector<std::int64_t> too_far;
 };
 
 /// What the final cube stores besides the cells for a record-driven or banded sweep.

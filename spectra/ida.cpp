@@ -262,7 +262,8 @@ IdaEvaluator::IdaEvaluator(std::unique_ptr<CellEvaluator> inner, const CellGrid&
     : inner_(std::move(inner)),
       ida_(grid.ida),
       limit_states_(grid.limit_states),
-      im_unit_(IntensityUnit(grid.im)) {
+      im_unit_(IntensityUnit(grid.im)),
+      max_scale_(grid.im.max_scale) {
   const std::vector<ResponseInfo> responses = inner_->Responses();
   auto column = [&](const std::string& name, const LimitState& ls) {
     for (std::size_t c = 0; c < responses.size(); ++c) {
@@ -292,6 +293,9 @@ std::vector<ResponseInfo> IdaEvaluator::Responses() const {
          "highest intensity below it of a run that does not exceed " + ls.name + " (0: none)"});
     out.push_back({"ida_capacity_scale_" + ls.name, "1",
                    "scale factor on the record at ida_capacity_" + ls.name});
+    out.push_back({"ida_scaled_too_far_" + ls.name, "1",
+                   "1 when ida_capacity_scale_" + ls.name +
+                       " > records.max_scale, else 0 (always 0 without it)"});
   }
   for (int k = 0; k < ida_.max_runs; ++k) {
     const std::string s = RunSuffix(k);
@@ -335,6 +339,8 @@ CellOutcome IdaEvaluator::Evaluate(std::span<const std::size_t> axis_index) cons
     out.responses.push_back(c.im);
     out.responses.push_back(c.below);
     out.responses.push_back(c.im / own);
+    out.responses.push_back(
+        max_scale_ > 0.0 && std::isfinite(c.im) && c.im / own > max_scale_ ? 1.0 : 0.0);
   }
   for (std::size_t k = 0; k < static_cast<std::size_t>(ida_.max_runs); ++k) {
     const bool made = k < t.im.size();

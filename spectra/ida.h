@@ -92,8 +92,9 @@ CapacityFit FitCapacities(std::span<const double> capacities,
 /// A sweep of IDA cells ([ida]): wraps the evaluator of the limit states (LimitStateEvaluator
 /// over a model-file evaluator) and makes each cell one HuntAndFill over its record. Stores per
 /// cell the record's own intensity, the runs made, per limit state the capacity (and the run
-/// below it, and the scale factor at it), and per run k < max_runs its intensity, scale factor
-/// and each limit state's demand and exceedance (NaN past the runs made).
+/// below it, the scale factor at it, and whether that exceeds [records] max_scale), and per run k <
+/// max_runs its intensity, scale factor and each limit state's demand and exceedance (NaN past the
+/// runs made).
 class IdaEvaluator final : public CellEvaluator {
  public:
   /// @throws InputError when the inner evaluator lacks a limit state's responses.
@@ -115,6 +116,7 @@ class IdaEvaluator final : public CellEvaluator {
   IdaSpec ida_;
   std::vector<LimitState> limit_states_;
   std::string im_unit_;
+  double max_scale_ = 0.0;  ///< [records] max_scale (0: none)
   std::vector<std::string> demand_units_;
   std::vector<std::size_t> demand_columns_, exceeded_columns_;
 };

@@ -181,14 +181,17 @@ bool PrintIdaLimitStates(const std::string& path, const jobs::h5::SweepSummary& 
       "  fragility (fragility/, method ida): theta [%s] = geometric mean of the capacities, "
       "beta = std of their logs (censored records: maximum likelihood), per %s\n",
       unit.c_str(), row_label.empty() ? "sweep" : row_label.c_str());
-  std::printf("    %-18s %-22s %8s %9s %12s %10s\n", "limit state",
-              row_label.empty() ? "-" : row_label.c_str(), "records", "censored", "theta", "beta");
+  std::printf("    %-18s %-22s %8s %9s %9s %12s %10s\n", "limit state",
+              row_label.empty() ? "-" : row_label.c_str(), "records", "censored", "too_far",
+              "theta", "beta");
   for (const std::string& name : names) {
     const std::string g = "fragility/" + name + "/";
     const auto theta = ReadIfPresent(path, s.name, g + "theta");
     const auto beta = ReadIfPresent(path, s.name, g + "beta");
     const auto n = ReadIfPresent(path, s.name, g + "n_records");
     const auto censored = ReadIfPresent(path, s.name, g + "n_censored");
+    // Capacities beyond records.max_scale (absent from cubes written before it was stored).
+    const auto too_far = ReadIfPresent(path, s.name, g + "n_scaled_too_far");
     if (!theta || !beta || !n || !censored) {
       std::printf("    %-18s (not fitted)\n", name.c_str());
       continue;
@@ -203,12 +206,14 @@ bool PrintIdaLimitStates(const std::string& path, const jobs::h5::SweepSummary& 
       }
       if (label.empty()) label = "-";
       if (!std::isfinite((*theta)[row])) {
-        std::printf("    %-18s %-22s %8.0f %9.0f  no fit (why: fragility/%s/reason)\n",
-                    name.c_str(), label.c_str(), (*n)[row], (*censored)[row], name.c_str());
+        std::printf("    %-18s %-22s %8.0f %9.0f %9.0f  no fit (why: fragility/%s/reason)\n",
+                    name.c_str(), label.c_str(), (*n)[row], (*censored)[row],
+                    too_far ? (*too_far)[row] : 0.0, name.c_str());
         continue;
       }
-      std::printf("    %-18s %-22s %8.0f %9.0f %12.6g %10.6g\n", name.c_str(), label.c_str(),
-                  (*n)[row], (*censored)[row], (*theta)[row], (*beta)[row]);
+      std::printf("    %-18s %-22s %8.0f %9.0f %9.0f %12.6g %10.6g\n", name.c_str(), label.c_str(),
+                  (*n)[row], (*censored)[row], too_far ? (*too_far)[row] : 0.0, (*theta)[row],
+                  (*beta)[row]);
     }
   }
   return true;

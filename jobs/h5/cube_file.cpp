@@ -624,13 +624,15 @@ void WriteIdaFragility(hid_t sweep_group, const std::vector<IdaFragilityStudy>& 
   SetAttr(g.get(), "axis_order", first.axis_order);
   SetAttr(g.get(), "model",
           std::string("P(exceeded | IM = x) = Phi(ln(x / theta) / beta), lognormal"));
-  SetAttr(g.get(), "fit",
-          std::string("every capacity finite: theta = exp(mean of ln IM_c), beta = standard "
-                      "deviation of ln IM_c with n - 1, over the records' capacities [Baker "
-                      "2015, Earthquake Spectra 31(1):579-599]; n_censored > 0: the "
-                      "maximum-likelihood theta and beta (n) of the lognormal with the records "
-                      "that never reach the limit state right-censored at their highest run "
-                      "(note); NaN (with the reason) when fewer than 2 capacities are finite"));
+  SetAttr(
+      g.get(), "fit",
+      std::string("every capacity finite: theta = exp(mean of ln IM_c), beta = standard "
+                  "deviation of ln IM_c with n - 1, over the records' capacities [Baker "
+                  "2015, Earthquake Spectra 31(1):579-599]; n_censored > 0: the "
+                  "maximum-likelihood theta and beta (n) of the lognormal with the records "
+                  "that never reach the limit state right-censored at their highest run "
+                  "(note), a capacity beyond records.max_scale censored at it (n_scaled_too_far); "
+                  "NaN (with the reason) when fewer than 2 capacities are finite"));
   std::vector<Id> scales;
   for (const std::string& key : first.axis_order) {
     scales.push_back(OpenDataset(sweep_group, "axes/" + key));
@@ -661,6 +663,9 @@ void WriteIdaFragility(hid_t sweep_group, const std::vector<IdaFragilityStudy>& 
     put("n_censored", f.censored, "1",
         "records not reaching the limit state up to ida.max_im (censored in the fit)");
     WriteStrings(ls.get(), "reason", f.reason);
+    put("n_scaled_too_far", f.too_far, "1",
+        "capacities reached at a scale factor above records.max_scale: censored at max_scale "
+        "(in n_censored)");
     WriteStrings(ls.get(), "note", f.note);
   }
 }

@@ -133,6 +133,8 @@ def fragility(sweep, out_dir, name, pdf):
             beta = float(np.asarray(g["beta"]).ravel()[flat])
             table.append((ls, label, int(np.asarray(g["n_records"]).ravel()[flat]),
                           int(np.asarray(g["n_censored"]).ravel()[flat]),
+                          int(np.asarray(g["n_scaled_too_far"]).ravel()[flat])
+                          if "n_scaled_too_far" in g else 0,
                           f"{theta:.3g}" if math.isfinite(theta) else "–",
                           f"{beta:.3g}" if math.isfinite(beta) else "–",
                           _text(np.asarray(g["reason"]).ravel()[flat])))
@@ -159,5 +161,5 @@ def fragility(sweep, out_dir, name, pdf):
 
 def table_header(sweep):
     unit = _attrs(sweep.extra["fragility"]).get("im_units", "g")
-    return ["limit state", "combination", "records with a capacity", "beyond max_im",
-            f"θ [{unit}]", "β", "note"]
+    return ["limit state", "combination", "records with a capacity", "censored",
+            "of them beyond max_scale", f"θ [{unit}]", "β", "note"]

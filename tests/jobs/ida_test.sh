@@ -65,7 +65,7 @@ text = open(sys.argv[2]).read()
 for ls in g.attrs["limit_states"]:
     for k, kf in enumerate((1, 4)):
         theta, beta = g[ls]["theta"][k], g[ls]["beta"][k]
-        row = f"| {ls} | k_factor = {kf} | 2 | 0 | {theta:.3g} | {beta:.3g} |"
+        row = f"| {ls} | k_factor = {kf} | 2 | 0 | 0 | {theta:.3g} | {beta:.3g} |"
         assert row in text, (row, text)
 PY
 
@@ -79,8 +79,54 @@ lines = open(sys.argv[2]).read().splitlines()
 for ls in g.attrs["limit_states"]:
     for k, kf in enumerate((1, 4)):
         theta, beta = g[ls]["theta"][k], g[ls]["beta"][k]
-        want = [ls, str(kf), "2", "0", f"{theta:.6g}", f"{beta:.6g}"]
+        want = [ls, str(kf), "2", "0", "0", f"{theta:.6g}", f"{beta:.6g}"]
         assert any(line.split() == want for line in lines), (want, lines[-8:])
+PY
+
+echo "== max_scale: capacities reached beyond it are flagged, counted and censored at it"
+sed -e 's/^scale_to = \(.*\)$/scale_to = \1\nmax_scale = 4/' -e 's/name = "ida"/name = "idafar"/' \
+    ida.toml > far.toml
+grep -q '^max_scale = 4' far.toml || fail "far.toml: no max_scale"
+"$exe" sweep far.toml --out far.h5 --quiet 2> far.err || { cat far.err; fail "max_scale sweep"; }
+"$exe" inspect far.h5 > far.txt || fail "inspect max_scale"
+/usr/bin/python3 - far.h5 far.txt "$(dirname "$check")" <<'PY' || { cat far.txt; fail "max_scale"; }
+import sys
+import h5py
+import numpy as np
+sys.path.insert(0, sys.argv[3])
+from check_ida import censored_mle
+g = h5py.File(sys.argv[1])["sweeps/idafar"]
+r, fr = g["responses"], g["fragility"]
+order = list(fr.attrs["axis_order"])
+assert order == ["k_factor"], order
+lines = [line.split() for line in open(sys.argv[2]).read().splitlines()]
+flagged = 0
+for ls in fr.attrs["limit_states"]:
+    cap = r[f"ida_capacity_{ls}"][()]
+    below = r[f"ida_capacity_below_{ls}"][()]
+    trusted = 4.0 * r["im_unscaled"][()]
+    flag = np.isfinite(cap) & (cap > trusted)
+    assert np.array_equal(r[f"ida_scaled_too_far_{ls}"][()] == 1, flag), ls
+    assert np.allclose(r[f"ida_capacity_scale_{ls}"][()][flag] > 4.0, True)
+    flagged += int(flag.sum())
+    for k in range(cap.shape[1]):
+        c, f = cap[:, k], flag[:, k]
+        cens = ~np.isfinite(c) | f
+        assert fr[ls]["n_scaled_too_far"][k] == f.sum() and fr[ls]["n_censored"][k] == cens.sum()
+        theta, beta = fr[ls]["theta"][k], fr[ls]["beta"][k]
+        y = np.log(c[~cens])
+        if y.size < 2:
+            assert np.isnan(theta) and b"a fit needs 2" in fr[ls]["reason"][k], (ls, k)
+        elif not cens.any():
+            assert abs(theta - np.exp(y.mean())) <= 1e-12 * theta
+        else:
+            u = np.log(np.minimum(below[:, k], trusted[:, k])[cens])
+            t, b = censored_mle(y, u)
+            assert abs(theta - t) <= 1e-6 * t and abs(beta - b) <= 1e-6 * b, (theta, t, beta, b)
+        row = [x for x in lines if x[:2] == [ls, str([1, 4][k])]]
+        assert row and row[0][4] == str(int(f.sum())), (ls, k, row)
+assert flagged >= 1, "max_scale = 4 flags no capacity: the test checks nothing"
+print(f"max_scale: {flagged} capacities flagged beyond it")
 PY
 
 echo "== SIGTERM and --resume"
