@@ -17,6 +17,7 @@
 #include "solver/dynamics/contact_modes.h"
 #include "solver/dynamics/event_location.h"
 #include "solver/dynamics/impact_history.h"
+#include "solver/dynamics/projection.h"
 #include "solver/dynamics/root_finding.h"
 #include "solver/dynamics/run_scales.h"
 #include "solver/lcp/small_lp.h"
@@ -1012,103 +1013,11 @@ void Integrator::ConstrainedStep() {
 }
 
 void Integrator::Project() {
-  // Gauss-Newton in the M^-1 metric: positions onto g = 0 of the closed contacts, velocities
-  // onto gamma_N = 0 (and gamma_T = 0 when sticking) [docs/theory.md §3, smooth phases]. Only the
-  // closed contacts' kinematics are needed; the next step or the decision's last evaluation sees
-  // all.
-  const Vec& inv_m = model_.inverse_mass_diagonal();
-  for (int pass = 0; pass < policy_.position_passes; ++pass) {
-    contact::EvaluateContacts(model_, q(), u(), modes_.closed_ids(), ws_.kin_);
-    int m = 0;
-    double largest_gap_m = 0.0;
-    for (int c = 0; c < nc_; ++c) {
-      if (modes_.closed(c)) {
-        rows_.col(m) = ws_.kin_.W_N.col(c);
-        sys_.b(m) = -ws_.kin_.gap_m[c];
-        largest_gap_m = std::max(largest_gap_m, std::abs(ws_.kin_.gap_m[c]));
-        ++m;
-      }
-    }
-    if (m == 0) {
-      return;
-    }
-    // The gap is linear in the translations and its curvature in the rotation is the arm, at
-    // most the deck's size: after one pass from gaps below sqrt(eps) of that size, the residual
-    // is below rounding and a second pass (an evaluation and a solve after every step of a
-    // constrained phase) changes nothing that a gap resolves.
-    const bool last_pass = largest_gap_m <= policy_.one_pass_gap * ws_.length_scale_m_;
-    sys_.Start(m);
-    for (int i = 0; i < m; ++i) {
-      for (int j = 0; j < m; ++j) {
-        sys_.A(i, j) = rows_.col(i).dot(inv_m.cwiseProduct(rows_.col(j)));
-      }
-    }
-    sys_.SolveSymmetric();
-    for (int j = 0; j < m; ++j) {
-      z_.head(n_) += inv_m.cwiseProduct(rows_.col(j)) * sys_.x(j);
-    }
-    if (last_pass) {
-      break;
-    }
-  }
-  // Velocities: onto gamma_N = 0 of the closed contacts (gamma_T = 0 of the sticking ones), and
-  // gamma_N >= 0 of the open contacts at the face. The projection of the closed contacts alone can
-  // drive an open contact at the face into the face (a deck rocking between two corners: putting
-  // one corner's slow separation to zero swings the other into its face), and the next step would
-  // find that contact closing at once, at the same instant. The inequality rows enter as an active
-  // set: an open contact at the face is added while the projection makes it approach, and dropped
-  // again if it would have to pull (a negative multiplier).
-  contact::Evaluate(model_, q(), u(), ws_.kin_);
-  std::fill(projection_rows_.begin(), projection_rows_.end(), 0);
-  u_proj_in_ = u();
-  for (int pass = 0; pass <= nc_; ++pass) {
-    int m = 0;
-    for (int c = 0; c < nc_; ++c) {
-      const ContactMode mode = modes_[c];
-      if (IsClosed(mode) || projection_rows_[static_cast<std::size_t>(c)] != 0) {
-        rows_.col(m++) = ws_.kin_.W_N.col(c);
-        if (mode == ContactMode::kStick) {
-          rows_.col(m++) = ws_.kin_.W_T.col(c);
-        }
-      }
-    }
-    sys_.Start(m);
-    for (int i = 0; i < m; ++i) {
-      sys_.b(i) = -rows_.col(i).dot(u_proj_in_);
-      for (int j = 0; j < m; ++j) {
-        sys_.A(i, j) = rows_.col(i).dot(inv_m.cwiseProduct(rows_.col(j)));
-      }
-    }
-    if (m > 0) {
-      sys_.SolveSymmetric();
-    }
-    u_proj_ = u_proj_in_;
-    for (int j = 0; j < m; ++j) {
-      u_proj_ += inv_m.cwiseProduct(rows_.col(j)) * sys_.x(j);
-    }
-    // Active-set update of the open contacts at the face.
-    bool changed = false;
-    int row = 0;
-    for (int c = 0; c < nc_; ++c) {
-      const ContactMode mode = modes_[c];
-      const bool in_set = IsClosed(mode) || projection_rows_[static_cast<std::size_t>(c)] != 0;
-      if (in_set && !IsClosed(mode) && sys_.x(row) < 0.0) {
-        projection_rows_[static_cast<std::size_t>(c)] = 0;
-        changed = true;
-      } else if (policy_.open_contacts_in_projection && !in_set && ws_.kin_.gap_m[c] <= gap_tol_ &&
-                 ws_.kin_.W_N.col(c).dot(u_proj_) < -v_tol_) {
-        projection_rows_[static_cast<std::size_t>(c)] = 1;
-        changed = true;
-      }
-      if (in_set) {
-        row += mode == ContactMode::kStick ? 2 : 1;
-      }
-    }
-    if (!changed) {
-      break;
-    }
-  }
-  z_.segment(n_, n_) = u_proj_;
+  // The projection onto the closed contacts' constraints [docs/theory.md §3.10]; it leaves
+  // ws_.kin_ holding the kinematics of the projected positions.
+  ProjectionWorkspace work{ws_.kin_, sys_, rows_, projection_rows_, u_proj_in_, u_proj_};
+  ProjectOntoContacts(model_, modes_, policy_, {ws_.length_scale_m_, gap_tol_, v_tol_}, q(), u(),
+                      work);
 }
 
 void Integrator::ResolveContacts(const std::vector<int>& forced) {
