@@ -17,6 +17,7 @@
 #include "solver/dynamics/contact_modes.h"
 #include "solver/dynamics/event_location.h"
 #include "solver/dynamics/impact_history.h"
+#include "solver/dynamics/indeterminate_split.h"
 #include "solver/dynamics/projection.h"
 #include "solver/dynamics/root_finding.h"
 #include "solver/dynamics/run_scales.h"
@@ -735,137 +736,10 @@ void Integrator::ActiveForces(double t, const Eigen::Ref<const Vec>& qq,
 }
 
 void Integrator::BalanceIndeterminateFriction(int k, int m) {
-  // A singular active set leaves the forces fixed only up to its kernel. Two corners of a deck
-  // sticking on one face constrain its tangential motion twice (one corner's friction can be
-  // traded against the other's); a deck clamped between two closed faces adds a squeeze (equal
-  // normal forces on both faces) and a couple of the normal forces, and with sliding contacts
-  // the squeeze also changes the friction drag. The minimum-norm solution can pull (a negative
-  // normal force on the unloaded face) or put a lightly loaded corner beyond its cone while
-  // another split keeps every contact inside, and the detachment or slip event would then fire
-  // at the same instant although the contact problem says the contact stays. Of all solutions
-  // x = x0 + K s, three small LPs over the kernel coordinates s choose
-  //   1. the largest smallest normal force, capped at 0 (negative only if no split is
-  //      compressive: the detachment event then fires, as it should);
-  //   2. the least total normal force with every normal force at least that floor: no squeeze,
-  //      since a joint closed at zero gap carries no prestress;
-  //   3. with that total (to rounding), the split deepest inside the friction cones: the largest
-  //      smallest margin mu lambda_N - |lambda_T| of the sticking contacts.
-  // A clamped deck thus sticks while the friction of its non-squeeze normal forces suffices, and
-  // the slip event fires when it no longer does.
-  const int d = sys_.Kernel(kernel_, static_cast<int>(kernel_.cols()));
-  if (d == 0 || d + 1 > lcp::SmallLp::kMaxVariables) {
-    return;
-  }
-  // Unknown j < k: lambda_N of the j-th closed contact; k + i: lambda_T of the i-th sticking one.
-  int j = 0, i = k;
-  for (int c = 0; c < nc_; ++c) {
-    const ContactMode mode = modes_[c];
-    if (!IsClosed(mode)) {
-      continue;
-    }
-    normal_of_[static_cast<std::size_t>(j)] = c;
-    tangent_of_[static_cast<std::size_t>(j)] = mode == ContactMode::kStick ? i++ : -1;
-    ++j;
-  }
-  SB_DEMAND(i == m && j == k, "BalanceIndeterminateFriction: active set layout changed");
-  // Order-one data for the LP tolerances.
-  double scale = force_tol_;
-  for (int r = 0; r < m; ++r) {
-    scale = std::max(scale, std::abs(sys_.x(r)));
-  }
-  for (int r = 0; r < m; ++r) {
-    x_bal_[r] = sys_.x(r) / scale;
-  }
-  const auto K = kernel_.topLeftCorner(m, d);
-  bool normal_kernel = false;
-  for (int jj = 0; jj < k && !normal_kernel; ++jj) {
-    normal_kernel = K.row(jj).norm() > policy_.kernel_normal_threshold;
-  }
-  if (!normal_kernel && m == k) {
-    return;
-  }
-  Eigen::Ref<Vec> s = lp_y_.head(d + 1);
-  s.setZero();
-  double floor = 0.0, total = 0.0;
-  // Rows jj < k: -K_j s <= x0_j - floor (lambda_N_j >= floor).
-  const auto normal_rows = [&](int cols) {
-    for (int jj = 0; jj < k; ++jj) {
-      lp_G_.row(jj).head(cols).setZero();
-      lp_G_.row(jj).head(d) = -K.row(jj);
-      lp_h_[jj] = x_bal_[jj] - floor;
-    }
-  };
-  if (normal_kernel) {
-    // 1. max tau, tau <= lambda_N_j, tau <= 0.
-    normal_rows(d + 1);
-    for (int jj = 0; jj < k; ++jj) {
-      lp_G_(jj, d) = 1.0;
-      lp_h_[jj] = x_bal_[jj];
-    }
-    lp_G_.row(k).head(d + 1).setZero();
-    lp_G_(k, d) = 1.0;
-    lp_h_[k] = 0.0;
-    lp_c_.head(d + 1).setZero();
-    lp_c_[d] = 1.0;
-    if (lp_.Maximize(lp_G_.topLeftCorner(k + 1, d + 1), lp_h_.head(k + 1), lp_c_.head(d + 1),
-                     lp_y_.head(d + 1)) != lcp::LpStatus::kOptimal) {
-      return;
-    }
-    floor = std::min(0.0, lp_y_[d]);
-    // 2. min sum lambda_N_j with lambda_N_j >= floor.
-    normal_rows(d);
-    for (int e = 0; e < d; ++e) {
-      lp_c_[e] = -K.col(e).head(k).sum();
-    }
-    if (lp_.Maximize(lp_G_.topLeftCorner(k, d), lp_h_.head(k), lp_c_.head(d), lp_y_.head(d)) !=
-        lcp::LpStatus::kOptimal) {
-      return;
-    }
-    total = x_bal_.head(k).sum();
-    for (int jj = 0; jj < k; ++jj) {
-      total += K.row(jj).dot(s.head(d));
-    }
-  }
-  x_try_.head(d) = s.head(d);  // the split of steps 1 and 2, should step 3 fail
-  if (m > k) {
-    // 3. max tau, tau <= mu lambda_N_j -+ lambda_T_j, lambda_N_j >= floor, sum lambda_N <= total.
-    int rows = 0;
-    if (normal_kernel) {
-      normal_rows(d + 1);
-      for (int jj = 0; jj < k; ++jj) {
-        lp_G_(jj, d) = 0.0;
-      }
-      rows = k;
-      lp_G_.row(rows).head(d + 1).setZero();
-      lp_G_.row(rows).head(d) = K.topRows(k).colwise().sum();
-      lp_h_[rows] = total * (1.0 + policy_.split_total_slack) + policy_.split_total_slack -
-                    x_bal_.head(k).sum();
-      ++rows;
-    }
-    for (int jj = 0; jj < k; ++jj) {
-      const int t = tangent_of_[static_cast<std::size_t>(jj)];
-      if (t < 0) {
-        continue;
-      }
-      const double mu = model_.contact(normal_of_[static_cast<std::size_t>(jj)]).friction;
-      for (const double sign : {1.0, -1.0}) {
-        lp_G_.row(rows).head(d) = -mu * K.row(jj) + sign * K.row(t);
-        lp_G_(rows, d) = 1.0;
-        lp_h_[rows] = mu * x_bal_[jj] - sign * x_bal_[t];
-        ++rows;
-      }
-    }
-    lp_c_.head(d + 1).setZero();
-    lp_c_[d] = 1.0;
-    if (lp_.Maximize(lp_G_.topLeftCorner(rows, d + 1), lp_h_.head(rows), lp_c_.head(d + 1),
-                     lp_y_.head(d + 1)) != lcp::LpStatus::kOptimal) {
-      s.head(d) = x_try_.head(d);
-    }
-  }
-  x_bal_.head(m) += K * s.head(d);
-  for (int r = 0; r < m; ++r) {
-    sys_.x_mutable(r) = x_bal_[r] * scale;
-  }
+  // The three-LP split of statically indeterminate forces [docs/theory.md §3.13].
+  SplitWorkspace work{kernel_, normal_of_, tangent_of_, x_bal_, x_try_,
+                      lp_,     lp_G_,      lp_h_,       lp_c_,  lp_y_};
+  SplitIndeterminateForces(model_, modes_, policy_, force_tol_, k, m, sys_, work);
 }
 
 void Integrator::Rhs(double t, const Eigen::Ref<const Vec>& y, Eigen::Ref<Vec> dy) {
