@@ -5,7 +5,8 @@
 #     with a brute-force stripe sweep of the same bridge at 0.005 g steps (the first impact
 #     is monotone in the scale factor: the motion is linear until it), and the cube's
 #     fragility (theta, beta) with numpy's over the capacities;
-#  2. a synthetic suite of 160 records on 2 ranks stopped by SIGTERM once cells are
+#  2. a synthetic suite of 800 records on 2 ranks (1600 cells, seconds of work, so that the
+#     signal reaches the sweep before its end) stopped by SIGTERM once cells are
 #     checkpointed, then --resume: the cube equals the uninterrupted one and the cells done
 #     before the signal are not recomputed;
 #  3. bad [ida] input: one line, status 2, no output.
@@ -130,7 +131,7 @@ print(f"max_scale: {flagged} capacities flagged beyond it")
 PY
 
 echo "== SIGTERM and --resume"
-sed -e 's/^set = "set.toml"/synthetic = { count = 160, seed = 7 }/' -e 's/name = "ida"/name = "idakill"/' \
+sed -e 's/^set = "set.toml"/synthetic = { count = 800, seed = 7 }/' -e 's/name = "ida"/name = "idakill"/' \
     -e 's/^max_runs = 30/max_runs = 12/' ida.toml > kill.toml
 on_ranks 2 "$exe" sweep kill.toml --out ref.h5 --quiet 2> ref.err || { cat ref.err; fail "reference"; }
 py() { /usr/bin/python3 -c "import h5py,numpy as np,sys; g=h5py.File(sys.argv[1],'r')['sweeps/idakill']; $2" "$1"; }
