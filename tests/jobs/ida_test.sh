@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # Incremental dynamic analysis ([ida]) through `skewbridge sweep`, end to end:
-#  1. two real records of tests/data/records x two stiffness factors, hunt-and-fill on 1 and
-#     2 ranks: the same cells; check_ida.py compares each record's joint-closing capacity
-#     with a brute-force stripe sweep of the same bridge at 0.005 g steps (the first impact
-#     is monotone in the scale factor: the motion is linear until it), and the cube's
-#     fragility (theta, beta) with numpy's over the capacities;
+#  1. the two real records of tests/data/records/two-records.toml x two stiffness factors,
+#     hunt-and-fill on 1 and 2 ranks: the same cells; check_ida.py compares each record's
+#     joint-closing capacity with a brute-force stripe sweep of the same bridge at 0.005 g
+#     steps (the first impact is monotone in the scale factor: the motion is linear until
+#     it), and the cube's fragility (theta, beta) with numpy's over the capacities;
 #  2. a synthetic suite of 800 records on 2 ranks (1600 cells, seconds of work, so that the
 #     signal reaches the sweep before its end) stopped by SIGTERM once cells are
 #     checkpointed, then --resume: the cube equals the uninterrupted one and the cells done
@@ -16,20 +16,13 @@ args exe mpiexec records check work -- "$@"
 fresh_dir "$work"
 
 cp "$test_data/models/one-deck-records.toml" deck.toml
-cat > set.toml <<TOML
-name = "two"
-[[record]]
-file = "$records/NIS090.AT2"
-[[record]]
-file = "$records/RSN763_LOMAP_GIL067.AT2"
-TOML
-cat > ida.toml <<'TOML'
+cat > ida.toml <<TOML
 [sweep]
 name = "ida"
 family = "model-file"
 model = "deck.toml"
 [records]
-set = "set.toml"
+set = "$records/two-records.toml"
 scale_to = { measure = "Sa", period = "T1", xi = 0.05 }
 [limit_states]
 joint_closing = true
@@ -131,7 +124,7 @@ print(f"max_scale: {flagged} capacities flagged beyond it")
 PY
 
 echo "== SIGTERM and --resume"
-sed -e 's/^set = "set.toml"/synthetic = { count = 800, seed = 7 }/' -e 's/name = "ida"/name = "idakill"/' \
+sed -e 's/^set = .*/synthetic = { count = 800, seed = 7 }/' -e 's/name = "ida"/name = "idakill"/' \
     -e 's/^max_runs = 30/max_runs = 12/' ida.toml > kill.toml
 on_ranks 2 "$exe" sweep kill.toml --out ref.h5 --quiet 2> ref.err || { cat ref.err; fail "reference"; }
 py() { /usr/bin/python3 -c "import h5py,numpy as np,sys; g=h5py.File(sys.argv[1],'r')['sweeps/idakill']; $2" "$1"; }

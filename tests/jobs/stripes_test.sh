@@ -1,30 +1,24 @@
 #!/usr/bin/env bash
-# Records scaled to stripes through `skewbridge sweep` on 1 and 2 ranks: two real records of
-# tests/data/records scaled to Sa(T1) stripes of a one-deck model file at two stiffness factors
-# (so two T1), with a max_scale that some cells exceed. check_stripes.py checks the cube with
-# h5py against scipy (T1 in closed form, Sa by scipy.signal.lsim); the summary line names the
-# cells scaled too far; both cubes hold the same cells. The dry run's table of scale factors
-# is checked against the 2-rank cube and `records spectrum` (check_dry_run_scales.py).
+# Records scaled to stripes through `skewbridge sweep` on 1 and 2 ranks: the two real records
+# of tests/data/records/two-records.toml scaled to Sa(T1) stripes of a one-deck model file at
+# two stiffness factors (so two T1), with a max_scale that some cells exceed. check_stripes.py
+# checks the cube with h5py against scipy (T1 in closed form, Sa by scipy.signal.lsim); the
+# summary line names the cells scaled too far; both cubes hold the same cells. The dry run's
+# table of scale factors is checked against the 2-rank cube and `records spectrum`
+# (check_dry_run_scales.py).
 # usage: stripes_test.sh SKEWBRIDGE MPIEXEC RECORDS_DIR CHECK_SCRIPT WORK_DIR
 source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
 args exe mpiexec records check work -- "$@"
 fresh_dir "$work"
 
 cp "$test_data/models/one-deck-records.toml" deck.toml
-cat > set.toml <<TOML
-name = "two"
-[[record]]
-file = "$records/NIS090.AT2"
-[[record]]
-file = "$records/RSN763_LOMAP_GIL067.AT2"
-TOML
-cat > spec.toml <<'TOML'
+cat > spec.toml <<TOML
 [sweep]
 name = "stripes"
 family = "model-file"
 model = "deck.toml"
 [records]
-set = "set.toml"
+set = "$records/two-records.toml"
 scale_to = { measure = "Sa", period = "T1", xi = 0.05 }
 max_scale = 1.5
 [axes]
@@ -41,7 +35,7 @@ on_ranks 2 "$exe" sweep spec.toml --out two.h5 --quiet 2> two.err || { cat two.e
 # The dry run's record x stripe table of scale factors against the 2-rank cube and against
 # `records spectrum` at both T1 = 2 pi / (10 sqrt(k_factor)) s.
 "$exe" sweep --dry-run spec.toml > dry.txt || fail "dry run"
-"$exe" records spectrum set.toml --xi 0.05 \
+"$exe" records spectrum "$records/two-records.toml" --xi 0.05 \
   --periods "$(/usr/bin/python3 -c 'import math; print(repr(2*math.pi/10), repr(2*math.pi/20), sep=",")')" \
   > spectrum.csv || fail "records spectrum"
 /usr/bin/python3 "$(dirname "$check")/check_dry_run_scales.py" dry.txt two.h5 spectrum.csv ||
