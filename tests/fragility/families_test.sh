@@ -223,28 +223,23 @@ print("three-span row: multi-span and model-file agree; travel_m_d1 =", a["trave
 PY
 
 # Bad keys: one line each, status 2, no cube.
-check_bad() {  # check_bad NAME EXPECTED_TEXT < TOML
-  cat > "$1.toml"
-  local status=0
-  "$exe" sweep "$1.toml" --out "$1.h5" > out.txt 2> err.txt || status=$?
-  [ "$status" -eq 2 ] || fail "$1: exit status $status, expected 2"
-  [ "$(wc -l < err.txt)" -eq 1 ] || fail "$1: expected one line, got: $(cat err.txt)"
-  grep -qF -- "$2" err.txt || fail "$1: expected '$2' in: $(cat err.txt)"
-  [ ! -e "$1.h5" ] && [ ! -e "$1.h5.partial" ] || fail "$1: an output file was left"
+# check_bad NAME FAMILY EXPECTED_TEXT < TOML: a sweep of FAMILY whose spec continues with TOML.
+check_bad() {
+  local name=$1 family=$2 expected=$3 status=0
+  { printf '[sweep]\nname = "bad"\nfamily = "%s"\n' "$family"; cat; } > "$name.toml"
+  "$exe" sweep "$name.toml" --out "$name.h5" > out.txt 2> err.txt || status=$?
+  [ "$status" -eq 2 ] || fail "$name: exit status $status, expected 2"
+  [ "$(wc -l < err.txt)" -eq 1 ] || fail "$name: expected one line, got: $(cat err.txt)"
+  grep -qF -- "$expected" err.txt || fail "$name: expected '$expected' in: $(cat err.txt)"
+  [ ! -e "$name.h5" ] && [ ! -e "$name.h5.partial" ] || fail "$name: an output file was left"
 }
-check_bad no_seats "limit_states.unseating: needs seat widths: give seat_over_L (axis or fixed), or unseating = {seat_m" <<TOML
-[sweep]
-name = "bad"
-family = "pilot-bridge"
+check_bad no_seats pilot-bridge "limit_states.unseating: needs seat widths: give seat_over_L (axis or fixed), or unseating = {seat_m" <<TOML
 [axes]
 Pi_delta = [0.5, 1.0]
 [limit_states]
 unseating = true
 TOML
-check_bad seat_lines "limit_states.unseating.seat_m: one seat width per support line needs a fixed number of spans" <<TOML
-[sweep]
-name = "bad"
-family = "multi-span"
+check_bad seat_lines multi-span "limit_states.unseating.seat_m: one seat width per support line needs a fixed number of spans" <<TOML
 [axes]
 spans = [1, 2]
 [fixed]
@@ -252,10 +247,7 @@ eta0 = 1.5
 [limit_states]
 unseating = {seat_m = [0.5, 0.4, 0.5]}
 TOML
-check_bad seat_count "limit_states.unseating.seat_m: give one seat width or one per support line (4 for 3 decks" <<TOML
-[sweep]
-name = "bad"
-family = "multi-span"
+check_bad seat_count multi-span "limit_states.unseating.seat_m: give one seat width or one per support line (4 for 3 decks" <<TOML
 [axes]
 a_deg = [20, 40]
 [fixed]
@@ -264,10 +256,7 @@ spans = 3
 [limit_states]
 unseating = {seat_m = [0.5, 0.4, 0.5]}
 TOML
-check_bad response "limit_states.response.theta_m_d0: unknown response; allowed: x_m, y_m, theta_m" <<TOML
-[sweep]
-name = "bad"
-family = "subsystem"
+check_bad response subsystem "limit_states.response.theta_m_d0: unknown response; allowed: x_m, y_m, theta_m" <<TOML
 [axes]
 Pi_delta = [0.5, 1.0]
 [limit_states]
