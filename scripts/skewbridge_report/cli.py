@@ -271,9 +271,12 @@ def fragility_sections(sweep, args, used, written):
         return []
     if ida.is_ida(sweep):
         name = _unique(f"ida_curves_{sweep.name}", used)
-        path = ida.curves(sweep, args.out, name, args.pdf)
-        written.append(path)
-        md = [f"## {sweep.name}: IDA curves", "", f"![{name}]({os.path.basename(path)})", ""]
+        md = [f"## {sweep.name}: IDA curves", ""]
+        for path in ida.curves(sweep, args.out, name, args.pdf):
+            written.append(path)
+            stem = os.path.splitext(os.path.basename(path))[0]
+            used.add(stem)
+            md += [f"![{stem}]({os.path.basename(path)})", ""]
         name = _unique(f"fragility_{sweep.name}", used)
         path, rows = ida.fragility(sweep, args.out, name, args.pdf)
         written.append(path)

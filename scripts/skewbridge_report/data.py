@@ -40,6 +40,9 @@ class Sweep:
     axis_attrs: dict = field(default_factory=dict)  # key -> {units, symbol, description}
     fixed_units: dict = field(default_factory=dict)  # fixed key -> unit ("1", "", "deg", ...)
     extra: dict = field(default_factory=dict)  # optional groups (records/, correlation/)
+    # The intensity measure of a record sweep (attributes im_measure, im_description, im_units of
+    # the sweep group; empty without [records] scale_to or im).
+    im_attrs: dict = field(default_factory=dict)
 
     def shape(self):
         return tuple(len(self.axes[k]) for k in self.axis_order)
@@ -76,6 +79,9 @@ def _read_group_tree(group):
         else:
             out[key] = _read_group_tree(item)
     return out
+
+
+IM_ATTRS = ("im_measure", "im_description", "im_units")  # the sweep group's, when stored
 
 
 def load_cube(path, allow_partial=False):
@@ -137,7 +143,9 @@ def load_cube(path, allow_partial=False):
                                 responses=responses, status=status, status_names=names,
                                 fixed=fixed, spec_text=_text(g.attrs.get("spec_text", "")),
                                 response_attrs=response_attrs, axis_attrs=axis_attrs,
-                                fixed_units=fixed_units, extra=extra))
+                                fixed_units=fixed_units, extra=extra,
+                                im_attrs={k: _text(g.attrs[k]) for k in IM_ATTRS
+                                          if k in g.attrs}))
         return sweeps
 
 

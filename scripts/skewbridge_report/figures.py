@@ -98,12 +98,28 @@ SYMBOLS = {
 def caption(fig, keys, extra=""):
     """A caption under the figure defining the symbols in `keys`; the layout leaves room for it
     (constrained layout's rect), so that it never overlaps an axis label."""
-    text = "; ".join(SYMBOLS[k] for k in keys) + "." + (" " + extra if extra else "")
+    caption_text(fig, "; ".join(SYMBOLS[k] for k in keys) + "." + (" " + extra if extra else ""))
+
+
+def caption_text(fig, text):
+    """The caption `text` under the figure, wrapped to its width; the constrained layout leaves
+    room for it (its rect), so that it never overlaps an axis label."""
     width_px = fig.get_figwidth() * DPI
     lines = textwrap.wrap(text, int(width_px / 5.6))  # 8 pt DejaVu Sans: about 5.3 px a glyph
     fig.text(0.005, 0.004, "\n".join(lines), fontsize=8, va="bottom", ha="left", color="0.2")
     bottom = (len(lines) * 8 * 1.25 + 6) / 72.0 / fig.get_figheight()
     fig.get_layout_engine().set(rect=(0, bottom, 1, 1 - bottom))
+
+
+def finish_panels(fig, axes, n_used, text):
+    """The end of a figure of panels in a grid (fragility, cloud, IDA): the panels past the first
+    n_used hidden, the legend of the first panel's labelled curves beside the grid (none when it
+    has none) and the caption `text` under it."""
+    flat = np.ravel(axes)
+    for ax in flat[n_used:]:
+        ax.set_visible(False)
+    curve_key_legend(fig, axes, None, [], *flat[0].get_legend_handles_labels())
+    caption_text(fig, text)
 
 
 def axis_value_label(key, value):

@@ -3,6 +3,7 @@ fragility/): per limit state, the maximum-likelihood lognormal curves with the o
 per stripe and the 95 % band of the likelihood, and the cloud of demand over capacity against
 the intensity measure with its regression line."""
 import math
+import re
 import textwrap
 
 import matplotlib.pyplot as plt
@@ -19,9 +20,25 @@ IM_TEXT = {"im_g": "IM: the stripe im_g", "im_mps": "IM: the stripe im_mps",
            "a_g": r"IM = $a_g/g$ (PGA × scale)"}
 
 
-def im_label(fa):
-    """The IM axis label: what the IM is and its unit (fragility/ attributes im, im_units)."""
-    return f"{IM_TEXT.get(fa['im'], 'IM')} [{fa.get('im_units', 'g')}]"
+def im_name(sweep):
+    """The intensity measure by the name the cube stores (im_measure, and the period and damping
+    of im_description): "Sa(T1, 5 %)", "AvgSa(0.5 s, 5 %)", "PGA", "PGV"; "" when the sweep
+    stores none."""
+    measure = sweep.im_attrs.get("im_measure", "")
+    m = re.match(r"\w+\((.+?), xi = ([0-9.eE+-]+)\)", sweep.im_attrs.get("im_description", ""))
+    if measure in ("Sa", "AvgSa") and m:
+        return f"{measure}({m.group(1)}, {100.0 * float(m.group(2)):g} %)"
+    return measure
+
+
+def im_label(sweep, fa):
+    """The IM axis label: the measure by its name where the IM is the record's measure (stripes
+    of scale_to, im of a cloud, IDA capacities), else what the IM is; and its unit."""
+    unit = fa.get("im_units", "g")
+    name = im_name(sweep)
+    if name and fa["im"] in ("im_g", "im_mps", "im", "ida_capacity"):
+        return f"{name} [{unit}]"
+    return f"{IM_TEXT.get(fa['im'], 'IM')} [{unit}]"
 
 
 def cell_im(sweep, fa):
@@ -139,24 +156,26 @@ def fragility_curves(sweep, out_dir, name, pdf):
                     va="top", fontsize=8, color="0.3")
         figures.log_axis(ax, "x")
         ax.set_ylim(-0.05, 1.05)
-        ax.set_xlabel(im_label(fa))
+        ax.set_xlabel(im_label(sweep, fa))
         ax.set_ylabel("P(exceeded | IM)")
         ax.set_title(_demand_text(ls, g), fontsize=10)
         for flat, idx, label in combos:
             table.append(_row(ls, g, flat, idx, label))
-    for k in range(len(names), rows_n * cols_n):
-        axes[k // cols_n][k % cols_n].set_visible(False)
-    figures.curve_key_legend(fig, axes, None, [], *axes[0][0].get_legend_handles_labels())
-    more = (f" Only the first {MAX_COMBOS} of {len(combos)} combinations are drawn; the table "
-            "lists all." if len(combos) > MAX_COMBOS else "")
-    fig.text(0.005, 0.004, "\n".join(textwrap.wrap(
+    figures.finish_panels(fig, axes, len(names), (
         "Markers: fraction of the cells of a stripe that exceeded the limit state (a cloud: each "
         "cell's 0 or 1). Lines: the maximum-likelihood lognormal fragility "
         "Φ(ln(IM/θ)/β) (binomial likelihood, Baker 2015); bands: its pointwise 95 % interval "
-        "from the observed information (delta method)." + more, 150)), fontsize=8, va="bottom",
-        color="0.2")
-    fig.get_layout_engine().set(rect=(0, 0.07, 1, 0.93))
+        "from the observed information (delta method)." + shown_text(len(shown), len(combos))))
     return figures._save(fig, out_dir, name, pdf), table
+
+
+def shown_text(n_shown, n_combos):
+    """The caption's sentence saying which combinations a figure draws when not all ("" when
+    it draws all of them)."""
+    if n_shown >= n_combos:
+        return ""
+    return (f" Only the first {n_shown} of {n_combos} combinations are drawn; the table lists "
+            "all.")
 
 
 def _short(reason):
@@ -207,7 +226,8 @@ def cloud(sweep, out_dir, name, pdf):
     if not names:
         return None
     order = [_text(k) for k in fa.get("axis_order", [])]
-    shown = _combos(sweep, order)[:MAX_COMBOS]
+    combos = _combos(sweep, order)
+    shown = combos[:MAX_COMBOS]
     styles = _styles(len(shown))
     rows_n, cols_n = _grid(len(names))
     fig, axes = plt.subplots(rows_n, cols_n, figsize=(4.2 * cols_n + 2.2, 3.6 * rows_n + 1.2),
@@ -236,16 +256,12 @@ def cloud(sweep, out_dir, name, pdf):
                 va="bottom", fontsize=8)
         figures.log_axis(ax, "x")
         figures.log_axis(ax, "y")
-        ax.set_xlabel(im_label(fa))
+        ax.set_xlabel(im_label(sweep, fa))
         ax.set_ylabel("demand / capacity D/C")
         ax.set_title(_demand_text(ls, g), fontsize=10)
-    for k in range(len(names), rows_n * cols_n):
-        axes[k // cols_n][k % cols_n].set_visible(False)
-    figures.curve_key_legend(fig, axes, None, [], *axes[0][0].get_legend_handles_labels())
-    fig.text(0.005, 0.004, "\n".join(textwrap.wrap(
+    figures.finish_panels(fig, axes, len(names), (
         "Markers: each cell's demand over the limit state's capacity (unseating: corner travel "
         "over seat width). Lines: least squares of ln(D/C) on ln(IM) per combination (cloud "
-        "analysis, Cornell et al. 2002); their crossing of D/C = 1 is the cloud median θ.",
-        150)), fontsize=8, va="bottom", color="0.2")
-    fig.get_layout_engine().set(rect=(0, 0.06, 1, 0.94))
+        "analysis, Cornell et al. 2002); their crossing of D/C = 1 is the cloud median θ."
+        + shown_text(len(shown), len(combos))))
     return figures._save(fig, out_dir, name, pdf)

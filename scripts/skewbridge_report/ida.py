@@ -7,14 +7,20 @@ import re
 import textwrap
 
 import matplotlib.pyplot as plt
+import matplotlib.ticker
 import numpy as np
 from scipy.stats import norm
 
 from . import figures
 from .data import _text
-from .fragility import _attrs, _combos, _demand_text, _grid, _styles
+from .fragility import (MAX_COMBOS, _attrs, _combos, _demand_text, _grid, _styles, im_label,
+                        shown_text)
 
-MAX_COMBOS = 4  # columns of IDA curves; the table lists every combination
+COLUMNS = 4  # combinations a row of IDA curves; more than this: one figure per limit state
+# The demand of each kind of limit state, as the x axis of its IDA curves.
+DEMAND_TEXT = {"unseating": "corner travel / seat", "joint_closing": "impacts",
+               "rotation": "rotation", "seat_displacement": "corner travel",
+               "residual": "residual travel", "response": "response"}
 RUN = re.compile(r"^ida_im_(\d+)$")
 
 
@@ -37,59 +43,96 @@ def _select(sweep, array, order, idx):
 
 
 def curves(sweep, out_dir, name, pdf):
-    """Rows: limit states; columns: up to MAX_COMBOS combinations of the other axes. Each record
-    is one line through its runs sorted by intensity, its capacity a cross; the threshold is a
-    dotted line where the limit state has one."""
+    """The IDA curves of every combination of the other axes: up to COLUMNS combinations in one
+    figure NAME (rows: limit states; columns: combinations), more as one figure per limit state
+    NAME_<limit state> with the combinations as small multiples on shared axes, COLUMNS a row.
+    Returns the paths written."""
     f = sweep.extra["fragility"]
     fa = _attrs(f)
     names = [_text(n) for n in fa["limit_states"]]
     order = [_text(k) for k in fa.get("axis_order", [])]
-    combos = _combos(sweep, order)[:MAX_COMBOS]
+    combos = _combos(sweep, order)
+    if len(combos) <= COLUMNS:
+        fig, axes = plt.subplots(len(names), len(combos), squeeze=False, layout="constrained",
+                                 figsize=(3.6 * len(combos) + 1.5, 3.0 * len(names) + 1.0))
+        for r, ls in enumerate(names):
+            for c, combo in enumerate(combos):
+                _curves_panel(axes[r][c], sweep, ls, order, combo,
+                              f"{_demand_text(ls, f[ls])}\n{combo[2]}", c == 0)
+        _from_zero(axes)
+        figures.finish_panels(fig, axes, axes.size, CURVES_TEXT)
+        return [figures._save(fig, out_dir, name, pdf)]
+    paths = []
+    rows_n = int(math.ceil(len(combos) / COLUMNS))
+    for ls in names:
+        fig, axes = plt.subplots(rows_n, COLUMNS, squeeze=False, layout="constrained",
+                                 sharex=True, sharey=True,
+                                 figsize=(3.0 * COLUMNS + 1.0, 2.6 * rows_n + 1.2))
+        for c, combo in enumerate(combos):
+            ax = axes[c // COLUMNS][c % COLUMNS]
+            _curves_panel(ax, sweep, ls, order, combo, combo[2], c % COLUMNS == 0)
+            # Shared axes: the demand named once per column, under its lowest panel.
+            ax.xaxis.label.set_visible(c + COLUMNS >= len(combos))
+            ax.xaxis.set_tick_params(labelbottom=c + COLUMNS >= len(combos))
+        _from_zero(axes)
+        title = (f"IDA curves of {_demand_text(ls, f[ls]).strip()}, each of the {len(combos)} "
+                 f"combinations of {', '.join(order)}")
+        # 11 pt: under 8.5 px a glyph at 100 dpi.
+        fig.suptitle("\n".join(textwrap.wrap(title, int(fig.get_figwidth() * figures.DPI / 8.5))),
+                     fontsize=11)
+        figures.finish_panels(fig, axes, len(combos), CURVES_TEXT)
+        paths.append(figures._save(fig, out_dir, f"{name}_{ls}", pdf))
+    return paths
+
+
+CURVES_TEXT = (
+    "IDA curves [Vamvatsikos and Cornell 2002]: each line is one record, through the runs of its "
+    "hunt-and-fill search sorted by intensity (from 0, 0); a cross marks its capacity, the lowest "
+    "intensity at which the limit state is exceeded; the dotted line is the limit state's "
+    "threshold (the seat for unseating: demand ratio 1).")
+
+
+def _from_zero(axes):
+    """Demand and intensity axes from 0, set once every panel is drawn (shared axes take their
+    range from all of them)."""
+    for ax in np.ravel(axes):
+        ax.set_xlim(left=0.0)
+        ax.set_ylim(bottom=0.0)
+
+
+def _curves_panel(ax, sweep, ls, order, combo, title, first_column):
+    """The IDA curves of one limit state and one combination (flat, idx, label) in `ax`."""
+    f = sweep.extra["fragility"]
+    a = _attrs(f[ls])
     runs = _runs(sweep)
-    unit = fa.get("im_units", "g")
-    fig, axes = plt.subplots(len(names), len(combos), squeeze=False, layout="constrained",
-                             figsize=(3.6 * len(combos) + 1.5, 3.0 * len(names) + 1.0))
+    idx = combo[1]
     n_records = len(sweep.axes["record"]) if "record" in sweep.axes else 1
-    colors = [plt.get_cmap("tab20")(i % 20) for i in range(n_records)]
-    for r, ls in enumerate(names):
-        a = _attrs(f[ls])
-        for c, (flat, idx, label) in enumerate(combos):
-            ax = axes[r][c]
-            im = np.stack([_select(sweep, sweep.responses[f"ida_im_{k:02d}"], order, idx)
-                           for k in runs])
-            d = np.stack([_select(sweep, sweep.responses[f"ida_demand_{ls}_{k:02d}"], order, idx)
-                          for k in runs])
-            cap = _select(sweep, sweep.responses[f"ida_capacity_{ls}"], order, idx)
-            for j in range(im.shape[1]):
-                ok = np.isfinite(im[:, j]) & np.isfinite(d[:, j])
-                o = np.argsort(im[ok, j])
-                x, y = d[ok, j][o], im[ok, j][o]
-                ax.plot(np.r_[0.0, x], np.r_[0.0, y], "-", lw=0.9, color=colors[j], marker=".",
-                        ms=3)
-                if math.isfinite(cap[j]):
-                    at = np.flatnonzero(y == cap[j])
-                    if at.size:
-                        ax.plot(x[at[0]], y[at[0]], "x", color="k", ms=6, mew=1.4)
-            if a.get("kind") not in ("unseating", "joint_closing"):
-                ax.axvline(float(a.get("threshold", 0.0)), color="k", ls=":", lw=1.0)
-            elif a.get("kind") == "unseating":
-                ax.axvline(1.0, color="k", ls=":", lw=1.0)
-            if r == len(names) - 1:
-                units = sweep.response_attrs.get(f"ida_demand_{ls}_00", {}).get("units", "")
-                ax.set_xlabel(f"demand [{_text(units) or '1'}]")
-            if c == 0:
-                ax.set_ylabel(f"intensity [{unit}]")
-            ax.set_title(f"{_demand_text(ls, f[ls])}\n{label}", fontsize=9)
-            ax.set_ylim(bottom=0.0)
-            ax.set_xlim(left=0.0)
-    fig.text(0.005, 0.004, "\n".join(textwrap.wrap(
-        "IDA curves [Vamvatsikos and Cornell 2002]: each line is one record, through the runs "
-        "of its hunt-and-fill search sorted by intensity (from 0, 0); a cross marks its "
-        "capacity, the lowest intensity at which the limit state is exceeded; the dotted line "
-        "is the limit state's threshold (the seat for unseating: demand ratio 1).", 140)),
-        fontsize=8, va="bottom", color="0.2")
-    fig.get_layout_engine().set(rect=(0, 0.06, 1, 0.94))
-    return figures._save(fig, out_dir, name, pdf)
+    cmap = "tab10" if n_records <= 10 else "tab20"  # tab20's pairs only where 10 do not do
+    colors = [plt.get_cmap(cmap)(i % 20) for i in range(n_records)]
+    im = np.stack([_select(sweep, sweep.responses[f"ida_im_{k:02d}"], order, idx) for k in runs])
+    d = np.stack([_select(sweep, sweep.responses[f"ida_demand_{ls}_{k:02d}"], order, idx)
+                  for k in runs])
+    cap = _select(sweep, sweep.responses[f"ida_capacity_{ls}"], order, idx)
+    for j in range(im.shape[1]):
+        ok = np.isfinite(im[:, j]) & np.isfinite(d[:, j])
+        o = np.argsort(im[ok, j])
+        x, y = d[ok, j][o], im[ok, j][o]
+        ax.plot(np.r_[0.0, x], np.r_[0.0, y], "-", lw=0.9, color=colors[j % len(colors)],
+                marker=".", ms=3)
+        if math.isfinite(cap[j]):
+            at = np.flatnonzero(y == cap[j])
+            if at.size:
+                ax.plot(x[at[0]], y[at[0]], "x", color="k", ms=6, mew=1.4)
+    if a.get("kind") not in ("unseating", "joint_closing"):
+        ax.axvline(float(a.get("threshold", 0.0)), color="k", ls=":", lw=1.0)
+    elif a.get("kind") == "unseating":
+        ax.axvline(1.0, color="k", ls=":", lw=1.0)
+    units = sweep.response_attrs.get(f"ida_demand_{ls}_00", {}).get("units", "")
+    ax.set_xlabel(f"{DEMAND_TEXT.get(a.get('kind'), 'demand')} [{_text(units) or '1'}]")
+    if first_column:
+        ax.set_ylabel(im_label(sweep, _attrs(f)))
+    ax.set_title(title, fontsize=9)
+    ax.xaxis.set_major_locator(matplotlib.ticker.MaxNLocator(4))  # rad: 6-digit tick labels
 
 
 def fragility(sweep, out_dir, name, pdf):
@@ -100,7 +143,7 @@ def fragility(sweep, out_dir, name, pdf):
     names = [_text(n) for n in fa["limit_states"]]
     order = [_text(k) for k in fa.get("axis_order", [])]
     combos = _combos(sweep, order)
-    shown = combos[:8]
+    shown = combos[:MAX_COMBOS]
     styles = _styles(len(shown))
     rows_n, cols_n = _grid(len(names))
     fig, axes = plt.subplots(rows_n, cols_n, figsize=(4.2 * cols_n + 2.2, 3.6 * rows_n + 1.2),
@@ -140,22 +183,17 @@ def fragility(sweep, out_dir, name, pdf):
                           _text(np.asarray(g["reason"]).ravel()[flat])))
         figures.log_axis(ax, "x")
         ax.set_ylim(-0.05, 1.05)
-        ax.set_xlabel(f"intensity [{fa.get('im_units', 'g')}]")
+        ax.set_xlabel(im_label(sweep, fa))
         ax.set_ylabel("P(capacity ≤ IM)")
         ax.set_title(_demand_text(ls, g), fontsize=10)
-    for k in range(len(names), rows_n * cols_n):
-        axes[k // cols_n][k % cols_n].set_visible(False)
-    figures.curve_key_legend(fig, axes, None, [], *axes[0][0].get_legend_handles_labels())
-    fig.text(0.005, 0.004, "\n".join(textwrap.wrap(
+    figures.finish_panels(fig, axes, len(names), (
         "Steps: the share of the records whose IDA capacity is at or below the intensity "
         "(records that never reached the limit state count, never exceeded). Lines: the "
         "lognormal fit Φ(ln(IM/θ)/β) with θ the geometric mean of the capacities and β the "
         "standard deviation of their logarithms (Baker 2015), or, where some records never "
         "reached it, the maximum-likelihood fit with those right-censored at their highest "
-        "run; none where fewer than 2 capacities are finite (the table says why).", 150)),
-        fontsize=8,
-        va="bottom", color="0.2")
-    fig.get_layout_engine().set(rect=(0, 0.1, 1, 0.9))
+        "run; none where fewer than 2 capacities are finite (the table says why)."
+        + shown_text(len(shown), len(combos))))
     return figures._save(fig, out_dir, name, pdf), table
 
 

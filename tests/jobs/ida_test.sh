@@ -63,6 +63,24 @@ for ls in g.attrs["limit_states"]:
         assert row in text, (row, text)
 PY
 
+# The report names the measure of [records] scale_to on its intensity axes, and draws every
+# combination: more than ida.COLUMNS of them (here 1) as one figure per limit state.
+mkdir -p multiples
+scripts=$(cd "$(dirname "$check")/../../scripts" && pwd)
+/usr/bin/python3 - two.h5 "$scripts" <<'PY' || fail "report: IM name or IDA figures"
+import os
+import sys
+sys.path.insert(0, sys.argv[2])
+from skewbridge_report import data, fragility, ida
+sweep = data.load_cube(sys.argv[1])[0]
+assert fragility.im_name(sweep) == "Sa(T1, 5 %)", fragility.im_name(sweep)
+ida.COLUMNS = 1
+paths = ida.curves(sweep, "multiples", "c", False)
+names = [n.decode() if isinstance(n, bytes) else n
+         for n in sweep.extra["fragility"]["attrs"]["limit_states"]]
+assert [os.path.basename(p) for p in paths] == [f"c_{n}.png" for n in names], paths
+assert all(os.path.getsize(p) > 0 for p in paths)
+PY
 # inspect prints each limit state's fit per k_factor with the cube's theta and beta.
 "$exe" inspect two.h5 > inspect.txt || fail "inspect"
 /usr/bin/python3 - two.h5 inspect.txt <<'PY' || { cat inspect.txt; fail "inspect's IDA fits"; }
