@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <string>
@@ -104,14 +105,54 @@ class Integrator {
   // Constrained phase: one Runge-Kutta step (or up to an event).
   void ConstrainedStep();
 
-  // Forces of the active set at (t, q, u): du/dt, lambda per contact, the energy powers.
+  // Where one evaluation of the active set's forces writes: the applied forces h, the
+  // kinematics, the dense system and its split along a kernel, lambda per contact and the
+  // friction power. forces_ refers to the integrator's own members, which the event functions,
+  // the cone sign and the mode decision read afterwards; a history sample evaluates into storage
+  // of its own (SampleForces), so recording leaves the integrator's state as it was.
+  struct ForceScratch {
+    Vec& h;                              // applied forces h(t, q, u) (N, N m)
+    contact::ContactKinematics& kin;     // kinematics at (q, u)
+    ActiveSystem& sys;                   // the active set's rows, 2 n_c at most
+    Vec& mh;                             // M^-1 h
+    Eigen::MatrixXd& cols;               // n x 2 n_c force direction of each unknown
+    Eigen::MatrixXd& m_cols;             // M^-1 cols
+    std::vector<const double*>& row_of;  // the kinematics' column of each row
+    SplitWorkspace split;                // the split of indeterminate forces (§3.13)
+    Vec& lambda_N;                       // per contact (N); 0 when open
+    Vec& lambda_T;                       // per contact (N); 0 when open
+    double& friction_power;              // -sum lambda_T gamma_T (W)
+  };
+  // Storage of its own for a history sample's force evaluation, sized as the integrator's.
+  struct SampleForces {
+    SampleForces(const model::Model& model, double rank_threshold);
+    SampleForces(const SampleForces&) = delete;  // `scratch` refers to the members
+    SampleForces& operator=(const SampleForces&) = delete;
+    Vec h, mh, du, lambda_N, lambda_T, x_bal, x_try, lp_h, lp_c, lp_y;
+    double friction_power = 0.0;
+    contact::ContactKinematics kin;
+    ActiveSystem sys;
+    Eigen::MatrixXd cols, m_cols, kernel, lp_G;
+    std::vector<const double*> row_of;
+    std::vector<int> normal_of, tangent_of;
+    lcp::SmallLp lp;
+    ForceScratch scratch;
+  };
+  // Sizes the storage a ForceScratch refers to, except the kinematics and the dense system.
+  static void SizeForceScratch(const model::Model& model, int capacity, ForceScratch& s);
+
+  // Forces of the active set at (t, q, u) into the integrator's own scratch: du/dt, lambda per
+  // contact, the friction power.
   void ActiveForces(double t, const Eigen::Ref<const Vec>& q, const Eigen::Ref<const Vec>& u,
-                    Eigen::Ref<Vec> du);
+                    Eigen::Ref<Vec> du) {
+    EvaluateForces(t, q, u, du, forces_);
+  }
+  // The same into `s`; a singular (statically indeterminate) active set's solution moves along
+  // its kernel: normal forces not negative and no squeeze, then the split of friction deepest
+  // inside the cones [docs/theory.md §3.13].
+  void EvaluateForces(double t, const Eigen::Ref<const Vec>& q, const Eigen::Ref<const Vec>& u,
+                      Eigen::Ref<Vec> du, ForceScratch& s);
   void Rhs(double t, const Eigen::Ref<const Vec>& y, Eigen::Ref<Vec> dy);
-  // Moves a singular (statically indeterminate) active set's solution along its kernel: normal
-  // forces not negative and no squeeze, then the split of friction deepest inside the cones;
-  // k normal and m - k tangent rows.
-  void BalanceIndeterminateFriction(int k, int m);
   // Event-function values of the closed contacts at the last ActiveForces call.
   void ClosedEventValues(Eigen::Ref<Vec> values) const;
 
@@ -226,7 +267,43 @@ class Integrator {
   Eigen::MatrixXd m_cols_;             // M^-1 cols_ (ActiveForces)
   Vec mh_;                             // M^-1 h (ActiveForces)
   std::vector<const double*> row_of_;  // ActiveForces: the kinematics' column of each row
+  ForceScratch forces_;                // the members above that ActiveForces writes
+  std::unique_ptr<SampleForces> sample_forces_;  // a history sample's (with histories only)
 };
+
+Integrator::SampleForces::SampleForces(const model::Model& model, double rank_threshold)
+    : sys(2 * model.n_contacts(), rank_threshold),
+      scratch{h,
+              kin,
+              sys,
+              mh,
+              cols,
+              m_cols,
+              row_of,
+              {kernel, normal_of, tangent_of, x_bal, x_try, lp, lp_G, lp_h, lp_c, lp_y},
+              lambda_N,
+              lambda_T,
+              friction_power} {
+  kin.Resize(model);
+  du = Vec::Zero(model.n_dof());
+  SizeForceScratch(model, sys.capacity(), scratch);
+}
+
+void Integrator::SizeForceScratch(const model::Model& model, int capacity, ForceScratch& s) {
+  const int n = model.n_dof(), nc = model.n_contacts();
+  s.h = s.mh = Vec::Zero(n);
+  s.lambda_N = s.lambda_T = Vec::Zero(nc);
+  s.cols = s.m_cols = Eigen::MatrixXd::Zero(n, capacity);
+  s.row_of.assign(static_cast<std::size_t>(capacity), nullptr);
+  SplitWorkspace& w = s.split;
+  w.kernel = Eigen::MatrixXd::Zero(capacity, capacity);
+  w.lp_G = Eigen::MatrixXd::Zero(3 * nc + 2, capacity + 1);
+  w.lp_h = Vec::Zero(3 * nc + 2);
+  w.lp_c = w.lp_y = Vec::Zero(capacity + 1);
+  w.normal_of.assign(static_cast<std::size_t>(nc), 0);
+  w.tangent_of.assign(static_cast<std::size_t>(nc), -1);
+  w.x_bal = w.x_try = Vec::Zero(capacity);
+}
 
 SimulationWorkspace::SimulationWorkspace(const model::Model& model)
     : model_(model),
@@ -267,7 +344,18 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
       n_(model.n_dof()),
       nc_(model.n_contacts()),
       modes_(model.n_contacts()),
-      sys_(2 * model.n_contacts(), policy.rank_threshold) {
+      sys_(2 * model.n_contacts(), policy.rank_threshold),
+      forces_{h_,
+              ws.kin_,
+              sys_,
+              mh_,
+              cols_,
+              m_cols_,
+              row_of_,
+              {kernel_, normal_of_, tangent_of_, x_bal_, x_try_, lp_, lp_G_, lp_h_, lp_c_, lp_y_},
+              lambda_N_,
+              lambda_T_,
+              friction_power_} {
   SB_DEMAND(&ws.model() == &model, "Simulate: workspace built for another model");
   const int naug = ws.flow_.augmented_size();
   z_ = Vec::Zero(naug);
@@ -287,10 +375,9 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   y_ = Vec::Zero(2 * n_ + 3);
   dy_ = y_eval_ = y_;
   atol_ = Vec::Constant(2 * n_ + 3, kInf);
-  q_a_ = u_a_ = q_b_ = u_b_ = q_e_ = u_e_ = q_r_ = u_r_ = h_ = du_ = cu_ = Vec::Zero(n_);
+  q_a_ = u_a_ = q_b_ = u_b_ = q_e_ = u_e_ = q_r_ = u_r_ = du_ = cu_ = Vec::Zero(n_);
   gap0_ = gN0_ = gap1_ = gN1_ = Vec::Zero(nc_);
   f0_ = f1_ = f_eval_ = Vec::Zero(2 * nc_);
-  lambda_N_ = lambda_T_ = Vec::Zero(nc_);
   closed_list_.reserve(static_cast<std::size_t>(nc_));
   index_set_.reserve(static_cast<std::size_t>(nc_));
   persistent_.reserve(static_cast<std::size_t>(nc_));
@@ -298,19 +385,11 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   previous_.reserve(static_cast<std::size_t>(nc_));
   cone_sign_.assign(static_cast<std::size_t>(nc_), 0);
   rates_.Resize(model);
-  rows_ = cols_ = m_cols_ = Eigen::MatrixXd::Zero(n_, sys_.capacity());
-  mh_ = Vec::Zero(n_);
-  row_of_.assign(static_cast<std::size_t>(sys_.capacity()), nullptr);
+  rows_ = Eigen::MatrixXd::Zero(n_, sys_.capacity());
+  SizeForceScratch(model, sys_.capacity(), forces_);
   projection_rows_.assign(static_cast<std::size_t>(nc_), 0);
   tie_.assign(static_cast<std::size_t>(nc_), std::nullopt);
   history_.assign(static_cast<std::size_t>(nc_), ImpactHistory{});
-  kernel_ = Eigen::MatrixXd::Zero(sys_.capacity(), sys_.capacity());
-  lp_G_ = Eigen::MatrixXd::Zero(3 * nc_ + 2, sys_.capacity() + 1);
-  lp_h_ = Vec::Zero(3 * nc_ + 2);
-  lp_c_ = lp_y_ = Vec::Zero(sys_.capacity() + 1);
-  normal_of_.assign(static_cast<std::size_t>(nc_), 0);
-  tangent_of_.assign(static_cast<std::size_t>(nc_), -1);
-  x_bal_ = x_try_ = Vec::Zero(sys_.capacity());
   u_proj_ = u_proj_in_ = Vec::Zero(n_);
 
   t_end_ = control.EndTime(excitation.Duration());
@@ -345,6 +424,7 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
     hist.lambda_N.reserve(samples * nc_);
     hist.lambda_T.reserve(samples * nc_);
     hist.state.reserve(samples * nc_);
+    sample_forces_ = std::make_unique<SampleForces>(model, policy.rank_threshold);
     next_output_t_ = 0.0;
   }
 }
@@ -592,9 +672,13 @@ void Integrator::RecordOutputs(double t0, double t1, StateAt&& at) {
 
 void Integrator::RecordSample(double t, const Eigen::Ref<const Vec>& qq,
                               const Eigen::Ref<const Vec>& uu) {
+  // The forces at the sample go into the sample's own scratch: the integrator's kinematics,
+  // applied forces and lambda stay those of its last evaluation, so a run takes the same
+  // decisions whether it records histories or not.
   Histories& hist = result_.histories;
+  SampleForces& forces = *sample_forces_;
   if (AnyClosed()) {
-    ActiveForces(t, qq, uu, du_);
+    EvaluateForces(t, qq, uu, forces.du, forces.scratch);
   }
   hist.t_s.push_back(t);
   for (int i = 0; i < n_; ++i) {
@@ -604,21 +688,23 @@ void Integrator::RecordSample(double t, const Eigen::Ref<const Vec>& qq,
   for (int c = 0; c < nc_; ++c) {
     hist.gap_m.push_back(contact::Gap(model_, c, qq));
     const bool closed = modes_.closed(c);
-    hist.lambda_N.push_back(closed ? lambda_N_[c] : 0.0);
-    hist.lambda_T.push_back(closed ? lambda_T_[c] : 0.0);
+    hist.lambda_N.push_back(closed ? forces.lambda_N[c] : 0.0);
+    hist.lambda_T.push_back(closed ? forces.lambda_T[c] : 0.0);
     hist.state.push_back(static_cast<int>(HistoryState(modes_[c])));
   }
 }
 
-void Integrator::ActiveForces(double t, const Eigen::Ref<const Vec>& qq,
-                              const Eigen::Ref<const Vec>& uu, Eigen::Ref<Vec> du) {
-  model_.AppliedForces(qq, uu, GroundAcceleration(t), h_);
+void Integrator::EvaluateForces(double t, const Eigen::Ref<const Vec>& qq,
+                                const Eigen::Ref<const Vec>& uu, Eigen::Ref<Vec> du,
+                                ForceScratch& s) {
+  model_.AppliedForces(qq, uu, GroundAcceleration(t), s.h);
   if (closed_only_) {
-    contact::EvaluateContacts(model_, qq, uu, modes_.closed_ids(), ws_.kin_);
+    contact::EvaluateContacts(model_, qq, uu, modes_.closed_ids(), s.kin);
   } else {
-    contact::Evaluate(model_, qq, uu, ws_.kin_);
+    contact::Evaluate(model_, qq, uu, s.kin);
   }
-  const contact::ContactKinematics& kin = ws_.kin_;
+  const contact::ContactKinematics& kin = s.kin;
+  ActiveSystem& sys = s.sys;
   // Raw loops over the n entries (a single deck: n = 3, one or two rows): the set-up of a
   // dynamic-size Eigen expression costs more than its arithmetic at that size, and this runs in
   // every Runge-Kutta stage of a constrained phase. The arithmetic is the same, element for
@@ -626,8 +712,8 @@ void Integrator::ActiveForces(double t, const Eigen::Ref<const Vec>& qq,
   // product), and each dot product is still Eigen's, so the results keep their bits.
   const int n = n_;
   const double* inv_m = model_.inverse_mass_diagonal().data();
-  const double* h = h_.data();
-  double* mh = mh_.data();
+  const double* h = s.h.data();
+  double* mh = s.mh.data();
   for (int i = 0; i < n; ++i) {
     mh[i] = inv_m[i] * h[i];
   }
@@ -647,9 +733,9 @@ void Integrator::ActiveForces(double t, const Eigen::Ref<const Vec>& qq,
     const double mu = model_.contact(c).friction;
     const double* w_n = kin.W_N.col(c).data();
     const double* w_t = kin.W_T.col(c).data();
-    row_of_[static_cast<std::size_t>(m)] = w_n;
-    sys_.b(m) = -(dot(w_n, mh) + kin.what_N[c]);
-    double* col = cols_.col(m).data();
+    s.row_of[static_cast<std::size_t>(m)] = w_n;
+    sys.b(m) = -(dot(w_n, mh) + kin.what_N[c]);
+    double* col = s.cols.col(m).data();
     if (mode == ContactMode::kSlidePositive) {
       symmetric = false;
       for (int i = 0; i < n; ++i) {
@@ -671,75 +757,69 @@ void Integrator::ActiveForces(double t, const Eigen::Ref<const Vec>& qq,
   for (int c = 0; c < nc_; ++c) {
     if (modes_[c] == ContactMode::kStick) {
       const double* w_t = kin.W_T.col(c).data();
-      row_of_[static_cast<std::size_t>(m)] = w_t;
-      double* col = cols_.col(m).data();
+      s.row_of[static_cast<std::size_t>(m)] = w_t;
+      double* col = s.cols.col(m).data();
       for (int i = 0; i < n; ++i) {
         col[i] = w_t[i];
       }
-      sys_.b(m) = -(dot(w_t, mh) + kin.what_T[c]);
+      sys.b(m) = -(dot(w_t, mh) + kin.what_T[c]);
       ++m;
     }
   }
   for (int j = 0; j < m; ++j) {
-    const double* col = cols_.col(j).data();
-    double* m_col = m_cols_.col(j).data();
+    const double* col = s.cols.col(j).data();
+    double* m_col = s.m_cols.col(j).data();
     for (int i = 0; i < n; ++i) {
       m_col[i] = inv_m[i] * col[i];
     }
   }
-  sys_.Start(m);
+  sys.Start(m);
   for (int i = 0; i < m; ++i) {
     for (int j = 0; j < m; ++j) {
-      sys_.A(i, j) = dot(row_of_[static_cast<std::size_t>(i)], m_cols_.col(j).data());
+      sys.A(i, j) = dot(s.row_of[static_cast<std::size_t>(i)], s.m_cols.col(j).data());
     }
   }
   if (symmetric) {
-    sys_.SolveSymmetric();
+    sys.SolveSymmetric();
   } else {
-    sys_.Solve();
+    sys.Solve();
   }
-  if (sys_.rank_deficient()) {
-    BalanceIndeterminateFriction(k, m);
+  if (sys.rank_deficient()) {
+    // The three-LP split of statically indeterminate forces [docs/theory.md §3.13].
+    SplitIndeterminateForces(model_, modes_, policy_, force_tol_, k, m, sys, s.split);
   }
   // du = M^-1 (h + sum_j cols_j x_j), summed in that order.
   double* d = du.data();
   for (int i = 0; i < n; ++i) {
     double v = h[i];
     for (int j = 0; j < m; ++j) {
-      v += cols_(i, j) * sys_.x(j);
+      v += s.cols(i, j) * sys.x(j);
     }
     d[i] = inv_m[i] * v;
   }
   // Forces per contact and the friction power.
-  friction_power_ = 0.0;
+  s.friction_power = 0.0;
   int j = 0, js = k;
   for (int c = 0; c < nc_; ++c) {
     const ContactMode mode = modes_[c];
     if (!IsClosed(mode)) {
-      lambda_N_[c] = lambda_T_[c] = 0.0;
+      s.lambda_N[c] = s.lambda_T[c] = 0.0;
       continue;
     }
     const double mu = model_.contact(c).friction;
-    lambda_N_[c] = sys_.x(j);
+    s.lambda_N[c] = sys.x(j);
     if (mode == ContactMode::kSlidePositive) {
-      lambda_T_[c] = -mu * sys_.x(j);
+      s.lambda_T[c] = -mu * sys.x(j);
     } else if (mode == ContactMode::kSlideNegative) {
-      lambda_T_[c] = mu * sys_.x(j);
+      s.lambda_T[c] = mu * sys.x(j);
     } else if (mode == ContactMode::kStick) {
-      lambda_T_[c] = sys_.x(js++);
+      s.lambda_T[c] = sys.x(js++);
     } else {
-      lambda_T_[c] = 0.0;
+      s.lambda_T[c] = 0.0;
     }
-    friction_power_ -= lambda_T_[c] * kin.gamma_T[c];
+    s.friction_power -= s.lambda_T[c] * kin.gamma_T[c];
     ++j;
   }
-}
-
-void Integrator::BalanceIndeterminateFriction(int k, int m) {
-  // The three-LP split of statically indeterminate forces [docs/theory.md §3.13].
-  SplitWorkspace work{kernel_, normal_of_, tangent_of_, x_bal_, x_try_,
-                      lp_,     lp_G_,      lp_h_,       lp_c_,  lp_y_};
-  SplitIndeterminateForces(model_, modes_, policy_, force_tol_, k, m, sys_, work);
 }
 
 void Integrator::Rhs(double t, const Eigen::Ref<const Vec>& y, Eigen::Ref<Vec> dy) {
