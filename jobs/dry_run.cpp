@@ -93,11 +93,12 @@ std::string RecordLines(const SweepSpec& spec, const CellEvaluator& evaluator) {
   out += "  scale = the set's factor on the file's accelerations" + extra +
          "; PGA and L_e include it\n";
   out += fmt::format("  {:<22} {:>8} {:>12} {:>9} {:>10}  {}\n", "label", "scale", "PGA [m/s^2]",
-                     "T_m [s]", "L_e [m]", "file");
+                     "T_m [s]", "L_e [m]",
+                     spec.synthetic_count > 0 ? "file" : "file (from the set's folder)");
   for (const spectra::SweepRecord& r : records) {
     out += fmt::format("  {:<22} {:>8.4g} {:>12.4g} {:>9.4g} {:>10.4g}  {}\n", r.label, r.scale,
                        r.measures.pga_mps2, r.measures.mean_period_s, r.measures.persistency_m,
-                       r.file.empty() ? "(made in memory)" : r.file);
+                       r.file.empty() ? "(synthetic, made in memory)" : r.file);
   }
   return out;
 }

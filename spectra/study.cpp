@@ -104,7 +104,10 @@ std::vector<SweepRecord> LoadSweepRecords(const CellGrid& spec) {
                               "missing: a record axis needs a record set");
   }
   const records::RecordSet set = LoadSpecRecordSet(spec);
-  const std::filesystem::path base = set.manifest.parent_path().lexically_normal();
+  // Both absolute, so that a record named by an absolute path in a manifest given by a relative
+  // one (or the reverse) still has a path relative to the manifest's folder.
+  const std::filesystem::path base =
+      std::filesystem::absolute(set.manifest).parent_path().lexically_normal();
   for (const std::string& label : wanted) {
     const records::RecordEntry* found = nullptr;
     for (const records::RecordEntry& entry : set.records) {
@@ -115,7 +118,9 @@ std::vector<SweepRecord> LoadSweepRecords(const CellGrid& spec) {
     }
     SweepRecord record;
     record.label = label;
-    record.file = found->file.lexically_normal().lexically_relative(base).generic_string();
+    const std::filesystem::path file = std::filesystem::absolute(found->file).lexically_normal();
+    const std::filesystem::path relative = file.lexically_relative(base);
+    record.file = (relative.empty() ? file : relative).generic_string();
     record.scale = found->scale;
     record.motion = records::LoadRecord(*found);
     record.measures = records::ComputeMeasures(record.motion);

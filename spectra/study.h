@@ -25,7 +25,7 @@ namespace skewbridge::spectra {
 /// A record of the sweep's record set, read and measured once.
 struct SweepRecord {
   std::string label;                    ///< label in the record set
-  std::string file;                     ///< as the manifest names it; "" when synthesised
+  std::string file;                     ///< relative to the manifest's folder; "" if synthesised
   double scale = 1.0;                   ///< the manifest's factor on the accelerations
   records::GroundMotion motion;         ///< accelerations (m/s^2), scaled as the set says
   records::IntensityMeasures measures;  ///< PGA, T_m, w_g, L_e, CAV, ...

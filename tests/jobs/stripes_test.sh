@@ -41,6 +41,32 @@ on_ranks 2 "$exe" sweep spec.toml --out two.h5 --quiet 2> two.err || { cat two.e
 /usr/bin/python3 "$(dirname "$check")/check_dry_run_scales.py" dry.txt two.h5 spectrum.csv ||
   { cat dry.txt; fail "dry run's scale factors"; }
 
+# A set file here naming its records by absolute paths: the dry run's record table and the
+# cube's records/file give each record's file relative to the set's folder (os.path.relpath),
+# under a header that says so.
+mkdir -p sets
+printf 'name = "abs"\n[[record]]\nfile = "%s"\n[[record]]\nfile = "%s"\n' \
+  "$records/NIS090.AT2" "$records/RSN763_LOMAP_GIL067.AT2" > sets/abs.toml
+sed -e 's|^set = .*|set = "sets/abs.toml"|' -e 's/^name = "stripes"/name = "abs"/' \
+  spec.toml > abs.toml
+"$exe" sweep --dry-run abs.toml > absdry.txt || fail "dry run of a set of absolute paths"
+grep -q "  file (from the set's folder)$" absdry.txt ||
+  { cat absdry.txt; fail "dry run: the file column's header"; }
+"$exe" sweep abs.toml --out abs.h5 --quiet 2> abs.err || { cat abs.err; fail "sweep abs.toml"; }
+for f in NIS090.AT2 RSN763_LOMAP_GIL067.AT2; do
+  rel=$(/usr/bin/python3 -c 'import os, sys; print(os.path.relpath(*sys.argv[1:]))' \
+    "$records/$f" "$(pwd -P)/sets")
+  awk -v f="$f" -v r="$rel" '$1 == f && $NF == r { n++ } END { exit n != 1 }' absdry.txt ||
+    { cat absdry.txt; fail "dry run: $f is not shown as $rel"; }
+  /usr/bin/python3 - "$f" "$rel" <<'PY' || fail "cube: $f is not stored as $rel"
+import sys
+import h5py
+g = h5py.File("abs.h5", "r")["sweeps/abs/records"]
+files = dict(zip((x.decode() for x in g["label"][()]), (x.decode() for x in g["file"][()])))
+assert files[sys.argv[1]] == sys.argv[2], files
+PY
+done
+
 # Bad keys: one line, status 2, no output.
 bad() {
   local edit=$1 pattern=$2
