@@ -329,6 +329,25 @@ void PrintLimitStates(const std::string& path, const jobs::h5::SweepSummary& s) 
   }
 }
 
+// The files the cells were computed from (inputs/), as the sweep read them when it was begun:
+// role, size, SHA-256 (as sha256sum prints it) and the path relative to the spec's folder.
+void PrintInputs(const jobs::h5::SweepSummary& s) {
+  if (s.inputs.empty()) {
+    std::printf("  inputs: none stored\n");
+    return;
+  }
+  std::printf(
+      "  inputs: %zu file(s) the cells were computed from, when the sweep was begun "
+      "(paths relative to the spec's folder):\n",
+      s.inputs.size());
+  std::printf("    %-10s %12s  %-64s  %s\n", "role", "bytes", "sha256", "file");
+  for (const jobs::InputFile& input : s.inputs) {
+    std::printf("    %-10s %12llu  %-64s  %s\n", input.role.c_str(),
+                static_cast<unsigned long long>(input.bytes), input.sha256.c_str(),
+                input.file.c_str());
+  }
+}
+
 void PrintCube(const std::string& path) {
   for (const jobs::h5::SweepSummary& s : jobs::h5::SummarizeCube(path)) {
     std::printf("sweep %s (family %s, spec %s, created %s, skewbridge %s)\n", s.name.c_str(),
@@ -340,6 +359,7 @@ void PrintCube(const std::string& path) {
                   a.unit.empty() || a.unit == "1" ? "" : (" [" + a.unit + "]").c_str());
     }
     PrintFixed(s);
+    PrintInputs(s);
     std::printf("  responses:\n");
     for (const jobs::ResponseInfo& r : s.responses) {
       std::printf("    %-14s [%s] %s\n", r.name.c_str(), r.unit.c_str(), r.description.c_str());

@@ -1300,6 +1300,34 @@ std::vector<SweepSummary> SummarizeCubeIn(const std::filesystem::path& path) {
                                     : names[static_cast<std::size_t>(it - codes.begin())];
       ++s.done_by_status[label];
     }
+    if (Exists(g.get(), "inputs")) {
+      Id inputs = OpenGroup(g.get(), "inputs");
+      if (Exists(inputs.get(), "file")) {
+        Id role_ds = OpenDataset(inputs.get(), "role");
+        Id file_ds = OpenDataset(inputs.get(), "file");
+        Id sha_ds = OpenDataset(inputs.get(), "sha256");
+        Id bytes_ds = OpenDataset(inputs.get(), "bytes");
+        const std::vector<std::string> roles = ReadStrings(role_ds.get());
+        const std::vector<std::string> files = ReadStrings(file_ds.get());
+        const std::vector<std::string> sums = ReadStrings(sha_ds.get());
+        std::vector<std::int64_t> bytes(files.size());
+        if (roles.size() != files.size() || sums.size() != files.size() ||
+            CellsOf(bytes_ds.get()) != files.size()) {
+          throw InputError::AtLine(
+              path.string(), 0,
+              "sweeps/" + name + "/inputs: role, file, sha256 and bytes " + "differ in length");
+        }
+        ReadAll(bytes_ds.get(), H5T_NATIVE_INT64, bytes.data());
+        for (std::size_t i = 0; i < files.size(); ++i) {
+          InputFile input;
+          input.role = roles[i];
+          input.file = files[i];
+          input.sha256 = sums[i];
+          input.bytes = static_cast<std::uint64_t>(bytes[i]);
+          s.inputs.push_back(std::move(input));
+        }
+      }
+    }
     if (HasAttr(g.get(), "status_examples")) {
       const std::vector<std::string> examples = GetStringListAttr(g.get(), "status_examples");
       for (std::size_t i = 0; i < examples.size() && i < names.size(); ++i) {

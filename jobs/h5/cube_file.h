@@ -173,6 +173,9 @@ struct SweepSummary {
   std::uint64_t done = 0;
   std::map<std::string, std::uint64_t> done_by_status;  ///< Status name -> done cells.
   std::map<std::string, std::string> status_examples;   ///< Status name -> one message.
+  /// The files the cells were computed from (inputs/: role, file relative to the spec's folder,
+  /// sha256 and bytes when the sweep was begun; `path` left empty); none in older cubes.
+  std::vector<InputFile> inputs;
 };
 
 /// Reads the summary of every sweep in a cube (final or checkpoint).

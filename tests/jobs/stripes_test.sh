@@ -32,6 +32,25 @@ grep -q "^sweep: [0-9]* of 12 cells scaled beyond max_scale = 1.5 (largest facto
 on_ranks 2 "$exe" sweep spec.toml --out two.h5 --quiet 2> two.err || { cat two.err; fail "2 ranks"; }
 /usr/bin/python3 "$check" one.h5 two.h5 "$records" "$(grep -o '^sweep: [0-9]*' one.err | cut -d' ' -f2)"
 
+# inspect prints the cube's inputs table: each file's role, size and SHA-256 as the cube's
+# inputs/ stores them (h5py), equal to the files' own (os.path.getsize, hashlib).
+"$exe" inspect one.h5 > inspect.txt || fail "inspect"
+/usr/bin/python3 - one.h5 inspect.txt <<'PY' || { cat inspect.txt; fail "inspect: the inputs"; }
+import hashlib
+import sys
+import h5py
+g = h5py.File(sys.argv[1], "r")["sweeps/stripes/inputs"]
+rows = [line.split() for line in open(sys.argv[2]).read().splitlines()]
+roles = []
+for role, name, sha, n in zip(g["role"][()], g["file"][()], g["sha256"][()], g["bytes"][()]):
+    role, name, sha = role.decode(), name.decode(), sha.decode()
+    data = open(name, "rb").read()  # relative to the spec's folder, which is here
+    assert sha == hashlib.sha256(data).hexdigest() and n == len(data), name
+    assert [role, str(n), sha, name] in rows, (role, name)
+    roles.append(role)
+assert sorted(roles) == ["model", "record", "record", "record-set", "spec"], roles
+PY
+
 # The dry run's record x stripe table of scale factors against the 2-rank cube and against
 # `records spectrum` at both T1 = 2 pi / (10 sqrt(k_factor)) s.
 "$exe" sweep --dry-run spec.toml > dry.txt || fail "dry run"
