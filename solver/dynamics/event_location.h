@@ -1,16 +1,20 @@
 #pragma once
 /// @file
-/// Where an open contact's gap closes inside a step [docs/theory.md §3.12]: the first time in
-/// (t0, t1] at which g reaches zero, given g and its rate gamma_N at both ends and the dense
-/// output as two functions of time, with the touch probes and the start-of-step minimum of the
-/// EventPolicy. Independent of how the state is interpolated (exact flow or Runge-Kutta).
+/// Event location [docs/theory.md §3.12]: the event functions of the closed contacts, and where
+/// an open contact's gap closes inside a step: the first time in (t0, t1] at which g reaches
+/// zero, given g and its rate gamma_N at both ends and the dense output as two functions of
+/// time, with the touch probes and the start-of-step minimum of the EventPolicy. Independent of
+/// how the state is interpolated (exact flow or Runge-Kutta).
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
+#include "solver/dynamics/contact_modes.h"
 #include "solver/dynamics/event_policy.h"
 #include "solver/dynamics/root_finding.h"
+#include "solver/model/model.h"
 
 namespace skewbridge::dynamics {
 
@@ -20,6 +24,35 @@ namespace skewbridge::dynamics {
 /// state by less than the gap tolerance.
 inline double EventTimeBracket(double t1, const EventPolicy& policy) {
   return policy.event_time_tolerance * std::max(1.0, std::abs(t1)) + policy.event_time_floor_s;
+}
+
+/// The event functions of the closed contacts [docs/theory.md §3.12], two per contact into
+/// `values` (2 n_c): lambda_N + force_tol (detachment when it falls below zero), and a friction
+/// function, s gamma_T + v_tol while sliding with sign s (stick or reversal once the slip has
+/// clearly passed zero), mu lambda_N + force_tol - |lambda_T| while sticking (slip once the
+/// friction clearly exceeds the cone); +1 for an open contact and for a frictionless one's
+/// second. `gamma_T` (m/s) are the slip velocities, `lambda_N` and `lambda_T` (N) the forces of
+/// the active set with `modes`. The bands make every function non-negative at the start of the
+/// phase that the contact problem chose: a slip starts at gamma_T = 0 and a stick may start with
+/// its friction on the cone, and a function negative by rounding there would fire the same
+/// event again at the same instant.
+inline void ClosedEventValues(const model::Model& model, const ContactModes& modes,
+                              const Eigen::VectorXd& gamma_T, const Eigen::VectorXd& lambda_N,
+                              const Eigen::VectorXd& lambda_T, double force_tol_N, double v_tol_mps,
+                              Eigen::Ref<Eigen::VectorXd> values) {
+  for (int c = 0; c < modes.size(); ++c) {
+    const ContactMode mode = modes[c];
+    values[2 * c] = !IsClosed(mode) ? 1.0 : lambda_N[c] + force_tol_N;
+    double f = 1.0;
+    if (mode == ContactMode::kSlidePositive) {
+      f = gamma_T[c] + v_tol_mps;
+    } else if (mode == ContactMode::kSlideNegative) {
+      f = -gamma_T[c] + v_tol_mps;
+    } else if (mode == ContactMode::kStick) {
+      f = model.contact(c).friction * lambda_N[c] + force_tol_N - std::abs(lambda_T[c]);
+    }
+    values[2 * c + 1] = f;
+  }
 }
 
 /// The first impact time of a contact in the step [t0, t1] (s), or +inf when its gap does not

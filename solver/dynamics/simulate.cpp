@@ -10,15 +10,14 @@
 #include <limits>
 #include <memory>
 #include <numbers>
-#include <optional>
 #include <string>
 
 #include "solver/common/error.h"
 #include "solver/dynamics/active_system.h"
 #include "solver/dynamics/contact_modes.h"
 #include "solver/dynamics/event_location.h"
-#include "solver/dynamics/impact_history.h"
 #include "solver/dynamics/indeterminate_split.h"
+#include "solver/dynamics/mode_decision.h"
 #include "solver/dynamics/projection.h"
 #include "solver/dynamics/root_finding.h"
 #include "solver/dynamics/run_scales.h"
@@ -79,8 +78,9 @@ constexpr double kGaussWeight[8] = {0.05061426814518813, 0.11119051722668724, 0.
 
 }  // namespace
 
-/// The state machine of one run (see simulate.h); lives for one Simulate call.
-class Integrator {
+/// The state machine of one run (see simulate.h); lives for one Simulate call. It is the mode
+/// decision's source of constrained forces (ActiveForces).
+class Integrator final : private ConstrainedForces {
  public:
   Integrator(const model::Model& model, const Excitation& excitation,
              const model::RunControl& control, SimulationWorkspace& ws, const InitialState& initial,
@@ -156,28 +156,13 @@ class Integrator {
   // Event-function values of the closed contacts at the last ActiveForces call.
   void ClosedEventValues(Eigen::Ref<Vec> values) const;
 
-  // Impacts, plastic closures and the contact LCP at the current state; sets the active set.
+  // The mode decision at the current state [docs/theory.md §3.1]; `forced` lists the contacts
+  // the event location found striking together.
   void ResolveContacts(const std::vector<int>& forced);
-  // One pass of that decision: velocity-level problem, contact problem, projection. False when
-  // the run failed (an LCP status).
-  bool DecideContacts(const std::vector<int>& forced);
-  // True when the candidates of the contact problem (closed_list_) include two contacts on
-  // opposing faces (normals at more than 90 deg) and at least one of them slides: a deck that
-  // can wedge between its abutments.
-  bool Wedged() const;
-  // True when an open contact at the face approaches it faster than v_tol_ (after a projection).
-  bool OpenContactApproaching();
-  // True when an impact of contact c at approach speed approach_mps continues a geometric
-  // sequence of its own impacts (Zeno, docs/theory.md §3.4): the sequence is closed at once.
-  bool Accumulating(int c, double approach_mps) const;
-  // True when contact c, closing at approach_mps, is settling onto its face: its flight never
-  // took it beyond the gap tolerance, or the deck rocks onto it slowly (docs/theory.md §3.5).
-  // Its closure then has restitution 0, and a closed contact that the closure would lift stays.
-  bool Settling(int c, double approach_mps) const;
-  // True when contact c, which struck at approach_mps and leaves its face at gamma_N, would
-  // return under the loads (free normal acceleration from h_) within an accumulation's flight:
-  // the accumulation is closed at once (docs/theory.md §3.6).
-  bool AccumulatesAtOnce(int c, double approach_mps) const;
+  // ConstrainedForces: lambda_N, lambda_T of ActiveForces at (t, q, u) with the modes modes_.
+  void Forces(const ContactModes& modes, double t, const Eigen::Ref<const Vec>& q,
+              const Eigen::Ref<const Vec>& u, Eigen::Ref<Vec> lambda_N,
+              Eigen::Ref<Vec> lambda_T) override;
   void Project();
 
   template <class StateAt>
@@ -224,16 +209,14 @@ class Integrator {
   contact::GapRateScratch rates_;  // scratch of the gaps and normal rates
   Vec f0_, f1_, f_eval_;           // closed-contact event functions: step start, end, trial
   ContactModes modes_;             // every contact's mode and the closed set
-  std::vector<contact::ClosedContact> closed_list_;
-  std::vector<int> index_set_, persistent_, forced_;
+  std::vector<int> forced_;        // contacts striking together at the located impact
   // Set inside Runge-Kutta stages and event searches of a constrained phase: ActiveForces then
   // evaluates the kinematics of the closed contacts only (the open ones' gaps are read at the
   // step's ends).
   bool closed_only_ = false;
   // Set by GapRoot while it evaluates a gap: the free step's state_at may then leave u alone.
   bool positions_only_ = false;
-  std::vector<int> cone_sign_;  // per contact: slip sign of a sticking contact at the cone, or 0
-  Vec lambda_N_, lambda_T_;     // per contact, from the last ActiveForces
+  Vec lambda_N_, lambda_T_;  // per contact, from the last ActiveForces
   double friction_power_ = 0.0;
   double h_rk_ = 0.0;
   double h_free_ = 0.0;  // the last nominal free step (s)
@@ -241,22 +224,15 @@ class Integrator {
   double force_tol_ = 0.0;  // N: a closed contact's lambda_N within -force_tol_ of zero is zero
   double a_detach_ = 0.0;   // m/s^2: a smaller separating acceleration keeps a contact closed
   double next_output_t_ = kInf;
-  double last_impact_t_ = -kInf;
-  int events_here_ = 0;
-  bool jammed_here_ = false;  // a tangential impact (jam) was applied at last_event_t_
-  double last_event_t_ = -kInf;
+  double length_scale_m_ = 1.0;  // L_d (ProjectionTolerances)
+  double simultaneity_s_ = 0.0;  // RunControl::simultaneity_tolerance_s
   RunResult result_;
-  ActiveSystem sys_;                    // 2 n_c rows at most
-  std::vector<int> projection_rows_;    // per contact: 1 when an open contact joins the projection
-  std::vector<ImpactHistory> history_;  // per contact: its last impact and when it left
-  long impact_sequence_ = 0;            // impact instants so far
-  double period_min_s_ = kInf;          // shortest natural period (s)
-  const std::vector<int> no_contacts_;  // the empty list of forced contacts (no copy per pass)
-  // Per contact: a mode decided by a tie band (docs/theory.md §3.7) holds the mode the contact
-  // problem chose, to fall back on; no tie: empty.
-  std::vector<std::optional<ContactMode>> tie_;
-  std::vector<ContactMode> previous_;  // the modes of the contact problem's candidates before it
-  Eigen::MatrixXd kernel_;             // kernel of a singular active set (columns)
+  ActiveSystem sys_;                  // 2 n_c rows at most
+  std::vector<int> projection_rows_;  // per contact: 1 when an open contact joins the projection
+  double period_min_s_ = kInf;        // shortest natural period (s)
+  DecisionMemory memory_;             // what the mode decision remembers between instants
+  DecisionLog log_;                   // the events and counts the decisions add
+  Eigen::MatrixXd kernel_;            // kernel of a singular active set (columns)
   std::vector<int> normal_of_, tangent_of_;  // active-set layout for BalanceIndeterminateFriction
   Vec x_bal_, x_try_;                        // its solution and trial points
   lcp::SmallLp lp_;                          // the split along the kernel (three small LPs)
@@ -313,7 +289,8 @@ SimulationWorkspace::SimulationWorkspace(const model::Model& model)
       impact_(model),
       contact_problem_(model),
       impact_result_(impact_.MakeResult()),
-      contact_result_(contact_problem_.MakeResult()) {
+      contact_result_(contact_problem_.MakeResult()),
+      decision_(model.n_dof(), model.n_contacts()) {
   kin_.Resize(model);
   if (flow_.modal()) {
     // The modal flow's w_k^2 are the eigenvalues below, clamped at 0: one solve, same bits.
@@ -345,6 +322,7 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
       nc_(model.n_contacts()),
       modes_(model.n_contacts()),
       sys_(2 * model.n_contacts(), policy.rank_threshold),
+      memory_(model.n_contacts()),
       forces_{h_,
               ws.kin_,
               sys_,
@@ -378,18 +356,11 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   q_a_ = u_a_ = q_b_ = u_b_ = q_e_ = u_e_ = q_r_ = u_r_ = du_ = cu_ = Vec::Zero(n_);
   gap0_ = gN0_ = gap1_ = gN1_ = Vec::Zero(nc_);
   f0_ = f1_ = f_eval_ = Vec::Zero(2 * nc_);
-  closed_list_.reserve(static_cast<std::size_t>(nc_));
-  index_set_.reserve(static_cast<std::size_t>(nc_));
-  persistent_.reserve(static_cast<std::size_t>(nc_));
   forced_.reserve(static_cast<std::size_t>(nc_));
-  previous_.reserve(static_cast<std::size_t>(nc_));
-  cone_sign_.assign(static_cast<std::size_t>(nc_), 0);
   rates_.Resize(model);
   rows_ = Eigen::MatrixXd::Zero(n_, sys_.capacity());
   SizeForceScratch(model, sys_.capacity(), forces_);
   projection_rows_.assign(static_cast<std::size_t>(nc_), 0);
-  tie_.assign(static_cast<std::size_t>(nc_), std::nullopt);
-  history_.assign(static_cast<std::size_t>(nc_), ImpactHistory{});
   u_proj_ = u_proj_in_ = Vec::Zero(n_);
 
   t_end_ = control.EndTime(excitation.Duration());
@@ -404,6 +375,8 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   a_detach_ = scales.a_detach_mps2;
   gap_tol_ = scales.gap_tol_m;
   period_min_s_ = scales.period_min_s;
+  length_scale_m_ = ws.length_scale_m_;
+  simultaneity_s_ = control.simultaneity_tolerance_s;
   const double omega_top = scales.omega_top_radps;
   atol_.head(n_).setConstant(control.absolute_tolerance);
   atol_.segment(n_, n_).setConstant(control.absolute_tolerance * omega_top);
@@ -411,7 +384,7 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
 
   result_.max_abs_q = z_.head(n_).cwiseAbs();
   result_.time_of_max_s = Vec::Zero(n_);
-  result_.events.reserve(1024);
+  log_.events.reserve(1024);
   if (control.output_interval_s > 0.0) {
     const auto samples = static_cast<std::size_t>(t_end_ / control.output_interval_s) + 2;
     Histories& hist = result_.histories;
@@ -478,7 +451,15 @@ RunResult Integrator::Run() {
   result_.end_time_s = t_;
   result_.q_end = q();
   result_.u_end = u();
+  result_.impacts = log_.impacts;
+  result_.plastic_closures = log_.plastic_closures;
+  result_.detachments = log_.detachments;
+  result_.stick_transitions = log_.stick_transitions;
+  result_.slip_transitions = log_.slip_transitions;
+  result_.min_impact_separation_s = log_.min_impact_separation_s;
+  result_.events = std::move(log_.events);
   EnergyLedger& e = result_.energy;
+  e.impact_J = log_.impact_J;
   e.kinetic_J = Kinetic();
   e.strain_J = 0.5 * q().dot(model_.K() * q());
   e.balance_error_J = (e.kinetic_J + e.strain_J) -
@@ -845,26 +826,8 @@ void Integrator::Rhs(double t, const Eigen::Ref<const Vec>& y, Eigen::Ref<Vec> d
 }
 
 void Integrator::ClosedEventValues(Eigen::Ref<Vec> values) const {
-  // Per closed contact: lambda_N + force_tol_ (detachment when lambda_N falls clearly below zero)
-  // and a friction function: s gamma_T + v_tol_ while sliding (stick or reversal once the slip
-  // has clearly passed zero), mu lambda_N + force_tol_ - |lambda_T| while sticking (slip once
-  // the friction clearly exceeds the cone). Open contacts: +1. The bands make every function
-  // non-negative at the start of the phase that the contact problem chose: a slip starts at
-  // gamma_T = 0 and a stick may start with its friction on the cone, and a function that is
-  // negative by rounding there would fire the same event again at the same instant.
-  for (int c = 0; c < nc_; ++c) {
-    const ContactMode mode = modes_[c];
-    values[2 * c] = !IsClosed(mode) ? 1.0 : lambda_N_[c] + force_tol_;
-    double f = 1.0;
-    if (mode == ContactMode::kSlidePositive) {
-      f = ws_.kin_.gamma_T[c] + v_tol_;
-    } else if (mode == ContactMode::kSlideNegative) {
-      f = -ws_.kin_.gamma_T[c] + v_tol_;
-    } else if (mode == ContactMode::kStick) {
-      f = model_.contact(c).friction * lambda_N_[c] + force_tol_ - std::abs(lambda_T_[c]);
-    }
-    values[2 * c + 1] = f;
-  }
+  dynamics::ClosedEventValues(model_, modes_, ws_.kin_.gamma_T, lambda_N_, lambda_T_, force_tol_,
+                              v_tol_, values);
 }
 
 void Integrator::ConstrainedStep() {
@@ -975,390 +938,34 @@ void Integrator::Project() {
 }
 
 void Integrator::ResolveContacts(const std::vector<int>& forced) {
-  if (t_ == last_event_t_) {
-    if (++events_here_ > policy_.max_events_at_one_instant) {
-      Fail(RunStatus::kEventCascade, "event cascade: more than " +
-                                         std::to_string(policy_.max_events_at_one_instant) +
-                                         " events at t = " + std::to_string(t_) + " s");
-      return;
-    }
-  } else {
-    last_event_t_ = t_;
-    events_here_ = 0;
-    jammed_here_ = false;
+  DecisionWorkspace work{ws_.impact_,
+                         ws_.impact_result_,
+                         ws_.contact_problem_,
+                         ws_.contact_result_,
+                         {ws_.kin_, sys_, rows_, projection_rows_, u_proj_in_, u_proj_},
+                         ws_.decision_};
+  const DecisionOutcome outcome = DecideModes(model_, policy_,
+                                              {v_tol_, v_acc_, gap_tol_, force_tol_, a_detach_,
+                                               period_min_s_, length_scale_m_, simultaneity_s_},
+                                              {t_, GroundAcceleration(t_), forced}, q(), u(),
+                                              modes_, memory_, *this, work, log_);
+  if (outcome.status != RunStatus::kOk) {
+    Fail(outcome.status, outcome.message);
+    return;
   }
-  const double kinetic_before = Kinetic();
-  // A sticking contact whose friction has reached the cone (the stick-slip event) is degenerate
-  // for the contact problem: at the cone both sticking (a_T = 0, |lambda_T| = mu lambda_N) and
-  // slipping solve it, Lemke returns sticking, and the friction event fires again at the same
-  // instant. The event itself says which way: slip against the saturated friction force
-  // [Pfeiffer and Glocker 1996, ch. 6], so such a contact enters the contact problem as sliding.
-  std::fill(cone_sign_.begin(), cone_sign_.end(), 0);
-  if (policy_.cone_sign && modes_.any_stick()) {
-    ActiveForces(t_, q(), u(), du_);
-    for (int c = 0; c < nc_; ++c) {
-      if (modes_[c] == ContactMode::kStick && lambda_T_[c] != 0.0 &&
-          model_.contact(c).friction * lambda_N_[c] + force_tol_ - std::abs(lambda_T_[c]) <= 0.0) {
-        cone_sign_[static_cast<std::size_t>(c)] = lambda_T_[c] > 0.0 ? -1 : 1;
-      }
-    }
-  }
-  // One decision: the velocity-level problem over every contact at the face, then the frictional
-  // contact problem over those that stay, then the projection. The projection of the closed
-  // contacts (an equality) can leave an open contact at the face approaching it by a speed of
-  // the order of the accumulation threshold (a deck rocking between two corners); the decision is
-  // then made again at the same instant with that contact among the candidates, so the state the
-  // integrator continues from is consistent and no event re-fires on it.
-  for (int pass = 0; pass < policy_.decision_passes; ++pass) {
-    if (pass > 0) {
-      // A contact that this instant's decision set sliding keeps its direction unless its slip
-      // says otherwise (its slip velocity is still zero: the cone decides, not a new tie-break).
-      for (int c = 0; c < nc_; ++c) {
-        cone_sign_[static_cast<std::size_t>(c)] = SlipSign(modes_[c]);
-      }
-    }
-    if (!DecideContacts(pass == 0 ? forced : no_contacts_)) {
-      return;
-    }
-    if (!OpenContactApproaching()) {
-      break;
-    }
-  }
-  const double kinetic_after = Kinetic();
-  result_.energy.impact_J += kinetic_before - kinetic_after;
-  // OpenContactApproaching evaluated every contact at this final state: the gaps of the next
+  // The decision left the kinematics of every contact at its final state: the gaps of the next
   // step's start need no further evaluation.
   gap0_ = ws_.kin_.gap_m;
   gN0_ = ws_.kin_.gamma_N;
 }
 
-bool Integrator::Accumulating(int c, double approach_mps) const {
-  return dynamics::Accumulating(history_[static_cast<std::size_t>(c)], impact_sequence_, t_,
-                                approach_mps, {period_min_s_, gap_tol_, v_acc_}, policy_);
-}
-
-bool Integrator::Settling(int c, double approach_mps) const {
-  return dynamics::Settling(history_[static_cast<std::size_t>(c)], impact_sequence_, t_,
-                            approach_mps, {period_min_s_, gap_tol_, v_acc_}, policy_);
-}
-
-bool Integrator::AccumulatesAtOnce(int c, double approach_mps) const {
-  // The free acceleration of the contact's normal gap is the estimate of its return (every
-  // contact of the impact leaves: see the caller). A deck rocking between two corners of a face
-  // at a speed its loads sustain (each impact lifting the other corner, which then swings back
-  // over a rotation, not a flight) bounced on the striking corner once per rock before this
-  // rule: half its impacts.
-  const contact::ContactKinematics& kin = ws_.kin_;
-  const auto normal_accel = [&]() {
-    const double* inv_m = model_.inverse_mass_diagonal().data();
-    double a = kin.what_N[c];
-    for (int i = 0; i < n_; ++i) {
-      a += kin.W_N(i, c) * (inv_m[i] * h_[i]);
-    }
-    return a;
-  };
-  return BounceClosesAtOnce(approach_mps, kin.gamma_N[c], normal_accel,
-                            {period_min_s_, gap_tol_, v_acc_}, policy_);
-}
-
-bool Integrator::Wedged() const {
-  bool sliding = false, opposing = false;
-  for (std::size_t i = 0; i < closed_list_.size(); ++i) {
-    sliding = sliding || closed_list_[i].slip_sign != 0;
-    const Eigen::Vector2d& ni = model_.contact(closed_list_[i].contact).face.normal;
-    for (std::size_t j = i + 1; j < closed_list_.size() && !opposing; ++j) {
-      opposing = ni.dot(model_.contact(closed_list_[j].contact).face.normal) < 0.0;
-    }
-  }
-  return sliding && opposing;
-}
-
-bool Integrator::OpenContactApproaching() {
-  contact::Evaluate(model_, q(), u(), ws_.kin_);
-  for (int c = 0; c < nc_; ++c) {
-    if (!modes_.closed(c) && ws_.kin_.gap_m[c] <= gap_tol_ && ws_.kin_.gamma_N[c] < -v_tol_) {
-      return true;
-    }
-  }
-  return false;
-}
-
-bool Integrator::DecideContacts(const std::vector<int>& forced) {
-  contact::Evaluate(model_, q(), u(), ws_.kin_);
-  const contact::ContactKinematics& kin = ws_.kin_;
-  // Candidates: closed contacts, touching ones not separating, and the simultaneous ones.
-  index_set_.clear();
-  persistent_.clear();
-  bool impact = false, plastic = false, settling = false;
-  for (int c = 0; c < nc_; ++c) {
-    const bool closed = modes_.closed(c);
-    const bool touching = kin.gap_m[c] <= gap_tol_ && kin.gamma_N[c] <= v_tol_;
-    const bool listed = std::find(forced.begin(), forced.end(), c) != forced.end();
-    if (!(closed || touching || listed)) {
-      continue;
-    }
-    index_set_.push_back(c);
-    if (kin.gamma_N[c] < -v_acc_ && !Accumulating(c, -kin.gamma_N[c]) &&
-        !Settling(c, -kin.gamma_N[c])) {
-      impact = true;
-    } else if (kin.gamma_N[c] < -v_acc_) {
-      // The accumulation point of a bouncing contact, reached by extrapolation, or a contact
-      // settling onto its face (Settling): this impact closes it with restitution 0.
-      impact = true;
-      settling = settling || !Accumulating(c, -kin.gamma_N[c]);
-      persistent_.push_back(c);
-    } else {
-      // Closed, or closing slower than the accumulation threshold: restitution 0.
-      persistent_.push_back(c);
-      plastic = plastic || kin.gamma_N[c] < -v_tol_;
-    }
-  }
-  if (impact || plastic) {
-    // A closure slower than the threshold is a plastic impact [docs/theory.md §3, accumulation]:
-    // its impulse stops the approach, so the contact problem that follows starts from gamma_N >= 0.
-    const double kinetic_before = Kinetic();
-    const lcp::LcpStatus status =
-        ws_.impact_.Solve(kin, index_set_, u(), ws_.impact_result_, persistent_, !impact);
-    if (status != lcp::LcpStatus::kSolved) {
-      Fail(RunStatus::kLcpFailure, std::string("impact LCP: ") + lcp::ToString(status) +
-                                       " at t = " + std::to_string(t_) + " s");
-      return false;
-    }
-    const contact::ImpactResult& ir = ws_.impact_result_;
-    z_.segment(n_, n_) = ir.u_E;
-    const double loss = kinetic_before - Kinetic();
-    if (impact) {
-      ++result_.impacts;
-      if (t_ - last_impact_t_ > control_.simultaneity_tolerance_s) {
-        if (std::isfinite(last_impact_t_)) {
-          result_.min_impact_separation_s =
-              std::min(result_.min_impact_separation_s, t_ - last_impact_t_);
-        }
-      }
-      last_impact_t_ = t_;
-      ++impact_sequence_;
-      for (int j = 0; j < ir.k; ++j) {
-        const int c = index_set_[static_cast<std::size_t>(j)];
-        if (ir.gamma_N_A[j] < -v_acc_) {
-          ImpactHistory& h = history_[static_cast<std::size_t>(c)];
-          h.bounce_t_s = t_;
-          h.bounce_v_mps = -ir.gamma_N_A[j];
-          h.bounce_seq = impact_sequence_;
-        }
-        if (ir.Lambda_N[j] > 0.0) {
-          result_.events.push_back({t_, EventKind::kImpact, index_set_[static_cast<std::size_t>(j)],
-                                    ir.Lambda_N[j], ir.Lambda_T[j], ir.gamma_N_A[j],
-                                    ir.gamma_N_E[j], loss});
-        }
-      }
-    } else {
-      ++result_.plastic_closures;
-      for (int j = 0; j < ir.k; ++j) {
-        if (ir.gamma_N_A[j] < -v_tol_) {
-          result_.events.push_back({t_, EventKind::kPlasticClosure,
-                                    index_set_[static_cast<std::size_t>(j)], ir.Lambda_N[j],
-                                    ir.Lambda_T[j], ir.gamma_N_A[j], ir.gamma_N_E[j], loss});
-        }
-      }
-    }
-  }
-  // Which candidates stay in contact: those not separating after the impact. A contact that
-  // separates slower than the accumulation threshold stays a candidate: it is where an
-  // accumulation of impacts (one corner, or a deck rocking between two) converges.
-  contact::Evaluate(model_, q(), u(), ws_.kin_);
-  // AccumulatesAtOnce estimates a rebound's flight from the free acceleration: only sound when
-  // no contact stays closed after the impact (a deck clamped between two faces, or resting on
-  // another corner, returns at a time the free motion does not give).
-  // A contact leaves when it separates faster than the thresholds, except a closed contact that
-  // the closure of a settling corner would lift: the deck rocks between the two, and the
-  // rocking converges to both closed; the contact problem says whether the loads keep it so,
-  // and the projection puts its lift to zero.
-  const auto leaves = [&](int c) {
-    const bool rocking = settling && modes_.closed(c);
-    return kin.gamma_N[c] > std::max(v_tol_, v_acc_) && !rocking;
-  };
-  const bool all_leave = impact && std::all_of(index_set_.begin(), index_set_.end(), leaves);
-  if (all_leave) {
-    model_.AppliedForces(q(), u(), GroundAcceleration(t_), h_);
-  }
-  closed_list_.clear();
-  for (std::size_t j = 0; j < index_set_.size(); ++j) {
-    const int c = index_set_[j];
-    const bool accumulates =
-        all_leave &&
-        AccumulatesAtOnce(c, -ws_.impact_result_.gamma_N_A[static_cast<Eigen::Index>(j)]);
-    if (leaves(c) && !accumulates) {
-      history_[static_cast<std::size_t>(c)].left_t_s = t_;
-      if (modes_.closed(c)) {
-        ++result_.detachments;
-        result_.events.push_back({t_, EventKind::kDetachment, c, 0.0, 0.0, 0.0, 0.0});
-      }
-      modes_.Set(c, ContactMode::kOpen);
-      continue;
-    }
-    const double mu = model_.contact(c).friction;
-    int sign = 0;
-    if (mu == 0.0) {
-      sign = 1;
-    } else if (std::abs(kin.gamma_T[c]) > policy_.stick_band * v_tol_) {
-      sign = kin.gamma_T[c] > 0.0 ? 1 : -1;
-    } else if (!impact) {
-      sign = cone_sign_[static_cast<std::size_t>(c)];
-    }
-    closed_list_.push_back({c, sign});
-  }
-  previous_.clear();
-  for (const contact::ClosedContact& cc : closed_list_) {
-    previous_.push_back(modes_[cc.contact]);
-    modes_.Set(cc.contact, ContactMode::kOpen);
-  }
-  if (!closed_list_.empty()) {
-    model_.AppliedForces(q(), u(), GroundAcceleration(t_), h_);
-    const contact::ContactStatus status =
-        ws_.contact_problem_.Solve(kin, closed_list_, h_, ws_.contact_result_);
-    if (policy_.jam && status == contact::ContactStatus::kPainleve && !jammed_here_ && Wedged()) {
-      // A jam: corners on two opposing faces, some sliding (a deck wedged between its
-      // abutments, the friction of one corner pressing the other into its face), can leave the
-      // contact problem without a solution, as for corners on one face, but here the deck
-      // wedges: the sliding stops at once
-      // by a tangential impact [Genot and Brogliato 1999; Pfeiffer and Glocker 1996, ch. 6].
-      // Its impulse is the velocity projection onto gamma_N = gamma_T = 0 of these contacts,
-      // with no restitution; the decision is then made again from the stopped state, once per
-      // instant (a second jam at the same instant is a Painleve situation).
-      jammed_here_ = true;
-      const double kinetic_before = Kinetic();
-      for (std::size_t j = 0; j < closed_list_.size(); ++j) {
-        const int c = closed_list_[j].contact;
-        modes_.Set(c, model_.contact(c).friction == 0.0 ? ContactMode::kFrictionless
-                                                        : ContactMode::kStick);
-        cone_sign_[static_cast<std::size_t>(c)] = 0;
-      }
-      Project();
-      ++result_.impacts;
-      const double loss = kinetic_before - Kinetic();
-      for (const contact::ClosedContact& cc : closed_list_) {
-        result_.events.push_back({t_, EventKind::kImpact, cc.contact, 0.0, 0.0, 0.0, 0.0, loss});
-      }
-      return DecideContacts(no_contacts_);
-    }
-    if (status == contact::ContactStatus::kPainleve) {
-      Fail(RunStatus::kPainleve, "Painleve situation (contact LCP on a secondary ray) at t = " +
-                                     std::to_string(t_) + " s");
-      return false;
-    }
-    if (status != contact::ContactStatus::kSolved) {
-      Fail(RunStatus::kLcpFailure, std::string("contact LCP: ") + contact::ToString(status) +
-                                       " at t = " + std::to_string(t_) + " s");
-      return false;
-    }
-    const contact::ContactResult& cr = ws_.contact_result_;
-    for (std::size_t j = 0; j < closed_list_.size(); ++j) {
-      const int c = closed_list_[j].contact;
-      const auto jj = static_cast<int>(j);
-      const bool frictionless = model_.contact(c).friction == 0.0;
-      contact::ContactOutcome outcome = cr.outcome[j];
-      // Ties: a separating acceleration within the band a_detach_ keeps the contact closed with
-      // lambda_N = 0 (what the detachment event of a closed contact allows, lambda_N >
-      // -force_tol_), and a slip acceleration within it keeps the contact sticking at the cone.
-      // Decided the other way, a contact whose acceleration is about to reverse (a graze) comes
-      // back within the first step, below any resolvable gap or slip, and the same decision
-      // repeats at the same instant. Each tie is checked below against the constrained phase's
-      // own event function, and falls back to the contact problem's answer if that fires.
-      std::optional<ContactMode> fallback;  // the mode the contact problem chose, for a tie
-      if (policy_.tie_bands && outcome == contact::ContactOutcome::kDetaches &&
-          cr.gammadot_N(jj) <= a_detach_) {
-        fallback = ContactMode::kOpen;
-        outcome = cr.friction_outcome[j];
-      }
-      if (policy_.tie_bands &&
-          (outcome == contact::ContactOutcome::kStartsSlipPositive ||
-           outcome == contact::ContactOutcome::kStartsSlipNegative) &&
-          std::abs(cr.gammadot_T(jj)) <= a_detach_) {
-        if (!fallback) {
-          fallback = outcome == contact::ContactOutcome::kStartsSlipPositive
-                         ? ContactMode::kSlidePositive
-                         : ContactMode::kSlideNegative;
-        }
-        outcome = contact::ContactOutcome::kSticks;
-      }
-      ContactMode mode = ContactMode::kOpen;
-      switch (outcome) {
-        case contact::ContactOutcome::kDetaches:
-          mode = ContactMode::kOpen;
-          break;
-        case contact::ContactOutcome::kSticks:
-          mode = ContactMode::kStick;
-          break;
-        case contact::ContactOutcome::kStartsSlipPositive:
-          mode = ContactMode::kSlidePositive;
-          break;
-        case contact::ContactOutcome::kStartsSlipNegative:
-          mode = ContactMode::kSlideNegative;
-          break;
-        case contact::ContactOutcome::kSlides:
-        case contact::ContactOutcome::kStaysClosed:
-          mode = SlideOrStick(closed_list_[j].slip_sign);
-          break;
-      }
-      if (frictionless && IsClosed(mode)) {
-        mode = ContactMode::kFrictionless;
-        if (fallback && IsClosed(*fallback)) {
-          fallback.reset();  // no slip tie without friction
-        }
-      }
-      modes_.Set(c, mode);
-      tie_[static_cast<std::size_t>(c)] = IsClosed(mode) ? fallback : std::nullopt;
-    }
-    // The ties against the constrained phase's event functions at this instant: a tie whose
-    // function is not positive takes the contact problem's answer (one at a time, since each
-    // change moves the others' forces).
-    for (int pass = 0; pass < nc_; ++pass) {
-      bool any_tie = false;
-      for (int c = 0; c < nc_; ++c) {
-        any_tie = any_tie || tie_[static_cast<std::size_t>(c)].has_value();
-      }
-      if (!any_tie) {
-        break;
-      }
-      ActiveForces(t_, q(), u(), du_);
-      ClosedEventValues(f_eval_);
-      bool changed = false;
-      for (int c = 0; c < nc_ && !changed; ++c) {
-        std::optional<ContactMode>& fallback = tie_[static_cast<std::size_t>(c)];
-        if (!fallback) {
-          continue;
-        }
-        const bool detach_tie = *fallback == ContactMode::kOpen;
-        if (!(f_eval_[2 * c] > 0.0) || (!detach_tie && !(f_eval_[2 * c + 1] > 0.0))) {
-          modes_.Set(c, *fallback);
-          fallback.reset();
-          changed = true;
-        }
-      }
-      if (!changed) {
-        break;
-      }
-    }
-    for (std::size_t j = 0; j < closed_list_.size(); ++j) {
-      const int c = closed_list_[j].contact;
-      const ContactMode before = previous_[j];
-      const ContactMode mode = modes_[c];
-      if (!IsClosed(mode) && IsClosed(before)) {
-        ++result_.detachments;
-        result_.events.push_back({t_, EventKind::kDetachment, c, 0.0, 0.0, 0.0, 0.0});
-      } else if (mode == ContactMode::kStick && IsClosed(before) && before != mode) {
-        ++result_.stick_transitions;
-        result_.events.push_back({t_, EventKind::kStick, c, 0.0, 0.0, 0.0, 0.0});
-      } else if (IsSliding(mode) && IsClosed(before) && before != mode) {
-        ++result_.slip_transitions;
-        result_.events.push_back({t_, EventKind::kSlip, c, 0.0, 0.0, 0.0, 0.0});
-      }
-    }
-  }
-  if (AnyClosed()) {
-    Project();
-  }
-  return true;
+void Integrator::Forces(const ContactModes& modes, double t, const Eigen::Ref<const Vec>& qq,
+                        const Eigen::Ref<const Vec>& uu, Eigen::Ref<Vec> lambda_N,
+                        Eigen::Ref<Vec> lambda_T) {
+  SB_DEMAND(&modes == &modes_, "Integrator::Forces: the modes are the integrator's own");
+  ActiveForces(t, qq, uu, du_);
+  lambda_N = lambda_N_;
+  lambda_T = lambda_T_;
 }
 
 RunResult Simulate(const model::Model& model, const Excitation& excitation,

@@ -33,6 +33,7 @@
 #include "solver/contact/kinematics.h"
 #include "solver/dynamics/event_policy.h"
 #include "solver/dynamics/linear_flow.h"
+#include "solver/dynamics/mode_decision.h"
 #include "solver/dynamics/run_result.h"
 #include "solver/dynamics/runge_kutta.h"
 #include "solver/model/model.h"
@@ -70,6 +71,7 @@ class SimulationWorkspace {
   contact::ContactProblem contact_problem_;
   contact::ImpactResult impact_result_;
   contact::ContactResult contact_result_;
+  DecisionScratch decision_;      // the mode decision's scratch (overwritten before every read)
   double omega_min_radps_ = 0.0;  // lowest natural frequency (0 for a free body)
   double omega_max_radps_ = 0.0;  // highest natural frequency
   double length_scale_m_ = 1.0;   // largest deck dimension or distance from the origin
