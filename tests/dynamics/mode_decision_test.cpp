@@ -1,0 +1,563 @@
+/// DecideModes (solver/dynamics/mode_decision.h), each rule of the mode decision at an instant
+/// on its own [docs/theory.md §3.1-§3.11], on a free rectangular deck (K = C = 0, so the applied
+/// forces are the ground's alone, h = -M r a_g) against a ground face. The expected values are
+/// closed forms built from the deck's geometry by hand: a corner p (body frame) against a face
+/// with normal n and tangent t has g = n . ((x, y) + R(theta) p - A), so
+///     w_N = (n_x, n_y, n . R(theta) (-p_y, p_x)),   w_T = (t_x, t_y, t . R(theta) (-p_y, p_x)),
+/// and G = w_N^T M^-1 w_N is the inverse of the corner's effective mass. A Newton impact at
+/// approach speed v gives the normal impulse (1 + e) v / G and leaves at e v [Pfeiffer and
+/// Glocker 1996, ch. 7]; a resting corner sticks while its sticking forces, the solution of
+/// [w_N w_T]^T M^-1 (h + [w_N w_T] lambda) = 0, lie inside the cone |lambda_T| <= mu lambda_N.
+/// The constrained forces the decision asks for (cone sign, tie fallback) come from an
+/// independent active-set solve by Eigen's full-pivot LU.
+
+#include "solver/dynamics/mode_decision.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "solver/model/builders.h"
+
+namespace skewbridge::dynamics {
+namespace {
+
+using Eigen::MatrixXd;
+using Eigen::Vector2d;
+using Eigen::Vector3d;
+using Eigen::VectorXd;
+
+constexpr double kMass = 1.0e5;    // kg
+constexpr double kLength = 30.0;   // m
+constexpr double kWidth = 10.0;    // m
+constexpr double kTheta0 = -0.01;  // rad: P1 at the +x face, P2 clear of it
+constexpr double kT = 2.0;         // s: the instant of the decisions
+
+// A free rectangular deck (no substructure, no damping) against the abutments `set`.
+model::Model FreeDeck(double eps, double mu, model::AbutmentSet set = model::AbutmentSet::kPlusX) {
+  model::DeckSpec spec;
+  spec.mass_kg = kMass;
+  spec.geometry = {kLength, kWidth, 0.0};
+  spec.stiffness = model::DeckSpec::StiffnessKind::kUncoupled;
+  spec.xi = 0.0;
+  spec.abutments = set;
+  spec.gap_plus_m = spec.gap_minus_m = 0.01;
+  spec.restitution = eps;
+  spec.friction = mu;
+  return model::BuildDeckModel(spec);
+}
+
+// d g / d q of contact c at rotation theta along the face direction d (n: w_N, t: w_T).
+Vector3d HandRow(const model::Contact& k, double theta, const Vector2d& d) {
+  const Vector2d dp = Eigen::Rotation2Dd(theta) * Vector2d(-k.point_m.y(), k.point_m.x());
+  return {d.x(), d.y(), d.dot(dp)};
+}
+
+// The gap of contact c at q by hand.
+double HandGap(const model::Model& m, int c, const Vector3d& q) {
+  const model::Contact& k = m.contact(c);
+  const Vector2d x = q.head<2>() + Eigen::Rotation2Dd(q.z()) * k.point_m;
+  return k.face.normal.dot(x - k.face.point_m);
+}
+
+// The position with rotation theta at which contact c touches its face (g = 0, y = 0).
+Vector3d Touching(const model::Model& m, int c, double theta) {
+  Vector3d q(0.0, 0.0, theta);
+  q.x() -= HandGap(m, c, q) / m.contact(c).face.normal.x();
+  return q;
+}
+
+Vector3d InverseMass(const model::Model& m) { return m.inverse_mass_diagonal(); }
+
+// The constrained forces of the closed contacts by an independent active-set solve: unknowns
+// lambda_N per closed contact (force direction w_N - mu s w_T when sliding with sign s) and
+// lambda_T per sticking one, rows d gamma_N/dt = 0 and d gamma_T/dt = 0, with the kinematics of
+// the contact layer and the applied forces at the ground acceleration a_g. `lambda_N_shift` (N)
+// is added to every closed contact's lambda_N: a caller that wants the tie fallback to fire.
+class ActiveSetForces : public ConstrainedForces {
+ public:
+  explicit ActiveSetForces(const model::Model& m) : model_(m) { kin_.Resize(m); }
+  void Forces(const ContactModes& modes, double, const Eigen::Ref<const VectorXd>& q,
+              const Eigen::Ref<const VectorXd>& u, Eigen::Ref<VectorXd> lambda_N,
+              Eigen::Ref<VectorXd> lambda_T) override {
+    ++calls;
+    contact::Evaluate(model_, q, u, kin_);
+    VectorXd h(model_.n_dof());
+    model_.AppliedForces(q, u, a_g, h);
+    const VectorXd inv_m = model_.inverse_mass_diagonal();
+    std::vector<VectorXd> rows, cols;
+    std::vector<double> rhs;
+    for (int c = 0; c < modes.size(); ++c) {
+      if (!modes.closed(c)) {
+        continue;
+      }
+      const double mu = model_.contact(c).friction;
+      const int s = SlipSign(modes[c]);
+      rows.push_back(kin_.W_N.col(c));
+      cols.push_back(kin_.W_N.col(c) - mu * s * kin_.W_T.col(c));
+      rhs.push_back(-(kin_.W_N.col(c).dot(inv_m.cwiseProduct(h)) + kin_.what_N[c]));
+    }
+    const int k = static_cast<int>(rows.size());
+    for (int c = 0; c < modes.size(); ++c) {
+      if (modes[c] == ContactMode::kStick) {
+        rows.push_back(kin_.W_T.col(c));
+        cols.push_back(kin_.W_T.col(c));
+        rhs.push_back(-(kin_.W_T.col(c).dot(inv_m.cwiseProduct(h)) + kin_.what_T[c]));
+      }
+    }
+    const int n = static_cast<int>(rows.size());
+    MatrixXd A(n, n);
+    VectorXd b(n);
+    for (int i = 0; i < n; ++i) {
+      b[i] = rhs[static_cast<std::size_t>(i)];
+      for (int j = 0; j < n; ++j) {
+        A(i, j) = rows[static_cast<std::size_t>(i)].dot(
+            inv_m.cwiseProduct(cols[static_cast<std::size_t>(j)]));
+      }
+    }
+    const VectorXd x = n > 0 ? VectorXd(A.fullPivLu().solve(b)) : VectorXd();
+    int j = 0, js = k;
+    for (int c = 0; c < modes.size(); ++c) {
+      lambda_N[c] = lambda_T[c] = 0.0;
+      if (!modes.closed(c)) {
+        continue;
+      }
+      lambda_N[c] = x[j++] + lambda_N_shift;
+      const double mu = model_.contact(c).friction;
+      lambda_T[c] =
+          modes[c] == ContactMode::kStick ? x[js++] : -mu * SlipSign(modes[c]) * lambda_N[c];
+    }
+  }
+
+  Vector2d a_g = Vector2d::Zero();  ///< the ground acceleration of h (m/s^2)
+  double lambda_N_shift = 0.0;      ///< N, added to every closed contact's lambda_N
+  int calls = 0;                    ///< Forces calls so far
+
+ private:
+  const model::Model& model_;
+  contact::ContactKinematics kin_;
+};
+
+// The decision's inputs and storage for one model, at the scales of a response with v_ref =
+// 1 m/s and omega_ref = 1 rad/s (docs/theory.md §3.2) and a shortest period of 1 s.
+struct Decision {
+  explicit Decision(const model::Model& m)
+      : model(m),
+        modes(m.n_contacts()),
+        memory(m.n_contacts()),
+        forces(m),
+        impact(m),
+        contact_problem(m),
+        impact_result(impact.MakeResult()),
+        contact_result(contact_problem.MakeResult()),
+        sys(2 * m.n_contacts(), EventPolicy{}.rank_threshold),
+        rows(MatrixXd::Zero(m.n_dof(), 2 * m.n_contacts())),
+        projection_rows(static_cast<std::size_t>(m.n_contacts()), 0),
+        scratch(m.n_dof(), m.n_contacts()) {
+    kin.Resize(m);
+    scales.v_tol_mps = 1e-10;
+    scales.v_acc_mps = 1e-6;
+    scales.gap_tol_m = 1e-12;
+    scales.force_tol_N = 1e-7 * kMass;
+    scales.a_detach_mps2 = 1e-7;
+    scales.period_min_s = 1.0;
+    scales.length_scale_m = kLength;
+    scales.simultaneity_s = 1e-9;
+  }
+
+  // One decision at kT with ground acceleration a_g (also the forces' a_g).
+  DecisionOutcome Decide(const Vector2d& a_g, VectorXd& q, VectorXd& u,
+                         const std::vector<int>& forced = {}) {
+    forces.a_g = a_g;
+    DecisionWorkspace ws{impact,
+                         impact_result,
+                         contact_problem,
+                         contact_result,
+                         {kin, sys, rows, projection_rows, u_in, u_out},
+                         scratch};
+    return DecideModes(model, policy, scales, {kT, a_g, forced}, q, u, modes, memory, forces, ws,
+                       log);
+  }
+
+  const model::Model& model;
+  EventPolicy policy;
+  DecisionScales scales;
+  ContactModes modes;
+  DecisionMemory memory;
+  DecisionLog log;
+  ActiveSetForces forces;
+  contact::ImpactProblem impact;
+  contact::ContactProblem contact_problem;
+  contact::ImpactResult impact_result;
+  contact::ContactResult contact_result;
+  contact::ContactKinematics kin;
+  ActiveSystem sys;
+  MatrixXd rows;
+  std::vector<int> projection_rows;
+  VectorXd u_in, u_out;
+  DecisionScratch scratch;
+};
+
+// gamma_N of contact c at (q, u) by hand.
+double NormalRate(const model::Model& m, int c, const VectorXd& q, const VectorXd& u) {
+  return HandRow(m.contact(c), q[2], m.contact(c).face.normal).dot(u);
+}
+
+// --- Newton impacts [§3.3] -----------------------------------------------------------------
+
+struct NewtonRow {
+  double eps;    // restitution
+  double v_mps;  // approach speed
+};
+
+// A single corner (P1, frictionless) striking its face at v leaves at e v; one impact event
+// with the normal impulse (1 + e) v / G, the kinetic energy lost (1 - e^2) v^2 / (2 G), and the
+// corner opens (nothing presses it back).
+TEST(ModeDecision, NewtonImpactOfOneCornerLeavesAtRestitutionTimesApproach) {
+  for (const NewtonRow row : {NewtonRow{0.3, 0.1}, NewtonRow{0.5, 1e-3}, NewtonRow{0.8, 2.0}}) {
+    SCOPED_TRACE("eps " + std::to_string(row.eps) + " v " + std::to_string(row.v_mps));
+    const model::Model m = FreeDeck(row.eps, 0.0);
+    Decision d(m);
+    VectorXd q = Touching(m, 0, kTheta0);
+    ASSERT_GT(HandGap(m, 1, q), 0.05);
+    const Vector3d w = HandRow(m.contact(0), kTheta0, m.contact(0).face.normal);
+    const double G = w.dot(InverseMass(m).cwiseProduct(w));
+    // Along w M^-1 (a pure approach of P1): gamma_N = -v.
+    VectorXd u = -row.v_mps / G * InverseMass(m).cwiseProduct(w);
+    ASSERT_NEAR(NormalRate(m, 0, q, u), -row.v_mps, 1e-14 * row.v_mps);
+    const VectorXd u0 = u;
+    const DecisionOutcome r = d.Decide(Vector2d::Zero(), q, u);
+    ASSERT_EQ(r.status, RunStatus::kOk) << r.message;
+    const double Lambda = (1.0 + row.eps) * row.v_mps / G;
+    EXPECT_NEAR(NormalRate(m, 0, q, u), row.eps * row.v_mps, 1e-12 * row.v_mps);
+    const VectorXd u_expected = u0 + Lambda * InverseMass(m).cwiseProduct(w);
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_NEAR(u[i], u_expected[i], 1e-12 * u_expected.cwiseAbs().maxCoeff()) << "dof " << i;
+    }
+    ASSERT_EQ(d.log.events.size(), 1u);
+    const EventRecord& e = d.log.events[0];
+    EXPECT_EQ(e.kind, EventKind::kImpact);
+    EXPECT_EQ(e.contact, 0);
+    EXPECT_EQ(e.t_s, kT);
+    EXPECT_NEAR(e.impulse_N_Ns, Lambda, 1e-12 * Lambda);
+    EXPECT_NEAR(e.gamma_N_before_mps, -row.v_mps, 1e-13 * row.v_mps);
+    EXPECT_NEAR(e.gamma_N_after_mps, row.eps * row.v_mps, 1e-12 * row.v_mps);
+    const double loss = 0.5 * (1.0 - row.eps * row.eps) * row.v_mps * row.v_mps / G;
+    EXPECT_NEAR(e.kinetic_loss_J, loss, 1e-11 * loss);
+    EXPECT_NEAR(d.log.impact_J, loss, 1e-11 * loss);
+    EXPECT_EQ(d.log.impacts, 1);
+    EXPECT_EQ(d.log.plastic_closures, 0);
+    EXPECT_FALSE(d.modes.any_closed());
+    // The history of the corner: this impact, and that it left.
+    EXPECT_EQ(d.memory.history[0].bounce_seq, 1);
+    EXPECT_NEAR(d.memory.history[0].bounce_v_mps, row.v_mps, 1e-13 * row.v_mps);
+    EXPECT_EQ(d.memory.history[0].left_t_s, kT);
+  }
+}
+
+// A full edge (P1 and P2, theta = 0) striking its face in translation: the two corners take the
+// impulse m (1 + e) v between them, half each by symmetry, and leave at e v.
+TEST(ModeDecision, FullEdgeImpactTakesTheDeckMomentumTimesOnePlusRestitution) {
+  const double eps = 0.5, v = 0.2;
+  const model::Model m = FreeDeck(eps, 0.0);
+  Decision d(m);
+  VectorXd q = Touching(m, 0, 0.0);
+  ASSERT_NEAR(HandGap(m, 1, q), 0.0, 1e-15);
+  const Vector2d n = m.contact(0).face.normal;
+  VectorXd u(3);
+  u << -v * n.x(), -v * n.y(), 0.0;
+  const DecisionOutcome r = d.Decide(Vector2d::Zero(), q, u, {0, 1});
+  ASSERT_EQ(r.status, RunStatus::kOk) << r.message;
+  ASSERT_EQ(d.log.events.size(), 2u);
+  const double total = d.log.events[0].impulse_N_Ns + d.log.events[1].impulse_N_Ns;
+  EXPECT_NEAR(total, kMass * (1.0 + eps) * v, 1e-12 * kMass * v);
+  EXPECT_NEAR(d.log.events[0].impulse_N_Ns, d.log.events[1].impulse_N_Ns, 1e-10 * kMass * v);
+  EXPECT_NEAR(NormalRate(m, 0, q, u), eps * v, 1e-12 * v);
+  EXPECT_NEAR(NormalRate(m, 1, q, u), eps * v, 1e-12 * v);
+  EXPECT_EQ(d.log.impacts, 1);  // one impact instant, two contacts
+}
+
+// --- Plastic closures and the accumulation threshold [§3.3] --------------------------------
+
+// Closing slower than v_acc is a plastic closure: the approach is stopped (gamma_N after = 0)
+// with the impulse v / G, logged as such, and the corner stays closed (sticking with friction,
+// frictionless without). Above v_acc the same approach is a Newton impact with the impulse
+// (1 + e) v / G; its rebound e v opens the corner when faster than v_acc, and when slower the
+// corner stays a candidate (where an accumulation converges) and the projection stops it.
+TEST(ModeDecision, ClosureSlowerThanTheAccumulationThresholdIsPlastic) {
+  struct Row {
+    double v_over_vacc;
+    double mu;
+    bool plastic;
+    ContactMode mode;
+  };
+  for (const Row row :
+       {Row{0.5, 0.0, true, ContactMode::kFrictionless}, Row{0.5, 0.3, true, ContactMode::kStick},
+        Row{0.999, 0.0, true, ContactMode::kFrictionless},
+        Row{1.5, 0.0, false, ContactMode::kFrictionless},
+        Row{3.0, 0.0, false, ContactMode::kOpen}}) {
+    SCOPED_TRACE("v/v_acc " + std::to_string(row.v_over_vacc) + " mu " + std::to_string(row.mu));
+    const double eps = 0.5;
+    const model::Model m = FreeDeck(eps, row.mu);
+    Decision d(m);
+    const double v = row.v_over_vacc * d.scales.v_acc_mps;
+    VectorXd q = Touching(m, 0, kTheta0);
+    const Vector3d w = HandRow(m.contact(0), kTheta0, m.contact(0).face.normal);
+    const double G = w.dot(InverseMass(m).cwiseProduct(w));
+    VectorXd u = -v / G * InverseMass(m).cwiseProduct(w);
+    const DecisionOutcome r = d.Decide(Vector2d::Zero(), q, u);
+    ASSERT_EQ(r.status, RunStatus::kOk) << r.message;
+    ASSERT_EQ(d.log.events.size(), 1u);
+    const EventRecord& e = d.log.events[0];
+    if (row.plastic) {
+      EXPECT_EQ(e.kind, EventKind::kPlasticClosure);
+      EXPECT_EQ(d.log.plastic_closures, 1);
+      EXPECT_EQ(d.log.impacts, 0);
+      EXPECT_NEAR(e.impulse_N_Ns, v / G, 1e-12 * v / G);
+      EXPECT_NEAR(e.gamma_N_after_mps, 0.0, 1e-12 * v);
+    } else {
+      EXPECT_EQ(e.kind, EventKind::kImpact);
+      EXPECT_EQ(d.log.impacts, 1);
+      EXPECT_NEAR(e.impulse_N_Ns, (1.0 + eps) * v / G, 1e-12 * v / G);
+      EXPECT_NEAR(e.gamma_N_after_mps, eps * v, 1e-12 * v);
+    }
+    EXPECT_EQ(d.modes[0], row.mode);
+    EXPECT_NEAR(NormalRate(m, 0, q, u), d.modes.closed(0) ? 0.0 : eps * v, 1e-12 * v);
+  }
+}
+
+// --- Stick and slip of a resting corner [§3.7] ---------------------------------------------
+
+// A resting corner (u = 0) loaded into its face by the ground. Its sticking forces are the
+// solution of [w_N w_T]^T M^-1 (h + [w_N w_T] lambda) = 0 with h = -M r a_g: with the load's
+// tangential part scaled so that |lambda_T| = ratio mu lambda_N, it sticks for ratio < 1 and
+// slides for ratio > 1, against lambda_T (slip sign -sign(lambda_T)), with the friction
+// lambda_T = -mu s lambda_N. Entered open (touching) or sticking, the answer is the same; from
+// sticking, the slip is a slip transition.
+TEST(ModeDecision, RestingCornerSticksInsideTheConeAndSlidesAgainstItsFrictionBeyond) {
+  const double mu = 0.3;
+  const model::Model m = FreeDeck(0.5, mu);
+  const Vector3d q0 = Touching(m, 0, kTheta0);
+  const model::Contact& k = m.contact(0);
+  const Vector3d wN = HandRow(k, kTheta0, k.face.normal), wT = HandRow(k, kTheta0, k.face.tangent);
+  const Vector3d inv_m = InverseMass(m);
+  Eigen::Matrix<double, 3, 2> W;
+  W << wN, wT;
+  const Eigen::Matrix2d A = W.transpose() * inv_m.asDiagonal() * W;
+  // The sticking forces of a ground acceleration a_g (free deck: h = (-m a_x, -m a_y, 0)).
+  const auto sticking = [&](const Vector2d& a_g) {
+    const Vector3d h(-kMass * a_g.x(), -kMass * a_g.y(), 0.0);
+    return Eigen::Vector2d(A.fullPivLu().solve(-W.transpose() * inv_m.asDiagonal() * h));
+  };
+  const Vector2d press = 2.0 * k.face.normal;  // a_N = -n . a_g = -2 m/s^2
+  // Per unit tangential load: its own lambda; the ratio |lambda_T| / (mu lambda_N) is linear in
+  // the tangential part a_t of a_g = press - a_t t.
+  for (const double ratio : {0.5, 0.9, 1.1, 2.0}) {
+    for (const double side : {1.0, -1.0}) {
+      for (const ContactMode before : {ContactMode::kOpen, ContactMode::kStick}) {
+        SCOPED_TRACE("ratio " + std::to_string(ratio) + " side " + std::to_string(side) +
+                     " entered " + (before == ContactMode::kOpen ? "open" : "sticking"));
+        // Find a_t with lambda_T = side ratio mu lambda_N (lambda is affine in a_t).
+        const Vector2d l0 = sticking(press);
+        const Vector2d l1 = sticking(press + k.face.tangent);
+        const double target_slope = side * ratio * mu;
+        const double a_t = (target_slope * l0.x() - l0.y()) /
+                           ((l1.y() - l0.y()) - target_slope * (l1.x() - l0.x()));
+        const Vector2d a_g = press + a_t * k.face.tangent;
+        const Vector2d lambda = sticking(a_g);
+        ASSERT_GT(lambda.x(), 0.0) << "the load must press the corner into its face";
+        ASSERT_NEAR(std::abs(lambda.y()) / (mu * lambda.x()), ratio, 1e-9);
+        Decision d(m);
+        d.modes.Set(0, before);
+        VectorXd q = q0, u = VectorXd::Zero(3);
+        const DecisionOutcome r = d.Decide(a_g, q, u);
+        ASSERT_EQ(r.status, RunStatus::kOk) << r.message;
+        const int s = lambda.y() > 0.0 ? -1 : 1;
+        const ContactMode expected = ratio < 1.0 ? ContactMode::kStick : SlideOrStick(s);
+        EXPECT_EQ(d.modes[0], expected);
+        // The forces of the chosen mode: sticking ones equal the closed form; sliding ones lie
+        // on the cone, opposing the slip.
+        VectorXd lN(m.n_contacts()), lT(m.n_contacts());
+        d.forces.Forces(d.modes, kT, q, u, lN, lT);
+        if (ratio < 1.0) {
+          EXPECT_NEAR(lN[0], lambda.x(), 1e-9 * lambda.x());
+          EXPECT_NEAR(lT[0], lambda.y(), 1e-9 * lambda.x());
+        } else {
+          EXPECT_GT(lN[0], 0.0);  // sliding keeps the corner pressed: no Painleve answer
+        }
+        const bool slip_event = before == ContactMode::kStick && ratio > 1.0;
+        EXPECT_EQ(d.log.slip_transitions, slip_event ? 1 : 0);
+        EXPECT_EQ(d.log.events.size(), slip_event ? 1u : 0u);
+        EXPECT_EQ(d.log.impacts + d.log.plastic_closures, 0);
+      }
+    }
+  }
+}
+
+// --- Accumulation rules [§3.4, §3.6] --------------------------------------------------------
+
+// A corner pressed into its face (a_N = -1 m/s^2) strikes at v = 0.01 m/s, after a flight of
+// 1 ms since its previous impact at 2 v with no other impact in between: a Zeno sequence
+// (ratio 0.5 <= 0.9, flight <= 0.01 T_min). The impact closes it at once: gamma_N after = 0,
+// impulse v / G, and the contact problem keeps it closed. Without the rule (zeno_extrapolation
+// off) the same approach bounces at e v and the corner opens.
+TEST(ModeDecision, ZenoSequenceClosesTheContactAtOnce) {
+  for (const bool zeno : {true, false}) {
+    SCOPED_TRACE(zeno ? "zeno on" : "zeno off");
+    const double eps = 0.5, v = 0.01;
+    const model::Model m = FreeDeck(eps, 0.0);
+    Decision d(m);
+    d.policy.zeno_extrapolation = zeno;
+    d.memory.impact_sequence = 7;
+    d.memory.last_impact_t_s = kT - 1e-3;
+    d.memory.history[0] = {kT - 1e-3, 2.0 * v, 7, kT - 1e-3};
+    VectorXd q = Touching(m, 0, kTheta0);
+    const Vector3d w = HandRow(m.contact(0), kTheta0, m.contact(0).face.normal);
+    const double G = w.dot(InverseMass(m).cwiseProduct(w));
+    VectorXd u = -v / G * InverseMass(m).cwiseProduct(w);
+    const Vector2d a_g = m.contact(0).face.normal;  // a_N = -n . a_g = -1 m/s^2
+    const DecisionOutcome r = d.Decide(a_g, q, u);
+    ASSERT_EQ(r.status, RunStatus::kOk) << r.message;
+    ASSERT_EQ(d.log.events.size(), 1u);
+    EXPECT_EQ(d.log.events[0].kind, EventKind::kImpact);
+    EXPECT_EQ(d.log.impacts, 1);
+    EXPECT_NEAR(d.log.min_impact_separation_s, 1e-3, 1e-12);
+    if (zeno) {
+      EXPECT_NEAR(d.log.events[0].impulse_N_Ns, v / G, 1e-12 * v / G);
+      EXPECT_NEAR(NormalRate(m, 0, q, u), 0.0, 1e-12 * v);
+      EXPECT_EQ(d.modes[0], ContactMode::kFrictionless);
+    } else {
+      EXPECT_NEAR(d.log.events[0].impulse_N_Ns, (1.0 + eps) * v / G, 1e-12 * v / G);
+      EXPECT_NEAR(NormalRate(m, 0, q, u), eps * v, 1e-12 * v);
+      EXPECT_EQ(d.modes[0], ContactMode::kOpen);
+    }
+  }
+}
+
+// The predicted bounce [§3.6]: a first impact at v leaving at e v under a pressing normal
+// acceleration a returns after 2 e v / a. Within zeno_flight_at_once T_min (1 ms) the corner is
+// kept closed (the projection puts its rebound to zero) although the impact itself had
+// restitution; beyond it, or with the rule off, the corner leaves.
+TEST(ModeDecision, ReboundReturningWithinAnAccumulationsFlightIsClosedAtOnce) {
+  struct Row {
+    double a_mps2;  // pressing normal acceleration
+    bool rule;
+    bool closed;
+  };
+  const double eps = 0.5, v = 0.01;  // return after 0.01 / a s
+  for (const Row row : {Row{20.0, true, true}, Row{20.0, false, false}, Row{5.0, true, false}}) {
+    SCOPED_TRACE("a " + std::to_string(row.a_mps2) + (row.rule ? " rule on" : " rule off"));
+    const model::Model m = FreeDeck(eps, 0.0);
+    Decision d(m);
+    d.policy.bounce_at_once = row.rule;
+    VectorXd q = Touching(m, 0, kTheta0);
+    const Vector3d w = HandRow(m.contact(0), kTheta0, m.contact(0).face.normal);
+    const double G = w.dot(InverseMass(m).cwiseProduct(w));
+    VectorXd u = -v / G * InverseMass(m).cwiseProduct(w);
+    // The free normal acceleration w_N^T M^-1 h with h = -M a_g: -(n . a_g) - its rotational
+    // part, none here (h has no moment): a_N = -a.
+    const Vector2d a_g = row.a_mps2 * m.contact(0).face.normal;
+    const DecisionOutcome r = d.Decide(a_g, q, u);
+    ASSERT_EQ(r.status, RunStatus::kOk) << r.message;
+    ASSERT_EQ(d.log.events.size(), 1u);
+    EXPECT_NEAR(d.log.events[0].gamma_N_after_mps, eps * v, 1e-12 * v);
+    EXPECT_EQ(d.modes.closed(0), row.closed);
+    EXPECT_NEAR(NormalRate(m, 0, q, u), row.closed ? 0.0 : eps * v, 1e-12 * v);
+  }
+}
+
+// --- Tie bands and the tie fallback [§3.7] --------------------------------------------------
+
+// A closed corner at rest whose free normal acceleration separates it by a fraction of a_detach
+// is a detachment tie: it stays closed (lambda_N = 0 within force_tol) with the contact
+// problem's answer, open, kept to fall back on. When the constrained forces say its detachment
+// function lambda_N + force_tol is not positive, the tie falls back: open, a detachment. With
+// the tie bands off, or beyond the band, it opens at once.
+TEST(ModeDecision, TieBandKeepsTheContactClosedAndFallsBackWhenItsEventFunctionFires) {
+  struct Row {
+    double a_over_band;  // separating acceleration, of a_detach
+    bool tie_bands;
+    double shift_of_force_tol;  // lambda_N shift of the supplied forces, of force_tol
+    bool closed;
+  };
+  for (const Row row : {Row{0.5, true, 0.0, true}, Row{0.5, true, -2.0, false},
+                        Row{0.5, false, 0.0, false}, Row{2.0, true, 0.0, false}}) {
+    SCOPED_TRACE("a/a_detach " + std::to_string(row.a_over_band) +
+                 (row.tie_bands ? " bands on" : " bands off") + " shift " +
+                 std::to_string(row.shift_of_force_tol));
+    const model::Model m = FreeDeck(0.5, 0.0);
+    Decision d(m);
+    d.policy.tie_bands = row.tie_bands;
+    d.forces.lambda_N_shift = row.shift_of_force_tol * d.scales.force_tol_N;
+    d.modes.Set(0, ContactMode::kFrictionless);
+    VectorXd q = Touching(m, 0, kTheta0), u = VectorXd::Zero(3);
+    // a_N = -(n . a_g) = row.a_over_band a_detach.
+    const Vector2d a_g = -row.a_over_band * d.scales.a_detach_mps2 * m.contact(0).face.normal;
+    const DecisionOutcome r = d.Decide(a_g, q, u);
+    ASSERT_EQ(r.status, RunStatus::kOk) << r.message;
+    EXPECT_EQ(d.modes.closed(0), row.closed);
+    if (row.closed) {
+      ASSERT_TRUE(d.memory.tie[0].has_value());
+      EXPECT_EQ(*d.memory.tie[0], ContactMode::kOpen);
+      EXPECT_TRUE(d.log.events.empty());
+      // The forces of the tie: lambda_N = -a_N / G, inside the detachment band.
+      const Vector3d w = HandRow(m.contact(0), kTheta0, m.contact(0).face.normal);
+      const double G = w.dot(InverseMass(m).cwiseProduct(w));
+      VectorXd lN(2), lT(2);
+      d.forces.Forces(d.modes, kT, q, u, lN, lT);
+      EXPECT_NEAR(lN[0], -row.a_over_band * d.scales.a_detach_mps2 / G, 1e-9 * kMass * 1e-7);
+      EXPECT_GT(lN[0] + d.scales.force_tol_N, 0.0);
+    } else {
+      EXPECT_FALSE(d.memory.tie[0].has_value());
+      ASSERT_EQ(d.log.events.size(), 1u);
+      EXPECT_EQ(d.log.events[0].kind, EventKind::kDetachment);
+      EXPECT_EQ(d.log.detachments, 1);
+    }
+    // The tie fallback asked the supplied forces only when there was a tie.
+    EXPECT_EQ(d.forces.calls > 0, row.tie_bands && row.a_over_band < 1.0);
+  }
+}
+
+// --- The event-cascade limit [§3.11] --------------------------------------------------------
+
+// Decisions at one instant count against max_events_at_one_instant: that many further decisions
+// at the same time pass, the next ends with kEventCascade and leaves the state alone; a
+// decision at a later time starts a new count.
+TEST(ModeDecision, MoreDecisionsAtOneInstantThanTheLimitIsAnEventCascade) {
+  for (const int limit : {0, 3, 64}) {
+    SCOPED_TRACE("limit " + std::to_string(limit));
+    const model::Model m = FreeDeck(0.5, 0.3);
+    Decision d(m);
+    d.policy.max_events_at_one_instant = limit;
+    VectorXd q = Vector3d(-0.005, 0.0, 0.0), u = Vector3d(0.1, 0.0, 0.0);  // open, free flight
+    for (int k = 0; k <= limit; ++k) {
+      ASSERT_EQ(d.Decide(Vector2d::Zero(), q, u).status, RunStatus::kOk) << "decision " << k;
+    }
+    const VectorXd q_before = q, u_before = u;
+    const DecisionOutcome r = d.Decide(Vector2d::Zero(), q, u);
+    EXPECT_EQ(r.status, RunStatus::kEventCascade);
+    EXPECT_NE(r.message.find("event cascade"), std::string::npos) << r.message;
+    EXPECT_NE(r.message.find("t = 2.0"), std::string::npos) << r.message;
+    EXPECT_EQ(q, q_before);
+    EXPECT_EQ(u, u_before);
+    DecisionInstant later{kT + 1e-3, Vector2d::Zero(), {}};
+    DecisionWorkspace ws{d.impact,
+                         d.impact_result,
+                         d.contact_problem,
+                         d.contact_result,
+                         {d.kin, d.sys, d.rows, d.projection_rows, d.u_in, d.u_out},
+                         d.scratch};
+    EXPECT_EQ(
+        DecideModes(m, d.policy, d.scales, later, q, u, d.modes, d.memory, d.forces, ws, d.log)
+            .status,
+        RunStatus::kOk);
+    EXPECT_EQ(d.memory.events_here, 0);
+  }
+}
+
+}  // namespace
+}  // namespace skewbridge::dynamics
