@@ -4,6 +4,8 @@
 #include <numbers>
 #include <string>
 
+#include <fmt/format.h>
+
 #include "solver/common/error.h"
 
 namespace skewbridge::records {
@@ -20,7 +22,7 @@ PulseExcitation::PulseExcitation(PulseShape shape, double amplitude_mps2, double
   }
   if (!std::isfinite(omega_radps) || omega_radps <= 0.0) {
     throw InputError::AtField("pulse", "w_g",
-                              "must be > 0 rad/s (got " + std::to_string(omega_radps) + ")");
+                              fmt::format("must be > 0 rad/s (got {})", omega_radps));
   }
   if (!direction.allFinite() || std::abs(direction.norm() - 1.0) > 1e-12) {
     throw InputError::AtField("pulse", "direction", "must be a unit vector");

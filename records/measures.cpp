@@ -10,6 +10,8 @@
 #include <numbers>
 #include <string>
 
+#include <fmt/format.h>
+
 #include "solver/common/error.h"
 
 namespace skewbridge::records {
@@ -18,7 +20,7 @@ namespace {
 void RequireRecord(std::span<const double> acc, double dt_s, std::string_view what) {
   if (acc.empty()) throw InputError::AtField(what, "acceleration", "must not be empty");
   if (!(std::isfinite(dt_s) && dt_s > 0.0)) {
-    throw InputError::AtField(what, "dt", "must be > 0 s (got " + std::to_string(dt_s) + ")");
+    throw InputError::AtField(what, "dt", fmt::format("must be > 0 s (got {})", dt_s));
   }
 }
 
@@ -121,7 +123,7 @@ ResponseSpectrum ElasticResponseSpectrum(std::span<const double> acc, double dt_
   RequireRecord(acc, dt_s, "response spectrum");
   if (!(xi >= 0.0 && xi < 1.0)) {
     throw InputError::AtField("response spectrum", "xi",
-                              "must be in [0, 1) (got " + std::to_string(xi) + ")");
+                              fmt::format("must be in [0, 1) (got {})", xi));
   }
   ResponseSpectrum out;
   out.xi = xi;
@@ -130,7 +132,7 @@ ResponseSpectrum ElasticResponseSpectrum(std::span<const double> acc, double dt_
   for (const double period : periods_s) {
     if (!(std::isfinite(period) && period > 0.0)) {
       throw InputError::AtField("response spectrum", "period",
-                                "must be > 0 s (got " + std::to_string(period) + ")");
+                                fmt::format("must be > 0 s (got {})", period));
     }
     // [Nigam and Jennings 1969]: [u, v]_{k+1} = A [u, v]_k + B [a_k, a_{k+1}] for
     // u'' + 2 xi w u' + w^2 u = -a(t) with a linear on [t_k, t_{k+1}].
@@ -177,7 +179,7 @@ std::vector<double> PseudoAccelerationSpectrum(std::span<const double> acc, doub
 
 std::vector<double> AvgSaPeriods(double t1_s, double from_t1, double to_t1, int count) {
   if (!(std::isfinite(t1_s) && t1_s > 0.0)) {
-    throw InputError::AtField("AvgSa", "T1", "must be > 0 s (got " + std::to_string(t1_s) + ")");
+    throw InputError::AtField("AvgSa", "T1", fmt::format("must be > 0 s (got {})", t1_s));
   }
   if (!(std::isfinite(from_t1) && std::isfinite(to_t1) && 0.0 < from_t1 && from_t1 <= to_t1)) {
     throw InputError::AtField("AvgSa", "range", "needs 0 < from <= to (multiples of T1)");

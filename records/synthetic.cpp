@@ -13,6 +13,8 @@
 #include <numbers>
 #include <random>
 
+#include <fmt/format.h>
+
 #include "records/measures.h"
 #include "solver/common/error.h"
 
@@ -350,10 +352,11 @@ GroundMotion SynthesizeRecord(const SynthOptions& options, int index) {
   const double tm_longest = tm_of(lo);
   const double tm_shortest = tm_of(hi);
   if (!(tm_shortest <= tm_target && tm_target <= tm_longest)) {
-    throw InputError::AtField("synth", "T_m range",
-                              "target " + std::to_string(tm_target) + " s is out of reach (" +
-                                  std::to_string(tm_shortest) + " to " +
-                                  std::to_string(tm_longest) + " s with this dt and duration)");
+    throw InputError::AtField(
+        "synth", "T_m range",
+        fmt::format("target {:.3g} s is out of reach ({:.3g} to {:.3g} s with this "
+                    "dt and duration)",
+                    tm_target, tm_shortest, tm_longest));
   }
   double omega = std::sqrt(lo * hi);
   double tm = tm_of(omega);

@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "jobs/app/commands.h"
 #include "jobs/h5/h5_error.h"
 #include "jobs/run_output.h"
@@ -143,7 +145,7 @@ void AddRunCommand(CLI::App& app) {
     const std::unique_ptr<Excitation> excitation = MakeExcitation(file.excitation, *model_path);
     model::RunControl control = file.run;
     if (*output_interval_s < 0.0) {
-      throw InputError::AtField("--output-interval", std::to_string(*output_interval_s),
+      throw InputError::AtField("--output-interval", fmt::format("{}", *output_interval_s),
                                 "must be > 0 s");
     }
     if (*output_interval_s > 0.0) {

@@ -1,6 +1,8 @@
 #include <cmath>
 #include <string>
 
+#include <fmt/format.h>
+
 #include "records/readers/readers.h"
 #include "solver/common/error.h"
 
@@ -73,8 +75,7 @@ GroundMotion ParseTimeSeries(const std::vector<Line>& lines, std::string_view so
     if (std::abs(times[k] - expected) > tolerance) {
       throw InputError::AtLine(
           source, line_of[k],
-          "time " + std::to_string(times[k]) +
-              " is off the uniform grid of dt = " + std::to_string(dt_in_file) + " s");
+          fmt::format("time {} is off the uniform grid of dt = {:.6g} s", times[k], dt_in_file));
     }
   }
   // The mean step carries rounding noise (67.74 s / 13548 = 0.005000000000000001): the time

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <string>
 
+#include <fmt/format.h>
+
 #include "solver/common/error.h"
 
 namespace skewbridge::records::detail {
@@ -228,18 +230,19 @@ Units ResolveUnits(std::optional<Units> in_file, const ReadOptions& options,
 double ResolveDt(std::optional<double> in_file, const ReadOptions& options, std::string_view source,
                  long line) {
   if (options.dt_s && !(std::isfinite(*options.dt_s) && *options.dt_s > 0.0)) {
-    throw InputError::AtLine(
-        source, 0, "the given dt must be > 0 s (got " + std::to_string(*options.dt_s) + ")");
+    throw InputError::AtLine(source, 0,
+                             fmt::format("the given dt must be > 0 s (got {})", *options.dt_s));
   }
   if (in_file) {
     if (!(*in_file > 0.0)) {
-      throw InputError::AtLine(
-          source, line, "dt must be > 0 s (the file states " + std::to_string(*in_file) + ")");
+      throw InputError::AtLine(source, line,
+                               fmt::format("dt must be > 0 s (the file states {:.10g})", *in_file));
     }
     if (options.dt_s && std::abs(*options.dt_s - *in_file) > 1e-9 * *in_file) {
-      throw InputError::AtLine(source, line,
-                               "the file states dt = " + std::to_string(*in_file) +
-                                   " s but dt = " + std::to_string(*options.dt_s) + " s was given");
+      throw InputError::AtLine(
+          source, line,
+          fmt::format("the file states dt = {:.10g} s but dt = {:.10g} s was given", *in_file,
+                      *options.dt_s));
     }
     return *in_file;
   }
