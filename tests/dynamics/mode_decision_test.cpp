@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "solver/model/builders.h"
+#include "tests/contact/test_models.h"
 
 namespace skewbridge::dynamics {
 namespace {
@@ -520,6 +521,127 @@ TEST(ModeDecision, TieBandKeepsTheContactClosedAndFallsBackWhenItsEventFunctionF
     // The tie fallback asked the supplied forces only when there was a tie.
     EXPECT_EQ(d.forces.calls > 0, row.tie_bands && row.a_over_band < 1.0);
   }
+}
+
+// --- The jam of a wedged deck [§3.9] ---------------------------------------------------------
+
+// A 45 deg skew deck (eta0 = 2.5, L = 20 m, m = 1000 kg, mu = 1.5) between both abutments with
+// its acute corners P1 (+x face) and P3 (-x face) closed, both sliding with gamma_T > 0 (P3
+// separating at 5e-7 m/s, below v_acc, so it stays a candidate), the ground pushing along x.
+// The contact problem of the two sliding corners, A_ij = w_Ni^T M^-1 (w_Nj - mu s_j w_Tj),
+// b_i = w_Ni^T M^-1 h, has no solution (checked by enumerating its four complementary bases):
+// the deck wedges. The jam stops the sliding by a tangential impact, the projection onto
+// gamma_N = gamma_T = 0 of both corners (here u = 0: four rows on three degrees of freedom), one
+// impact instant with the kinetic energy lost 1/2 u^T M u, and the decision is made again from
+// rest; a second jam at the same instant is a Painleve situation, and so is the first with the
+// rule off.
+TEST(ModeDecision, JamOfAWedgedDeckStopsTheSlidingOncePerInstant) {
+  const double mu = 1.5, eps_speed = 5e-7;
+  const model::Model m =
+      contact::testing::FreeDeck(45.0, 2.5, 20.0, 0.05, 0.5, mu, model::AbutmentSet::kBoth, 1000.0);
+  // P1 and P3 at their faces: Newton on (x, theta) with y = 0.
+  Vector3d q0 = Vector3d::Zero();
+  for (int it = 0; it < 30; ++it) {
+    const Vector2d r(HandGap(m, 0, q0), HandGap(m, 2, q0));
+    Eigen::Matrix2d J;
+    J << HandRow(m.contact(0), q0.z(), m.contact(0).face.normal)[0],
+        HandRow(m.contact(0), q0.z(), m.contact(0).face.normal)[2],
+        HandRow(m.contact(2), q0.z(), m.contact(2).face.normal)[0],
+        HandRow(m.contact(2), q0.z(), m.contact(2).face.normal)[2];
+    const Vector2d d = J.fullPivLu().solve(r);
+    q0.x() -= d.x();
+    q0.z() -= d.y();
+  }
+  ASSERT_NEAR(HandGap(m, 0, q0), 0.0, 1e-13);
+  ASSERT_NEAR(HandGap(m, 2, q0), 0.0, 1e-13);
+  ASSERT_GT(HandGap(m, 1, q0), 1e-3);
+  ASSERT_GT(HandGap(m, 3, q0), 1e-3);
+  const double th = q0.z();
+  const Vector3d wN1 = HandRow(m.contact(0), th, m.contact(0).face.normal);
+  const Vector3d wN3 = HandRow(m.contact(2), th, m.contact(2).face.normal);
+  const Vector3d wT1 = HandRow(m.contact(0), th, m.contact(0).face.tangent);
+  const Vector3d wT3 = HandRow(m.contact(2), th, m.contact(2).face.tangent);
+  // u with gamma_N1 = 0, gamma_N3 = eps_speed and no component along the common null direction.
+  Eigen::Matrix3d rows;
+  rows << wN1.transpose(), wN3.transpose(), wN1.cross(wN3).transpose();
+  const Vector3d u0 = rows.fullPivLu().solve(Vector3d(0.0, eps_speed, 0.0));
+  ASSERT_GT(wT1.dot(u0), 100.0 * 2e-10);  // both slide with s = +1, beyond the stick band
+  ASSERT_GT(wT3.dot(u0), 100.0 * 2e-10);
+  // The contact problem of the two sliding corners has no solution.
+  const Vector3d inv_m = InverseMass(m);
+  const Vector2d a_g(2.0, 0.0);
+  const Vector3d h(-1000.0 * a_g.x(), -1000.0 * a_g.y(), 0.0);
+  const std::vector<Vector3d> wN = {wN1, wN3}, wT = {wT1, wT3};
+  Eigen::Matrix2d A;
+  Vector2d b;
+  for (int i = 0; i < 2; ++i) {
+    b[i] = wN[i].dot(inv_m.cwiseProduct(h));
+    for (int j = 0; j < 2; ++j) {
+      A(i, j) = wN[i].dot(inv_m.cwiseProduct(wN[j] - mu * wT[j]));
+    }
+  }
+  int solutions = 0;
+  for (int basis = 0; basis < 4; ++basis) {
+    Vector2d lambda = Vector2d::Zero();
+    if (basis == 1 || basis == 2) {
+      const int i = basis - 1;
+      lambda[i] = -b[i] / A(i, i);
+    } else if (basis == 3) {
+      lambda = A.fullPivLu().solve(-b);
+    }
+    const Vector2d w = A * lambda + b;
+    solutions += (lambda.array() >= 0.0).all() && (w.array() >= -1e-15).all() ? 1 : 0;
+  }
+  ASSERT_EQ(solutions, 0) << "A = " << A << ", b = " << b.transpose();
+
+  const auto wedged = [&](Decision& d, VectorXd& q, VectorXd& u) {
+    q = q0;
+    u = u0;
+    d.modes.Set(0, ContactMode::kSlidePositive);
+    d.modes.Set(2, ContactMode::kSlidePositive);
+  };
+  Decision d(m);
+  VectorXd q, u;
+  wedged(d, q, u);
+  const double kinetic = 0.5 * u.dot(m.mass_diagonal().cwiseProduct(u));
+  const DecisionOutcome r = d.Decide(a_g, q, u);
+  ASSERT_EQ(r.status, RunStatus::kOk) << r.message;
+  EXPECT_TRUE(d.memory.jammed_here);
+  // Decided again from rest: the push along +x presses P3 into the -x face, which sticks, and
+  // lifts P1 off the +x face.
+  EXPECT_EQ(d.modes[2], ContactMode::kStick);
+  EXPECT_EQ(d.modes[0], ContactMode::kOpen);
+  for (const int c : {0, 2}) {
+    EXPECT_NEAR(NormalRate(m, c, q, u), 0.0, 1e-9 * eps_speed) << "contact " << c;
+    EXPECT_NEAR(HandRow(m.contact(c), q[2], m.contact(c).face.tangent).dot(u), 0.0,
+                1e-9 * eps_speed)
+        << "contact " << c;
+  }
+  EXPECT_EQ(d.log.impacts, 1);
+  EXPECT_EQ(d.log.detachments, 1);
+  ASSERT_EQ(d.log.events.size(), 3u);
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_EQ(d.log.events[static_cast<std::size_t>(i)].kind, EventKind::kImpact);
+    EXPECT_NEAR(d.log.events[static_cast<std::size_t>(i)].kinetic_loss_J, kinetic, 1e-9 * kinetic);
+  }
+  EXPECT_EQ(d.log.events[2].kind, EventKind::kDetachment);
+  EXPECT_EQ(d.log.events[2].contact, 0);
+  EXPECT_NEAR(d.log.impact_J, kinetic, 1e-9 * kinetic);
+
+  // The same wedge again at the same instant: no second jam.
+  wedged(d, q, u);
+  const DecisionOutcome again = d.Decide(a_g, q, u);
+  EXPECT_EQ(again.status, RunStatus::kPainleve);
+  EXPECT_NE(again.message.find("Painleve"), std::string::npos) << again.message;
+  EXPECT_EQ(d.log.impacts, 1);
+
+  // The rule off: the first wedge is a Painleve situation.
+  Decision off(m);
+  off.policy.jam = false;
+  wedged(off, q, u);
+  EXPECT_EQ(off.Decide(a_g, q, u).status, RunStatus::kPainleve);
+  EXPECT_EQ(off.log.impacts, 0);
+  EXPECT_FALSE(off.memory.jammed_here);
 }
 
 // --- The event-cascade limit [§3.11] --------------------------------------------------------
