@@ -100,6 +100,9 @@ class Integrator final : private ConstrainedForces {
     result_.message = message;
   }
 
+  // The result at the end of the run: the final state, the decisions' events and counts, the
+  // energy ledger, and the non-finite status if the state or its energy is no number.
+  RunResult Finish();
   // Contact-free phase: one exact step (or up to an impact).
   void FreeStep();
   // Constrained phase: one Runge-Kutta step (or up to an event).
@@ -414,6 +417,9 @@ double Integrator::FreeStepSize(const ExcitationPiece& piece) const {
 }
 
 RunResult Integrator::Run() {
+  // The step loop [docs/theory.md §3.1]: the mode decision at t = 0, then one free step (no
+  // contact closed) or one constrained step at a time, each ending at its end or at its first
+  // event, where the step calls the decision (ResolveContacts) again.
   ws_.flow_.SetGenerator(excitation_.PieceAt(0.0), 0.0, z_);
   result_.energy.initial_J = ws_.flow_.MechanicalEnergy(z_);
   RecordOutputs(0.0, 0.0, [&](double, Vec& qq, Vec& uu) {
@@ -443,6 +449,10 @@ RunResult Integrator::Run() {
       t_finite_ = t_;
     }
   }
+  return Finish();
+}
+
+RunResult Integrator::Finish() {
   if (!StateFinite(z_) || !std::isfinite(t_)) {
     // Whatever else stopped the run, a state that is no number is the first thing to report.
     Fail(RunStatus::kNonFinite, NonFiniteMessage(t_finite_, t_));
