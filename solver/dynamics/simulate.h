@@ -11,8 +11,10 @@
 /// - events located by Brent's method on the dense output: a gap reaching zero (impact),
 ///   lambda_N reaching zero (detachment), a slip velocity reaching zero (stick or reversal),
 ///   friction reaching the cone (slip); excitation kinks are step boundaries;
-/// - at impacts the velocity-level LCP, at every change of the active set the acceleration-level
-///   LCP (Lemke); a secondary ray there is a Painleve situation, returned as a status.
+/// - at every event the mode decision, DecideModes (solver/dynamics/mode_decision.h;
+///   docs/theory.md §3.1-§3.11): at impacts the velocity-level LCP, at every change of the active
+///   set the acceleration-level LCP (Lemke); a secondary ray there is a Painleve situation,
+///   returned as a status.
 ///
 /// Accumulation threshold: an impact with approach speed |gamma_N,A| below
 /// v_acc = accumulation_threshold * a_peak / omega_1 (a_peak the largest |a_g| of the excitation,
