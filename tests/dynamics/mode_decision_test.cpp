@@ -131,12 +131,19 @@ class ActiveSetForces : public ConstrainedForces {
       const double mu = model_.contact(c).friction;
       lambda_T[c] =
           modes[c] == ContactMode::kStick ? x[js++] : -mu * SlipSign(modes[c]) * lambda_N[c];
+      if (modes[c] == ContactMode::kStick && cone_side != 0) {
+        lambda_T[c] = cone_side * (mu * lambda_N[c] + cone_excess_N);
+      }
     }
   }
 
   Vector2d a_g = Vector2d::Zero();  ///< the ground acceleration of h (m/s^2)
   double lambda_N_shift = 0.0;      ///< N, added to every closed contact's lambda_N
-  int calls = 0;                    ///< Forces calls so far
+  /// When not 0: a sticking contact's lambda_T is reported as cone_side (mu lambda_N +
+  /// cone_excess_N), beyond its cone (a caller that wants the stick-slip event's state).
+  int cone_side = 0;
+  double cone_excess_N = 0.0;  ///< N
+  int calls = 0;               ///< Forces calls so far
 
  private:
   const model::Model& model_;
@@ -394,6 +401,51 @@ TEST(ModeDecision, RestingCornerSticksInsideTheConeAndSlidesAgainstItsFrictionBe
         EXPECT_EQ(d.log.slip_transitions, slip_event ? 1 : 0);
         EXPECT_EQ(d.log.events.size(), slip_event ? 1u : 0u);
         EXPECT_EQ(d.log.impacts + d.log.plastic_closures, 0);
+      }
+    }
+  }
+}
+
+// The cone sign [§3.8]: a sticking corner whose friction, as the constrained forces report it,
+// has reached its cone (mu lambda_N + force_tol - |lambda_T| <= 0: the stick-slip event) enters
+// the contact problem sliding against that friction, slip sign -sign(lambda_T), and slides (a
+// slip transition), whatever the contact problem over a sticking candidate would say. Here the
+// loads keep it inside the cone (its closed-form sticking forces have |lambda_T| < mu
+// lambda_N), so with the rule off the contact problem keeps it sticking.
+TEST(ModeDecision, ConeSignSlidesAStickingCornerAgainstTheFrictionAtItsCone) {
+  const double mu = 0.3;
+  const model::Model m = FreeDeck(0.5, mu);
+  const model::Contact& k = m.contact(0);
+  // Pressed into the face with a tangential load inside the cone.
+  const Vector2d a_g = 2.0 * k.face.normal + 0.1 * k.face.tangent;
+  Eigen::Matrix<double, 3, 2> W;
+  W << HandRow(k, kTheta0, k.face.normal), HandRow(k, kTheta0, k.face.tangent);
+  const Vector3d inv_m = InverseMass(m);
+  const Vector3d h(-kMass * a_g.x(), -kMass * a_g.y(), 0.0);
+  const Eigen::Matrix2d A = W.transpose() * inv_m.asDiagonal() * W;
+  const Vector2d lambda = A.fullPivLu().solve(-W.transpose() * inv_m.asDiagonal() * h);
+  ASSERT_GT(lambda.x(), 0.0);
+  ASSERT_LT(std::abs(lambda.y()), 0.9 * mu * lambda.x());
+  for (const int side : {1, -1}) {
+    for (const bool rule : {true, false}) {
+      SCOPED_TRACE(std::string("lambda_T side ") + (side > 0 ? "+" : "-") +
+                   (rule ? ", rule on" : ", rule off"));
+      Decision d(m);
+      d.policy.cone_sign = rule;
+      d.forces.cone_side = side;
+      d.forces.cone_excess_N = 2.0 * d.scales.force_tol_N;
+      d.modes.Set(0, ContactMode::kStick);
+      VectorXd q = Touching(m, 0, kTheta0), u = VectorXd::Zero(3);
+      const DecisionOutcome r = d.Decide(a_g, q, u);
+      ASSERT_EQ(r.status, RunStatus::kOk) << r.message;
+      if (rule) {
+        EXPECT_EQ(d.modes[0], SlideOrStick(-side));
+        EXPECT_EQ(d.log.slip_transitions, 1);
+        EXPECT_EQ(d.forces.calls, 1);  // the cone sign asked once; no tie to check
+      } else {
+        EXPECT_EQ(d.modes[0], ContactMode::kStick);
+        EXPECT_EQ(d.log.slip_transitions, 0);
+        EXPECT_EQ(d.forces.calls, 0);
       }
     }
   }
