@@ -81,15 +81,7 @@ Eigen::Matrix2d Rotation(double theta_rad) {
   return R;
 }
 
-double Gap(const model::Model& model, int c, const Eigen::Ref<const Eigen::VectorXd>& q) {
-  const model::Contact& contact = model.contact(c);
-  if (contact.face.body == model::kGround) {
-    // Compute's operations for a ground face, without the rotation matrix: arm = R(theta) p,
-    // P = (X + (x, y)) + arm, n . (P - A).
-    const double theta = q(3 * contact.body + 2);
-    return GroundFaceGap(model, contact, q,
-                         RotatedArm(std::cos(theta), std::sin(theta), contact.point_m));
-  }
+double BodyFaceGap(const model::Model& model, int c, const Eigen::Ref<const Eigen::VectorXd>& q) {
   const Geometry g = Compute(model, c, q);
   return g.n.dot(g.P - g.A);
 }
@@ -99,40 +91,6 @@ void GapRateScratch::Resize(const model::Model& model) {
   sin.assign(static_cast<std::size_t>(model.n_bodies()), 0.0);
   w_N.setZero(model.n_dof());
   w_T.setZero(model.n_dof());
-}
-
-void GapsAndRates(const model::Model& model, const Eigen::Ref<const Eigen::VectorXd>& q,
-                  const Eigen::Ref<const Eigen::VectorXd>& u, Eigen::VectorXd& gap,
-                  Eigen::VectorXd& gamma_N, GapRateScratch& scratch) {
-  const int nb = model.n_bodies();
-  for (int b = 0; b < nb; ++b) {
-    scratch.cos[static_cast<std::size_t>(b)] = std::cos(q[3 * b + 2]);
-    scratch.sin[static_cast<std::size_t>(b)] = std::sin(q[3 * b + 2]);
-  }
-  for (int c = 0; c < model.n_contacts(); ++c) {
-    const model::Contact& contact = model.contact(c);
-    if (contact.face.body != model::kGround) {
-      gap[c] = Gap(model, c, q);
-      Jacobians(model, c, q, scratch.w_N, scratch.w_T);
-      gamma_N[c] = scratch.w_N.dot(u);
-      continue;
-    }
-    const auto b = static_cast<std::size_t>(contact.body);
-    const Eigen::Vector2d arm = RotatedArm(scratch.cos[b], scratch.sin[b], contact.point_m);
-    gap[c] = GroundFaceGap(model, contact, q, arm);
-    gamma_N[c] = GroundFaceNormalRate(contact, u, arm);
-  }
-}
-
-double NormalRate(const model::Model& model, int c, const Eigen::Ref<const Eigen::VectorXd>& q,
-                  const Eigen::Ref<const Eigen::VectorXd>& u, GapRateScratch& scratch) {
-  const model::Contact& contact = model.contact(c);
-  if (model.n_dof() != 3 || contact.face.body != model::kGround) {
-    Jacobians(model, c, q, scratch.w_N, scratch.w_T);
-    return scratch.w_N.dot(u);
-  }
-  return GroundFaceNormalRate(contact, u,
-                              RotatedArm(std::cos(q[2]), std::sin(q[2]), contact.point_m));
 }
 
 Eigen::Vector2d PointPosition(const model::Model& model, int c,

@@ -16,6 +16,7 @@
 /// bodies, and w_N is the gradient of g.
 
 #include <Eigen/Core>
+#include <cmath>
 #include <span>
 #include <vector>
 
@@ -41,8 +42,8 @@ struct ContactKinematics {
 /// The rotation R(theta) = [[cos, -sin], [sin, cos]].
 Eigen::Matrix2d Rotation(double theta_rad);
 
-/// The gap g (m) of contact c at q. No allocation.
-double Gap(const model::Model& model, int c, const Eigen::Ref<const Eigen::VectorXd>& q);
+/// The gap g (m) of contact c against a face on a body, at q: Gap's general path.
+double BodyFaceGap(const model::Model& model, int c, const Eigen::Ref<const Eigen::VectorXd>& q);
 
 /// World position (m) of contact c's point P at q.
 Eigen::Vector2d PointPosition(const model::Model& model, int c,
@@ -101,18 +102,63 @@ inline double GroundFaceNormalRate(const model::Contact& contact,
   return n.dot(u.segment<2>(i)) + u[i + 2] * (n.y() * arm.x() - n.x() * arm.y());
 }
 
+// Gap, GapsAndRates and NormalRate are defined here, not in kinematics.cpp, so that the event
+// searches of the integrator (every step, every root-finding iteration) compile them in place
+// rather than call across libraries. A face on a body calls out to the general path.
+
+/// The gap g (m) of contact c at q. No allocation.
+inline double Gap(const model::Model& model, int c, const Eigen::Ref<const Eigen::VectorXd>& q) {
+  const model::Contact& contact = model.contact(c);
+  if (contact.face.body != model::kGround) {
+    return BodyFaceGap(model, c, q);
+  }
+  // The general path's operations for a ground face, without the rotation matrix:
+  // arm = R(theta) p, P = (X + (x, y)) + arm, n . (P - A).
+  const double theta = q(3 * contact.body + 2);
+  return GroundFaceGap(model, contact, q,
+                       RotatedArm(std::cos(theta), std::sin(theta), contact.point_m));
+}
+
 /// The gap g (m) and normal rate gamma_N (m/s) of every contact at (q, u), the same bits as Gap
 /// and Evaluate's gamma_N, for the event searches of the integrator: one sine and cosine per
 /// body, and a ground face without its rotation matrix, face frame or Jacobian columns. A face
 /// on a body takes the general path. No allocation once `scratch` is sized.
-void GapsAndRates(const model::Model& model, const Eigen::Ref<const Eigen::VectorXd>& q,
-                  const Eigen::Ref<const Eigen::VectorXd>& u, Eigen::VectorXd& gap,
-                  Eigen::VectorXd& gamma_N, GapRateScratch& scratch);
+inline void GapsAndRates(const model::Model& model, const Eigen::Ref<const Eigen::VectorXd>& q,
+                         const Eigen::Ref<const Eigen::VectorXd>& u, Eigen::VectorXd& gap,
+                         Eigen::VectorXd& gamma_N, GapRateScratch& scratch) {
+  const int nb = model.n_bodies();
+  for (int b = 0; b < nb; ++b) {
+    scratch.cos[static_cast<std::size_t>(b)] = std::cos(q[3 * b + 2]);
+    scratch.sin[static_cast<std::size_t>(b)] = std::sin(q[3 * b + 2]);
+  }
+  for (int c = 0; c < model.n_contacts(); ++c) {
+    const model::Contact& contact = model.contact(c);
+    if (contact.face.body != model::kGround) {
+      gap[c] = BodyFaceGap(model, c, q);
+      Jacobians(model, c, q, scratch.w_N, scratch.w_T);
+      gamma_N[c] = scratch.w_N.dot(u);
+      continue;
+    }
+    const auto b = static_cast<std::size_t>(contact.body);
+    const Eigen::Vector2d arm = RotatedArm(scratch.cos[b], scratch.sin[b], contact.point_m);
+    gap[c] = GroundFaceGap(model, contact, q, arm);
+    gamma_N[c] = GroundFaceNormalRate(contact, u, arm);
+  }
+}
 
 /// The normal rate gamma_N (m/s) of contact c at (q, u): a single deck against a ground face
 /// without the Jacobians, otherwise w_N . u over the whole column (the same bits).
-double NormalRate(const model::Model& model, int c, const Eigen::Ref<const Eigen::VectorXd>& q,
-                  const Eigen::Ref<const Eigen::VectorXd>& u, GapRateScratch& scratch);
+inline double NormalRate(const model::Model& model, int c,
+                         const Eigen::Ref<const Eigen::VectorXd>& q,
+                         const Eigen::Ref<const Eigen::VectorXd>& u, GapRateScratch& scratch) {
+  const model::Contact& contact = model.contact(c);
+  if (model.n_dof() != 3 || contact.face.body != model::kGround) {
+    Jacobians(model, c, q, scratch.w_N, scratch.w_T);
+    return scratch.w_N.dot(u);
+  }
+  return GroundFaceNormalRate(contact, u,
+                              RotatedArm(std::cos(q[2]), std::sin(q[2]), contact.point_m));
+}
 
 /// Fills every field of `out` for the state (q, u). No allocation once `out` is sized. Writes
 /// only the rows of each contact's bodies (at most 6 per column): the others keep the zeros of
