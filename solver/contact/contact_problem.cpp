@@ -8,13 +8,6 @@
 
 namespace skewbridge::contact {
 
-namespace {
-
-// Relative compliance of the normal rows in the retry of a degenerate problem (see Solve).
-constexpr double kContactCompliance = 1e-9;
-
-}  // namespace
-
 const char* ToString(ContactStatus status) {
   switch (status) {
     case ContactStatus::kSolved:
@@ -44,6 +37,11 @@ ContactProblem::ContactProblem(const model::Model& model, lcp::LemkeOptions opti
   A_.setZero(3 * nc, 3 * nc);
   b_.setZero(3 * nc);
   solver_.Prepare(3 * nc, solutions_);
+}
+
+void ContactProblem::SetPolicy(const ContactPolicy& policy) {
+  CheckContactPolicy(policy);
+  policy_ = policy;
 }
 
 ContactResult ContactProblem::MakeResult() const {
@@ -147,7 +145,7 @@ ContactStatus ContactProblem::Solve(const ContactKinematics& kinematics,
   }
 
   result.lcp_status = solver_.Solve(A, b, solutions_[static_cast<std::size_t>(A.rows())]);
-  if (result.lcp_status != lcp::LcpStatus::kSolved && n <= lcp::kMaxEnumerationSize) {
+  if (result.lcp_status != lcp::LcpStatus::kSolved && n <= policy_.enumeration_unknowns) {
     // A ray of Lemke's algorithm proves nothing for a degenerate problem (two corners of one
     // face have identical tangent rows); the enumeration of the complementary bases decides
     // whether a solution exists, so a Painleve status means that none does.
@@ -157,19 +155,19 @@ ContactStatus ContactProblem::Solve(const ContactKinematics& kinematics,
   if (result.lcp_status != lcp::LcpStatus::kSolved) {
     // A deck clamped between two closed faces: the normal rows are dependent (a squeeze of both
     // faces changes no acceleration), the complementary bases are singular, and neither method
-    // finds the solutions that exist. A compliance of kContactCompliance of the largest normal
-    // entry (d gamma_N/dt = -c lambda_N at a closed contact) makes the normal block regular and
-    // picks the solution without squeeze; it is used only where the rigid problem found none, so
-    // a genuine Painleve situation (no solution for any small compliance) still ends as one.
+    // finds the solutions that exist. A compliance of policy_.contact_compliance of the largest
+    // normal entry (d gamma_N/dt = -c lambda_N at a closed contact) makes the normal block regular
+    // and picks the solution without squeeze; it is used only where the rigid problem found none,
+    // so a genuine Painleve situation (no solution for any small compliance) still ends as one.
     double top = 0.0;
     for (int j = 0; j < k; ++j) {
       top = std::max(top, std::abs(A(j, j)));
     }
     for (int j = 0; j < k; ++j) {
-      A(j, j) += kContactCompliance * top;
+      A(j, j) += policy_.contact_compliance * top;
     }
     result.lcp_status = solver_.Solve(A, b, solutions_[static_cast<std::size_t>(A.rows())]);
-    if (result.lcp_status != lcp::LcpStatus::kSolved && n <= lcp::kMaxEnumerationSize) {
+    if (result.lcp_status != lcp::LcpStatus::kSolved && n <= policy_.enumeration_unknowns) {
       result.lcp_status =
           lcp::SolveByEnumeration(A, b, solutions_[static_cast<std::size_t>(A.rows())]);
     }
@@ -204,7 +202,7 @@ ContactStatus ContactProblem::Solve(const ContactKinematics& kinematics,
         std::max(scale_b, WH.col(j).cwiseAbs().dot(Minvh_.cwiseAbs()) +
                               std::abs(kinematics.what_T(sticking_[static_cast<std::size_t>(j)])));
   }
-  const double tol_w = 1e-9 * (scale_b > 0.0 ? scale_b : 1.0);
+  const double tol_w = policy_.tie_tolerance * (scale_b > 0.0 ? scale_b : 1.0);
   jh = 0;
   for (int j = 0; j < k; ++j) {
     const ClosedContact& cc = closed[static_cast<std::size_t>(j)];

@@ -20,6 +20,7 @@
 #include <span>
 #include <vector>
 
+#include "solver/contact/contact_policy.h"
 #include "solver/contact/delassus.h"
 #include "solver/contact/kinematics.h"
 #include "solver/lcp/lemke.h"
@@ -90,12 +91,19 @@ class ContactProblem {
   /// A result sized for this model.
   ContactResult MakeResult() const;
 
+  /// The thresholds of the following solves (tie_tolerance, contact_compliance,
+  /// enumeration_unknowns; ContactPolicy{} until set).
+  /// @pre tolerances finite and >= 0, 0 <= enumeration_unknowns <= lcp::kMaxEnumerationSize
+  /// (SB_DEMAND).
+  void SetPolicy(const ContactPolicy& policy);
+
   /// The LCP matrix and vector of the last Solve, for inspection and tests.
   Eigen::Ref<const Eigen::MatrixXd> last_A() const;
   Eigen::Ref<const Eigen::VectorXd> last_b() const;
 
  private:
   const model::Model& model_;
+  ContactPolicy policy_;
   lcp::LemkeSolver solver_;
   // One solution per LCP size: LcpSolution resizes when n changes, so each size keeps its own
   // and a change of the index set does not allocate.

@@ -10,9 +10,6 @@ namespace skewbridge::contact {
 
 namespace {
 
-// Relative compliance of the normal rows in the retry of a degenerate impact (see Solve).
-constexpr double kImpactCompliance = 1e-9;
-
 // The impact of one contact in closed form: the LCP of the header with k = 1, given the
 // Delassus entries G_nn = w_N^T M^-1 w_N, G_nt = w_N^T M^-1 w_T, G_tt = w_T^T M^-1 w_T (N^-1 s^-1
 // per unit impulse, in m/s per N s). Along the impulses that meet the normal law
@@ -75,6 +72,11 @@ ImpactProblem::ImpactProblem(const model::Model& model, lcp::LemkeOptions option
   A_.setZero(3 * nc, 3 * nc);
   b_.setZero(3 * nc);
   solver_.Prepare(3 * nc, solutions_);
+}
+
+void ImpactProblem::SetPolicy(const ContactPolicy& policy) {
+  CheckContactPolicy(policy);
+  policy_ = policy;
 }
 
 ImpactResult ImpactProblem::MakeResult() const {
@@ -170,7 +172,7 @@ lcp::LcpStatus ImpactProblem::Solve(const ContactKinematics& kinematics,
   b.tail(k).setZero();
 
   result.status = solver_.Solve(A, b, solutions_[static_cast<std::size_t>(A.rows())]);
-  if (result.status != lcp::LcpStatus::kSolved && 3 * k <= lcp::kMaxEnumerationSize) {
+  if (result.status != lcp::LcpStatus::kSolved && 3 * k <= policy_.enumeration_unknowns) {
     // Lemke's ray on a degenerate impact (identical tangent rows of two corners on one face)
     // proves nothing: the enumeration of the complementary bases decides.
     result.status = lcp::SolveByEnumeration(A, b, solutions_[static_cast<std::size_t>(A.rows())]);
@@ -178,20 +180,20 @@ lcp::LcpStatus ImpactProblem::Solve(const ContactKinematics& kinematics,
   if (result.status != lcp::LcpStatus::kSolved) {
     // A deck clamped between two closed faces: the normal rows are dependent (a squeeze of
     // both faces changes no velocity), the complementary bases are singular, and neither method
-    // finds the solutions that exist. A compliance of kImpactCompliance of the largest normal
-    // entry per unit impulse (gamma_N,E + eps gamma_N,A = -c Lambda_N at a closed contact) makes
-    // the normal block regular and picks the solution without squeeze: both faces cannot yield
-    // at once. It changes the impulses by that relative amount and only where the rigid problem
-    // found no solution.
+    // finds the solutions that exist. A compliance of policy_.impact_compliance of the largest
+    // normal entry per unit impulse (gamma_N,E + eps gamma_N,A = -c Lambda_N at a closed contact)
+    // makes the normal block regular and picks the solution without squeeze: both faces cannot
+    // yield at once. It changes the impulses by that relative amount and only where the rigid
+    // problem found no solution.
     double top = 0.0;
     for (int j = 0; j < k; ++j) {
       top = std::max(top, std::abs(A(j, j)));
     }
     for (int j = 0; j < k; ++j) {
-      A(j, j) += kImpactCompliance * top;
+      A(j, j) += policy_.impact_compliance * top;
     }
     result.status = solver_.Solve(A, b, solutions_[static_cast<std::size_t>(A.rows())]);
-    if (result.status != lcp::LcpStatus::kSolved && 3 * k <= lcp::kMaxEnumerationSize) {
+    if (result.status != lcp::LcpStatus::kSolved && 3 * k <= policy_.enumeration_unknowns) {
       result.status = lcp::SolveByEnumeration(A, b, solutions_[static_cast<std::size_t>(A.rows())]);
     }
   }

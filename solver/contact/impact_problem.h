@@ -24,6 +24,7 @@
 #include <span>
 #include <vector>
 
+#include "solver/contact/contact_policy.h"
 #include "solver/contact/delassus.h"
 #include "solver/contact/kinematics.h"
 #include "solver/lcp/lemke.h"
@@ -70,6 +71,11 @@ class ImpactProblem {
   /// A result sized for this model (so Solve does not allocate).
   ImpactResult MakeResult() const;
 
+  /// The thresholds of the following solves (impact_compliance, enumeration_unknowns;
+  /// ContactPolicy{} until set).
+  /// @pre as ContactProblem::SetPolicy (SB_DEMAND).
+  void SetPolicy(const ContactPolicy& policy);
+
   /// The LCP matrix and vector of the last Solve (3k x 3k and 3k), for inspection and tests.
   Eigen::Ref<const Eigen::MatrixXd> last_A() const;
   Eigen::Ref<const Eigen::VectorXd> last_b() const;
@@ -80,6 +86,7 @@ class ImpactProblem {
   bool SolveOne(ImpactResult& result);
 
   const model::Model& model_;
+  ContactPolicy policy_;
   lcp::LemkeSolver solver_;
   // One solution per LCP size: LcpSolution resizes when n changes, so each size keeps its own
   // and a change of the index set does not allocate.

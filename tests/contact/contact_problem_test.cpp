@@ -159,6 +159,40 @@ TEST(ContactProblem, PainleveConfigurationIsReportedAsAStatus) {
   EXPECT_STREQ(ToString(res.status), "painleve");
 }
 
+TEST(ContactProblem, TieToleranceDecidesBetweenStayingClosedAndDetaching) {
+  // A frictionless corner sliding along its face under a large tangential load F t and a tiny
+  // pull delta n: d gamma_N/dt = delta / m exactly (n . t = 0), lambda_N = 0. The scale of the
+  // row is the sum of the magnitudes of its terms, |n_x t_x| F / m + |n_y t_y| F / m =
+  // F sin(2a) / m; a separating acceleration within ContactPolicy::tie_tolerance of that scale is
+  // a tie and the contact stays closed (docs/theory.md §3.15), beyond it the contact detaches.
+  const double a_deg = 30.0, m = 1000.0, F = 1e4, delta = 1e-7;
+  Resting r = RestingDeck(a_deg, 1.2, 0.0);
+  Eigen::Vector3d h;
+  h << F * r.t + delta * r.n, 0.0;
+  const double scale = F * std::sin(2.0 * a_deg * kDeg) / m;  // 8.66 m/s^2
+  const double separation = delta / m;                        // 1e-10 m/s^2
+  const std::vector<ClosedContact> closed{{0, 1}};
+  ContactProblem problem(r.model);
+  ContactResult res = problem.MakeResult();
+  struct Case {
+    double tie_tolerance;
+    ContactOutcome outcome;
+  };
+  // The default 1e-9 (band 8.7e-9 m/s^2) keeps the contact; 1e-12 (8.7e-12) and 0 let it go.
+  for (const Case& c :
+       {Case{ContactPolicy{}.tie_tolerance, ContactOutcome::kSlides},
+        Case{1e-12, ContactOutcome::kDetaches}, Case{0.0, ContactOutcome::kDetaches}}) {
+    ASSERT_EQ(separation > c.tie_tolerance * scale, c.outcome == ContactOutcome::kDetaches);
+    ContactPolicy policy;
+    policy.tie_tolerance = c.tie_tolerance;
+    problem.SetPolicy(policy);
+    ASSERT_EQ(problem.Solve(r.kin, closed, h, res), ContactStatus::kSolved);
+    EXPECT_EQ(res.outcome[0], c.outcome) << "tie_tolerance " << c.tie_tolerance;
+    EXPECT_EQ(res.lambda_N(0), 0.0);
+    EXPECT_NEAR(res.gammadot_N(0), separation, 1e-6 * separation);
+  }
+}
+
 TEST(ContactProblem, NoClosedContactGivesTheFreeAcceleration) {
   Resting r = RestingDeck(30.0, 1.0, 0.1);
   ContactProblem problem(r.model);
