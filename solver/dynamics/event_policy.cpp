@@ -53,6 +53,13 @@ std::vector<EventPolicyEntry> EventPolicyEntries(const EventPolicy& p) {
       real("kernel_normal_threshold", p.kernel_normal_threshold, "1", "orthonormal kernel"),
       real("split_total_slack", p.split_total_slack, "1", "largest force"),
       rule("open_contacts_in_projection", p.open_contacts_in_projection),
+      real("contact.tie_tolerance", p.contact.tie_tolerance, "1",
+           "largest sum of the magnitudes of the terms of b"),
+      real("contact.contact_compliance", p.contact.contact_compliance, "1",
+           "largest normal diagonal entry"),
+      real("contact.impact_compliance", p.contact.impact_compliance, "1",
+           "largest normal diagonal entry"),
+      count("contact.enumeration_unknowns", p.contact.enumeration_unknowns),
   };
 }
 

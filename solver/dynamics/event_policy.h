@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "solver/contact/contact_policy.h"
+
 namespace skewbridge::dynamics {
 
 /// The integrator's thresholds and rules (defaults: the values every result so far used).
@@ -173,6 +175,12 @@ struct EventPolicy {
   /// Rule: open contacts at the face join the velocity projection as inequality rows, so the
   /// projection never drives one into its face.
   bool open_contacts_in_projection = true;
+
+  // --- The contact layer [docs/theory.md §3.15] ---
+  /// The thresholds of the impact and contact problems (solver/contact/contact_policy.h: the
+  /// contact problem's tie band, the compliance of both retries, the enumeration's size), set
+  /// on them at the start of a run.
+  contact::ContactPolicy contact;
 };
 
 /// One member of an EventPolicy as data: its name, value, unit, what it is relative to.

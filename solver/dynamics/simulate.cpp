@@ -338,6 +338,10 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
               lambda_T_,
               friction_power_} {
   SB_DEMAND(&ws.model() == &model, "Simulate: workspace built for another model");
+  // The contact layer's thresholds of this run [docs/theory.md §3.15]: the workspace's problems
+  // keep those of the last run otherwise.
+  ws.impact_.SetPolicy(policy.contact);
+  ws.contact_problem_.SetPolicy(policy.contact);
   const int naug = ws.flow_.augmented_size();
   z_ = Vec::Zero(naug);
   z_new_ = z_eval_ = z_;

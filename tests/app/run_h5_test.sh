@@ -34,6 +34,10 @@ without, with_interval = (h5py.File(p, "r") for p in sys.argv[1:3])
 assert "histories" not in without, "histories written though none were requested"
 pol = without["event_policy"].attrs
 assert pol["zeno_ratio"] == 0.9 and pol["jam"] == 1, dict(pol)
+assert pol["contact.tie_tolerance"] == 1e-9 and pol["contact.enumeration_unknowns"] == 14, dict(pol)
+keys = [k.decode() if isinstance(k, bytes) else str(k) for k in pol["keys"]]
+assert keys[-4:] == ["contact.tie_tolerance", "contact.contact_compliance",
+                     "contact.impact_compliance", "contact.enumeration_unknowns"], keys
 n = with_interval["histories/t_s"].shape[0]
 assert n == 251, "--output-interval 0.01 over 2.5 s gave %d samples, expected 251" % n
 PY

@@ -23,6 +23,11 @@ def main(path, name):
         # The event policy that made the cells, with its documentation lists.
         pol = g["event_policy"].attrs
         assert pol["velocity_tolerance"] == 1e-10 and pol["decision_passes"] == 4, dict(pol)
+        # The contact layer's thresholds with them (solver/contact/contact_policy.h).
+        assert pol["contact.tie_tolerance"] == 1e-9, dict(pol)
+        assert pol["contact.contact_compliance"] == 1e-9, dict(pol)
+        assert pol["contact.impact_compliance"] == 1e-9, dict(pol)
+        assert pol["contact.enumeration_unknowns"] == 14, dict(pol)
         assert len(pol["keys"]) == len(pol["units"]) == len(pol["relative_to"]) == len(pol) - 3
         axis_order = list(g.attrs["axis_order"])
         shape = tuple(g["axes"][k].shape[0] for k in axis_order)
