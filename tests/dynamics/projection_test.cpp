@@ -206,5 +206,54 @@ TEST(Projection, VelocityActiveSetMeetsItsPostconditions) {
   EXPECT_LT(joined_draws, 400);
 }
 
+// The rule switched off (EventPolicy::open_contacts_in_projection = false): the velocity change
+// is the least-squares one over the closed contact alone, whatever the open contacts at the face
+// do, and in the draws where the rule (on) made an open contact join, that contact is left
+// approaching its face faster than v_tol, what the rule exists to prevent (§3.10).
+TEST(Projection, WithoutOpenContactsInTheProjectionOnlyTheClosedSetIsProjected) {
+  const model::Model m = MakeDeck(0.0);
+  std::mt19937 rng(12345);
+  std::uniform_real_distribution<double> speed(-0.5, 0.5);
+  int left_approaching = 0;
+  for (int draw = 0; draw < 400; ++draw) {
+    VectorXd u0(3);
+    u0 << speed(rng), speed(rng), speed(rng) / 10.0;
+    const VectorXd q0 = PlaceAt(m, 0.0, 0.0, 0.0);
+    Fixture on(m), off(m);
+    off.policy.open_contacts_in_projection = false;
+    VectorXd q_on = q0, u_on = u0, q_off = q0, u_off = u0;
+    for (Fixture* f : {&on, &off}) {
+      f->modes.Set(0, ContactMode::kFrictionless);
+    }
+    on.Project(q_on, u_on);
+    off.Project(q_off, u_off);
+    for (int c = 0; c < m.n_contacts(); ++c) {
+      EXPECT_EQ(off.joined[static_cast<std::size_t>(c)], 0) << "draw " << draw;
+    }
+    contact::ContactKinematics k;
+    k.Resize(m);
+    contact::Evaluate(m, q_off, u_off, k);
+    MatrixXd A = k.W_N.col(0);
+    const VectorXd du = LeastChange(m.mass_diagonal(), A, -A.transpose() * u0).first;
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_NEAR(u_off[i] - u0[i], du[i], 1e-12 * (1.0 + du.cwiseAbs().maxCoeff()))
+          << "draw " << draw;
+    }
+    EXPECT_NEAR(k.gamma_N[0], 0.0, 1e-13) << "draw " << draw;
+    bool joined_on = false;
+    for (int c = 1; c < m.n_contacts(); ++c) {
+      joined_on = joined_on || on.joined[static_cast<std::size_t>(c)] != 0;
+    }
+    if (joined_on) {
+      // Contact 1 (P2) is the only other one at a face; it approaches without the rule.
+      EXPECT_LT(k.gamma_N[1], -kVTol) << "draw " << draw;
+      left_approaching += k.gamma_N[1] < -kVTol ? 1 : 0;
+    } else {
+      EXPECT_EQ((u_on - u_off).cwiseAbs().maxCoeff(), 0.0) << "draw " << draw;
+    }
+  }
+  EXPECT_GT(left_approaching, 20);
+}
+
 }  // namespace
 }  // namespace skewbridge::dynamics
