@@ -347,6 +347,7 @@ Decider::PassEnd Decider::Pass(std::span<const int> forced, DecisionOutcome& out
         log_.events.push_back({t_, EventKind::kDetachment, c, 0.0, 0.0, 0.0, 0.0});
       }
       modes_.Set(c, ContactMode::kOpen);
+      memory_.tie[static_cast<std::size_t>(c)].reset();  // an open contact has no tie
       continue;
     }
     // The slip sign it enters the contact problem with [§3.7, §3.8].
@@ -417,6 +418,7 @@ void Decider::Jam() {
     const int c = cc.contact;
     modes_.Set(
         c, model_.contact(c).friction == 0.0 ? ContactMode::kFrictionless : ContactMode::kStick);
+    memory_.tie[static_cast<std::size_t>(c)].reset();  // the jam, not a tie, set this mode
     scratch_.cone_sign[static_cast<std::size_t>(c)] = 0;
   }
   Project();

@@ -267,6 +267,30 @@ TEST(ModeDecision, NewtonImpactOfOneCornerLeavesAtRestitutionTimesApproach) {
   }
 }
 
+// A closed corner that an impact opens takes no tie with it: a tie left behind (here one kept
+// from an earlier instant's detachment band) would make every later decision evaluate the
+// constrained forces for a contact that is not in the contact problem. The corner (closed,
+// frictionless) is struck at v and leaves at e v > v_acc: open, with no tie, and the decision
+// asked the constrained forces nothing (no sticking contact, no contact problem).
+TEST(ModeDecision, AContactThatLeavesAtAnImpactKeepsNoTie) {
+  const double eps = 0.5, v = 0.1;
+  const model::Model m = FreeDeck(eps, 0.0);
+  Decision d(m);
+  d.modes.Set(0, ContactMode::kFrictionless);
+  d.memory.tie[0] = ContactMode::kOpen;
+  VectorXd q = Touching(m, 0, kTheta0);
+  const Vector3d w = HandRow(m.contact(0), kTheta0, m.contact(0).face.normal);
+  const double G = w.dot(InverseMass(m).cwiseProduct(w));
+  VectorXd u = -v / G * InverseMass(m).cwiseProduct(w);
+  const DecisionOutcome r = d.Decide(Vector2d::Zero(), q, u);
+  ASSERT_EQ(r.status, RunStatus::kOk) << r.message;
+  EXPECT_NEAR(NormalRate(m, 0, q, u), eps * v, 1e-12 * v);
+  EXPECT_EQ(d.modes[0], ContactMode::kOpen);
+  EXPECT_EQ(d.log.detachments, 1);
+  EXPECT_FALSE(d.memory.tie[0].has_value());
+  EXPECT_EQ(d.forces.calls, 0);
+}
+
 // A full edge (P1 and P2, theta = 0) striking its face in translation: the two corners take the
 // impulse m (1 + e) v between them, half each by symmetry, and leave at e v.
 TEST(ModeDecision, FullEdgeImpactTakesTheDeckMomentumTimesOnePlusRestitution) {
