@@ -1,5 +1,11 @@
 #include "solver/dynamics/event_policy.h"
 
+#include <fmt/format.h>
+
+#include <string_view>
+
+#include "solver/common/error.h"
+
 namespace skewbridge::dynamics {
 
 std::vector<EventPolicyEntry> EventPolicyEntries(const EventPolicy& p) {
@@ -61,6 +67,31 @@ std::vector<EventPolicyEntry> EventPolicyEntries(const EventPolicy& p) {
            "largest normal diagonal entry"),
       count("contact.enumeration_unknowns", p.contact.enumeration_unknowns),
   };
+}
+
+void ValidatePolicy(const EventPolicy& p) {
+  const auto refuse = [](std::string_view member, std::string_view allowed, auto value) {
+    throw InputError::AtField("event policy", member,
+                              fmt::format("must be {} (got {})", allowed, value));
+  };
+  if (p.finite_check_steps < 1 || (p.finite_check_steps & (p.finite_check_steps - 1)) != 0) {
+    refuse("finite_check_steps", "a power of two (1, 2, 4, ...)", p.finite_check_steps);
+  }
+  if (p.decision_passes < 1) {
+    refuse("decision_passes", "at least 1", p.decision_passes);
+  }
+  if (p.position_passes < 1) {
+    refuse("position_passes", "at least 1", p.position_passes);
+  }
+  if (!(p.steps_per_period >= 1.0)) {
+    refuse("steps_per_period", "at least 1", p.steps_per_period);
+  }
+  if (p.touch_probes < 0) {
+    refuse("touch_probes", "at least 0", p.touch_probes);
+  }
+  if (p.max_events_at_one_instant < 0) {
+    refuse("max_events_at_one_instant", "at least 0", p.max_events_at_one_instant);
+  }
 }
 
 }  // namespace skewbridge::dynamics

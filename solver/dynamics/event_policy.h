@@ -195,4 +195,10 @@ struct EventPolicyEntry {
 /// Every member of `policy`, in declaration order (what run files and cubes store).
 std::vector<EventPolicyEntry> EventPolicyEntries(const EventPolicy& policy);
 
+/// Checks the counts of `policy` that the integrator relies on: finite_check_steps a power of
+/// two (the check is a mask of the step count), decision_passes, position_passes and
+/// steps_per_period at least 1, touch_probes and max_events_at_one_instant at least 0. Throws
+/// InputError naming the member, what is allowed and the value given.
+void ValidatePolicy(const EventPolicy& policy);
+
 }  // namespace skewbridge::dynamics

@@ -338,6 +338,7 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
               lambda_T_,
               friction_power_} {
   SB_DEMAND(&ws.model() == &model, "Simulate: workspace built for another model");
+  ValidatePolicy(policy);
   // The contact layer's thresholds of this run [docs/theory.md §3.15]: the workspace's problems
   // keep those of the last run otherwise.
   ws.impact_.SetPolicy(policy.contact);

@@ -4,9 +4,14 @@
 
 #include <cmath>
 #include <cstdio>
+#include <functional>
+#include <limits>
 #include <numbers>
+#include <string>
+#include <vector>
 
 #include "records/excitations.h"
+#include "solver/common/error.h"
 #include "solver/model/builders.h"
 #include "tests/dynamics/modal_oracle.h"
 
@@ -446,6 +451,55 @@ TEST(Simulate, StickAndSlipFollowCoulomb) {
       EXPECT_NEAR(r.q_end[1], expected, 1e-8 * expected);
       EXPECT_NEAR(r.q_end[0], p.gap_m, 1e-10);
     }
+  }
+}
+
+// A policy the integrator cannot run with is refused before the run with one line naming the
+// member, what is allowed and the value given: a finite-check interval that is no power of two
+// would silently check at the wrong steps (the check masks the step count), and no decision
+// pass, no position pass or less than one step a period leaves nothing to run. Powers of two,
+// including 1, are accepted.
+TEST(Simulate, RefusesAnEventPolicyItCannotRunWith) {
+  struct Row {
+    std::function<void(EventPolicy&)> set;
+    std::string message;
+  };
+  const std::vector<Row> rows = {
+      {[](EventPolicy& p) { p.finite_check_steps = 10; },
+       "event policy: finite_check_steps: must be a power of two (1, 2, 4, ...) (got 10)"},
+      {[](EventPolicy& p) { p.finite_check_steps = 0; },
+       "event policy: finite_check_steps: must be a power of two (1, 2, 4, ...) (got 0)"},
+      {[](EventPolicy& p) { p.decision_passes = 0; },
+       "event policy: decision_passes: must be at least 1 (got 0)"},
+      {[](EventPolicy& p) { p.position_passes = -1; },
+       "event policy: position_passes: must be at least 1 (got -1)"},
+      {[](EventPolicy& p) { p.steps_per_period = 0.5; },
+       "event policy: steps_per_period: must be at least 1 (got 0.5)"},
+      {[](EventPolicy& p) { p.steps_per_period = std::numeric_limits<double>::quiet_NaN(); },
+       "event policy: steps_per_period: must be at least 1 (got nan)"},
+      {[](EventPolicy& p) { p.touch_probes = -1; },
+       "event policy: touch_probes: must be at least 0 (got -1)"},
+      {[](EventPolicy& p) { p.max_events_at_one_instant = -2; },
+       "event policy: max_events_at_one_instant: must be at least 0 (got -2)"},
+  };
+  const model::Model m = MakeDeck(DeckParams{});
+  const ConstantExcitation rest({0.0, 0.0}, 0.0);
+  for (const Row& row : rows) {
+    EventPolicy policy;
+    row.set(policy);
+    SimulationWorkspace ws(m);
+    try {
+      Simulate(m, rest, EndAt(0.1), ws, {}, policy);
+      ADD_FAILURE() << "accepted: " << row.message;
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()), row.message);
+    }
+  }
+  for (const long steps : {1L, 2L, 32L}) {
+    EventPolicy policy;
+    policy.finite_check_steps = steps;
+    SimulationWorkspace ws(m);
+    EXPECT_EQ(Simulate(m, rest, EndAt(0.1), ws, {}, policy).status, RunStatus::kOk) << steps;
   }
 }
 
