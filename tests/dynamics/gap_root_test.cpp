@@ -85,10 +85,35 @@ TEST(GapRoot, AContactThatJustOpenedClosesWhereItsSeparationTurns) {
   const Parabola p{0.0, 1e-3, -10.0};
   const double t = Root(p, 0.0, 0.001);
   EXPECT_NEAR(t, 2e-4, 1e-12);
-  // The same with a rate of zero at t0 (the contact problem's answer to rounding) and a
-  // separating acceleration that reverses: found by the touch probes.
+  // Resting in touch (gap, rate and acceleration zero): no impact.
   const Parabola q{0.0, 0.0, 0.0};
   EXPECT_EQ(Root(q, 0.0, 0.001), kInf) << "resting in touch: no impact";
+}
+
+TEST(GapRoot, TouchProbesFindTheReturnOfAContactOpenedWithZeroRate) {
+  // Opened at t0 = 0 with gap and rate zero (the contact problem's answer) and a separating
+  // acceleration of 1 m/s^2 that reverses at 1000 m/s^3: g = t^2 / 2 - 1000 t^3 / 6, rate
+  // t - 500 t^2, positive on (0, 2 ms), the gap largest at 2 ms and closing again at 3 ms. The
+  // step [0, 4 ms] ends closed and approaching; only a probe inside (0, 2 ms) sees the
+  // separation (t0 + 4 ms / 4 = 1 ms here), from which the gap's maximum and then its root are
+  // bracketed. Without probes the step's start is taken as the impact: t0.
+  const double jerk = 1000.0, t0 = 0.0, t1 = 4e-3;
+  const auto g = [&](double t) { return 0.5 * t * t - jerk * t * t * t / 6.0; };
+  const auto rate = [&](double t) { return t - 0.5 * jerk * t * t; };
+  ASSERT_EQ(g(t0), 0.0);
+  ASSERT_EQ(rate(t0), 0.0);
+  ASSERT_LT(g(t1), 0.0);
+  ASSERT_LT(rate(t1), 0.0);
+  const double expected = 3.0 / jerk;  // t^2 / 2 = jerk t^3 / 6
+  const double t = FirstGapRoot(t0, t1, g(t0), rate(t0), g(t1), rate(t1), g, rate, kGapTol, kVTol,
+                                EventPolicy{});
+  EXPECT_NEAR(t, expected, 1e-12);
+  EXPECT_LE(g(t), 0.0) << "the impact must see a closed gap";
+  EventPolicy no_probes;
+  no_probes.touch_probes = 0;
+  EXPECT_EQ(
+      FirstGapRoot(t0, t1, g(t0), rate(t0), g(t1), rate(t1), g, rate, kGapTol, kVTol, no_probes),
+      t0);
 }
 
 TEST(GapRoot, AMinimumAtTheStepStartIsNotAnImpact) {
