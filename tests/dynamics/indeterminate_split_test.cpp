@@ -174,7 +174,7 @@ TEST(IndeterminateSplit, OneFaceSplitIsTheDeepestInsideTheCones) {
   EXPECT_LE(split, best + 1e-4 * scale);  // the scan's resolution is 2e-5 scale
 }
 
-// A determinate active set (P1 sliding, P2 sticking: 3 unknowns, full rank) is left at its
+// A determinate active set (P1 frictionless, P2 sticking: 3 unknowns, full rank) is left at its
 // unique solution.
 TEST(IndeterminateSplit, DeterminateSystemKeepsItsUniqueSolution) {
   const model::Model model = ClampedDeck(0.3);
