@@ -61,6 +61,14 @@ class ActiveSystem {
   ActiveSystem(const ActiveSystem&) = delete;
   ActiveSystem& operator=(const ActiveSystem&) = delete;
 
+  /// From now on pivots below `rank_threshold` times the largest make A singular (a workspace
+  /// reused by runs of different policies).
+  void SetRankThreshold(double rank_threshold) {
+    rank_threshold_ = rank_threshold;
+    cod_small_.setThreshold(rank_threshold_);
+    cod_large_.setThreshold(rank_threshold_);
+  }
+
   /// The largest number of rows (2 n_c of the model).
   int capacity() const { return capacity_; }
   /// Sizes A as m x m (its entries are undefined until written); b keeps its entries.
@@ -233,7 +241,7 @@ class ActiveSystem {
   double& x_mutable(int j) { return small_ ? x_small_[j] : x_large_[j]; }
 
  private:
-  const double rank_threshold_;          // EventPolicy::rank_threshold
+  double rank_threshold_;                // EventPolicy::rank_threshold
   static constexpr int kDirectRows = 6;  // SolveDirect up to this many rows
   using SmallMatrix =
       Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kSmallCapacity, kSmallCapacity>;

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "solver/common/error.h"
+#include "solver/dynamics/active_forces.h"
 #include "solver/dynamics/active_system.h"
 #include "solver/dynamics/contact_modes.h"
 #include "solver/dynamics/event_location.h"
@@ -108,53 +109,16 @@ class Integrator final : private ConstrainedForces {
   // Constrained phase: one Runge-Kutta step (or up to an event).
   void ConstrainedStep();
 
-  // Where one evaluation of the active set's forces writes: the applied forces h, the
-  // kinematics, the dense system and its split along a kernel, lambda per contact and the
-  // friction power. forces_ refers to the integrator's own members, which the event functions,
-  // the cone sign and the mode decision read afterwards; a history sample evaluates into storage
-  // of its own (SampleForces), so recording leaves the integrator's state as it was.
-  struct ForceScratch {
-    Vec& h;                              // applied forces h(t, q, u) (N, N m)
-    contact::ContactKinematics& kin;     // kinematics at (q, u)
-    ActiveSystem& sys;                   // the active set's rows, 2 n_c at most
-    Vec& mh;                             // M^-1 h
-    Eigen::MatrixXd& cols;               // n x 2 n_c force direction of each unknown
-    Eigen::MatrixXd& m_cols;             // M^-1 cols
-    std::vector<const double*>& row_of;  // the kinematics' column of each row
-    SplitWorkspace split;                // the split of indeterminate forces (§3.13)
-    Vec& lambda_N;                       // per contact (N); 0 when open
-    Vec& lambda_T;                       // per contact (N); 0 when open
-    double& friction_power;              // -sum lambda_T gamma_T (W)
-  };
-  // Storage of its own for a history sample's force evaluation, sized as the integrator's.
-  struct SampleForces {
-    SampleForces(const model::Model& model, double rank_threshold);
-    SampleForces(const SampleForces&) = delete;  // `scratch` refers to the members
-    SampleForces& operator=(const SampleForces&) = delete;
-    Vec h, mh, du, lambda_N, lambda_T, x_bal, x_try, lp_h, lp_c, lp_y;
-    double friction_power = 0.0;
-    contact::ContactKinematics kin;
-    ActiveSystem sys;
-    Eigen::MatrixXd cols, m_cols, kernel, lp_G;
-    std::vector<const double*> row_of;
-    std::vector<int> normal_of, tangent_of;
-    lcp::SmallLp lp;
-    ForceScratch scratch;
-  };
-  // Sizes the storage a ForceScratch refers to, except the kinematics and the dense system.
-  static void SizeForceScratch(const model::Model& model, int capacity, ForceScratch& s);
-
-  // Forces of the active set at (t, q, u) into the integrator's own scratch: du/dt, lambda per
-  // contact, the friction power.
-  void ActiveForces(double t, const Eigen::Ref<const Vec>& q, const Eigen::Ref<const Vec>& u,
-                    Eigen::Ref<Vec> du) {
-    EvaluateForces(t, q, u, du, forces_);
+  // Forces of the active set `modes` at (t, q, u) into `storage`: du/dt, lambda per contact,
+  // the friction power [solver/dynamics/active_forces.h]. Inside a constrained phase's stages
+  // and event searches (closed_only_) only the closed contacts' kinematics are evaluated.
+  void ActiveForces(const ContactModes& modes, double t, const Eigen::Ref<const Vec>& q,
+                    const Eigen::Ref<const Vec>& u, Eigen::Ref<Vec> du,
+                    ActiveForcesStorage& storage) {
+    EvaluateActiveForces(model_, modes, policy_, force_tol_, GroundAcceleration(t), q, u,
+                         closed_only_ ? KinematicsOf::kClosedContacts : KinematicsOf::kAllContacts,
+                         du, storage);
   }
-  // The same into `s`; a singular (statically indeterminate) active set's solution moves along
-  // its kernel: normal forces not negative and no squeeze, then the split of friction deepest
-  // inside the cones [docs/theory.md §3.13].
-  void EvaluateForces(double t, const Eigen::Ref<const Vec>& q, const Eigen::Ref<const Vec>& u,
-                      Eigen::Ref<Vec> du, ForceScratch& s);
   void Rhs(double t, const Eigen::Ref<const Vec>& y, Eigen::Ref<Vec> dy);
   // Event-function values of the closed contacts at the last ActiveForces call.
   void ClosedEventValues(Eigen::Ref<Vec> values) const;
@@ -162,7 +126,7 @@ class Integrator final : private ConstrainedForces {
   // The mode decision at the current state [docs/theory.md §3.1]; `forced` lists the contacts
   // the event location found striking together.
   void ResolveContacts(const std::vector<int>& forced);
-  // ConstrainedForces: lambda_N, lambda_T of ActiveForces at (t, q, u) with the modes modes_.
+  // ConstrainedForces: lambda_N, lambda_T of ActiveForces at (t, q, u) with the modes `modes`.
   void Forces(const ContactModes& modes, double t, const Eigen::Ref<const Vec>& q,
               const Eigen::Ref<const Vec>& u, Eigen::Ref<Vec> lambda_N,
               Eigen::Ref<Vec> lambda_T) override;
@@ -219,8 +183,6 @@ class Integrator final : private ConstrainedForces {
   bool closed_only_ = false;
   // Set by GapRoot while it evaluates a gap: the free step's state_at may then leave u alone.
   bool positions_only_ = false;
-  Vec lambda_N_, lambda_T_;  // per contact, from the last ActiveForces
-  double friction_power_ = 0.0;
   double h_rk_ = 0.0;
   double h_free_ = 0.0;  // the last nominal free step (s)
   double v_tol_ = 0.0, v_acc_ = 0.0, gap_tol_ = 0.0;
@@ -230,71 +192,29 @@ class Integrator final : private ConstrainedForces {
   double length_scale_m_ = 1.0;  // L_d (ProjectionTolerances)
   double simultaneity_s_ = 0.0;  // RunControl::simultaneity_tolerance_s
   RunResult result_;
-  ActiveSystem sys_;                  // 2 n_c rows at most
   std::vector<int> projection_rows_;  // per contact: 1 when an open contact joins the projection
   double period_min_s_ = kInf;        // shortest natural period (s)
   DecisionMemory memory_;             // what the mode decision remembers between instants
   DecisionLog log_;                   // the events and counts the decisions add
-  Eigen::MatrixXd kernel_;            // kernel of a singular active set (columns)
-  std::vector<int> normal_of_, tangent_of_;  // active-set layout for BalanceIndeterminateFriction
-  Vec x_bal_, x_try_;                        // its solution and trial points
-  lcp::SmallLp lp_;                          // the split along the kernel (three small LPs)
-  Eigen::MatrixXd lp_G_;                     // their constraints G y <= h and objective c
-  Vec lp_h_, lp_c_, lp_y_;
-  Vec u_proj_, u_proj_in_;             // projected velocities; velocities before the projection
-  Eigen::MatrixXd rows_, cols_;        // n x 2 n_c constraint rows / force directions
-  Eigen::MatrixXd m_cols_;             // M^-1 cols_ (ActiveForces)
-  Vec mh_;                             // M^-1 h (ActiveForces)
-  std::vector<const double*> row_of_;  // ActiveForces: the kinematics' column of each row
-  ForceScratch forces_;                // the members above that ActiveForces writes
-  std::unique_ptr<SampleForces> sample_forces_;  // a history sample's (with histories only)
+  Vec u_proj_, u_proj_in_;            // projected velocities; velocities before the projection
+  Eigen::MatrixXd rows_;              // n x 2 n_c constraint rows (projection)
+  ActiveForcesStorage& forces_;       // the workspace's: the integrator's own force evaluations
+  // A history sample's force evaluation (with histories only): recording leaves forces_ as it
+  // was, so a run takes the same decisions whether it records histories or not.
+  std::unique_ptr<ActiveForcesStorage> sample_forces_;
 };
-
-Integrator::SampleForces::SampleForces(const model::Model& model, double rank_threshold)
-    : sys(2 * model.n_contacts(), rank_threshold),
-      scratch{h,
-              kin,
-              sys,
-              mh,
-              cols,
-              m_cols,
-              row_of,
-              {kernel, normal_of, tangent_of, x_bal, x_try, lp, lp_G, lp_h, lp_c, lp_y},
-              lambda_N,
-              lambda_T,
-              friction_power} {
-  kin.Resize(model);
-  du = Vec::Zero(model.n_dof());
-  SizeForceScratch(model, sys.capacity(), scratch);
-}
-
-void Integrator::SizeForceScratch(const model::Model& model, int capacity, ForceScratch& s) {
-  const int n = model.n_dof(), nc = model.n_contacts();
-  s.h = s.mh = Vec::Zero(n);
-  s.lambda_N = s.lambda_T = Vec::Zero(nc);
-  s.cols = s.m_cols = Eigen::MatrixXd::Zero(n, capacity);
-  s.row_of.assign(static_cast<std::size_t>(capacity), nullptr);
-  SplitWorkspace& w = s.split;
-  w.kernel = Eigen::MatrixXd::Zero(capacity, capacity);
-  w.lp_G = Eigen::MatrixXd::Zero(3 * nc + 2, capacity + 1);
-  w.lp_h = Vec::Zero(3 * nc + 2);
-  w.lp_c = w.lp_y = Vec::Zero(capacity + 1);
-  w.normal_of.assign(static_cast<std::size_t>(nc), 0);
-  w.tangent_of.assign(static_cast<std::size_t>(nc), -1);
-  w.x_bal = w.x_try = Vec::Zero(capacity);
-}
 
 SimulationWorkspace::SimulationWorkspace(const model::Model& model)
     : model_(model),
       flow_(model.M(), model.K(), model.C(), model.r(), FlowPath::kAuto, model.modes()),
       free_dense_(flow_.augmented_size()),
       rk_(2 * model.n_dof() + 3),
+      forces_(model, EventPolicy{}.rank_threshold),
       impact_(model),
       contact_problem_(model),
       impact_result_(impact_.MakeResult()),
       contact_result_(contact_problem_.MakeResult()),
       decision_(model.n_dof(), model.n_contacts()) {
-  kin_.Resize(model);
   if (flow_.modal()) {
     // The modal flow's w_k^2 are the eigenvalues below, clamped at 0: one solve, same bits.
     const Eigen::VectorXd& w2 = flow_.modal_flow().w2();
@@ -324,19 +244,8 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
       n_(model.n_dof()),
       nc_(model.n_contacts()),
       modes_(model.n_contacts()),
-      sys_(2 * model.n_contacts(), policy.rank_threshold),
       memory_(model.n_contacts()),
-      forces_{h_,
-              ws.kin_,
-              sys_,
-              mh_,
-              cols_,
-              m_cols_,
-              row_of_,
-              {kernel_, normal_of_, tangent_of_, x_bal_, x_try_, lp_, lp_G_, lp_h_, lp_c_, lp_y_},
-              lambda_N_,
-              lambda_T_,
-              friction_power_} {
+      forces_(ws.forces_) {
   SB_DEMAND(&ws.model() == &model, "Simulate: workspace built for another model");
   ValidatePolicy(policy);
   // The contact layer's thresholds of this run [docs/theory.md §3.15]: the workspace's problems
@@ -366,8 +275,8 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   f0_ = f1_ = f_eval_ = Vec::Zero(2 * nc_);
   forced_.reserve(static_cast<std::size_t>(nc_));
   rates_.Resize(model);
-  rows_ = Eigen::MatrixXd::Zero(n_, sys_.capacity());
-  SizeForceScratch(model, sys_.capacity(), forces_);
+  forces_.sys.SetRankThreshold(policy.rank_threshold);
+  rows_ = Eigen::MatrixXd::Zero(n_, forces_.sys.capacity());
   projection_rows_.assign(static_cast<std::size_t>(nc_), 0);
   u_proj_ = u_proj_in_ = Vec::Zero(n_);
 
@@ -405,7 +314,7 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
     hist.lambda_N.reserve(samples * nc_);
     hist.lambda_T.reserve(samples * nc_);
     hist.state.reserve(samples * nc_);
-    sample_forces_ = std::make_unique<SampleForces>(model, policy.rank_threshold);
+    sample_forces_ = std::make_unique<ActiveForcesStorage>(model, policy.rank_threshold);
     next_output_t_ = 0.0;
   }
 }
@@ -672,9 +581,9 @@ void Integrator::RecordSample(double t, const Eigen::Ref<const Vec>& qq,
   // applied forces and lambda stay those of its last evaluation, so a run takes the same
   // decisions whether it records histories or not.
   Histories& hist = result_.histories;
-  SampleForces& forces = *sample_forces_;
+  ActiveForcesStorage& forces = *sample_forces_;
   if (AnyClosed()) {
-    EvaluateForces(t, qq, uu, forces.du, forces.scratch);
+    ActiveForces(modes_, t, qq, uu, du_, forces);  // du_: scratch, read by no later step
   }
   hist.t_s.push_back(t);
   for (int i = 0; i < n_; ++i) {
@@ -690,138 +599,10 @@ void Integrator::RecordSample(double t, const Eigen::Ref<const Vec>& qq,
   }
 }
 
-void Integrator::EvaluateForces(double t, const Eigen::Ref<const Vec>& qq,
-                                const Eigen::Ref<const Vec>& uu, Eigen::Ref<Vec> du,
-                                ForceScratch& s) {
-  model_.AppliedForces(qq, uu, GroundAcceleration(t), s.h);
-  if (closed_only_) {
-    contact::EvaluateContacts(model_, qq, uu, modes_.closed_ids(), s.kin);
-  } else {
-    contact::Evaluate(model_, qq, uu, s.kin);
-  }
-  const contact::ContactKinematics& kin = s.kin;
-  ActiveSystem& sys = s.sys;
-  // Raw loops over the n entries (a single deck: n = 3, one or two rows): the set-up of a
-  // dynamic-size Eigen expression costs more than its arithmetic at that size, and this runs in
-  // every Runge-Kutta stage of a constrained phase. The arithmetic is the same, element for
-  // element: M^-1 h and M^-1 times each force direction are formed once (not inside every dot
-  // product), and each dot product is still Eigen's, so the results keep their bits.
-  const int n = n_;
-  const double* inv_m = model_.inverse_mass_diagonal().data();
-  const double* h = s.h.data();
-  double* mh = s.mh.data();
-  for (int i = 0; i < n; ++i) {
-    mh[i] = inv_m[i] * h[i];
-  }
-  const auto dot = [n](const double* a, const double* b) {
-    return Eigen::Map<const Vec>(a, n).dot(Eigen::Map<const Vec>(b, n));
-  };
-  // Unknowns: lambda_N of every closed contact, then lambda_T of every sticking one; rows: the
-  // matching d gamma_N/dt = 0 and d gamma_T/dt = 0 [docs/theory.md §3, contact problem, with the
-  // active set fixed].
-  int m = 0;
-  bool symmetric = true;  // no sliding contact: force directions = constraint rows
-  for (int c = 0; c < nc_; ++c) {
-    const ContactMode mode = modes_[c];
-    if (!IsClosed(mode)) {
-      continue;
-    }
-    const double mu = model_.contact(c).friction;
-    const double* w_n = kin.W_N.col(c).data();
-    const double* w_t = kin.W_T.col(c).data();
-    s.row_of[static_cast<std::size_t>(m)] = w_n;
-    sys.b(m) = -(dot(w_n, mh) + kin.what_N[c]);
-    double* col = s.cols.col(m).data();
-    if (mode == ContactMode::kSlidePositive) {
-      symmetric = false;
-      for (int i = 0; i < n; ++i) {
-        col[i] = w_n[i] - mu * w_t[i];
-      }
-    } else if (mode == ContactMode::kSlideNegative) {
-      symmetric = false;
-      for (int i = 0; i < n; ++i) {
-        col[i] = w_n[i] + mu * w_t[i];
-      }
-    } else {
-      for (int i = 0; i < n; ++i) {
-        col[i] = w_n[i];
-      }
-    }
-    ++m;
-  }
-  const int k = m;
-  for (int c = 0; c < nc_; ++c) {
-    if (modes_[c] == ContactMode::kStick) {
-      const double* w_t = kin.W_T.col(c).data();
-      s.row_of[static_cast<std::size_t>(m)] = w_t;
-      double* col = s.cols.col(m).data();
-      for (int i = 0; i < n; ++i) {
-        col[i] = w_t[i];
-      }
-      sys.b(m) = -(dot(w_t, mh) + kin.what_T[c]);
-      ++m;
-    }
-  }
-  for (int j = 0; j < m; ++j) {
-    const double* col = s.cols.col(j).data();
-    double* m_col = s.m_cols.col(j).data();
-    for (int i = 0; i < n; ++i) {
-      m_col[i] = inv_m[i] * col[i];
-    }
-  }
-  sys.Start(m);
-  for (int i = 0; i < m; ++i) {
-    for (int j = 0; j < m; ++j) {
-      sys.A(i, j) = dot(s.row_of[static_cast<std::size_t>(i)], s.m_cols.col(j).data());
-    }
-  }
-  if (symmetric) {
-    sys.SolveSymmetric();
-  } else {
-    sys.Solve();
-  }
-  if (sys.rank_deficient()) {
-    // The three-LP split of statically indeterminate forces [docs/theory.md §3.13].
-    SplitIndeterminateForces(model_, modes_, policy_, force_tol_, k, m, sys, s.split);
-  }
-  // du = M^-1 (h + sum_j cols_j x_j), summed in that order.
-  double* d = du.data();
-  for (int i = 0; i < n; ++i) {
-    double v = h[i];
-    for (int j = 0; j < m; ++j) {
-      v += s.cols(i, j) * sys.x(j);
-    }
-    d[i] = inv_m[i] * v;
-  }
-  // Forces per contact and the friction power.
-  s.friction_power = 0.0;
-  int j = 0, js = k;
-  for (int c = 0; c < nc_; ++c) {
-    const ContactMode mode = modes_[c];
-    if (!IsClosed(mode)) {
-      s.lambda_N[c] = s.lambda_T[c] = 0.0;
-      continue;
-    }
-    const double mu = model_.contact(c).friction;
-    s.lambda_N[c] = sys.x(j);
-    if (mode == ContactMode::kSlidePositive) {
-      s.lambda_T[c] = -mu * sys.x(j);
-    } else if (mode == ContactMode::kSlideNegative) {
-      s.lambda_T[c] = mu * sys.x(j);
-    } else if (mode == ContactMode::kStick) {
-      s.lambda_T[c] = sys.x(js++);
-    } else {
-      s.lambda_T[c] = 0.0;
-    }
-    s.friction_power -= s.lambda_T[c] * kin.gamma_T[c];
-    ++j;
-  }
-}
-
 void Integrator::Rhs(double t, const Eigen::Ref<const Vec>& y, Eigen::Ref<Vec> dy) {
   const auto qq = y.head(n_);
   const auto uu = y.segment(n_, n_);
-  ActiveForces(t, qq, uu, du_);
+  ActiveForces(modes_, t, qq, uu, du_, forces_);
   dy.head(n_) = uu;
   dy.segment(n_, n_) = du_;
   if (!control_.energy_ledger) {
@@ -837,12 +618,12 @@ void Integrator::Rhs(double t, const Eigen::Ref<const Vec>& y, Eigen::Ref<Vec> d
                  ag(1) * uu.dot(m_diag.cwiseProduct(model_.r().col(1))));
   cu_.noalias() = model_.C() * uu;
   dy[2 * n_ + 1] = uu.dot(cu_);
-  dy[2 * n_ + 2] = friction_power_;
+  dy[2 * n_ + 2] = forces_.friction_power_W;
 }
 
 void Integrator::ClosedEventValues(Eigen::Ref<Vec> values) const {
-  dynamics::ClosedEventValues(model_, modes_, ws_.kin_.gamma_T, lambda_N_, lambda_T_, force_tol_,
-                              v_tol_, values);
+  dynamics::ClosedEventValues(model_, modes_, forces_.kin.gamma_T, forces_.lambda_N,
+                              forces_.lambda_T, force_tol_, v_tol_, values);
 }
 
 void Integrator::ConstrainedStep() {
@@ -860,8 +641,8 @@ void Integrator::ConstrainedStep() {
   };
   Rhs(t_, y_, dy_);
   ClosedEventValues(f0_);
-  gap0_ = ws_.kin_.gap_m;
-  gN0_ = ws_.kin_.gamma_N;
+  gap0_ = forces_.kin.gap_m;
+  gN0_ = forces_.kin.gamma_N;
   DormandPrince45& rk = ws_.rk_;
   closed_only_ = true;
   rk.Step(rhs, t_, y_, dy_, h);
@@ -905,7 +686,7 @@ void Integrator::ConstrainedStep() {
         const auto fe = [&](double t) {
           at(t, q_e_, u_e_);
           closed_only_ = true;
-          ActiveForces(t, q_e_, u_e_, du_);
+          ActiveForces(modes_, t, q_e_, u_e_, du_, forces_);
           closed_only_ = false;
           ClosedEventValues(f_eval_);
           return f_eval_[e];
@@ -946,8 +727,8 @@ void Integrator::ConstrainedStep() {
 
 void Integrator::Project() {
   // The projection onto the closed contacts' constraints [docs/theory.md §3.10]; it leaves
-  // ws_.kin_ holding the kinematics of the projected positions.
-  ProjectionWorkspace work{ws_.kin_, sys_, rows_, projection_rows_, u_proj_in_, u_proj_};
+  // forces_.kin holding the kinematics of the projected positions.
+  ProjectionWorkspace work{forces_.kin, forces_.sys, rows_, projection_rows_, u_proj_in_, u_proj_};
   ProjectOntoContacts(model_, modes_, policy_, {ws_.length_scale_m_, gap_tol_, v_tol_}, q(), u(),
                       work);
 }
@@ -957,7 +738,7 @@ void Integrator::ResolveContacts(const std::vector<int>& forced) {
                          ws_.impact_result_,
                          ws_.contact_problem_,
                          ws_.contact_result_,
-                         {ws_.kin_, sys_, rows_, projection_rows_, u_proj_in_, u_proj_},
+                         {forces_.kin, forces_.sys, rows_, projection_rows_, u_proj_in_, u_proj_},
                          ws_.decision_};
   const DecisionOutcome outcome = DecideModes(model_, policy_,
                                               {v_tol_, v_acc_, gap_tol_, force_tol_, a_detach_,
@@ -970,17 +751,16 @@ void Integrator::ResolveContacts(const std::vector<int>& forced) {
   }
   // The decision left the kinematics of every contact at its final state: the gaps of the next
   // step's start need no further evaluation.
-  gap0_ = ws_.kin_.gap_m;
-  gN0_ = ws_.kin_.gamma_N;
+  gap0_ = forces_.kin.gap_m;
+  gN0_ = forces_.kin.gamma_N;
 }
 
 void Integrator::Forces(const ContactModes& modes, double t, const Eigen::Ref<const Vec>& qq,
                         const Eigen::Ref<const Vec>& uu, Eigen::Ref<Vec> lambda_N,
                         Eigen::Ref<Vec> lambda_T) {
-  SB_DEMAND(&modes == &modes_, "Integrator::Forces: the modes are the integrator's own");
-  ActiveForces(t, qq, uu, du_);
-  lambda_N = lambda_N_;
-  lambda_T = lambda_T_;
+  ActiveForces(modes, t, qq, uu, du_, forces_);
+  lambda_N = forces_.lambda_N;
+  lambda_T = forces_.lambda_T;
 }
 
 RunResult Simulate(const model::Model& model, const Excitation& excitation,

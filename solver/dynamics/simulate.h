@@ -33,6 +33,7 @@
 #include "solver/contact/contact_problem.h"
 #include "solver/contact/impact_problem.h"
 #include "solver/contact/kinematics.h"
+#include "solver/dynamics/active_forces.h"
 #include "solver/dynamics/event_policy.h"
 #include "solver/dynamics/linear_flow.h"
 #include "solver/dynamics/mode_decision.h"
@@ -68,7 +69,10 @@ class SimulationWorkspace {
   LinearFlow flow_;
   FreeDenseOutput free_dense_;
   DormandPrince45 rk_;
-  contact::ContactKinematics kin_;
+  // The integrator's force evaluations (every entry written before it is read): their
+  // kinematics are also the decision's and the projection's, their dense system the
+  // projection's; the event functions, the cone sign and the mode decision read their lambda.
+  ActiveForcesStorage forces_;
   contact::ImpactProblem impact_;
   contact::ContactProblem contact_problem_;
   contact::ImpactResult impact_result_;
