@@ -9,7 +9,7 @@
 /// Glocker 1996, ch. 7]; a resting corner sticks while its sticking forces, the solution of
 /// [w_N w_T]^T M^-1 (h + [w_N w_T] lambda) = 0, lie inside the cone |lambda_T| <= mu lambda_N.
 /// The constrained forces the decision asks for (cone sign, tie fallback) come from an
-/// independent active-set solve by Eigen's full-pivot LU.
+/// independent active-set solve by Eigen's full-pivot LU (tests/dynamics/active_set_oracle.h).
 
 #include "solver/dynamics/mode_decision.h"
 
@@ -23,6 +23,7 @@
 
 #include "solver/model/builders.h"
 #include "tests/contact/test_models.h"
+#include "tests/dynamics/active_set_oracle.h"
 
 namespace skewbridge::dynamics {
 namespace {
@@ -74,63 +75,26 @@ Vector3d Touching(const model::Model& m, int c, double theta) {
 
 Vector3d InverseMass(const model::Model& m) { return m.inverse_mass_diagonal(); }
 
-// The constrained forces of the closed contacts by an independent active-set solve: unknowns
-// lambda_N per closed contact (force direction w_N - mu s w_T when sliding with sign s) and
-// lambda_T per sticking one, rows d gamma_N/dt = 0 and d gamma_T/dt = 0, with the kinematics of
-// the contact layer and the applied forces at the ground acceleration a_g. `lambda_N_shift` (N)
-// is added to every closed contact's lambda_N: a caller that wants the tie fallback to fire.
+// The constrained forces of the closed contacts by the independent active-set solve of
+// tests/dynamics/active_set_oracle.h at the ground acceleration a_g. `lambda_N_shift` (N) is
+// added to every closed contact's lambda_N: a caller that wants the tie fallback to fire.
 class ActiveSetForces : public ConstrainedForces {
  public:
-  explicit ActiveSetForces(const model::Model& m) : model_(m) { kin_.Resize(m); }
+  explicit ActiveSetForces(const model::Model& m) : model_(m) {}
   void Forces(const ContactModes& modes, double, const Eigen::Ref<const VectorXd>& q,
               const Eigen::Ref<const VectorXd>& u, Eigen::Ref<VectorXd> lambda_N,
               Eigen::Ref<VectorXd> lambda_T) override {
     ++calls;
-    contact::Evaluate(model_, q, u, kin_);
-    VectorXd h(model_.n_dof());
-    model_.AppliedForces(q, u, a_g, h);
-    const VectorXd inv_m = model_.inverse_mass_diagonal();
-    std::vector<VectorXd> rows, cols;
-    std::vector<double> rhs;
-    for (int c = 0; c < modes.size(); ++c) {
-      if (!modes.closed(c)) {
-        continue;
-      }
-      const double mu = model_.contact(c).friction;
-      const int s = SlipSign(modes[c]);
-      rows.push_back(kin_.W_N.col(c));
-      cols.push_back(kin_.W_N.col(c) - mu * s * kin_.W_T.col(c));
-      rhs.push_back(-(kin_.W_N.col(c).dot(inv_m.cwiseProduct(h)) + kin_.what_N[c]));
-    }
-    const int k = static_cast<int>(rows.size());
-    for (int c = 0; c < modes.size(); ++c) {
-      if (modes[c] == ContactMode::kStick) {
-        rows.push_back(kin_.W_T.col(c));
-        cols.push_back(kin_.W_T.col(c));
-        rhs.push_back(-(kin_.W_T.col(c).dot(inv_m.cwiseProduct(h)) + kin_.what_T[c]));
-      }
-    }
-    const int n = static_cast<int>(rows.size());
-    MatrixXd A(n, n);
-    VectorXd b(n);
-    for (int i = 0; i < n; ++i) {
-      b[i] = rhs[static_cast<std::size_t>(i)];
-      for (int j = 0; j < n; ++j) {
-        A(i, j) = rows[static_cast<std::size_t>(i)].dot(
-            inv_m.cwiseProduct(cols[static_cast<std::size_t>(j)]));
-      }
-    }
-    const VectorXd x = n > 0 ? VectorXd(A.fullPivLu().solve(b)) : VectorXd();
-    int j = 0, js = k;
+    const testing::OracleForces o = testing::OracleActiveForces(model_, modes, a_g, q, u);
     for (int c = 0; c < modes.size(); ++c) {
       lambda_N[c] = lambda_T[c] = 0.0;
       if (!modes.closed(c)) {
         continue;
       }
-      lambda_N[c] = x[j++] + lambda_N_shift;
+      lambda_N[c] = o.lambda_N[c] + lambda_N_shift;
       const double mu = model_.contact(c).friction;
       lambda_T[c] =
-          modes[c] == ContactMode::kStick ? x[js++] : -mu * SlipSign(modes[c]) * lambda_N[c];
+          modes[c] == ContactMode::kStick ? o.lambda_T[c] : -mu * SlipSign(modes[c]) * lambda_N[c];
       if (modes[c] == ContactMode::kStick && cone_side != 0) {
         lambda_T[c] = cone_side * (mu * lambda_N[c] + cone_excess_N);
       }
@@ -147,7 +111,6 @@ class ActiveSetForces : public ConstrainedForces {
 
  private:
   const model::Model& model_;
-  contact::ContactKinematics kin_;
 };
 
 // The decision's inputs and storage for one model, at the scales of a response with v_ref =
