@@ -1,5 +1,8 @@
 """Post-processing of skewbridge cubes and run files: figures and a Markdown summary.
 
-Modules: data (reading and checking files), stats (correlation statistics), figures (one
-function per figure kind), generic (the figures and tables of any sweep, from the cube's own
-axes, units and responses), cli (the `scripts/report` command)."""
+Modules: data (reading and checking files), common (what the figure modules share: style,
+symbols, captions, axes, legends, saving, the texts of limit states), stats (correlation
+statistics), figures (the figure kinds of the dimensionless study), generic (the figures and
+tables of any sweep, from the cube's own axes, units and responses), fragility and ida (the
+figures of limit states), plan (a model file in plan), response_spectra, cli (the
+`scripts/report` command), paper (the `scripts/paper` command)."""

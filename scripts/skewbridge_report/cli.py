@@ -7,7 +7,7 @@ import sys
 
 import numpy as np
 
-from . import figures, fragility, generic, ida, response_spectra
+from . import common, figures, fragility, generic, ida, response_spectra
 from . import plan as plan_view
 from .data import ReportError, load_cube, load_run
 
@@ -86,7 +86,7 @@ def _fmt(v):
         return "yes" if v else "no"
     if isinstance(v, (int, np.integer)):
         return str(int(v))
-    if abs(v) < figures.ZERO:
+    if abs(v) < common.ZERO:
         return "0"
     return f"{v:.4g}"
 
@@ -141,7 +141,7 @@ def _peak_cells(peak, at, edge, zero):
 
 
 def _tables_for(kind, sweep, rows, curve_key):
-    curve = figures.AXIS_TEXT.get(curve_key, curve_key or "")
+    curve = common.AXIS_TEXT.get(curve_key, curve_key or "")
     w_label = "ω_0x/ω_g" if sweep.family == "pilot-bridge" else "ω_0/ω_g"
     if kind in ("spectra", "pi_delta_family"):
         by_key = {}
@@ -155,7 +155,7 @@ def _tables_for(kind, sweep, rows, curve_key):
             out.append(row)
         header = ["pulse", curve or "-"]
         for resp in ("x_norm", "y_norm", "theta_norm"):
-            header += [f"max {figures.RESPONSE_TEXT[resp]}", f"{w_label} at max"]
+            header += [f"max {common.RESPONSE_TEXT[resp]}", f"{w_label} at max"]
         return _table(header, out)
     if kind == "rotation_vs_eta0":
         out = [[pulse, value, eta] + _peak_cells(peak, where, edge, zero) + [n_imp]
@@ -187,10 +187,10 @@ def _tables_for(kind, sweep, rows, curve_key):
 
 
 SYMBOLS_MD = ["## Symbols", "",
-              *[f"- {text}" for text in figures.SYMBOLS.values()],
+              *[f"- {text}" for text in common.SYMBOLS.values()],
               "- A normalised maximum is dimensionless: x_m ω_g²/a_g, y_m ω_g²/a_g, "
               "θ_m ρ ω_g²/a_g.",
-              f"- Values below {figures.ZERO:g} in magnitude are printed as 0; a curve whose "
+              f"- Values below {common.ZERO:g} in magnitude are printed as 0; a curve whose "
               "largest value is 0 is marked \"no response\" and has no abscissa of its maximum.",
               "- \"(grid edge)\": the maximum sits at the first or last grid value, so the true "
               "peak may lie outside the grid.", ""]
@@ -256,7 +256,7 @@ def generic_sections(sweep, args, used, written, skipped_all):
     for q in margins:
         md += [f"## {sweep.name}: unseating ({q.base})", "",
                _table(["deck", "cells", "cells unseated (margin < 0)", "share",
-                       f"smallest margin [{generic._unit(q.unit) or '1'}]",
+                       f"smallest margin [{common.unit_text(q.unit) or '1'}]",
                        "cell of the smallest"], generic.unseating_table(sweep, q)), ""]
     records = generic.record_table(sweep)
     if records:

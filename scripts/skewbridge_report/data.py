@@ -12,12 +12,12 @@ class ReportError(Exception):
     """Bad input: a missing, foreign or incomplete file; the message is one line."""
 
 
-def _text(value):
+def as_text(value):
     """An attribute or label as str (h5py gives bytes for some variable-length strings)."""
     if isinstance(value, bytes):
         return value.decode("utf-8")
     if isinstance(value, np.ndarray) and value.shape == ():
-        return _text(value[()])
+        return as_text(value[()])
     return str(value)
 
 
@@ -81,13 +81,19 @@ def _read_group_tree(group):
     return out
 
 
+def tree_attrs(tree):
+    """The attributes of a group read by _read_group_tree (an entry of Sweep.extra, or a group
+    below it), strings decoded."""
+    return {k: as_text(v) if isinstance(v, (str, bytes)) else v for k, v in tree["attrs"].items()}
+
+
 IM_ATTRS = ("im_measure", "im_description", "im_units")  # the sweep group's, when stored
 
 
 def load_cube(path, allow_partial=False):
     """All sweeps of a cube file. @throws ReportError on a missing, foreign or incomplete file."""
     with _open_h5(path) as f:
-        fmt = _text(f.attrs.get("format", ""))
+        fmt = as_text(f.attrs.get("format", ""))
         if fmt == "skewbridge-run":
             raise ReportError(f"{path}: is a skewbridge run file; pass it with --run")
         if fmt != "skewbridge-cube":
@@ -101,50 +107,50 @@ def load_cube(path, allow_partial=False):
             if not complete and not allow_partial:
                 raise ReportError(f"{path}: sweep '{name}' is incomplete (complete = 0); "
                                   "finish it with --resume or pass --allow-partial")
-            axis_order = [_text(k) for k in g.attrs["axis_order"]]
+            axis_order = [as_text(k) for k in g.attrs["axis_order"]]
             axes, axis_attrs = {}, {}
             for key in axis_order:
-                axis_attrs[key] = {k: _text(v) for k, v in g["axes"][key].attrs.items()
+                axis_attrs[key] = {k: as_text(v) for k, v in g["axes"][key].attrs.items()
                                    if k in ("units", "symbol", "description", "spacing")}
                 values = g["axes"][key][()]
                 if values.dtype.kind in "OSU":
-                    axes[key] = [_text(v) for v in values]
+                    axes[key] = [as_text(v) for v in values]
                 else:
                     axes[key] = np.asarray(values, dtype=float)
-            responses = {_text(r): np.asarray(g["responses"][_text(r)][()], dtype=float)
+            responses = {as_text(r): np.asarray(g["responses"][as_text(r)][()], dtype=float)
                          for r in g.attrs["response_order"]}
             status = np.asarray(g["status"][()])
             names = dict(zip((int(c) for c in g["status"].attrs["status_codes"]),
-                             (_text(n) for n in g["status"].attrs["status_names"])))
+                             (as_text(n) for n in g["status"].attrs["status_names"])))
             if "done" in g:
                 not_done = np.asarray(g["done"][()]) == 0
                 for values in responses.values():
                     values[not_done] = np.nan
             fixed, fixed_units = {}, {}
             if "fixed" in g and "keys" in g["fixed"].attrs:
-                fixed_units = dict(zip((_text(k) for k in g["fixed"].attrs["keys"]),
-                                       (_text(u) for u in g["fixed"].attrs["units"])))
+                fixed_units = dict(zip((as_text(k) for k in g["fixed"].attrs["keys"]),
+                                       (as_text(u) for u in g["fixed"].attrs["units"])))
             if "fixed" in g:
                 for k in g["fixed"].attrs:
                     if k in ("keys", "units"):  # the units of the fixed parameters
                         continue
                     v = g["fixed"].attrs[k]
-                    fixed[k] = _text(v) if isinstance(v, (str, bytes)) else float(v)
+                    fixed[k] = as_text(v) if isinstance(v, (str, bytes)) else float(v)
             extra = {key: _read_group_tree(g[key])
                      for key in ("records", "correlation", "fragility") if key in g}
             for key in g["responses"]:
                 if key not in responses:
                     responses[key] = np.asarray(g["responses"][key][()], dtype=float)
-            response_attrs = {key: {k: _text(v) if isinstance(v, (str, bytes)) else v
+            response_attrs = {key: {k: as_text(v) if isinstance(v, (str, bytes)) else v
                                     for k, v in g["responses"][key].attrs.items()}
                               for key in g["responses"]}
-            sweeps.append(Sweep(path=path, name=name, family=_text(g.attrs.get("family", "")),
+            sweeps.append(Sweep(path=path, name=name, family=as_text(g.attrs.get("family", "")),
                                 complete=complete, axis_order=axis_order, axes=axes,
                                 responses=responses, status=status, status_names=names,
-                                fixed=fixed, spec_text=_text(g.attrs.get("spec_text", "")),
+                                fixed=fixed, spec_text=as_text(g.attrs.get("spec_text", "")),
                                 response_attrs=response_attrs, axis_attrs=axis_attrs,
                                 fixed_units=fixed_units, extra=extra,
-                                im_attrs={k: _text(g.attrs[k]) for k in IM_ATTRS
+                                im_attrs={k: as_text(g.attrs[k]) for k in IM_ATTRS
                                           if k in g.attrs}))
         return sweeps
 
@@ -181,7 +187,7 @@ class Run:
 def load_run(path):
     """A run file written by `skewbridge run --out`. @throws ReportError without histories."""
     with _open_h5(path) as f:
-        fmt = _text(f.attrs.get("format", ""))
+        fmt = as_text(f.attrs.get("format", ""))
         if fmt == "skewbridge-cube":
             raise ReportError(f"{path}: is a skewbridge cube; pass it without --run")
         if fmt != "skewbridge-run":
@@ -192,9 +198,9 @@ def load_run(path):
                               "--output-interval S")
         ev = f["events"]
         kinds = dict(zip((int(c) for c in ev["kind"].attrs["kind_codes"]),
-                         (_text(n) for n in ev["kind"].attrs["kind_names"])))
-        return Run(path=path, status=_text(f.attrs["status"]), n_bodies=int(f.attrs["n_bodies"]),
-                   contact_names=[_text(n) for n in f.attrs["contact_names"]],
+                         (as_text(n) for n in ev["kind"].attrs["kind_names"])))
+        return Run(path=path, status=as_text(f.attrs["status"]), n_bodies=int(f.attrs["n_bodies"]),
+                   contact_names=[as_text(n) for n in f.attrs["contact_names"]],
                    t_s=f["histories/t_s"][()], q=f["histories/q"][()],
                    state=f["histories/state"][()], event_t_s=ev["t_s"][()],
                    event_kind=ev["kind"][()], event_contact=ev["contact"][()],
@@ -204,4 +210,4 @@ def load_run(path):
                            if k.endswith("_J")},
                    u=f["histories/u"][()] if "u" in f["histories"] else None,
                    gap=f["histories/gap"][()] if "gap" in f["histories"] else None,
-                   model_text=_text(f.attrs.get("model_text", "")))
+                   model_text=as_text(f.attrs.get("model_text", "")))

@@ -3,42 +3,17 @@ fragility/): per limit state, the maximum-likelihood lognormal curves with the o
 per stripe and the 95 % band of the likelihood, and the cloud of demand over capacity against
 the intensity measure with its regression line."""
 import math
-import re
 import textwrap
 
 import matplotlib.pyplot as plt
 import numpy as np
 from scipy.stats import norm
 
-from . import figures
-from .data import _text
+from . import common
+from .common import MAX_COMBOS, combinations, im_label, limit_state_text, shown_text
+from .data import as_text, tree_attrs
 
 Z95 = 1.959963984540054
-MAX_COMBOS = 8  # curves per panel; more combinations are listed in the table only
-IM_TEXT = {"im_g": "IM: the stripe im_g", "im_mps": "IM: the stripe im_mps",
-           "im": "IM of the record",
-           "a_g": r"IM = $a_g/g$ (PGA × scale)"}
-
-
-def im_name(sweep):
-    """The intensity measure by the name the cube stores (im_measure, and the period and damping
-    of im_description): "Sa(T1, 5 %)", "AvgSa(0.5 s, 5 %)", "PGA", "PGV"; "" when the sweep
-    stores none."""
-    measure = sweep.im_attrs.get("im_measure", "")
-    m = re.match(r"\w+\((.+?), xi = ([0-9.eE+-]+)\)", sweep.im_attrs.get("im_description", ""))
-    if measure in ("Sa", "AvgSa") and m:
-        return f"{measure}({m.group(1)}, {100.0 * float(m.group(2)):g} %)"
-    return measure
-
-
-def im_label(sweep, fa):
-    """The IM axis label: the measure by its name where the IM is the record's measure (stripes
-    of scale_to, im of a cloud, IDA capacities), else what the IM is; and its unit."""
-    unit = fa.get("im_units", "g")
-    name = im_name(sweep)
-    if name and fa["im"] in ("im_g", "im_mps", "im", "ida_capacity"):
-        return f"{name} [{unit}]"
-    return f"{IM_TEXT.get(fa['im'], 'IM')} [{unit}]"
 
 
 def cell_im(sweep, fa):
@@ -50,28 +25,6 @@ def cell_im(sweep, fa):
     if fa["im"] == "im":
         return np.asarray(sweep.responses["im"], dtype=float)
     return np.asarray(sweep.responses["a_g"], dtype=float) / 9.80665
-
-
-def _styles(n):
-    """(colour, marker, line style) per combination: combinations are categories, so the colours
-    are tab10's in order, with markers and line styles for grey print."""
-    return [(plt.get_cmap("tab10")(i % 10), figures.MARKERS[i % len(figures.MARKERS)],
-             figures.LINESTYLES[i % len(figures.LINESTYLES)]) for i in range(n)]
-
-
-def _attrs(tree):
-    return {k: _text(v) if isinstance(v, (str, bytes)) else v for k, v in tree["attrs"].items()}
-
-
-def _combos(sweep, order):
-    """(flat index, multi-index, label) of every combination of the fragility's axes."""
-    shape = [len(sweep.axes[k]) for k in order]
-    out = []
-    for flat, idx in enumerate(np.ndindex(*shape) if shape else [()]):
-        label = ", ".join(f"{figures.AXIS_TEXT.get(k, k)} = {sweep.axes[k][i]:g}"
-                          f"{figures.AXIS_UNIT.get(k, '')}" for k, i in zip(order, idx))
-        out.append((flat, idx, label or "all cells"))
-    return out
 
 
 def _at(array, idx):
@@ -87,36 +40,19 @@ def band(x, theta, beta, var_ln, var_beta, cov):
     return norm.cdf(u), norm.cdf(u - Z95 * sd), norm.cdf(u + Z95 * sd)
 
 
-def _grid(n):
-    cols = min(n, 3)
-    rows = int(math.ceil(n / cols))
-    return rows, cols
-
-
-def _demand_text(name, group):
-    a = _attrs(group)
-    kind, thr = a.get("kind", ""), a.get("threshold", 0.0)
-    units = a.get("demand_units", "")
-    if kind == "unseating":
-        return "unseating: corner travel over seat > 1"
-    if kind == "joint_closing":
-        return "joint closing: an impact"
-    return f"{name}: demand > {thr:g} {units}"
-
-
 def fragility_curves(sweep, out_dir, name, pdf):
     """One panel per limit state: fitted P(exceeded | IM) per combination, its 95 % band, and
     the observed fraction per stripe (or each cell's 0/1 for a cloud). Returns table rows."""
     f = sweep.extra["fragility"]
-    fa = _attrs(f)
-    names = [_text(n) for n in fa["limit_states"]]
-    order = [_text(k) for k in fa.get("axis_order", [])]
-    combos = _combos(sweep, order)
+    fa = tree_attrs(f)
+    names = [as_text(n) for n in fa["limit_states"]]
+    order = [as_text(k) for k in fa.get("axis_order", [])]
+    combos = combinations(sweep, order)
     shown = combos[:MAX_COMBOS]
-    rows_n, cols_n = _grid(len(names))
+    rows_n, cols_n = common.panel_grid(len(names))
     fig, axes = plt.subplots(rows_n, cols_n, figsize=(4.2 * cols_n + 2.2, 3.6 * rows_n + 1.2),
                              squeeze=False, layout="constrained")
-    styles = _styles(len(shown))
+    styles = common.category_styles(len(shown))
     table = []
     for k, ls in enumerate(names):
         ax = axes[k // cols_n][k % cols_n]
@@ -147,35 +83,26 @@ def fragility_curves(sweep, out_dir, name, pdf):
                 ax.plot(x, p, color=color, ls=ls_style)
                 ax.fill_between(x, plo, phi, color=color, alpha=0.15, lw=0)
             else:
-                notes.append(_text(g["reason"][flat]))
+                notes.append(as_text(g["reason"][flat]))
         if notes:
             # Where the curves are not: left of the steps, at mid height; the reasons are in
             # the table.
             ax.text(0.02, 0.62, f"no fit for {len(notes)} of {len(shown)}:\n"
                     + "\n".join(textwrap.wrap(_short(notes[0]), 26)), transform=ax.transAxes,
                     va="top", fontsize=8, color="0.3")
-        figures.log_axis(ax, "x")
+        common.log_axis(ax, "x")
         ax.set_ylim(-0.05, 1.05)
         ax.set_xlabel(im_label(sweep, fa))
         ax.set_ylabel("P(exceeded | IM)")
-        ax.set_title(_demand_text(ls, g), fontsize=10)
+        ax.set_title(limit_state_text(ls, g), fontsize=10)
         for flat, idx, label in combos:
             table.append(_row(ls, g, flat, idx, label))
-    figures.finish_panels(fig, axes, len(names), (
+    common.finish_panels(fig, axes, len(names), (
         "Markers: fraction of the cells of a stripe that exceeded the limit state (a cloud: each "
         "cell's 0 or 1). Lines: the maximum-likelihood lognormal fragility "
         "Φ(ln(IM/θ)/β) (binomial likelihood, Baker 2015); bands: its pointwise 95 % interval "
         "from the observed information (delta method)." + shown_text(len(shown), len(combos))))
-    return figures._save(fig, out_dir, name, pdf), table
-
-
-def shown_text(n_shown, n_combos):
-    """The caption's sentence saying which combinations a figure draws when not all ("" when
-    it draws all of them)."""
-    if n_shown >= n_combos:
-        return ""
-    return (f" Only the first {n_shown} of {n_combos} combinations are drawn; the table lists "
-            "all.")
+    return common.save(fig, out_dir, name, pdf), table
 
 
 def _short(reason):
@@ -203,14 +130,14 @@ def _row(ls, g, flat, idx, label):
     ci = (f"{num('theta_lo')}–{num('theta_hi')}" if theta != "–" else "–")
     boot = (f"{num('boot_theta_lo')}–{num('boot_theta_hi')}"
             if math.isfinite(float(_at(g["boot_theta_lo"], idx))) else "–")
-    reason = _text(g["reason"][flat]) or _text(g["cloud_reason"][flat])
+    reason = as_text(g["reason"][flat]) or as_text(g["cloud_reason"][flat])
     return (ls, label, int(_at(g["n_cells"], idx)), int(_at(g["n_exceeded"], idx)), theta, ci,
             boot, num("beta"), num("se_beta"), num("cloud_theta"), num("cloud_beta"), reason)
 
 
 def table_header(sweep):
     """The header of the table of fits, θ in the unit of the IM."""
-    unit = _attrs(sweep.extra["fragility"]).get("im_units", "g")
+    unit = tree_attrs(sweep.extra["fragility"]).get("im_units", "g")
     return ["limit state", "combination", "cells", "exceeded", f"θ [{unit}]",
             "θ 95 % (likelihood)", "θ 95 % (bootstrap)", "β", "se(β)", f"cloud θ [{unit}]",
             "cloud β", "note"]
@@ -220,22 +147,22 @@ def cloud(sweep, out_dir, name, pdf):
     """One panel per limit state with a cloud fit: D / C of every cell against the IM (log-log)
     with the regression line per combination and D / C = 1. Returns None when none has one."""
     f = sweep.extra["fragility"]
-    fa = _attrs(f)
-    names = [_text(n) for n in fa["limit_states"]
-             if any(not _text(r) for r in f[_text(n)]["cloud_reason"])]
+    fa = tree_attrs(f)
+    names = [as_text(n) for n in fa["limit_states"]
+             if any(not as_text(r) for r in f[as_text(n)]["cloud_reason"])]
     if not names:
         return None
-    order = [_text(k) for k in fa.get("axis_order", [])]
-    combos = _combos(sweep, order)
+    order = [as_text(k) for k in fa.get("axis_order", [])]
+    combos = combinations(sweep, order)
     shown = combos[:MAX_COMBOS]
-    styles = _styles(len(shown))
-    rows_n, cols_n = _grid(len(names))
+    styles = common.category_styles(len(shown))
+    rows_n, cols_n = common.panel_grid(len(names))
     fig, axes = plt.subplots(rows_n, cols_n, figsize=(4.2 * cols_n + 2.2, 3.6 * rows_n + 1.2),
                              squeeze=False, layout="constrained")
     for k, ls in enumerate(names):
         ax = axes[k // cols_n][k % cols_n]
         g = f[ls]
-        a = _attrs(g)
+        a = tree_attrs(g)
         cap = 1.0 if a.get("kind") == "unseating" else float(a.get("threshold", 1.0))
         d_all = np.asarray(sweep.responses["ls_" + ls + "_demand"], dtype=float) / cap
         im_all = cell_im(sweep, fa)
@@ -254,14 +181,14 @@ def cloud(sweep, out_dir, name, pdf):
         ax.axhline(1.0, color="k", lw=1.0, ls=":")
         ax.text(0.02, 1.0, " D/C = 1", transform=ax.get_yaxis_transform(), ha="left",
                 va="bottom", fontsize=8)
-        figures.log_axis(ax, "x")
-        figures.log_axis(ax, "y")
+        common.log_axis(ax, "x")
+        common.log_axis(ax, "y")
         ax.set_xlabel(im_label(sweep, fa))
         ax.set_ylabel("demand / capacity D/C")
-        ax.set_title(_demand_text(ls, g), fontsize=10)
-    figures.finish_panels(fig, axes, len(names), (
+        ax.set_title(limit_state_text(ls, g), fontsize=10)
+    common.finish_panels(fig, axes, len(names), (
         "Markers: each cell's demand over the limit state's capacity (unseating: corner travel "
         "over seat width). Lines: least squares of ln(D/C) on ln(IM) per combination (cloud "
         "analysis, Cornell et al. 2002); their crossing of D/C = 1 is the cloud median θ."
         + shown_text(len(shown), len(combos))))
-    return figures._save(fig, out_dir, name, pdf)
+    return common.save(fig, out_dir, name, pdf)

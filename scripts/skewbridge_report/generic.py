@@ -17,10 +17,11 @@ import re
 from dataclasses import dataclass
 
 import matplotlib.lines
+import matplotlib.pyplot as plt
 import numpy as np
 
-from . import figures, stats
-from .figures import ZERO, plt
+from . import common, stats
+from .common import ZERO, unit_text
 
 # Responses that describe the cell's excitation, its geometry or the solver rather than the
 # bridge's demand: listed in the table of responses, not drawn against the axes.
@@ -41,12 +42,11 @@ IDA_RUN = re.compile(r"^ida_.*_\d+$")
 MARGINS = ("margin_m", "margin_norm")
 DECK = re.compile(r"^(.+)_d(\d+)$")
 
-# Axis symbols for mathtext, beyond figures.AXIS_LABEL, and the units as printed.
+# Axis symbols for mathtext, beyond common.AXIS_LABEL.
 AXIS_SYMBOL = {"T_g": r"$T_g$", "w_g": r"$\omega_g$", "k_factor": r"$K$ factor",
                "scale": "scale factor", "gap_m": r"$\delta$", "a_g_g": r"$a_g$",
                "seat_over_L": "seat/$L$", "spans": "spans", "L_over_Le": r"$L/L_e$",
                "method": "method", "pulse": "pulse", "record": "record"}
-UNIT_TEXT = {"deg": "°", "rad/s": "rad/s", "m/s^2": "m/s²"}
 QUANTITY_SYMBOL = {
     "x_m": r"$x_m$", "y_m": r"$y_m$", "theta_m": r"$\theta_m$", "x_end": r"$x_{end}$",
     "y_end": r"$y_{end}$", "theta_end": r"$\theta_{end}$", "margin_m": "unseating margin",
@@ -81,22 +81,15 @@ class Quantity:
         return self.names[self.decks.index(deck)]
 
 
-def _unit(unit):
-    """A unit as printed in brackets, '' for dimensionless."""
-    if unit in ("", "1", "-", None):
-        return ""
-    return UNIT_TEXT.get(unit, unit)
-
-
 def axis_symbol(key):
-    return figures.AXIS_LABEL.get(key) or AXIS_SYMBOL.get(key) or key.replace("_", " ")
+    return common.AXIS_LABEL.get(key) or AXIS_SYMBOL.get(key) or key.replace("_", " ")
 
 
 def axis_unit(sweep, key):
     unit = sweep.axis_attrs.get(key, {}).get("units")
     if unit is None:
         unit = sweep.fixed_units.get(key, "")
-    return _unit(unit)
+    return unit_text(unit)
 
 
 def axis_label(sweep, key):
@@ -118,11 +111,11 @@ def value_label(sweep, key, value):
 
 def quantity_label(q, unit=None):
     """The y label of a quantity: its symbol and unit (`unit` replaces the cube's: mm, mrad)."""
-    symbol = QUANTITY_SYMBOL.get(q.base) or figures.RESPONSE_LABEL.get(q.base)
+    symbol = QUANTITY_SYMBOL.get(q.base) or common.RESPONSE_LABEL.get(q.base)
     if symbol is None:
         symbol = q.base.replace("_", " ")
     symbol = symbol.split(" [")[0]
-    unit = unit or _unit(q.unit)
+    unit = unit or unit_text(q.unit)
     return symbol + (f" [{unit}]" if unit else "")
 
 
@@ -186,7 +179,7 @@ def intensity_of(sweep):
         return None
     for name, label, text in (("im", "IM", "IM"), ("pga", "PGA", "PGA"), ("a_g", "PGA", "PGA")):
         if name in sweep.responses and np.any(np.isfinite(sweep.responses[name])):
-            unit = _unit(str(sweep.response_attrs.get(name, {}).get("units", "")))
+            unit = unit_text(str(sweep.response_attrs.get(name, {}).get("units", "")))
             return (np.asarray(sweep.responses[name], dtype=float),
                     label + (f" [{unit}]" if unit else ""), text)
     rec = sweep.extra.get("records")
@@ -230,7 +223,7 @@ def response_vs_intensity(sweep, qs, out_dir, name, pdf):
     groups = list(range(len(sweep.axes[key]))) if key else [None]
     n_rows, n_cols, place = _panel_grid(len(qs), 1)
     fig, axes = _figure(n_rows, n_cols, 1)
-    styles = figures.curve_styles(len(groups))
+    styles = common.curve_styles(len(groups))
     legend, table = {}, []
     for row, q in enumerate(qs):
         r, c = place(row, 0)
@@ -247,18 +240,18 @@ def response_vs_intensity(sweep, qs, out_dir, name, pdf):
                 index[sweep.axis_order.index(key)] = gi
                 sel[tuple(index)] = True
             color, marker, _ = styles[ig]
-            many = len(groups) > figures.MAX_LEGEND
+            many = len(groups) > common.MAX_LEGEND
             h, = ax.plot(im[sel], values[sel] * factor, marker if not many else "o", ms=4,
                          ls="none", color=color, mfc="none" if not many else color)
             if key is not None and not many:
                 legend.setdefault(value_label(sweep, key, sweep.axes[key][gi]), h)
         finite = np.isfinite(values) & np.isfinite(im)
         if not np.any(finite):
-            figures.no_data(ax)
+            common.no_data(ax)
         if np.all(im[np.isfinite(im)] > 0) and np.nanmax(im) / np.nanmin(im) >= 5:
-            figures.log_axis(ax, "x")
+            common.log_axis(ax, "x")
         if q.base == "impacts":
-            figures.integer_axis(ax)
+            common.integer_axis(ax)
         ax.set_ylabel(quantity_label(q, unit) + _deck_note(q))
         ax.set_xlabel(im_label)
         ax.xaxis.set_tick_params(labelbottom=True)
@@ -270,11 +263,11 @@ def response_vs_intensity(sweep, qs, out_dir, name, pdf):
             if rr * n_cols + cc >= len(qs):
                 axes[rr][cc].remove()
     layout = Layout("record", key, False, [()], "")
-    if key is not None and len(groups) > figures.MAX_LEGEND:
+    if key is not None and len(groups) > common.MAX_LEGEND:
         legend = {}
     _finish(fig, axes, sweep, layout, legend, "responses against the intensity of each record",
             qs=qs)
-    return figures._save(fig, out_dir, name, pdf), table
+    return common.save(fig, out_dir, name, pdf), table
 
 
 @dataclass
@@ -340,7 +333,7 @@ def _series(sweep, q, layout, combo):
     as its envelope over the decks (envelope())."""
     at = dict(combo)
     keep = ([layout.curve] if layout.curve else []) + [layout.x]
-    stacked = np.stack([figures.select(sweep, n, keep, at) for n in q.names])
+    stacked = np.stack([common.select(sweep, n, keep, at) for n in q.names])
     values = envelope(q, stacked)
     values = np.where(np.isinf(values), np.nan, values)
     if not layout.curve:
@@ -406,7 +399,7 @@ def _draw(ax, sweep, layout, values, styles, legend):
                                                                      lw=0.7))
         return
     curves = list(sweep.axes[layout.curve]) if layout.curve else [None]
-    many = len(curves) > figures.MAX_LEGEND
+    many = len(curves) > common.MAX_LEGEND
     for ic, value in enumerate(curves):
         color, marker, ls = styles[ic]
         if many:
@@ -422,14 +415,14 @@ def _x_scale(ax, sweep, key):
     xs = np.asarray(sweep.axes[key], dtype=float)
     spacing = sweep.axis_attrs.get(key, {}).get("spacing", "")
     if spacing == "logspace" or (np.all(xs > 0) and xs.max() / xs.min() >= 20):
-        figures.log_axis(ax, "x")
+        common.log_axis(ax, "x")
 
 
 def _finish(fig, axes, sweep, layout, legend, title, extra_caption="", qs=()):
     curves = list(sweep.axes[layout.curve]) if layout.curve and not layout.sample else []
-    if len(curves) > figures.MAX_LEGEND:
+    if len(curves) > common.MAX_LEGEND:
         shown = np.array([ax for ax in np.ravel(axes) if ax in fig.axes], dtype=object)
-        figures.curve_key_legend(fig, shown, layout.curve, curves)
+        common.curve_key_legend(fig, shown, layout.curve, curves)
         fig.axes[-1].set_ylabel(axis_label(sweep, layout.curve))
         if legend:  # reference lines and sample entries still need their legend
             shown[0].legend(list(legend.values()), list(legend.keys()), loc="lower left",
@@ -440,7 +433,7 @@ def _finish(fig, axes, sweep, layout, legend, title, extra_caption="", qs=()):
                                        borderaxespad=0.0)
     fixed = f" ({layout.fixed_text})" if layout.fixed_text else ""
     fig.suptitle(f"{sweep.name}: {title}{fixed}", fontsize=10)
-    figures.caption(fig, _caption_keys(sweep, layout, qs), extra_caption)
+    common.caption(fig, _caption_keys(sweep, layout, qs), extra_caption)
 
 
 def display_scale(sweep, q):
@@ -473,7 +466,7 @@ def response_vs_axis(sweep, layout, qs, out_dir, name, pdf):
     n_rows, n_cols, place = _panel_grid(len(qs), len(layout.columns))
     fig, axes = _figure(n_rows, n_cols, 1)
     curves = list(sweep.axes[layout.curve]) if layout.curve and not layout.sample else [None]
-    styles = figures.curve_styles(len(curves))
+    styles = common.curve_styles(len(curves))
     legend, table = {}, []
     xs = np.asarray(sweep.axes[layout.x], dtype=float)
     used = set()
@@ -486,19 +479,19 @@ def response_vs_axis(sweep, layout, qs, out_dir, name, pdf):
             factor, unit = display_scale(sweep, q)
             _draw(ax, sweep, layout, values * factor, styles, legend)
             if not np.any(np.isfinite(values)):
-                figures.no_data(ax)
+                common.no_data(ax)
             elif not np.any(values[np.isfinite(values)]):
-                figures.no_data(ax, f"no response: 0 everywhere (below {ZERO:g})", y=0.6)
+                common.no_data(ax, f"no response: 0 everywhere (below {ZERO:g})", y=0.6)
             _x_scale(ax, sweep, layout.x)
             if q.base == "impacts":
-                figures.integer_axis(ax)
+                common.integer_axis(ax)
             if c == 0 or n_cols == 1 or len(layout.columns) == 1:
                 ax.set_ylabel(quantity_label(q, unit) + _deck_note(q))
             if r == 0 and combo:
                 ax.set_title(_combo_title(sweep, combo), fontsize=9.5)
             if not layout.sample:
                 for ic, value in enumerate(curves):
-                    peak, at, _, edge, zero = figures.peak_of(values[ic], xs)
+                    peak, at, _, edge, zero = common.peak_of(values[ic], xs)
                     table.append((quantity_text(q, deck if len(q.decks) > 1 else None),
                                   _combo_title(sweep, combo), value, peak, at, edge, zero))
     for r in range(n_rows):
@@ -510,7 +503,7 @@ def response_vs_axis(sweep, layout, qs, out_dir, name, pdf):
                 axes[r][c].xaxis.set_tick_params(labelbottom=True)
     _finish(fig, axes, sweep, layout, legend, f"responses against {axis_symbol(layout.x)}",
             qs=qs)
-    return figures._save(fig, out_dir, name, pdf), table
+    return common.save(fig, out_dir, name, pdf), table
 
 
 def _deck_note(q):
@@ -528,7 +521,7 @@ def unseating_margins(sweep, layout, q, out_dir, name, pdf):
     n_rows = int(np.ceil(n / n_cols))
     fig, axes = _figure(n_rows, n_cols, 1)
     curves = list(sweep.axes[layout.curve]) if layout.curve and not layout.sample else [None]
-    styles = figures.curve_styles(len(curves))
+    styles = common.curve_styles(len(curves))
     legend = {}
     for k, combo in enumerate(layout.columns):
         ax = axes[k // n_cols][k % n_cols]
@@ -544,7 +537,7 @@ def unseating_margins(sweep, layout, q, out_dir, name, pdf):
             ax.set_ylim(lo - 0.08 * span - ZERO, max(finite.max(), 0.0) + 0.08 * span + ZERO)
             ax.axhspan(ax.get_ylim()[0], 0.0, color="C3", alpha=0.08, lw=0)
         else:
-            figures.no_data(ax)
+            common.no_data(ax)
         _x_scale(ax, sweep, layout.x)
         if combo:
             ax.set_title(_combo_title(sweep, combo), fontsize=9.5)
@@ -557,17 +550,17 @@ def unseating_margins(sweep, layout, q, out_dir, name, pdf):
     _finish(fig, axes, sweep, layout, legend, f"unseating margins against "
             f"{axis_symbol(layout.x)}", qs=[q], extra_caption="Unseating margin: seat width minus the largest travel "
             "of a corner normal to the deck's end line; below 0 the corner has left its seat.")
-    return figures._save(fig, out_dir, name, pdf), []
+    return common.save(fig, out_dir, name, pdf), []
 
 
-# Axis symbols in plain Unicode for the Markdown tables, beyond figures.AXIS_TEXT.
+# Axis symbols in plain Unicode for the Markdown tables, beyond common.AXIS_TEXT.
 AXIS_PLAIN = {"T_g": "T_g", "w_g": "ω_g", "k_factor": "K factor", "scale": "scale",
               "gap_m": "δ", "a_g_g": "a_g", "record": "record", "method": "method"}
 
 
 def value_text(sweep, key, value):
     """`α = 30°`, `T_g = 0.5 s`, `pulse: cosine` in plain text."""
-    symbol = figures.AXIS_TEXT.get(key) or AXIS_PLAIN.get(key, key)
+    symbol = common.AXIS_TEXT.get(key) or AXIS_PLAIN.get(key, key)
     if isinstance(value, str):
         return f"{symbol}: {value}"
     unit = axis_unit(sweep, key)
@@ -592,7 +585,7 @@ def response_table(sweep):
             continue
         values = np.asarray(sweep.responses[name], dtype=float)
         finite = np.isfinite(values)
-        unit = _unit(str(sweep.response_attrs.get(name, {}).get("units", ""))) or "1"
+        unit = unit_text(str(sweep.response_attrs.get(name, {}).get("units", ""))) or "1"
         if not np.any(finite):
             rows.append((name, unit, 0, None, None, None, "–"))
             continue
@@ -643,7 +636,7 @@ def record_table(sweep):
         if np.ndim(rec[k]) == 1 and k != "file":
             unit = rec.get(k + "@attrs", {}).get("units", "")
             unit = unit.decode() if isinstance(unit, bytes) else str(unit)
-            cols.append((k, k + (f" [{_unit(unit)}]" if _unit(unit) else "")))
+            cols.append((k, k + (f" [{unit_text(unit)}]" if unit_text(unit) else "")))
     if "file" in rec:
         cols.append(("file", "file"))
     n = len(rec[cols[0][0]])

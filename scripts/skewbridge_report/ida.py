@@ -11,10 +11,9 @@ import matplotlib.ticker
 import numpy as np
 from scipy.stats import norm
 
-from . import figures
-from .data import _text
-from .fragility import (MAX_COMBOS, _attrs, _combos, _demand_text, _grid, _styles, im_label,
-                        shown_text)
+from . import common
+from .common import MAX_COMBOS, combinations, im_label, limit_state_text, shown_text
+from .data import as_text, tree_attrs
 
 COLUMNS = 4  # combinations a row of IDA curves; more than this: one figure per limit state
 # The demand of each kind of limit state, as the x axis of its IDA curves.
@@ -27,7 +26,7 @@ RUN = re.compile(r"^ida_im_(\d+)$")
 def is_ida(sweep):
     """Whether the cube is an IDA sweep (its fragility/ group's method is "ida")."""
     f = sweep.extra.get("fragility")
-    return bool(f) and _attrs(f).get("method") == "ida"
+    return bool(f) and tree_attrs(f).get("method") == "ida"
 
 
 def _runs(sweep):
@@ -48,20 +47,20 @@ def curves(sweep, out_dir, name, pdf):
     NAME_<limit state> with the combinations as small multiples on shared axes, COLUMNS a row.
     Returns the paths written."""
     f = sweep.extra["fragility"]
-    fa = _attrs(f)
-    names = [_text(n) for n in fa["limit_states"]]
-    order = [_text(k) for k in fa.get("axis_order", [])]
-    combos = _combos(sweep, order)
+    fa = tree_attrs(f)
+    names = [as_text(n) for n in fa["limit_states"]]
+    order = [as_text(k) for k in fa.get("axis_order", [])]
+    combos = combinations(sweep, order)
     if len(combos) <= COLUMNS:
         fig, axes = plt.subplots(len(names), len(combos), squeeze=False, layout="constrained",
                                  figsize=(3.6 * len(combos) + 1.5, 3.0 * len(names) + 1.0))
         for r, ls in enumerate(names):
             for c, combo in enumerate(combos):
                 _curves_panel(axes[r][c], sweep, ls, order, combo,
-                              f"{_demand_text(ls, f[ls])}\n{combo[2]}", c == 0)
+                              f"{limit_state_text(ls, f[ls])}\n{combo[2]}", c == 0)
         _from_zero(axes)
-        figures.finish_panels(fig, axes, axes.size, CURVES_TEXT)
-        return [figures._save(fig, out_dir, name, pdf)]
+        common.finish_panels(fig, axes, axes.size, CURVES_TEXT)
+        return [common.save(fig, out_dir, name, pdf)]
     paths = []
     rows_n = int(math.ceil(len(combos) / COLUMNS))
     for ls in names:
@@ -75,13 +74,13 @@ def curves(sweep, out_dir, name, pdf):
             ax.xaxis.label.set_visible(c + COLUMNS >= len(combos))
             ax.xaxis.set_tick_params(labelbottom=c + COLUMNS >= len(combos))
         _from_zero(axes)
-        title = (f"IDA curves of {_demand_text(ls, f[ls]).strip()}, each of the {len(combos)} "
+        title = (f"IDA curves of {limit_state_text(ls, f[ls]).strip()}, each of the {len(combos)} "
                  f"combinations of {', '.join(order)}")
         # 11 pt: under 8.5 px a glyph at 100 dpi.
-        fig.suptitle("\n".join(textwrap.wrap(title, int(fig.get_figwidth() * figures.DPI / 8.5))),
+        fig.suptitle("\n".join(textwrap.wrap(title, int(fig.get_figwidth() * common.DPI / 8.5))),
                      fontsize=11)
-        figures.finish_panels(fig, axes, len(combos), CURVES_TEXT)
-        paths.append(figures._save(fig, out_dir, f"{name}_{ls}", pdf))
+        common.finish_panels(fig, axes, len(combos), CURVES_TEXT)
+        paths.append(common.save(fig, out_dir, f"{name}_{ls}", pdf))
     return paths
 
 
@@ -103,7 +102,7 @@ def _from_zero(axes):
 def _curves_panel(ax, sweep, ls, order, combo, title, first_column):
     """The IDA curves of one limit state and one combination (flat, idx, label) in `ax`."""
     f = sweep.extra["fragility"]
-    a = _attrs(f[ls])
+    a = tree_attrs(f[ls])
     runs = _runs(sweep)
     idx = combo[1]
     n_records = len(sweep.axes["record"]) if "record" in sweep.axes else 1
@@ -128,9 +127,9 @@ def _curves_panel(ax, sweep, ls, order, combo, title, first_column):
     elif a.get("kind") == "unseating":
         ax.axvline(1.0, color="k", ls=":", lw=1.0)
     units = sweep.response_attrs.get(f"ida_demand_{ls}_00", {}).get("units", "")
-    ax.set_xlabel(f"{DEMAND_TEXT.get(a.get('kind'), 'demand')} [{_text(units) or '1'}]")
+    ax.set_xlabel(f"{DEMAND_TEXT.get(a.get('kind'), 'demand')} [{as_text(units) or '1'}]")
     if first_column:
-        ax.set_ylabel(im_label(sweep, _attrs(f)))
+        ax.set_ylabel(im_label(sweep, tree_attrs(f)))
     ax.set_title(title, fontsize=9)
     ax.xaxis.set_major_locator(matplotlib.ticker.MaxNLocator(4))  # rad: 6-digit tick labels
 
@@ -139,13 +138,13 @@ def fragility(sweep, out_dir, name, pdf):
     """One panel per limit state: the empirical distribution of the capacities (steps) per
     combination and the stored lognormal fit Φ(ln(IM/θ)/β). Returns the table rows."""
     f = sweep.extra["fragility"]
-    fa = _attrs(f)
-    names = [_text(n) for n in fa["limit_states"]]
-    order = [_text(k) for k in fa.get("axis_order", [])]
-    combos = _combos(sweep, order)
+    fa = tree_attrs(f)
+    names = [as_text(n) for n in fa["limit_states"]]
+    order = [as_text(k) for k in fa.get("axis_order", [])]
+    combos = combinations(sweep, order)
     shown = combos[:MAX_COMBOS]
-    styles = _styles(len(shown))
-    rows_n, cols_n = _grid(len(names))
+    styles = common.category_styles(len(shown))
+    rows_n, cols_n = common.panel_grid(len(names))
     fig, axes = plt.subplots(rows_n, cols_n, figsize=(4.2 * cols_n + 2.2, 3.6 * rows_n + 1.2),
                              squeeze=False, layout="constrained")
     table = []
@@ -180,13 +179,13 @@ def fragility(sweep, out_dir, name, pdf):
                           if "n_scaled_too_far" in g else 0,
                           f"{theta:.3g}" if math.isfinite(theta) else "–",
                           f"{beta:.3g}" if math.isfinite(beta) else "–",
-                          _text(np.asarray(g["reason"]).ravel()[flat])))
-        figures.log_axis(ax, "x")
+                          as_text(np.asarray(g["reason"]).ravel()[flat])))
+        common.log_axis(ax, "x")
         ax.set_ylim(-0.05, 1.05)
         ax.set_xlabel(im_label(sweep, fa))
         ax.set_ylabel("P(capacity ≤ IM)")
-        ax.set_title(_demand_text(ls, g), fontsize=10)
-    figures.finish_panels(fig, axes, len(names), (
+        ax.set_title(limit_state_text(ls, g), fontsize=10)
+    common.finish_panels(fig, axes, len(names), (
         "Steps: the share of the records whose IDA capacity is at or below the intensity "
         "(records that never reached the limit state count, never exceeded). Lines: the "
         "lognormal fit Φ(ln(IM/θ)/β) with θ the geometric mean of the capacities and β the "
@@ -194,10 +193,10 @@ def fragility(sweep, out_dir, name, pdf):
         "reached it, the maximum-likelihood fit with those right-censored at their highest "
         "run; none where fewer than 2 capacities are finite (the table says why)."
         + shown_text(len(shown), len(combos))))
-    return figures._save(fig, out_dir, name, pdf), table
+    return common.save(fig, out_dir, name, pdf), table
 
 
 def table_header(sweep):
-    unit = _attrs(sweep.extra["fragility"]).get("im_units", "g")
+    unit = tree_attrs(sweep.extra["fragility"]).get("im_units", "g")
     return ["limit state", "combination", "records with a capacity", "censored",
             "of them beyond max_scale", f"θ [{unit}]", "β", "note"]

@@ -17,7 +17,7 @@ import tomllib
 import matplotlib.pyplot as plt
 import numpy as np
 
-from . import figures
+from . import common, figures
 from .data import ReportError, load_cube, load_run
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
@@ -201,7 +201,7 @@ def fig05(runner, out):
     labels = [r"$x\,\omega_g^2/a_g$", r"$y\,\omega_g^2/a_g$", r"$\theta\,\rho\,\omega_g^2/a_g$"]
     dim_labels = [r"$x$ [mm]", r"$y$ [mm]", r"$\theta$ [mrad]"]
     curves = []
-    for (run, a_g_g), (color, marker, ls) in zip(zip(runs, levels), figures.curve_styles(3)):
+    for (run, a_g_g), (color, marker, ls) in zip(zip(runs, levels), common.curve_styles(3)):
         model = tomllib.loads(run.model_text)
         scale = w_g ** 2 / (a_g_g * G)
         norm = np.column_stack([run.q[:, 0] * scale, run.q[:, 1] * scale,
@@ -222,10 +222,10 @@ def fig05(runner, out):
     axes[0].legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
     fig.suptitle(r"Fig. 5: self-similarity, $\Pi_\delta$ = 1, $\eta_0$ = 2, $\alpha$ = 30°, "
                  r"$\omega_0/\omega_g$ = 0.955, cosine pulse", fontsize=10)
-    figures.caption(fig, ["rho", "ag", "Pi", "eta0", "alpha"],
+    common.caption(fig, ["rho", "ag", "Pi", "eta0", "alpha"],
                     "x, y, θ: displacements and rotation of the deck; the deck size is the same "
                     "at every a_g.")
-    path = figures._save(fig, out, "fig05_self_similarity", False)
+    path = common.save(fig, out, "fig05_self_similarity", False)
     n = min(len(c) for c in curves)
     dev = [np.max(np.abs(c[:n] - curves[0][:n]), axis=0) / np.max(np.abs(curves[0][:n]), axis=0)
            for c in curves[1:]]
@@ -308,42 +308,42 @@ def fig08(runner, out):
     sweep = load_cube(runner.sweep(os.path.join(SPECS, "paper", "fig08-friction-map.toml"),
                                    "fig08"))[0]
     mus, pis, ws = sweep.axes["mu"], sweep.axes["Pi_delta"], sweep.axes["w0_over_wg"]
-    theta = figures.select(sweep, "theta_norm", ["mu", "Pi_delta", "w0_over_wg"])
+    theta = common.select(sweep, "theta_norm", ["mu", "Pi_delta", "w0_over_wg"])
     ncol = 2
     nrow = int(np.ceil(len(mus) / ncol))
     fig, axes = plt.subplots(nrow, ncol, figsize=(12, 3.6 * nrow + 0.8), squeeze=False,
                              sharex=True, sharey=True, constrained_layout=True)
-    top = max(float(np.nanmax(theta)), figures.ZERO)
+    top = max(float(np.nanmax(theta)), common.ZERO)
     share = {}
     mesh = None
     for k, mu in enumerate(mus):
         ax = axes[k // ncol][k % ncol]
-        data = np.where(theta[k] > figures.ZERO, theta[k], np.nan)
-        share[mu] = float(np.mean(theta[k] > figures.ZERO))
+        data = np.where(theta[k] > common.ZERO, theta[k], np.nan)
+        share[mu] = float(np.mean(theta[k] > common.ZERO))
         mesh = ax.pcolormesh(ws, pis, data, shading="nearest", cmap="viridis", vmin=0, vmax=top)
-        figures.log_axis(ax, "x")
-        figures.log_axis(ax, "y")
+        common.log_axis(ax, "x")
+        common.log_axis(ax, "y")
         eta1 = eta0 * (1 + mu / np.tan(np.radians(a_deg)))
         paper = " (paper)" if mu in (0.08, 0.1) else " (extension)"
         ax.set_title(f"μ = {mu:g}{paper}: η_1 = {eta1:.3f}, turns in {100 * share[mu]:.0f} %",
                      fontsize=9)
-        if not np.any(theta[k] > figures.ZERO):
-            figures.no_data(ax, "no rotation in any cell (θ = 0)")
+        if not np.any(theta[k] > common.ZERO):
+            common.no_data(ax, "no rotation in any cell (θ = 0)")
         if k % ncol == 0:
-            ax.set_ylabel(figures.AXIS_LABEL["Pi_delta"])
+            ax.set_ylabel(common.AXIS_LABEL["Pi_delta"])
         if k // ncol == nrow - 1:
-            ax.set_xlabel(figures.AXIS_LABEL["w0_over_wg"])
+            ax.set_xlabel(common.AXIS_LABEL["w0_over_wg"])
         ax.plot([FIG08_CELL["w0_over_wg"]], [FIG08_CELL["Pi_delta"]], "x", color="C3", ms=9,
                 mew=2, label="cell of the histories")
     for k in range(len(mus), nrow * ncol):
         axes[k // ncol][k % ncol].set_visible(False)
-    fig.colorbar(mesh, ax=axes, label=figures.RESPONSE_LABEL["theta_norm"], shrink=0.8)
+    fig.colorbar(mesh, ax=axes, label=common.RESPONSE_LABEL["theta_norm"], shrink=0.8)
     axes[0][0].legend(loc="lower left", fontsize=8)
     fig.suptitle(f"Fig. 8 map: where the deck turns, α = {a_deg:g}°, η_0 = {eta0:g}, cosine "
                  f"pulse, ε_N = 0.5, ξ = 5 %, Ω_0 = ω_0 (white: θ = 0)", fontsize=10)
-    figures.caption(fig, ["rho", "ag", "w0", "Pi", "eta0", "alpha", "eps"],
+    common.caption(fig, ["rho", "ag", "w0", "Pi", "eta0", "alpha", "eps"],
                     "η_1 = η_0 (1 + μ/tan α): the paper's frictional skew ratio.")
-    map_path = figures._save(fig, out, "fig08_map_where_the_deck_turns", False)
+    map_path = common.save(fig, out, "fig08_map_where_the_deck_turns", False)
     runs = {}
     w_g = 2 * np.pi / 0.5
     for mu in (0.08, 0.1):
@@ -411,7 +411,7 @@ def fig07(runner, out):
                                    "fig07"))[0]
     path, _ = figures.rotation_vs_eta0(sweep, "W0_over_w0", out, "fig07_rotation_vs_eta0", False)
     eta, ratios = sweep.axes["eta0"], sweep.axes["W0_over_w0"]
-    theta = figures.select(sweep, "theta_norm", ["W0_over_w0", "eta0", "w0_over_wg"])
+    theta = common.select(sweep, "theta_norm", ["W0_over_w0", "eta0", "w0_over_wg"])
     peak = np.nanmax(theta, axis=2)
     below_one = float(np.nanmax(peak[:, eta <= 1.0])) if np.any(eta <= 1.0) else 0.0
 
@@ -432,7 +432,7 @@ def fig07(runner, out):
                           for i in range(len(ratios))) + ".")
     indifferent = bool(np.all(np.abs(tail) <= 0.1 * np.abs(at(3.0))))
     monotone = bool(np.all(np.diff(peak[:, eta > 1.0], axis=1) >= -1e-3 * np.nanmax(peak)))
-    if below_one >= figures.ZERO:
+    if below_one >= common.ZERO:
         verdict = ("not", f"rotation {below_one:.3g} at η_0 <= 1")
     else:
         parts = ["no rotation up to η_0 = 1 and a jump just above it"]
@@ -446,7 +446,7 @@ def fig07(runner, out):
 
 
 def figures_fmt(v):
-    return "0" if abs(v) < figures.ZERO else f"{v:.3g}"
+    return "0" if abs(v) < common.ZERO else f"{v:.3g}"
 
 
 def fig09(runner, out):
@@ -462,9 +462,9 @@ def fig09(runner, out):
     for ie, eta0 in enumerate(etas):
         for ir, resp in enumerate(resps):
             ax = axes[ir][ie]
-            data = figures.select(sweep, resp, ["eta0", "a_deg", "w0_over_wg"])[ie]
+            data = common.select(sweep, resp, ["eta0", "a_deg", "w0_over_wg"])[ie]
             # round-off of a deck that does not turn (1e-16) is drawn as the 0 it is
-            data = np.where(np.abs(data) < figures.ZERO, 0.0, data)
+            data = np.where(np.abs(data) < common.ZERO, 0.0, data)
             for ip, (a, b) in enumerate(pairs):
                 ra, rb = data[angles.index(a)], data[angles.index(b)]
                 ax.plot(w, ra, color=colors[ip], ls="-", lw=2.2, alpha=0.6,
@@ -474,9 +474,9 @@ def fig09(runner, out):
                 scale = max(np.nanmax(ra), np.nanmax(rb))
                 # two curves of no response (round-off, below ZERO) do not differ
                 diff[(eta0, resp, a)] = (float(np.nanmax(np.abs(ra - rb)) / scale)
-                                         if scale >= figures.ZERO else 0.0)
-            figures.log_axis(ax, "x")
-            ax.set_ylabel(figures.RESPONSE_LABEL[resp])
+                                         if scale >= common.ZERO else 0.0)
+            common.log_axis(ax, "x")
+            ax.set_ylabel(common.RESPONSE_LABEL[resp])
             if not np.any(data):
                 ax.text(0.5, 0.6, "no rotation at any α (0 below 1e-9)",
                         transform=ax.transAxes,
@@ -484,16 +484,16 @@ def fig09(runner, out):
             if ir == 0:
                 ax.set_title(f"$\\eta_0$ = {eta0:g}")
             if ir == 2:
-                ax.set_xlabel(figures.AXIS_LABEL["w0_over_wg"])
+                ax.set_xlabel(common.AXIS_LABEL["w0_over_wg"])
     handles, labels = axes[0][0].get_legend_handles_labels()
     axes[0][-1].legend(handles, labels, loc="upper left", bbox_to_anchor=(1.02, 1.0),
                        borderaxespad=0.0)
     fig.suptitle("Extension (not a figure of the paper): complementary skew angles (same "
                  "sin 2α), cosine pulse, "
                  r"$\Pi_\delta$ = 1, $\Omega_0 = \omega_0$", fontsize=10)
-    figures.caption(fig, ["x", "rho", "ag", "w0", "eta0", "alpha"],
+    common.caption(fig, ["x", "rho", "ag", "w0", "eta0", "alpha"],
                     "Solid: α < 45°; dashed with markers: its complement 90° - α.")
-    path = figures._save(fig, out, "ext_complementary_angles", False)
+    path = common.save(fig, out, "ext_complementary_angles", False)
     parts = []
     for eta0 in etas:
         parts.append(f"η_0 = {eta0:g}: " + "; ".join(
@@ -539,12 +539,12 @@ def fig09_10(runner, out, eta0):
     if eta0 == 1:
         verdict = (("reproduced", "no rotation at any angle; the transverse response of α and "
                     "90° - α is the same, a function of sin 2α (docs/validation.md fact 5c)")
-                   if theta_max < figures.ZERO else ("not", "the deck turns at η_0 = 1"))
+                   if theta_max < common.ZERO else ("not", "the deck turns at η_0 = 1"))
     else:
         verdict = (("partly", "the deck turns at every angle; the rotation does not scale with "
                     "sin 2α: it peaks at α = 20-40° and θ at 60° is below θ at 10-20° "
                     "(docs/validation.md fact 5c, the one verdict on sin 2α)")
-                   if theta_min > figures.ZERO else ("not", "the deck does not turn at some α"))
+                   if theta_min > common.ZERO else ("not", "the deck does not turn at some α"))
     return path, measured, verdict
 
 
@@ -612,8 +612,8 @@ def fig13(runner, out):
         elif hit is not None:
             text += f"; {hit['n']} strike, too few to fit"
         parts.append(text)
-    w0x = figures.select(sweep, "w0x_over_wg", ["record", "Pi_delta"])
-    theta = figures.select(sweep, "theta_norm", ["record", "Pi_delta"])
+    w0x = common.select(sweep, "w0x_over_wg", ["record", "Pi_delta"])
+    theta = common.select(sweep, "theta_norm", ["record", "Pi_delta"])
     low = np.nanmedian(theta[w0x < 2]) if np.any(w0x < 2) else float("nan")
     high = np.nanmedian(theta[w0x >= 2]) if np.any(w0x >= 2) else float("nan")
     top = np.nanmax(theta[w0x >= 2]) if np.any(w0x >= 2) else float("nan")
@@ -669,25 +669,25 @@ def suite_stats(sweep, min_pga_g=0.0):
     from . import stats
     pis = list(sweep.axes["Pi_delta"])
     keep = ["record", "Pi_delta"]
-    a_g = figures.select(sweep, "a_g", keep)[:, 0]
-    w_g = figures.select(sweep, "w_g", keep)[:, 0]
-    le = figures.select(sweep, "L_e", keep)[:, 0]
+    a_g = common.select(sweep, "a_g", keep)[:, 0]
+    w_g = common.select(sweep, "w_g", keep)[:, 0]
+    le = common.select(sweep, "L_e", keep)[:, 0]
     use = a_g >= min_pga_g * G
     tm = 2 * np.pi / w_g
     out = {"n": int(use.sum()), "coupling": stats.spearman(le[use], tm[use]),
            "pga_g": (float(a_g[use].min() / G), float(a_g[use].max() / G)),
            "per_pi": {}}
-    w0x_all = figures.select(sweep, "w0x_over_wg", keep)[use]
-    norm_all = figures.select(sweep, "theta_norm", keep)[use]
+    w0x_all = common.select(sweep, "w0x_over_wg", keep)[use]
+    norm_all = common.select(sweep, "theta_norm", keep)[use]
     out["pooled"] = (float(np.median(norm_all[w0x_all < 2])) if np.any(w0x_all < 2) else
                      float("nan"),
                      float(np.median(norm_all[w0x_all >= 2])) if np.any(w0x_all >= 2) else
                      float("nan"))
     for ip, pi in enumerate(pis):
-        theta = figures.select(sweep, "theta_m", keep)[use, ip]
-        norm = figures.select(sweep, "theta_norm", keep)[use, ip]
-        hits = figures.select(sweep, "impacts", keep)[use, ip] > 0
-        w0x = figures.select(sweep, "w0x_over_wg", keep)[use, ip]
+        theta = common.select(sweep, "theta_m", keep)[use, ip]
+        norm = common.select(sweep, "theta_norm", keep)[use, ip]
+        hits = common.select(sweep, "impacts", keep)[use, ip] > 0
+        w0x = common.select(sweep, "w0x_over_wg", keep)[use, ip]
         out["per_pi"][pi] = {
             "all": stats.spearman(le[use], theta),
             "hit": stats.spearman(le[use][hits], theta[hits]) if hits.sum() >= 3 else None,

@@ -10,7 +10,7 @@ import subprocess
 import matplotlib.pyplot as plt
 import numpy as np
 
-from . import figures
+from . import common
 from .data import ReportError
 
 
@@ -172,8 +172,8 @@ def draw_plan(plan, out_dir, name, pdf, title=None):
     ax.legend(list(handles.values()), list(handles.keys()), loc="upper center",
               bbox_to_anchor=(0.5, -0.16), ncol=2, fontsize=8, frameon=False)
     ax.set_title(title or f"{os.path.basename(plan['model'])} in plan", fontsize=10)
-    figures.caption(fig, ["alpha"], "Contact points as in solver/NOTATION.md (P1, P3 acute; "
+    common.caption(fig, ["alpha"], "Contact points as in solver/NOTATION.md (P1, P3 acute; "
                     "P2, P4 obtuse); gap: normal to the face at rest; crosses at bearings and "
                     "piers: long bar along the strong axis, short bar across, in proportion; red "
                     "arrows: principal stiffness axes at the centre of rigidity.")
-    return figures._save(fig, out_dir, name, pdf), rows
+    return common.save(fig, out_dir, name, pdf), rows

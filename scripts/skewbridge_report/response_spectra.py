@@ -4,9 +4,10 @@ records of the set in thin lines with their median and 16-84 % band."""
 import os
 
 import h5py
+import matplotlib.pyplot as plt
 import numpy as np
 
-from . import figures
+from . import common
 from .data import ReportError
 
 G = 9.80665
@@ -49,7 +50,7 @@ def figure(spectra, set_name, members, out_dir, name, pdf):
     (set, xi, records, median PSa at its peak, T there, 16 % and 84 % there)."""
     periods = spectra["period_s"]
     xis = spectra["xi"]
-    fig, axes = figures.plt.subplots(1, len(xis), figsize=(6.0 * len(xis) + 1.0, 5.6),
+    fig, axes = plt.subplots(1, len(xis), figsize=(6.0 * len(xis) + 1.0, 5.6),
                                      layout="constrained", squeeze=False)
     rows = []
     for x, xi in enumerate(xis):
@@ -69,8 +70,8 @@ def figure(spectra, set_name, members, out_dir, name, pdf):
                          float(periods[peak]), float(lo[peak]), float(hi[peak])))
         else:
             rows.append((set_name, float(xi), len(members), None, None, None, None))
-        figures.log_axis(ax, "x")
-        figures.log_axis(ax, "y")
+        common.log_axis(ax, "x")
+        common.log_axis(ax, "y")
         ax.set_xlabel("period $T$ [s]")
         ax.set_ylabel(r"$S_a(T, \xi)$ [g]")
         ax.set_title(f"{set_name}: {len(members)} records, $\\xi$ = {xi:g}")
@@ -81,8 +82,5 @@ def figure(spectra, set_name, members, out_dir, name, pdf):
              "median and 16th-84th percentiles over the records at each period"
              + ("" if len(members) >= MIN_BAND_RECORDS
                 else f" (drawn from {MIN_BAND_RECORDS} records on)") + ".")
-    text = figures.textwrap.wrap(extra, int(fig.get_figwidth() * figures.DPI / 5.6))
-    fig.text(0.005, 0.004, "\n".join(text), fontsize=8, va="bottom", ha="left", color="0.2")
-    bottom = (len(text) * 8 * 1.25 + 6) / 72.0 / fig.get_figheight()
-    fig.get_layout_engine().set(rect=(0, bottom, 1, 1 - bottom))
-    return figures._save(fig, out_dir, name, pdf), rows
+    common.caption_text(fig, extra)
+    return common.save(fig, out_dir, name, pdf), rows

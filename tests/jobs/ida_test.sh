@@ -71,9 +71,9 @@ scripts=$(cd "$(dirname "$check")/../../scripts" && pwd)
 import os
 import sys
 sys.path.insert(0, sys.argv[2])
-from skewbridge_report import data, fragility, ida
+from skewbridge_report import common, data, ida
 sweep = data.load_cube(sys.argv[1])[0]
-assert fragility.im_name(sweep) == "Sa(T1, 5 %)", fragility.im_name(sweep)
+assert common.im_name(sweep) == "Sa(T1, 5 %)", common.im_name(sweep)
 ida.COLUMNS = 1
 paths = ida.curves(sweep, "multiples", "c", False)
 names = [n.decode() if isinstance(n, bytes) else n

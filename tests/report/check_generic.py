@@ -155,7 +155,7 @@ def check_curves(paths):
     """The first curve of the first panel of every response figure against the cube."""
     sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
                                     "scripts"))
-    from skewbridge_report import data, generic  # noqa: E402
+    from skewbridge_report import common, data, generic  # noqa: E402
     import matplotlib.pyplot as plt  # noqa: E402
     for path in paths:
         sweep = data.load_cube(path)[0]
@@ -164,12 +164,12 @@ def check_curves(paths):
             layout = generic.layouts(sweep, x)[0]
             q = drawn[0]
             captured = {}
-            save = generic.figures._save
-            generic.figures._save = lambda fig, *a: captured.setdefault("fig", fig) and ""
+            save = common.save
+            common.save = lambda fig, *a: captured.setdefault("fig", fig) and ""
             try:
                 generic.response_vs_axis(sweep, layout, drawn, "/nonexistent", "x", False)
             finally:
-                generic.figures._save = save
+                common.save = save
             fig = captured["fig"]
             ax = fig.axes[0]
             drawn_y = np.asarray(ax.lines[0].get_ydata(), dtype=float)

@@ -27,7 +27,7 @@ import numpy as np
 ROOT = sys.argv[1]
 sys.dont_write_bytecode = True
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
-from skewbridge_report import cli, data, figures  # noqa: E402
+from skewbridge_report import cli, common, data, figures  # noqa: E402
 
 IDENTIFIERS = re.compile(r"\b(eta0|Pi_delta|eps_N|w0_over_wg|a_deg|W0_over_w0)\b")
 # A symbol in a label (mathtext source) and the text its caption definition starts with.
@@ -64,7 +64,7 @@ def check_figure(fig, name):
             assert inter is None or inter.width * inter.height < 1.0, \
                 f"{name}: a legend overlaps the data of panel '{ax.get_title()}'"
         entries = len(legend.get_texts())
-        assert entries <= figures.MAX_LEGEND + 3, f"{name}: a legend of {entries} entries"
+        assert entries <= common.MAX_LEGEND + 3, f"{name}: a legend of {entries} entries"
     labelled = {t.get_text() for legend in legends for t in legend.get_texts()}
     for text in visible_texts(fig):
         assert not IDENTIFIERS.search(text.replace("$", "")), f"{name}: identifier in '{text}'"
@@ -117,7 +117,7 @@ def check_gamma_t(run_path):
     run = data.load_run(run_path)
     gamma = figures.tangential_velocity(run)
     assert gamma is not None, run_path
-    model = figures._model(run)
+    model = figures.model_of(run)
     deck = model["deck"]
     a = np.radians(deck["skew_deg"])
     length = deck["L"]
@@ -148,7 +148,7 @@ def check_gamma_t(run_path):
 def check_ground(run_path):
     run = data.load_run(run_path)
     a_g, _ = figures.ground_acceleration(run)
-    ex = figures._model(run)["excitation"]
+    ex = figures.model_of(run)["excitation"]
     values = np.asarray(ex["values"], dtype=float)
     k = np.searchsorted(run.t_s, np.arange(len(values)) * ex["dt_s"])
     hit = k < len(run.t_s)
@@ -158,13 +158,13 @@ def check_ground(run_path):
 
 def main(argv):
     out = argv[1]
-    save = figures._save
+    save = common.save
 
     def inspecting_save(fig, out_dir, name, pdf):
         check_figure(fig, name)
         return save(fig, out_dir, name, pdf)
 
-    figures._save = inspecting_save
+    common.save = inspecting_save
     assert cli.main(argv[2:] + ["--out", out, "--allow-partial"]) == 0
     for f in sorted(os.listdir(out)):
         if f.endswith(".png"):
@@ -173,7 +173,7 @@ def main(argv):
         print(f"{name}: {n_legends} legends, {n_colorbars} colour bars: readable")
     if any(os.path.basename(a) == "many.h5" for a in argv):
         many = [c for c in checked if c[0].startswith("spectra_many")]
-        assert many and many[0][2] == 1, f"more than {figures.MAX_LEGEND} curves: no colour bar"
+        assert many and many[0][2] == 1, f"more than {common.MAX_LEGEND} curves: no colour bar"
     runs = [argv[i + 1] for i, a in enumerate(argv) if a == "--run"]
     for path in runs:
         check_gamma_t(path)
