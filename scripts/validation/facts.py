@@ -16,20 +16,18 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
+sys.dont_write_bytecode = True  # keep the source tree free of __pycache__
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+from skewbridge_report import data, stats  # noqa: E402
 
 
-def cube(work, file, name=None):
-    f = h5py.File(os.path.join(work, file), "r")
-    g = f["sweeps"][name] if name else next(iter(f["sweeps"].values()))
-    assert int(g.attrs["complete"]) == 1, file
-    axes = {}
-    for k in g.attrs["axis_order"]:
-        v = g["axes"][k][()]
-        axes[k] = [s.decode() if isinstance(s, bytes) else s for s in v] if v.dtype.kind in "OS" \
-            else v
-    resp = {k: g["responses"][k][()] for k in g["responses"]}
-    resp["status"] = g["status"][()]
-    return list(g.attrs["axis_order"]), axes, resp
+def cube(work, file):
+    """(axis order, axes, responses with the per-cell status) of the first sweep of a complete
+    cube in the work folder, read by the report's reader (data.load_cube)."""
+    sweep = data.load_cube(os.path.join(work, file))[0]
+    resp = dict(sweep.responses)
+    resp["status"] = sweep.status
+    return sweep.axis_order, sweep.axes, resp
 
 
 def fact1(work):
@@ -347,9 +345,6 @@ def fact6(exe, tmp):
 
 def pilot(work):
     print("## §6: pilot bridge over the 62-record suite (pilot-records.h5)")
-    sys.dont_write_bytecode = True
-    sys.path.insert(0, os.path.join(ROOT, "scripts"))
-    from skewbridge_report import stats
     order, ax, r = cube(work, "pilot-records.h5")
     assert order == ["record", "Pi_delta"], order
     print(f"cells {r['theta_m'].size}, failed {int(np.sum(r['status'] != 0))}, with impacts "
