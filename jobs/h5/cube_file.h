@@ -1,8 +1,9 @@
 #pragma once
 /// @file
 /// Sweep cubes in HDF5 (docs/hdf5-layout.md): the checkpoint file FILE.partial that a running
-/// sweep fills cell by cell, the final compressed FILE, and readers for inspect and tests.
-/// Free of <hdf5.h>; failures of HDF5 calls throw h5::H5Error.
+/// sweep fills cell by cell (cube_checkpoint.cpp), the final compressed FILE (cube_final.cpp),
+/// and readers for inspect and tests (cube_reader.cpp). Free of <hdf5.h>; failures of HDF5 calls
+/// throw h5::H5Error.
 
 #include <cstddef>
 #include <cstdint>

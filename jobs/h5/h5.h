@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// A thin RAII layer over the HDF5 C API, private to jobs/h5: every call is checked and a
-/// failure throws H5Error naming the call and the object. Only jobs/h5/*.cpp include it.
+/// failure throws H5Error naming the call and the object. Only the files of jobs/h5 include it.
 
 #include <hdf5.h>
 

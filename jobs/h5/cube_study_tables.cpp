@@ -1,0 +1,343 @@
+#include "jobs/h5/cube_study_tables.h"
+
+#include <limits>
+#include <type_traits>
+
+#include "spectra/limit_states.h"
+
+namespace skewbridge::jobs::h5 {
+namespace {
+
+void SetDoublesAttr(hid_t obj, const std::string& name, const std::vector<double>& values) {
+  const hsize_t n = values.size();
+  Id space = Dataspace(std::span<const hsize_t>(&n, 1));
+  Id attr(H5Acreate2(obj, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, H5P_DEFAULT),
+          H5Aclose, "create attribute " + name);
+  Check(H5Awrite(attr.get(), H5T_NATIVE_DOUBLE, values.data()), "write attribute " + name);
+}
+
+// A contiguous dataset of the given shape, written whole, with units and description.
+template <typename T>
+Id WriteArray(hid_t parent, const std::string& name, const std::vector<hsize_t>& shape,
+              const std::vector<T>& values, const std::string& units,
+              const std::string& description) {
+  const bool is_double = std::is_same_v<T, double>;
+  Id ds = CreateDataset(parent, name, is_double ? H5T_IEEE_F64LE : H5T_STD_I64LE, shape, {}, 0,
+                        nullptr);
+  WriteAll(ds.get(), is_double ? H5T_NATIVE_DOUBLE : H5T_NATIVE_INT64, values.data());
+  SetAttr(ds.get(), "units", units);
+  SetAttr(ds.get(), "description", description);
+  return ds;
+}
+
+void WriteRecordTable(hid_t sweep_group, const StudyTables& study) {
+  Id g = CreateGroup(sweep_group, "records");
+  SetAttr(g.get(), "source", study.records_source);
+  SetAttr(g.get(), "set", study.records_set);
+  SetAttr(g.get(), "count", static_cast<std::int64_t>(study.records.size()));
+  const std::vector<hsize_t> shape{study.records.size()};
+  std::vector<std::string> label;
+  std::vector<std::string> file;
+  std::vector<std::string> component;
+  std::vector<std::int64_t> npts;
+  std::vector<double> scale, dt, pga, pgv, pgd, tm, wg, le, arias, d595, cav, sa_t1, avgsa;
+  for (const SweepRecord& r : study.records) {
+    label.push_back(r.label);
+    file.push_back(r.file);
+    component.push_back(r.motion.component);
+    npts.push_back(static_cast<std::int64_t>(r.motion.npts()));
+    scale.push_back(r.scale);
+    dt.push_back(r.motion.dt_s);
+    pga.push_back(r.measures.pga_mps2);
+    pgv.push_back(r.measures.pgv_mps);
+    pgd.push_back(r.measures.pgd_m);
+    tm.push_back(r.measures.mean_period_s);
+    wg.push_back(r.measures.omega_g_radps);
+    le.push_back(r.measures.persistency_m);
+    arias.push_back(r.measures.arias_mps);
+    d595.push_back(r.measures.significant_duration_s);
+    cav.push_back(r.measures.cav_mps);
+    sa_t1.push_back(r.sa_t1_mps2);
+    avgsa.push_back(r.avgsa_mps2);
+  }
+  // T1 is one for the sweep (else NaN and the cells hold theirs): the group says which.
+  const SweepRecord& first = study.records.front();
+  SetAttr(g.get(), "T1_s", first.t1_s);
+  SetAttr(g.get(), "spectral_xi", first.spectral_xi);
+  WriteStrings(g.get(), "label", label);
+  WriteStrings(g.get(), "file", file);
+  WriteStrings(g.get(), "component", component);
+  WriteArray(g.get(), "scale", shape, scale, "1", "the manifest's factor on the accelerations");
+  WriteArray(g.get(), "dt_s", shape, dt, "s", "sample interval");
+  WriteArray(g.get(), "npts", shape, npts, "1", "number of samples");
+  WriteArray(g.get(), "pga_mps2", shape, pga, "m/s^2", "peak ground acceleration = a_g");
+  WriteArray(g.get(), "pgv_mps", shape, pgv, "m/s", "peak ground velocity");
+  WriteArray(g.get(), "pgd_m", shape, pgd, "m", "peak ground displacement");
+  WriteArray(g.get(), "T_m_s", shape, tm, "s", "mean period [Rathje et al. 1998]");
+  WriteArray(g.get(), "w_g_radps", shape, wg, "rad/s", "w_g = 2 pi / T_m");
+  WriteArray(g.get(), "L_e_m", shape, le, "m", "persistency PGA / w_g^2");
+  WriteArray(g.get(), "arias_mps", shape, arias, "m/s", "Arias intensity");
+  WriteArray(g.get(), "D5_95_s", shape, d595, "s", "significant duration 5-95 % of Arias");
+  WriteArray(g.get(), "CAV_mps", shape, cav, "m/s",
+             "cumulative absolute velocity int |a| dt over the record [EPRI 1988]");
+  const std::string where_t1 =
+      " at the sweep's fundamental period T1 (attribute T1_s) and damping spectral_xi; NaN "
+      "when the cells' T1 differ (the cells store T1 and im) or the family has no model";
+  WriteArray(g.get(), "Sa_T1_mps2", shape, sa_t1, "m/s^2",
+             "pseudo-spectral acceleration Sa(T1)" + where_t1);
+  WriteArray(g.get(), "AvgSa_mps2", shape, avgsa, "m/s^2",
+             "AvgSa(T1): geometric mean of Sa over " + std::to_string(records::kAvgSaPeriodCount) +
+                 " periods equally spaced in 0.2-3 T1 [Eads et al. 2015]" + where_t1);
+  // The table's rows are the record axis: attach its scale to every column (select by label).
+  if (Exists(sweep_group, "axes/record")) {
+    Id record_axis = OpenDataset(sweep_group, "axes/record");
+    for (const std::string& column : ListChildren(g.get())) {
+      Id ds = OpenDataset(g.get(), column);
+      AttachScale(ds.get(), record_axis.get(), 0, "record");
+    }
+  }
+}
+
+void WriteCorrelation(hid_t sweep_group, const CorrelationTable& table,
+                      const std::vector<double>& band_edges) {
+  Id g = CreateGroup(sweep_group, "correlation");
+  SetAttr(g.get(), "x", std::string("L_e"));
+  SetAttr(g.get(), "y", table.y);
+  SetAttr(g.get(), "over", std::string("record"));
+  SetAttr(g.get(), "axis_order", table.axis_order);
+  // Without the response band (not stored, or a family without it) there are no groups.
+  if (!band_edges.empty()) SetDoublesAttr(g.get(), "band_edges", band_edges);
+  SetAttr(g.get(), "min_band_records", kMinBandRecords);
+  SetAttr(g.get(), "loglog",
+          std::string("log10(theta_m) = intercept + slope log10(L_e), least squares; "
+                      "r2 = 1 - SS_res/SS_tot"));
+  std::vector<hsize_t> shape(table.shape.begin(), table.shape.end());
+  std::vector<hsize_t> band_shape = shape;
+  band_shape.push_back(table.bands);
+  std::vector<Id> scales;
+  for (const std::string& key : table.axis_order) {
+    scales.push_back(OpenDataset(sweep_group, "axes/" + key));
+  }
+  auto attach = [&](const Id& ds) {
+    for (std::size_t k = 0; k < scales.size(); ++k) {
+      AttachScale(ds.get(), scales[k].get(), static_cast<unsigned>(k), table.axis_order[k]);
+    }
+  };
+  attach(WriteArray(g.get(), "n", shape, table.n, "1",
+                    "cells used: status ok, theta_m and L_e finite"));
+  attach(WriteArray(g.get(), "pearson_theta_Le", shape, table.pearson, "1",
+                    "Pearson r of (L_e, theta_m) over the records"));
+  attach(WriteArray(g.get(), "spearman_theta_Le", shape, table.spearman, "1",
+                    "Spearman rho of (L_e, theta_m), ties given their average rank"));
+  attach(WriteArray(g.get(), "loglog_n", shape, table.loglog_n, "1",
+                    "cells with theta_m > 0 and L_e > 0"));
+  attach(WriteArray(g.get(), "loglog_slope", shape, table.loglog_slope, "1",
+                    "slope of log10 theta_m against log10 L_e (least squares)"));
+  attach(WriteArray(g.get(), "loglog_intercept", shape, table.loglog_intercept, "1",
+                    "intercept of log10 theta_m = intercept + slope log10 L_e (L_e in m)"));
+  attach(WriteArray(g.get(), "loglog_r2", shape, table.loglog_r2, "1",
+                    "R^2 of the log-log fit, 1 - SS_res / SS_tot"));
+  WriteStrings(g.get(), "reason", table.reason);
+  if (table.bands == 0) return;
+  const std::string per_band = " per w0x/w_g group (last dimension), NaN below min_band_records";
+  attach(WriteArray(g.get(), "band_n", band_shape, table.band_n, "1",
+                    "cells used per w0x/w_g group (last dimension)"));
+  attach(WriteArray(g.get(), "band_pearson_theta_Le", band_shape, table.band_pearson, "1",
+                    "Pearson r" + per_band));
+  attach(WriteArray(g.get(), "band_spearman_theta_Le", band_shape, table.band_spearman, "1",
+                    "Spearman rho" + per_band));
+  attach(WriteArray(g.get(), "band_loglog_slope", band_shape, table.band_loglog_slope, "1",
+                    "log-log slope" + per_band));
+  attach(WriteArray(g.get(), "band_loglog_intercept", band_shape, table.band_loglog_intercept, "1",
+                    "log-log intercept" + per_band));
+  attach(WriteArray(g.get(), "band_loglog_r2", band_shape, table.band_loglog_r2, "1",
+                    "log-log R^2" + per_band));
+}
+
+void WriteFragility(hid_t sweep_group, const std::vector<FragilityStudy>& studies) {
+  Id g = CreateGroup(sweep_group, "fragility");
+  const FragilityStudy& first = studies.front();
+  std::vector<std::string> names;
+  for (const FragilityStudy& f : studies) names.push_back(f.ls.name);
+  SetAttr(g.get(), "limit_states", names);
+  SetAttr(g.get(), "method", std::string(first.table.stripe_axis.empty() ? "cloud" : "stripes"));
+  SetAttr(g.get(), "im", first.im);
+  SetAttr(g.get(), "im_units", first.im_units);
+  SetAttr(g.get(), "im_description", first.im_description);
+  SetAttr(g.get(), "stripe_axis", first.table.stripe_axis);
+  SetAttr(g.get(), "axis_order", first.table.axis_order);
+  SetAttr(g.get(), "model",
+          std::string("P(exceeded | IM = x) = Phi(ln(x / theta) / beta), lognormal"));
+  SetAttr(g.get(), "likelihood",
+          std::string("binomial over the cells, maximised by Newton's method; standard errors "
+                      "from the observed information [Baker 2015, Earthquake Spectra "
+                      "31(1):579-599]"));
+  SetAttr(g.get(), "cloud",
+          std::string("ln(D / C) = cloud_intercept + cloud_slope ln(IM), least squares; "
+                      "cloud_theta = exp(-intercept / slope), cloud_beta = sigma / slope "
+                      "[Cornell et al. 2002]"));
+  SetAttr(g.get(), "bootstrap",
+          std::string("records drawn with replacement (std::mt19937_64, seed per combination "
+                      "seeded from bootstrap_seed and its index), percentiles 2.5 and 97.5"));
+  SetAttr(g.get(), "bootstrap_resamples",
+          static_cast<std::int64_t>(first.table.bootstrap_resamples));
+  SetAttr(g.get(), "bootstrap_seed", static_cast<std::int64_t>(first.table.bootstrap_seed));
+  SetAttr(g.get(), "confidence", 0.95);
+  std::vector<Id> scales;
+  for (const std::string& key : first.table.axis_order) {
+    scales.push_back(OpenDataset(sweep_group, "axes/" + key));
+  }
+  for (const FragilityStudy& f : studies) {
+    const FragilityTable& t = f.table;
+    Id ls = CreateGroup(g.get(), f.ls.name);
+    SetAttr(ls.get(), "kind", spectra::LimitStateKindName(f.ls.kind));
+    SetAttr(ls.get(), "threshold", f.ls.threshold);
+    SetAttr(ls.get(), "demand_units", f.demand_unit);
+    if (!f.ls.seat_m.empty()) SetDoublesAttr(ls.get(), "seat_m", f.ls.seat_m);
+    if (f.ls.kind == spectra::LimitStateKind::kResponse)
+      SetAttr(ls.get(), "response", f.ls.response);
+    std::vector<hsize_t> shape;
+    for (const std::size_t n : t.shape) shape.push_back(n);
+    if (shape.empty()) shape.push_back(1);
+    auto attach = [&](const Id& ds) {
+      for (std::size_t k = 0; k < scales.size(); ++k) {
+        AttachScale(ds.get(), scales[k].get(), static_cast<unsigned>(k), t.axis_order[k]);
+      }
+    };
+    auto put = [&](const std::string& name, const auto& values, std::string units,
+                   const std::string& description) {
+      if (units == "g") units = f.im_units;  // the unit of the IM
+      attach(WriteArray(ls.get(), name, shape, values, units, description));
+    };
+    put("theta", t.theta, "g", "maximum-likelihood median IM of exceedance");
+    put("beta", t.beta, "1", "maximum-likelihood dispersion (log standard deviation)");
+    put("se_ln_theta", t.se_ln_theta, "1", "standard error of ln theta (observed information)");
+    put("se_beta", t.se_beta, "1", "standard error of beta (observed information)");
+    put("cov_ln_theta_beta", t.cov_ln_theta_beta, "1", "covariance of (ln theta, beta)");
+    put("theta_lo", t.theta_lo, "g", "95 % interval of theta: exp(ln theta - 1.96 se_ln_theta)");
+    put("theta_hi", t.theta_hi, "g", "95 % interval of theta: exp(ln theta + 1.96 se_ln_theta)");
+    put("beta_lo", t.beta_lo, "1", "95 % interval of beta: beta - 1.96 se_beta");
+    put("beta_hi", t.beta_hi, "1", "95 % interval of beta: beta + 1.96 se_beta");
+    put("boot_theta_lo", t.boot_theta_lo, "g", "2.5 % of theta over the bootstrap resamples");
+    put("boot_theta_hi", t.boot_theta_hi, "g", "97.5 % of theta over the bootstrap resamples");
+    put("boot_beta_lo", t.boot_beta_lo, "1", "2.5 % of beta over the bootstrap resamples");
+    put("boot_beta_hi", t.boot_beta_hi, "1", "97.5 % of beta over the bootstrap resamples");
+    put("boot_used", t.boot_used, "1", "bootstrap resamples that gave a fit (NaN bounds below 20)");
+    put("n_cells", t.n_cells, "1", "cells used: done, status ok");
+    put("n_exceeded", t.n_exceeded, "1", "cells among them that exceeded the limit state");
+    put("cloud_n", t.cloud_n, "1", "cells of the cloud fit: D / C > 0 and IM > 0, finite");
+    put("cloud_excluded", t.cloud_excluded, "1", "cells left out of the cloud fit");
+    put("cloud_intercept", t.cloud_intercept, "1",
+        "intercept of ln(D / C) on ln(IM) (IM in im_units)");
+    put("cloud_slope", t.cloud_slope, "1", "slope of ln(D / C) on ln(IM)");
+    put("cloud_sigma", t.cloud_sigma, "1", "residual standard deviation of ln(D / C)");
+    put("cloud_theta", t.cloud_theta, "g", "cloud median IM of D = C");
+    put("cloud_beta", t.cloud_beta, "1", "cloud dispersion sigma / slope");
+    WriteStrings(ls.get(), "reason", t.reason);
+    WriteStrings(ls.get(), "cloud_reason", t.cloud_reason);
+    if (t.stripes == 0) continue;
+    std::vector<hsize_t> stripe_shape(t.shape.begin(), t.shape.end());
+    stripe_shape.push_back(t.stripes);
+    Id stripe_scale = OpenDataset(sweep_group, "axes/" + t.stripe_axis);
+    auto put_stripes = [&](const std::string& name, const auto& values, std::string units,
+                           const std::string& description) {
+      if (units == "g") units = f.im_units;
+      Id ds = WriteArray(ls.get(), name, stripe_shape, values, units, description);
+      attach(ds);
+      AttachScale(ds.get(), stripe_scale.get(), static_cast<unsigned>(t.shape.size()),
+                  t.stripe_axis);
+    };
+    put_stripes("stripe_im", t.stripe_im, "g", "geometric mean IM of the stripe's cells");
+    put_stripes("stripe_n", t.stripe_n, "1", "cells of the stripe used");
+    put_stripes("stripe_exceeded", t.stripe_exceeded, "1", "cells of the stripe that exceeded");
+  }
+}
+
+void WriteIdaFragility(hid_t sweep_group, const std::vector<IdaFragilityStudy>& studies) {
+  Id g = CreateGroup(sweep_group, "fragility");
+  const IdaFragilityStudy& first = studies.front();
+  std::vector<std::string> names;
+  for (const IdaFragilityStudy& f : studies) names.push_back(f.ls.name);
+  SetAttr(g.get(), "limit_states", names);
+  SetAttr(g.get(), "method", std::string("ida"));
+  SetAttr(g.get(), "im", std::string("ida_capacity"));
+  SetAttr(g.get(), "im_units", first.im_units);
+  SetAttr(g.get(), "im_description",
+          std::string("each record's capacity: the lowest intensity of its hunt-and-fill "
+                      "search at which the limit state is exceeded [Vamvatsikos and Cornell "
+                      "2002, 2004]"));
+  SetAttr(g.get(), "axis_order", first.axis_order);
+  SetAttr(g.get(), "model",
+          std::string("P(exceeded | IM = x) = Phi(ln(x / theta) / beta), lognormal"));
+  SetAttr(
+      g.get(), "fit",
+      std::string("every capacity finite: theta = exp(mean of ln IM_c), beta = standard "
+                  "deviation of ln IM_c with n - 1, over the records' capacities [Baker "
+                  "2015, Earthquake Spectra 31(1):579-599]; n_censored > 0: the "
+                  "maximum-likelihood theta and beta (n) of the lognormal with the records "
+                  "that never reach the limit state right-censored at their highest run "
+                  "(note), a capacity beyond records.max_scale censored at it (n_scaled_too_far); "
+                  "NaN (with the reason) when fewer than 2 capacities are finite"));
+  std::vector<Id> scales;
+  for (const std::string& key : first.axis_order) {
+    scales.push_back(OpenDataset(sweep_group, "axes/" + key));
+  }
+  for (const IdaFragilityStudy& f : studies) {
+    Id ls = CreateGroup(g.get(), f.ls.name);
+    SetAttr(ls.get(), "kind", spectra::LimitStateKindName(f.ls.kind));
+    SetAttr(ls.get(), "threshold", f.ls.threshold);
+    if (!f.ls.seat_m.empty()) SetDoublesAttr(ls.get(), "seat_m", f.ls.seat_m);
+    if (f.ls.kind == spectra::LimitStateKind::kResponse)
+      SetAttr(ls.get(), "response", f.ls.response);
+    std::vector<hsize_t> shape;
+    for (const std::size_t n : f.shape) shape.push_back(n);
+    if (shape.empty()) shape.push_back(1);
+    auto put = [&](const std::string& name, const auto& values, const std::string& units,
+                   const std::string& description) {
+      Id ds = WriteArray(ls.get(), name, shape, values, units, description);
+      for (std::size_t k = 0; k < scales.size(); ++k) {
+        AttachScale(ds.get(), scales[k].get(), static_cast<unsigned>(k), f.axis_order[k]);
+      }
+    };
+    put("theta", f.theta, f.im_units,
+        "median capacity: exp(mean ln IM_c), or the censored maximum likelihood's");
+    put("beta", f.beta, "1",
+        "dispersion: standard deviation of ln IM_c (n - 1), or the censored maximum "
+        "likelihood's");
+    put("n_records", f.n, "1", "records with a finite capacity (cells done, status ok)");
+    put("n_censored", f.censored, "1",
+        "records not reaching the limit state up to ida.max_im (censored in the fit)");
+    WriteStrings(ls.get(), "reason", f.reason);
+    put("n_scaled_too_far", f.too_far, "1",
+        "capacities reached at a scale factor above records.max_scale: censored at max_scale "
+        "(in n_censored)");
+    WriteStrings(ls.get(), "note", f.note);
+  }
+}
+
+}  // namespace
+
+void WriteStudyTables(const Datasets& d, const CubeLayout& layout, const StudyTables& study) {
+  for (std::size_t r = 0; r < layout.responses.size(); ++r) {
+    if (layout.responses[r].name == "band" && !study.band_edges.empty()) {
+      SetDoublesAttr(d.responses[r].get(), "band_edges", study.band_edges);
+    }
+  }
+  if (!study.records.empty()) WriteRecordTable(d.group.get(), study);
+  if (!study.im.measure.empty()) {
+    SetAttr(d.group.get(), "im_measure", study.im.measure);
+    SetAttr(d.group.get(), "im_description", spectra::IntensityDescription(study.im));
+    SetAttr(d.group.get(), "im_units", spectra::IntensityUnit(study.im));
+    SetAttr(d.group.get(), "im_scaled", static_cast<std::int64_t>(study.im.scale ? 1 : 0));
+    SetAttr(
+        d.group.get(), "max_scale",
+        study.im.max_scale > 0.0 ? study.im.max_scale : std::numeric_limits<double>::infinity());
+    if (study.scaled_too_far >= 0)
+      SetAttr(d.group.get(), "scaled_too_far_count", study.scaled_too_far);
+  }
+  if (study.correlation) WriteCorrelation(d.group.get(), *study.correlation, study.band_edges);
+  if (!study.fragility.empty()) WriteFragility(d.group.get(), study.fragility);
+  if (!study.ida_fragility.empty()) WriteIdaFragility(d.group.get(), study.ida_fragility);
+}
+
+}  // namespace skewbridge::jobs::h5
