@@ -173,7 +173,7 @@ def draw_plan(plan, out_dir, name, pdf, title=None):
               bbox_to_anchor=(0.5, -0.16), ncol=2, fontsize=8, frameon=False)
     ax.set_title(title or f"{os.path.basename(plan['model'])} in plan", fontsize=10)
     common.caption(fig, ["alpha"], "Contact points as in solver/NOTATION.md (P1, P3 acute; "
-                    "P2, P4 obtuse); gap: normal to the face at rest; crosses at bearings and "
-                    "piers: long bar along the strong axis, short bar across, in proportion; red "
-                    "arrows: principal stiffness axes at the centre of rigidity.")
+                   "P2, P4 obtuse); gap: normal to the face at rest; crosses at bearings and "
+                   "piers: long bar along the strong axis, short bar across, in proportion; red "
+                   "arrows: principal stiffness axes at the centre of rigidity.")
     return common.save(fig, out_dir, name, pdf), rows
