@@ -1,0 +1,206 @@
+"""Running what scripts/paper needs: the sweeps of jobs/specs/paper/ and jobs/specs/ (thinned
+by --quick) and the runs of jobs/specs/paper/subsystem-run.toml, with mpiexec, into a work
+folder; a complete cube or run file is reused, a partial cube resumed, a changed specification
+or record suite computed afresh. Nothing here draws or judges."""
+import filecmp
+import json
+import os
+import shutil
+import subprocess
+import tomllib
+
+import numpy as np
+
+from .data import ReportError, load_cube
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
+SPECS = os.path.join(ROOT, "jobs", "specs")
+G = 9.80665  # standard gravity, m/s^2
+# The period of the subsystem's pulse (T_g, jobs/specs/paper/subsystem-run.toml) and its
+# circular frequency w_g (rad/s).
+T_G_S = 0.5
+W_G = 2 * np.pi / T_G_S
+
+
+def _toml_value(v):
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, str):
+        return json.dumps(v)
+    if isinstance(v, (int, float)):
+        return repr(v)
+    if isinstance(v, list):
+        return "[" + ", ".join(_toml_value(x) for x in v) + "]"
+    if isinstance(v, dict):
+        return "{" + ", ".join(f"{k} = {_toml_value(x)}" for k, x in v.items()) + "}"
+    raise TypeError(v)
+
+
+def to_toml(doc, comment):
+    """A TOML text of a document of tables (the subset the specs and models use)."""
+    lines = [f"# {comment}"]
+    for table, body in doc.items():
+        lines += ["", f"[{table}]"] + [f"{k} = {_toml_value(v)}" for k, v in body.items()]
+    return "\n".join(lines) + "\n"
+
+
+def _thin(values, keep):
+    """At most `keep` values of a list, the ends included, evenly spread."""
+    if len(values) <= keep:
+        return values
+    idx = np.unique(np.round(np.linspace(0, len(values) - 1, keep)).astype(int))
+    return [values[i] for i in idx]
+
+
+def quick_spec(doc):
+    """A thinned copy of a sweep specification for --quick: at most 4 values of a list axis
+    (8 records), at most 11 points of a linspace/logspace."""
+    doc = json.loads(json.dumps(doc))
+    for key, axis in doc.get("axes", {}).items():
+        if isinstance(axis, list):
+            doc["axes"][key] = _thin(axis, 8 if key == "record" else 4)
+        elif isinstance(axis, dict):
+            for kind in ("linspace", "logspace"):
+                if kind in axis:
+                    a, b, n = axis[kind]
+                    axis[kind] = [a, b, min(int(n), 11)]
+    return doc
+
+
+class Runner:
+    """Runs `skewbridge sweep` and `skewbridge run` into the work folder, reusing what is done."""
+
+    def __init__(self, args):
+        self.exe, self.work, self.quick, self.ranks = args.exe, args.work, args.quick, args.ranks
+        self.mpiexec = args.mpiexec
+        self.suite_changed = False
+
+    def _call(self, cmd, what):
+        # As scripts/validation/run.sh: root containers, and more ranks than free cores.
+        env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+                   OMPI_MCA_rmaps_base_oversubscribe="1")
+        done = subprocess.run(cmd, cwd=self.work, stdout=subprocess.PIPE,
+                              stderr=subprocess.PIPE, text=True, env=env)
+        if done.returncode not in (0, 3):  # 3: a run stopped with an expected numerical status
+            said = [line for line in done.stderr.splitlines() if line.strip("- \t")]
+            last = " ".join(said[:3]) if said else "no message"
+            raise ReportError(f"{what} failed (status {done.returncode}): {last}")
+
+    def sweep(self, spec_path, name, own_records=False):
+        """The cube of one specification: reused when complete, resumed when partial. A record
+        sweep runs the synthetic suite unless own_records keeps the specification's set."""
+        with open(spec_path, "rb") as f:
+            doc = tomllib.load(f)
+        if self.quick:
+            doc = quick_spec(doc)
+        if "records" in doc and not own_records:
+            doc["records"]["set"] = self.suite() + "/set.toml"
+            labels = [f"synth-2011-{i:03d}" for i in range(8 if self.quick else 62)]
+            doc["axes"]["record"] = labels
+        spec = os.path.join(self.work, name + ".toml")
+        text = to_toml(doc, f"{os.path.relpath(spec_path, ROOT)}" +
+                       (", thinned by scripts/paper --quick" if self.quick else ""))
+        out = os.path.join(self.work, name + ".h5")
+        same = (os.path.exists(spec) and open(spec).read() == text and
+                not ("records" in doc and self.suite_changed and not own_records))
+        if same and os.path.exists(out):
+            return out
+        if not same:  # a new or changed specification: compute from scratch
+            for stale in (out, out + ".partial"):
+                if os.path.exists(stale):
+                    os.remove(stale)
+        with open(spec, "w") as f:
+            f.write(text)
+        cmd = [self.mpiexec, "-n", str(self.ranks), self.exe, "sweep", spec, "--out", out,
+               "--quiet"]
+        if os.path.exists(out + ".partial"):
+            cmd.append("--resume")
+        self._call(cmd, f"skewbridge sweep {name}")
+        return out
+
+    def suite(self):
+        """The synthetic record suite standing in for the study's 62 Greek records. Generated
+        afresh on every call (about 1 s) and compared with the one in the work folder: when the
+        program's records changed, the suite is replaced and the record cubes are recomputed."""
+        name = "synth8" if self.quick else "synth62"
+        fresh = name + ".new"
+        shutil.rmtree(os.path.join(self.work, fresh), ignore_errors=True)
+        cmd = [self.exe, "records", "synth", "--count", "8" if self.quick else "62",
+               "--seed", "2011", "--out", fresh]
+        if self.quick:
+            cmd += ["--duration-s", "10"]
+        self._call(cmd, "skewbridge records synth")
+        old, new = os.path.join(self.work, name), os.path.join(self.work, fresh)
+        same = os.path.isdir(old) and not filecmp.dircmp(old, new).diff_files and \
+            sorted(os.listdir(old)) == sorted(os.listdir(new))
+        if same:
+            shutil.rmtree(new)
+        else:
+            shutil.rmtree(old, ignore_errors=True)
+            os.rename(new, old)
+            self.suite_changed = True
+        return name
+
+    def run(self, name, changes):
+        """A run of jobs/specs/paper/subsystem-run.toml with `changes` ({table: {key: value}})."""
+        with open(os.path.join(SPECS, "paper", "subsystem-run.toml"), "rb") as f:
+            doc = tomllib.load(f)
+        for table, body in changes.items():
+            doc[table].update(body)
+        text = to_toml(doc, f"jobs/specs/paper/subsystem-run.toml with {json.dumps(changes)}")
+        model = os.path.join(self.work, name + ".toml")
+        out = os.path.join(self.work, name + ".h5")
+        if os.path.exists(out) and os.path.exists(model) and open(model).read() == text:
+            return out
+        with open(model, "w") as f:
+            f.write(text)
+        self._call([self.exe, "run", model, "--out", out], f"skewbridge run {name}")
+        return out
+
+
+def pulse_run(runner, name, a_g_g, eta0, mu, pi_delta=1.0, a_deg=30.0, w0=None, eps=None,
+              interval=None, delta_over_L=None):
+    """A cosine-pulse run of the subsystem with the gap set from Pi_delta = delta w_g^2/a_g;
+    w0 (rad/s, W0 = w0), eps_N, the output interval (s) and the deck length (from delta/L, as
+    a sweep cell sets it) change the model file's when given."""
+    gap = pi_delta * a_g_g * G / W_G ** 2
+    changes = {"deck": {"eta0": eta0, "skew_deg": a_deg},
+               "abutments": {"gap_m": gap, "mu": mu}, "excitation": {"a_g_g": a_g_g}}
+    if w0 is not None:
+        changes["substructure"] = {"w0": w0, "W0": w0}
+    if eps is not None:
+        changes["abutments"]["eps_N"] = eps
+    if delta_over_L is not None:
+        changes["deck"]["L"] = gap / delta_over_L
+    if interval is not None:
+        changes["run"] = {"output_interval_s": interval, "tail_s": 3.0}
+    return runner.run(name, changes)
+
+
+# The cell of the Fig. 8 map whose histories are run: the paper states a = 30 deg, eta0 = 0.87,
+# mu = 0.08 and 0.1, the cosine pulse and xi = 5 %; w0/w_g, Pi_delta and eps_N are this
+# reproduction's choice.
+FIG08_CELL = {"w0_over_wg": 0.5, "Pi_delta": 0.5, "eps_N": 0.5}
+
+
+def real_pilot_sweep(runner):
+    """The pilot bridge over the real records of jobs/specs/real/pilot-study-shared.toml (the
+    set's path made absolute for the work folder); None when the records are not there."""
+    spec = os.path.join(SPECS, "real", "pilot-study-shared.toml")
+    with open(spec, "rb") as f:
+        doc = tomllib.load(f)
+    doc["records"]["set"] = os.path.normpath(os.path.join(os.path.dirname(spec),
+                                                          doc["records"]["set"]))
+    records = os.path.join(ROOT, "..", "shared", "records")
+    if not os.path.exists(doc["records"]["set"]) or not os.path.isdir(records):
+        return None
+    path = os.path.join(runner.work, "pilot-study-shared.src.toml")
+    text = to_toml(doc, "jobs/specs/real/pilot-study-shared.toml, the set's path absolute")
+    if not os.path.exists(path) or open(path).read() != text:
+        with open(path, "w") as f:
+            f.write(text)
+    saved, runner.quick = runner.quick, False  # 117 cells: never thinned
+    try:
+        return load_cube(runner.sweep(path, "pilot-real", own_records=True))[0]
+    finally:
+        runner.quick = saved
