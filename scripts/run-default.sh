@@ -5,7 +5,7 @@
 # Re-running resumes an unfinished cube and recomputes a finished one.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+set -a && source scripts/openmpi.env && set +a  # Open MPI as root, more ranks than cores
 export CMAKE_BUILD_PARALLEL_LEVEL=$(nproc)
 
 cmake --preset release >/dev/null

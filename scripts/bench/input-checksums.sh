@@ -31,7 +31,7 @@ cd "$work"
 cp "$here/jobs/specs/pilot-records.toml" .
 echo "$(du -cb synth62/*.AT2 | tail -1 | cut -f1) bytes of record files;" \
   "load $(cut -d' ' -f1-3 /proc/loadavg) on $(nproc) cores"
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+set -a && source "$here/scripts/openmpi.env" && set +a  # Open MPI as root, more ranks than cores
 sweep() {  # sweep LABEL PROGRAM: one sweep on 2 ranks, one line of times
   local t0 t1
   t0=$(date +%s.%N)

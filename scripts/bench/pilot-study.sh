@@ -25,7 +25,7 @@ exe=$(cd "$build" && pwd)/skewbridge
 spec=$here/jobs/specs/pilot-study.toml
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+set -a && source "$here/scripts/openmpi.env" && set +a  # Open MPI as root, more ranks than cores
 echo "load $(cut -d' ' -f1-3 /proc/loadavg) on $(nproc) cores"
 best_wall=1e9
 best_cpu=1e9

@@ -42,7 +42,7 @@ spans_bench=$build/tests/multispan/multispan_benchmark
 [ -x "$exe" ] || { echo "sweeps.sh: error: $exe is missing (cmake --build $build --target skewbridge)" >&2; exit 2; }
 [ -n "$work" ] || work=$(mktemp -d)
 mkdir -p "$work"
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+set -a && source "$here/scripts/openmpi.env" && set +a  # Open MPI as root, more ranks than cores
 cd "$work"
 
 # The grids. The twins replace every Pi_delta value v by v x 1e6.

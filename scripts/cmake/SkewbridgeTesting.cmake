@@ -7,9 +7,21 @@
 #       the tests get MPI initialised by tests/support/mpi_gtest_main.cpp.
 #   sb_add_benchmark(NAME SOURCES ... LIBS ...)
 #       a Google Benchmark program (built, not run by ctest).
+#   sb_mpi_environment(TEST...)
+#       Open MPI's environment (scripts/openmpi.env) for tests that start MPI programs without
+#       the shell tests' prologue (tests/support/prologue.sh), e.g. Python tests.
 
 set(SKEWBRIDGE_TEST_DATA_DIR "${PROJECT_SOURCE_DIR}/tests/data")
 set(SKEWBRIDGE_SHARED_DIR "${PROJECT_SOURCE_DIR}/../shared")
+# The NAME=VALUE lines of scripts/openmpi.env, as a list for the ENVIRONMENT test property.
+file(STRINGS "${PROJECT_SOURCE_DIR}/scripts/openmpi.env" SKEWBRIDGE_MPI_ENVIRONMENT
+     REGEX "^[A-Za-z_][A-Za-z0-9_]*=")
+set_property(DIRECTORY "${PROJECT_SOURCE_DIR}" APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS
+             "${PROJECT_SOURCE_DIR}/scripts/openmpi.env")
+
+function(sb_mpi_environment)
+  set_tests_properties(${ARGN} PROPERTIES ENVIRONMENT "${SKEWBRIDGE_MPI_ENVIRONMENT}")
+endfunction()
 
 function(sb_add_gtest name)
   cmake_parse_arguments(ARG "" "" "SOURCES;LIBS;LABELS" ${ARGN})
@@ -43,10 +55,8 @@ function(sb_add_mpi_gtest name)
   add_test(NAME ${name}
     COMMAND ${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} ${ARG_NPROCS} --oversubscribe
             ${MPIEXEC_PREFLAGS} $<TARGET_FILE:${name}> ${MPIEXEC_POSTFLAGS})
-  set_tests_properties(${name} PROPERTIES
-    LABELS "mpi;${ARG_LABELS}"
-    PROCESSORS ${ARG_NPROCS}
-    ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1")
+  set_tests_properties(${name} PROPERTIES LABELS "mpi;${ARG_LABELS}" PROCESSORS ${ARG_NPROCS})
+  sb_mpi_environment(${name})
 endfunction()
 
 function(sb_add_benchmark name)

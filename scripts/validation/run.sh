@@ -17,7 +17,7 @@ build=$(realpath -m "${args[0]:-$root/build/release}")
 work=$(realpath -m "${args[1]:-$build/validation}")
 exe="$build/skewbridge"
 [ -x "$exe" ] || { echo "run.sh: $exe not built (cmake --build $build --target skewbridge)" >&2; exit 2; }
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+set -a && source "$root/scripts/openmpi.env" && set +a  # Open MPI as root, more ranks than cores
 mkdir -p "$work" && cd "$work"
 
 sweep() {  # sweep SPEC OUT: once; an existing complete cube is reused

@@ -73,8 +73,9 @@ temp_dir() {
 }
 
 # Open MPI refuses root without these, and more ranks than cores without oversubscription.
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-export OMPI_MCA_rmaps_base_oversubscribe=1
+set -a
+source "$(dirname "${BASH_SOURCE[0]}")/../../scripts/openmpi.env"
+set +a
 
 # on_ranks N COMMAND...: COMMAND on N MPI ranks through $mpiexec (the test's argument).
 on_ranks() {
