@@ -6,13 +6,13 @@
 #  - the wall time of the default sweep on 2 ranks, mpiexec start-up included;
 #  - the final cube's size per cell, from the default sweep at 1296 and 12960 cells (the
 #    difference removes the fixed metadata), extrapolated to a million cells.
-# usage: measure_physics.sh BUILD_DIR [WORK_DIR]   (BUILD_DIR e.g. build/release)
+# usage: scripts/bench/physics-sweeps.sh BUILD_DIR [WORK_DIR]   (BUILD_DIR e.g. build/release)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 exe=$(cd "$1" && pwd)/skewbridge
 work=${2:-$(mktemp -d)}
 mkdir -p "$work" && cd "$work"
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+set -a && source "$root/scripts/openmpi.env" && set +a  # Open MPI as root, more ranks than cores
 rate() { grep -o "[0-9.]* cells/s" | head -1 | cut -d' ' -f1; }
 best() {  # best N SPEC: the highest cells/s of 3 runs on N ranks
   local r b=0

@@ -4,13 +4,14 @@
 #  - the same with a 0.5 ms sleep per cell (scheduler efficiency without CPU contention);
 #  - overhead per cell with trivial cells on 4 oversubscribed ranks (1e6 cells);
 #  - final and checkpoint file size per million cells.
-# usage: measure_sweep.sh BUILD_DIR [WORK_DIR]   (BUILD_DIR e.g. build/release)
+# usage: scripts/bench/sweep-machinery.sh BUILD_DIR [WORK_DIR]   (BUILD_DIR e.g. build/release)
 set -euo pipefail
 build=$(cd "$1" && pwd)
 work=${2:-$(mktemp -d)}
 mkdir -p "$work"
 driver=$build/tests/jobs/sweep_test_driver
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+root=$(cd "$(dirname "$0")/../.." && pwd)
+set -a && source "$root/scripts/openmpi.env" && set +a  # Open MPI as root, more ranks than cores
 cd "$work"
 grid() {  # grid FILE N_PI_DELTA N_W0
   cat > "$1" <<TOML
