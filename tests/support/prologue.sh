@@ -14,7 +14,9 @@
 #    status; commands run in the order given;
 #  - Open MPI's permission to run as root and to oversubscribe the cores, exported, and
 #    on_ranks N COMMAND...: COMMAND on N ranks through $mpiexec. A process the test signals
-#    later (`... & pid=$!`) starts "$mpiexec" itself, so that $! is mpiexec's own pid.
+#    later (`... & pid=$!`) starts "$mpiexec" itself, so that $! is mpiexec's own pid;
+#  - interrupt_at_checkpoint PID FILE.partial [SIGNAL]: the signal reaches a sweep at a
+#    checkpoint that holds finished cells, never after its last cell, however small the grid.
 
 set -euo pipefail
 exec </dev/null
@@ -82,4 +84,61 @@ on_ranks() {
   local n=$1
   shift
   "${mpiexec:?on_ranks: the test has no mpiexec argument}" -n "$n" --oversubscribe "$@"
+}
+
+# checkpointed_cells FILE: the finished cells of every sweep in the checkpoint FILE (0 while
+# it cannot be read, e.g. half-written).
+checkpointed_cells() {
+  /usr/bin/python3 - "$1" 2>/dev/null <<'PY' || echo 0
+import sys
+import h5py
+with h5py.File(sys.argv[1], "r") as f:
+    print(sum(int(g["done"][()].sum()) for g in f["sweeps"].values()))
+PY
+}
+
+# interrupt_at_checkpoint PID FILE.partial [SIGNAL]: sends SIGNAL (default TERM) to the sweep
+# started in the background as PID (skewbridge itself, or "$mpiexec" with its ranks) once its
+# checkpoint FILE.partial holds a finished cell; KILL goes to PID and its ranks at once, as a
+# crash. The ranks run in steps of 10 ms and are frozen (SIGSTOP) while the test reads the
+# checkpoint between steps: the reading takes no time of theirs, so the signal finds cells done
+# and cells to do even when the sweep takes well under a second, however busy the machine. The
+# caller waits for PID and checks what the signal left.
+interrupt_at_checkpoint() {
+  local pid=$1 partial=$2 signal=${3:-TERM} step ranks="" child cells=0 tick
+  # The checkpoint file is made when the sweep begins, before its first cell.
+  for step in $(seq 1 6000); do
+    [ -f "$partial" ] && break
+    kill -0 "$pid" 2>/dev/null || fail "the sweep ended before it made $partial"
+    sleep 0.01
+  done
+  [ -f "$partial" ] || fail "no $partial after 60 s"
+  # mpiexec's children are the ranks; a sweep without mpiexec is its own rank (its child, the
+  # Open MPI daemon of a single process, is left to run).
+  for child in $(pgrep -P "$pid"); do
+    [ "$(cat "/proc/$child/comm" 2>/dev/null)" = orted ] || ranks+=" $child"
+  done
+  [ -n "$ranks" ] || ranks=$pid
+  exec {tick}<> <(:)  # a pipe nobody writes to: `read -t` on it waits without a process
+  # shellcheck disable=SC2086 # the pids are words
+  kill -STOP $ranks 2>/dev/null || true
+  for step in $(seq 1 3000); do
+    [ -f "$partial" ] || break
+    cells=$(checkpointed_cells "$partial")
+    [ "$cells" -gt 0 ] && break
+    kill -CONT $ranks 2>/dev/null || true
+    read -r -t 0.01 -u "$tick" || true
+    kill -STOP $ranks 2>/dev/null || true
+  done
+  exec {tick}<&-
+  if [ "$cells" -eq 0 ]; then
+    kill -CONT $ranks 2>/dev/null || true
+    fail "the sweep ended, or wrote no finished cell in 3000 steps, before it could be interrupted"
+  fi
+  if [ "$signal" = KILL ]; then
+    kill -KILL "$pid" $ranks 2>/dev/null || true
+  else
+    kill -CONT $ranks 2>/dev/null || true
+    kill "-$signal" "$pid"
+  fi
 }
