@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <limits>
 
@@ -165,6 +166,41 @@ std::string IntensityDescription(const IntensityMeasureSpec& im) {
   }
   if (im.measure == "PGA") return "PGA in g";
   return "PGV in m/s (no baseline correction)";
+}
+
+std::optional<IntensityMeasureSpec> ParseIntensityDescription(std::string_view measure,
+                                                              std::string_view description) {
+  IntensityMeasureSpec im;
+  im.measure = std::string(measure);
+  if (measure == "PGA" || measure == "PGV") {
+    if (description != IntensityDescription(im)) return std::nullopt;
+    return im;
+  }
+  if (measure != "Sa" && measure != "AvgSa") return std::nullopt;
+  // "<measure>(<T1 | period s>, xi = <xi>): ..."
+  const std::string head = std::string(measure) + "(";
+  if (description.substr(0, head.size()) != head) return std::nullopt;
+  const std::size_t comma = description.find(", xi = ", head.size());
+  const std::size_t close = description.find("):", head.size());
+  if (comma == std::string_view::npos || close == std::string_view::npos || close < comma) {
+    return std::nullopt;
+  }
+  const std::string at(description.substr(head.size(), comma - head.size()));
+  const std::string xi(description.substr(comma + 7, close - comma - 7));
+  char* end = nullptr;
+  im.xi = std::strtod(xi.c_str(), &end);
+  if (end != xi.c_str() + xi.size()) return std::nullopt;
+  if (at == "T1") {
+    im.at_t1 = true;
+  } else {
+    if (at.size() < 3 || at.substr(at.size() - 2) != " s") return std::nullopt;
+    const std::string period = at.substr(0, at.size() - 2);
+    im.period_s = std::strtod(period.c_str(), &end);
+    if (end != period.c_str() + period.size()) return std::nullopt;
+  }
+  // The text must be exactly what IntensityDescription writes for what was read.
+  if (IntensityDescription(im) != description) return std::nullopt;
+  return im;
 }
 
 records::RecordSet LoadSpecRecordSet(const CellGrid& spec) {

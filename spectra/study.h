@@ -50,6 +50,12 @@ std::string IntensityUnit(const IntensityMeasureSpec& im);
 /// A one-line description of the measure: "Sa(T1, xi = 0.05): pseudo-spectral acceleration ...".
 std::string IntensityDescription(const IntensityMeasureSpec& im);
 
+/// The measure, period and damping a cube's im_measure and im_description attributes name, read
+/// back from the text IntensityDescription writes (measure, at_t1, period_s, xi; scale and
+/// max_scale are not in it). nullopt when `description` is not such a text for `measure`.
+std::optional<IntensityMeasureSpec> ParseIntensityDescription(std::string_view measure,
+                                                              std::string_view description);
+
 /// The records named by the spec's record axis (or fixed record), in axis order: read from
 /// [records] set, or synthesised from [records] synthetic = {count, seed} exactly as
 /// `skewbridge records synth` writes them (records::FormatAt2 read back by records::ParseRecord,

@@ -13,6 +13,7 @@
 
 #include "jobs/app/commands.h"
 #include "jobs/h5/cube_file.h"
+#include "jobs/h5/risk_file.h"
 #include "jobs/sweep_spec.h"
 #include "solver/common/error.h"
 
@@ -348,6 +349,53 @@ void PrintInputs(const jobs::h5::SweepSummary& s) {
   }
 }
 
+// The annual rates of `skewbridge risk` (risk/, docs/risk.md): the hazard's identity, the
+// measures matched, what every rate assumes, and per limit state and combination lambda_LS with
+// its 16-84 %, P in 50 years, the return period and Cornell's closed form beside it.
+void PrintRisk(const std::string& path, const jobs::h5::SweepSummary& s) {
+  if (std::find(s.children.begin(), s.children.end(), "risk") == s.children.end()) return;
+  const jobs::h5::RiskSummary r = jobs::h5::ReadRiskSummary(path, s.name);
+  std::printf("  risk (risk/, annual rates over a hazard curve):\n");
+  for (const std::string& line : r.attrs) std::printf("    %s\n", line.c_str());
+  for (const std::string& note : r.notes) std::printf("    assumes: %s\n", note.c_str());
+  // Row-major over the combination axes, the last one fastest.
+  std::vector<const jobs::h5::AxisSummary*> axes;
+  std::string row_label;
+  for (const std::string& key : r.axis_order) {
+    for (const jobs::h5::AxisSummary& a : s.axes) {
+      if (a.name == key) axes.push_back(&a);
+    }
+    row_label += (row_label.empty() ? "" : ",") + key;
+  }
+  auto label_of = [&axes](std::size_t row) {
+    std::string label;
+    for (std::size_t j = axes.size(); j-- > 0;) {
+      label = Coordinate(*axes[j], row % axes[j]->size) + (label.empty() ? "" : "," + label);
+      row /= axes[j]->size;
+    }
+    return label.empty() ? std::string("-") : label;
+  };
+  std::printf("    %-18s %-22s %12s %12s %12s %10s %10s %12s\n", "limit state",
+              row_label.empty() ? "-" : row_label.c_str(), "lambda[1/yr]", "16%", "84%", "P(50 yr)",
+              "T_R [yr]", "Cornell");
+  auto number = [](double v) { return std::isfinite(v) ? fmt::format("{:.4g}", v) : "-"; };
+  for (const jobs::h5::StoredRisk& ls : r.limit_states) {
+    for (std::size_t row = 0; row < ls.rate_per_yr.size(); ++row) {
+      if (!ls.reason[row].empty()) {
+        std::printf("    %-18s %-22s  no rate: %s\n", ls.name.c_str(), label_of(row).c_str(),
+                    ls.reason[row].c_str());
+        continue;
+      }
+      std::printf("    %-18s %-22s %12s %12s %12s %10s %10s %12s\n", ls.name.c_str(),
+                  label_of(row).c_str(), number(ls.rate_per_yr[row]).c_str(),
+                  number(ls.rate_p16[row]).c_str(), number(ls.rate_p84[row]).c_str(),
+                  number(ls.p_50yr[row]).c_str(), number(ls.return_period_yr[row]).c_str(),
+                  number(ls.cornell_rate[row]).c_str());
+      if (!ls.flags[row].empty()) std::printf("      flags: %s\n", ls.flags[row].c_str());
+    }
+  }
+}
+
 void PrintCube(const std::string& path) {
   for (const jobs::h5::SweepSummary& s : jobs::h5::SummarizeCube(path)) {
     std::printf("sweep %s (family %s, spec %s, created %s, skewbridge %s)\n", s.name.c_str(),
@@ -375,6 +423,7 @@ void PrintCube(const std::string& path) {
     }
     PrintRecordStudy(path, s);
     PrintLimitStates(path, s);
+    PrintRisk(path, s);
   }
 }
 

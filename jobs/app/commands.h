@@ -24,6 +24,9 @@ void PrintModes(const model::Model& model);
 void AddSweepCommand(CLI::App& app);
 /// `skewbridge inspect FILE.h5`: prints the sweeps, axes, responses and completion of a cube.
 void AddInspectCommand(CLI::App& app);
+/// `skewbridge risk CUBE.h5 --hazard FILE`: annual rates of the limit states over a hazard
+/// curve, jobs/risk_command.h.
+void AddRiskCommand(CLI::App& app);
 /// `skewbridge records info FILE|SET.toml`, `records synth`: record measures, synthetic suites.
 void AddRecordsCommand(CLI::App& app);
 

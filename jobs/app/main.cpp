@@ -41,6 +41,7 @@ int main(int argc, char** argv) {
   skewbridge::app::AddSweepCommand(app);
   skewbridge::app::AddInspectCommand(app);
   skewbridge::app::AddRecordsCommand(app);
+  skewbridge::app::AddRiskCommand(app);
   if (argc == 1) {  // no arguments: the usage, not "A subcommand is required"
     std::fputs(app.help().c_str(), stdout);
     return 0;

@@ -14,6 +14,7 @@
 #include "solver/common/error.h"
 #include "spectra/hazard_curve.h"
 #include "spectra/hazard_measure.h"
+#include "spectra/study.h"
 
 namespace skewbridge::spectra {
 namespace {
@@ -309,6 +310,33 @@ TEST(MatchMeasures, AppliesAConversionOnlyByName) {
   EXPECT_EQ(m.im_factor, 1.0);
   ASSERT_EQ(m.notes.size(), 1u);
   EXPECT_THAT(m.notes[0], HasSubstr("Boore 2010"));
+}
+
+// What a cube says of its fragility's measure (im_measure, im_description) reads back to the
+// measure that wrote it, and nothing else reads.
+TEST(ParseIntensityDescription, RoundTripsEveryMeasure) {
+  std::vector<IntensityMeasureSpec> specs(5);
+  specs[0].measure = "Sa";
+  specs[0].at_t1 = true;
+  specs[1].measure = "Sa";
+  specs[1].period_s = 0.349;
+  specs[1].xi = 0.02;
+  specs[2].measure = "AvgSa";
+  specs[2].at_t1 = true;
+  specs[3].measure = "PGA";
+  specs[4].measure = "PGV";
+  for (const IntensityMeasureSpec& im : specs) {
+    const std::optional<IntensityMeasureSpec> back =
+        ParseIntensityDescription(im.measure, IntensityDescription(im));
+    ASSERT_TRUE(back) << IntensityDescription(im);
+    EXPECT_EQ(back->measure, im.measure);
+    EXPECT_EQ(back->at_t1, im.at_t1);
+    EXPECT_EQ(back->period_s, im.period_s);
+    EXPECT_EQ(back->xi, im.xi);
+  }
+  EXPECT_FALSE(ParseIntensityDescription("Sa", "Sa(T1, xi = 0.05): something else"));
+  EXPECT_FALSE(ParseIntensityDescription("PGA", IntensityDescription(specs[0])));
+  EXPECT_FALSE(ParseIntensityDescription("Sd", "Sd(T1, xi = 0.05)"));
 }
 
 }  // namespace
