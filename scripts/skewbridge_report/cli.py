@@ -7,9 +7,9 @@ import sys
 
 import numpy as np
 
-from . import common, figures, fragility, generic, ida, response_spectra
+from . import common, figures, fragility, generic, ida, response_spectra, risk
 from . import plan as plan_view
-from .data import ReportError, load_cube, load_run
+from .data import ReportError, as_text, load_cube, load_run
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
 
@@ -297,6 +297,23 @@ def fragility_sections(sweep, args, used, written):
     return md
 
 
+def risk_sections(sweep, args, used, written):
+    """The annual rates of a sweep with risk/ (skewbridge risk): per limit state with a rate
+    the hazard, fragility and integrand on shared IM axes, then the table of rates."""
+    if not risk.has_risk(sweep) or "fragility" not in sweep.extra:
+        return []
+    md = [f"## {sweep.name}: annual rates over the hazard curve", ""] + risk.notes(sweep) + [""]
+    for ls in (as_text(n) for n in sweep.extra["risk"]["attrs"]["limit_states"]):
+        rates = np.asarray(sweep.extra["risk"][ls]["rate_per_yr"], dtype=float)
+        if not np.isfinite(rates).any():
+            continue
+        name = _unique(f"risk_{sweep.name}_{ls}", used)
+        path = risk.figure(sweep, ls, args.out, name, args.pdf)
+        written.append(path)
+        md += [f"![{name}]({os.path.basename(path)})", ""]
+    return md + [_table(*risk.table(sweep)), ""]
+
+
 def main(argv):
     parser = argparse.ArgumentParser(
         prog="report", description="Figures and a Markdown summary from skewbridge cubes "
@@ -370,6 +387,7 @@ def run(args):
         if args.generic or not todo or sweep.family in GENERIC_FAMILIES:
             md += generic_sections(sweep, args, used, written, skipped_all)
         md += fragility_sections(sweep, args, used, written)
+        md += risk_sections(sweep, args, used, written)
     for r in runs:
         name = "history_" + _safe(os.path.splitext(os.path.basename(r.path))[0])
         while name in used:

@@ -5,6 +5,8 @@
 #     recomputes every stored rate with scipy's quadrature and checks the hazard's identity;
 #  2. the same hazard as an OpenQuake CSV of probabilities in 1 year reads back to the same
 #     rates; `inspect` prints the risk table and the hazard's SHA-256;
+#     scripts/report draws the hazard, fragility and integrand (checked to integrate to the
+#     stored rate) and tabulates the rates;
 #  3. a RotD50 hazard is refused without --convert and accepted with it, the conversion named;
 #  4. every refusal (another period, another measure, a malformed line, a bad option) is one
 #     line naming what differs, exit status 2, and leaves the cube's bytes as they were.
@@ -89,6 +91,32 @@ PY
 "$exe" inspect frag.h5 > inspect.txt || fail "inspect failed"
 grep -q "risk (risk/, annual rates over a hazard curve)" inspect.txt || fail "inspect prints no risk"
 grep -q "$(sha256sum hazard.csv | cut -c1-64)" inspect.txt || fail "inspect prints no hazard SHA-256"
+
+# The report: per limit state with a rate, the hazard, fragility and integrand figure; the
+# integrand it draws integrates over ln x to the stored rate; the table holds the stored rates.
+/usr/bin/python3 "$src/scripts/report" two_column.h5 --out report > report.txt \
+  || fail "scripts/report two_column.h5 failed"
+[ -s report/risk_frag_rotation.png ] || fail "no risk figure for the rotation"
+PYTHONPATH="$src/scripts" /usr/bin/python3 - two_column.h5 report/summary.md <<'PY' \
+  || fail "the report's risk figure or table differs from the cube"
+import sys, math, h5py, numpy as np
+from skewbridge_report import risk
+g = h5py.File(sys.argv[1], "r")["sweeps/frag"]
+r = g["risk"]
+xs, rs = r["hazard_im"][()], r["hazard_rate"][()]
+text = open(sys.argv[2], encoding="utf-8").read()
+assert "## frag: annual rates over the hazard curve" in text
+for ls in r.attrs["limit_states"]:
+    lam = r[ls]["rate_per_yr"][()].ravel()
+    for c in np.flatnonzero(np.isfinite(lam)):
+        theta, beta = g["fragility"][ls]["theta"][()].ravel()[c], g["fragility"][ls]["beta"][()].ravel()[c]
+        u = np.linspace(math.log(xs[0]), math.log(xs[-1]) + 12.0, 400001)
+        area = np.trapz(risk.integrand(np.exp(u), xs, rs, theta, beta, "power-law"), u)
+        assert abs(area / lam[c] - 1) < 1e-5, (ls, c, area, lam[c])
+        rows = [l for l in text.splitlines() if l.startswith(f"| {ls} | ") and f"| {lam[c]:.3g} |" in l]
+        assert rows, (ls, f"{lam[c]:.3g}")
+print("report: the integrand drawn integrates to the stored rates; the table holds them")
+PY
 
 # A RotD50 hazard: refused without a conversion, read as an arbitrary component with one.
 refuse() {  # refuse PATTERN ARGS...: one line matching PATTERN, exit 2, the cube unchanged
