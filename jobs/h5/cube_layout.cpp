@@ -252,9 +252,9 @@ void ReadData(const Datasets& d, CubeData& data) {
 }
 
 std::string ResponseLinkName(const std::string& response, const SweepSpec& spec) {
-  static constexpr std::array<std::string_view, 10> kGroupMembers{
-      "axes", "responses", "fixed",       "stats",  "status",
-      "done", "records",   "correlation", "inputs", "fragility"};
+  static constexpr std::array<std::string_view, 11> kGroupMembers{
+      "axes",    "responses",   "fixed",  "stats",     "status", "done",
+      "records", "correlation", "inputs", "fragility", "risk"};
   const bool taken =
       spec.FindAxis(response) != nullptr ||
       std::find(kGroupMembers.begin(), kGroupMembers.end(), response) != kGroupMembers.end();
