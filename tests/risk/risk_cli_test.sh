@@ -118,7 +118,6 @@ for ls in r.attrs["limit_states"]:
 print("report: the integrand drawn integrates to the stored rates; the table holds them")
 PY
 
-# A RotD50 hazard: refused without a conversion, read as an arbitrary component with one.
 refuse() {  # refuse PATTERN ARGS...: one line matching PATTERN, exit 2, the cube unchanged
   local pattern=$1 before after status=0
   shift
@@ -130,6 +129,14 @@ refuse() {  # refuse PATTERN ARGS...: one line matching PATTERN, exit 2, the cub
   grep -q -- "$pattern" err.txt || fail "risk $*: '$(cat err.txt)' does not say '$pattern'"
   [ "$before" = "$after" ] || fail "risk $*: the refused run changed the cube"
 }
+# The worked study's hazard (docs/fragility.md) reads, and is refused at the default tolerance.
+refuse "periods 42.7 % apart" --hazard "$src/docs/examples/hazard-los-angeles-sa0.2.txt" \
+  --convert gmroti50-as-arbitrary
+"$exe" risk frag.h5 --hazard "$src/docs/examples/hazard-los-angeles-sa0.2.txt" \
+  --convert gmroti50-as-arbitrary --period-tolerance 0.45 > risk_la.txt \
+  || fail "the worked study's hazard was refused"
+
+# A RotD50 hazard: refused without a conversion, read as an arbitrary component with one.
 refuse "hazard SA(.*RotD50 component) and fragility SA(.*arbitrary component): different horizontal components; --convert rotd50-as-arbitrary" \
   --hazard rotd50.txt
 "$exe" risk frag.h5 --hazard rotd50.txt --convert rotd50-as-arbitrary > risk_rotd50.txt \
