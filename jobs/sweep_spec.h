@@ -21,7 +21,7 @@ using spectra::Axis;
 using spectra::FixedValue;
 using spectra::ParameterKind;
 
-/// One entry of the table of known axis / fixed names (jobs/sweep_spec.cpp, KnownParameters).
+/// One entry of the table of known axis / fixed names (jobs/sweep_parameters.cpp, KnownParameters).
 struct ParameterInfo {
   std::string_view key;          ///< TOML key and HDF5 scale name, e.g. "w0_over_wg".
   std::string_view symbol;       ///< Display symbol, also accepted as a quoted key: "w0/w_g".
