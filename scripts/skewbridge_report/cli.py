@@ -1,5 +1,6 @@
 """The `scripts/report` command: read cubes and run files, decide which figures each sweep
-supports from its axes, write them and a Markdown summary (summary.md) with the tables."""
+supports from its axes (planning.py), write them and a Markdown summary (summary.md) with the
+tables."""
 import argparse
 import os
 import re
@@ -7,74 +8,15 @@ import sys
 
 import numpy as np
 
-from . import common, figures, fragility, generic, ida, response_spectra, risk
+from . import common, figures, fragility, generic, ida, planning, response_spectra, risk
 from . import plan as plan_view
 from .data import ReportError, as_text, load_cube, load_run
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
 
-# Axes that are not curve parameters of a spectrum: the pulse is the column, w0/w_g the
-# abscissa, a record axis a sample of the suite.
-NON_CURVE_AXES = ("pulse", "w0_over_wg", "record")
-
 
 def _safe(name):
     return re.sub(r"[^A-Za-z0-9_.-]", "_", name)
-
-
-def _curve_axes(sweep, exclude=()):
-    return [k for k in sweep.axis_order
-            if k not in NON_CURVE_AXES and k not in exclude and len(sweep.axes[k]) > 1]
-
-
-def plan(sweep):
-    """The figures a sweep supports as (kind, curve_key) and the ones it does not, as
-    (kind, reason). Pure: decided from axes, family and responses alone."""
-    todo, skipped = [], []
-    resp = sweep.responses
-    curves = _curve_axes(sweep)
-    spectra_ok = all(r in resp for r in ("x_norm", "y_norm", "theta_norm"))
-    if not sweep.has_axis("w0_over_wg", 2):
-        skipped.append(("spectra", "no w0_over_wg axis with two or more values"))
-    elif sweep.has_axis("record", 2):
-        skipped.append(("spectra", "a record axis: one spectrum per record is not plotted"))
-    elif not spectra_ok:
-        skipped.append(("spectra", "the cube lacks x_norm, y_norm or theta_norm"))
-    elif len(curves) > 1:
-        skipped.append(("spectra", f"{len(curves)} curve axes ({', '.join(curves)}); a spectrum "
-                        "figure takes one besides pulse and w0_over_wg"))
-    else:
-        key = curves[0] if curves else None
-        todo.append(("pi_delta_family" if key == "Pi_delta" else "spectra", key))
-    if not sweep.has_axis("eta0", 2):
-        skipped.append(("rotation_vs_eta0", "no eta0 axis with two or more values"))
-    elif "theta_norm" not in resp:
-        skipped.append(("rotation_vs_eta0", "the cube lacks theta_norm"))
-    else:
-        others = _curve_axes(sweep, exclude=("eta0",))
-        if len(others) > 1:
-            skipped.append(("rotation_vs_eta0", f"{len(others)} curve axes besides eta0 "
-                            f"({', '.join(others)}); the figure takes one"))
-        else:
-            todo.append(("rotation_vs_eta0", others[0] if others else None))
-    if not sweep.has_axis("record", 2):
-        skipped.append(("correlation", "no record axis with two or more records"))
-    else:
-        extra = [k for k in sweep.axis_order
-                 if k not in ("record", "Pi_delta") and len(sweep.axes[k]) > 1]
-        if extra:
-            skipped.append(("correlation", f"axes besides record and Pi_delta: {', '.join(extra)}"))
-        else:
-            if all(r in resp for r in ("theta_m", "L_e")):
-                todo.append(("correlation_theta_vs_Le", None))
-            else:
-                skipped.append(("correlation_theta_vs_Le", "the cube lacks theta_m or L_e"))
-            if all(r in resp for r in ("theta_norm", "w0x_over_wg")):
-                todo.append(("correlation_rotation_vs_w0x", None))
-            else:
-                skipped.append(("correlation_rotation_vs_w0x",
-                                "the cube lacks theta_norm or w0x_over_wg"))
-    return todo, skipped
 
 
 def _fmt(v):
@@ -196,11 +138,6 @@ SYMBOLS_MD = ["## Symbols", "",
               "peak may lie outside the grid.", ""]
 
 
-# Families whose responses are the user's own bridge (metres, radians, margins per deck): the
-# generic figures are drawn for them whatever else is.
-GENERIC_FAMILIES = ("model-file", "multi-span")
-
-
 def _unique(name, used):
     name = _safe(name)
     while name in used:
@@ -210,7 +147,7 @@ def _unique(name, used):
 
 
 def generic_sections(sweep, args, used, written, skipped_all):
-    """The generic figures of one sweep (generic.plan_generic) and its tables: the fixed
+    """The generic figures of one sweep (planning.plan_generic) and its tables: the fixed
     parameters, every response over the grid, the unseating margins, the record table."""
     md = []
     fixed = [(k, _fmt(v), generic.axis_unit(sweep, k) or
@@ -219,10 +156,10 @@ def generic_sections(sweep, args, used, written, skipped_all):
     md += [f"## {sweep.name}: fixed parameters", "",
            _table(["parameter", "value", "unit"], fixed) if fixed else
            "None: the parameters on no axis take the family's defaults.", ""]
-    todo, skipped = generic.plan_generic(sweep)
+    todo, skipped = planning.plan_generic(sweep)
     for kind, reason in skipped:
         skipped_all.append((sweep.name, kind, reason))
-    drawn, margins = generic.drawn_quantities(sweep)
+    drawn, margins = planning.drawn_quantities(sweep)
     for kind, x in todo:
         if kind == "response_vs_intensity":
             name = _unique(f"{kind}_{sweep.name}", used)
@@ -364,7 +301,7 @@ def run(args):
               "yes" if s.complete else "no", _status_counts(s)) for s in sweeps]), ""]
     written, skipped_all, used = [], [], set()
     for sweep in sweeps:
-        todo, skipped = plan(sweep)
+        todo, skipped = planning.plan(sweep)
         for kind, reason in skipped:
             skipped_all.append((sweep.name, kind, reason))
         for kind, curve_key in todo:
@@ -384,7 +321,7 @@ def run(args):
             md += [f"## {sweep.name}: {KIND_TITLE[kind]}", "",
                    f"![{name}]({os.path.basename(path)})", "",
                    _tables_for(kind, sweep, rows, curve_key), ""]
-        if args.generic or not todo or sweep.family in GENERIC_FAMILIES:
+        if planning.draws_generic(sweep, todo, args.generic):
             md += generic_sections(sweep, args, used, written, skipped_all)
         md += fragility_sections(sweep, args, used, written)
         md += risk_sections(sweep, args, used, written)

@@ -2,10 +2,12 @@
 
 Every problem with an input file is raised as ReportError with one line naming the file."""
 import os
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import h5py
 import numpy as np
+
+from .sweep import Sweep
 
 
 class ReportError(Exception):
@@ -19,43 +21,6 @@ def as_text(value):
     if isinstance(value, np.ndarray) and value.shape == ():
         return as_text(value[()])
     return str(value)
-
-
-@dataclass
-class Sweep:
-    """One /sweeps/<name> group read into memory: axes, responses and per-cell status."""
-
-    path: str
-    name: str
-    family: str
-    complete: bool
-    axis_order: list
-    axes: dict  # key -> np.ndarray of float, or list of str for label axes
-    responses: dict  # name -> ndarray of shape = axis sizes in axis_order
-    status: np.ndarray
-    status_names: dict  # code -> name
-    fixed: dict
-    spec_text: str
-    response_attrs: dict  # name -> {attribute: value} of responses/<name>
-    axis_attrs: dict = field(default_factory=dict)  # key -> {units, symbol, description}
-    fixed_units: dict = field(default_factory=dict)  # fixed key -> unit ("1", "", "deg", ...)
-    extra: dict = field(default_factory=dict)  # optional groups (records/, correlation/)
-    # The intensity measure of a record sweep (attributes im_measure, im_description, im_units of
-    # the sweep group; empty without [records] scale_to or im).
-    im_attrs: dict = field(default_factory=dict)
-
-    def shape(self):
-        return tuple(len(self.axes[k]) for k in self.axis_order)
-
-    def has_axis(self, key, min_size=1):
-        return key in self.axes and len(self.axes[key]) >= min_size
-
-    def cells(self):
-        return int(np.prod(self.shape()))
-
-    def param(self, key):
-        """The value of a parameter fixed over the sweep, or None."""
-        return self.fixed.get(key)
 
 
 def _open_h5(path):

@@ -1,7 +1,8 @@
 """Figures and tables for any sweep of any family, from what the cube itself says: its axes with
 their units, its responses with theirs, per deck where a response carries a deck suffix _d<i>.
 
-- plan_generic(): which quantities are drawn and against which axes (pure, from the cube);
+- which quantities are drawn and against which axes is planning.plan_generic's (pure);
+- response_vs_intensity(): each drawn quantity against the intensity of each cell's record;
 - response_vs_axis(): each drawn quantity (a row of panels) against one numeric axis, one curve
   per value of a second axis, one column per combination of the others (small multiples, in
   pages of at most MAX_COLUMNS columns); over a record axis, one thin line per record with the
@@ -20,27 +21,13 @@ import matplotlib.lines
 import matplotlib.pyplot as plt
 import numpy as np
 
-from . import common, stats
+from . import common, planning, stats
 from .common import ZERO, unit_text
+from .planning import MARGINS, numeric_axes
 
-# Responses that describe the cell's excitation, its geometry or the solver rather than the
-# bridge's demand: listed in the table of responses, not drawn against the axes.
-DESCRIPTORS = {"a_g", "w_g", "L_e", "delta", "L", "pga", "pgv", "pgd", "arias", "T_m", "D5_95",
-               "w0x_over_wg", "band", "min_impact_separation"}
-# A normalised response and its dimensional twin: where the cube has both, the dimensional one
-# (in metres and radians, as an engineer reads their own bridge) is drawn.
-NORMALISED_TWIN = {"x_norm": "x_m", "y_norm": "y_m", "theta_norm": "theta_m",
-                   "theta_end_norm": "theta_end", "margin_norm": "margin_m"}
-# Residual displacements: in the table; the residual rotation is drawn.
-TABLE_ONLY = {"x_end", "y_end", "travel_end_m"}
-# Limit-state responses (ls_<name>, ls_<name>_demand): their demands repeat drawn responses and
-# their exceedances are the fragility figures' business; they stay in the tables.
-LIMIT_STATE_PREFIX = "ls_"
-# IDA responses (ida_<...>, per run and per limit state): drawn by the IDA figures (ida.py).
-IDA_PREFIX = "ida_"
+# The per-run responses of an IDA search (ida_..._NN): drawn by the IDA curves (ida.py), left
+# out of the table of responses.
 IDA_RUN = re.compile(r"^ida_.*_\d+$")
-MARGINS = ("margin_m", "margin_norm")
-DECK = re.compile(r"^(.+)_d(\d+)$")
 
 # Axis symbols for mathtext, beyond common.AXIS_LABEL.
 AXIS_SYMBOL = {"T_g": r"$T_g$", "w_g": r"$\omega_g$", "k_factor": r"$K$ factor",
@@ -65,20 +52,6 @@ QUANTITY_TEXT = {"x_m": "x_m", "y_m": "y_m", "theta_m": "θ_m", "x_end": "x_end"
 MAX_COLUMNS = 6
 # One panel's size in inches; a figure is as large as its panels and legend need.
 PANEL_IN = (3.3, 2.3)
-
-
-@dataclass
-class Quantity:
-    """One response of the cube, or one response per deck (x_m_d0, x_m_d1, ...)."""
-
-    base: str  # the response name without the deck suffix
-    names: list  # dataset names, one per deck (or one)
-    decks: list  # deck indices, or [None]
-    unit: str
-    description: str
-
-    def dataset(self, deck):
-        return self.names[self.decks.index(deck)]
 
 
 def axis_symbol(key):
@@ -124,93 +97,22 @@ def quantity_text(q, deck=None):
     return text + (f" (deck {deck})" if deck is not None else "")
 
 
-def quantities(sweep):
-    """The cube's responses as quantities, in stored order, decks merged."""
-    out = {}
-    order = list(sweep.responses)
-    for name in order:
-        m = DECK.match(name)
-        base, deck = (m.group(1), int(m.group(2))) if m else (name, None)
-        attrs = sweep.response_attrs.get(name, {})
-        q = out.setdefault(base, Quantity(base, [], [], str(attrs.get("units", "")),
-                                          str(attrs.get("description", ""))))
-        q.names.append(name)
-        q.decks.append(deck)
-    return list(out.values())
-
-
-def drawn_quantities(sweep):
-    """(drawn, margins): the quantities drawn against the axes, and the unseating margins (drawn
-    by unseating_margins). A normalised response is drawn only when its dimensional twin is
-    missing; theta_norm_max only without per-deck rotations."""
-    qs = quantities(sweep)
-    bases = {q.base for q in qs}
-    drawn, margins = [], []
-    for q in qs:
-        if (q.base in DESCRIPTORS or q.base in TABLE_ONLY or q.base.startswith(LIMIT_STATE_PREFIX)
-                or q.base.startswith(IDA_PREFIX)):
-            continue
-        if NORMALISED_TWIN.get(q.base) in bases:
-            continue
-        if q.base == "theta_norm_max" and bases & {"theta_m", "theta_norm"}:
-            continue
-        if q.base in MARGINS:
-            margins.append(q)
-            continue
-        if not np.any(np.isfinite(np.concatenate(
-                [np.ravel(sweep.responses[n]) for n in q.names]))):
-            continue  # not computed in any cell (e.g. a response this family leaves NaN)
-        drawn.append(q)
-    return drawn, margins
-
-
-def numeric_axes(sweep):
-    """Axes with numbers and two or more values: the abscissas of the generic figures."""
-    return [k for k in sweep.axis_order
-            if sweep.has_axis(k, 2) and not isinstance(sweep.axes[k], list)]
-
-
 def intensity_of(sweep):
     """(values per cell, axis label, table text) of the intensity each cell of a record sweep
-    felt: the stored `im` (the measure as applied, records scaled to stripes), else the cell's
-    PGA (`pga`, or `a_g`, which is the PGA of a record), else the record table's PGA; None
-    without a record axis of two or more records."""
-    if not sweep.has_axis("record", 2):
+    felt, from planning.intensity_source: the stored `im`, else the cell's PGA (`pga`, `a_g`),
+    else the record table's PGA; None without one."""
+    source = planning.intensity_source(sweep)
+    if source is None:
         return None
-    for name, label, text in (("im", "IM", "IM"), ("pga", "PGA", "PGA"), ("a_g", "PGA", "PGA")):
-        if name in sweep.responses and np.any(np.isfinite(sweep.responses[name])):
-            unit = unit_text(str(sweep.response_attrs.get(name, {}).get("units", "")))
-            return (np.asarray(sweep.responses[name], dtype=float),
-                    label + (f" [{unit}]" if unit else ""), text)
-    rec = sweep.extra.get("records")
-    if rec and "pga_mps2" in rec:
-        pga = np.asarray(rec["pga_mps2"], dtype=float)
+    if source == "records":
+        pga = np.asarray(sweep.extra["records"]["pga_mps2"], dtype=float)
         shape = [1] * len(sweep.axis_order)
         shape[sweep.axis_order.index("record")] = len(pga)
         return np.broadcast_to(pga.reshape(shape), sweep.shape()), "PGA [m/s²]", "PGA"
-    return None
-
-
-def plan_generic(sweep):
-    """[(kind, x_axis)] of the generic figures and [(kind, reason)] of those not made."""
-    todo, skipped = [], []
-    drawn, margins = drawn_quantities(sweep)
-    xs = numeric_axes(sweep)
-    if drawn and intensity_of(sweep) is not None:
-        todo.append(("response_vs_intensity", None))
-    if not xs:
-        skipped.append(("response_vs_axis", "no numeric axis with two or more values"))
-        return todo, skipped
-    if drawn:
-        todo += [("response_vs_axis", x) for x in xs]
-    else:
-        skipped.append(("response_vs_axis", "no response of the bridge's demand in the cube"))
-    if margins:
-        todo += [("unseating_margins", x) for x in xs]
-    else:
-        skipped.append(("unseating_margins", "the cube stores no unseating margin "
-                        "(give seat_over_L)"))
-    return todo, skipped
+    text = "IM" if source == "im" else "PGA"
+    unit = unit_text(str(sweep.response_attrs.get(source, {}).get("units", "")))
+    return (np.asarray(sweep.responses[source], dtype=float),
+            text + (f" [{unit}]" if unit else ""), text)
 
 
 def response_vs_intensity(sweep, qs, out_dir, name, pdf):

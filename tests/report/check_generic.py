@@ -155,12 +155,12 @@ def check_curves(paths):
     """The first curve of the first panel of every response figure against the cube."""
     sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
                                     "scripts"))
-    from skewbridge_report import common, data, generic  # noqa: E402
+    from skewbridge_report import common, data, generic, planning  # noqa: E402
     import matplotlib.pyplot as plt  # noqa: E402
     for path in paths:
         sweep = data.load_cube(path)[0]
-        drawn, _ = generic.drawn_quantities(sweep)
-        for x in generic.numeric_axes(sweep):
+        drawn, _ = planning.drawn_quantities(sweep)
+        for x in planning.numeric_axes(sweep):
             layout = generic.layouts(sweep, x)[0]
             q = drawn[0]
             captured = {}

@@ -1,0 +1,212 @@
+#!/usr/bin/python3
+"""The report's planning (scripts/skewbridge_report/planning.py) on sweeps built in memory: one
+row per sweep shape, with the figures each one must get and the ones it must not, with the
+reason, written out by hand from the rules the README states ("It looks at each sweep's axes
+and draws what they support"): a spectrum takes w0/w_g with two or more values and one curve
+axis besides pulse; Pi_delta as that axis is the Π_δ family; rotation against η_0 takes an
+eta0 axis and one curve axis besides; the correlations take records over at most Pi_delta; the
+generic figures draw every response of the bridge's demand (not descriptors, limit states,
+IDA runs, residual displacements, nor a normalised twin of a dimensional one, nor a response
+computed in no cell) against every numeric axis, the margins apart, and against the intensity
+of each record. No MPI, no HDF5 file, no figure.
+
+usage: planning_test.py SOURCE_ROOT"""
+import os
+import sys
+import unittest
+
+import numpy as np
+
+ROOT = sys.argv.pop(1) if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..",
+                                                                "..")
+sys.dont_write_bytecode = True
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+from skewbridge_report import planning  # noqa: E402
+from skewbridge_report.sweep import Sweep  # noqa: E402
+
+NUMBERS = {"w0_over_wg": 12, "a_deg": 4, "eta0": 6, "Pi_delta": 3, "W0_over_w0": 4, "mu": 2,
+           "k_factor": 2, "T_g": 5, "im_g": 3, "seat_over_L": 1}
+LABELS = {"pulse": ["cosine", "sine"], "record": ["r1", "r2", "r3"]}
+
+
+def sweep(axes, responses, family="subsystem", nan=(), extra=None):
+    """A sweep over `axes` ({key: number of values} or a list of labels), every response 1.0 in
+    every cell except those in `nan` (computed in no cell)."""
+    values = {}
+    for key, n in axes.items():
+        values[key] = list(n) if isinstance(n, list) else np.linspace(1.0, 2.0, n)
+    shape = tuple(len(v) for v in values.values())
+    return Sweep(path="memory", name="s", family=family, complete=True,
+                 axis_order=list(axes), axes=values,
+                 responses={r: np.full(shape, np.nan if r in nan else 1.0) for r in responses},
+                 status=np.zeros(shape, dtype=int), status_names={0: "ok"}, fixed={},
+                 spec_text="", response_attrs={r: {} for r in responses},
+                 extra=extra or {})
+
+
+SPECTRA = ["x_norm", "y_norm", "theta_norm", "impacts"]
+RECORDS = ["theta_m", "L_e", "theta_norm", "w0x_over_wg", "impacts", "a_g"]
+NO_ETA0 = ("rotation_vs_eta0", "no eta0 axis with two or more values")
+NO_RECORDS = ("correlation", "no record axis with two or more records")
+NO_W0 = ("spectra", "no w0_over_wg axis with two or more values")
+W = NUMBERS["w0_over_wg"]
+
+# (what, axes, responses, figures made, figures not made with the reason)
+PLAN = [
+    ("the default: skew angles, both pulses",
+     {"pulse": LABELS["pulse"], "a_deg": 4, "w0_over_wg": W}, SPECTRA,
+     [("spectra", "a_deg")], [NO_ETA0, NO_RECORDS]),
+    ("one curve: pulse and w0/w_g alone", {"pulse": LABELS["pulse"], "w0_over_wg": W}, SPECTRA,
+     [("spectra", None)], [NO_ETA0, NO_RECORDS]),
+    ("an axis of one value is no curve axis",
+     {"a_deg": 1, "w0_over_wg": W, "eta0": 1}, SPECTRA,
+     [("spectra", None)], [NO_ETA0, NO_RECORDS]),
+    ("Pi_delta as the curve axis: the family",
+     {"pulse": LABELS["pulse"], "Pi_delta": 3, "w0_over_wg": W}, SPECTRA,
+     [("pi_delta_family", "Pi_delta")], [NO_ETA0, NO_RECORDS]),
+    ("two curve axes: no spectrum; rotation against eta0 per skew angle",
+     {"a_deg": 4, "eta0": 6, "w0_over_wg": W}, SPECTRA,
+     [("rotation_vs_eta0", "a_deg")],
+     [("spectra", "2 curve axes (a_deg, eta0); a spectrum figure takes one besides pulse and "
+       "w0_over_wg"), NO_RECORDS]),
+    ("Fig. 7 of the paper: eta0 per Omega0/w0",
+     {"eta0": 6, "W0_over_w0": 4, "w0_over_wg": W}, SPECTRA,
+     [("rotation_vs_eta0", "W0_over_w0")],
+     [("spectra", "2 curve axes (eta0, W0_over_w0); a spectrum figure takes one besides pulse "
+       "and w0_over_wg"), NO_RECORDS]),
+    ("eta0 alone: one rotation curve, the spectra per eta0",
+     {"eta0": 6, "w0_over_wg": W}, SPECTRA,
+     [("spectra", "eta0"), ("rotation_vs_eta0", None)], [NO_RECORDS]),
+    ("eta0 without w0/w_g", {"eta0": 6}, SPECTRA,
+     [("rotation_vs_eta0", None)], [NO_W0, NO_RECORDS]),
+    ("two curve axes besides eta0",
+     {"eta0": 6, "W0_over_w0": 4, "mu": 2, "w0_over_wg": W}, SPECTRA, [],
+     [("spectra", "3 curve axes (eta0, W0_over_w0, mu); a spectrum figure takes one besides "
+       "pulse and w0_over_wg"),
+      ("rotation_vs_eta0", "2 curve axes besides eta0 (W0_over_w0, mu); the figure takes one"),
+      NO_RECORDS]),
+    ("w0/w_g of one value", {"a_deg": 4, "w0_over_wg": 1}, SPECTRA, [],
+     [NO_W0, NO_ETA0, NO_RECORDS]),
+    ("a cube without the normalised maxima",
+     {"eta0": 6, "w0_over_wg": W}, ["x_norm", "y_norm", "impacts"], [],
+     [("spectra", "the cube lacks x_norm, y_norm or theta_norm"),
+      ("rotation_vs_eta0", "the cube lacks theta_norm"), NO_RECORDS]),
+    ("the pilot study: records by Pi_delta",
+     {"record": LABELS["record"], "Pi_delta": 3}, RECORDS,
+     [("correlation_theta_vs_Le", None), ("correlation_rotation_vs_w0x", None)],
+     [NO_W0, NO_ETA0]),
+    ("records without L_e and w0x/w_g",
+     {"record": LABELS["record"], "Pi_delta": 3}, ["theta_m", "theta_norm"], [],
+     [NO_W0, NO_ETA0, ("correlation_theta_vs_Le", "the cube lacks theta_m or L_e"),
+      ("correlation_rotation_vs_w0x", "the cube lacks theta_norm or w0x_over_wg")]),
+    ("records over w0/w_g: one spectrum per record is not drawn",
+     {"record": LABELS["record"], "w0_over_wg": W}, SPECTRA + RECORDS, [],
+     [("spectra", "a record axis: one spectrum per record is not plotted"), NO_ETA0,
+      ("correlation", "axes besides record and Pi_delta: w0_over_wg")]),
+    ("a single record", {"record": ["r1"], "Pi_delta": 3}, RECORDS, [],
+     [NO_W0, NO_ETA0, NO_RECORDS]),
+]
+
+OWN = ["x_m", "y_m", "theta_m", "impacts", "x_norm", "theta_norm", "x_end", "theta_end",
+       "L_e", "pga", "ls_unseating", "ls_unseating_demand", "ida_im_00", "margin_m_d0",
+       "margin_m_d1", "margin_norm_d0", "theta_norm_max"]
+DRAWN = ["x_m", "y_m", "theta_m", "impacts", "theta_end"]
+NO_MARGIN = ("unseating_margins", "the cube stores no unseating margin (give seat_over_L)")
+NO_NUMERIC = ("response_vs_axis", "no numeric axis with two or more values")
+RECORD_TABLE = {"records": {"pga_mps2": np.array([1.0, 2.0, 3.0])}}
+
+# (what, axes, responses, responses computed in no cell, extra groups, family, drawn
+# quantities, margins, figures made, figures not made with the reason)
+GENERIC = [
+    ("one's own bridge over skew and stiffness", {"a_deg": 4, "k_factor": 2}, OWN, (), None,
+     "model-file", DRAWN, ["margin_m"],
+     [("response_vs_axis", "a_deg"), ("response_vs_axis", "k_factor"),
+      ("unseating_margins", "a_deg"), ("unseating_margins", "k_factor")], []),
+    ("label axes only", {"pulse": LABELS["pulse"], "record": ["r1"]}, OWN, (), None,
+     "model-file", DRAWN, ["margin_m"], [], [NO_NUMERIC]),
+    ("records by seat: the intensity is the stored pga",
+     {"record": LABELS["record"], "seat_over_L": 1, "T_g": 5},
+     ["x_m", "theta_m", "pga", "im"], ["im"], None, "model-file", ["x_m", "theta_m"], [],
+     [("response_vs_intensity", None), ("response_vs_axis", "T_g")], [NO_MARGIN]),
+    ("records with no intensity stored per cell: the record table's PGA",
+     {"record": LABELS["record"], "im_g": 3}, ["x_m", "margin_m", "a_g"], ["a_g"],
+     RECORD_TABLE, "model-file", ["x_m"], ["margin_m"],
+     [("response_vs_intensity", None), ("response_vs_axis", "im_g"),
+      ("unseating_margins", "im_g")], []),
+    ("records with no intensity at all", {"record": LABELS["record"], "im_g": 3}, ["x_m"], (),
+     None, "model-file", ["x_m"], [], [("response_vs_axis", "im_g")], [NO_MARGIN]),
+    ("nothing of the bridge's demand: descriptors, limit states, a response never computed",
+     {"a_deg": 4}, ["L_e", "w0x_over_wg", "ls_unseating", "ida_capacity_unseating", "y_m"],
+     ["y_m"], None, "model-file", [], [], [],
+     [("response_vs_axis", "no response of the bridge's demand in the cube"), NO_MARGIN]),
+    ("normalised maxima alone are drawn, and the rotation envelope of the decks",
+     {"Pi_delta": 3}, ["x_norm", "theta_norm_max", "margin_norm"], (), None, "multi-span",
+     ["x_norm", "theta_norm_max"], ["margin_norm"],
+     [("response_vs_axis", "Pi_delta"), ("unseating_margins", "Pi_delta")], []),
+]
+
+# (what, axes, responses, responses computed in no cell, extra groups, where the intensity of
+# each cell comes from)
+R3 = {"record": LABELS["record"], "im_g": 3}
+INTENSITY = [
+    ("the measure as applied first", R3, ["im", "pga", "a_g"], (), RECORD_TABLE, "im"),
+    ("then the cell's PGA", R3, ["im", "pga", "a_g"], ["im"], RECORD_TABLE, "pga"),
+    ("then a_g, the PGA of a record", R3, ["im", "a_g"], ["im"], RECORD_TABLE, "a_g"),
+    ("then the record table", R3, ["im", "pga", "a_g"], ["im", "pga", "a_g"], RECORD_TABLE,
+     "records"),
+    ("none stored", R3, ["im"], ["im"], None, None),
+    ("no record axis", {"im_g": 3}, ["im"], (), RECORD_TABLE, None),
+    ("one record", {"record": ["r1"], "im_g": 3}, ["im"], (), RECORD_TABLE, None),
+]
+
+# (what, family, figures of plan(), --generic, generic figures drawn)
+DRAWS_GENERIC = [
+    ("a spectrum sweep gets its spectra alone", "subsystem", [("spectra", None)], False, False),
+    ("--generic draws them for any sweep", "subsystem", [("spectra", None)], True, True),
+    ("a sweep with no spectrum figure gets the generic ones", "pilot-bridge", [], False, True),
+    ("a model file: always", "model-file", [("spectra", None)], False, True),
+    ("several decks: always", "multi-span", [("rotation_vs_eta0", None)], False, True),
+]
+
+
+class Planning(unittest.TestCase):
+    def test_plan(self):
+        for what, axes, responses, todo, skipped in PLAN:
+            with self.subTest(what):
+                made, not_made = planning.plan(sweep(axes, responses))
+                self.assertEqual(made, todo)
+                self.assertEqual(not_made, skipped)
+
+    def test_plan_generic(self):
+        for what, axes, responses, nan, extra, family, drawn, margins, todo, skipped in GENERIC:
+            with self.subTest(what):
+                s = sweep(axes, responses, family, nan, extra)
+                got_drawn, got_margins = planning.drawn_quantities(s)
+                self.assertEqual([q.base for q in got_drawn], drawn)
+                self.assertEqual([q.base for q in got_margins], margins)
+                self.assertEqual(planning.plan_generic(s), (todo, skipped))
+
+    def test_intensity_source(self):
+        for what, axes, responses, nan, extra, want in INTENSITY:
+            with self.subTest(what):
+                s = sweep(axes, responses, "model-file", nan, extra)
+                self.assertEqual(planning.intensity_source(s), want)
+
+    def test_decks_merge(self):
+        """A response per deck is one quantity with its datasets in deck order."""
+        s = sweep({"a_deg": 2}, ["x_m_d0", "x_m_d1", "x_m_d2", "impacts"], "multi-span")
+        x, impacts = planning.quantities(s)
+        self.assertEqual((x.base, x.names, x.decks), ("x_m", ["x_m_d0", "x_m_d1", "x_m_d2"],
+                                                      [0, 1, 2]))
+        self.assertEqual(x.dataset(1), "x_m_d1")
+        self.assertEqual((impacts.base, impacts.decks), ("impacts", [None]))
+
+    def test_draws_generic(self):
+        for what, family, todo, forced, want in DRAWS_GENERIC:
+            with self.subTest(what):
+                s = sweep({"a_deg": 2}, ["x_m"], family)
+                self.assertEqual(planning.draws_generic(s, todo, forced), want)
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=1)
