@@ -16,7 +16,7 @@ packages=(
   valgrind
   # post-processing scripts (run with /usr/bin/python3)
   python3 python3-numpy python3-h5py python3-matplotlib python3-scipy python3-xarray
-  python3-h5netcdf
+  python3-h5netcdf python3-pyflakes
 )
 
 if [ "$(id -u)" -ne 0 ]; then

@@ -63,9 +63,8 @@ def main():
             assert int(h["n_exceeded"][at]) == int(z.sum()), "%s %s: n_exceeded" % (name, idx)
             assert set(np.unique(z)) <= {0.0, 1.0}, "exceedance not 0/1"
             if stripe_axis:
-                k = axes.index(stripe_axis)
                 zs, xs = z_all[sel], im[sel]
-                # the stripe axis is the k'th of the remaining (non-combination) dimensions
+                # the stripe axis is the ks'th of the remaining (non-combination) dimensions
                 rest = [a for a in axes if a not in combo_axes]
                 ks = rest.index(stripe_axis)
                 for s in range(len(g["axes/" + stripe_axis])):
