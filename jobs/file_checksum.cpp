@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "solver/common/error.h"
+#include "solver/common/file_kind.h"
 
 namespace skewbridge::jobs {
 namespace {
@@ -39,7 +40,7 @@ std::string Finish(EVP_MD_CTX* ctx) {
 FileChecksum ChecksumFile(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) {
-    throw InputError::AtLine(path.string(), 0, "cannot read the file to checksum it");
+    throw InputError::AtLine(path.string(), 0, WhyUnreadable(path));
   }
   DigestContext ctx = NewContext();
   // Uninitialised: zeroing a block costs as much as hashing it, and most records are smaller.

@@ -8,6 +8,7 @@
 #include "records/ground_motion.h"
 #include "records/readers/readers.h"
 #include "solver/common/error.h"
+#include "solver/common/file_kind.h"
 
 namespace skewbridge::records {
 namespace {
@@ -183,7 +184,7 @@ GroundMotion ParseRecord(std::string_view text, std::string_view source,
 GroundMotion ReadRecord(const std::filesystem::path& path, const ReadOptions& options) {
   std::ifstream in(path, std::ios::binary);
   if (!in) {
-    throw InputError::AtLine(path.string(), 0, "cannot open the record file");
+    throw InputError::AtLine(path.string(), 0, "record file: " + WhyUnreadable(path));
   }
   std::ostringstream buffer;
   buffer << in.rdbuf();

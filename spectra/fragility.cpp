@@ -124,11 +124,30 @@ LognormalFit FitLognormalMle(std::span<const double> im, std::span<const double>
                                n_all, min_x),
                    n_all, z_all);
   }
-  if (min_x_exc >= max_x_non) {
-    return Refused(fmt::format("the stripes separate (no exceedance below IM = {:.6g}, every "
-                               "cell exceeded above {:.6g}): beta tends to 0 and the median is "
-                               "anywhere between them",
+  if (min_x_exc > max_x_non) {
+    return Refused(fmt::format("the stripes separate (no exceedance up to IM = {:.6g}, every "
+                               "cell exceeded from IM = {:.6g} on): beta tends to 0 and the "
+                               "median is anywhere between them",
                                max_x_non, min_x_exc),
+                   n_all, z_all);
+  }
+  if (min_x_exc == max_x_non) {
+    // One IM level holds both outcomes; below it none exceeded, above it all: the steepest
+    // curve through that level fits best, and the words say only what lies on each side.
+    double n_at = 0.0, z_at = 0.0;
+    for (std::size_t i = 0; i < im.size(); ++i) {
+      if (im[i] == min_x_exc && trials[i] > 0.0) {
+        n_at += trials[i];
+        z_at += exceeded[i];
+      }
+    }
+    std::string sides;
+    if (min_x < min_x_exc) sides += ", none below it";
+    if (max_x > min_x_exc) sides += ", every cell above it";
+    return Refused(fmt::format("the stripes separate at IM = {:.6g} ({} of {} exceeded there{}): "
+                               "beta tends to 0 and the median is at that level",
+                               min_x_exc, static_cast<std::int64_t>(z_at),
+                               static_cast<std::int64_t>(n_at), sides),
                    n_all, z_all);
   }
 

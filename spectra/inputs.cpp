@@ -6,6 +6,7 @@
 
 #include "records/record_set.h"
 #include "solver/common/error.h"
+#include "solver/common/file_kind.h"
 #include "solver/model/model_file.h"
 #include "spectra/study.h"
 
@@ -50,7 +51,15 @@ std::vector<GridInput> GridInputFiles(const CellGrid& grid) {
   for (const std::string& label : wanted) {
     for (const records::RecordEntry& entry : set->records) {
       // An unknown label adds no file: the evaluator names it with the set's labels.
-      if (records::RecordLabel(entry) == label) add("record", entry.file);
+      if (records::RecordLabel(entry) != label) continue;
+      std::error_code ec;
+      if (!std::filesystem::is_regular_file(entry.file, ec)) {
+        // Named at the set's line of the record, so that the set can be mended there.
+        throw InputError::AtLine(
+            set->manifest.string(), entry.line,
+            "record '" + label + "': " + WhyUnreadable(entry.file) + ": " + entry.file.string());
+      }
+      add("record", entry.file);
     }
   }
   return out;

@@ -20,7 +20,9 @@ struct GridInput {
 
 /// The files of `grid`, in that order, each once. A model file or a record set that does not
 /// load contributes no more files: the evaluator reports it with its context.
-/// @throws InputError when the model file names an excitation file that does not exist.
+/// @throws InputError when the model file names an excitation file that does not exist, or
+/// when a record the grid names is not a readable file ("SET:LINE: record 'LABEL': no such
+/// file: PATH", the line of its [[record]] table).
 std::vector<GridInput> GridInputFiles(const CellGrid& grid);
 
 }  // namespace skewbridge::spectra

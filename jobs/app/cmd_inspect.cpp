@@ -45,6 +45,22 @@ std::optional<std::vector<double>> ReadIfPresent(const std::string& path, const 
   }
 }
 
+// A string dataset of a sweep group (one entry per combination), or nothing when absent.
+std::vector<std::string> ReadStringsIfPresent(const std::string& path, const std::string& sweep,
+                                              const std::string& dataset) {
+  try {
+    return jobs::h5::ReadSweepStrings(path, sweep, dataset);
+  } catch (const InputError&) {
+    return {};
+  }
+}
+
+// Why a combination has no fit: its stored reason (fragility/<ls>/reason).
+std::string NoFitReason(const std::vector<std::string>& reasons, std::size_t row) {
+  if (row < reasons.size() && !reasons[row].empty()) return reasons[row];
+  return "no reason stored";
+}
+
 // Coordinate k of an axis as printed: the label, or the number to 6 digits.
 std::string Coordinate(const jobs::h5::AxisSummary& axis, std::size_t k) {
   if (!axis.labels.empty()) {
@@ -197,6 +213,7 @@ bool PrintIdaLimitStates(const std::string& path, const jobs::h5::SweepSummary& 
       std::printf("    %-18s (not fitted)\n", name.c_str());
       continue;
     }
+    const std::vector<std::string> reasons = ReadStringsIfPresent(path, s.name, g + "reason");
     for (std::size_t row = 0; row < theta->size(); ++row) {
       std::string label;
       std::size_t rest = row;
@@ -207,9 +224,9 @@ bool PrintIdaLimitStates(const std::string& path, const jobs::h5::SweepSummary& 
       }
       if (label.empty()) label = "-";
       if (!std::isfinite((*theta)[row])) {
-        std::printf("    %-18s %-22s %8.0f %9.0f %9.0f  no fit (why: fragility/%s/reason)\n",
-                    name.c_str(), label.c_str(), (*n)[row], (*censored)[row],
-                    too_far ? (*too_far)[row] : 0.0, name.c_str());
+        std::printf("    %-18s %-22s %8.0f %9.0f %9.0f  no fit: %s\n", name.c_str(), label.c_str(),
+                    (*n)[row], (*censored)[row], too_far ? (*too_far)[row] : 0.0,
+                    NoFitReason(reasons, row).c_str());
         continue;
       }
       std::printf("    %-18s %-22s %8.0f %9.0f %9.0f %12.6g %10.6g\n", name.c_str(), label.c_str(),
@@ -305,6 +322,7 @@ void PrintLimitStates(const std::string& path, const jobs::h5::SweepSummary& s) 
       std::printf("    %-18s (not fitted)\n", name.c_str());
       continue;
     }
+    const std::vector<std::string> reasons = ReadStringsIfPresent(path, s.name, g + "reason");
     std::size_t combinations = 1;
     for (const jobs::h5::AxisSummary* a : others) combinations *= a->size;
     for (std::size_t row = 0; row < theta->size(); ++row) {
@@ -318,9 +336,9 @@ void PrintLimitStates(const std::string& path, const jobs::h5::SweepSummary& s) 
           rest /= size;
         }
       }
-      if (!std::isfinite((*theta)[row])) {  // its reason is a string: h5py reads it
-        std::printf("    %-18s %-22s %8.0f %9.0f  no fit (why: fragility/%s/reason)\n",
-                    name.c_str(), label.c_str(), (*n)[row], (*k)[row], name.c_str());
+      if (!std::isfinite((*theta)[row])) {
+        std::printf("    %-18s %-22s %8.0f %9.0f  no fit: %s\n", name.c_str(), label.c_str(),
+                    (*n)[row], (*k)[row], NoFitReason(reasons, row).c_str());
         continue;
       }
       std::printf("    %-18s %-22s %8.0f %9.0f %12.6g %10.6g %12.6g %12.6g\n", name.c_str(),

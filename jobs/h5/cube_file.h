@@ -195,6 +195,11 @@ CubeData ReadCubeData(const std::filesystem::path& path, const std::string& swee
 std::vector<double> ReadSweepArray(const std::filesystem::path& path, const std::string& sweep,
                                    const std::string& dataset);
 
+/// Reads a one-dimensional string dataset of a sweep group, e.g. "fragility/unseating/reason".
+/// @throws InputError when the file, sweep or dataset is absent.
+std::vector<std::string> ReadSweepStrings(const std::filesystem::path& path,
+                                          const std::string& sweep, const std::string& dataset);
+
 /// The name of a response's second link in the sweep group, beside the axis scales (the
 /// xarray view): the response's name, or "response_" + name when an axis or a member of the
 /// sweep group (axes, status, records, ...) has that name. responses/<name> always holds it.

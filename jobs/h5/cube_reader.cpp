@@ -7,9 +7,9 @@
 namespace skewbridge::jobs::h5 {
 namespace {
 
-std::vector<double> ReadSweepArrayIn(const std::filesystem::path& path, const std::string& sweep,
-                                     const std::string& dataset) {
-  const Datasets d = OpenLayout(path.string(), sweep, false, nullptr);
+// The dataset `dataset` of a sweep group, opened, or absent with a message naming it.
+Id OpenSweepDataset(const std::filesystem::path& path, const Datasets& d, const std::string& sweep,
+                    const std::string& dataset) {
   // H5Lexists needs every intermediate group to exist, so walk the path one link at a time.
   bool found = !dataset.empty();
   for (std::size_t slash = 0; found && slash != std::string::npos;) {
@@ -20,12 +20,25 @@ std::vector<double> ReadSweepArrayIn(const std::filesystem::path& path, const st
     throw InputError::AtLine(path.string(), 0,
                              "sweep '" + sweep + "' holds no dataset '" + dataset + "'");
   }
-  Id ds = OpenDataset(d.group.get(), dataset);
+  return OpenDataset(d.group.get(), dataset);
+}
+
+std::vector<double> ReadSweepArrayIn(const std::filesystem::path& path, const std::string& sweep,
+                                     const std::string& dataset) {
+  const Datasets d = OpenLayout(path.string(), sweep, false, nullptr);
+  Id ds = OpenSweepDataset(path, d, sweep, dataset);
   std::size_t n = 1;
   for (hsize_t extent : Shape(ds.get())) n *= extent;
   std::vector<double> out(n);
   ReadAll(ds.get(), H5T_NATIVE_DOUBLE, out.data());
   return out;
+}
+
+std::vector<std::string> ReadSweepStringsIn(const std::filesystem::path& path,
+                                            const std::string& sweep, const std::string& dataset) {
+  const Datasets d = OpenLayout(path.string(), sweep, false, nullptr);
+  Id ds = OpenSweepDataset(path, d, sweep, dataset);
+  return ReadStrings(ds.get());
 }
 
 std::vector<SweepSummary> SummarizeCubeIn(const std::filesystem::path& path) {
@@ -173,6 +186,11 @@ CubeData ReadCubeDataIn(const std::filesystem::path& path, const std::string& sw
 std::vector<double> ReadSweepArray(const std::filesystem::path& path, const std::string& sweep,
                                    const std::string& dataset) {
   return NamingFile(path, [&] { return ReadSweepArrayIn(path, sweep, dataset); });
+}
+
+std::vector<std::string> ReadSweepStrings(const std::filesystem::path& path,
+                                          const std::string& sweep, const std::string& dataset) {
+  return NamingFile(path, [&] { return ReadSweepStringsIn(path, sweep, dataset); });
 }
 
 std::vector<SweepSummary> SummarizeCube(const std::filesystem::path& path) {

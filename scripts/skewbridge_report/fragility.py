@@ -83,12 +83,11 @@ def fragility_curves(sweep, out_dir, name, pdf):
                 ax.plot(x, p, color=color, ls=ls_style)
                 ax.fill_between(x, plo, phi, color=color, alpha=0.15, lw=0)
             else:
-                notes.append(as_text(g["reason"][flat]))
+                notes.append((label, as_text(g["reason"][flat])))
         if notes:
-            # Where the curves are not: left of the steps, at mid height; the reasons are in
-            # the table.
-            ax.text(0.02, 0.62, f"no fit for {len(notes)} of {len(shown)}:\n"
-                    + "\n".join(textwrap.wrap(_short(notes[0]), 26)), transform=ax.transAxes,
+            # Where the curves are not: left of the steps, at mid height; each combination with
+            # its own reason (the full reasons are in the table).
+            ax.text(0.02, 0.62, _no_fit_text(notes, len(shown)), transform=ax.transAxes,
                     va="top", fontsize=8, color="0.3")
         common.log_axis(ax, "x")
         ax.set_ylim(-0.05, 1.05)
@@ -108,6 +107,18 @@ def fragility_curves(sweep, out_dir, name, pdf):
 def _short(reason):
     """The first clause of a reason: what happened, without the numbers that follow."""
     return reason.split(" (")[0].split(":")[0]
+
+
+def _no_fit_text(notes, shown):
+    """The words of a panel for its combinations without a fit: the reason once when they share
+    it, else each combination's label with its own reason. `notes`: (label, reason) pairs."""
+    head = f"no fit for {len(notes)} of {shown}:"
+    short = [_short(reason) for _, reason in notes]
+    if len(set(short)) == 1:
+        return head + "\n" + "\n".join(textwrap.wrap(short[0], 26))
+    return head + "\n" + "\n".join(
+        textwrap.shorten(f"{label}: {why}", 40, placeholder="…")
+        for (label, _), why in zip(notes, short))
 
 
 def _cells_of(sweep, fa, ls, idx, order):

@@ -1,5 +1,7 @@
 #include "solver/common/file_kind.h"
 
+#include <system_error>
+
 namespace skewbridge {
 
 bool HasHdf5Signature(std::string_view bytes) {
@@ -12,6 +14,14 @@ bool HasHdf5Signature(std::string_view bytes) {
     }
   }
   return false;
+}
+
+std::string WhyUnreadable(const std::filesystem::path& path) {
+  std::error_code ec;
+  const std::filesystem::file_status status = std::filesystem::status(path, ec);
+  if (status.type() == std::filesystem::file_type::not_found) return "no such file";
+  if (status.type() == std::filesystem::file_type::directory) return "a folder, not a file";
+  return "cannot be opened for reading (no permission, or not a regular file)";
 }
 
 }  // namespace skewbridge

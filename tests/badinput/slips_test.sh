@@ -30,7 +30,7 @@ model="$root/docs/examples/subsystem.toml"
 cp "$model" model.toml
 
 # --- the command line, every sub-command ---
-commands="version, run, modes, sweep, inspect, records"
+commands="version, run, modes, sweep, inspect, records, risk"
 expect "unknown sub-command 'swep'; allowed: $commands; did you mean \`sweep\`?" swep x
 expect "unknown sub-command 'frobnicate'; allowed: $commands" frobnicate
 expect "unknown option --bogus; allowed: --help, -h, --version, -V" --bogus
@@ -135,6 +135,10 @@ printf 'name = "s"\n[[record]]\nfile = "recs/NIS090.AT2"\n[[record]]\nfile = "re
 printf '[sweep]\nname = "r"\nfamily = "pilot-bridge"\n[records]\nset = "labels.toml"\n[axes]\nrecord = ["LOMA"]\nPi_delta = [1.0]\n' > set_spec.toml
 expect "set_spec.toml: record: label 'LOMA' is not in the record set labels.toml of 2 record(s); nearest: LOMAP, NIS090.AT2" \
   sweep set_spec.toml --out out.h5
+# A set entry whose file is missing: "no such file" at the set's line of that record.
+printf 'name = "s"\n[[record]]\nfile = "recs/NIS090.AT2"\n[[record]]\nfile = "recs/GONE.AT2"\nlabel = "GONE"\n' > gone.toml
+printf '[sweep]\nname = "r"\nfamily = "pilot-bridge"\n[records]\nset = "gone.toml"\n[axes]\nrecord = ["GONE"]\nPi_delta = [1.0]\n' > gone_spec.toml
+expect "gone.toml:4: record 'GONE': no such file: recs/GONE.AT2" sweep gone_spec.toml --out out.h5
 
 # Under mpiexec the command line fails on every rank: one line, exit 2.
 status=0

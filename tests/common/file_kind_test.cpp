@@ -2,7 +2,10 @@
 #include "solver/common/file_kind.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 namespace skewbridge {
@@ -22,6 +25,18 @@ TEST(HasHdf5Signature, TextIsNotHdf5) {
   EXPECT_FALSE(HasHdf5Signature("[deck]\nm = 1.0\n"));
   EXPECT_FALSE(HasHdf5Signature(kSignature.substr(0, 7)));                // cut short
   EXPECT_FALSE(HasHdf5Signature("HDF\r\n\x1a\n" + std::string(8, ' ')));  // without \211
+}
+
+TEST(WhyUnreadable, NamesAMissingFileAndAFolder) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("sb_why_unreadable_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  EXPECT_EQ(WhyUnreadable(dir / "absent.AT2"), "no such file");
+  EXPECT_EQ(WhyUnreadable(dir / "no-folder" / "absent.AT2"), "no such file");
+  EXPECT_EQ(WhyUnreadable(dir), "a folder, not a file");
+  std::filesystem::create_symlink(dir / "absent.AT2", dir / "dangling");
+  EXPECT_EQ(WhyUnreadable(dir / "dangling"), "no such file");
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -106,6 +106,23 @@ TEST(FragilityMle, DegenerateStripesGiveAReasonNotANumber) {
   }
 }
 
+TEST(FragilityMle, ASeparationSaysOnlyWhatLiesOnEachSide) {
+  const std::vector<double> im{0.1, 0.2, 0.4}, n{5, 5, 5};
+  EXPECT_EQ(FitLognormalMle(im, n, std::vector<double>{0, 0, 5}).reason,
+            "the stripes separate (no exceedance up to IM = 0.2, every cell exceeded from IM = "
+            "0.4 on): beta tends to 0 and the median is anywhere between them");
+  // Exceedances only at the largest IM: nothing lies above it, so nothing is said of above.
+  EXPECT_EQ(FitLognormalMle(im, n, std::vector<double>{0, 0, 2}).reason,
+            "the stripes separate at IM = 0.4 (2 of 5 exceeded there, none below it): beta "
+            "tends to 0 and the median is at that level");
+  EXPECT_EQ(FitLognormalMle(im, n, std::vector<double>{0, 2, 5}).reason,
+            "the stripes separate at IM = 0.2 (2 of 5 exceeded there, none below it, every cell "
+            "above it): beta tends to 0 and the median is at that level");
+  EXPECT_EQ(FitLognormalMle(im, n, std::vector<double>{3, 5, 5}).reason,
+            "the stripes separate at IM = 0.1 (3 of 5 exceeded there, every cell above it): beta "
+            "tends to 0 and the median is at that level");
+}
+
 TEST(FragilityCloud, RecoversAKnownLineAndItsFragility) {
   // ln(D / C) = a + b ln x + e, e ~ N(0, s): theta = exp(-a / b), beta = s / b.
   const double a = 0.3, b = 1.2, s = 0.35;

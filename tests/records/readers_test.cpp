@@ -293,7 +293,7 @@ TEST(ReadRecord, ValidTwinOfTheMalformedFilesLoads) {
 
 TEST(ReadRecord, MissingFileIsAnInputError) {
   EXPECT_THAT(ErrorOf([&] { ReadRecord(kData / "no-such-file.AT2"); }),
-              HasSubstr("no-such-file.AT2: cannot open"));
+              HasSubstr("no-such-file.AT2: record file: no such file"));
 }
 
 TEST(ParseUnits, AcceptsTheCommonSpellings) {

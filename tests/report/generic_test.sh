@@ -119,8 +119,23 @@ for name in ("rotation", "joint_closing"):
             theta, beta = (float(v) for v in row.group(3).split()[:2])
             assert theta == float("%.6g" % f["theta"][k]) and beta == float("%.6g" % f["beta"][k])
         else:
-            assert row.group(3).startswith("no fit"), row.group(3)
+            reason = f["reason"][k].decode()
+            assert reason and row.group(3) == "no fit: " + reason, (row.group(3), reason)
 print("inspect: limit states and fragility fits agree with the cube")
+PY
+
+# A fragility panel without fits names each combination's own reason, once when they share it.
+/usr/bin/python3 - "$root/scripts" <<'PY' || fail "the no-fit text of a fragility panel"
+import sys
+sys.path.insert(0, sys.argv[1])
+from skewbridge_report.fragility import _no_fit_text
+same = _no_fit_text([("20 mm", "exceeded in all 228 cells: the median lies below"),
+                     ("40 mm", "exceeded in all 228 cells: the median lies below")], 2)
+assert same == "no fit for 2 of 2:\nexceeded in all 228 cells", same
+own = _no_fit_text([("20 mm", "exceeded in all 228 cells: the median lies below"),
+                    ("40 mm", "the stripes separate at IM = 1.2 (10 of 19 exceeded there)")], 2)
+assert own == ("no fit for 2 of 2:\n20 mm: exceeded in all 228 cells\n"
+               "40 mm: the stripes separate at IM = 1.2"), own
 PY
 
 "$report" own.h5 three.h5 rec.h5 --out out >report.log || fail "report exited with $?"

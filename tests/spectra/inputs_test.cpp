@@ -1,6 +1,7 @@
 // The files a grid's cells read (spectra::GridInputFiles): the model file, the excitation file
 // it names, the record-set manifest and the record files of the records the grid names, each
-// once, in that order; a missing excitation file is refused naming the model file.
+// once, in that order; a missing excitation file is refused naming the model file, a missing
+// record file naming the set's line.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -102,6 +103,20 @@ TEST_F(GridInputsTest, RefusesAMissingExcitationFileNamingTheModelFile) {
     FAIL() << "a missing excitation file was accepted";
   } catch (const InputError& e) {
     EXPECT_THAT(e.what(), ::testing::HasSubstr("deck.toml: excitation.file: file not found"));
+  }
+}
+
+TEST_F(GridInputsTest, RefusesAMissingRecordFileAtItsLineOfTheSet) {
+  fs::remove(dir_ / "recs" / "b.txt");
+  // A record the grid does not name may be missing: the sweep never reads it.
+  EXPECT_EQ(GridInputFiles(Grid({"A"})).size(), 4u);
+  try {
+    GridInputFiles(Grid({"A", "B"}));
+    FAIL() << "a missing record file was accepted";
+  } catch (const InputError& e) {
+    // B's [[record]] table is on line 12 of the set (name, then two tables of five lines).
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("set.toml:12: record 'B': no such file: "));
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("b.txt"));
   }
 }
 
