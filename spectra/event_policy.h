@@ -10,8 +10,8 @@
 namespace skewbridge::spectra {
 
 /// The members of the policy every evaluator uses (the integrator's defaults).
-inline std::vector<dynamics::EventPolicyEntry> EvaluatorEventPolicy() {
-  return dynamics::EventPolicyEntries(dynamics::EventPolicy{});
+inline std::vector<schema::Entry> EvaluatorEventPolicy() {
+  return schema::Entries(dynamics::EventPolicy{});
 }
 
 }  // namespace skewbridge::spectra

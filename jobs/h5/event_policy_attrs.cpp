@@ -6,11 +6,11 @@
 
 namespace skewbridge::jobs::h5 {
 
-void WriteEventPolicy(hid_t parent, const std::vector<dynamics::EventPolicyEntry>& entries) {
+void WriteEventPolicy(hid_t parent, const std::vector<schema::Entry>& entries) {
   Id group = CreateGroup(parent, "event_policy");
   std::vector<std::string> keys, units, relative_to;
-  for (const dynamics::EventPolicyEntry& e : entries) {
-    if (e.integral) {
+  for (const schema::Entry& e : entries) {
+    if (e.integral()) {
       SetAttr(group.get(), e.name, static_cast<std::int64_t>(e.value));
     } else {
       SetAttr(group.get(), e.name, e.value);

@@ -11,9 +11,9 @@
 namespace skewbridge::jobs::h5 {
 
 /// Creates the group `event_policy` under `parent` with one attribute per member of the policy
-/// `entries` (spectra::EvaluatorEventPolicy(): float64, or int64 for counts and rules) and the
+/// `entries` (schema::Entries of the policy: float64, or int64 for counts and rules) and the
 /// string lists `keys`, `units` and `relative_to` (the scale each member multiplies, "" for
 /// none).
-void WriteEventPolicy(hid_t parent, const std::vector<dynamics::EventPolicyEntry>& entries);
+void WriteEventPolicy(hid_t parent, const std::vector<schema::Entry>& entries);
 
 }  // namespace skewbridge::jobs::h5

@@ -5,8 +5,10 @@
 /// says its unit, the scale it is relative to and why it has its value. The event-driven
 /// integrator holds one as EventPolicy::contact and hands it to its problems at the start of a
 /// run (ImpactProblem::SetPolicy, ContactProblem::SetPolicy); run files and cubes store it with
-/// the rest of the event policy.
+/// the rest of the event policy. Its Describe (solver/common/schema.h) is the one list of its
+/// members: the stored entries, their ranges and the documentation table come from it.
 
+#include "solver/common/schema.h"
 #include "solver/lcp/enumeration.h"
 
 namespace skewbridge::contact {
@@ -38,10 +40,26 @@ struct ContactPolicy {
   /// tangent rows). 14 unknowns are 2^14 bases at most, a few milliseconds; the contact problem
   /// of a single deck between two abutments has at most 12, its impact problem 12.
   int enumeration_unknowns = lcp::kMaxEnumerationSize;
+
+  /// The members as stored (schema.h): name, unit, the scale each multiplies, what is allowed.
+  template <typename Archive>
+  void Describe(Archive* a) {
+    using schema::Interval;
+    a->Visit(SB_NVP(tie_tolerance),
+             {"1", "largest sum of the magnitudes of the terms of b", Interval::AtLeast(0.0)});
+    a->Visit(SB_NVP(contact_compliance),
+             {"1", "largest normal diagonal entry", Interval::AtLeast(0.0)});
+    a->Visit(SB_NVP(impact_compliance),
+             {"1", "largest normal diagonal entry", Interval::AtLeast(0.0)});
+    a->Visit(SB_NVP(enumeration_unknowns),
+             {"1", "", Interval::Closed(0.0, lcp::kMaxEnumerationSize)});
+  }
 };
 
-/// Aborts (SB_DEMAND) unless the tolerances of `policy` are finite and >= 0 and
-/// 0 <= enumeration_unknowns <= lcp::kMaxEnumerationSize.
+/// Aborts (SB_DEMAND) unless every member of `policy` is within its description's range (the
+/// tolerances finite and >= 0, 0 <= enumeration_unknowns <= lcp::kMaxEnumerationSize): the
+/// integrator validates the policy it is given (dynamics::ValidatePolicy), so a policy outside
+/// here is a bug.
 void CheckContactPolicy(const ContactPolicy& policy);
 
 }  // namespace skewbridge::contact

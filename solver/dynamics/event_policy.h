@@ -4,7 +4,9 @@
 /// [docs/theory.md §3.1-§3.16; the table of §3.16]. Each member says its unit, the scale it is
 /// relative to and why it has its value. A run uses EventPolicy{} (the defaults below) unless a
 /// caller passes another; run files and cubes store the policy that made them (docs/hdf5-layout.md,
-/// docs/run-output.md).
+/// docs/run-output.md). EventPolicy::Describe (solver/common/schema.h) is the one list of its
+/// members: the stored entries, the validation of their ranges and the table of docs/theory.md
+/// §3.16 all come from it.
 ///
 /// The run's scales (solver/dynamics/run_scales.h) make the tolerances relative to the
 /// response: v_ref = max(a_peak / omega_ref, |u(0)|_inf) (m/s), omega_ref the lowest natural
@@ -12,9 +14,7 @@
 /// and with it every velocity, force and (above its rounding floor) gap tolerance, by k, which
 /// keeps the self-similarity of [docs/theory.md §4 fact 4].
 
-#include <string>
-#include <vector>
-
+#include "solver/common/schema.h"
 #include "solver/contact/contact_policy.h"
 
 namespace skewbridge::dynamics {
@@ -181,24 +181,68 @@ struct EventPolicy {
   /// contact problem's tie band, the compliance of both retries, the enumeration's size), set
   /// on them at the start of a run.
   contact::ContactPolicy contact;
+
+  /// The members as stored, in this order (schema.h): name, unit, the scale each multiplies and
+  /// the values the integrator can run with. A tolerance relative to a scale is below 1 (at 1
+  /// every quantity of that scale would be zero); a count of passes or steps is at least 1.
+  template <typename Archive>
+  void Describe(Archive* a) {
+    using schema::Interval;
+    const Interval below_one = Interval::Open(0.0, 1.0);
+    const Interval zero_to_one = Interval::ClosedOpen(0.0, 1.0);
+    const Interval positive = Interval::Above(0.0);
+    const Interval non_negative = Interval::AtLeast(0.0);
+    const Interval at_least_one = Interval::AtLeast(1.0);
+    a->Visit(SB_NVP(velocity_tolerance), {"1", "v_ref", below_one});
+    a->Visit(SB_NVP(gap_tolerance), {"1", "min(v_ref / omega_ref, L)", zero_to_one});
+    a->Visit(SB_NVP(gap_rounding_ulps), {"ulp", "L", non_negative});
+    a->Visit(SB_NVP(force_tolerance), {"1", "m_max v_ref omega_ref", below_one});
+    a->Visit(SB_NVP(free_body_omega_radps), {"rad/s", "", positive});
+    a->Visit(SB_NVP(ramp_horizon_s), {"s", "", positive});
+    a->Visit(SB_NVP(steps_per_period), {"1", "2 pi / omega_max", at_least_one});
+    a->Visit(SB_NVP(first_rk_step_divisor), {"1", "free step", positive});
+    a->Visit(SB_NVP(omega_floor_radps), {"rad/s", "", positive});
+    a->Visit(SB_NVP(nonfinite_step_error), {"1", "error norm", Interval::Above(1.0)});
+    a->Visit(SB_NVP(step_reuse_band), {"1", "free step", zero_to_one});
+    a->Visit(SB_NVP(step_snap_band), {"1", "free step", zero_to_one});
+    a->Visit(SB_NVP(finite_check_steps), {"1", "", Interval::PowerOfTwo()});
+    a->Visit(SB_NVP(event_time_tolerance), {"1", "max(1 s, |t|)", zero_to_one});
+    a->Visit(SB_NVP(event_time_floor_s), {"s", "", positive});
+    a->Visit(SB_NVP(maximum_time_tolerance), {"1", "max(1 s, |t|)", zero_to_one});
+    a->Visit(SB_NVP(dip_margin), {"1", "Hermite bound of the dip", non_negative});
+    a->Visit(SB_NVP(start_minimum_band), {"1", "event-time bracket", non_negative});
+    a->Visit(SB_NVP(touch_probes), {"1", "", non_negative});
+    a->Visit(SB_NVP(output_time_band), {"1", "max(1 s, |t|)", zero_to_one});
+    a->Visit(SB_NVP(max_events_at_one_instant), {"1", "", non_negative});
+    a->Visit(SB_NVP(decision_passes), {"1", "", at_least_one});
+    a->Visit(SB_NVP(stick_band), {"1", "v_tol", non_negative});
+    a->Visit(SB_NVP(cone_sign));
+    a->Visit(SB_NVP(tie_bands));
+    a->Visit(SB_NVP(jam));
+    a->Visit(SB_NVP(zeno_ratio), {"1", "previous approach speed", zero_to_one});
+    a->Visit(SB_NVP(zeno_flight), {"1", "shortest natural period", non_negative});
+    a->Visit(SB_NVP(zeno_flight_at_once), {"1", "shortest natural period", non_negative});
+    a->Visit(SB_NVP(rocking_speed), {"1", "v_acc", non_negative});
+    a->Visit(SB_NVP(zeno_extrapolation));
+    a->Visit(SB_NVP(settle_in_touch_band));
+    a->Visit(SB_NVP(slow_rocking));
+    a->Visit(SB_NVP(bounce_at_once));
+    a->Visit(SB_NVP(position_passes), {"1", "", at_least_one});
+    a->Visit(SB_NVP(one_pass_gap), {"1", "L", non_negative});
+    a->Visit(SB_NVP(rank_threshold), {"1", "largest pivot", below_one});
+    a->Visit(SB_NVP(kernel_normal_threshold), {"1", "orthonormal kernel", zero_to_one});
+    a->Visit(SB_NVP(split_total_slack), {"1", "largest force", non_negative});
+    a->Visit(SB_NVP(open_contacts_in_projection));
+    a->Visit(SB_NVP(contact));
+  }
 };
 
-/// One member of an EventPolicy as data: its name, value, unit, what it is relative to.
-struct EventPolicyEntry {
-  std::string name;         ///< the member's name
-  double value = 0.0;       ///< its value (a rule: 1 on, 0 off)
-  bool integral = false;    ///< a count or a rule (stored as an integer)
-  std::string unit;         ///< "1", "s", "rad/s", "ulp"
-  std::string relative_to;  ///< the scale it multiplies ("" for none)
-};
-
-/// Every member of `policy`, in declaration order (what run files and cubes store).
-std::vector<EventPolicyEntry> EventPolicyEntries(const EventPolicy& policy);
-
-/// Checks the counts of `policy` that the integrator relies on: finite_check_steps a power of
-/// two (the check is a mask of the step count), decision_passes, position_passes and
-/// steps_per_period at least 1, touch_probes and max_events_at_one_instant at least 0. Throws
-/// InputError naming the member, what is allowed and the value given.
+/// Checks every member of `policy` against its description (EventPolicy::Describe): the
+/// integrator relies on finite_check_steps being a power of two (the check is a mask of the
+/// step count), on at least one decision pass, position pass and step a period, and on
+/// tolerances that are finite and below the scale they multiply.
+/// @throws InputError "event policy: MEMBER: must be ALLOWED (got VALUE)" for the first member
+/// outside.
 void ValidatePolicy(const EventPolicy& policy);
 
 }  // namespace skewbridge::dynamics

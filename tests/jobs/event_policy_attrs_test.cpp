@@ -24,7 +24,7 @@ TEST(EventPolicyAttrs, EveryMemberRoundTripsThroughAFileWithItsUnitAndScale) {
   policy.contact.contact_compliance = 1e-7;
   policy.contact.impact_compliance = 4e-8;
   policy.contact.enumeration_unknowns = 9;
-  const std::vector<dynamics::EventPolicyEntry> entries = dynamics::EventPolicyEntries(policy);
+  const std::vector<schema::Entry> entries = schema::Entries(policy);
 
   const std::string path = ::testing::TempDir() + "event_policy_attrs_test.h5";
   {
@@ -39,11 +39,11 @@ TEST(EventPolicyAttrs, EveryMemberRoundTripsThroughAFileWithItsUnitAndScale) {
     const std::vector<std::string> relative_to = GetStringListAttr(group.get(), "relative_to");
     ASSERT_EQ(keys.size(), entries.size());
     for (std::size_t i = 0; i < entries.size(); ++i) {
-      const dynamics::EventPolicyEntry& e = entries[i];
+      const schema::Entry& e = entries[i];
       EXPECT_EQ(keys[i], e.name);
       EXPECT_EQ(units[i], e.unit) << e.name;
       EXPECT_EQ(relative_to[i], e.relative_to) << e.name;
-      if (e.integral) {
+      if (e.integral()) {
         EXPECT_EQ(static_cast<double>(GetIntAttr(group.get(), e.name)), e.value) << e.name;
       } else {
         EXPECT_EQ(GetDoubleAttr(group.get(), e.name), e.value) << e.name;

@@ -1,10 +1,9 @@
-/// The event policy (solver/dynamics/event_policy.h): its table of members, the event-cascade
-/// status it bounds, and rules that can be switched off one at a time on cells of the
-/// robustness grid (tests/robustness/robustness_grid.h) [docs/theory.md §3].
+/// The event policy (solver/dynamics/event_policy.h): the event-cascade status it bounds, and
+/// rules that can be switched off one at a time on cells of the robustness grid
+/// (tests/robustness/robustness_grid.h) [docs/theory.md §3].
 
 #include <gtest/gtest.h>
 
-#include <set>
 #include <string>
 
 #include "solver/dynamics/event_policy.h"
@@ -13,35 +12,6 @@
 using namespace skewbridge;
 
 namespace {
-
-TEST(EventPolicy, EntriesNameEveryMemberOnceWithItsValue) {
-  dynamics::EventPolicy p;
-  p.zeno_ratio = 0.5;
-  p.touch_probes = 7;
-  p.jam = false;
-  const std::vector<dynamics::EventPolicyEntry> entries = dynamics::EventPolicyEntries(p);
-  std::set<std::string> names;
-  for (const dynamics::EventPolicyEntry& e : entries) {
-    EXPECT_TRUE(names.insert(e.name).second) << e.name << " listed twice";
-    EXPECT_FALSE(e.unit.empty()) << e.name;
-    if (e.name == "zeno_ratio") {
-      EXPECT_EQ(e.value, 0.5);
-      EXPECT_FALSE(e.integral);
-    } else if (e.name == "touch_probes") {
-      EXPECT_EQ(e.value, 7.0);
-      EXPECT_TRUE(e.integral);
-    } else if (e.name == "jam") {
-      EXPECT_EQ(e.value, 0.0);
-    } else if (e.name == "velocity_tolerance") {
-      EXPECT_EQ(e.value, 1e-10);
-      EXPECT_EQ(e.relative_to, "v_ref");
-    }
-  }
-  for (const char* name : {"zeno_ratio", "touch_probes", "jam", "velocity_tolerance",
-                           "max_events_at_one_instant", "rank_threshold", "dip_margin"}) {
-    EXPECT_EQ(names.count(name), 1u) << name;
-  }
-}
 
 // The closed-joint cells of the grid that bounce (eps_N = 0.5, w0/w_g = 10).
 std::vector<std::int64_t> BouncingCells(const robustness::GridAxes& grid) {
