@@ -1,5 +1,7 @@
 #include "solver/dynamics/mode_decision.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -125,7 +127,7 @@ class Decider {
   // 1/2 u^T M u (J), M diagonal.
   double Kinetic() const { return 0.5 * u_.dot(model_.mass_diagonal().cwiseProduct(u_)); }
   DecisionOutcome Fail(RunStatus status, const std::string& what) const {
-    return {status, what + " at t = " + std::to_string(t_) + " s"};
+    return {status, fmt::format("{} at t = {:g} s", what, t_)};
   }
   void ConeSigns();
   PassEnd Pass(std::span<const int> forced, DecisionOutcome& outcome);
@@ -156,9 +158,8 @@ DecisionOutcome Decider::Decide(std::span<const int> forced) {
   // The cascade guard [§3.11].
   if (t_ == memory_.last_event_t_s) {
     if (++memory_.events_here > policy_.max_events_at_one_instant) {
-      return Fail(RunStatus::kEventCascade, "event cascade: more than " +
-                                                std::to_string(policy_.max_events_at_one_instant) +
-                                                " events");
+      return Fail(RunStatus::kEventCascade, fmt::format("event cascade: more than {} events",
+                                                        policy_.max_events_at_one_instant));
     }
   } else {
     memory_.last_event_t_s = t_;

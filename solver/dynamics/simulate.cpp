@@ -1,5 +1,7 @@
 #include "solver/dynamics/simulate.h"
 
+#include <fmt/format.h>
+
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
@@ -45,9 +47,10 @@ const char* ToString(RunStatus status) {
 }
 
 std::string NonFiniteMessage(double t_before_s, double t_s) {
-  return "the state (q, u) stopped being finite (or its square overflowed) between t = " +
-         std::to_string(t_before_s) + " s and t = " + std::to_string(t_s) +
-         " s (a load or a stiffness beyond any bridge)";
+  return fmt::format(
+      "the state (q, u) stopped being finite (or its square overflowed) between t = {:g} s and "
+      "t = {:g} s (a load or a stiffness beyond any bridge)",
+      t_before_s, t_s);
 }
 
 const char* ToString(EventKind kind) {
@@ -344,8 +347,8 @@ RunResult Integrator::Run() {
   ResolveContacts(forced_);
   while (!Failed() && t_ < t_end_) {
     if (++steps_ > control_.max_steps) {
-      Fail(RunStatus::kStepLimit, "step limit of " + std::to_string(control_.max_steps) +
-                                      " reached at t = " + std::to_string(t_) + " s");
+      Fail(RunStatus::kStepLimit,
+           fmt::format("step limit of {} reached at t = {:g} s", control_.max_steps, t_));
       break;
     }
     if (AnyClosed()) {
@@ -390,8 +393,11 @@ RunResult Integrator::Finish() {
                       (e.initial_J + e.input_J - e.damping_J - e.impact_J - e.friction_J);
   if (!Failed() && !std::isfinite(e.kinetic_J + e.strain_J)) {
     // A finite state whose energy overflows is no result either.
-    Fail(RunStatus::kNonFinite, "the energy of the state is not finite at t = " +
-                                    std::to_string(t_) + " s (the state overflows its squares)");
+    Fail(
+        RunStatus::kNonFinite,
+        fmt::format(
+            "the energy of the state is not finite at t = {:g} s (the state overflows its squares)",
+            t_));
   }
   if (!control_.energy_ledger) {
     // The free steps' work was not integrated: what remains would look like a ledger but is not.

@@ -1,5 +1,7 @@
 #include "solver/dynamics/time_stepping.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -266,8 +268,7 @@ RunResult SimulateTimeStepping(const model::Model& model, const Excitation& exci
   for (long k = 0; k < n_steps; ++k) {
     if (k >= control.max_steps) {
       result.status = RunStatus::kStepLimit;
-      result.message = "step limit of " + std::to_string(control.max_steps) +
-                       " steps at t = " + std::to_string(t) + " s";
+      result.message = fmt::format("step limit of {} steps at t = {:g} s", control.max_steps, t);
       break;
     }
     const double t1 = k + 1 == n_steps ? t_end : static_cast<double>(k + 1) * h;
@@ -384,9 +385,8 @@ RunResult SimulateTimeStepping(const model::Model& model, const Excitation& exci
       }
       if (status != lcp::LcpStatus::kSolved) {
         result.status = RunStatus::kLcpFailure;
-        result.message = std::string("time-stepping LCP: ") + lcp::ToString(status) +
-                         " at t = " + std::to_string(t) + " s with " + std::to_string(ka) +
-                         " active contacts";
+        result.message = fmt::format("time-stepping LCP: {} at t = {:g} s with {} active contacts",
+                                     lcp::ToString(status), t, ka);
         break;
       }
       for (int j = 0; j < ka; ++j) {
@@ -500,8 +500,8 @@ RunResult SimulateTimeStepping(const model::Model& model, const Excitation& exci
                       (e.initial_J + e.input_J - e.damping_J - e.impact_J - e.friction_J);
   if (result.status == RunStatus::kOk && !std::isfinite(e.kinetic_J + e.strain_J)) {
     result.status = RunStatus::kNonFinite;
-    result.message = "the energy of the state is not finite at t = " + std::to_string(t) +
-                     " s (the state overflows its squares)";
+    result.message = fmt::format(
+        "the energy of the state is not finite at t = {:g} s (the state overflows its squares)", t);
   }
   return result;
 }

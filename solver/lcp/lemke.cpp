@@ -1,5 +1,7 @@
 #include "solver/lcp/lemke.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -405,9 +407,8 @@ LcpStatus LemkeSolver::Solve(const Eigen::Ref<const Eigen::MatrixXd>& M,
   solution.worst_violation = check.worst_violation;
   if (!check.is_solution) {
     status = LcpStatus::kInaccurate;
-    solution.message = "terminal basis inaccurate: worst violation " +
-                       std::to_string(check.worst_violation) + " exceeds " +
-                       std::to_string(options_.acceptance_tolerance);
+    solution.message = fmt::format("terminal basis inaccurate: worst violation {:g} exceeds {:g}",
+                                   check.worst_violation, options_.acceptance_tolerance);
   }
   solution.status = status;
   return status;
