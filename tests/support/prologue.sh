@@ -99,8 +99,8 @@ PY
 
 # interrupt_at_checkpoint PID FILE.partial [SIGNAL]: sends SIGNAL (default TERM) to the sweep
 # started in the background as PID (skewbridge itself, or "$mpiexec" with its ranks) once its
-# checkpoint FILE.partial holds a finished cell; KILL goes to PID and its ranks at once, as a
-# crash. The ranks run in steps of 10 ms and are frozen (SIGSTOP) while the test reads the
+# checkpoint FILE.partial holds a finished cell (to its ranks while they are frozen, then to PID);
+# KILL goes to PID and its ranks at once, as a crash. The ranks run in steps of 10 ms and are frozen (SIGSTOP) while the test reads the
 # checkpoint between steps: the reading takes no time of theirs, so the signal finds cells done
 # and cells to do even when the sweep takes well under a second, however busy the machine. The
 # caller waits for PID and checks what the signal left.
@@ -138,7 +138,10 @@ interrupt_at_checkpoint() {
   if [ "$signal" = KILL ]; then
     kill -KILL "$pid" $ranks 2>/dev/null || true
   else
+    # The signal waits, pending, in each frozen rank and is handled the instant it resumes:
+    # a signal sent only to mpiexec after the ranks resume can arrive after their last cell.
+    kill "-$signal" $ranks 2>/dev/null || true
     kill -CONT $ranks 2>/dev/null || true
-    kill "-$signal" "$pid"
+    [ "$ranks" = "$pid" ] || kill "-$signal" "$pid"
   fi
 }
