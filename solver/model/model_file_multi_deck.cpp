@@ -1,0 +1,146 @@
+#include <cmath>
+
+#include "solver/model/model_file_tables.h"
+
+namespace skewbridge::model::detail {
+namespace {
+
+// A deck index: a whole number in [0, n_decks).
+int DeckIndex(Section& s, std::string_view key, double value, std::size_t n_decks) {
+  if (!(value >= 0.0) || value != std::floor(value) || value >= static_cast<double>(n_decks)) {
+    Fail(s.At(key), s.Field(key),
+         "must be a deck index, a whole number in [0, " + std::to_string(n_decks) + ") (got " +
+             detail::Show(value) + ")");
+  }
+  return static_cast<int>(value);
+}
+
+void ReadSupport(Section& s, std::size_t n_decks, SupportSpec& support) {
+  s.Expect("deck, between, k_x, k_y, k_theta, c_x, c_y, c_theta, xi");
+  if (s.Has("between")) {
+    s.Reject("deck", "give either deck (to the ground) or between = [i, j] (a link), not both");
+    const toml::node* node = s.Get("between");
+    const toml::array* pair = node->as_array();
+    if (pair == nullptr || pair->size() != 2 || !(*pair)[0].is_number() ||
+        !(*pair)[1].is_number()) {
+      Fail(s.At("between"), s.Field("between"), "must be two deck indices [i, j]");
+    }
+    const auto value = [](const toml::node& v) {
+      return v.is_integer() ? static_cast<double>(*v.value<int64_t>()) : *v.value<double>();
+    };
+    support.deck = DeckIndex(s, "between", value((*pair)[0]), n_decks);
+    support.other = DeckIndex(s, "between", value((*pair)[1]), n_decks);
+    if (support.deck == support.other) {
+      Fail(s.At("between"), s.Field("between"), "must name two different decks");
+    }
+  } else {
+    support.deck = DeckIndex(s, "deck", s.RequiredNumber("deck", "deck index from 0"), n_decks);
+    support.other = kGround;
+  }
+  const char* keys[] = {"k_x", "k_y", "k_theta"};
+  const char* damping_keys[] = {"c_x", "c_y", "c_theta"};
+  bool any_damping = false;
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (int d = 0; d < 3; ++d) {
+    support.stiffness(d) = s.Number(keys[d]).value_or(0.0);
+    CheckNonNegative(support.stiffness(d), s.Field(keys[d]), s.At(keys[d]));
+    if (const std::optional<double> v = s.Number(damping_keys[d])) {
+      CheckNonNegative(*v, s.Field(damping_keys[d]), s.At(damping_keys[d]));
+      c(d) = *v;
+      any_damping = true;
+    }
+  }
+  if (any_damping) {
+    s.Reject("xi", "give either xi or c_x, c_y, c_theta, not both");
+    support.damping = c;
+  } else if (support.other != kGround) {
+    s.Reject("xi", "a link between decks takes c_x, c_y, c_theta (xi is for ground supports)");
+    support.damping = c;
+  } else {
+    support.xi = s.Number("xi").value_or(0.05);
+    CheckRange(support.xi, 0.0, 1.0, true, s.Field("xi"), s.At("xi"));
+  }
+  s.Finish("deck, between, k_x, k_y, k_theta, c_x, c_y, c_theta, xi");
+}
+
+// The most decks of a [[deck]] file: 600 DOFs, 402 contacts. The integrators hold dense
+// matrices of (2 x DOFs)^2 entries (a dozen of 11.5 MB here); 1000 decks already take half a
+// minute to set up and 3000 do not fit in memory. A bridge of more spans is several models.
+constexpr std::size_t kMaxDecks = 200;
+
+}  // namespace
+
+MultiDeckSpec ReadMultiDeck(Section& top, std::string_view source) {
+  MultiDeckSpec spec;
+  const std::vector<const toml::table*> decks = ArrayOfTables(top, "deck");
+  if (decks.empty()) {
+    Fail(Where{source, top.TableLine()}, "deck", "at least one [[deck]] table is required");
+  }
+  if (decks.size() > kMaxDecks) {
+    Fail(Where{source, LineOf(*decks[kMaxDecks])}, "deck",
+         std::to_string(decks.size()) + " [[deck]] tables (" + std::to_string(3 * decks.size()) +
+             " DOFs); allowed: at most " + std::to_string(kMaxDecks) + " decks (" +
+             std::to_string(3 * kMaxDecks) + " DOFs, " + std::to_string(2 * kMaxDecks + 2) +
+             " contacts)");
+  }
+  for (std::size_t i = 0; i < decks.size(); ++i) {
+    Section s(*decks[i], Indexed("deck", i), source);
+    DeckSpec d;
+    ReadDeck(s, d);
+    Body b;
+    b.mass_kg = d.mass_kg;
+    b.geometry = d.geometry;
+    b.inertia_kgm2 = d.inertia_kgm2 ? *d.inertia_kgm2 : UniformDeckInertia(d.mass_kg, d.geometry);
+    spec.decks.push_back(b);
+  }
+  const std::vector<const toml::table*> joints = ArrayOfTables(top, "joint");
+  if (joints.size() + 1 != decks.size()) {
+    const long line = joints.empty() ? 0 : LineOf(*joints.back());
+    Fail(Where{source, line}, "joint",
+         "needs " + std::to_string(decks.size() - 1) + " [[joint]] tables for " +
+             std::to_string(decks.size()) +
+             " [[deck]] tables, one after each deck but the last (got " +
+             std::to_string(joints.size()) + ")");
+  }
+  for (std::size_t i = 0; i < joints.size(); ++i) {
+    Section s(*joints[i], Indexed("joint", i), source);
+    s.Expect("gap_m, eps_N, mu");
+    JointSpec j;
+    j.gap_m = s.RequiredNumber("gap_m", "joint gap along x, m");
+    CheckNonNegative(j.gap_m, s.Field("gap_m"), s.At("gap_m"));
+    j.restitution = s.Number("eps_N").value_or(0.5);
+    CheckRange(j.restitution, 0.0, 1.0, false, s.Field("eps_N"), s.At("eps_N"));
+    j.friction = s.Number("mu").value_or(0.0);
+    CheckNonNegative(j.friction, s.Field("mu"), s.At("mu"));
+    if (spec.decks[i].geometry.skew_rad != spec.decks[i + 1].geometry.skew_rad) {
+      Fail(s.At("gap_m"), s.Field("gap_m"),
+           "decks " + std::to_string(i) + " and " + std::to_string(i + 1) +
+               " must have the same skew_deg (their end faces are parallel)");
+    }
+    s.Finish("gap_m, eps_N, mu");
+    spec.joints.push_back(j);
+  }
+  const toml::table* abutments = top.Table("abutments");
+  if (abutments == nullptr) {
+    Fail(Where{source, 0}, "abutments", "missing required section [abutments]");
+  }
+  {
+    Section s(*abutments, "abutments", source);
+    const AbutmentParameters a = ReadAbutments(s, true);
+    spec.gap_plus_m = a.gap_plus_m;
+    spec.gap_minus_m = a.gap_minus_m;
+    spec.restitution = a.restitution;
+    spec.friction = a.friction;
+  }
+  const std::vector<const toml::table*> supports = ArrayOfTables(top, "support");
+  for (std::size_t i = 0; i < supports.size(); ++i) {
+    Section s(*supports[i], Indexed("support", i), source);
+    SupportSpec support;
+    ReadSupport(s, decks.size(), support);
+    spec.supports.push_back(support);
+  }
+  top.Reject("substructure", "not used with [[deck]] tables: give [[support]] tables instead");
+  return spec;
+}
+
+}  // namespace skewbridge::model::detail
