@@ -15,6 +15,7 @@
 #include "jobs/output_lock.h"
 #include "jobs/stop_signal.h"
 #include "solver/common/error.h"
+#include "spectra/plausibility.h"
 
 namespace skewbridge::jobs {
 namespace {
@@ -161,6 +162,12 @@ int RunSweepCommand(const SweepCommandArgs& args, const EvaluatorFactory& factor
   const int first = mpi.FirstRankWith(!problem.empty());
   if (first < mpi.Size()) {
     return report(problem, mpi.Rank() == first);
+  }
+  if (root) {
+    // Values more often a unit slip than a bridge: said once, before any work; the sweep runs.
+    std::vector<std::string> warnings = spectra::GridWarnings(*spec);
+    for (std::string& w : evaluator->Warnings()) warnings.push_back(std::move(w));
+    for (const std::string& w : warnings) log("skewbridge: warning: " + w);
   }
   if (args.dry_run) {
     std::string text;

@@ -77,6 +77,10 @@ class CellEvaluator {
   /// Facts about the sweep's cells decided at construction that its summary reports, one line
   /// each (e.g. the cells whose records were scaled beyond max_scale); none by default.
   virtual std::vector<std::string> Notes() const { return {}; }
+  /// Values of the bridge that are more often a unit slip than a bridge (a gap wider than a
+  /// tenth of the span, a deck lighter than 1 t/m, a fundamental period outside 0.02-10 s;
+  /// solver/model/plausibility.h), decided at construction, one line each; none by default.
+  virtual std::vector<std::string> Warnings() const { return {}; }
 
   /// How the cell's record is scaled to its stripe, decided at construction (no run); empty
   /// unless the sweep scales its records to an intensity axis.

@@ -106,6 +106,7 @@ class IdaEvaluator final : public CellEvaluator {
   }
   const std::vector<SweepRecord>* Records() const override { return inner_->Records(); }
   std::vector<std::string> Notes() const override { return inner_->Notes(); }
+  std::vector<std::string> Warnings() const override { return inner_->Warnings(); }
   double UnscaledIntensity(std::span<const std::size_t> axis_index) const override {
     return inner_->UnscaledIntensity(axis_index);
   }

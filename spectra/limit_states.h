@@ -56,6 +56,7 @@ class LimitStateEvaluator final : public CellEvaluator {
   }
   const std::vector<SweepRecord>* Records() const override { return inner_->Records(); }
   std::vector<std::string> Notes() const override { return inner_->Notes(); }
+  std::vector<std::string> Warnings() const override { return inner_->Warnings(); }
   std::optional<CellScaling> Scaling(std::span<const std::size_t> axis_index) const override {
     return inner_->Scaling(axis_index);
   }

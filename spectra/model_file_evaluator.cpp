@@ -16,6 +16,7 @@
 #include "solver/model/builders.h"
 #include "solver/model/deck.h"
 #include "solver/model/multispan.h"
+#include "solver/model/plausibility.h"
 
 namespace skewbridge::spectra {
 namespace {
@@ -67,13 +68,6 @@ model::ModelFile CheckedModelFile(const CellGrid& spec) {
 }
 
 }  // namespace
-
-double FundamentalPeriod(const model::Model& model) {
-  const model::Modes modes =
-      model.modes() != nullptr ? *model.modes() : model::ComputeModes(model.M(), model.K());
-  const double w1 = modes.omega_radps.size() > 0 ? modes.omega_radps.minCoeff() : 0.0;
-  return w1 > 0.0 ? 2.0 * std::numbers::pi / w1 : std::numeric_limits<double>::infinity();
-}
 
 std::uint64_t ModelFileEvaluator::CellIndex(std::span<const std::size_t> index) const {
   std::uint64_t cell = 0;
@@ -165,6 +159,9 @@ ModelFileEvaluator::ModelFileEvaluator(const CellGrid& spec)
   // change the modes are a_deg, eta0 and k_factor).
   const bool with_t1 = by_record;
   if (with_t1) t1_of_cell_.resize(spec.CellCount());
+  // The fundamental periods outside the plausible range: how many cells, and the first.
+  std::uint64_t implausible_t1 = 0;
+  std::string first_implausible_t1;
   for (std::uint64_t cell = 0; cell < spec.CellCount(); ++cell) {
     const std::vector<std::size_t> index = spec.AxisIndex(cell);
     const ModelFileCell c = MakeCell(index, false);
@@ -177,11 +174,28 @@ ModelFileEvaluator::ModelFileEvaluator(const CellGrid& spec)
     } catch (const InputError& e) {
       throw InputError(src + ": cell " + CellText(spec, index) + ": " + e.what());
     }
+    const double t1 = model::FundamentalPeriod(*c.model);
+    if (t1 < model::kMinPeriod_s || t1 > model::kMaxPeriod_s) {
+      if (implausible_t1++ == 0) {
+        first_implausible_t1 =
+            model::PeriodWarning(
+                "the fundamental period T1 of the cell (" + CellText(spec, index) + ")", t1)
+                .value_or("");
+      }
+    }
     if (!with_t1) continue;
-    const double t1 = FundamentalPeriod(*c.model);
     auto it = std::find(t1_values_s_.begin(), t1_values_s_.end(), t1);
     if (it == t1_values_s_.end()) it = t1_values_s_.insert(t1_values_s_.end(), t1);
     t1_of_cell_[cell] = static_cast<std::uint32_t>(it - t1_values_s_.begin());
+  }
+  warnings_ = BridgeWarnings();
+  if (implausible_t1 > 0) {
+    warnings_.push_back(
+        spec.model_path.string() + ": " + first_implausible_t1 +
+        (implausible_t1 > 1
+             ? fmt::format(" ({} of {} cells lie outside {:g}-{:g} s)", implausible_t1,
+                           spec.CellCount(), model::kMinPeriod_s, model::kMaxPeriod_s)
+             : ""));
   }
   if (!with_t1) return;
 
@@ -248,6 +262,40 @@ ModelFileEvaluator::ModelFileEvaluator(const CellGrid& spec)
     scale_of_cell_[cell] = factor;
     if (im.max_scale > 0.0 && factor > im.max_scale) ++scaled_too_far_;
   }
+}
+
+std::vector<std::string> ModelFileEvaluator::BridgeWarnings() const {
+  std::vector<std::string> out;
+  const std::string& src = spec_.source;
+  auto add = [&out](const std::string& where, std::optional<std::string> warning) {
+    if (warning) out.push_back(where + ": " + *warning);
+  };
+  double shortest_m = std::numeric_limits<double>::infinity();
+  for (const model::Body& b : file_.model.bodies()) {
+    shortest_m = std::min(shortest_m, b.geometry.length_m);
+  }
+  // The file's masses, gaps and period; a sweep axis that replaces a gap or the stiffness is
+  // judged by its own values (the period of every cell, below).
+  for (const std::string& w : model::PlausibilityWarnings(file_)) {
+    const bool gap = w.find(".gap_m") != std::string::npos;
+    const bool period = w.find("fundamental period") != std::string::npos;
+    if (period || (gap && (Mentions(spec_, "gap_m") || Mentions(spec_, "Pi_delta")))) continue;
+    out.push_back(w);
+  }
+  if (const Axis* axis = spec_.FindAxis("gap_m"); axis != nullptr && !axis->values.empty()) {
+    add(src, model::WidthWarning("axes.gap_m", "gap",
+                                 *std::max_element(axis->values.begin(), axis->values.end()),
+                                 shortest_m));
+  } else if (const FixedValue* fixed = spec_.FindFixed("gap_m")) {
+    add(src, model::WidthWarning("fixed.gap_m", "gap", fixed->value, shortest_m));
+  }
+  for (const LimitState& ls : spec_.limit_states) {
+    if (ls.seat_m.empty()) continue;
+    add(ls.at,
+        model::WidthWarning("limit_states." + ls.name + ".seat_m", "seat",
+                            *std::max_element(ls.seat_m.begin(), ls.seat_m.end()), shortest_m));
+  }
+  return out;
 }
 
 std::vector<std::string> ModelFileEvaluator::Notes() const {

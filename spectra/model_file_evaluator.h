@@ -41,10 +41,6 @@ struct ModelFileCell {
   std::size_t excitation_samples = 0;      ///< its samples (0 for a pulse)
 };
 
-/// The fundamental period T1 = 2 pi / w_1 of a model (s): its lowest natural frequency without
-/// contacts (K phi = w^2 M phi, as `skewbridge modes` prints them); inf when w_1 <= 0.
-double FundamentalPeriod(const model::Model& model);
-
 /// Evaluates the cells of a model-file sweep. Immutable after construction: Evaluate is a pure
 /// function of the cell index.
 class ModelFileEvaluator final : public CellEvaluator {
@@ -74,6 +70,10 @@ class ModelFileEvaluator final : public CellEvaluator {
 
   /// The cells scaled beyond [records] max_scale, as one line for the sweep's summary.
   std::vector<std::string> Notes() const override;
+  /// The bridge's plausibility: every deck's mass per metre of span, the gaps (the file's, or
+  /// the sweep's gap_m) and the seats of [limit_states] against the spans, and the fundamental
+  /// period of every cell's model.
+  std::vector<std::string> Warnings() const override { return warnings_; }
   /// The cell's stripe, its record's own measure at the cell's T1 and the factor between them.
   std::optional<CellScaling> Scaling(std::span<const std::size_t> axis_index) const override;
   /// The record's own measure at the cell's T1 ([records] scale_to or im), else NaN.
@@ -100,10 +100,13 @@ class ModelFileEvaluator final : public CellEvaluator {
   std::vector<double> record_im_;          ///< [record][T1 index]: unscaled measure (axis unit)
   std::vector<double> scale_of_cell_;      ///< per cell with scale_to: im / unscaled measure
   std::uint64_t scaled_too_far_ = 0;       ///< cells whose factor exceeds max_scale
+  std::vector<std::string> warnings_;      ///< Warnings(), found at construction
   std::uint64_t CellIndex(std::span<const std::size_t> axis_index) const;
   CellOutcome EvaluateAt(std::span<const std::size_t> axis_index,
                          std::optional<double> factor) const;
   std::size_t RecordIndex(std::span<const std::size_t> axis_index) const;
+  // The warnings of the bridge that do not need the cells' models (masses, gaps, seats).
+  std::vector<std::string> BridgeWarnings() const;
 };
 
 }  // namespace skewbridge::spectra

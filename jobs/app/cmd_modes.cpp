@@ -16,6 +16,7 @@
 #include "solver/contact/kinematics.h"
 #include "solver/model/builders.h"
 #include "solver/model/model_file.h"
+#include "solver/model/plausibility.h"
 #include "solver/model/substructure.h"
 
 namespace skewbridge::app {
@@ -155,6 +156,11 @@ void PrintPlanJson(const model::ModelFile& file, const std::string& path) {
 
 }  // namespace
 
+void PrintWarnings(const std::vector<std::string>& warnings) {
+  for (const std::string& w : warnings)
+    std::fprintf(stderr, "skewbridge: warning: %s\n", w.c_str());
+}
+
 void PrintNaturalFrequencies(const model::Model& model) {
   const model::Modes modes = model::ComputeModes(model.M(), model.K());
   std::printf("natural frequencies (substructure without contacts):\n");
@@ -225,6 +231,7 @@ void AddModesCommand(CLI::App& app) {
                 "bearings, piers, centres of rigidity), as scripts/report --model draws it");
   cmd->callback([model_path, plan] {
     const model::ModelFile file = model::ParseModelFile(*model_path);
+    PrintWarnings(model::PlausibilityWarnings(file));
     if (*plan) {
       PrintPlanJson(file, *model_path);
       return;

@@ -23,6 +23,7 @@
 #include "solver/dynamics/simulate.h"
 #include "solver/dynamics/time_stepping.h"
 #include "solver/model/model_file.h"
+#include "solver/model/plausibility.h"
 
 namespace skewbridge::app {
 namespace {
@@ -142,6 +143,7 @@ void AddRunCommand(CLI::App& app) {
                   "History sample interval in s (> 0), overriding run.output_interval_s");
   cmd->callback([model_path, csv_path, out_path, output_interval_s] {
     const model::ModelFile file = model::ParseModelFile(*model_path);
+    PrintWarnings(model::PlausibilityWarnings(file));
     const std::unique_ptr<Excitation> excitation = MakeExcitation(file.excitation, *model_path);
     model::RunControl control = file.run;
     if (*output_interval_s < 0.0) {

@@ -3,6 +3,8 @@
 /// The sub-commands of the `skewbridge` program; each file app/cmd_*.cpp adds one.
 
 #include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
 
 #include "solver/model/model.h"
 
@@ -20,6 +22,8 @@ void PrintNaturalFrequencies(const model::Model& model);
 /// Prints the natural frequencies, the mode shapes and, for one deck, the centre of rigidity and
 /// the principal stiffness axes (what `skewbridge modes` shows after its header line).
 void PrintModes(const model::Model& model);
+/// Prints each warning on stderr as "skewbridge: warning: ..." (the command goes on).
+void PrintWarnings(const std::vector<std::string>& warnings);
 /// `skewbridge sweep SPEC.toml --out FILE.h5`: runs a sweep (MPI inside), jobs/sweep_command.h.
 void AddSweepCommand(CLI::App& app);
 /// `skewbridge inspect FILE.h5`: prints the sweeps, axes, responses and completion of a cube.
