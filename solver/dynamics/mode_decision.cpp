@@ -23,6 +23,14 @@ DecisionScratch::DecisionScratch(int n_dof, int n_contacts)
   previous.reserve(n);
 }
 
+DecisionWorkspace::DecisionWorkspace(const model::Model& model, double rank_threshold)
+    : impact(model),
+      impact_result(impact.MakeResult()),
+      contact_problem(model),
+      contact_result(contact_problem.MakeResult()),
+      projection(model, rank_threshold),
+      scratch(model.n_dof(), model.n_contacts()) {}
+
 bool Wedged(const model::Model& model, std::span<const contact::ClosedContact> closed) {
   bool sliding = false, opposing = false;
   for (std::size_t i = 0; i < closed.size(); ++i) {

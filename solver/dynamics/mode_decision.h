@@ -99,16 +99,21 @@ struct DecisionScratch {
   std::vector<int> cone_sign;                  ///< per contact: the slip sign of the cone [§3.8]
 };
 
-/// Storage the decision works in: the contact layer's problems and results, the projection's
-/// workspace (whose kinematics are the decision's) and the scratch. When DecideModes returns
-/// kOk, projection.kin holds the kinematics of every contact at the final (q, u).
+/// Storage the decision works in, sized once for a model and owned whole: the contact layer's
+/// problems and results, the projection's workspace and the scratch. Its kinematics
+/// (projection.kin) are the decision's own: a ConstrainedForces answer evaluates into storage of
+/// the caller's and leaves them alone. When DecideModes returns kOk, projection.kin holds the
+/// kinematics of every contact at the final (q, u).
 struct DecisionWorkspace {
-  contact::ImpactProblem& impact;            ///< the velocity-level problem
-  contact::ImpactResult& impact_result;      ///< its result
-  contact::ContactProblem& contact_problem;  ///< the acceleration-level problem
-  contact::ContactResult& contact_result;    ///< its result
-  ProjectionWorkspace projection;            ///< the projection's storage and the kinematics
-  DecisionScratch& scratch;                  ///< the decision's own scratch
+  /// Sized for `model`; `rank_threshold` is EventPolicy::rank_threshold (the projection's).
+  DecisionWorkspace(const model::Model& model, double rank_threshold);
+
+  contact::ImpactProblem impact;            ///< the velocity-level problem
+  contact::ImpactResult impact_result;      ///< its result
+  contact::ContactProblem contact_problem;  ///< the acceleration-level problem
+  contact::ContactResult contact_result;    ///< its result
+  ProjectionWorkspace projection;           ///< the projection's storage and the kinematics
+  DecisionScratch scratch;                  ///< the decision's own scratch
 };
 
 /// What the decisions of a run add up to (the caller owns it; DecideModes adds to it).

@@ -5,6 +5,15 @@
 
 namespace skewbridge::dynamics {
 
+ProjectionWorkspace::ProjectionWorkspace(const model::Model& model, double rank_threshold)
+    : sys(2 * model.n_contacts(), rank_threshold),
+      rows(Eigen::MatrixXd::Zero(model.n_dof(), sys.capacity())),
+      projection_rows(static_cast<std::size_t>(model.n_contacts()), 0),
+      u_in(Eigen::VectorXd::Zero(model.n_dof())),
+      u_out(Eigen::VectorXd::Zero(model.n_dof())) {
+  kin.Resize(model);
+}
+
 void ProjectOntoContacts(const model::Model& model, const ContactModes& modes,
                          const EventPolicy& policy, const ProjectionTolerances& tol,
                          Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> u,

@@ -23,15 +23,19 @@ struct ProjectionTolerances {
   double v_tol_mps = 0.0;       ///< an open contact at its face approaching faster joins
 };
 
-/// Storage the projection works in, sized once per model; `kin` and `sys` are left holding the
-/// last evaluation and solve (the caller may share them with its other passes).
+/// Storage the projection works in, sized once for a model and owned whole. `kin` and `sys` are
+/// left holding the last evaluation and solve: the mode decision, whose storage this is, reads
+/// `kin` after the projection (solver/dynamics/mode_decision.h).
 struct ProjectionWorkspace {
-  contact::ContactKinematics& kin;    ///< kinematics (sized by Resize)
-  ActiveSystem& sys;                  ///< the dense active set, 2 n_c rows at most
-  Eigen::MatrixXd& rows;              ///< n_dof x 2 n_c constraint rows
-  std::vector<int>& projection_rows;  ///< per contact: 1 when an open contact joins
-  Eigen::VectorXd& u_in;              ///< velocities before the velocity projection (m/s, rad/s)
-  Eigen::VectorXd& u_out;             ///< projected velocities
+  /// Sized for `model`; `rank_threshold` is EventPolicy::rank_threshold.
+  ProjectionWorkspace(const model::Model& model, double rank_threshold);
+
+  contact::ContactKinematics kin;    ///< kinematics of every contact
+  ActiveSystem sys;                  ///< the dense active set, 2 n_c rows at most
+  Eigen::MatrixXd rows;              ///< n_dof x 2 n_c constraint rows
+  std::vector<int> projection_rows;  ///< per contact: 1 when an open contact joins
+  Eigen::VectorXd u_in;              ///< velocities before the velocity projection (m/s, rad/s)
+  Eigen::VectorXd u_out;             ///< projected velocities
 };
 
 /// Projects (q, u) in place onto the constraints of the contacts closed in `modes`

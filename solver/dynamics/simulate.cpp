@@ -118,7 +118,7 @@ class Integrator final : private ConstrainedForces {
   void ActiveForces(const ContactModes& modes, double t, const Eigen::Ref<const Vec>& q,
                     const Eigen::Ref<const Vec>& u, Eigen::Ref<Vec> du,
                     ActiveForcesStorage& storage) {
-    EvaluateActiveForces(model_, modes, policy_, force_tol_, GroundAcceleration(t), q, u,
+    EvaluateActiveForces(model_, modes, policy_, scales_.force_tol_N, GroundAcceleration(t), q, u,
                          closed_only_ ? KinematicsOf::kClosedContacts : KinematicsOf::kAllContacts,
                          du, storage);
   }
@@ -174,7 +174,7 @@ class Integrator final : private ConstrainedForces {
   Vec z_, z_new_, z_eval_;
   Vec y_, dy_, y_eval_, atol_;
   Vec cu_;  // C u
-  Vec q_a_, u_a_, q_b_, u_b_, q_e_, u_e_, q_r_, u_r_, h_, du_;
+  Vec q_a_, u_a_, q_b_, u_b_, q_e_, u_e_, q_r_, u_r_, du_;
   Vec gap0_, gN0_, gap1_, gN1_;
   contact::GapRateScratch rates_;  // scratch of the gaps and normal rates
   Vec f0_, f1_, f_eval_;           // closed-contact event functions: step start, end, trial
@@ -188,20 +188,14 @@ class Integrator final : private ConstrainedForces {
   bool positions_only_ = false;
   double h_rk_ = 0.0;
   double h_free_ = 0.0;  // the last nominal free step (s)
-  double v_tol_ = 0.0, v_acc_ = 0.0, gap_tol_ = 0.0;
-  double force_tol_ = 0.0;  // N: a closed contact's lambda_N within -force_tol_ of zero is zero
-  double a_detach_ = 0.0;   // m/s^2: a smaller separating acceleration keeps a contact closed
+  // The run's tolerances and scales [docs/theory.md §3.2], which the decision, the projection,
+  // the event functions and the event searches compare with.
+  DecisionScales scales_;
   double next_output_t_ = kInf;
-  double length_scale_m_ = 1.0;  // L_d (ProjectionTolerances)
-  double simultaneity_s_ = 0.0;  // RunControl::simultaneity_tolerance_s
   RunResult result_;
-  std::vector<int> projection_rows_;  // per contact: 1 when an open contact joins the projection
-  double period_min_s_ = kInf;        // shortest natural period (s)
-  DecisionMemory memory_;             // what the mode decision remembers between instants
-  DecisionLog log_;                   // the events and counts the decisions add
-  Vec u_proj_, u_proj_in_;            // projected velocities; velocities before the projection
-  Eigen::MatrixXd rows_;              // n x 2 n_c constraint rows (projection)
-  ActiveForcesStorage& forces_;       // the workspace's: the integrator's own force evaluations
+  DecisionMemory memory_;        // what the mode decision remembers between instants
+  DecisionLog log_;              // the events and counts the decisions add
+  ActiveForcesStorage& forces_;  // the workspace's: the integrator's own force evaluations
   // A history sample's force evaluation (with histories only): recording leaves forces_ as it
   // was, so a run takes the same decisions whether it records histories or not.
   std::unique_ptr<ActiveForcesStorage> sample_forces_;
@@ -213,11 +207,7 @@ SimulationWorkspace::SimulationWorkspace(const model::Model& model)
       free_dense_(flow_.augmented_size()),
       rk_(2 * model.n_dof() + 3),
       forces_(model, EventPolicy{}.rank_threshold),
-      impact_(model),
-      contact_problem_(model),
-      impact_result_(impact_.MakeResult()),
-      contact_result_(contact_problem_.MakeResult()),
-      decision_(model.n_dof(), model.n_contacts()) {
+      decision_(model, EventPolicy{}.rank_threshold) {
   if (flow_.modal()) {
     // The modal flow's w_k^2 are the eigenvalues below, clamped at 0: one solve, same bits.
     const Eigen::VectorXd& w2 = flow_.modal_flow().w2();
@@ -253,8 +243,8 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   ValidatePolicy(policy);
   // The contact layer's thresholds of this run [docs/theory.md §3.15]: the workspace's problems
   // keep those of the last run otherwise.
-  ws.impact_.SetPolicy(policy.contact);
-  ws.contact_problem_.SetPolicy(policy.contact);
+  ws.decision_.impact.SetPolicy(policy.contact);
+  ws.decision_.contact_problem.SetPolicy(policy.contact);
   const int naug = ws.flow_.augmented_size();
   z_ = Vec::Zero(naug);
   z_new_ = z_eval_ = z_;
@@ -279,9 +269,7 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   forced_.reserve(static_cast<std::size_t>(nc_));
   rates_.Resize(model);
   forces_.sys.SetRankThreshold(policy.rank_threshold);
-  rows_ = Eigen::MatrixXd::Zero(n_, forces_.sys.capacity());
-  projection_rows_.assign(static_cast<std::size_t>(nc_), 0);
-  u_proj_ = u_proj_in_ = Vec::Zero(n_);
+  ws.decision_.projection.sys.SetRankThreshold(policy.rank_threshold);
 
   t_end_ = control.EndTime(excitation.Duration());
   // The scales of the response, and the tolerances relative to them [docs/theory.md §3.2].
@@ -289,14 +277,14 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
       ExcitationPeak(excitation, policy_.ramp_horizon_s), z_.segment(n_, n_).cwiseAbs().maxCoeff(),
       {ws.omega_min_radps_, ws.omega_max_radps_, ws.length_scale_m_, MaxTranslationalMass(model)},
       control.accumulation_threshold, policy_);
-  v_acc_ = scales.v_acc_mps;
-  v_tol_ = scales.v_tol_mps;
-  force_tol_ = scales.force_tol_N;
-  a_detach_ = scales.a_detach_mps2;
-  gap_tol_ = scales.gap_tol_m;
-  period_min_s_ = scales.period_min_s;
-  length_scale_m_ = ws.length_scale_m_;
-  simultaneity_s_ = control.simultaneity_tolerance_s;
+  scales_ = {.v_tol_mps = scales.v_tol_mps,
+             .v_acc_mps = scales.v_acc_mps,
+             .gap_tol_m = scales.gap_tol_m,
+             .force_tol_N = scales.force_tol_N,
+             .a_detach_mps2 = scales.a_detach_mps2,
+             .period_min_s = scales.period_min_s,
+             .length_scale_m = ws.length_scale_m_,
+             .simultaneity_s = control.simultaneity_tolerance_s};
   const double omega_top = scales.omega_top_radps;
   atol_.head(n_).setConstant(control.absolute_tolerance);
   atol_.segment(n_, n_).setConstant(control.absolute_tolerance * omega_top);
@@ -487,7 +475,7 @@ void Integrator::FreeStep() {
     // Near-simultaneous: contacts closed within the tolerance after the first are one impact.
     const auto q_late = positions_at(std::min(t_event + control_.simultaneity_tolerance_s, t_next));
     for (int c = 0; c < nc_; ++c) {
-      if (GapAt(c, q_late) <= gap_tol_) {
+      if (GapAt(c, q_late) <= scales_.gap_tol_m) {
         forced_.push_back(c);
       }
     }
@@ -538,7 +526,8 @@ double Integrator::GapRoot(int c, double t0, double t1, double g0, double gN0, d
     at(t, q_e_, u_e_);
     return NormalRateAt(c, q_e_, u_e_);
   };
-  return FirstGapRoot(t0, t1, g0, gN0, g1, gN1, gap, gamma_N, gap_tol_, v_tol_, policy_);
+  return FirstGapRoot(t0, t1, g0, gN0, g1, gN1, gap, gamma_N, scales_.gap_tol_m, scales_.v_tol_mps,
+                      policy_);
 }
 
 template <class ComponentAt>
@@ -629,7 +618,7 @@ void Integrator::Rhs(double t, const Eigen::Ref<const Vec>& y, Eigen::Ref<Vec> d
 
 void Integrator::ClosedEventValues(Eigen::Ref<Vec> values) const {
   dynamics::ClosedEventValues(model_, modes_, forces_.kin.gamma_T, forces_.lambda_N,
-                              forces_.lambda_T, force_tol_, v_tol_, values);
+                              forces_.lambda_T, scales_.force_tol_N, scales_.v_tol_mps, values);
 }
 
 void Integrator::ConstrainedStep() {
@@ -732,33 +721,25 @@ void Integrator::ConstrainedStep() {
 }
 
 void Integrator::Project() {
-  // The projection onto the closed contacts' constraints [docs/theory.md §3.10]; it leaves
-  // forces_.kin holding the kinematics of the projected positions.
-  ProjectionWorkspace work{forces_.kin, forces_.sys, rows_, projection_rows_, u_proj_in_, u_proj_};
-  ProjectOntoContacts(model_, modes_, policy_, {ws_.length_scale_m_, gap_tol_, v_tol_}, q(), u(),
-                      work);
+  // The projection onto the closed contacts' constraints [docs/theory.md §3.10], in the
+  // decision's storage (the next step evaluates its own kinematics).
+  ProjectOntoContacts(model_, modes_, policy_,
+                      {scales_.length_scale_m, scales_.gap_tol_m, scales_.v_tol_mps}, q(), u(),
+                      ws_.decision_.projection);
 }
 
 void Integrator::ResolveContacts(const std::vector<int>& forced) {
-  DecisionWorkspace work{ws_.impact_,
-                         ws_.impact_result_,
-                         ws_.contact_problem_,
-                         ws_.contact_result_,
-                         {forces_.kin, forces_.sys, rows_, projection_rows_, u_proj_in_, u_proj_},
-                         ws_.decision_};
-  const DecisionOutcome outcome = DecideModes(model_, policy_,
-                                              {v_tol_, v_acc_, gap_tol_, force_tol_, a_detach_,
-                                               period_min_s_, length_scale_m_, simultaneity_s_},
-                                              {t_, GroundAcceleration(t_), forced}, q(), u(),
-                                              modes_, memory_, *this, work, log_);
+  const DecisionOutcome outcome =
+      DecideModes(model_, policy_, scales_, {t_, GroundAcceleration(t_), forced}, q(), u(), modes_,
+                  memory_, *this, ws_.decision_, log_);
   if (outcome.status != RunStatus::kOk) {
     Fail(outcome.status, outcome.message);
     return;
   }
-  // The decision left the kinematics of every contact at its final state: the gaps of the next
+  // The decision left its kinematics of every contact at its final state: the gaps of the next
   // step's start need no further evaluation.
-  gap0_ = forces_.kin.gap_m;
-  gN0_ = forces_.kin.gamma_N;
+  gap0_ = ws_.decision_.projection.kin.gap_m;
+  gN0_ = ws_.decision_.projection.kin.gamma_N;
 }
 
 void Integrator::Forces(const ContactModes& modes, double t, const Eigen::Ref<const Vec>& qq,

@@ -69,15 +69,12 @@ class SimulationWorkspace {
   LinearFlow flow_;
   FreeDenseOutput free_dense_;
   DormandPrince45 rk_;
-  // The integrator's force evaluations (every entry written before it is read): their
-  // kinematics are also the decision's and the projection's, their dense system the
-  // projection's; the event functions, the cone sign and the mode decision read their lambda.
+  // The constrained phase's force evaluations (every entry written before it is read): the
+  // Runge-Kutta stages, the event functions and the decision's ConstrainedForces answers.
   ActiveForcesStorage forces_;
-  contact::ImpactProblem impact_;
-  contact::ContactProblem contact_problem_;
-  contact::ImpactResult impact_result_;
-  contact::ContactResult contact_result_;
-  DecisionScratch decision_;      // the mode decision's scratch (overwritten before every read)
+  // The mode decision's storage, with kinematics of its own; the projection after a
+  // constrained step works in it too.
+  DecisionWorkspace decision_;
   double omega_min_radps_ = 0.0;  // lowest natural frequency (0 for a free body)
   double omega_max_radps_ = 0.0;  // highest natural frequency
   double length_scale_m_ = 1.0;   // largest deck dimension or distance from the origin

@@ -121,15 +121,7 @@ struct Decision {
         modes(m.n_contacts()),
         memory(m.n_contacts()),
         forces(m),
-        impact(m),
-        contact_problem(m),
-        impact_result(impact.MakeResult()),
-        contact_result(contact_problem.MakeResult()),
-        sys(2 * m.n_contacts(), EventPolicy{}.rank_threshold),
-        rows(MatrixXd::Zero(m.n_dof(), 2 * m.n_contacts())),
-        projection_rows(static_cast<std::size_t>(m.n_contacts()), 0),
-        scratch(m.n_dof(), m.n_contacts()) {
-    kin.Resize(m);
+        ws(m, EventPolicy{}.rank_threshold) {
     scales.v_tol_mps = 1e-10;
     scales.v_acc_mps = 1e-6;
     scales.gap_tol_m = 1e-12;
@@ -145,12 +137,6 @@ struct Decision {
   DecisionOutcome Decide(const Vector2d& a_g, VectorXd& q, VectorXd& u,
                          const std::vector<int>& forced = {}) {
     forces.a_g = a_g;
-    DecisionWorkspace ws{impact,
-                         impact_result,
-                         contact_problem,
-                         contact_result,
-                         {kin, sys, rows, projection_rows, u_in, u_out},
-                         scratch};
     return DecideModes(model, policy, scales, {t_s, a_g, forced}, q, u, modes, memory, forces, ws,
                        log);
   }
@@ -163,16 +149,7 @@ struct Decision {
   DecisionMemory memory;
   DecisionLog log;
   ActiveSetForces forces;
-  contact::ImpactProblem impact;
-  contact::ContactProblem contact_problem;
-  contact::ImpactResult impact_result;
-  contact::ContactResult contact_result;
-  contact::ContactKinematics kin;
-  ActiveSystem sys;
-  MatrixXd rows;
-  std::vector<int> projection_rows;
-  VectorXd u_in, u_out;
-  DecisionScratch scratch;
+  DecisionWorkspace ws;
 };
 
 // gamma_N of contact c at (q, u) by hand.
@@ -440,6 +417,50 @@ TEST(ModeDecision, ConeSignSlidesAStickingCornerAgainstTheFrictionAtItsCone) {
       EXPECT_EQ(d.log.slip_transitions, row.slides ? 1 : 0);
       // The rule asks the constrained forces once (a sticking contact); no tie to check.
       EXPECT_EQ(d.forces.calls, row.rule ? 1 : 0);
+    }
+  }
+}
+
+// The decision's kinematics are its own: after a decision that asked the constrained forces
+// (the cone sign, the tie fallback), ws.projection.kin holds the kinematics of every contact at
+// the final (q, u), what the integrator takes as the next step's start, bit for bit those of a
+// fresh evaluation there, and the gaps and normal rates of the hand formulas.
+TEST(ModeDecision, LeavesItsOwnKinematicsAtTheFinalState) {
+  const double mu = 0.3;
+  const model::Model m = FreeDeck(0.5, mu);
+  const model::Contact& k = m.contact(0);
+  struct Row {
+    ContactMode start;
+    int cone_side;
+    Vector2d a_g;
+    const char* why;
+  };
+  const Row rows[] = {
+      {ContactMode::kStick, 1, 2.0 * k.face.normal + 0.1 * k.face.tangent, "cone sign: slides"},
+      {ContactMode::kStick, 0, 2.0 * k.face.normal + 0.1 * k.face.tangent, "sticks"},
+      {ContactMode::kStick, 0, -5e-8 * k.face.normal, "detachment tie"},
+  };
+  for (const Row& row : rows) {
+    SCOPED_TRACE(row.why);
+    Decision d(m);
+    d.forces.cone_side = row.cone_side;
+    d.forces.cone_excess_N = 2.0 * d.scales.force_tol_N;
+    d.modes.Set(0, row.start);
+    VectorXd q = Touching(m, 0, kTheta0), u = VectorXd::Zero(3);
+    u[1] = 1e-3;  // sliding along the face (and the unit's tangent) on the way
+    const DecisionOutcome r = d.Decide(row.a_g, q, u);
+    ASSERT_EQ(r.status, RunStatus::kOk) << r.message;
+    ASSERT_GT(d.forces.calls, 0) << "the decision must have asked the constrained forces";
+    contact::ContactKinematics fresh;
+    fresh.Resize(m);
+    contact::Evaluate(m, q, u, fresh);
+    const contact::ContactKinematics& kin = d.ws.projection.kin;
+    for (int c = 0; c < m.n_contacts(); ++c) {
+      EXPECT_EQ(kin.gap_m[c], fresh.gap_m[c]) << "contact " << c;
+      EXPECT_EQ(kin.gamma_N[c], fresh.gamma_N[c]) << "contact " << c;
+      EXPECT_EQ(kin.gamma_T[c], fresh.gamma_T[c]) << "contact " << c;
+      EXPECT_NEAR(kin.gap_m[c], HandGap(m, c, q), 1e-12) << "contact " << c;
+      EXPECT_NEAR(kin.gamma_N[c], NormalRate(m, c, q, u), 1e-14) << "contact " << c;
     }
   }
 }
@@ -713,14 +734,8 @@ TEST(ModeDecision, MoreDecisionsAtOneInstantThanTheLimitIsAnEventCascade) {
     EXPECT_EQ(q, q_before);
     EXPECT_EQ(u, u_before);
     DecisionInstant later{kT + 1e-3, Vector2d::Zero(), {}};
-    DecisionWorkspace ws{d.impact,
-                         d.impact_result,
-                         d.contact_problem,
-                         d.contact_result,
-                         {d.kin, d.sys, d.rows, d.projection_rows, d.u_in, d.u_out},
-                         d.scratch};
     EXPECT_EQ(
-        DecideModes(m, d.policy, d.scales, later, q, u, d.modes, d.memory, d.forces, ws, d.log)
+        DecideModes(m, d.policy, d.scales, later, q, u, d.modes, d.memory, d.forces, d.ws, d.log)
             .status,
         RunStatus::kOk);
     EXPECT_EQ(d.memory.events_here, 0);

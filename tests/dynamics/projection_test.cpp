@@ -77,25 +77,15 @@ std::pair<VectorXd, VectorXd> LeastChange(const VectorXd& mass, const MatrixXd& 
 
 struct Fixture {
   explicit Fixture(const model::Model& m)
-      : model(m),
-        modes(m.n_contacts()),
-        sys(2 * m.n_contacts(), policy.rank_threshold),
-        rows(MatrixXd::Zero(m.n_dof(), 2 * m.n_contacts())),
-        joined(static_cast<std::size_t>(m.n_contacts()), 0) {
-    kin.Resize(m);
-  }
+      : model(m), modes(m.n_contacts()), ws(m, policy.rank_threshold), joined(ws.projection_rows) {}
   void Project(VectorXd& q, VectorXd& u) {
-    ProjectionWorkspace ws{kin, sys, rows, joined, u_in, u_out};
     ProjectOntoContacts(model, modes, policy, {30.0, kGapTol, kVTol}, q, u, ws);
   }
   const model::Model& model;
   EventPolicy policy;
   ContactModes modes;
-  contact::ContactKinematics kin;
-  ActiveSystem sys;
-  MatrixXd rows;
-  std::vector<int> joined;
-  VectorXd u_in, u_out;
+  ProjectionWorkspace ws;
+  const std::vector<int>& joined;  ///< per contact: 1 when an open contact joined
 };
 
 // Positions, one pass (closed gaps below one_pass_gap L_d = 4.5e-7 m): the change is the
