@@ -11,7 +11,6 @@
 #include <cmath>
 #include <limits>
 #include <memory>
-#include <numbers>
 #include <string>
 
 #include "solver/common/error.h"
@@ -24,6 +23,7 @@
 #include "solver/dynamics/projection.h"
 #include "solver/dynamics/root_finding.h"
 #include "solver/dynamics/run_scales.h"
+#include "solver/dynamics/step_grid.h"
 #include "solver/lcp/small_lp.h"
 
 namespace skewbridge::dynamics {
@@ -159,7 +159,6 @@ class Integrator final : private ConstrainedForces {
                     Vec& gamma_N) {
     contact::GapsAndRates(model_, q, u, gap, gamma_N, rates_);
   }
-  double FreeStepSize(const ExcitationPiece& piece) const;
   Eigen::Vector2d GroundAcceleration(double t) const { return excitation_.At(t); }
 
   const model::Model& model_;
@@ -310,17 +309,6 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   }
 }
 
-double Integrator::FreeStepSize(const ExcitationPiece& piece) const {
-  const double omega =
-      std::max({ws_.omega_max_radps_, std::abs(piece.omega), policy_.omega_floor_radps});
-  const double h_max = 2.0 * std::numbers::pi / omega / policy_.steps_per_period;
-  if (std::isfinite(piece.t_end)) {
-    const double length = piece.t_end - piece.t_begin;
-    return length / std::ceil(length / h_max);
-  }
-  return h_max;
-}
-
 RunResult Integrator::Run() {
   // The step loop [docs/theory.md §3.1]: the mode decision at t = 0, then one free step (no
   // contact closed) or one constrained step at a time, each ending at its end or at its first
@@ -400,23 +388,15 @@ void Integrator::FreeStep() {
   // The Excitation contract: the piece at t extends beyond t. A piece ending at t would make
   // zero-length steps until the step budget runs out, so stop at once instead.
   SB_DEMAND(piece.t_end > t_, "Excitation::PieceAt(t) returned a piece that ends at or before t");
-  const double t_stop = std::min(piece.t_end, t_end_);
-  double h = FreeStepSize(piece);
-  // Pieces of a sampled record differ in length by rounding (t_end - t_begin of i dt and
-  // (i + 1) dt); one canonical step keeps the propagator cache hitting. The state moves by
-  // e^{A h} over a step whose length differs from h by a few ulps, far below any tolerance.
-  if (std::abs(h - h_free_) <= policy_.step_reuse_band * h) {
-    h = h_free_;
-  }
-  h_free_ = h;
-  const double s = (t_ - piece.t_begin) / h;
-  const double k = std::floor(s + policy_.step_snap_band);
-  double t_next = piece.t_begin + (k + 1.0) * h;
-  if (t_next > t_stop - policy_.step_snap_band * h) {
-    t_next = t_stop;
-  }
+  // The step on the piece's grid, the previous step reused and snapped [docs/theory.md §3.14].
+  const FreeStepPlan step =
+      PlanFreeStep(t_, piece.t_begin, std::min(piece.t_end, t_end_),
+                   FreeStepSize(piece, ws_.omega_max_radps_, policy_), h_free_, policy_);
+  h_free_ = step.h_s;
+  const double h = step.h_s;
+  double t_next = step.t_next_s;
   const double tau = t_next - t_;
-  const bool full = std::abs(tau - h) <= policy_.step_snap_band * h;
+  const bool full = step.full;
   flow.SetGenerator(piece, t_, z_);
   bool dense_built = false;
   auto ensure_dense = [&]() {
@@ -624,11 +604,7 @@ void Integrator::ClosedEventValues(Eigen::Ref<Vec> values) const {
 void Integrator::ConstrainedStep() {
   const ExcitationPiece piece = excitation_.PieceAt(t_);
   SB_DEMAND(piece.t_end > t_, "Excitation::PieceAt(t) returned a piece that ends at or before t");
-  const double t_stop = std::min(piece.t_end, t_end_);
-  double h = std::min(h_rk_, t_stop - t_);
-  if (t_stop - t_ - h < policy_.step_snap_band * h) {
-    h = t_stop - t_;
-  }
+  const double h = ConstrainedStepLength(t_, std::min(piece.t_end, t_end_), h_rk_, policy_);
   y_.head(2 * n_) = z_.head(2 * n_);
   y_.tail(3).setZero();
   const auto rhs = [this](double t, const Eigen::Ref<const Vec>& y, Eigen::Ref<Vec> dy) {

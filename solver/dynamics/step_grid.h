@@ -1,0 +1,74 @@
+#pragma once
+/// @file
+/// Where the event-driven integrator's steps end [docs/theory.md §3.14]: the free steps on a grid
+/// aligned with each excitation piece (step reuse and snapping), and the Runge-Kutta step of a
+/// constrained phase snapped to the piece's end. Pure functions of times, lengths and the
+/// EventPolicy's bands.
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "solver/common/excitation.h"
+#include "solver/dynamics/event_policy.h"
+
+namespace skewbridge::dynamics {
+
+/// The nominal free step on `piece` (s) [§3.14]: at most 2 pi / omega / steps_per_period, omega
+/// the largest of the model's highest natural frequency `omega_max_radps`, the piece's own
+/// frequency and omega_floor_radps; a finite piece is cut into equal steps of at most that.
+inline double FreeStepSize(const ExcitationPiece& piece, double omega_max_radps,
+                           const EventPolicy& policy) {
+  const double omega = std::max({omega_max_radps, std::abs(piece.omega), policy.omega_floor_radps});
+  const double h_max = 2.0 * std::numbers::pi / omega / policy.steps_per_period;
+  if (std::isfinite(piece.t_end)) {
+    const double length = piece.t_end - piece.t_begin;
+    return length / std::ceil(length / h_max);
+  }
+  return h_max;
+}
+
+/// One free step on a piece's grid.
+struct FreeStepPlan {
+  double h_s = 0.0;       ///< the nominal step: the grid's spacing
+  double t_next_s = 0.0;  ///< where the step ends: the next grid point, or the stop time
+  /// The step is a whole h (within step_snap_band h): the cached propagator of h applies.
+  bool full = false;
+};
+
+/// The free step from `t_s` on the grid piece_begin_s + k h of a piece that stops at `t_stop_s`
+/// (its end or the run's) [§3.14]:
+/// - step reuse: a nominal step `h_s` within step_reuse_band h of the previous one `h_last_s` is
+///   the previous one (pieces of a sampled record differ in length by rounding; one canonical h
+///   keeps the propagator cache hitting, and the state moves by e^{A h} over a step a few ulps
+///   longer, far below any tolerance);
+/// - snapping: a time within step_snap_band h below a grid point counts as on it (the step goes
+///   to the point after), and a grid point within step_snap_band h of the stop is the stop, so
+///   no sliver step of rounding length follows; the step is full when its length is h within
+///   that band.
+/// @pre piece_begin_s <= t_s < t_stop_s, h_s > 0.
+inline FreeStepPlan PlanFreeStep(double t_s, double piece_begin_s, double t_stop_s, double h_s,
+                                 double h_last_s, const EventPolicy& policy) {
+  FreeStepPlan plan;
+  plan.h_s = std::abs(h_s - h_last_s) <= policy.step_reuse_band * h_s ? h_last_s : h_s;
+  const double h = plan.h_s;
+  const double k = std::floor((t_s - piece_begin_s) / h + policy.step_snap_band);
+  plan.t_next_s = piece_begin_s + (k + 1.0) * h;
+  if (plan.t_next_s > t_stop_s - policy.step_snap_band * h) {
+    plan.t_next_s = t_stop_s;
+  }
+  plan.full = std::abs((plan.t_next_s - t_s) - h) <= policy.step_snap_band * h;
+  return plan;
+}
+
+/// The length of a constrained phase's Runge-Kutta step from `t_s` (s) [§3.14]: the step the
+/// error control proposes, `h_rk_s`, cut at the stop `t_stop_s` (the piece's end or the run's),
+/// and stretched to the stop when the rest would be below step_snap_band of the step.
+/// @pre t_s < t_stop_s, h_rk_s > 0.
+inline double ConstrainedStepLength(double t_s, double t_stop_s, double h_rk_s,
+                                    const EventPolicy& policy) {
+  const double h = std::min(h_rk_s, t_stop_s - t_s);
+  return t_stop_s - t_s - h < policy.step_snap_band * h ? t_stop_s - t_s : h;
+}
+
+}  // namespace skewbridge::dynamics

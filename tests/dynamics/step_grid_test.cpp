@@ -1,0 +1,143 @@
+/// Step reuse and snapping (solver/dynamics/step_grid.h) [docs/theory.md §3.14], each rule with
+/// its band on and off, against grid points and step lengths worked by hand.
+
+#include "solver/dynamics/step_grid.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <set>
+
+namespace skewbridge::dynamics {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+ExcitationPiece Piece(double t_begin, double t_end, double omega = 0.0) {
+  ExcitationPiece p;
+  p.t_begin = t_begin;
+  p.t_end = t_end;
+  p.omega = omega;
+  return p;
+}
+
+TEST(StepGrid, FreeStepIsAFractionOfTheShortestPeriodCutEvenlyOverThePiece) {
+  const EventPolicy policy;
+  const double omega = 2.0 * std::numbers::pi * 10.0;  // 10 Hz: h_max = 1 / 200 s
+  struct Row {
+    ExcitationPiece piece;
+    double omega_max;
+    double expected;
+    const char* why;
+  };
+  const Row rows[] = {
+      {Piece(0.0, kInf), omega, 0.005, "an unbounded piece: h_max"},
+      {Piece(1.0, 1.0195), omega, 0.0195 / 4.0, "a piece of 3.9 h_max: four equal steps"},
+      {Piece(1.0, 1.021), omega, 0.021 / 5.0, "a piece of 4.2 h_max: five equal steps"},
+      {Piece(0.0, kInf, 2.0 * omega), omega, 0.0025, "the excitation's frequency is higher"},
+      {Piece(0.0, kInf), 0.0, 2.0 * std::numbers::pi / 1e-3 / 20.0, "a free body: the floor"},
+  };
+  for (const Row& r : rows) {
+    EXPECT_NEAR(FreeStepSize(r.piece, r.omega_max, policy), r.expected, 1e-13 * r.expected)
+        << r.why;
+  }
+}
+
+// The pieces of a record sampled at dt = 0.01 s, [i dt, (i + 1) dt] as the record computes them,
+// differ in length by rounding, and so do their nominal steps. Reuse keeps one step for all of
+// them (the first), bit for bit; without the band (step_reuse_band = 0) the step changes with
+// the pieces.
+TEST(StepGrid, StepReuseKeepsOneStepOverASampledRecord) {
+  // 7 Hz: h_max = 1/140 s, so each piece of about dt takes two steps of about dt / 2.
+  const double dt = 0.01, omega_max = 2.0 * std::numbers::pi * 7.0;
+  EventPolicy policy, no_reuse;
+  no_reuse.step_reuse_band = 0.0;
+  std::set<double> nominal, reused, unreused;
+  double h_last = 0.0, h_last_off = 0.0;
+  for (int i = 0; i < 1000; ++i) {
+    const ExcitationPiece p = Piece(i * dt, (i + 1) * dt);
+    const double h = FreeStepSize(p, omega_max, policy);
+    nominal.insert(h);
+    const FreeStepPlan plan = PlanFreeStep(p.t_begin, p.t_begin, p.t_end, h, h_last, policy);
+    const FreeStepPlan off = PlanFreeStep(p.t_begin, p.t_begin, p.t_end, h, h_last_off, no_reuse);
+    h_last = plan.h_s;
+    h_last_off = off.h_s;
+    reused.insert(plan.h_s);
+    unreused.insert(off.h_s);
+    // Two steps of h per piece; the first ends at the grid point begin + h.
+    EXPECT_EQ(plan.t_next_s, p.t_begin + plan.h_s) << "piece " << i;
+    EXPECT_TRUE(plan.full) << "piece " << i;
+  }
+  ASSERT_GT(nominal.size(), 1u) << "the pieces' own steps must differ by rounding";
+  for (double h : nominal) {
+    ASSERT_NEAR(h, dt / 2.0, 1e-15);
+  }
+  EXPECT_EQ(reused.size(), 1u);
+  EXPECT_EQ(*reused.begin(), FreeStepSize(Piece(0.0, dt), omega_max, policy));
+  EXPECT_EQ(unreused.size(), nominal.size());
+}
+
+// Where a step from t ends on the grid begin + k h of a piece [begin, stop), h = 2^-10 s (its
+// grid points exact in binary, so the rows test the bands, not the rounding of the grid).
+TEST(StepGrid, StepsEndOnTheGridWithoutSliverSteps) {
+  const double begin = 2.0, h = 1.0 / 1024.0;
+  const EventPolicy policy;  // step_snap_band 1e-9
+  EventPolicy no_snap;
+  no_snap.step_snap_band = 0.0;
+  struct Row {
+    double t;           // the step's start
+    double stop;        // the piece's (or run's) end
+    double t_next;      // where the step ends
+    bool full;          // a whole h
+    double t_next_off;  // where it ends without the band
+    const char* why;
+  };
+  const double k3 = begin + 3.0 * h, k4 = begin + 4.0 * h;
+  const Row rows[] = {
+      {k3, 1.0e9, k4, true, k4, "on a grid point: one whole step"},
+      {begin + 2.5 * h, 1.0e9, k3, false, k3, "after an event between grid points: to the next"},
+      {k3 - 1e-12 * h, 1.0e9, k4, true, k3,
+       "1e-12 h below a grid point counts as on it (else a sliver of 1e-12 h)"},
+      {k3 - 1e-6 * h, 1.0e9, k3, false, k3, "1e-6 h below: a short step to the grid point"},
+      {k3, k4 + 1e-10 * h, k4 + 1e-10 * h, true, k4,
+       "a stop 1e-10 h beyond a grid point: the step goes to the stop (else a sliver after it)"},
+      {k3, k4 - 0.25 * h, k4 - 0.25 * h, false, k4 - 0.25 * h, "the stop inside the step"},
+  };
+  for (const Row& r : rows) {
+    const FreeStepPlan plan = PlanFreeStep(r.t, begin, r.stop, h, h, policy);
+    EXPECT_EQ(plan.h_s, h) << r.why;
+    EXPECT_NEAR(plan.t_next_s, r.t_next, 1e-15) << r.why;
+    EXPECT_EQ(plan.full, r.full) << r.why;
+    EXPECT_NEAR(PlanFreeStep(r.t, begin, r.stop, h, h, no_snap).t_next_s, r.t_next_off, 1e-15)
+        << r.why << " (band off)";
+  }
+}
+
+TEST(StepGrid, ConstrainedStepIsCutAtTheStopWithoutSliverSteps) {
+  const EventPolicy policy;
+  EventPolicy no_snap;
+  no_snap.step_snap_band = 0.0;
+  const double t = 1.0, h = 1e-4;
+  struct Row {
+    double stop;
+    bool to_stop, to_stop_off;  // the step ends at the stop (else it is the proposed h)
+    const char* why;
+  };
+  const Row rows[] = {
+      {t + 1.0, false, false, "far from the stop: the proposed step"},
+      {t + 0.5 * h, true, true, "the stop inside the step: cut there"},
+      {t + h * (1.0 + 1e-10), true, false,
+       "the stop 1e-10 h beyond the step: stretched to it (else a sliver after it)"},
+      {t + h * (1.0 + 1e-6), false, false, "the stop 1e-6 h beyond: the proposed step"},
+  };
+  for (const Row& r : rows) {
+    EXPECT_EQ(ConstrainedStepLength(t, r.stop, h, policy), r.to_stop ? r.stop - t : h) << r.why;
+    EXPECT_EQ(ConstrainedStepLength(t, r.stop, h, no_snap), r.to_stop_off ? r.stop - t : h)
+        << r.why << " (band off)";
+  }
+}
+
+}  // namespace
+}  // namespace skewbridge::dynamics
