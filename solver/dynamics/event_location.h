@@ -55,6 +55,34 @@ inline void ClosedEventValues(const model::Model& model, const ContactModes& mod
   }
 }
 
+/// ImpactSuspected's dip margin that searches every dip (the constrained step's, §3.12).
+inline constexpr double kEveryDip = std::numeric_limits<double>::infinity();
+
+/// Whether the gap of an open contact may close inside a step of length `tau_s` (s), from its
+/// gap g0, g1 (m) and normal rate gN0, gN1 (m/s) at the step's ends [docs/theory.md §3.12]: a
+/// gap that ends below zero, or one that dips (gamma_N from - to +) with
+/// min(g0, g1) <= dip_margin max(-gN0, gN1) tau / 2. A gap whose normal acceleration keeps its
+/// sign over the step dips at most max(-gN0, gN1) tau / 2 below min(g0, g1); the margin covers
+/// one that turns. The free step passes EventPolicy::dip_margin, the constrained step
+/// kEveryDip, which suspects every dip (§3.12 derives why the margin holds for the one and not
+/// the other). A suspected gap is searched by FirstGapRoot.
+inline bool ImpactSuspected(double g0, double gN0, double g1, double gN1, double tau_s,
+                            double dip_margin) {
+  if (g1 < 0.0) {
+    return true;
+  }
+  if (!(gN0 < 0.0 && gN1 > 0.0)) {
+    return false;
+  }
+  if (dip_margin == kEveryDip) {
+    return true;
+  }
+  // A gap whose acceleration keeps its sign dips at most max(-gN0, gN1) tau / 2 below
+  // min(g0, g1) (§3.12); the margin covers an acceleration that turns within the step.
+  const double dip = 0.5 * std::max(-gN0, gN1) * tau_s;
+  return std::min(g0, g1) <= dip_margin * dip;
+}
+
 /// The first impact time of a contact in the step [t0, t1] (s), or +inf when its gap does not
 /// close there. g0, g1 (m) and gN0, gN1 (m/s) are the gap and its rate at the step's ends;
 /// gap(t) and gamma_N(t) evaluate them inside. `gap_tol_m` is the touch band of a gap,

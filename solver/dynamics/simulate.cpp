@@ -135,17 +135,25 @@ class Integrator final : private ConstrainedForces {
               Eigen::Ref<Vec> lambda_T) override;
   void Project();
 
-  template <class StateAt>
-  double GapRoot(int c, double t0, double t1, double g0, double gN0, double g1, double gN1,
-                 StateAt&& at);
+  // The first impact of an open contact in the step [t0, t1] (+inf: none) [docs/theory.md
+  // §3.12]: each contact whose gaps and rates at the step's ends (gap0_, gN0_, gap1_, gN1_) make
+  // an impact suspected (ImpactSuspected with `dip_margin`) is searched by FirstGapRoot on the
+  // dense output: positions_at(t) gives q at t, state_at(t) a vector whose heads are q and u.
+  template <class PositionsAt, class StateAt>
+  double FirstImpact(double t0, double t1, double dip_margin, PositionsAt&& positions_at,
+                     StateAt&& state_at);
+  // The impact time of the open contact c in [t0, t1] (FirstGapRoot on the dense output).
+  template <class PositionsAt, class StateAt>
+  double GapRoot(int c, double t0, double t1, PositionsAt&& positions_at, StateAt&& state_at);
   // component_at(t, i): entry i of (q, u) at t alone; the root search for a velocity zero needs
   // one entry, not the whole state.
   template <class ComponentAt>
   void ScanMaxima(double t0, const Eigen::Ref<const Vec>& q0, const Eigen::Ref<const Vec>& u0,
                   double t1, const Eigen::Ref<const Vec>& q1, const Eigen::Ref<const Vec>& u1,
                   ComponentAt&& component_at);
+  // The history samples in (t0, t1]; state_at(t) as for FirstImpact.
   template <class StateAt>
-  void RecordOutputs(double t0, double t1, StateAt&& at);
+  void RecordOutputs(double t0, double t1, StateAt&& state_at);
   void RecordSample(double t, const Eigen::Ref<const Vec>& q, const Eigen::Ref<const Vec>& u);
   // 1/2 u^T M u (J), M diagonal.
   double Kinetic() { return 0.5 * u().dot(model_.mass_diagonal().cwiseProduct(u())); }
@@ -173,7 +181,7 @@ class Integrator final : private ConstrainedForces {
   Vec z_, z_new_, z_eval_;
   Vec y_, dy_, y_eval_, atol_;
   Vec cu_;  // C u
-  Vec q_a_, u_a_, q_b_, u_b_, q_e_, u_e_, q_r_, u_r_, du_;
+  Vec q_a_, u_a_, q_b_, u_b_, du_;
   Vec gap0_, gN0_, gap1_, gN1_;
   contact::GapRateScratch rates_;  // scratch of the gaps and normal rates
   Vec f0_, f1_, f_eval_;           // closed-contact event functions: step start, end, trial
@@ -183,8 +191,6 @@ class Integrator final : private ConstrainedForces {
   // evaluates the kinematics of the closed contacts only (the open ones' gaps are read at the
   // step's ends).
   bool closed_only_ = false;
-  // Set by GapRoot while it evaluates a gap: the free step's state_at may then leave u alone.
-  bool positions_only_ = false;
   double h_rk_ = 0.0;
   double h_free_ = 0.0;  // the last nominal free step (s)
   // The run's tolerances and scales [docs/theory.md §3.2], which the decision, the projection,
@@ -262,7 +268,7 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   y_ = Vec::Zero(2 * n_ + 3);
   dy_ = y_eval_ = y_;
   atol_ = Vec::Constant(2 * n_ + 3, kInf);
-  q_a_ = u_a_ = q_b_ = u_b_ = q_e_ = u_e_ = q_r_ = u_r_ = du_ = cu_ = Vec::Zero(n_);
+  q_a_ = u_a_ = q_b_ = u_b_ = du_ = cu_ = Vec::Zero(n_);
   gap0_ = gN0_ = gap1_ = gN1_ = Vec::Zero(nc_);
   f0_ = f1_ = f_eval_ = Vec::Zero(2 * nc_);
   forced_.reserve(static_cast<std::size_t>(nc_));
@@ -315,10 +321,7 @@ RunResult Integrator::Run() {
   // event, where the step calls the decision (ResolveContacts) again.
   ws_.flow_.SetGenerator(excitation_.PieceAt(0.0), 0.0, z_);
   result_.energy.initial_J = ws_.flow_.MechanicalEnergy(z_);
-  RecordOutputs(0.0, 0.0, [&](double, Vec& qq, Vec& uu) {
-    qq = q();
-    uu = u();
-  });
+  RecordOutputs(0.0, 0.0, [&](double) -> const Vec& { return z_; });
   forced_.clear();
   ResolveContacts(forced_);
   while (!Failed() && t_ < t_end_) {
@@ -416,40 +419,20 @@ void Integrator::FreeStep() {
   }
   ++result_.free_steps;
 
-  // Gap events: an open gap ending below zero, or a dip (gamma_N from - to +) deep enough that
-  // the cubic Hermite model of g, with a margin for its error, reaches zero.
-  GapsAndRates(z_new_.head(n_), z_new_.segment(n_, n_), gap1_, gN1_);
-  const auto at = [&](double t, Vec& qq, Vec& uu) {
-    ensure_dense();
-    if (positions_only_) {
-      // Straight into qq (n_ entries): no copy per evaluation of the impact search.
-      ws_.free_dense_.EvaluateHead(t - t_, n_, qq);
-      return;
-    }
-    ws_.free_dense_.EvaluateHead(t - t_, 2 * n_, z_eval_);
-    qq = z_eval_.head(n_);
-    uu = z_eval_.segment(n_, n_);
-  };
-  // q alone (half the modal series of at): what a gap needs.
+  // The flow's dense output inside the step, in z_eval_: q alone (half the modal series: what a
+  // gap needs), or q and u.
   const auto positions_at = [&](double t) {
     ensure_dense();
     ws_.free_dense_.EvaluateHead(t - t_, n_, z_eval_);
     return z_eval_.head(n_);
   };
-  double t_event = kInf;
-  for (int c = 0; c < nc_; ++c) {
-    bool suspect = gap1_[c] < 0.0;
-    if (!suspect && gN0_[c] < 0.0 && gN1_[c] > 0.0) {
-      // Hermite minimum bound: the gap cannot dip by more than |gN0| tau / 2 below a line.
-      const double dip = 0.5 * std::max(-gN0_[c], gN1_[c]) * tau;
-      suspect = std::min(gap0_[c], gap1_[c]) <= policy_.dip_margin * dip;
-    }
-    if (suspect) {
-      ensure_dense();
-      const double tc = GapRoot(c, t_, t_next, gap0_[c], gN0_[c], gap1_[c], gN1_[c], at);
-      t_event = std::min(t_event, tc);
-    }
-  }
+  const auto state_at = [&](double t) -> const Vec& {
+    ensure_dense();
+    ws_.free_dense_.EvaluateHead(t - t_, 2 * n_, z_eval_);
+    return z_eval_;
+  };
+  GapsAndRates(z_new_.head(n_), z_new_.segment(n_, n_), gap1_, gN1_);
+  const double t_event = FirstImpact(t_, t_next, policy_.dip_margin, positions_at, state_at);
   forced_.clear();
   if (t_event < kInf) {
     // Near-simultaneous: contacts closed within the tolerance after the first are one impact.
@@ -460,7 +443,7 @@ void Integrator::FreeStep() {
       }
     }
     t_next = t_event;
-    ws_.free_dense_.EvaluateHead(t_next - t_, 2 * n_, z_new_);  // what at(t_next) gives
+    ws_.free_dense_.EvaluateHead(t_next - t_, 2 * n_, z_new_);  // what state_at(t_next) gives
   }
   if (ledger && (!full || t_event < kInf)) {
     // Energy of a partial step by Gauss-Legendre quadrature of the exact (Taylor) solution.
@@ -482,7 +465,7 @@ void Integrator::FreeStep() {
     ensure_dense();
     return ws_.free_dense_.EvaluateComponent(t - t_, i);
   });
-  RecordOutputs(t_, t_next, at);
+  RecordOutputs(t_, t_next, state_at);
   z_.head(2 * n_) = z_new_.head(2 * n_);
   t_ = t_next;
   if (t_event < kInf) {
@@ -493,21 +476,30 @@ void Integrator::FreeStep() {
   }
 }
 
-template <class StateAt>
-double Integrator::GapRoot(int c, double t0, double t1, double g0, double gN0, double g1,
-                           double gN1, StateAt&& at) {
-  const auto gap = [&](double t) {
-    positions_only_ = true;  // the gap needs q alone: half the free flow's dense evaluation
-    at(t, q_e_, u_e_);
-    positions_only_ = false;
-    return GapAt(c, q_e_);
-  };
+template <class PositionsAt, class StateAt>
+inline double Integrator::FirstImpact(double t0, double t1, double dip_margin,
+                                      PositionsAt&& positions_at, StateAt&& state_at) {
+  double t_event = kInf;
+  for (int c = 0; c < nc_; ++c) {
+    // The suspicion first: it is false for most contacts in most steps.
+    if (ImpactSuspected(gap0_[c], gN0_[c], gap1_[c], gN1_[c], t1 - t0, dip_margin) &&
+        !modes_.closed(c)) {
+      t_event = std::min(t_event, GapRoot(c, t0, t1, positions_at, state_at));
+    }
+  }
+  return t_event;
+}
+
+template <class PositionsAt, class StateAt>
+double Integrator::GapRoot(int c, double t0, double t1, PositionsAt&& positions_at,
+                           StateAt&& state_at) {
+  const auto gap = [&](double t) { return GapAt(c, positions_at(t)); };
   const auto gamma_N = [&](double t) {
-    at(t, q_e_, u_e_);
-    return NormalRateAt(c, q_e_, u_e_);
+    const Vec& s = state_at(t);
+    return NormalRateAt(c, s.head(n_), s.segment(n_, n_));
   };
-  return FirstGapRoot(t0, t1, g0, gN0, g1, gN1, gap, gamma_N, scales_.gap_tol_m, scales_.v_tol_mps,
-                      policy_);
+  return FirstGapRoot(t0, t1, gap0_[c], gN0_[c], gap1_[c], gN1_[c], gap, gamma_N, scales_.gap_tol_m,
+                      scales_.v_tol_mps, policy_);
 }
 
 template <class ComponentAt>
@@ -540,12 +532,11 @@ void Integrator::ScanMaxima(double t0, const Eigen::Ref<const Vec>& q0,
 }
 
 template <class StateAt>
-void Integrator::RecordOutputs(double t0, double t1, StateAt&& at) {
+void Integrator::RecordOutputs(double t0, double t1, StateAt&& state_at) {
   while (next_output_t_ <= t1 + policy_.output_time_band * std::max(1.0, t1) &&
          next_output_t_ <= t_end_ + policy_.output_time_band) {
-    const double t = std::max(t0, std::min(next_output_t_, t1));
-    at(t, q_r_, u_r_);
-    RecordSample(next_output_t_, q_r_, u_r_);
+    const Vec& s = state_at(std::max(t0, std::min(next_output_t_, t1)));
+    RecordSample(next_output_t_, s.head(n_), s.segment(n_, n_));
     next_output_t_ = control_.output_interval_s * static_cast<double>(result_.histories.t_s.size());
   }
 }
@@ -633,31 +624,29 @@ void Integrator::ConstrainedStep() {
   // no further evaluation; the open contacts need only their gaps and normal rates.
   ClosedEventValues(f1_);
   GapsAndRates(y1.head(n_), y1.segment(n_, n_), gap1_, gN1_);
-  const auto at = [&](double t, Vec& qq, Vec& uu) {
-    if (positions_only_) {
-      rk.DenseHeadAt(t, n_, qq);  // a gap needs q alone
-      return;
-    }
-    rk.DenseAt(t, y_eval_);
-    qq = y_eval_.head(n_);
-    uu = y_eval_.segment(n_, n_);
+  // The step's dense output, in y_eval_: q alone (what a gap needs), or the whole state.
+  const auto positions_at = [&](double t) {
+    rk.DenseHeadAt(t, n_, y_eval_);
+    return y_eval_.head(n_);
   };
-  double t_event = kInf;
+  const auto state_at = [&](double t) -> const Vec& {
+    rk.DenseAt(t, y_eval_);
+    return y_eval_;
+  };
+  // Every dip of an open contact's gap is searched (kEveryDip): the Hermite margin of the free
+  // step rests on its length, which a Runge-Kutta step does not have [docs/theory.md §3.12].
+  double t_event = FirstImpact(t_, t1, kEveryDip, positions_at, state_at);
   const double x_tol = EventTimeBracket(t1, policy_);
   for (int c = 0; c < nc_; ++c) {
     if (!modes_.closed(c)) {
-      const bool suspect = gap1_[c] < 0.0 || (gN0_[c] < 0.0 && gN1_[c] > 0.0);
-      if (suspect) {
-        t_event = std::min(t_event, GapRoot(c, t_, t1, gap0_[c], gN0_[c], gap1_[c], gN1_[c], at));
-      }
       continue;
     }
     for (int e = 2 * c; e <= 2 * c + 1; ++e) {
       if (f1_[e] < 0.0 && f0_[e] >= 0.0) {
         const auto fe = [&](double t) {
-          at(t, q_e_, u_e_);
+          const Vec& y = state_at(t);
           closed_only_ = true;
-          ActiveForces(modes_, t, q_e_, u_e_, du_, forces_);
+          ActiveForces(modes_, t, y.head(n_), y.segment(n_, n_), du_, forces_);
           closed_only_ = false;
           ClosedEventValues(f_eval_);
           return f_eval_[e];
@@ -683,7 +672,7 @@ void Integrator::ConstrainedStep() {
   u_b_ = y_eval_.segment(n_, n_);
   ScanMaxima(t_, q_a_, u_a_, t_new, q_b_, u_b_,
              [&](double t, int i) { return rk.DenseComponentAt(t, i); });
-  RecordOutputs(t_, t_new, at);
+  RecordOutputs(t_, t_new, state_at);
   z_.head(n_) = q_b_;
   z_.segment(n_, n_) = u_b_;
   t_ = t_new;
