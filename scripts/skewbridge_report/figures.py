@@ -528,8 +528,17 @@ def history(run, out_dir, name, pdf, title=None):
     return common.save(fig, out_dir, name, pdf), table
 
 
+# What each family's figures show, named in their titles: the subsystem is one abutment, not a
+# bridge [docs/theory.md §6].
+FAMILY_TEXT = {
+    "subsystem": "single-abutment subsystem (corners P1, P2)",
+    "pilot-bridge": "pilot bridge, both abutments",
+}
+
+
 def _fixed_text(sweep):
-    parts = []
+    """The figure title's tail: the family's model, then the sweep's fixed parameters."""
+    parts = [FAMILY_TEXT[sweep.family]] if sweep.family in FAMILY_TEXT else []
     for key in ("a_deg", "eta0", "Pi_delta", "W0_over_w0", "xi", "eps_N", "mu", "pulse"):
         if key in sweep.fixed:
             v = sweep.fixed[key]
