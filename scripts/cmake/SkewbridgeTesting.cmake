@@ -2,9 +2,10 @@
 #
 #   sb_add_gtest(NAME SOURCES a.cpp b.cpp LIBS lib1 lib2 [LABELS l])
 #       a GoogleTest executable run by ctest (one ctest entry per executable).
-#   sb_add_mpi_gtest(NAME NPROCS n SOURCES ... LIBS ... [LABELS l])
+#   sb_add_mpi_gtest(NAME NPROCS n [n2 ...] SOURCES ... LIBS ... [LABELS l])
 #       the same, launched as `mpiexec -n n` with the flags a root CI machine needs;
-#       the tests get MPI initialised by tests/support/mpi_gtest_main.cpp.
+#       the tests get MPI initialised by tests/support/mpi_gtest_main.cpp. With several
+#       rank counts, one executable NAME runs as the ctest tests NAME<n>, NAME<n2>, ...
 #   sb_add_benchmark(NAME SOURCES ... LIBS ...)
 #       a Google Benchmark program (built, not run by ctest).
 #   sb_mpi_environment(TEST...)
@@ -39,7 +40,7 @@ function(sb_add_gtest name)
 endfunction()
 
 function(sb_add_mpi_gtest name)
-  cmake_parse_arguments(ARG "" "NPROCS" "SOURCES;LIBS;LABELS" ${ARGN})
+  cmake_parse_arguments(ARG "" "" "NPROCS;SOURCES;LIBS;LABELS" ${ARGN})
   if(NOT SKEWBRIDGE_BUILD_TESTS OR NOT SKEWBRIDGE_WITH_MPI)
     return()
   endif()
@@ -47,16 +48,30 @@ function(sb_add_mpi_gtest name)
     set(ARG_NPROCS 2)
   endif()
   find_package(GTest REQUIRED)
-  add_executable(${name} ${ARG_SOURCES} "${PROJECT_SOURCE_DIR}/tests/support/mpi_gtest_main.cpp")
-  target_link_libraries(${name} PRIVATE ${ARG_LIBS} MPI::MPI_C GTest::gtest GTest::gmock)
+  # The main of every MPI test program, compiled once.
+  if(NOT TARGET sb_mpi_gtest_main)
+    add_library(sb_mpi_gtest_main OBJECT "${PROJECT_SOURCE_DIR}/tests/support/mpi_gtest_main.cpp")
+    target_link_libraries(sb_mpi_gtest_main PUBLIC MPI::MPI_C GTest::gtest GTest::gmock)
+    # MPI's C API only, as in the jobs library (Open MPI's C++ bindings are not linked).
+    target_compile_definitions(sb_mpi_gtest_main PRIVATE OMPI_SKIP_MPICXX=1 MPICH_SKIP_MPICXX=1)
+  endif()
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_LIBS} sb_mpi_gtest_main)
   target_compile_definitions(${name} PRIVATE
     SKEWBRIDGE_TEST_DATA_DIR="${SKEWBRIDGE_TEST_DATA_DIR}"
     SKEWBRIDGE_SHARED_DIR="${SKEWBRIDGE_SHARED_DIR}")
-  add_test(NAME ${name}
-    COMMAND ${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} ${ARG_NPROCS} --oversubscribe
-            ${MPIEXEC_PREFLAGS} $<TARGET_FILE:${name}> ${MPIEXEC_POSTFLAGS})
-  set_tests_properties(${name} PROPERTIES LABELS "mpi;${ARG_LABELS}" PROCESSORS ${ARG_NPROCS})
-  sb_mpi_environment(${name})
+  list(LENGTH ARG_NPROCS counts)
+  foreach(n IN LISTS ARG_NPROCS)
+    set(test ${name})
+    if(counts GREATER 1)
+      set(test ${name}${n})
+    endif()
+    add_test(NAME ${test}
+      COMMAND ${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} ${n} --oversubscribe
+              ${MPIEXEC_PREFLAGS} $<TARGET_FILE:${name}> ${MPIEXEC_POSTFLAGS})
+    set_tests_properties(${test} PROPERTIES LABELS "mpi;${ARG_LABELS}" PROCESSORS ${n})
+    sb_mpi_environment(${test})
+  endforeach()
 endfunction()
 
 function(sb_add_benchmark name)
