@@ -517,16 +517,19 @@ std::vector<ResponseInfo> ModelFileEvaluator::Responses() const {
     if (seats_) {
       out.push_back({"margin_m" + s, "m",
                      "unseating margin" + of +
-                         ": seat width - corner travel normal to the end "
-                         "line (a lower bound)"});
+                         ": seat width - largest corner travel normal to the end "
+                         "line (travel_m)"});
       out.push_back({"margin_norm" + s, "1", "margin_m / L_e" + of});
     }
     if (travel_) {
       out.push_back({"travel_m" + s, "m",
                      "largest corner travel" + of +
-                         " normal to its end line, from the maxima (seat width - margin_m)"});
+                         " normal to its end line over the run, exact (seat width - margin_m)"});
       out.push_back({"travel_end_m" + s, "m",
                      "residual corner travel" + of + " normal to its end line at the end (exact)"});
+      out.push_back({"travel_bound_m" + s, "m",
+                     "upper bound of travel_m" + of +
+                         " from the maxima of x, y and theta, each at its own time"});
     }
   }
   out.push_back({"theta_norm_max", "1", "largest theta_norm over the decks"});
@@ -610,14 +613,14 @@ CellOutcome ModelFileEvaluator::EvaluateAt(std::span<const std::size_t> axis_ind
       out.responses.push_back(value(v));
     }
     if (seats_) {
-      const double margin_m =
-          model::UnseatingMargin(deck, c.seat_width_m[static_cast<std::size_t>(d)], q_max);
+      const double margin_m = c.seat_width_m[static_cast<std::size_t>(d)] - run.max_travel_m(d);
       out.responses.push_back(value(margin_m));
       out.responses.push_back(value(margin_m * to_norm));
     }
     if (travel_) {
-      out.responses.push_back(value(model::CornerTravelBound(deck.geometry, q_max)));
+      out.responses.push_back(value(run.max_travel_m(d)));
       out.responses.push_back(value(model::CornerTravelAt(deck.geometry, q_end)));
+      out.responses.push_back(value(model::CornerTravelBound(deck.geometry, q_max)));
     }
   }
   out.responses.push_back(value(theta_max));

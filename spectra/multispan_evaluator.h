@@ -7,8 +7,9 @@
 /// parameter (`spans`, an axis or fixed). Responses are stored per deck with a suffix _d<i>
 /// for i up to the largest span count of the sweep; a cell with fewer spans stores NaN for the
 /// decks it does not have (docs/hdf5-layout.md, multi-span responses). With limit states each
-/// deck also stores its rotation in rad and its corner travels (model::CornerTravelBound,
-/// model::CornerTravelAt), which spectra::LimitStateEvaluator reads.
+/// deck also stores its rotation in rad and its corner travels (the exact largest travel the
+/// integrator tracks, model::CornerTravelAt at the end, model::CornerTravelBound from the maxima),
+/// which spectra::LimitStateEvaluator reads.
 
 #include <cstdint>
 #include <string>

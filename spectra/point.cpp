@@ -233,6 +233,7 @@ PointResult EvaluatePoint(const DimensionalPoint& point, const Excitation& excit
   r.x_m = run.max_abs_q(0);
   r.y_m = run.max_abs_q(1);
   r.theta_rad = run.max_abs_q(2);
+  r.travel_m = run.max_travel_m(0);
   r.x_end_m = run.q_end(0);
   r.y_end_m = run.q_end(1);
   r.theta_end_rad = run.q_end(2);

@@ -118,20 +118,21 @@ DimensionalPoint ToDimensional(const PointParameters& p, const ExcitationScales&
 /// The responses of one point, dimensional and normalised as in [docs/theory.md §5].
 struct PointResult {
   dynamics::RunStatus status = dynamics::RunStatus::kOk;
-  std::string message;                   ///< empty when ok
-  double x_m = 0.0;                      ///< max |x| (m)
-  double y_m = 0.0;                      ///< max |y| (m)
-  double theta_rad = 0.0;                ///< max |theta| (rad)
-  double x_end_m = 0.0;                  ///< residual x(t_end) (m)
-  double y_end_m = 0.0;                  ///< residual y(t_end) (m)
-  double theta_end_rad = 0.0;            ///< residual rotation theta(t_end) (rad)
-  double x_norm = 0.0;                   ///< x_m w_g^2 / a_g
-  double y_norm = 0.0;                   ///< y_m w_g^2 / a_g
-  double theta_norm = 0.0;               ///< theta_m rho w_g^2 / a_g
-  double theta_end_norm = 0.0;           ///< theta(t_end) rho w_g^2 / a_g
-  long impacts = 0;                      ///< impact events
-  long events = 0;                       ///< impacts + plastic closures + detachments + stick/slip
-  long steps = 0;                        ///< integration steps (exact + Runge-Kutta)
+  std::string message;          ///< empty when ok
+  double x_m = 0.0;             ///< max |x| (m)
+  double y_m = 0.0;             ///< max |y| (m)
+  double theta_rad = 0.0;       ///< max |theta| (rad)
+  double travel_m = 0.0;        ///< largest corner travel normal to the end line (m), exact
+  double x_end_m = 0.0;         ///< residual x(t_end) (m)
+  double y_end_m = 0.0;         ///< residual y(t_end) (m)
+  double theta_end_rad = 0.0;   ///< residual rotation theta(t_end) (rad)
+  double x_norm = 0.0;          ///< x_m w_g^2 / a_g
+  double y_norm = 0.0;          ///< y_m w_g^2 / a_g
+  double theta_norm = 0.0;      ///< theta_m rho w_g^2 / a_g
+  double theta_end_norm = 0.0;  ///< theta(t_end) rho w_g^2 / a_g
+  long impacts = 0;             ///< impact events
+  long events = 0;              ///< impacts + plastic closures + detachments + stick/slip
+  long steps = 0;               ///< integration steps (exact + Runge-Kutta)
   double min_impact_separation_s = 0.0;  ///< smallest separation of distinct impacts (s)
 };
 

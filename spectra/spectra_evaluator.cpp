@@ -147,15 +147,19 @@ std::vector<ResponseInfo> SpectraEvaluator::Responses() const {
   std::vector<ResponseInfo> out = ResponseTable();
   if (seats_) {
     out.push_back({"margin_m", "m",
-                   "unseating margin: seat width (seat_over_L L) - corner travel normal to the "
-                   "end line (a lower bound from the maxima)"});
+                   "unseating margin: seat width (seat_over_L L) - largest corner travel normal "
+                   "to the end line (travel_m)"});
     out.push_back({"margin_norm", "1", "margin_m w_g^2 / a_g"});
   }
   if (travel_) {
-    out.push_back(
-        {"travel_m", "m", "largest corner travel normal to the end line, bounded from the maxima"});
+    out.push_back({"travel_m", "m",
+                   "largest corner travel normal to the end line over the run, exact (tracked by "
+                   "the integrator)"});
     out.push_back({"travel_end_m", "m",
                    "corner travel normal to the end line at the end of the run (residual)"});
+    out.push_back({"travel_bound_m", "m",
+                   "upper bound of travel_m from the maxima of x, y and theta, each at its own "
+                   "time"});
   }
   return out;
 }
@@ -207,7 +211,7 @@ CellOutcome SpectraEvaluator::Evaluate(std::span<const std::size_t> axis_index) 
                    BandOf(point.w0x_radps / s.w_g_radps, band_edges_)};
   if (seats_ || travel_) {
     const model::DeckGeometry& g = point.deck.geometry;
-    const double travel_m = model::CornerTravelBound(g, {r.x_m, r.y_m, r.theta_rad});
+    const double travel_m = r.travel_m;
     if (seats_) {
       const double margin_m =
           NumberOf(spec_, axis_index, "seat_over_L", 0.0) * g.length_m - travel_m;
@@ -218,6 +222,7 @@ CellOutcome SpectraEvaluator::Evaluate(std::span<const std::size_t> axis_index) 
       out.responses.push_back(value(travel_m));
       out.responses.push_back(
           value(model::CornerTravelAt(g, {r.x_end_m, r.y_end_m, r.theta_end_rad})));
+      out.responses.push_back(value(model::CornerTravelBound(g, {r.x_m, r.y_m, r.theta_rad})));
     }
   }
   out.stats.events = r.events;

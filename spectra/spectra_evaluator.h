@@ -48,7 +48,7 @@ class SpectraEvaluator final : public CellEvaluator {
   std::vector<SweepRecord> records_;  ///< LoadSweepRecords(spec_), read once per rank
   std::vector<double> band_edges_;    ///< BandEdges(spec_), for the response band
   bool seats_ = false;                ///< seat_over_L is given: margin_m, margin_norm are stored
-  bool travel_ = false;  ///< the sweep declares limit states: travel_m, travel_end_m are stored
+  bool travel_ = false;  ///< limit states declared: travel_m, travel_end_m, travel_bound_m stored
 };
 
 }  // namespace skewbridge::spectra

@@ -38,13 +38,14 @@ QUANTITY_SYMBOL = {
     "x_m": r"$x_m$", "y_m": r"$y_m$", "theta_m": r"$\theta_m$", "x_end": r"$x_{end}$",
     "y_end": r"$y_{end}$", "theta_end": r"$\theta_{end}$", "margin_m": "unseating margin",
     "travel_m": "corner travel", "travel_end_m": "residual corner travel",
+    "travel_bound_m": "corner travel bound",
     "margin_norm": r"unseating margin $\times\,\omega_g^2/a_g$", "impacts": "impacts",
     "theta_norm_max": r"$\max_i\,\theta_{m,i}\,\rho_i\,\omega_g^2/a_g$",
 }
 QUANTITY_TEXT = {"x_m": "x_m", "y_m": "y_m", "theta_m": "θ_m", "x_end": "x_end",
                  "y_end": "y_end", "theta_end": "θ_end", "margin_m": "unseating margin",
                  "margin_norm": "unseating margin ω_g²/a_g", "impacts": "impacts",
-                 "travel_m": "corner travel",
+                 "travel_m": "corner travel", "travel_bound_m": "corner travel bound",
                  "x_norm": "x_m ω_g²/a_g", "y_norm": "y_m ω_g²/a_g",
                  "theta_norm": "θ_m ρ ω_g²/a_g", "theta_end_norm": "θ_end ρ ω_g²/a_g",
                  "theta_norm_max": "max over decks of θ_m ρ ω_g²/a_g"}

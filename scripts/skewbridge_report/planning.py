@@ -21,8 +21,9 @@ DESCRIPTORS = {"a_g", "w_g", "L_e", "delta", "L", "pga", "pgv", "pgd", "arias", 
 # (in metres and radians, as an engineer reads their own bridge) is drawn.
 NORMALISED_TWIN = {"x_norm": "x_m", "y_norm": "y_m", "theta_norm": "theta_m",
                    "theta_end_norm": "theta_end", "margin_norm": "margin_m"}
-# Residual displacements: in the table; the residual rotation is drawn.
-TABLE_ONLY = {"x_end", "y_end", "travel_end_m"}
+# Residual displacements and the bound of the corner travel: in the table; the residual rotation
+# is drawn.
+TABLE_ONLY = {"x_end", "y_end", "travel_end_m", "travel_bound_m"}
 # Limit-state responses (ls_<name>, ls_<name>_demand): their demands repeat drawn responses and
 # their exceedances are the fragility figures' business; they stay in the tables.
 LIMIT_STATE_PREFIX = "ls_"

@@ -99,10 +99,14 @@ struct RunResult {
   double end_time_s = 0.0;        ///< time reached
   Eigen::VectorXd max_abs_q;      ///< max over time of |q_i| (m, rad), per DOF
   Eigen::VectorXd time_of_max_s;  ///< when each maximum occurred
-  Eigen::VectorXd q_end;          ///< residual displacements / rotations at the end
-  Eigen::VectorXd u_end;          ///< velocities at the end
-  long impacts = 0;               ///< impact events (a multi-contact impact counts once)
-  long plastic_closures = 0;      ///< impacts slower than the accumulation threshold
+  /// max over time and over the deck's four corners of the travel normal to the end line,
+  /// |n_e . (corner displacement)| with n_e = (cos a, -sin a) (m), per deck (model::CornerTravelAt
+  /// at every instant; dynamics/corner_travel.h): exact where model::CornerTravelBound bounds it
+  Eigen::VectorXd max_travel_m;
+  Eigen::VectorXd q_end;      ///< residual displacements / rotations at the end
+  Eigen::VectorXd u_end;      ///< velocities at the end
+  long impacts = 0;           ///< impact events (a multi-contact impact counts once)
+  long plastic_closures = 0;  ///< impacts slower than the accumulation threshold
   long detachments = 0;
   long stick_transitions = 0;  ///< slide -> stick
   long slip_transitions = 0;   ///< stick -> slide, or slip reversal

@@ -17,6 +17,7 @@
 #include "solver/dynamics/active_forces.h"
 #include "solver/dynamics/active_system.h"
 #include "solver/dynamics/contact_modes.h"
+#include "solver/dynamics/corner_travel.h"
 #include "solver/dynamics/event_location.h"
 #include "solver/dynamics/indeterminate_split.h"
 #include "solver/dynamics/mode_decision.h"
@@ -151,6 +152,11 @@ class Integrator final : private ConstrainedForces {
   void ScanMaxima(double t0, const Eigen::Ref<const Vec>& q0, const Eigen::Ref<const Vec>& u0,
                   double t1, const Eigen::Ref<const Vec>& q1, const Eigen::Ref<const Vec>& u1,
                   ComponentAt&& component_at);
+  // The time tolerance of a maximum's root search in a step ending at t1 (s).
+  double MaximumTimeTolerance(double t1) const {
+    return policy_.maximum_time_tolerance * std::max(1.0, std::abs(t1)) +
+           policy_.event_time_floor_s;
+  }
   // The history samples in (t0, t1]; state_at(t) as for FirstImpact.
   template <class StateAt>
   void RecordOutputs(double t0, double t1, StateAt&& state_at);
@@ -198,6 +204,7 @@ class Integrator final : private ConstrainedForces {
   DecisionScales scales_;
   double next_output_t_ = kInf;
   RunResult result_;
+  CornerTravelTracker travel_;   // the decks' corner travels (result_.max_travel_m)
   DecisionMemory memory_;        // what the mode decision remembers between instants
   DecisionLog log_;              // the events and counts the decisions add
   ActiveForcesStorage& forces_;  // the workspace's: the integrator's own force evaluations
@@ -242,6 +249,7 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
       n_(model.n_dof()),
       nc_(model.n_contacts()),
       modes_(model.n_contacts()),
+      travel_(model),
       memory_(model.n_contacts()),
       forces_(ws.forces_) {
   SB_DEMAND(&ws.model() == &model, "Simulate: workspace built for another model");
@@ -297,6 +305,7 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
 
   result_.max_abs_q = z_.head(n_).cwiseAbs();
   result_.time_of_max_s = Vec::Zero(n_);
+  travel_.Start(z_.head(n_), result_.max_travel_m);
   log_.events.reserve(1024);
   if (control.output_interval_s > 0.0) {
     const auto samples = static_cast<std::size_t>(t_end_ / control.output_interval_s) + 2;
@@ -461,10 +470,14 @@ void Integrator::FreeStep() {
   result_.energy.input_J += input;
   result_.energy.damping_J += damping;
   // The step's ends in place (no copies): the velocity-zero search reads the dense output only.
-  ScanMaxima(t_, q(), u(), t_next, z_new_.head(n_), z_new_.segment(n_, n_), [&](double t, int i) {
+  const auto component_at = [&](double t, int i) {
     ensure_dense();
     return ws_.free_dense_.EvaluateComponent(t - t_, i);
-  });
+  };
+  ScanMaxima(t_, q(), u(), t_next, z_new_.head(n_), z_new_.segment(n_, n_), component_at);
+  // The corner travels, at the same exactness: step ends and the roots of each corner's rate.
+  travel_.Scan(t_, q(), u(), t_next, z_new_.head(n_), z_new_.segment(n_, n_),
+               MaximumTimeTolerance(t_next), component_at, result_.max_travel_m);
   RecordOutputs(t_, t_next, state_at);
   z_.head(2 * n_) = z_new_.head(2 * n_);
   t_ = t_next;
@@ -518,9 +531,7 @@ void Integrator::ScanMaxima(double t0, const Eigen::Ref<const Vec>& q0,
       if (bound > result_.max_abs_q[i]) {
         const auto velocity = [&](double t) { return component_at(t, n_ + i); };
         const RootResult peak =
-            FindRootBrent(velocity, t0, t1, u0[i], u1[i],
-                          policy_.maximum_time_tolerance * std::max(1.0, std::abs(t1)) +
-                              policy_.event_time_floor_s);
+            FindRootBrent(velocity, t0, t1, u0[i], u1[i], MaximumTimeTolerance(t1));
         const double q_peak = std::abs(component_at(peak.x, i));
         if (q_peak > result_.max_abs_q[i]) {
           result_.max_abs_q[i] = q_peak;
@@ -670,8 +681,10 @@ void Integrator::ConstrainedStep() {
   u_a_ = z_.segment(n_, n_);
   q_b_ = y_eval_.head(n_);
   u_b_ = y_eval_.segment(n_, n_);
-  ScanMaxima(t_, q_a_, u_a_, t_new, q_b_, u_b_,
-             [&](double t, int i) { return rk.DenseComponentAt(t, i); });
+  const auto component_at = [&](double t, int i) { return rk.DenseComponentAt(t, i); };
+  ScanMaxima(t_, q_a_, u_a_, t_new, q_b_, u_b_, component_at);
+  travel_.Scan(t_, q_a_, u_a_, t_new, q_b_, u_b_, MaximumTimeTolerance(t_new), component_at,
+               result_.max_travel_m);
   RecordOutputs(t_, t_new, state_at);
   z_.head(n_) = q_b_;
   z_.segment(n_, n_) = u_b_;

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "solver/common/error.h"
+#include "solver/dynamics/corner_travel.h"
 #include "solver/lcp/enumeration.h"
 
 namespace skewbridge::dynamics {
@@ -204,6 +205,8 @@ RunResult SimulateTimeStepping(const model::Model& model, const Excitation& exci
   Vec u = initial.u.size() == n ? initial.u : Vec::Zero(n);
   result.max_abs_q = q.cwiseAbs();
   result.time_of_max_s = Vec::Zero(n);
+  CornerTravelTracker travel(model);
+  travel.Start(q, result.max_travel_m);
   result.energy.initial_J = model.MechanicalEnergy(q, u);
 
   const Eigen::VectorXd& mass = model.mass_diagonal();
@@ -473,6 +476,7 @@ RunResult SimulateTimeStepping(const model::Model& model, const Excitation& exci
         result.time_of_max_s[i] = t1;
       }
     }
+    travel.Update(ws.q1_, result.max_travel_m);
     record_until(t, q, u, t1, ws.q1_, ws.u1_, hk);
     q = ws.q1_;
     u = ws.u1_;

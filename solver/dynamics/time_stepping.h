@@ -24,6 +24,7 @@
 ///
 /// The RunResult is filled as by the event-driven integrator, with these readings:
 /// - maxima over the grid points (q is piecewise linear in t, so they are its true maxima);
+/// - the decks' corner travels (max_travel_m) over the grid points, as the maxima;
 /// - impacts: steps in which a contact has a positive P_N while it had none in the previous
 ///   step (one event entry per such contact); detachments: the reverse; stick / slip
 ///   transitions: changes of a loaded contact between |gamma_T,k+1| <= v_tol and above;

@@ -28,7 +28,8 @@ Eigen::Vector2d Corner(const DeckGeometry& deck, int k);
 ///     t = cos a x_m + sin a y_m + max over corners P_k and s = +-1 of |n_e . (R(s theta_m) - E)
 ///     P_k|,
 /// an upper bound of the true largest travel, since the three maxima need not coincide.
-/// Seat margins and the seat-displacement limit states of every sweep family use it.
+/// Every sweep family stores it as travel_bound_m[_d<i>]; their margins and limit states use
+/// the exact largest travel that the integrators track (dynamics::RunResult::max_travel_m).
 /// @param max_abs_q (x_m, y_m, theta_m): the deck's max |x|, |y| (m) and |theta| (rad).
 double CornerTravelBound(const DeckGeometry& deck, const Eigen::Vector3d& max_abs_q);
 

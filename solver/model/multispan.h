@@ -102,7 +102,8 @@ Model BuildMultiSpanBridge(const MultiSpanSpec& spec, const std::string& source 
 
 /// Unseating margin of a deck's end seats (m) from the maxima of its response: seat width minus
 /// the largest displacement of a corner normal to its end line, CornerTravelBound (the maxima
-/// need not coincide, so the margin is a lower bound).
+/// need not coincide, so the margin is a lower bound). The sweeps store seat width minus the exact
+/// travel that the integrators track (dynamics::RunResult::max_travel_m) instead.
 /// @param max_abs_q (x_m, y_m, theta_m) = the deck's max |x|, |y| (m), |theta| (rad).
 double UnseatingMargin(const Body& deck, double seat_width_m, const Eigen::Vector3d& max_abs_q);
 

@@ -1,0 +1,167 @@
+#pragma once
+/// @file
+/// The largest travel of every deck corner normal to its end line over a run [docs/theory.md §2,
+/// deck geometry]: the quantity model::CornerTravelAt gives at one instant, maximised over time
+/// by the integrators beside the maxima of |q_i|, at the same exactness.
+///
+/// With n_e = (cos a, -sin a) the unit normal of the end lines, the travel of corner P_k of a deck
+/// at (x, y, theta) is
+///
+///     f_k = n_e . (x, y) + (cos theta - 1) A_k + sin theta B_k,
+///     A_k = n_e . P_k,  B_k = n_e . (-P_k,y, P_k,x),
+///
+/// and its rate df_k/dt = n_e . (u_x, u_y) + u_theta (-sin theta A_k + cos theta B_k). The
+/// corners come in opposite pairs (P_3 = -P_1, P_4 = -P_2), so f_3 = T - g_1 and f_4 = T - g_2 with
+/// T = n_e . (x, y), g_j = (cos theta - 1) A_j + sin theta B_j; the travel max_k |f_k| is
+/// |T| + max(|g_1|, |g_2|). Its largest value over a step lies at the step's ends or where a
+/// corner's rate df_k/dt changes sign inside it; the integrators find that instant by Brent's
+/// method on df_k/dt over their dense output, exactly as they find the peaks of |q_i|.
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "solver/dynamics/root_finding.h"
+#include "solver/model/model.h"
+
+namespace skewbridge::dynamics {
+
+/// The geometry of every deck's corner travel, and the travel's running maximum over a run.
+/// Built once per run (it allocates there); Update and Scan allocate nothing.
+class CornerTravelTracker {
+ public:
+  /// The decks of `model`: deck i occupies DOFs 3 i .. 3 i + 2 (x, y, theta).
+  explicit CornerTravelTracker(const model::Model& model);
+
+  /// Number of decks tracked.
+  int decks() const { return static_cast<int>(decks_.size()); }
+
+  /// Sets the running maxima to the travels at q (m), one per deck, into `max_travel_m`.
+  void Start(const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::VectorXd& max_travel_m);
+
+  /// Raises `max_travel_m` to the travels at q (m): the grid points of a time-stepping run.
+  void Update(const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::VectorXd& max_travel_m) const;
+
+  /// Raises `max_travel_m` to the largest travel of each deck over [t0, t1]: at t1, and, for every
+  /// corner whose rate changes sign inside the step and whose peak could exceed the running
+  /// maximum (bound: the larger end value plus (t1 - t0) / 2 times the smaller end rate, twice
+  /// the rise of a linear rate), at the root of its rate located by Brent's method to
+  /// `time_tolerance_s`.
+  /// @param component_at (t, i) -> entry i of the state (q, u) (n_dof + n_dof entries) at t in
+  /// [t0, t1], from the step's dense output.
+  template <class ComponentAt>
+  [[gnu::noinline]] void Scan(double t0, const Eigen::Ref<const Eigen::VectorXd>& q0,
+                              const Eigen::Ref<const Eigen::VectorXd>& u0, double t1,
+                              const Eigen::Ref<const Eigen::VectorXd>& q1,
+                              const Eigen::Ref<const Eigen::VectorXd>& u1, double time_tolerance_s,
+                              ComponentAt&& component_at, Eigen::VectorXd& max_travel_m);
+
+ private:
+  // One deck's constants: the end-line normal and the corner coefficients of corners 1 and 2.
+  struct Deck {
+    double nx = 0.0, ny = 0.0;  // n_e = (cos a, -sin a)
+    double A[2] = {0.0, 0.0};   // n_e . P_k (m), k = 1, 2
+    double B[2] = {0.0, 0.0};   // n_e . (-P_k,y, P_k,x) (m), k = 1, 2
+    double radius = 0.0;        // max_k |P_k| (m)
+  };
+  // The four corners' travels f_k and rates df_k/dt at one state of a deck.
+  struct CornerState {
+    std::array<double, 4> f{};
+    std::array<double, 4> rate{};
+  };
+  // The travel of corner k of the deck at DOF b at the root of its rate in [t0, t1] (Brent's
+  // method on the dense output); out of line, so the step's common path stays small.
+  template <class ComponentAt>
+  [[gnu::noinline]] double PeakTravel(const Deck& deck, int b, int k, double t0, double t1,
+                                      double r0, double r1, double time_tolerance_s,
+                                      ComponentAt& component_at) const {
+    const auto rate = [&](double t) {
+      return Rate(deck, k, component_at(t, n_ + b), component_at(t, n_ + b + 1),
+                  component_at(t, b + 2), component_at(t, n_ + b + 2));
+    };
+    const double x = FindRootBrent(rate, t0, t1, r0, r1, time_tolerance_s).x;
+    return std::abs(
+        Travel(deck, k, component_at(x, b), component_at(x, b + 1), component_at(x, b + 2)));
+  }
+  // sin theta and cos theta - 1, by their Taylor series to rounding for |theta| <= 0.01 rad (the
+  // rotations of decks; no library call in the time loop), else by std::sin, std::cos.
+  static void SinCosMinusOne(double th, double& s, double& c_minus_1) {
+    if (std::abs(th) <= 0.01) {
+      const double t2 = th * th;
+      s = th * (1.0 + t2 * (-1.0 / 6 + t2 * (1.0 / 120 + t2 * (-1.0 / 5040 + t2 / 362880))));
+      c_minus_1 = t2 * (-0.5 + t2 * (1.0 / 24 + t2 * (-1.0 / 720 + t2 / 40320)));
+      return;
+    }
+    s = std::sin(th);
+    c_minus_1 = std::cos(th) - 1.0;
+  }
+  // f_k and df_k/dt of deck d at (x, y, theta, u_x, u_y, u_theta).
+  static void Evaluate(const Deck& d, double x, double y, double th, double ux, double uy,
+                       double uth, CornerState& out);
+  // The rate of corner k alone.
+  static double Rate(const Deck& d, int k, double ux, double uy, double th, double uth);
+  // The travel of corner k alone.
+  static double Travel(const Deck& d, int k, double x, double y, double th);
+
+  std::vector<Deck> decks_;
+  int n_ = 0;  // n_dof
+  // Per deck: the corner states at the last step's end and the deck's state there (x, y, theta,
+  // u_x, u_y, u_theta), reused as the next step's start when that state is the same bits (no
+  // impact or projection in between).
+  std::vector<CornerState> end_;
+  std::vector<std::array<double, 6>> end_state_;
+};
+
+template <class ComponentAt>
+void CornerTravelTracker::Scan(double t0, const Eigen::Ref<const Eigen::VectorXd>& q0,
+                               const Eigen::Ref<const Eigen::VectorXd>& u0, double t1,
+                               const Eigen::Ref<const Eigen::VectorXd>& q1,
+                               const Eigen::Ref<const Eigen::VectorXd>& u1, double time_tolerance_s,
+                               ComponentAt&& component_at, Eigen::VectorXd& max_travel_m) {
+  for (int d = 0; d < decks(); ++d) {
+    const auto di = static_cast<std::size_t>(d);
+    const Deck& deck = decks_[di];
+    const int b = 3 * d;
+    double& best = max_travel_m[d];
+    // A corner moves at most |theta| r from the translation's share (|(R(theta) - E) P| <=
+    // |theta| |P| <= |theta| r) and at most |u_theta| r faster: when neither end nor the
+    // interior peak allowed below can reach the running maximum, the corners are not evaluated.
+    const double r = deck.radius;
+    const double reach0 = std::abs(deck.nx * q0[b] + deck.ny * q0[b + 1]) + r * std::abs(q0[b + 2]);
+    const double reach1 = std::abs(deck.nx * q1[b] + deck.ny * q1[b + 1]) + r * std::abs(q1[b + 2]);
+    const double speed0 = std::abs(deck.nx * u0[b] + deck.ny * u0[b + 1]) + r * std::abs(u0[b + 2]);
+    const double speed1 = std::abs(deck.nx * u1[b] + deck.ny * u1[b + 1]) + r * std::abs(u1[b + 2]);
+    const double reach = std::max(reach0, reach1) + 0.5 * (t1 - t0) * std::min(speed0, speed1);
+    if (reach * (1.0 + 1e-12) < best) continue;
+    // The step's start: the last step's end unless an impact or a projection moved the state.
+    const std::array<double, 6> s0{q0[b], q0[b + 1], q0[b + 2], u0[b], u0[b + 1], u0[b + 2]};
+    if (s0 != end_state_[di]) {
+      Evaluate(deck, s0[0], s0[1], s0[2], s0[3], s0[4], s0[5], end_[di]);
+    }
+    const CornerState& c0 = end_[di];
+    const std::array<double, 6> s1{q1[b], q1[b + 1], q1[b + 2], u1[b], u1[b + 1], u1[b + 2]};
+    CornerState c1;
+    Evaluate(deck, s1[0], s1[1], s1[2], s1[3], s1[4], s1[5], c1);
+    for (int k = 0; k < 4; ++k) {
+      best = std::max(best, std::abs(c1.f[static_cast<std::size_t>(k)]));
+    }
+    for (int k = 0; k < 4; ++k) {
+      const auto ki = static_cast<std::size_t>(k);
+      const double r0 = c0.rate[ki], r1 = c1.rate[ki];
+      if (!(r0 * r1 < 0.0)) continue;
+      // Were the rate linear in t, the peak would exceed the larger end value by
+      // min(r0^2, r1^2) (t1 - t0) / (2 (|r0| + |r1|)) <= (t1 - t0) min(|r0|, |r1|) / 4; twice
+      // that leaves room for the rate's curvature over a step.
+      const double bound = std::max(std::abs(c0.f[ki]), std::abs(c1.f[ki])) +
+                           0.5 * (t1 - t0) * std::min(std::abs(r0), std::abs(r1));
+      if (!(bound > best)) continue;
+      best = std::max(best, PeakTravel(deck, b, k, t0, t1, r0, r1, time_tolerance_s, component_at));
+    }
+    end_[di] = c1;
+    end_state_[di] = s1;
+  }
+}
+
+}  // namespace skewbridge::dynamics

@@ -1,0 +1,230 @@
+// The largest corner travel normal to the end line (RunResult::max_travel_m) against a dense
+// recomputation from the run's own histories (model::CornerTravelAt at every sample, 0.1 ms
+// apart), over runs of the single-abutment subsystem, the pilot bridge under a record and a
+// three-span bridge, for both integrators; against model::CornerTravelBound from the maxima; and
+// equal to that bound where the motion is longitudinal only.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "records/excitations.h"
+#include "solver/dynamics/simulate.h"
+#include "solver/dynamics/time_stepping.h"
+#include "solver/model/builders.h"
+#include "solver/model/deck.h"
+#include "solver/model/multispan.h"
+#include "tests/dynamics/benchmark_cases.h"
+
+namespace skewbridge::dynamics {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kDeg = kPi / 180.0;
+constexpr double kOutput_s = 1e-4;  // the dense recomputation's sampling interval
+
+// What the dense recomputation gives for deck d of a run with histories.
+struct Dense {
+  double travel_m = 0.0;      // max over the samples of CornerTravelAt
+  double max_rate_mps = 0.0;  // max over the samples of a bound of |d f_k / dt| for every corner
+};
+
+Dense DenseTravel(const model::Model& model, const RunResult& r, int d) {
+  const model::DeckGeometry& g = model.body(d).geometry;
+  double radius = 0.0;
+  for (int k = 1; k <= 4; ++k) radius = std::max(radius, model::Corner(g, k).norm());
+  const Histories& h = r.histories;
+  const int n = h.n_dof;
+  Dense out;
+  for (std::size_t s = 0; s < h.t_s.size(); ++s) {
+    const double* q = &h.q[s * static_cast<std::size_t>(n) + 3 * static_cast<std::size_t>(d)];
+    const double* u = &h.u[s * static_cast<std::size_t>(n) + 3 * static_cast<std::size_t>(d)];
+    out.travel_m = std::max(out.travel_m, model::CornerTravelAt(g, {q[0], q[1], q[2]}));
+    out.max_rate_mps =
+        std::max(out.max_rate_mps, std::abs(u[0]) + std::abs(u[1]) + radius * std::abs(u[2]));
+  }
+  return out;
+}
+
+struct Tally {
+  int runs = 0, impacts = 0;
+  double largest_gap_over_tol = 0.0;  // max of (tracked - dense) / (max rate x interval)
+};
+
+// Every deck of run r: the tracked travel is at least the dense maximum (less round-off), at most
+// the dense maximum plus what the corner can travel between two samples, and at most the bound.
+// `exact_grid`: the time-stepping run sampled at its own grid, whose maxima are the samples'.
+void CheckRun(const model::Model& model, const RunResult& r, const std::string& what, Tally& tally,
+              bool exact_grid = false) {
+  ASSERT_EQ(r.status, RunStatus::kOk) << what << ": " << r.message;
+  ASSERT_EQ(r.max_travel_m.size(), model.n_bodies()) << what;
+  ++tally.runs;
+  tally.impacts += static_cast<int>(r.impacts);
+  for (int d = 0; d < model.n_bodies(); ++d) {
+    const Dense dense = DenseTravel(model, r, d);
+    const double tracked = r.max_travel_m[d];
+    const double roundoff = 1e-12 * std::max(dense.travel_m, 1e-3);
+    const double bound =
+        model::CornerTravelBound(model.body(d).geometry, r.max_abs_q.segment<3>(3 * d));
+    const std::string at = what + ", deck " + std::to_string(d);
+    EXPECT_GT(dense.travel_m, 0.0) << at;
+    EXPECT_GE(tracked, dense.travel_m - roundoff) << at;
+    EXPECT_LE(tracked, bound + roundoff) << at;
+    if (exact_grid) {
+      EXPECT_NEAR(tracked, dense.travel_m, roundoff) << at;
+    } else {
+      // Between samples kOutput_s apart a corner moves at most its largest rate times half the
+      // interval from the nearer sample (a few per cent more allowed for the rate between samples).
+      const double tol = 0.6 * dense.max_rate_mps * kOutput_s;
+      EXPECT_LE(tracked, dense.travel_m + tol + roundoff) << at;
+      tally.largest_gap_over_tol =
+          std::max(tally.largest_gap_over_tol, (tracked - dense.travel_m) / tol);
+    }
+  }
+}
+
+model::DeckSpec Subsystem(double skew_deg, double gap_m) {
+  model::DeckSpec spec;
+  spec.mass_kg = 1.0e5;
+  // eta0 = 1.5 (W = 8.7 to 10 m here); at zero skew, where eta0 = 0, a width of 10 m.
+  const double width_m = skew_deg > 0.0 ? model::WidthFromEta0(1.5, skew_deg * kDeg, 30.0) : 10.0;
+  spec.geometry = {30.0, width_m, skew_deg * kDeg};
+  spec.w0x_radps = spec.w0y_radps = spec.W0_radps = kPi;
+  spec.gap_plus_m = gap_m;
+  spec.restitution = 0.5;
+  spec.friction = 0.2;
+  return spec;
+}
+
+TEST(CornerTravel, SubsystemRunsMatchTheDenseMaximumOfTheirHistories) {
+  Tally tally;
+  for (double skew_deg : {15.0, 35.0, 55.0}) {
+    for (records::PulseShape shape : {records::PulseShape::kCosine, records::PulseShape::kSine}) {
+      for (double pi_delta : {0.2, 0.6, 1e4}) {
+        const double a_g = 5.0, w_g = 2.0 * kPi;
+        const model::Model model =
+            model::BuildDeckModel(Subsystem(skew_deg, pi_delta * a_g / (w_g * w_g)));
+        const records::PulseExcitation pulse(shape, a_g, w_g);
+        model::RunControl control;
+        control.end_time_s = 3.0;
+        control.output_interval_s = kOutput_s;
+        SimulationWorkspace ws(model);
+        const RunResult r = Simulate(model, pulse, control, ws);
+        CheckRun(model, r,
+                 "a = " + std::to_string(skew_deg) + ", Pi_delta = " + std::to_string(pi_delta),
+                 tally);
+      }
+    }
+  }
+  EXPECT_EQ(tally.runs, 18);
+  EXPECT_GT(tally.impacts, 18);  // most runs pound
+  std::printf("18 subsystem runs, %d impacts: tracked - dense <= %.3g of the sampling tolerance\n",
+              tally.impacts, tally.largest_gap_over_tol);
+}
+
+TEST(CornerTravel, PilotBridgeUnderARecordMatchesTheDenseMaximum) {
+  Tally tally;
+  for (double gap_m : {bench::kPilotStressGap_m, bench::kPilotStudyGap_m}) {
+    bench::Case c = bench::PilotBridgeRecord(true, gap_m);
+    c.control.end_time_s = 12.0;
+    c.control.output_interval_s = kOutput_s;
+    SimulationWorkspace ws(c.model);
+    CheckRun(c.model, Simulate(c.model, *c.excitation, c.control, ws),
+             "pilot, gap " + std::to_string(gap_m), tally);
+  }
+  EXPECT_GT(tally.impacts, 20);
+  std::printf("pilot bridge: %d impacts, tracked - dense <= %.3g of the sampling tolerance\n",
+              tally.impacts, tally.largest_gap_over_tol);
+}
+
+TEST(CornerTravel, ThreeSpanBridgeTracksEveryDeck) {
+  model::MultiSpanSpec spec;
+  spec.n_spans = 3;
+  spec.span_lengths_m = {30.0, 40.0, 30.0};
+  spec.width_m = 12.0;
+  spec.skew_rad = 30.0 * kDeg;
+  spec.mass_per_length_kgpm = 20e3;
+  spec.w0x_radps = spec.w0y_radps = 10.0;
+  spec.W0_radps = 12.0;
+  spec.abutment_gap_m = 0.02;
+  spec.joint_gap_m = 0.015;
+  spec.friction = 0.2;
+  const model::Model model = model::BuildMultiSpanBridge(spec);
+  Tally tally;
+  for (records::PulseShape shape : {records::PulseShape::kCosine, records::PulseShape::kSine}) {
+    const records::PulseExcitation pulse(shape, 4.0, 2.0 * kPi);
+    model::RunControl control;
+    control.end_time_s = 3.0;
+    control.output_interval_s = kOutput_s;
+    SimulationWorkspace ws(model);
+    CheckRun(model, Simulate(model, pulse, control, ws), "three spans", tally);
+  }
+  EXPECT_GT(tally.impacts, 2);
+}
+
+TEST(CornerTravel, TimeSteppingTracksItsGridPoints) {
+  Tally tally;
+  for (double skew_deg : {20.0, 45.0}) {
+    const model::Model model = model::BuildDeckModel(Subsystem(skew_deg, 0.05));
+    const records::PulseExcitation pulse(records::PulseShape::kCosine, 5.0, 2.0 * kPi);
+    model::RunControl control;
+    control.end_time_s = 3.0;
+    control.time_step_s = 2e-4;
+    control.output_interval_s = 2e-4;  // every grid point
+    TimeSteppingWorkspace ws(model);
+    CheckRun(model, SimulateTimeStepping(model, pulse, control, ws),
+             "time stepping, a = " + std::to_string(skew_deg), tally, true);
+  }
+  EXPECT_GT(tally.impacts, 0);
+}
+
+TEST(CornerTravel, EqualsTheBoundForALongitudinalMotion) {
+  // Gaps too wide to close and a diagonal support: under a pulse along x the deck moves along x
+  // alone (y = theta = 0 exactly), so the travel is cos a max|x| and the bound says the same.
+  for (double skew_deg : {0.0, 30.0, 60.0}) {
+    const model::Model model = model::BuildDeckModel(Subsystem(skew_deg, 1e3));
+    const records::PulseExcitation pulse(records::PulseShape::kCosine, 5.0, 2.0 * kPi);
+    model::RunControl control;
+    control.end_time_s = 3.0;
+    SimulationWorkspace ws(model);
+    const RunResult r = Simulate(model, pulse, control, ws);
+    ASSERT_EQ(r.status, RunStatus::kOk);
+    ASSERT_EQ(r.max_abs_q[1], 0.0);
+    ASSERT_EQ(r.max_abs_q[2], 0.0);
+    const double bound = model::CornerTravelBound(model.body(0).geometry, r.max_abs_q.head<3>());
+    EXPECT_NEAR(r.max_travel_m[0], bound, 1e-14 * bound) << skew_deg;
+    EXPECT_NEAR(r.max_travel_m[0], std::cos(skew_deg * kDeg) * r.max_abs_q[0], 1e-14 * bound);
+  }
+  // Zero skew with impacts on the straight abutment: the deck strikes with both corners at once
+  // and does not turn; x and the travel peak together.
+  const model::Model model = model::BuildDeckModel(Subsystem(0.0, 0.05));
+  const records::PulseExcitation pulse(records::PulseShape::kCosine, 5.0, 2.0 * kPi);
+  model::RunControl control;
+  control.end_time_s = 3.0;
+  SimulationWorkspace ws(model);
+  const RunResult r = Simulate(model, pulse, control, ws);
+  ASSERT_EQ(r.status, RunStatus::kOk);
+  EXPECT_GT(r.impacts, 0);
+  const double bound = model::CornerTravelBound(model.body(0).geometry, r.max_abs_q.head<3>());
+  EXPECT_NEAR(r.max_travel_m[0], bound, 1e-12 * bound);
+}
+
+TEST(CornerTravel, ASkewDeckThatPoundsTravelsLessThanTheBound) {
+  // The bound adds peaks of x, y and theta taken at their own times: where the deck pounds and
+  // turns, the exact travel lies clearly below it.
+  const model::Model model = model::BuildDeckModel(Subsystem(45.0, 0.05));
+  const records::PulseExcitation pulse(records::PulseShape::kCosine, 5.0, 2.0 * kPi);
+  model::RunControl control;
+  control.end_time_s = 3.0;
+  SimulationWorkspace ws(model);
+  const RunResult r = Simulate(model, pulse, control, ws);
+  ASSERT_EQ(r.status, RunStatus::kOk);
+  const double bound = model::CornerTravelBound(model.body(0).geometry, r.max_abs_q.head<3>());
+  EXPECT_LT(r.max_travel_m[0], 0.95 * bound);
+}
+
+}  // namespace
+}  // namespace skewbridge::dynamics
