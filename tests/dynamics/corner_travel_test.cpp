@@ -181,16 +181,21 @@ TEST(CornerTravel, TimeSteppingTracksItsGridPoints) {
   EXPECT_GT(tally.impacts, 0);
 }
 
+// The run of `model` for 3 s under a cosine pulse of 5 m/s^2 at 1 Hz.
+RunResult RunCosinePulse(const model::Model& model) {
+  const records::PulseExcitation pulse(records::PulseShape::kCosine, 5.0, 2.0 * kPi);
+  model::RunControl control;
+  control.end_time_s = 3.0;
+  SimulationWorkspace ws(model);
+  return Simulate(model, pulse, control, ws);
+}
+
 TEST(CornerTravel, EqualsTheBoundForALongitudinalMotion) {
   // Gaps too wide to close and a diagonal support: under a pulse along x the deck moves along x
   // alone (y = theta = 0 exactly), so the travel is cos a max|x| and the bound says the same.
   for (double skew_deg : {0.0, 30.0, 60.0}) {
     const model::Model model = model::BuildDeckModel(Subsystem(skew_deg, 1e3));
-    const records::PulseExcitation pulse(records::PulseShape::kCosine, 5.0, 2.0 * kPi);
-    model::RunControl control;
-    control.end_time_s = 3.0;
-    SimulationWorkspace ws(model);
-    const RunResult r = Simulate(model, pulse, control, ws);
+    const RunResult r = RunCosinePulse(model);
     ASSERT_EQ(r.status, RunStatus::kOk);
     ASSERT_EQ(r.max_abs_q[1], 0.0);
     ASSERT_EQ(r.max_abs_q[2], 0.0);
@@ -201,11 +206,7 @@ TEST(CornerTravel, EqualsTheBoundForALongitudinalMotion) {
   // Zero skew with impacts on the straight abutment: the deck strikes with both corners at once
   // and does not turn; x and the travel peak together.
   const model::Model model = model::BuildDeckModel(Subsystem(0.0, 0.05));
-  const records::PulseExcitation pulse(records::PulseShape::kCosine, 5.0, 2.0 * kPi);
-  model::RunControl control;
-  control.end_time_s = 3.0;
-  SimulationWorkspace ws(model);
-  const RunResult r = Simulate(model, pulse, control, ws);
+  const RunResult r = RunCosinePulse(model);
   ASSERT_EQ(r.status, RunStatus::kOk);
   EXPECT_GT(r.impacts, 0);
   const double bound = model::CornerTravelBound(model.body(0).geometry, r.max_abs_q.head<3>());
@@ -216,11 +217,7 @@ TEST(CornerTravel, ASkewDeckThatPoundsTravelsLessThanTheBound) {
   // The bound adds peaks of x, y and theta taken at their own times: where the deck pounds and
   // turns, the exact travel lies clearly below it.
   const model::Model model = model::BuildDeckModel(Subsystem(45.0, 0.05));
-  const records::PulseExcitation pulse(records::PulseShape::kCosine, 5.0, 2.0 * kPi);
-  model::RunControl control;
-  control.end_time_s = 3.0;
-  SimulationWorkspace ws(model);
-  const RunResult r = Simulate(model, pulse, control, ws);
+  const RunResult r = RunCosinePulse(model);
   ASSERT_EQ(r.status, RunStatus::kOk);
   const double bound = model::CornerTravelBound(model.body(0).geometry, r.max_abs_q.head<3>());
   EXPECT_LT(r.max_travel_m[0], 0.95 * bound);
