@@ -10,9 +10,11 @@ namespace skewbridge::jobs {
 using spectra::CellEvaluator;
 using spectra::CellOutcome;
 using spectra::CellStats;
+using spectra::CheckResponseCount;
 using spectra::kStatusException;
 using spectra::kStatusNotDone;
 using spectra::kStatusOk;
+using spectra::kStatusResponseCount;
 using spectra::ResponseInfo;
 
 }  // namespace skewbridge::jobs

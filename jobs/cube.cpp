@@ -11,6 +11,7 @@ CubeLayout MakeCubeLayout(const CellEvaluator& evaluator, const std::vector<std:
                           const std::string& source) {
   const std::vector<ResponseInfo> all = evaluator.Responses();
   CubeLayout layout;
+  layout.evaluator_responses = all.size();
   if (requested.empty()) {
     layout.responses = all;
     for (std::size_t i = 0; i < all.size(); ++i) {
@@ -31,8 +32,10 @@ CubeLayout MakeCubeLayout(const CellEvaluator& evaluator, const std::vector<std:
     layout.responses.push_back(*it);
     layout.source_index.push_back(static_cast<std::size_t>(it - all.begin()));
   }
-  layout.status_names = {
-      {kStatusException, "exception"}, {kStatusNotDone, "not_done"}, {kStatusOk, "ok"}};
+  layout.status_names = {{kStatusResponseCount, "response-count"},
+                         {kStatusException, "exception"},
+                         {kStatusNotDone, "not_done"},
+                         {kStatusOk, "ok"}};
   for (const auto& entry : evaluator.StatusNames()) {
     SB_DEMAND(entry.first > 0, "evaluator status codes must be positive");
     layout.status_names.push_back(entry);

@@ -17,12 +17,15 @@ struct CubeLayout {
   std::vector<ResponseInfo> responses;
   /// For each stored response, its position in CellEvaluator::Responses().
   std::vector<std::size_t> source_index;
+  /// The number of CellEvaluator::Responses(): every outcome holds that many values.
+  std::size_t evaluator_responses = 0;
   /// Every status code that may appear, with its name (reserved codes included).
   std::vector<std::pair<std::int32_t, std::string>> status_names;
 };
 
 /// The layout for an evaluator: its responses (all, or those named in `requested`, in that
-/// order) and the reserved plus evaluator status names.
+/// order) and the reserved (exception, not_done, response-count, ok) plus evaluator status
+/// names.
 /// @throws InputError("sweep.responses: unknown response ...") naming the allowed ones.
 CubeLayout MakeCubeLayout(const CellEvaluator& evaluator, const std::vector<std::string>& requested,
                           const std::string& source);

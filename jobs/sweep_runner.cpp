@@ -47,6 +47,9 @@ void EvaluateInto(const SweepSpec& spec, const CellEvaluator& evaluator, const C
   std::string text;
   try {
     CellOutcome outcome = evaluator.Evaluate(index);
+    // A cell without exactly the evaluator's responses is an internal error of its own status:
+    // no value is guessed for it.
+    const bool complete = CheckResponseCount(outcome, layout.evaluator_responses);
     status = outcome.status;
     batch.events[i] = outcome.stats.events;
     batch.steps[i] = outcome.stats.steps;
@@ -54,10 +57,8 @@ void EvaluateInto(const SweepSpec& spec, const CellEvaluator& evaluator, const C
       text = std::move(outcome.status_text);
     }
     for (std::size_t r = 0; r < layout.source_index.size(); ++r) {
-      const std::size_t source = layout.source_index[r];
-      batch.values[r * n + i] = source < outcome.responses.size()
-                                    ? outcome.responses[source]
-                                    : std::numeric_limits<double>::quiet_NaN();
+      batch.values[r * n + i] = complete ? outcome.responses[layout.source_index[r]]
+                                         : std::numeric_limits<double>::quiet_NaN();
     }
   } catch (const std::exception& e) {
     status = kStatusException;

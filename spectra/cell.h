@@ -24,6 +24,9 @@ inline constexpr std::int32_t kStatusOk = 0;
 inline constexpr std::int32_t kStatusNotDone = -1;
 /// CellEvaluator::Evaluate threw; the sweep records it and goes on.
 inline constexpr std::int32_t kStatusException = -2;
+/// The evaluator returned another number of responses than it declares: a bug of the
+/// evaluator, stored as a failed cell with its message (CheckResponseCount); the sweep goes on.
+inline constexpr std::int32_t kStatusResponseCount = -3;
 
 /// One scalar response of a cell, e.g. {"theta_m_norm", "1", "theta_m rho w_g^2 / a_g"}.
 struct ResponseInfo {
@@ -43,9 +46,27 @@ struct CellStats {
 struct CellOutcome {
   std::int32_t status = kStatusOk;  ///< kStatusOk, or an evaluator-defined positive code.
   std::string status_text;          ///< Free text for a failed cell (not stored per cell).
-  std::vector<double> responses;    ///< In the order of CellEvaluator::Responses().
+  /// One value per response of CellEvaluator::Responses(), in that order, whatever the status
+  /// (a failed cell's values of its run are NaN).
+  std::vector<double> responses;
   CellStats stats;
 };
+
+/// Whether `outcome` holds exactly `declared` responses. If not, makes it the failed cell of
+/// status kStatusResponseCount, without responses, with the message "internal error: the
+/// evaluator returned N responses for the M it declares" (an outcome that already has that
+/// status, from an evaluator inside a decorator, keeps its message); no value is guessed.
+inline bool CheckResponseCount(CellOutcome& outcome, std::size_t declared) {
+  if (outcome.responses.size() == declared) return true;
+  if (outcome.status != kStatusResponseCount) {
+    outcome.status_text = "internal error: the evaluator returned " +
+                          std::to_string(outcome.responses.size()) + " responses for the " +
+                          std::to_string(declared) + " it declares";
+    outcome.status = kStatusResponseCount;
+  }
+  outcome.responses.clear();
+  return false;
+}
 
 /// How the record of one cell is scaled to its intensity stripe ([records] scale_to): the
 /// factor on the record's accelerations is target / unscaled (docs/sweep-format.md).
@@ -104,7 +125,7 @@ class CellEvaluator {
   }
 
   /// Evaluates one cell; axis_index[k] indexes axis k of the CellGrid (its canonical order).
-  /// A failed cell returns a non-zero status; responses are then stored as NaN if absent.
+  /// A failed cell returns a non-zero status and, like every cell, one value per response.
   virtual CellOutcome Evaluate(std::span<const std::size_t> axis_index) const = 0;
 };
 

@@ -278,37 +278,52 @@ IdaEvaluator::IdaEvaluator(std::unique_ptr<CellEvaluator> inner, const CellGrid&
     exceeded_columns_.push_back(column(exceeded, ls));
     demand_units_.push_back(responses[demand_columns_.back()].unit);
   }
-}
+  inner_count_ = responses.size();
 
-std::vector<ResponseInfo> IdaEvaluator::Responses() const {
-  std::vector<ResponseInfo> out;
-  out.push_back({"im_unscaled", im_unit_, "the record's own intensity measure at the cell's T1"});
-  out.push_back({"ida_runs", "1", "runs made by the hunt-and-fill search"});
-  for (const LimitState& ls : limit_states_) {
-    out.push_back(
-        {"ida_capacity_" + ls.name, im_unit_,
-         "lowest intensity of a run that exceeds " + ls.name + " (inf: none up to ida.max_im)"});
-    out.push_back(
-        {"ida_capacity_below_" + ls.name, im_unit_,
-         "highest intensity below it of a run that does not exceed " + ls.name + " (0: none)"});
-    out.push_back({"ida_capacity_scale_" + ls.name, "1",
-                   "scale factor on the record at ida_capacity_" + ls.name});
-    out.push_back({"ida_scaled_too_far_" + ls.name, "1",
-                   "1 when ida_capacity_scale_" + ls.name +
-                       " > records.max_scale, else 0 (always 0 without it)"});
+  // Every response is kept whatever the search's status: a failed run ends the search, and
+  // the runs made before it, with the capacities they bracket, are the cell's result.
+  using V = const CellValues&;
+  ResponseTable<CellValues>& t = table_;
+  t.AddAlways({"im_unscaled", im_unit_, "the record's own intensity measure at the cell's T1"},
+              [](V v) { return v.own; });
+  t.AddAlways({"ida_runs", "1", "runs made by the hunt-and-fill search"},
+              [](V v) { return static_cast<double>(v.trace.im.size()); });
+  for (std::size_t l = 0; l < limit_states_.size(); ++l) {
+    const std::string& name = limit_states_[l].name;
+    t.AddAlways(
+        {"ida_capacity_" + name, im_unit_,
+         "lowest intensity of a run that exceeds " + name + " (inf: none up to ida.max_im)"},
+        [l](V v) { return v.trace.capacity[l].im; });
+    t.AddAlways({"ida_capacity_below_" + name, im_unit_,
+                 "highest intensity below it of a run that does not exceed " + name + " (0: none)"},
+                [l](V v) { return v.trace.capacity[l].below; });
+    t.AddAlways(
+        {"ida_capacity_scale_" + name, "1", "scale factor on the record at ida_capacity_" + name},
+        [l](V v) { return v.trace.capacity[l].im / v.own; });
+    t.AddAlways({"ida_scaled_too_far_" + name, "1",
+                 "1 when ida_capacity_scale_" + name +
+                     " > records.max_scale, else 0 (always 0 without it)"},
+                [l, max_scale = max_scale_](V v) {
+                  const double im = v.trace.capacity[l].im;
+                  return max_scale > 0.0 && std::isfinite(im) && im / v.own > max_scale ? 1.0 : 0.0;
+                });
   }
   for (int k = 0; k < ida_.max_runs; ++k) {
     const std::string s = RunSuffix(k);
     const std::string run = fmt::format("run {} of the search (NaN when not made)", k);
-    out.push_back({"ida_im" + s, im_unit_, "intensity of " + run});
-    out.push_back({"ida_scale" + s, "1", "scale factor on the record in " + run});
+    const auto made = [k](V v) { return static_cast<std::size_t>(k) < v.trace.im.size(); };
+    t.AddAlways({"ida_im" + s, im_unit_, "intensity of " + run},
+                [k, made](V v) { return made(v) ? v.trace.im[k] : kNaN; });
+    t.AddAlways({"ida_scale" + s, "1", "scale factor on the record in " + run},
+                [k, made](V v) { return made(v) ? v.trace.im[k] / v.own : kNaN; });
     for (std::size_t l = 0; l < limit_states_.size(); ++l) {
       const std::string& name = limit_states_[l].name;
-      out.push_back({"ida_demand_" + name + s, demand_units_[l], name + " demand in " + run});
-      out.push_back({"ida_exceeded_" + name + s, "1", "1 when " + run + " exceeds " + name});
+      t.AddAlways({"ida_demand_" + name + s, demand_units_[l], name + " demand in " + run},
+                  [k, l, made](V v) { return made(v) ? v.trace.demand[k][l] : kNaN; });
+      t.AddAlways({"ida_exceeded_" + name + s, "1", "1 when " + run + " exceeds " + name},
+                  [k, l, made](V v) { return made(v) ? v.trace.exceeded[k][l] : kNaN; });
     }
   }
-  return out;
 }
 
 CellOutcome IdaEvaluator::Evaluate(std::span<const std::size_t> axis_index) const {
@@ -316,14 +331,18 @@ CellOutcome IdaEvaluator::Evaluate(std::span<const std::size_t> axis_index) cons
   SB_DEMAND(own > 0.0 && std::isfinite(own), "an IDA cell's record has no intensity to scale");
   CellOutcome out;
   auto run = [&](double im) {
-    const CellOutcome o = inner_->EvaluateScaled(axis_index, im / own);
+    CellOutcome o = inner_->EvaluateScaled(axis_index, im / own);
     out.stats.events += o.stats.events;
     out.stats.steps += o.stats.steps;
     out.stats.wall_s += o.stats.wall_s;
+    // A run whose responses are not the inner evaluator's fails with that status (it ends the
+    // search): its demands are never read.
+    const bool complete = CheckResponseCount(o, inner_count_);
     IdaPoint p;
     p.ok = o.status == kStatusOk;
     p.status = o.status;
     p.status_text = fmt::format("at {} = {:.6g} {}: {}", "IM", im, im_unit_, o.status_text);
+    if (!complete) return p;
     for (std::size_t l = 0; l < limit_states_.size(); ++l) {
       p.demand.push_back(o.responses[demand_columns_[l]]);
       p.exceeded.push_back(o.responses[exceeded_columns_[l]]);
@@ -333,24 +352,7 @@ CellOutcome IdaEvaluator::Evaluate(std::span<const std::size_t> axis_index) cons
   const IdaTrace t = HuntAndFill(ida_, limit_states_.size(), run);
   out.status = t.status;
   out.status_text = t.status_text;
-  out.responses.push_back(own);
-  out.responses.push_back(static_cast<double>(t.im.size()));
-  for (const IdaCapacity& c : t.capacity) {
-    out.responses.push_back(c.im);
-    out.responses.push_back(c.below);
-    out.responses.push_back(c.im / own);
-    out.responses.push_back(
-        max_scale_ > 0.0 && std::isfinite(c.im) && c.im / own > max_scale_ ? 1.0 : 0.0);
-  }
-  for (std::size_t k = 0; k < static_cast<std::size_t>(ida_.max_runs); ++k) {
-    const bool made = k < t.im.size();
-    out.responses.push_back(made ? t.im[k] : kNaN);
-    out.responses.push_back(made ? t.im[k] / own : kNaN);
-    for (std::size_t l = 0; l < limit_states_.size(); ++l) {
-      out.responses.push_back(made ? t.demand[k][l] : kNaN);
-      out.responses.push_back(made ? t.exceeded[k][l] : kNaN);
-    }
-  }
+  out.responses = table_.Values({own, t}, true);
   return out;
 }
 

@@ -18,6 +18,7 @@
 
 #include "spectra/cell.h"
 #include "spectra/grid.h"
+#include "spectra/response_table.h"
 
 namespace skewbridge::spectra {
 
@@ -100,7 +101,7 @@ class IdaEvaluator final : public CellEvaluator {
   /// @throws InputError when the inner evaluator lacks a limit state's responses.
   IdaEvaluator(std::unique_ptr<CellEvaluator> inner, const CellGrid& grid);
 
-  std::vector<ResponseInfo> Responses() const override;
+  std::vector<ResponseInfo> Responses() const override { return table_.Infos(); }
   std::vector<std::pair<std::int32_t, std::string>> StatusNames() const override {
     return inner_->StatusNames();
   }
@@ -120,6 +121,13 @@ class IdaEvaluator final : public CellEvaluator {
   double max_scale_ = 0.0;  ///< [records] max_scale (0: none)
   std::vector<std::string> demand_units_;
   std::vector<std::size_t> demand_columns_, exceeded_columns_;
+  std::size_t inner_count_ = 0;  ///< the responses of the inner evaluator
+  // One cell's search, as the table reads it: the record's own intensity and the runs.
+  struct CellValues {
+    double own = 0.0;
+    const IdaTrace& trace;
+  };
+  ResponseTable<CellValues> table_;  ///< the stored responses, each with how it is read
 };
 
 }  // namespace skewbridge::spectra

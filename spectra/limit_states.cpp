@@ -168,10 +168,12 @@ LimitStateEvaluator::LimitStateEvaluator(std::unique_ptr<CellEvaluator> inner, c
     }
     plans_.push_back(std::move(plan));
   }
-}
-
-std::vector<ResponseInfo> LimitStateEvaluator::Responses() const {
-  std::vector<ResponseInfo> out = inner_responses_;
+  // The inner responses as they are (a failed cell's are already NaN), then each limit state's
+  // demand and exceedance (NaN for a failed cell).
+  using V = const CellValues&;
+  for (std::size_t i = 0; i < inner_responses_.size(); ++i) {
+    table_.AddAlways(inner_responses_[i], [i](V v) { return v.inner[i]; });
+  }
   for (const Plan& p : plans_) {
     const LimitState& ls = p.ls;
     const auto [demand, exceeded] = LimitStateResponseNames(ls);
@@ -202,14 +204,13 @@ std::vector<ResponseInfo> LimitStateEvaluator::Responses() const {
         when = fmt::format("{} exceeds {}", ls.response, ls.threshold);
         break;
     }
-    out.push_back({demand, LimitStateDemandUnit(ls, inner_responses_),
-                   "limit state " + ls.name + ": demand, " + what});
-    out.push_back({exceeded, "1",
-                   "limit state " + ls.name + ": 1 when " + when +
-                       ", else 0; NaN if the cell "
-                       "failed"});
+    table_.Add({demand, LimitStateDemandUnit(ls, inner_responses_),
+                "limit state " + ls.name + ": demand, " + what},
+               [p](V v) { return Assess(p, v.inner).first; });
+    table_.Add({exceeded, "1",
+                "limit state " + ls.name + ": 1 when " + when + ", else 0; NaN if the cell failed"},
+               [p](V v) { return Assess(p, v.inner).second; });
   }
-  return out;
 }
 
 CellOutcome LimitStateEvaluator::Evaluate(std::span<const std::size_t> axis_index) const {
@@ -221,52 +222,49 @@ CellOutcome LimitStateEvaluator::EvaluateScaled(std::span<const std::size_t> axi
   return WithLimitStates(inner_->EvaluateScaled(axis_index, factor));
 }
 
-CellOutcome LimitStateEvaluator::WithLimitStates(CellOutcome out) const {
-  const bool ok = out.status == kStatusOk;
-  out.responses.resize(inner_responses_.size(), kNaN);
-  for (const Plan& p : plans_) {
-    double demand = kNaN, exceeded = kNaN;
-    if (ok) {
-      const std::vector<double>& v = out.responses;
-      switch (p.ls.kind) {
-        case LimitStateKind::kUnseating: {
-          demand = 0.0;
-          bool off = false;
-          for (std::size_t d = 0; d < p.columns.size(); ++d) {
-            const double travel = v[p.columns[d]];
-            double seat = 0.0;
-            if (p.margins.empty()) {
-              seat = p.seats_m[d];
-              off = off || travel > seat;
-            } else {
-              const double margin = v[p.margins[d]];
-              seat = margin + travel;
-              off = off || margin < 0.0;
-            }
-            // A zero seat: any travel is beyond it (ratio inf); none is 0.
-            demand = std::max(demand, travel > 0.0 ? travel / seat : 0.0);
-          }
-          exceeded = off ? 1.0 : 0.0;
-          break;
+std::pair<double, double> LimitStateEvaluator::Assess(const Plan& p, const std::vector<double>& v) {
+  double demand = kNaN, exceeded = kNaN;
+  switch (p.ls.kind) {
+    case LimitStateKind::kUnseating: {
+      demand = 0.0;
+      bool off = false;
+      for (std::size_t d = 0; d < p.columns.size(); ++d) {
+        const double travel = v[p.columns[d]];
+        double seat = 0.0;
+        if (p.margins.empty()) {
+          seat = p.seats_m[d];
+          off = off || travel > seat;
+        } else {
+          const double margin = v[p.margins[d]];
+          seat = margin + travel;
+          off = off || margin < 0.0;
         }
-        case LimitStateKind::kRotation:
-        case LimitStateKind::kSeatDisplacement:
-        case LimitStateKind::kResidual:
-        case LimitStateKind::kResponse:
-          demand = -std::numeric_limits<double>::infinity();
-          for (std::size_t c : p.columns) demand = std::max(demand, v[c]);
-          exceeded = demand > p.ls.threshold ? 1.0 : 0.0;
-          break;
-        case LimitStateKind::kJointClosing:
-          demand = v[p.columns.front()];
-          exceeded = demand >= 1.0 ? 1.0 : 0.0;
-          break;
+        // A zero seat: any travel is beyond it (ratio inf); none is 0.
+        demand = std::max(demand, travel > 0.0 ? travel / seat : 0.0);
       }
-      if (std::isnan(demand)) exceeded = kNaN;
+      exceeded = off ? 1.0 : 0.0;
+      break;
     }
-    out.responses.push_back(demand);
-    out.responses.push_back(exceeded);
+    case LimitStateKind::kRotation:
+    case LimitStateKind::kSeatDisplacement:
+    case LimitStateKind::kResidual:
+    case LimitStateKind::kResponse:
+      demand = -std::numeric_limits<double>::infinity();
+      for (std::size_t c : p.columns) demand = std::max(demand, v[c]);
+      exceeded = demand > p.ls.threshold ? 1.0 : 0.0;
+      break;
+    case LimitStateKind::kJointClosing:
+      demand = v[p.columns.front()];
+      exceeded = demand >= 1.0 ? 1.0 : 0.0;
+      break;
   }
+  if (std::isnan(demand)) exceeded = kNaN;
+  return {demand, exceeded};
+}
+
+CellOutcome LimitStateEvaluator::WithLimitStates(CellOutcome out) const {
+  if (!CheckResponseCount(out, inner_responses_.size())) return out;
+  out.responses = table_.Values({out.responses}, out.status == kStatusOk);
   return out;
 }
 

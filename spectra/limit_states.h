@@ -16,6 +16,7 @@
 
 #include "spectra/cell.h"
 #include "spectra/grid.h"
+#include "spectra/response_table.h"
 
 namespace skewbridge::spectra {
 
@@ -50,7 +51,7 @@ class LimitStateEvaluator final : public CellEvaluator {
   /// seat widths per support line do not match the decks.
   LimitStateEvaluator(std::unique_ptr<CellEvaluator> inner, const CellGrid& grid);
 
-  std::vector<ResponseInfo> Responses() const override;
+  std::vector<ResponseInfo> Responses() const override { return table_.Infos(); }
   std::vector<std::pair<std::int32_t, std::string>> StatusNames() const override {
     return inner_->StatusNames();
   }
@@ -74,11 +75,19 @@ class LimitStateEvaluator final : public CellEvaluator {
     std::vector<std::size_t> margins;  ///< unseating with the sweep's seats: margin_m_d<i>
     std::vector<double> seats_m;       ///< unseating with given seats: per deck
   };
+  // The demand of a limit state and whether it is exceeded (1 or 0; NaN with a NaN demand),
+  // from the inner responses `v`.
+  static std::pair<double, double> Assess(const Plan& plan, const std::vector<double>& v);
   // The inner outcome with every limit state's demand and exceedance appended.
   CellOutcome WithLimitStates(CellOutcome out) const;
+  // The inner responses of one cell, as the table reads them.
+  struct CellValues {
+    const std::vector<double>& inner;
+  };
   std::unique_ptr<CellEvaluator> inner_;
   std::vector<ResponseInfo> inner_responses_;
   std::vector<Plan> plans_;
+  ResponseTable<CellValues> table_;  ///< the inner responses, then each limit state's two
 };
 
 }  // namespace skewbridge::spectra

@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -36,9 +35,6 @@ std::string CellText(const CellGrid& spec, std::span<const std::size_t> index) {
   return text;
 }
 
-// The record intensity measures stored per cell, of the excitation applied (record x scale).
-constexpr std::size_t kMeasureCount = 6;
-
 // The keys a model-file sweep refuses, checked before the model file is read; then the file.
 model::ModelFile CheckedModelFile(const CellGrid& spec) {
   const std::string& src = spec.source;
@@ -68,6 +64,26 @@ model::ModelFile CheckedModelFile(const CellGrid& spec) {
 }
 
 }  // namespace
+
+struct ModelFileEvaluator::CellValues {
+  const ModelFileCell& cell;
+  const dynamics::RunResult& run;
+  double to_norm = 0.0;  ///< 1 / L_e (1/m)
+  double t1_s = 0.0;     ///< the cell's fundamental period (with an intensity measure)
+  double own_im = 0.0;   ///< the record's own intensity at it (axis unit)
+
+  /// max |q| of deck d (m, m, rad).
+  Eigen::Vector3d MaxOf(int d) const { return run.max_abs_q.segment<3>(3 * d); }
+  /// q of deck d at the end of the run.
+  Eigen::Vector3d EndOf(int d) const { return run.q_end.segment<3>(3 * d); }
+  /// The radius of gyration of deck d (m).
+  double RhoOf(int d) const {
+    const model::Body& deck = cell.model->body(d);
+    return std::sqrt(deck.inertia_kgm2 / deck.mass_kg);
+  }
+  /// theta_norm of deck d: max |theta| rho / L_e.
+  double ThetaNormOf(int d) const { return MaxOf(d)(2) * RhoOf(d) * to_norm; }
+};
 
 std::uint64_t ModelFileEvaluator::CellIndex(std::span<const std::size_t> index) const {
   std::uint64_t cell = 0;
@@ -152,6 +168,7 @@ ModelFileEvaluator::ModelFileEvaluator(const CellGrid& spec)
   }
   seats_ = Mentions(spec, "seat_over_L") || (file_.decks && file_.decks->seat_width_m);
   travel_ = !spec.limit_states.empty();
+  MakeResponseTable();
   if (by_record) records_ = LoadSweepRecords(spec);
   // Every cell's model is built and its run counted now, so a bad combination or a run that
   // `skewbridge run` would refuse (a pulse period of 1e7 s) fails before the file is touched;
@@ -498,71 +515,110 @@ ModelFileCell ModelFileEvaluator::MakeCell(std::span<const std::size_t> index, b
   return c;
 }
 
-std::vector<ResponseInfo> ModelFileEvaluator::Responses() const {
-  std::vector<ResponseInfo> out;
+void ModelFileEvaluator::MakeResponseTable() {
+  using V = const CellValues&;
+  ResponseTable<CellValues>& t = table_;
+  // Per deck (suffix _d<i>): the run's maxima, residuals and margins (NaN for a failed cell).
   for (int d = 0; d < n_decks_; ++d) {
     const std::string s = "_d" + std::to_string(d);
     const std::string of = " of deck " + std::to_string(d);
-    out.push_back({"x_m" + s, "m", "maximum |x|" + of + ", relative to the ground"});
-    out.push_back({"y_m" + s, "m", "maximum |y|" + of});
-    out.push_back({"theta_m" + s, "rad", "maximum |theta|" + of});
-    out.push_back({"x_end" + s, "m", "residual x" + of + " at the end of the run"});
-    out.push_back({"y_end" + s, "m", "residual y" + of});
-    out.push_back({"theta_end" + s, "rad", "residual theta" + of});
-    out.push_back({"x_norm" + s, "1", "x_m / L_e" + of});
-    out.push_back({"y_norm" + s, "1", "y_m / L_e" + of});
-    out.push_back(
-        {"theta_norm" + s, "1", "theta_m rho / L_e" + of + ", rho its radius of gyration"});
-    out.push_back({"theta_end_norm" + s, "1", "theta_end rho / L_e" + of});
+    t.Add({"x_m" + s, "m", "maximum |x|" + of + ", relative to the ground"},
+          [d](V v) { return v.MaxOf(d)(0); });
+    t.Add({"y_m" + s, "m", "maximum |y|" + of}, [d](V v) { return v.MaxOf(d)(1); });
+    t.Add({"theta_m" + s, "rad", "maximum |theta|" + of}, [d](V v) { return v.MaxOf(d)(2); });
+    t.Add({"x_end" + s, "m", "residual x" + of + " at the end of the run"},
+          [d](V v) { return v.EndOf(d)(0); });
+    t.Add({"y_end" + s, "m", "residual y" + of}, [d](V v) { return v.EndOf(d)(1); });
+    t.Add({"theta_end" + s, "rad", "residual theta" + of}, [d](V v) { return v.EndOf(d)(2); });
+    t.Add({"x_norm" + s, "1", "x_m / L_e" + of}, [d](V v) { return v.MaxOf(d)(0) * v.to_norm; });
+    t.Add({"y_norm" + s, "1", "y_m / L_e" + of}, [d](V v) { return v.MaxOf(d)(1) * v.to_norm; });
+    t.Add({"theta_norm" + s, "1", "theta_m rho / L_e" + of + ", rho its radius of gyration"},
+          [d](V v) { return v.ThetaNormOf(d); });
+    t.Add({"theta_end_norm" + s, "1", "theta_end rho / L_e" + of},
+          [d](V v) { return v.EndOf(d)(2) * v.RhoOf(d) * v.to_norm; });
     if (seats_) {
-      out.push_back({"margin_m" + s, "m",
-                     "unseating margin" + of +
-                         ": seat width - largest corner travel normal to the end "
-                         "line (travel_m)"});
-      out.push_back({"margin_norm" + s, "1", "margin_m / L_e" + of});
+      const auto margin = [d](V v) {
+        return v.cell.seat_width_m[static_cast<std::size_t>(d)] - v.run.max_travel_m(d);
+      };
+      t.Add({"margin_m" + s, "m",
+             "unseating margin" + of +
+                 ": seat width - largest corner travel normal to the end line (travel_m)"},
+            margin);
+      t.Add({"margin_norm" + s, "1", "margin_m / L_e" + of},
+            [margin](V v) { return margin(v) * v.to_norm; });
     }
     if (travel_) {
-      out.push_back({"travel_m" + s, "m",
-                     "largest corner travel" + of +
-                         " normal to its end line over the run, exact (seat width - margin_m)"});
-      out.push_back({"travel_end_m" + s, "m",
-                     "residual corner travel" + of + " normal to its end line at the end (exact)"});
-      out.push_back({"travel_bound_m" + s, "m",
-                     "upper bound of travel_m" + of +
-                         " from the maxima of x, y and theta, each at its own time"});
+      t.Add({"travel_m" + s, "m",
+             "largest corner travel" + of +
+                 " normal to its end line over the run, exact (seat width - margin_m)"},
+            [d](V v) { return v.run.max_travel_m(d); });
+      t.Add({"travel_end_m" + s, "m",
+             "residual corner travel" + of + " normal to its end line at the end (exact)"},
+            [d](V v) { return model::CornerTravelAt(v.cell.model->body(d).geometry, v.EndOf(d)); });
+      t.Add({"travel_bound_m" + s, "m",
+             "upper bound of travel_m" + of +
+                 " from the maxima of x, y and theta, each at its own time"},
+            [d](V v) {
+              return model::CornerTravelBound(v.cell.model->body(d).geometry, v.MaxOf(d));
+            });
     }
   }
-  out.push_back({"theta_norm_max", "1", "largest theta_norm over the decks"});
-  out.push_back({"impacts", "1", "number of impact events (a multi-contact impact counts once)"});
-  out.push_back({"min_impact_separation", "s",
-                 "smallest time between distinct impact instants (inf with fewer than two)"});
-  out.push_back({"a_g", "m/s^2", "excitation amplitude: pulse a_g, or the record's PGA, x scale"});
-  out.push_back({"w_g", "rad/s", "excitation frequency: pulse w_g, or 2 pi / T_m of the record"});
-  out.push_back({"L_e", "m", "persistency |a_g| / w_g^2"});
-  out.push_back(
-      {"delta", "m", "gap of the +x abutment along x (Pi_delta L_e, gap_m or the file's)"});
+  // The cell: the run's counts, then its excitation and gaps (stored whatever the run did).
+  t.Add({"theta_norm_max", "1", "largest theta_norm over the decks"}, [n = n_decks_](V v) {
+    double theta_max = 0.0;
+    for (int d = 0; d < n; ++d) theta_max = std::max(theta_max, v.ThetaNormOf(d));
+    return theta_max;
+  });
+  t.Add({"impacts", "1", "number of impact events (a multi-contact impact counts once)"},
+        [](V v) { return static_cast<double>(v.run.impacts); });
+  t.Add({"min_impact_separation", "s",
+         "smallest time between distinct impact instants (inf with fewer than two)"},
+        [](V v) { return v.run.min_impact_separation_s; });
+  t.AddAlways({"a_g", "m/s^2", "excitation amplitude: pulse a_g, or the record's PGA, x scale"},
+              [](V v) { return v.cell.a_g_mps2; });
+  t.AddAlways({"w_g", "rad/s", "excitation frequency: pulse w_g, or 2 pi / T_m of the record"},
+              [](V v) { return v.cell.w_g_radps; });
+  t.AddAlways({"L_e", "m", "persistency |a_g| / w_g^2"}, [](V v) { return v.cell.persistency_m; });
+  t.AddAlways({"delta", "m", "gap of the +x abutment along x (Pi_delta L_e, gap_m or the file's)"},
+              [](V v) { return v.cell.gap_m; });
   if (Mentions(spec_, "record")) {
-    out.push_back({"pga", "m/s^2", "PGA of the record x scale"});
-    out.push_back({"pgv", "m/s", "PGV of the record x scale (no baseline correction)"});
-    out.push_back({"pgd", "m", "PGD of the record x scale (no baseline correction)"});
-    out.push_back({"T_m", "s", "mean period of the record [Rathje et al. 1998]"});
-    out.push_back({"arias", "m/s", "Arias intensity of the record x scale^2"});
-    out.push_back({"D5_95", "s", "significant duration D5-95 of the record"});
+    // The record's measures, of the excitation applied (record x scale).
+    const auto measures = [](V v) -> const records::IntensityMeasures& {
+      return v.cell.record->measures;
+    };
+    t.AddAlways({"pga", "m/s^2", "PGA of the record x scale"},
+                [measures](V v) { return measures(v).pga_mps2 * v.cell.scale; });
+    t.AddAlways({"pgv", "m/s", "PGV of the record x scale (no baseline correction)"},
+                [measures](V v) { return measures(v).pgv_mps * v.cell.scale; });
+    t.AddAlways({"pgd", "m", "PGD of the record x scale (no baseline correction)"},
+                [measures](V v) { return measures(v).pgd_m * v.cell.scale; });
+    t.AddAlways({"T_m", "s", "mean period of the record [Rathje et al. 1998]"},
+                [measures](V v) { return measures(v).mean_period_s; });
+    t.AddAlways({"arias", "m/s", "Arias intensity of the record x scale^2"},
+                [measures](V v) { return measures(v).arias_mps * v.cell.scale * v.cell.scale; });
+    t.AddAlways({"D5_95", "s", "significant duration D5-95 of the record"},
+                [measures](V v) { return measures(v).significant_duration_s; });
   }
   if (!spec_.im.measure.empty()) {
     const std::string unit = IntensityUnit(spec_.im);
     const std::string what = IntensityDescription(spec_.im);
-    out.push_back(
-        {"T1", "s", "fundamental period of the cell's model, 2 pi / w_1 without contacts"});
-    out.push_back({"im", unit, "intensity of the record as applied (x scale_factor): " + what});
-    out.push_back({"im_unscaled", unit, "the record's own intensity: " + what});
-    out.push_back({"scale_factor", "1",
-                   spec_.im.scale ? "factor on the record's accelerations: im / im_unscaled"
-                                  : "1 (records.im: records unscaled, cloud analysis)"});
-    out.push_back({"scaled_too_far", "1",
-                   "1 when scale_factor > records.max_scale, else 0 (always 0 without it)"});
+    // PGA, PGV, Sa and AvgSa are linear in the accelerations: the applied one is factor x own.
+    t.AddAlways({"T1", "s", "fundamental period of the cell's model, 2 pi / w_1 without contacts"},
+                [](V v) { return v.t1_s; });
+    t.AddAlways({"im", unit, "intensity of the record as applied (x scale_factor): " + what},
+                [](V v) { return v.own_im * v.cell.scale; });
+    t.AddAlways({"im_unscaled", unit, "the record's own intensity: " + what},
+                [](V v) { return v.own_im; });
+    t.AddAlways({"scale_factor", "1",
+                 spec_.im.scale ? "factor on the record's accelerations: im / im_unscaled"
+                                : "1 (records.im: records unscaled, cloud analysis)"},
+                [](V v) { return v.cell.scale; });
+    t.AddAlways({"scaled_too_far", "1",
+                 "1 when scale_factor > records.max_scale, else 0 (always 0 without it)"},
+                [max_scale = spec_.im.max_scale](V v) {
+                  return max_scale > 0.0 && v.cell.scale > max_scale ? 1.0 : 0.0;
+                });
   }
-  return out;
 }
 
 std::vector<std::pair<std::int32_t, std::string>> ModelFileEvaluator::StatusNames() const {
@@ -589,66 +645,20 @@ CellOutcome ModelFileEvaluator::EvaluateAt(std::span<const std::size_t> axis_ind
                                            std::optional<double> factor) const {
   const auto start = std::chrono::steady_clock::now();
   const ModelFileCell c = MakeCell(axis_index, true, factor);
-  const model::Model& model = *c.model;
   // As `skewbridge run`: run.method picks the integrator, the file's [run] its controls.
   const dynamics::RunResult run =
-      RunCellModel(model, *c.excitation, c.control, c.control.method == "time-stepping");
+      RunCellModel(*c.model, *c.excitation, c.control, c.control.method == "time-stepping");
 
   CellOutcome out;
   out.status = CellStatusOf(run.status);
   out.status_text = run.message;
-  const bool ok = out.status == kStatusOk;
-  auto value = [ok](double v) { return ok ? v : kNaN; };
-  const double to_norm = 1.0 / c.persistency_m;
-  double theta_max = 0.0;
-  for (int d = 0; d < n_decks_; ++d) {
-    const model::Body& deck = model.body(d);
-    const Eigen::Vector3d q_max = run.max_abs_q.segment<3>(3 * d);
-    const Eigen::Vector3d q_end = run.q_end.segment<3>(3 * d);
-    const double rho_m = std::sqrt(deck.inertia_kgm2 / deck.mass_kg);
-    const double theta_norm = q_max(2) * rho_m * to_norm;
-    theta_max = std::max(theta_max, theta_norm);
-    for (double v : {q_max(0), q_max(1), q_max(2), q_end(0), q_end(1), q_end(2), q_max(0) * to_norm,
-                     q_max(1) * to_norm, theta_norm, q_end(2) * rho_m * to_norm}) {
-      out.responses.push_back(value(v));
-    }
-    if (seats_) {
-      const double margin_m = c.seat_width_m[static_cast<std::size_t>(d)] - run.max_travel_m(d);
-      out.responses.push_back(value(margin_m));
-      out.responses.push_back(value(margin_m * to_norm));
-    }
-    if (travel_) {
-      out.responses.push_back(value(run.max_travel_m(d)));
-      out.responses.push_back(value(model::CornerTravelAt(deck.geometry, q_end)));
-      out.responses.push_back(value(model::CornerTravelBound(deck.geometry, q_max)));
-    }
-  }
-  out.responses.push_back(value(theta_max));
-  out.responses.push_back(value(static_cast<double>(run.impacts)));
-  out.responses.push_back(value(run.min_impact_separation_s));
-  out.responses.push_back(c.a_g_mps2);
-  out.responses.push_back(c.w_g_radps);
-  out.responses.push_back(c.persistency_m);
-  out.responses.push_back(c.gap_m);
-  if (c.record != nullptr) {
-    const records::IntensityMeasures& m = c.record->measures;
-    const double s = c.scale;
-    const std::array<double, kMeasureCount> measures{m.pga_mps2 * s,      m.pgv_mps * s,
-                                                     m.pgd_m * s,         m.mean_period_s,
-                                                     m.arias_mps * s * s, m.significant_duration_s};
-    out.responses.insert(out.responses.end(), measures.begin(), measures.end());
-  }
+  CellValues values{c, run, 1.0 / c.persistency_m};
   if (!spec_.im.measure.empty()) {
-    const std::uint64_t cell = CellIndex(axis_index);
-    const std::size_t t = t1_of_cell_[cell];
-    const double own = record_im_[RecordIndex(axis_index) * t1_values_s_.size() + t];
-    // PGA, PGV, Sa and AvgSa are linear in the accelerations: the applied one is factor x own.
-    out.responses.push_back(t1_values_s_[t]);
-    out.responses.push_back(own * c.scale);
-    out.responses.push_back(own);
-    out.responses.push_back(c.scale);
-    out.responses.push_back(spec_.im.max_scale > 0.0 && c.scale > spec_.im.max_scale ? 1.0 : 0.0);
+    const std::size_t t = t1_of_cell_[CellIndex(axis_index)];
+    values.t1_s = t1_values_s_[t];
+    values.own_im = record_im_[RecordIndex(axis_index) * t1_values_s_.size() + t];
   }
+  out.responses = table_.Values(values, out.status == kStatusOk);
   out.stats.events = static_cast<std::int64_t>(run.events.size());
   out.stats.steps = static_cast<std::int64_t>(run.free_steps + run.rk_steps);
   out.stats.wall_s =

@@ -20,6 +20,7 @@
 #include "solver/model/model_file.h"
 #include "spectra/cell.h"
 #include "spectra/grid.h"
+#include "spectra/response_table.h"
 #include "spectra/solver_status.h"
 #include "spectra/study.h"
 
@@ -54,7 +55,7 @@ class ModelFileEvaluator final : public CellEvaluator {
   /// model file, its excitation file or the record set.
   explicit ModelFileEvaluator(const CellGrid& spec);
 
-  std::vector<ResponseInfo> Responses() const override;
+  std::vector<ResponseInfo> Responses() const override { return table_.Infos(); }
   std::vector<std::pair<std::int32_t, std::string>> StatusNames() const override;
   CellOutcome Evaluate(std::span<const std::size_t> axis_index) const override;
   const std::vector<SweepRecord>* Records() const override {
@@ -101,6 +102,10 @@ class ModelFileEvaluator final : public CellEvaluator {
   std::vector<double> scale_of_cell_;      ///< per cell with scale_to: im / unscaled measure
   std::uint64_t scaled_too_far_ = 0;       ///< cells whose factor exceeds max_scale
   std::vector<std::string> warnings_;      ///< Warnings(), found at construction
+  /// What one cell computed, as its responses read it (model_file_evaluator.cpp).
+  struct CellValues;
+  ResponseTable<CellValues> table_;  ///< the stored responses, each with how it is read
+  void MakeResponseTable();
   std::uint64_t CellIndex(std::span<const std::size_t> axis_index) const;
   CellOutcome EvaluateAt(std::span<const std::size_t> axis_index,
                          std::optional<double> factor) const;

@@ -103,6 +103,25 @@ int MaxSpans(const CellGrid& spec) {
 
 }  // namespace
 
+struct MultiSpanEvaluator::CellValues {
+  const Cell& cell;
+  const model::Model& model;
+  const dynamics::RunResult& run;
+  double to_norm = 0.0;  ///< 1 / L_e (1/m)
+
+  /// Whether the cell's bridge has deck d.
+  bool Has(int d) const { return d < model.n_bodies(); }
+  /// max |q| of deck d (m, m, rad).
+  Eigen::Vector3d MaxOf(int d) const { return run.max_abs_q.segment<3>(3 * d); }
+  /// theta_norm of deck d: max |theta| rho w_g^2 / a_g.
+  double ThetaNormOf(int d) const {
+    const model::Body& deck = model.body(d);
+    return MaxOf(d)(2) * std::sqrt(deck.inertia_kgm2 / deck.mass_kg) * to_norm;
+  }
+  /// Deck d's largest corner travel normal to its end line over the run, exact (m).
+  double TravelOf(int d) const { return run.max_travel_m(d); }
+};
+
 MultiSpanEvaluator::MultiSpanEvaluator(const CellGrid& spec) : spec_(spec) {
   for (std::string_view key : {"record"}) {
     if (Mentions(spec, key)) {
@@ -116,6 +135,7 @@ MultiSpanEvaluator::MultiSpanEvaluator(const CellGrid& spec) : spec_(spec) {
   }
   max_spans_ = MaxSpans(spec);
   travel_ = !spec.limit_states.empty();
+  MakeResponseTable();
   // Every cell is mapped and its model built now, so a bad combination fails before any output.
   for (std::uint64_t cell = 0; cell < spec.CellCount(); ++cell) {
     const std::vector<std::size_t> index = spec.AxisIndex(cell);
@@ -128,46 +148,73 @@ MultiSpanEvaluator::MultiSpanEvaluator(const CellGrid& spec) : spec_(spec) {
   }
 }
 
-std::vector<ResponseInfo> MultiSpanEvaluator::Responses() const {
-  std::vector<ResponseInfo> out;
+void MultiSpanEvaluator::MakeResponseTable() {
+  using V = const CellValues&;
+  constexpr double kNoDeck = kNaN;
+  ResponseTable<CellValues>& t = table_;
   const bool seat = Mentions(spec_, "seat_over_L");
+  // Per deck (suffix _d<i>): NaN for a failed cell and for a deck the cell's bridge lacks.
+  const auto deck = [](int d, double (*read)(V, int)) {
+    return [d, read](V v) { return v.Has(d) ? read(v, d) : kNoDeck; };
+  };
   for (int d = 0; d < max_spans_; ++d) {
     const std::string s = "_d" + std::to_string(d);
     const std::string of = " of deck " + std::to_string(d) + " (NaN when the cell has fewer decks)";
-    out.push_back({"x_norm" + s, "1", "max |x| w_g^2 / a_g" + of});
-    out.push_back({"y_norm" + s, "1", "max |y| w_g^2 / a_g" + of});
-    out.push_back({"theta_norm" + s, "1", "max |theta| rho w_g^2 / a_g" + of});
+    t.Add({"x_norm" + s, "1", "max |x| w_g^2 / a_g" + of},
+          deck(d, [](V v, int i) { return v.MaxOf(i)(0) * v.to_norm; }));
+    t.Add({"y_norm" + s, "1", "max |y| w_g^2 / a_g" + of},
+          deck(d, [](V v, int i) { return v.MaxOf(i)(1) * v.to_norm; }));
+    t.Add({"theta_norm" + s, "1", "max |theta| rho w_g^2 / a_g" + of},
+          deck(d, [](V v, int i) { return v.ThetaNormOf(i); }));
     if (seat) {
-      out.push_back({"margin_norm" + s, "1",
-                     "unseating margin (seat width - corner travel normal to the end line) "
-                     "w_g^2 / a_g" +
-                         of});
+      t.Add(
+          {"margin_norm" + s, "1",
+           "unseating margin (seat width - corner travel normal to the end line) w_g^2 / a_g" + of},
+          deck(d, [](V v, int i) {
+            return (*v.cell.bridge.seat_width_m - v.TravelOf(i)) * v.to_norm;
+          }));
     }
     if (travel_) {
-      out.push_back({"theta_m" + s, "rad", "max |theta|" + of});
-      out.push_back({"travel_m" + s, "m",
-                     "largest corner travel normal to the end line over the run, exact" + of});
-      out.push_back({"travel_end_m" + s, "m",
-                     "corner travel normal to the end line at the end of the run" + of});
+      t.Add({"theta_m" + s, "rad", "max |theta|" + of},
+            deck(d, [](V v, int i) { return v.MaxOf(i)(2); }));
+      t.Add({"travel_m" + s, "m",
+             "largest corner travel normal to the end line over the run, exact" + of},
+            deck(d, [](V v, int i) { return v.TravelOf(i); }));
+      t.Add({"travel_end_m" + s, "m",
+             "corner travel normal to the end line at the end of the run" + of},
+            deck(d, [](V v, int i) {
+              return model::CornerTravelAt(v.model.body(i).geometry,
+                                           v.run.q_end.segment<3>(3 * i).eval());
+            }));
       if (seat) {
-        out.push_back({"margin_m" + s, "m", "unseating margin: seat width - travel_m" + of});
+        t.Add({"margin_m" + s, "m", "unseating margin: seat width - travel_m" + of},
+              deck(d, [](V v, int i) { return *v.cell.bridge.seat_width_m - v.TravelOf(i); }));
       }
-      out.push_back({"travel_bound_m" + s, "m",
-                     "upper bound of travel_m from the maxima of x, y and theta, each at its own "
-                     "time" +
-                         of});
+      t.Add(
+          {"travel_bound_m" + s, "m",
+           "upper bound of travel_m from the maxima of x, y and theta, each at its own time" + of},
+          deck(d, [](V v, int i) {
+            return model::CornerTravelBound(v.model.body(i).geometry, v.MaxOf(i));
+          }));
     }
   }
-  out.push_back({"theta_norm_max", "1", "largest theta_norm over the decks"});
-  out.push_back({"impacts", "1", "number of impact events (a multi-contact impact counts once)"});
-  out.push_back({"L_e", "m", "persistency a_g / w_g^2"});
-  out.push_back({"L", "m", "span length"});
-  out.push_back({"delta", "m", "gap of every joint and abutment, along x: Pi_delta L_e"});
+  // The cell: the run's counts, then its geometry (stored whatever the run did).
+  t.Add({"theta_norm_max", "1", "largest theta_norm over the decks"}, [](V v) {
+    double theta_max = 0.0;
+    for (int d = 0; d < v.model.n_bodies(); ++d) theta_max = std::max(theta_max, v.ThetaNormOf(d));
+    return theta_max;
+  });
+  t.Add({"impacts", "1", "number of impact events (a multi-contact impact counts once)"},
+        [](V v) { return static_cast<double>(v.run.impacts); });
+  t.AddAlways({"L_e", "m", "persistency a_g / w_g^2"}, [](V v) { return v.cell.persistency_m; });
+  t.AddAlways({"L", "m", "span length"}, [](V v) { return v.cell.bridge.span_lengths_m[0]; });
+  t.AddAlways({"delta", "m", "gap of every joint and abutment, along x: Pi_delta L_e"},
+              [](V v) { return v.cell.bridge.joint_gap_m; });
   if (travel_) {
     // The intensity of the fragility functions (jobs/study.cpp takes a_g / g without stripes).
-    out.push_back({"a_g", "m/s^2", "pulse amplitude a_g = a_g_g g"});
+    t.AddAlways({"a_g", "m/s^2", "pulse amplitude a_g = a_g_g g"},
+                [](V v) { return v.cell.a_g_mps2; });
   }
-  return out;
 }
 
 std::vector<std::pair<std::int32_t, std::string>> MultiSpanEvaluator::StatusNames() const {
@@ -195,41 +242,7 @@ CellOutcome MultiSpanEvaluator::Evaluate(std::span<const std::size_t> axis_index
   CellOutcome out;
   out.status = CellStatusOf(run.status);
   out.status_text = run.message;
-  const bool ok = out.status == kStatusOk;
-  const bool seat = Mentions(spec_, "seat_over_L");
-  const double to_norm = 1.0 / c.persistency_m;
-  const std::size_t per_deck = (seat ? 4 : 3) + (travel_ ? (seat ? 5 : 4) : 0);
-  double theta_max = 0.0;
-  for (int d = 0; d < max_spans_; ++d) {
-    if (!ok || d >= model.n_bodies()) {
-      out.responses.insert(out.responses.end(), per_deck, kNaN);
-      continue;
-    }
-    const model::Body& deck = model.body(d);
-    const Eigen::Vector3d q_max = run.max_abs_q.segment<3>(3 * d);
-    const double travel_m = run.max_travel_m(d);
-    const double rho_m = std::sqrt(deck.inertia_kgm2 / deck.mass_kg);
-    const double theta_norm = q_max(2) * rho_m * to_norm;
-    theta_max = std::max(theta_max, theta_norm);
-    out.responses.push_back(q_max(0) * to_norm);
-    out.responses.push_back(q_max(1) * to_norm);
-    out.responses.push_back(theta_norm);
-    if (seat) out.responses.push_back((*c.bridge.seat_width_m - travel_m) * to_norm);
-    if (travel_) {
-      out.responses.push_back(q_max(2));
-      out.responses.push_back(travel_m);
-      out.responses.push_back(
-          model::CornerTravelAt(deck.geometry, run.q_end.segment<3>(3 * d).eval()));
-      if (seat) out.responses.push_back(*c.bridge.seat_width_m - travel_m);
-      out.responses.push_back(model::CornerTravelBound(deck.geometry, q_max));
-    }
-  }
-  out.responses.push_back(ok ? theta_max : kNaN);
-  out.responses.push_back(ok ? static_cast<double>(run.impacts) : kNaN);
-  out.responses.push_back(c.persistency_m);
-  out.responses.push_back(c.bridge.span_lengths_m[0]);
-  out.responses.push_back(c.bridge.joint_gap_m);
-  if (travel_) out.responses.push_back(c.a_g_mps2);
+  out.responses = table_.Values({c, model, run, 1.0 / c.persistency_m}, out.status == kStatusOk);
   out.stats.events = static_cast<std::int64_t>(run.events.size());
   out.stats.steps = static_cast<std::int64_t>(run.free_steps + run.rk_steps);
   out.stats.wall_s =

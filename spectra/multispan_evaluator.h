@@ -18,6 +18,7 @@
 
 #include "spectra/cell.h"
 #include "spectra/grid.h"
+#include "spectra/response_table.h"
 #include "spectra/solver_status.h"
 
 namespace skewbridge::spectra {
@@ -31,7 +32,7 @@ class MultiSpanEvaluator final : public CellEvaluator {
   /// L_over_Le with delta_over_L, ...) or an impossible combination (eta0 with a = 0).
   explicit MultiSpanEvaluator(const CellGrid& spec);
 
-  std::vector<ResponseInfo> Responses() const override;
+  std::vector<ResponseInfo> Responses() const override { return table_.Infos(); }
   std::vector<std::pair<std::int32_t, std::string>> StatusNames() const override;
   CellOutcome Evaluate(std::span<const std::size_t> axis_index) const override;
 
@@ -41,6 +42,10 @@ class MultiSpanEvaluator final : public CellEvaluator {
   /// The sweep declares limit states: theta_m, travel_m, travel_end_m (and margin_m with
   /// seat_over_L) are stored per deck.
   bool travel_ = false;
+  /// What one cell computed, as its responses read it (multispan_evaluator.cpp).
+  struct CellValues;
+  ResponseTable<CellValues> table_;  ///< the stored responses, each with how it is read
+  void MakeResponseTable();
 };
 
 }  // namespace skewbridge::spectra

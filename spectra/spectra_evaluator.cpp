@@ -2,7 +2,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <limits>
 
 #include "solver/common/error.h"
 #include "solver/model/deck.h"
@@ -11,34 +10,14 @@ namespace skewbridge::spectra {
 namespace {
 
 constexpr double kStandardGravity_mps2 = 9.80665;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-// The responses, in the order Evaluate fills them [docs/theory.md §5].
-const std::vector<ResponseInfo>& ResponseTable() {
-  static const std::vector<ResponseInfo> table{
-      {"x_m", "m", "maximum |x|, longitudinal deck displacement relative to the ground"},
-      {"y_m", "m", "maximum |y|, transverse deck displacement relative to the ground"},
-      {"theta_m", "rad", "maximum |theta|, deck rotation in plan"},
-      {"theta_end", "rad", "residual rotation theta at the end of the run"},
-      {"x_norm", "1", "x_m w_g^2 / a_g"},
-      {"y_norm", "1", "y_m w_g^2 / a_g"},
-      {"theta_norm", "1", "theta_m rho w_g^2 / a_g, rho the radius of gyration"},
-      {"theta_end_norm", "1", "theta_end rho w_g^2 / a_g"},
-      {"impacts", "1", "number of impact events (a multi-contact impact counts once)"},
-      {"min_impact_separation", "s",
-       "smallest time between distinct impact instants (inf with fewer than two)"},
-      {"a_g", "m/s^2", "excitation amplitude a_g (pulse) or PGA (record)"},
-      {"w_g", "rad/s", "excitation frequency w_g (pulse) or 2 pi / T_m (record)"},
-      {"L_e", "m", "persistency a_g / w_g^2"},
-      {"delta", "m", "joint gap along x, Pi_delta L_e"},
-      {"w0x_over_wg", "1", "sqrt(K_xx / m) / w_g"},
-      {"band", "1",
-       "w0x/w_g group: k for band_edges[k-1] <= w0x_over_wg < band_edges[k] ([study] bands)"},
-  };
-  return table;
-}
 
 }  // namespace
+
+struct SpectraEvaluator::CellValues {
+  const spectra::PointResult& run;
+  const spectra::DimensionalPoint& point;
+  double seat_m = 0.0;  ///< seat width seat_over_L L (with seats)
+};
 
 SpectraEvaluator::SpectraEvaluator(const CellGrid& spec) : spec_(spec) {
   if (spec.family == "subsystem") {
@@ -85,6 +64,71 @@ SpectraEvaluator::SpectraEvaluator(const CellGrid& spec) : spec_(spec) {
   band_edges_ = BandEdges(spec);
   seats_ = Mentions(spec, "seat_over_L");
   travel_ = !spec.limit_states.empty();
+
+  // The responses [docs/theory.md §5]: the run's maxima (NaN for a failed cell), then the
+  // cell's excitation and geometry (stored whatever the run did).
+  using V = const CellValues&;
+  ResponseTable<CellValues>& t = table_;
+  t.Add({"x_m", "m", "maximum |x|, longitudinal deck displacement relative to the ground"},
+        [](V v) { return v.run.x_m; });
+  t.Add({"y_m", "m", "maximum |y|, transverse deck displacement relative to the ground"},
+        [](V v) { return v.run.y_m; });
+  t.Add({"theta_m", "rad", "maximum |theta|, deck rotation in plan"},
+        [](V v) { return v.run.theta_rad; });
+  t.Add({"theta_end", "rad", "residual rotation theta at the end of the run"},
+        [](V v) { return v.run.theta_end_rad; });
+  t.Add({"x_norm", "1", "x_m w_g^2 / a_g"}, [](V v) { return v.run.x_norm; });
+  t.Add({"y_norm", "1", "y_m w_g^2 / a_g"}, [](V v) { return v.run.y_norm; });
+  t.Add({"theta_norm", "1", "theta_m rho w_g^2 / a_g, rho the radius of gyration"},
+        [](V v) { return v.run.theta_norm; });
+  t.Add({"theta_end_norm", "1", "theta_end rho w_g^2 / a_g"},
+        [](V v) { return v.run.theta_end_norm; });
+  t.Add({"impacts", "1", "number of impact events (a multi-contact impact counts once)"},
+        [](V v) { return static_cast<double>(v.run.impacts); });
+  t.Add({"min_impact_separation", "s",
+         "smallest time between distinct impact instants (inf with fewer than two)"},
+        [](V v) { return v.run.min_impact_separation_s; });
+  t.AddAlways({"a_g", "m/s^2", "excitation amplitude a_g (pulse) or PGA (record)"},
+              [](V v) { return v.point.scales.a_g_mps2; });
+  t.AddAlways({"w_g", "rad/s", "excitation frequency w_g (pulse) or 2 pi / T_m (record)"},
+              [](V v) { return v.point.scales.w_g_radps; });
+  t.AddAlways({"L_e", "m", "persistency a_g / w_g^2"}, [](V v) { return v.point.persistency_m; });
+  t.AddAlways({"delta", "m", "joint gap along x, Pi_delta L_e"},
+              [](V v) { return v.point.delta_m; });
+  t.AddAlways({"w0x_over_wg", "1", "sqrt(K_xx / m) / w_g"},
+              [](V v) { return v.point.w0x_radps / v.point.scales.w_g_radps; });
+  t.AddAlways(
+      {"band", "1",
+       "w0x/w_g group: k for band_edges[k-1] <= w0x_over_wg < band_edges[k] ([study] bands)"},
+      [edges = band_edges_](V v) {
+        return BandOf(v.point.w0x_radps / v.point.scales.w_g_radps, edges);
+      });
+  if (seats_) {
+    t.Add({"margin_m", "m",
+           "unseating margin: seat width (seat_over_L L) - largest corner travel normal to the end "
+           "line (travel_m)"},
+          [](V v) { return v.seat_m - v.run.travel_m; });
+    t.Add({"margin_norm", "1", "margin_m w_g^2 / a_g"},
+          [](V v) { return (v.seat_m - v.run.travel_m) / v.point.persistency_m; });
+  }
+  if (travel_) {
+    t.Add({"travel_m", "m",
+           "largest corner travel normal to the end line over the run, exact (tracked by the "
+           "integrator)"},
+          [](V v) { return v.run.travel_m; });
+    t.Add({"travel_end_m", "m",
+           "corner travel normal to the end line at the end of the run (residual)"},
+          [](V v) {
+            return model::CornerTravelAt(v.point.deck.geometry,
+                                         {v.run.x_end_m, v.run.y_end_m, v.run.theta_end_rad});
+          });
+    t.Add({"travel_bound_m", "m",
+           "upper bound of travel_m from the maxima of x, y and theta, each at its own time"},
+          [](V v) {
+            return model::CornerTravelBound(v.point.deck.geometry,
+                                            {v.run.x_m, v.run.y_m, v.run.theta_rad});
+          });
+  }
   // Every cell's mapping is checked now, so a bad combination fails before the file is touched.
   std::vector<std::size_t> index(spec.axes.size(), 0);
   for (std::uint64_t cell = 0; cell < spec.CellCount(); ++cell) {
@@ -143,27 +187,6 @@ spectra::PointParameters SpectraEvaluator::Parameters(std::span<const std::size_
   return p;
 }
 
-std::vector<ResponseInfo> SpectraEvaluator::Responses() const {
-  std::vector<ResponseInfo> out = ResponseTable();
-  if (seats_) {
-    out.push_back({"margin_m", "m",
-                   "unseating margin: seat width (seat_over_L L) - largest corner travel normal "
-                   "to the end line (travel_m)"});
-    out.push_back({"margin_norm", "1", "margin_m w_g^2 / a_g"});
-  }
-  if (travel_) {
-    out.push_back({"travel_m", "m",
-                   "largest corner travel normal to the end line over the run, exact (tracked by "
-                   "the integrator)"});
-    out.push_back({"travel_end_m", "m",
-                   "corner travel normal to the end line at the end of the run (residual)"});
-    out.push_back({"travel_bound_m", "m",
-                   "upper bound of travel_m from the maxima of x, y and theta, each at its own "
-                   "time"});
-  }
-  return out;
-}
-
 std::vector<std::pair<std::int32_t, std::string>> SpectraEvaluator::StatusNames() const {
   return SolverStatusNames();
 }
@@ -190,41 +213,11 @@ CellOutcome SpectraEvaluator::Evaluate(std::span<const std::size_t> axis_index) 
   CellOutcome out;
   out.status = CellStatusOf(r.status);
   out.status_text = r.message;
-  const bool ok = out.status == kStatusOk;
-  auto value = [ok](double v) { return ok ? v : kNaN; };
-  const spectra::ExcitationScales& s = point.scales;
-  out.responses = {value(r.x_m),
-                   value(r.y_m),
-                   value(r.theta_rad),
-                   value(r.theta_end_rad),
-                   value(r.x_norm),
-                   value(r.y_norm),
-                   value(r.theta_norm),
-                   value(r.theta_end_norm),
-                   value(static_cast<double>(r.impacts)),
-                   value(r.min_impact_separation_s),
-                   s.a_g_mps2,
-                   s.w_g_radps,
-                   point.persistency_m,
-                   point.delta_m,
-                   point.w0x_radps / s.w_g_radps,
-                   BandOf(point.w0x_radps / s.w_g_radps, band_edges_)};
-  if (seats_ || travel_) {
-    const model::DeckGeometry& g = point.deck.geometry;
-    const double travel_m = r.travel_m;
-    if (seats_) {
-      const double margin_m =
-          NumberOf(spec_, axis_index, "seat_over_L", 0.0) * g.length_m - travel_m;
-      out.responses.push_back(value(margin_m));
-      out.responses.push_back(value(margin_m / point.persistency_m));
-    }
-    if (travel_) {
-      out.responses.push_back(value(travel_m));
-      out.responses.push_back(
-          value(model::CornerTravelAt(g, {r.x_end_m, r.y_end_m, r.theta_end_rad})));
-      out.responses.push_back(value(model::CornerTravelBound(g, {r.x_m, r.y_m, r.theta_rad})));
-    }
+  CellValues values{r, point};
+  if (seats_) {
+    values.seat_m = NumberOf(spec_, axis_index, "seat_over_L", 0.0) * point.deck.geometry.length_m;
   }
+  out.responses = table_.Values(values, out.status == kStatusOk);
   out.stats.events = r.events;
   out.stats.steps = r.steps;
   out.stats.wall_s =

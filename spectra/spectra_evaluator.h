@@ -15,6 +15,7 @@
 #include "spectra/cell.h"
 #include "spectra/grid.h"
 #include "spectra/point.h"
+#include "spectra/response_table.h"
 #include "spectra/solver_status.h"
 #include "spectra/study.h"
 
@@ -31,7 +32,7 @@ class SpectraEvaluator final : public CellEvaluator {
   /// a = 0, delta/L with Pi_delta = 0, ...).
   explicit SpectraEvaluator(const CellGrid& spec);
 
-  std::vector<ResponseInfo> Responses() const override;
+  std::vector<ResponseInfo> Responses() const override { return table_.Infos(); }
   std::vector<std::pair<std::int32_t, std::string>> StatusNames() const override;
   CellOutcome Evaluate(std::span<const std::size_t> axis_index) const override;
   const std::vector<SweepRecord>* Records() const override {
@@ -49,6 +50,9 @@ class SpectraEvaluator final : public CellEvaluator {
   std::vector<double> band_edges_;    ///< BandEdges(spec_), for the response band
   bool seats_ = false;                ///< seat_over_L is given: margin_m, margin_norm are stored
   bool travel_ = false;  ///< limit states declared: travel_m, travel_end_m, travel_bound_m stored
+  /// What one cell computed, as its responses read it (spectra_evaluator.cpp).
+  struct CellValues;
+  ResponseTable<CellValues> table_;  ///< the stored responses, each with how it is read
 };
 
 }  // namespace skewbridge::spectra

@@ -21,7 +21,9 @@
 #include "records/measures.h"
 #include "records/synthetic.h"
 #include "solver/common/error.h"
+#include "solver/dynamics/simulate.h"
 #include "solver/model/deck.h"
+#include "solver/model/multispan.h"
 #include "spectra/model_file_evaluator.h"
 
 namespace skewbridge::jobs {
@@ -268,6 +270,18 @@ TEST(ModelFileEvaluator, RefusesKeysAndCombinationsNamingFileAndKey) {
             "no error");
 }
 
+// The value of the response `name` in `out` (the evaluator's Responses() give the order).
+double ValueOf(const ModelFileEvaluator& evaluator, const CellOutcome& out,
+               const std::string& name) {
+  const std::vector<spectra::ResponseInfo> names = evaluator.Responses();
+  EXPECT_EQ(names.size(), out.responses.size());
+  for (std::size_t k = 0; k < names.size() && k < out.responses.size(); ++k) {
+    if (names[k].name == name) return out.responses[k];
+  }
+  ADD_FAILURE() << "no response " << name;
+  return 0.0;
+}
+
 // Inline samples without a mean period (all zero) have no L_e: Pi_delta is refused, naming it;
 // other keys run with NaN scales.
 TEST(ModelFileEvaluator, SamplesWithoutMeanPeriodRefuseOnlyPiDelta) {
@@ -281,8 +295,74 @@ TEST(ModelFileEvaluator, SamplesWithoutMeanPeriodRefuseOnlyPiDelta) {
   const std::vector<std::size_t> cell{0};
   const CellOutcome out = evaluator.Evaluate(cell);
   EXPECT_EQ(out.status, kStatusOk);
-  EXPECT_EQ(out.responses[0], 0.0);           // x_m_d0: the ground does not move
-  EXPECT_TRUE(std::isnan(out.responses[6]));  // x_norm_d0 = x_m / L_e, L_e undefined
+  EXPECT_EQ(ValueOf(evaluator, out, "x_m_d0"), 0.0);              // the ground does not move
+  EXPECT_TRUE(std::isnan(ValueOf(evaluator, out, "x_norm_d0")));  // x_m / L_e, L_e undefined
+}
+
+// Every response of a cell of the three-span bridge, named, against a run of the cell's model
+// by the integrator itself and the definitions of docs/sweep-format.md: each deck's maxima,
+// residuals, normalised values (rho = sqrt(I / m)), margins and travels, the bridge's largest
+// theta_norm, the counts and the scales. A value read from the wrong place fails here.
+TEST(ModelFileEvaluator, EveryResponseByNameIsWhatTheCellsOwnRunGives) {
+  const std::string model = (std::filesystem::path(SKEWBRIDGE_TEST_DATA_DIR) / ".." / ".." /
+                             "docs" / "examples" / "three-span.toml")
+                                .string();
+  const ModelFileEvaluator evaluator(
+      Spec("[axes]\nPi_delta = [0.5, 3.0]\n[fixed]\nseat_over_L = 0.01\n"
+           "[limit_states]\nrotation = {above_rad = 0.01}\n",
+           model));
+  const std::vector<spectra::ResponseInfo> names = evaluator.Responses();
+  ASSERT_EQ(names.size(), 3u * 15u + 7u);
+  for (std::size_t cell = 0; cell < 2; ++cell) {
+    const std::vector<std::size_t> index{cell};
+    const CellOutcome out = evaluator.Evaluate(index);
+    ASSERT_EQ(out.status, kStatusOk) << out.status_text;
+    ASSERT_EQ(out.responses.size(), names.size());
+    const ModelFileCell c = evaluator.MakeCell(index, true);
+    dynamics::SimulationWorkspace workspace(*c.model);
+    const dynamics::RunResult run =
+        dynamics::Simulate(*c.model, *c.excitation, c.control, workspace);
+    ASSERT_EQ(run.status, dynamics::RunStatus::kOk);
+    const double L_e = c.persistency_m;
+    double theta_norm_max = 0.0;
+    for (int d = 0; d < 3; ++d) {
+      SCOPED_TRACE("cell " + std::to_string(cell) + ", deck " + std::to_string(d));
+      const model::Body& deck = c.model->body(d);
+      const Eigen::Vector3d q_max = run.max_abs_q.segment<3>(3 * d);
+      const Eigen::Vector3d q_end = run.q_end.segment<3>(3 * d);
+      const double rho = std::sqrt(deck.inertia_kgm2 / deck.mass_kg);
+      const std::string s = "_d" + std::to_string(d);
+      const auto at = [&](const std::string& stem) { return ValueOf(evaluator, out, stem + s); };
+      EXPECT_EQ(at("x_m"), q_max(0));
+      EXPECT_EQ(at("y_m"), q_max(1));
+      EXPECT_EQ(at("theta_m"), q_max(2));
+      EXPECT_EQ(at("x_end"), q_end(0));
+      EXPECT_EQ(at("y_end"), q_end(1));
+      EXPECT_EQ(at("theta_end"), q_end(2));
+      EXPECT_DOUBLE_EQ(at("x_norm"), q_max(0) / L_e);
+      EXPECT_DOUBLE_EQ(at("y_norm"), q_max(1) / L_e);
+      EXPECT_DOUBLE_EQ(at("theta_norm"), q_max(2) * rho / L_e);
+      EXPECT_DOUBLE_EQ(at("theta_end_norm"), q_end(2) * rho / L_e);
+      const double seat_m = 0.01 * deck.geometry.length_m;
+      const double travel_m = run.max_travel_m(d);
+      EXPECT_DOUBLE_EQ(at("margin_m"), seat_m - travel_m);
+      EXPECT_DOUBLE_EQ(at("margin_norm"), (seat_m - travel_m) / L_e);
+      EXPECT_EQ(at("travel_m"), travel_m);
+      EXPECT_EQ(at("travel_end_m"), model::CornerTravelAt(deck.geometry, q_end));
+      EXPECT_EQ(at("travel_bound_m"), model::CornerTravelBound(deck.geometry, q_max));
+      theta_norm_max = std::max(theta_norm_max, q_max(2) * rho / L_e);
+    }
+    EXPECT_DOUBLE_EQ(ValueOf(evaluator, out, "theta_norm_max"), theta_norm_max);
+    EXPECT_EQ(ValueOf(evaluator, out, "impacts"), static_cast<double>(run.impacts));
+    EXPECT_EQ(ValueOf(evaluator, out, "min_impact_separation"), run.min_impact_separation_s);
+    EXPECT_EQ(ValueOf(evaluator, out, "a_g"), c.a_g_mps2);
+    EXPECT_EQ(ValueOf(evaluator, out, "w_g"), c.w_g_radps);
+    EXPECT_EQ(ValueOf(evaluator, out, "L_e"), L_e);
+    EXPECT_DOUBLE_EQ(ValueOf(evaluator, out, "delta"), (cell == 0 ? 0.5 : 3.0) * L_e);
+    if (cell == 0) {
+      EXPECT_GT(run.impacts, 0);  // the small gap closes: not a linear run only
+    }
+  }
 }
 
 TEST(ModelFileEvaluator, CellModelFollowsTheDefinitions) {
@@ -351,14 +431,7 @@ TEST(Stripes, EveryScaledRecordHasTheStripesSaAtTheClosedFormT1) {
     // The response columns say the same.
     const CellOutcome out = evaluator.Evaluate(index);
     ASSERT_EQ(out.status, kStatusOk);
-    const std::vector<spectra::ResponseInfo> names = evaluator.Responses();
-    auto column = [&](const std::string& name) {
-      for (std::size_t k = 0; k < names.size(); ++k) {
-        if (names[k].name == name) return out.responses[k];
-      }
-      ADD_FAILURE() << "no response " << name;
-      return 0.0;
-    };
+    auto column = [&](const std::string& name) { return ValueOf(evaluator, out, name); };
     EXPECT_NEAR(column("T1"), t1, 1e-12 * t1);
     EXPECT_NEAR(column("im"), im_g, 1e-12 * im_g);
     EXPECT_DOUBLE_EQ(column("scale_factor"), c.scale);
@@ -443,7 +516,7 @@ TEST(Stripes, MaxScaleFlagsTheCellsBeyondItAndCountsThem) {
   EXPECT_THAT(limited.Notes()[0], HasSubstr("3 of 8 cells scaled beyond max_scale"));
   for (std::uint64_t cell = 0; cell < spec.CellCount(); ++cell) {
     const CellOutcome out = limited.Evaluate(spec.AxisIndex(cell));
-    EXPECT_EQ(out.responses.back(), factors[cell] > limit ? 1.0 : 0.0) << cell;
+    EXPECT_EQ(ValueOf(limited, out, "scaled_too_far"), factors[cell] > limit ? 1.0 : 0.0) << cell;
   }
 }
 
@@ -459,9 +532,8 @@ TEST(Stripes, ImLeavesTheRecordsUnscaled) {
   const double sa =
       records::ElasticResponseSpectrum(c.record->motion.acc_mps2, c.record->motion.dt_s, period)
           .psa_mps2[0];
-  const std::size_t n = out.responses.size();
-  EXPECT_DOUBLE_EQ(out.responses[n - 4], sa / kG);  // im
-  EXPECT_DOUBLE_EQ(out.responses[n - 2], 1.0);      // scale_factor
+  EXPECT_DOUBLE_EQ(ValueOf(cloud, out, "im"), sa / kG);
+  EXPECT_DOUBLE_EQ(ValueOf(cloud, out, "scale_factor"), 1.0);
 }
 
 TEST(Stripes, SpecErrorsNameTheKey) {

@@ -117,6 +117,57 @@ TEST_F(SweepRunnerTest, CubeEqualsDirectEvaluationAndRecordsFailures) {
   EXPECT_EQ(summary[0].axes.at(2).values.back(), 4.0);
 }
 
+// An evaluator that returns one response too few on cells 3 and 8, and one too many on cell 5.
+class MiscountingEvaluator final : public CellEvaluator {
+ public:
+  explicit MiscountingEvaluator(const CellEvaluator& inner) : inner_(inner) {}
+  std::vector<ResponseInfo> Responses() const override { return inner_.Responses(); }
+  std::vector<std::pair<std::int32_t, std::string>> StatusNames() const override {
+    return inner_.StatusNames();
+  }
+  CellOutcome Evaluate(std::span<const std::size_t> index) const override {
+    CellOutcome out = inner_.Evaluate(index);
+    const std::uint64_t cell = static_cast<std::uint64_t>(out.responses.back());  // cell_echo
+    if (cell == 3 || cell == 8) out.responses.pop_back();
+    if (cell == 5) out.responses.push_back(1.0);
+    return out;
+  }
+
+ private:
+  const CellEvaluator& inner_;
+};
+
+TEST_F(SweepRunnerTest, ACellWithAnotherResponseCountIsAnInternalErrorNotPadded) {
+  const SweepSpec spec = ParseSweepSpec(kSpec, "spec.toml", ".");
+  const TestEvaluator evaluator(spec, 50, 0);
+  const MiscountingEvaluator miscounting(evaluator);
+  // The cells the test needs as ok cells of the test evaluator.
+  for (const std::uint64_t c : {3u, 5u, 8u}) {
+    ASSERT_FALSE(TestEvaluator::Throws(c) || TestEvaluator::Fails(c)) << c;
+  }
+  const SweepReport report = Run(spec, miscounting);
+  EXPECT_TRUE(report.complete);
+  EXPECT_EQ(report.failed_by_status.at("response-count"), 3u);
+  std::vector<std::string> names;
+  const CubeData data = h5::ReadCubeData(options_.out, "runner", &names);
+  for (std::uint64_t c = 0; c < spec.CellCount(); ++c) {
+    if (c != 3 && c != 5 && c != 8) {
+      EXPECT_NE(data.status[c], kStatusResponseCount) << c;
+      continue;
+    }
+    EXPECT_EQ(data.status[c], kStatusResponseCount) << c;
+    for (std::size_t r = 0; r < data.responses.size(); ++r) {
+      EXPECT_TRUE(std::isnan(data.responses[r][c])) << "cell " << c << " response " << r;
+    }
+  }
+  const auto summary = h5::SummarizeCube(options_.out);
+  ASSERT_EQ(summary.size(), 1u);
+  EXPECT_EQ(summary[0].done_by_status.at("response-count"), 3u);
+  // The lowest such cell's message.
+  EXPECT_EQ(summary[0].status_examples.at("response-count"),
+            "cell 3: internal error: the evaluator returned 2 responses for the 3 it declares");
+}
+
 TEST_F(SweepRunnerTest, InterruptedSweepResumesComputingOnlyMissingCells) {
   const SweepSpec spec = ParseSweepSpec(kSpec, "spec.toml", ".");
   const TestEvaluator evaluator(spec, 50, 0);

@@ -1,6 +1,7 @@
 // The limit states of a single-deck family evaluated in process (no MPI, so the sanitizer
 // build runs them too): a subsystem deck at zero skew neither moves transversally nor rotates
-// [docs/theory.md §4 fact 3], so its corner travel is its longitudinal maximum (to rounding).
+// [docs/theory.md §4 fact 3], so its corner travel is its longitudinal maximum (to rounding);
+// an inner cell without its responses stays an internal error.
 
 #include <gtest/gtest.h>
 
@@ -65,6 +66,33 @@ TEST(LimitStates, SubsystemAtZeroSkewTravelsAsFarAsItsLongitudinalMaximum) {
   }
   // A gap of 0.25 L_e lets the deck travel past a seat of L_e; one of 4 L_e does not.
   EXPECT_EQ(exceeded, 1);
+}
+
+// An inner evaluator that declares one response and returns none.
+class Silent final : public CellEvaluator {
+ public:
+  std::vector<ResponseInfo> Responses() const override { return {{"x", "m", "a response"}}; }
+  CellOutcome Evaluate(std::span<const std::size_t>) const override { return {}; }
+};
+
+TEST(LimitStates, AnInnerCellWithoutItsResponsesIsAnInternalErrorNotPadded) {
+  CellGrid grid;
+  grid.source = "spec.toml";
+  grid.family = "subsystem";
+  grid.axes = {Axis{"Pi_delta", ParameterKind::kNumber, {1.0}, {}, "list"}};
+  LimitState over;
+  over.name = "over";
+  over.kind = LimitStateKind::kResponse;
+  over.response = "x";
+  over.threshold = 1.0;
+  grid.limit_states = {over};
+  const LimitStateEvaluator evaluator(std::make_unique<Silent>(), grid);
+  ASSERT_EQ(evaluator.Responses().size(), 3u);  // x, ls_over_demand, ls_over
+  const CellOutcome out = evaluator.Evaluate(std::vector<std::size_t>{0});
+  EXPECT_EQ(out.status, kStatusResponseCount);
+  EXPECT_EQ(out.status_text,
+            "internal error: the evaluator returned 0 responses for the 1 it declares");
+  EXPECT_TRUE(out.responses.empty());
 }
 
 }  // namespace
