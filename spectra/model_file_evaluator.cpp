@@ -339,6 +339,18 @@ std::optional<CellScaling> ModelFileEvaluator::Scaling(
   return s;
 }
 
+records::SampledExcitation ScaledRecordExcitation(const records::GroundMotion& motion,
+                                                  double factor, const Eigen::Vector2d& direction) {
+  records::GroundMotion scaled;
+  scaled.file = motion.file;
+  scaled.dt_s = motion.dt_s;
+  scaled.acc_mps2 = motion.acc_mps2;
+  if (factor != 1.0) {
+    for (double& a : scaled.acc_mps2) a *= factor;
+  }
+  return records::ToExcitation(scaled, direction);
+}
+
 ModelFileCell ModelFileEvaluator::MakeCell(std::span<const std::size_t> index, bool with_excitation,
                                            std::optional<double> factor) const {
   const std::string& src = spec_.source;
@@ -369,16 +381,8 @@ ModelFileCell ModelFileEvaluator::MakeCell(std::span<const std::size_t> index, b
     c.excitation_samples = c.record->motion.npts();
     c.excitation_duration_s = c.record->motion.dt_s * static_cast<double>(c.excitation_samples - 1);
     if (with_excitation) {
-      std::vector<double> acc = c.record->motion.acc_mps2;
-      if (c.scale != 1.0) {
-        for (double& a : acc) a *= c.scale;
-      }
-      records::GroundMotion scaled;
-      scaled.file = c.record->motion.file;
-      scaled.dt_s = c.record->motion.dt_s;
-      scaled.acc_mps2 = std::move(acc);
-      c.excitation =
-          std::make_unique<records::SampledExcitation>(records::ToExcitation(scaled, ex.direction));
+      c.excitation = std::make_unique<records::SampledExcitation>(
+          ScaledRecordExcitation(c.record->motion, c.scale, ex.direction));
     }
   } else if (samples_measures_) {
     c.a_g_mps2 = samples_measures_->pga_mps2 * c.scale;

@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "records/excitations.h"
 #include "records/measures.h"
 #include "solver/common/excitation.h"
 #include "solver/model/model_file.h"
@@ -41,6 +42,12 @@ struct ModelFileCell {
   double excitation_duration_s = 0.0;      ///< the ground motion's duration (s)
   std::size_t excitation_samples = 0;      ///< its samples (0 for a pulse)
 };
+
+/// A record as a model-file cell applies it: every acceleration times `factor` (left as read
+/// when the factor is 1), linear between samples, along the unit (x, y) `direction`.
+/// `skewbridge run --record` makes its excitation here too, so a run and a cell agree bit for bit.
+records::SampledExcitation ScaledRecordExcitation(const records::GroundMotion& motion,
+                                                  double factor, const Eigen::Vector2d& direction);
 
 /// Evaluates the cells of a model-file sweep. Immutable after construction: Evaluate is a pure
 /// function of the cell index.
