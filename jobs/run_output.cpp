@@ -80,6 +80,15 @@ void WriteSummary(hid_t file, const model::Model& model, const dynamics::RunResu
   d = WriteDoubles(g.get(), "u_end", {n}, r.u_end.data(), "m/s (vx, vy), rad/s (omega)",
                    "velocities at the end time");
   SetColumns(d.get(), labels.u_names, labels.u_units);
+  if (r.max_travel_m.size() == model.n_bodies()) {
+    std::vector<std::string> decks;
+    for (int b = 0; b < model.n_bodies(); ++b) decks.push_back("deck" + std::to_string(b));
+    d = WriteDoubles(g.get(), "max_travel_m", {static_cast<hsize_t>(model.n_bodies())},
+                     r.max_travel_m.data(), "m",
+                     "largest travel of any corner of each deck normal to its end line over the "
+                     "run, tracked by the integrator (the unseating demand travel_m of a cube)");
+    SetColumns(d.get(), decks, std::vector<std::string>(decks.size(), "m"));
+  }
 
   h5::SetAttr(g.get(), "end_time_s", r.end_time_s);
   h5::SetAttr(g.get(), "impacts", static_cast<std::int64_t>(r.impacts));
@@ -211,11 +220,32 @@ void WriteHistories(hid_t file, const model::Model& model, const dynamics::Histo
   }
 }
 
+void WriteOrigin(hid_t file, const RunOrigin& origin) {
+  Id g = h5::CreateGroup(file, "origin");
+  for (const auto& [name, value] : origin.text) h5::SetAttr(g.get(), name, value);
+  for (const auto& [name, value] : origin.numbers) h5::SetAttr(g.get(), name, value);
+  if (origin.ground_ax_mps2.empty()) return;
+  SB_DEMAND(origin.ground_ay_mps2.size() == origin.ground_ax_mps2.size(),
+            "ground acceleration components of different lengths");
+  const std::size_t n = origin.ground_ax_mps2.size();
+  std::vector<double> a(2 * n);
+  for (std::size_t k = 0; k < n; ++k) {
+    a[2 * k] = origin.ground_ax_mps2[k];
+    a[2 * k + 1] = origin.ground_ay_mps2[k];
+  }
+  Id d =
+      WriteDoubles(g.get(), "ground_acceleration", {static_cast<hsize_t>(n), 2}, a.data(), "m/s^2",
+                   "ground acceleration applied, sample k at t = k dt_s, linear between "
+                   "samples, zero after the last; [sample, (x, y)]");
+  SetColumns(d.get(), {"a_x", "a_y"}, {"m/s^2", "m/s^2"});
+  h5::SetAttr(d.get(), "dt_s", origin.ground_dt_s);
+}
+
 }  // namespace
 
 void WriteRunHdf5(const std::filesystem::path& path, const model::Model& model,
                   const dynamics::RunResult& result, std::string_view model_text,
-                  std::string_view method, double time_step_s) {
+                  std::string_view method, double time_step_s, const RunOrigin& origin) {
   h5::SilenceErrorStack();
   Id file = h5::CreateFile(path.string());
   const hid_t f = file.get();
@@ -243,6 +273,7 @@ void WriteRunHdf5(const std::filesystem::path& path, const model::Model& model,
   if (!result.histories.t_s.empty()) {
     WriteHistories(f, model, result.histories, labels);
   }
+  if (!origin.Empty()) WriteOrigin(f, origin);
   h5::FlushToDisk(f);
 }
 

@@ -5,7 +5,10 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 #include "solver/dynamics/run_result.h"
 #include "solver/model/model.h"
@@ -17,15 +20,31 @@ inline constexpr const char* kRunFormat = "skewbridge-run";
 /// The version stored in the root attribute "format_version" of a run file.
 inline constexpr std::int64_t kRunFormatVersion = 1;
 
+/// Where a run's ground motion and model came from beyond the model file: a record read by
+/// `run --record` or `--record-set`, its scale factor, or the cube cell it re-runs
+/// (docs/run-output.md, group `origin`). Empty for a run of a model file as written.
+struct RunOrigin {
+  /// String attributes of the group, in order (e.g. {"record_file", "NIS090.AT2"}).
+  std::vector<std::pair<std::string, std::string>> text;
+  /// Number attributes of the group, in order (e.g. {"scale_factor", 2.5}).
+  std::vector<std::pair<std::string, double>> numbers;
+  /// The ground acceleration the run applied, sample k at t = k dt_s (m/s^2, x and y); empty
+  /// for a pulse.
+  std::vector<double> ground_ax_mps2, ground_ay_mps2;
+  double ground_dt_s = 0.0;  ///< their sample interval (s)
+  /// Whether there is anything to store.
+  bool Empty() const { return text.empty() && numbers.empty() && ground_ax_mps2.empty(); }
+};
+
 /// Writes (truncating) the run file at `path` in the layout of docs/run-output.md; the group
 /// "histories" only when result.histories holds samples. `model_text` is stored verbatim;
 /// `method` (run.method: "event-driven" | "time-stepping") and `time_step_s` (the Moreau-Jean
 /// step h in s, NaN for event-driven) become the root attributes of the same names.
 /// @pre result comes from dynamics::Simulate or dynamics::SimulateTimeStepping on `model`
-/// (sizes match n_dof and contacts).
+/// (sizes match n_dof and contacts). `origin`, when not empty, becomes the group `origin`.
 /// @throws h5::H5Error on I/O failure (the caller removes the partial file).
 void WriteRunHdf5(const std::filesystem::path& path, const model::Model& model,
                   const dynamics::RunResult& result, std::string_view model_text,
-                  std::string_view method, double time_step_s);
+                  std::string_view method, double time_step_s, const RunOrigin& origin = {});
 
 }  // namespace skewbridge::jobs

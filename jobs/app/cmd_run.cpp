@@ -1,7 +1,11 @@
-// `skewbridge run MODEL.toml [--csv run.csv] [--out run.h5]`: one run of a model file by the
-// method of run.method (event-driven or time-stepping); prints a summary, writes the time
-// histories as CSV and the whole run as HDF5 (docs/run-output.md), each to a temporary name
-// renamed on success. A run that stops with a status other than ok exits with status 3.
+// `skewbridge run MODEL.toml [--record FILE | --record-set SET --label L] [--scale S |
+// --target-sa-g X | --target-pga-g X] [--csv run.csv] [--out run.h5]`: one run of a model file by
+// the method of run.method (event-driven or time-stepping), under its own excitation or a record
+// of any format the readers know; and `skewbridge run --from-cube CUBE.h5 --cell AXIS=VALUE,...`
+// (or --cell-index N): one cell of a model-file sweep run again as the sweep ran it, with
+// histories. Prints a summary, writes the time histories as CSV and the whole run as HDF5
+// (docs/run-output.md), each to a temporary name renamed on success. A run that stops with a
+// status other than ok exits with status 3.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -9,6 +13,7 @@
 #include <fstream>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -16,14 +21,20 @@
 #include <fmt/format.h>
 
 #include "jobs/app/commands.h"
+#include "jobs/cell_rerun.h"
 #include "jobs/h5/h5_error.h"
 #include "jobs/run_output.h"
 #include "records/excitations.h"
+#include "records/measures.h"
+#include "records/record_set.h"
 #include "solver/common/error.h"
 #include "solver/dynamics/simulate.h"
 #include "solver/dynamics/time_stepping.h"
 #include "solver/model/model_file.h"
 #include "solver/model/plausibility.h"
+#include "spectra/model_file_evaluator.h"
+#include "spectra/solver_status.h"
+#include "spectra/study.h"
 
 namespace skewbridge::app {
 namespace {
@@ -97,24 +108,29 @@ void WriteCsv(const std::filesystem::path& path, const model::Model& model,
 }
 
 // The whole run as HDF5; a failed write removes the temporary file and names --out.
-void WriteHdf5(const std::filesystem::path& path, const model::ModelFile& file,
-               const model::RunControl& control, const dynamics::RunResult& r) {
-  std::ifstream in(file.path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
+void WriteHdf5(const std::filesystem::path& path, const std::string& model_text,
+               const model::Model& model, const model::RunControl& control,
+               const dynamics::RunResult& r, const jobs::RunOrigin& origin) {
   const std::filesystem::path temporary = path.string() + ".partial";
   try {
     // The step h means nothing to the event-driven integrator: NaN says so in the file.
     const double time_step_s = control.method == "time-stepping"
                                    ? control.time_step_s
                                    : std::numeric_limits<double>::quiet_NaN();
-    jobs::WriteRunHdf5(temporary, file.model, r, text.str(), control.method, time_step_s);
+    jobs::WriteRunHdf5(temporary, model, r, model_text, control.method, time_step_s, origin);
   } catch (const jobs::h5::H5Error& e) {
     std::error_code ignored;
     std::filesystem::remove(temporary, ignored);
     throw InputError::AtField("--out", path.string(), std::string("cannot write: ") + e.what());
   }
   std::filesystem::rename(temporary, path);
+}
+
+std::string ReadText(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
 }
 
 // A number of the summary: printf's `format` when finite, else "not-finite" (a run that stops
@@ -128,98 +144,360 @@ std::string Number(const char* format, double value) {
   return text;
 }
 
+// The command line of `run`.
+struct RunOptions {
+  std::string model;
+  std::string csv, out;
+  double output_interval_s = 0.0;
+  std::string record, format, units, record_set, label;
+  std::optional<double> dt_s, scale, target_sa_g, target_pga_g;  // each when given
+  std::string from_cube, sweep, cell;
+  long long cell_index = -1;
+};
+
+// What is run: the model, its ground motion and controls, and where they came from.
+struct RunInput {
+  std::string title;       // the summary's first words ("model M.toml", "cube C.h5 ...")
+  std::string model_text;  // stored in the run file
+  const model::Model* model = nullptr;
+  const Excitation* excitation = nullptr;
+  model::RunControl control;
+  bool print_modes = false;
+  jobs::RunOrigin origin;
+};
+
+// The ground acceleration of a sampled excitation, for the run file's origin group.
+void KeepGround(const Excitation& excitation, jobs::RunOrigin& origin) {
+  const auto* sampled = dynamic_cast<const records::SampledExcitation*>(&excitation);
+  if (sampled == nullptr) return;
+  origin.ground_ax_mps2 = sampled->ax_mps2();
+  origin.ground_ay_mps2 = sampled->ay_mps2().empty()
+                              ? std::vector<double>(sampled->ax_mps2().size(), 0.0)
+                              : sampled->ay_mps2();
+  origin.ground_dt_s = sampled->dt_s();
+}
+
+// The record of --record (any format the readers know) or of --record-set and --label.
+records::GroundMotion LoadRunRecord(const RunOptions& o, jobs::RunOrigin& origin) {
+  if (!o.record.empty()) {
+    records::ReadOptions read;
+    if (!o.format.empty()) {
+      const std::optional<records::Format> format = records::ParseFormat(o.format);
+      if (!format) {
+        throw InputError::AtField("--format", o.format,
+                                  "unknown format; allowed: auto, at2, esm, itsak, cosmos, csmip, "
+                                  "smc, smtk, plain, time-acc");
+      }
+      read.format = *format;
+    }
+    if (!o.units.empty()) {
+      read.units = records::ParseUnits(o.units);
+      if (!read.units) {
+        throw InputError::AtField("--units", o.units, "unknown units; allowed: g, m/s^2, cm/s^2");
+      }
+    }
+    if (o.dt_s) {
+      if (!(*o.dt_s > 0.0) || !std::isfinite(*o.dt_s)) {
+        throw InputError::AtField("--dt", fmt::format("{}", *o.dt_s), "must be a time > 0 s");
+      }
+      read.dt_s = *o.dt_s;
+    }
+    records::GroundMotion motion = records::ReadRecord(o.record, read);
+    origin.text.push_back({"record_file", o.record});
+    origin.text.push_back({"record_format", motion.format});
+    return motion;
+  }
+  const records::RecordSet set = records::LoadRecordSet(o.record_set);
+  std::string labels;
+  for (const records::RecordEntry& entry : set.records) {
+    const std::string label = records::RecordLabel(entry);
+    if (label == o.label) {
+      records::GroundMotion motion = records::LoadRecord(entry);
+      origin.text.push_back({"record_set", o.record_set});
+      origin.text.push_back({"record_label", label});
+      origin.text.push_back({"record_file", entry.file.string()});
+      origin.text.push_back({"record_format", motion.format});
+      origin.numbers.push_back({"record_set_scale", entry.scale});
+      return motion;
+    }
+    labels += (labels.empty() ? "" : ", ") + label;
+  }
+  throw InputError::AtField("--label", o.label,
+                            "not a record of " + o.record_set + "; its labels: " + labels);
+}
+
+// The factor on the record's accelerations: --scale, or a target intensity over the record's own
+// (Sa(T1, 5 %) at the model's fundamental period T1, or PGA), computed as a sweep's stripes are.
+double RecordFactor(const RunOptions& o, const model::Model& model,
+                    const records::GroundMotion& motion, jobs::RunOrigin& origin) {
+  const int given = o.scale.has_value() + o.target_sa_g.has_value() + o.target_pga_g.has_value();
+  if (given > 1) {
+    throw InputError("--scale: give one of --scale, --target-sa-g, --target-pga-g");
+  }
+  auto positive = [](const char* option, double v) {
+    if (!(v > 0.0) || !std::isfinite(v)) {
+      throw InputError::AtField(option, fmt::format("{}", v), "must be a number > 0");
+    }
+  };
+  if (!o.target_sa_g && !o.target_pga_g) {
+    const double factor = o.scale.value_or(1.0);
+    positive("--scale", factor);
+    origin.numbers.push_back({"scale_factor", factor});
+    return factor;
+  }
+  spectra::SweepRecord record;
+  record.motion = motion;
+  spectra::IntensityMeasureSpec im;
+  double target = 0.0, t1_s = std::numeric_limits<double>::quiet_NaN();
+  if (o.target_sa_g) {
+    positive("--target-sa-g", *o.target_sa_g);
+    t1_s = model::FundamentalPeriod(model);
+    if (!(t1_s > 0.0) || !std::isfinite(t1_s)) {
+      throw InputError::AtField("--target-sa-g", fmt::format("{}", *o.target_sa_g),
+                                "needs a model with stiffness in every direction: its lowest "
+                                "natural frequency is 0 (see `skewbridge modes`)");
+    }
+    im.measure = "Sa";
+    im.at_t1 = true;
+    im.xi = 0.05;
+    target = *o.target_sa_g;
+  } else {
+    positive("--target-pga-g", *o.target_pga_g);
+    record.measures = records::ComputeMeasures(motion);
+    im.measure = "PGA";
+    target = *o.target_pga_g;
+  }
+  const double own = spectra::RecordIntensity(record, im, t1_s);
+  if (!(own > 0.0) || !std::isfinite(own)) {
+    throw InputError::AtField(im.measure == "Sa" ? "--target-sa-g" : "--target-pga-g",
+                              fmt::format("{}", target),
+                              fmt::format("the record's own {} is {} g: it cannot be scaled to "
+                                          "a value",
+                                          im.measure, own));
+  }
+  const double factor = target / own;
+  origin.text.push_back({"scaled_to", spectra::IntensityDescription(im)});
+  origin.numbers.push_back({"target_g", target});
+  origin.numbers.push_back({"unscaled_g", own});
+  if (im.at_t1) origin.numbers.push_back({"T1_s", t1_s});
+  origin.numbers.push_back({"scale_factor", factor});
+  return factor;
+}
+
+// The run's model, excitation and controls, and the summary of what was run.
+void Execute(const RunInput& in, const RunOptions& o) {
+  model::RunControl control = in.control;
+  if (o.output_interval_s < 0.0) {
+    throw InputError::AtField("--output-interval", fmt::format("{}", o.output_interval_s),
+                              "must be > 0 s");
+  }
+  if (o.output_interval_s > 0.0) {
+    control.output_interval_s = o.output_interval_s;
+  }
+  if (!o.csv.empty() && control.output_interval_s <= 0.0) {
+    control.output_interval_s = 0.01;
+  }
+  const model::Model& model = *in.model;
+  const bool time_stepping = control.method == "time-stepping";
+  const dynamics::RunResult r =
+      spectra::RunCellModel(model, *in.excitation, control, time_stepping);
+  std::printf("%s: method %s", in.title.c_str(), control.method.c_str());
+  if (time_stepping) {
+    std::printf(" (h = %.6g s)", control.time_step_s);
+  }
+  std::printf(", status %s%s%s, t_end %s s\n", dynamics::ToString(r.status),
+              r.message.empty() ? "" : " - ", r.message.c_str(),
+              Number("%.6g", r.end_time_s).c_str());
+  // Stiffness assembled from bearings and piers: its modes are a result worth seeing.
+  if (in.print_modes) {
+    PrintModes(model);
+  }
+  const char* names[3] = {"x", "y", "theta"};
+  const char* units[3] = {"m", "m", "rad"};
+  for (int i = 0; i < model.n_dof(); ++i) {
+    std::printf("  max|%s%d| = %s at %s s, residual %s (%s)\n", names[i % 3], i / 3,
+                Number("%.6e", r.max_abs_q[i]).c_str(), Number("%.6f", r.time_of_max_s[i]).c_str(),
+                Number("%.6e", r.q_end[i]).c_str(), units[i % 3]);
+  }
+  std::printf("  impacts %ld, plastic closures %ld, detachments %ld, stick %ld, slip %ld\n",
+              r.impacts, r.plastic_closures, r.detachments, r.stick_transitions,
+              r.slip_transitions);
+  std::printf(
+      "  steps: exact %ld, Runge-Kutta %ld (+%ld rejected); smallest impact separation %s\n",
+      r.free_steps, r.rk_steps, r.rk_rejected,
+      r.impacts < 2 ? "none (fewer than two impacts)"
+                    : (Number("%.3e", r.min_impact_separation_s) + " s").c_str());
+  const dynamics::EnergyLedger& e = r.energy;
+  std::printf(
+      "  energy (J): input %s, damping %s, impacts %s, friction %s, now %s, balance error %s\n",
+      Number("%.6e", e.input_J).c_str(), Number("%.6e", e.damping_J).c_str(),
+      Number("%.6e", e.impact_J).c_str(), Number("%.6e", e.friction_J).c_str(),
+      Number("%.6e", e.kinetic_J + e.strain_J).c_str(), Number("%.3e", e.balance_error_J).c_str());
+  if (!o.csv.empty()) {
+    WriteCsv(o.csv, model, r.histories);
+  }
+  if (!o.out.empty()) {
+    WriteHdf5(o.out, in.model_text, model, control, r, in.origin);
+  }
+  if (r.status != dynamics::RunStatus::kOk) {
+    // An expected numerical outcome (Painleve, LCP failure, step limit, a state no longer
+    // finite): the summary and the files hold the run up to where it stopped; the exit status
+    // tells scripts it stopped.
+    std::fprintf(stderr, "skewbridge: run stopped: %s: %s\n", dynamics::ToString(r.status),
+                 r.message.c_str());
+    throw CLI::RuntimeError(kRunStoppedExitCode);
+  }
+}
+
+// `run MODEL [--record ... | --record-set ...]`.
+void RunModelFile(const RunOptions& o) {
+  const model::ModelFile file = model::ParseModelFile(o.model);
+  PrintWarnings(model::PlausibilityWarnings(file));
+  RunInput in;
+  in.model_text = ReadText(file.path);
+  in.model = &file.model;
+  in.control = file.run;
+  in.print_modes = !file.decks && file.deck.stiffness == model::DeckSpec::StiffnessKind::kElements;
+  std::unique_ptr<Excitation> excitation;
+  const bool by_record = !o.record.empty() || !o.record_set.empty();
+  if (by_record) {
+    const records::GroundMotion motion = LoadRunRecord(o, in.origin);
+    const double factor = RecordFactor(o, file.model, motion, in.origin);
+    in.origin.text.insert(in.origin.text.begin(), {"kind", "record"});
+    excitation = std::make_unique<records::SampledExcitation>(
+        spectra::ScaledRecordExcitation(motion, factor, file.excitation.direction));
+    in.title = fmt::format("model {}, record {} x {:.6g}", o.model,
+                           o.record.empty() ? o.label : o.record, factor);
+  } else {
+    if (o.scale || o.target_sa_g || o.target_pga_g) {
+      const char* option = o.scale ? "--scale" : o.target_sa_g ? "--target-sa-g" : "--target-pga-g";
+      throw InputError(std::string(option) +
+                       ": scales a record: give --record FILE or --record-set SET --label L");
+    }
+    excitation = MakeExcitation(file.excitation, o.model);
+    in.title = "model " + o.model;
+  }
+  // The run counted again with what is known now: the samples of an excitation file or record
+  // and the history interval of the command line.
+  model::RunControl counted = in.control;
+  if (o.output_interval_s > 0.0) counted.output_interval_s = o.output_interval_s;
+  if (!o.csv.empty() && counted.output_interval_s <= 0.0) counted.output_interval_s = 0.01;
+  const auto* sampled = dynamic_cast<const records::SampledExcitation*>(excitation.get());
+  model::CheckRunSize(counted, excitation->Duration(), sampled ? sampled->ax_mps2().size() : 0,
+                      o.model,
+                      by_record                      ? "record"
+                      : file.excitation.file.empty() ? "excitation"
+                                                     : "excitation.file");
+  if (by_record) KeepGround(*excitation, in.origin);
+  in.excitation = excitation.get();
+  Execute(in, o);
+}
+
+// `run --from-cube CUBE --cell ...`: the cell as its sweep ran it, with histories.
+void RunCubeCell(const RunOptions& o) {
+  if (!o.model.empty() || !o.record.empty() || !o.record_set.empty() || o.scale || o.target_sa_g ||
+      o.target_pga_g) {
+    throw InputError::AtField("--from-cube", o.from_cube,
+                              "takes the model, record and scale from the cube: give no MODEL, "
+                              "--record, --record-set, --scale or --target-*");
+  }
+  jobs::CellChoice choice;
+  choice.sweep = o.sweep;
+  choice.coordinates = o.cell;
+  if (o.cell_index >= 0) choice.index = static_cast<std::uint64_t>(o.cell_index);
+  const jobs::CellRerun rerun = jobs::PrepareCellRerun(o.from_cube, choice);
+  PrintWarnings(rerun.evaluator->Warnings());
+  const spectra::ModelFileCell& c = rerun.cell;
+  RunInput in;
+  in.model_text = rerun.model_text;
+  in.model = &*c.model;
+  in.excitation = c.excitation.get();
+  in.control = c.control;
+  // Histories and the energy ledger are what a re-run is for; the sweep leaves both out because
+  // the maxima are the same bits with or without them (tests/app/rerun_cell_test.sh).
+  if (in.control.output_interval_s <= 0.0) in.control.output_interval_s = 0.01;
+  in.control.energy_ledger = true;
+  in.title = fmt::format("cube {}, sweep {}, cell {} ({})", o.from_cube, rerun.spec.name,
+                         rerun.index, rerun.coordinates);
+  jobs::RunOrigin& origin = in.origin;
+  origin.text = {{"kind", "cube-cell"},
+                 {"cube", o.from_cube},
+                 {"sweep", rerun.spec.name},
+                 {"coordinates", rerun.coordinates},
+                 {"specification", rerun.spec.source},
+                 {"cube_status", rerun.done ? rerun.status_name : "not_done"}};
+  if (c.record != nullptr) {
+    origin.text.push_back({"record_label", c.record->label});
+    origin.text.push_back({"record_file", c.record->file});
+  }
+  origin.numbers = {{"cell_index", static_cast<double>(rerun.index)}, {"scale_factor", c.scale}};
+  KeepGround(*c.excitation, origin);
+  if (!rerun.done) {
+    PrintWarnings({o.from_cube + ": cell " + std::to_string(rerun.index) +
+                   " is not done in the cube: there is nothing stored to compare the run with"});
+  }
+  Execute(in, o);
+}
+
 }  // namespace
 
 void AddRunCommand(CLI::App& app) {
-  CLI::App* cmd = app.add_subcommand("run", "Integrate one model file and summarise the response");
-  auto model_path = std::make_shared<std::string>();
-  auto csv_path = std::make_shared<std::string>();
-  auto out_path = std::make_shared<std::string>();
-  auto output_interval_s = std::make_shared<double>(0.0);
-  cmd->add_option("MODEL", *model_path, "Model file (TOML, docs/model-format.md)")->required();
-  cmd->add_option("--csv", *csv_path, "Write the time histories as CSV");
-  cmd->add_option("--out", *out_path, "Write the run as HDF5 (docs/run-output.md)");
-  cmd->add_option("--output-interval", *output_interval_s,
+  CLI::App* cmd = app.add_subcommand(
+      "run", "Integrate one model file (or re-run one cell of a cube) and summarise the response");
+  auto o = std::make_shared<RunOptions>();
+  cmd->add_option("MODEL", o->model, "Model file (TOML, docs/model-format.md)");
+  cmd->add_option("--csv", o->csv, "Write the time histories as CSV");
+  cmd->add_option("--out", o->out, "Write the run as HDF5 (docs/run-output.md)");
+  cmd->add_option("--output-interval", o->output_interval_s,
                   "History sample interval in s (> 0), overriding run.output_interval_s");
-  cmd->callback([model_path, csv_path, out_path, output_interval_s] {
-    const model::ModelFile file = model::ParseModelFile(*model_path);
-    PrintWarnings(model::PlausibilityWarnings(file));
-    const std::unique_ptr<Excitation> excitation = MakeExcitation(file.excitation, *model_path);
-    model::RunControl control = file.run;
-    if (*output_interval_s < 0.0) {
-      throw InputError::AtField("--output-interval", fmt::format("{}", *output_interval_s),
-                                "must be > 0 s");
+  cmd->add_option("--record", o->record,
+                  "A record file of any format the readers know (docs/records.md) in place of the "
+                  "model file's excitation, along its direction");
+  cmd->add_option("--format", o->format, "The record file's format (default: detected)");
+  cmd->add_option("--units", o->units, "Units of a record file that states none (g, m/s^2, ...)");
+  cmd->add_option("--dt", o->dt_s, "Sample interval in s of a headerless record file");
+  cmd->add_option("--record-set", o->record_set,
+                  "A record set (TOML manifest) to take --label from");
+  cmd->add_option("--label", o->label, "The label of the record in --record-set");
+  cmd->add_option("--scale", o->scale, "Factor on the record's accelerations (> 0)");
+  cmd->add_option("--target-sa-g", o->target_sa_g,
+                  "Scale the record to Sa(T1, 5 %) = X g at the model's fundamental period T1");
+  cmd->add_option("--target-pga-g", o->target_pga_g, "Scale the record to PGA = X g");
+  cmd->add_option("--from-cube", o->from_cube,
+                  "Re-run one cell of a model-file sweep's cube, as the sweep ran it");
+  cmd->add_option("--sweep", o->sweep, "The sweep of --from-cube (when the cube holds several)");
+  cmd->add_option("--cell", o->cell,
+                  "The cell of --from-cube by its coordinates: AXIS=VALUE,AXIS=VALUE,...");
+  cmd->add_option("--cell-index", o->cell_index,
+                  "The cell of --from-cube by its row-major index (docs/hdf5-layout.md)");
+  cmd->callback([o] {
+    if (!o->from_cube.empty()) {
+      RunCubeCell(*o);
+      return;
     }
-    if (*output_interval_s > 0.0) {
-      control.output_interval_s = *output_interval_s;
+    if (o->model.empty()) {
+      throw InputError(
+          "run: MODEL is required (Model file (TOML, docs/model-format.md)), or --from-cube "
+          "CUBE.h5 with --cell AXIS=VALUE,... or --cell-index N");
     }
-    if (!csv_path->empty() && control.output_interval_s <= 0.0) {
-      control.output_interval_s = 0.01;
+    if (!o->sweep.empty() || !o->cell.empty() || o->cell_index >= 0) {
+      throw InputError(std::string(!o->cell.empty()   ? "--cell"
+                                   : o->sweep.empty() ? "--cell-index"
+                                                      : "--sweep") +
+                       ": chooses a cell of --from-cube CUBE.h5");
     }
-    // The run counted again with what is known now: the samples of an excitation file and the
-    // history interval of the command line.
-    const auto* sampled = dynamic_cast<const records::SampledExcitation*>(excitation.get());
-    model::CheckRunSize(control, excitation->Duration(), sampled ? sampled->ax_mps2().size() : 0,
-                        *model_path,
-                        file.excitation.file.empty() ? "excitation" : "excitation.file");
-    // run.method: the event-driven integrator, or the Moreau-Jean scheme with run.time_step_s.
-    const bool time_stepping = control.method == "time-stepping";
-    dynamics::RunResult r;
-    if (time_stepping) {
-      dynamics::TimeSteppingWorkspace workspace(file.model);
-      r = dynamics::SimulateTimeStepping(file.model, *excitation, control, workspace);
-    } else {
-      dynamics::SimulationWorkspace workspace(file.model);
-      r = dynamics::Simulate(file.model, *excitation, control, workspace);
+    if (!o->record.empty() && !o->record_set.empty()) {
+      throw InputError::AtField("--record", o->record, "give --record or --record-set, not both");
     }
-    std::printf("model %s: method %s", model_path->c_str(), control.method.c_str());
-    if (time_stepping) {
-      std::printf(" (h = %.6g s)", control.time_step_s);
+    if (o->record_set.empty() != o->label.empty()) {
+      throw InputError::AtField(o->label.empty() ? "--record-set" : "--label",
+                                o->label.empty() ? o->record_set : o->label,
+                                "--record-set and --label go together");
     }
-    std::printf(", status %s%s%s, t_end %s s\n", dynamics::ToString(r.status),
-                r.message.empty() ? "" : " - ", r.message.c_str(),
-                Number("%.6g", r.end_time_s).c_str());
-    // Stiffness assembled from bearings and piers: its modes are a result worth seeing.
-    if (!file.decks && file.deck.stiffness == model::DeckSpec::StiffnessKind::kElements) {
-      PrintModes(file.model);
+    if (o->record.empty() && (!o->format.empty() || !o->units.empty() || o->dt_s)) {
+      throw InputError("--format, --units, --dt: describe --record FILE");
     }
-    const char* names[3] = {"x", "y", "theta"};
-    const char* units[3] = {"m", "m", "rad"};
-    for (int i = 0; i < file.model.n_dof(); ++i) {
-      std::printf("  max|%s%d| = %s at %s s, residual %s (%s)\n", names[i % 3], i / 3,
-                  Number("%.6e", r.max_abs_q[i]).c_str(),
-                  Number("%.6f", r.time_of_max_s[i]).c_str(), Number("%.6e", r.q_end[i]).c_str(),
-                  units[i % 3]);
-    }
-    std::printf("  impacts %ld, plastic closures %ld, detachments %ld, stick %ld, slip %ld\n",
-                r.impacts, r.plastic_closures, r.detachments, r.stick_transitions,
-                r.slip_transitions);
-    std::printf(
-        "  steps: exact %ld, Runge-Kutta %ld (+%ld rejected); smallest impact separation %s\n",
-        r.free_steps, r.rk_steps, r.rk_rejected,
-        r.impacts < 2 ? "none (fewer than two impacts)"
-                      : (Number("%.3e", r.min_impact_separation_s) + " s").c_str());
-    const dynamics::EnergyLedger& e = r.energy;
-    std::printf(
-        "  energy (J): input %s, damping %s, impacts %s, friction %s, now %s, balance error %s\n",
-        Number("%.6e", e.input_J).c_str(), Number("%.6e", e.damping_J).c_str(),
-        Number("%.6e", e.impact_J).c_str(), Number("%.6e", e.friction_J).c_str(),
-        Number("%.6e", e.kinetic_J + e.strain_J).c_str(),
-        Number("%.3e", e.balance_error_J).c_str());
-    if (!csv_path->empty()) {
-      WriteCsv(*csv_path, file.model, r.histories);
-    }
-    if (!out_path->empty()) {
-      WriteHdf5(*out_path, file, control, r);
-    }
-    if (r.status != dynamics::RunStatus::kOk) {
-      // An expected numerical outcome (Painleve, LCP failure, step limit, a state no longer
-      // finite): the summary and the
-      // files hold the run up to where it stopped; the exit status tells scripts it stopped.
-      std::fprintf(stderr, "skewbridge: run stopped: %s: %s\n", dynamics::ToString(r.status),
-                   r.message.c_str());
-      throw CLI::RuntimeError(kRunStoppedExitCode);
-    }
+    RunModelFile(*o);
   });
 }
 

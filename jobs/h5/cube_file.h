@@ -162,6 +162,8 @@ struct SweepSummary {
   std::string spec_hash;
   std::string spec_canonical;    ///< SweepSpec::CanonicalText when the sweep was begun.
   std::string inputs_canonical;  ///< SweepSpec::InputsText then ("" in older cubes).
+  std::string spec_text;         ///< The specification file verbatim (SweepSpec::text).
+  std::string spec_source;       ///< Where the sweep read it (SweepSpec::source), for its folder.
   std::string created_utc;
   std::string program_version;
   bool complete = false;

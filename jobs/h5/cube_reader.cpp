@@ -66,6 +66,8 @@ std::vector<SweepSummary> SummarizeCubeIn(const std::filesystem::path& path) {
     if (HasAttr(g.get(), "inputs_canonical")) {
       s.inputs_canonical = GetStringAttr(g.get(), "inputs_canonical");
     }
+    s.spec_text = GetStringAttr(g.get(), "spec_text");
+    s.spec_source = GetStringAttr(g.get(), "spec_source");
     s.created_utc = GetStringAttr(g.get(), "created_utc");
     s.program_version = GetStringAttr(g.get(), "program_version");
     s.complete = GetIntAttr(g.get(), "complete") != 0;

@@ -333,7 +333,9 @@ def run(args):
         path, rows = figures.history(r, args.out, name, args.pdf)
         written.append(path)
         energy = [(k, v) for k, v in sorted(r.energy.items())]
+        origin = figures.origin_text(r)
         md += [f"## Run {os.path.basename(r.path)}: time histories", "",
+               *([f"Ran {origin}.", ""] if origin else []),
                f"![{name}]({os.path.basename(path)})", "",
                _table(["quantity", "max abs (integrator)", "t of the sampled max [s]"], rows), "",
                _table(["impacts", "plastic closures", "min impact separation [s]"],

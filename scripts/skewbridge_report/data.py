@@ -141,6 +141,9 @@ class Run:
     u: np.ndarray = None  # [n, n_dof] velocities
     gap: np.ndarray = None  # [n, n_contacts] normal gaps g_N in m
     model_text: str = ""
+    origin: dict = None  # the group origin's attributes (a record, a scale, a cube's cell)
+    ground: np.ndarray = None  # [n, 2] ground acceleration applied (m/s^2), origin group
+    ground_dt_s: float = 0.0  # its sample interval (s)
 
     def kind_code(self, name):
         for code, n in self.kind_names.items():
@@ -175,4 +178,10 @@ def load_run(path):
                            if k.endswith("_J")},
                    u=f["histories/u"][()] if "u" in f["histories"] else None,
                    gap=f["histories/gap"][()] if "gap" in f["histories"] else None,
-                   model_text=as_text(f.attrs.get("model_text", "")))
+                   model_text=as_text(f.attrs.get("model_text", "")),
+                   origin=({k: (as_text(v) if isinstance(v, (bytes, str)) else v)
+                            for k, v in f["origin"].attrs.items()} if "origin" in f else {}),
+                   ground=(f["origin/ground_acceleration"][()]
+                           if "origin/ground_acceleration" in f else None),
+                   ground_dt_s=(float(f["origin/ground_acceleration"].attrs["dt_s"])
+                                if "origin/ground_acceleration" in f else 0.0))

@@ -379,8 +379,23 @@ def model_of(run):
 
 
 def ground_acceleration(run):
-    """(a_g(t) in m/s^2 at run.t_s, direction text) rebuilt from the run's model text for a
-    pulse or inline samples; (None, reason) for a record file, which the run file does not hold."""
+    """(a_g(t) in m/s^2 at run.t_s, direction text): the samples the run applied when the run
+    file stores them (origin/ground_acceleration: a record of `run --record`, a cube's cell),
+    linear between samples as the solver takes them; else rebuilt from the run's model text
+    for a pulse or inline samples; (None, reason) for an excitation file the run file does not
+    hold."""
+    if run.ground is not None and len(run.ground):
+        times = np.arange(len(run.ground)) * run.ground_dt_s
+        ax = np.interp(run.t_s, times, run.ground[:, 0], right=0.0)
+        ay = np.interp(run.t_s, times, run.ground[:, 1], right=0.0)
+        if not np.any(ay):
+            return ax, "along x"
+        if not np.any(ax):
+            return ay, "along y"
+        # One direction for every sample (the model file's): the signed value along it.
+        k = int(np.argmax(np.hypot(run.ground[:, 0], run.ground[:, 1])))
+        d = run.ground[k] / np.hypot(*run.ground[k])
+        return ax * d[0] + ay * d[1], f"at {np.degrees(np.arctan2(d[1], d[0])):.0f}° from x"
     model = model_of(run)
     ex = (model or {}).get("excitation")
     if not ex:
@@ -427,6 +442,29 @@ def tangential_velocity(run):
         dpy = np.cos(theta) * px - np.sin(theta) * py
         out[:, c] = tx * run.u[:, 0] + ty * run.u[:, 1] + (tx * dpx + ty * dpy) * run.u[:, 2]
     return out
+
+
+def origin_text(run):
+    """What a run ran, from its origin group: the cube's cell with its coordinates, or the
+    record with its scale factor; "" for a model file as written."""
+    o = run.origin or {}
+    if o.get("kind") == "cube-cell":
+        return (f"sweep '{o['sweep']}' of {os.path.basename(str(o['cube']))}, "
+                f"cell {int(o['cell_index'])} ({o['coordinates']}), "
+                f"scale factor {float(o['scale_factor']):.4g}")
+    if o.get("kind") == "record":
+        rec = o.get("record_label") or os.path.basename(str(o.get("record_file", "")))
+        text = f"record {rec} x {float(o['scale_factor']):.4g}"
+        if "target_g" in o:
+            text += f" ({o['scaled_to'].split(':')[0]} = {float(o['target_g']):g} g)"
+        return text
+    return ""
+
+
+def origin_title(run):
+    """The history figure's title: the run file's name, then what it ran."""
+    text = origin_text(run)
+    return os.path.basename(run.path) + (f": {text}" if text else "")
 
 
 def history(run, out_dir, name, pdf, title=None):
@@ -519,7 +557,7 @@ def history(run, out_dir, name, pdf, title=None):
         if entries:
             ax_of[key].legend(list(entries.values()), list(entries.keys()), loc="upper left",
                               bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
-    fig.suptitle(f"{title or os.path.basename(run.path)}\nstatus {run.status}, "
+    fig.suptitle(f"{title or origin_title(run)}\nstatus {run.status}, "
                  f"{int(run.summary_attrs.get('impacts', 0))} impacts", fontsize=10)
     caption(fig, ["gap"], "x, y, θ: displacements and rotation of the deck relative to the "
             "ground; a_g: ground acceleration. The corners of one end share their face's "
