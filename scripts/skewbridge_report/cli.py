@@ -170,7 +170,11 @@ def generic_sections(sweep, args, used, written, skipped_all):
                    f"![{name}]({os.path.basename(path)})", "",
                    _table(["response", "cells", f"Spearman r_s with the {text}"], rows), ""]
             continue
-        pages = generic.layouts(sweep, x)
+        if kind == "response_vs_axis":
+            pages = generic.layouts(sweep, x, hold=planning.limit_state_axes(sweep))
+            qs, _ = planning.drawn_against(sweep, x, drawn)
+        else:
+            pages = generic.layouts(sweep, x)
         title = (f"responses against {x}" if kind == "response_vs_axis"
                  else f"unseating margins against {x}")
         md += [f"## {sweep.name}: {title}", ""]
@@ -178,7 +182,7 @@ def generic_sections(sweep, args, used, written, skipped_all):
             name = _unique(f"{kind}_{x}_{sweep.name}" + (f"_p{page + 1}" if len(pages) > 1
                                                         else ""), used)
             if kind == "response_vs_axis":
-                path, _ = generic.response_vs_axis(sweep, layout, drawn, args.out, name,
+                path, _ = generic.response_vs_axis(sweep, layout, qs, args.out, name,
                                                    args.pdf)
             else:
                 path, _ = generic.unseating_margins(sweep, layout, margins[0], args.out, name,

@@ -99,18 +99,24 @@ SYMBOLS = {
 
 def caption(fig, keys, extra=""):
     """A caption under the figure defining the symbols in `keys`; the layout leaves room for it
-    (constrained layout's rect), so that it never overlaps an axis label."""
-    caption_text(fig, "; ".join(SYMBOLS[k] for k in keys) + "." + (" " + extra if extra else ""))
+    (constrained layout's rect), so that it never overlaps an axis label. Returns the height of
+    its band in inches (a figure without a layout engine makes that room itself)."""
+    return caption_text(fig, "; ".join(SYMBOLS[k] for k in keys) + "."
+                        + (" " + extra if extra else ""))
 
 
 def caption_text(fig, text):
     """The caption `text` under the figure, wrapped to its width; the constrained layout leaves
-    room for it (its rect), so that it never overlaps an axis label."""
+    room for it (its rect), so that it never overlaps an axis label. Returns the height of its
+    band in inches."""
     width_px = fig.get_figwidth() * DPI
     lines = textwrap.wrap(text, int(width_px / 5.6))  # 8 pt DejaVu Sans: about 5.3 px a glyph
     fig.text(0.005, 0.004, "\n".join(lines), fontsize=8, va="bottom", ha="left", color="0.2")
-    bottom = (len(lines) * 8 * 1.25 + 6) / 72.0 / fig.get_figheight()
-    fig.get_layout_engine().set(rect=(0, bottom, 1, 1 - bottom))
+    band_in = (len(lines) * 8 * 1.25 + 6) / 72.0
+    if fig.get_layout_engine() is not None:
+        bottom = band_in / fig.get_figheight()
+        fig.get_layout_engine().set(rect=(0, bottom, 1, 1 - bottom))
+    return band_in
 
 
 def finish_panels(fig, axes, n_used, text):
@@ -306,13 +312,39 @@ IM_TEXT = {"im_g": "IM: the stripe im_g", "im_mps": "IM: the stripe im_mps",
            "a_g": r"IM = $a_g/g$ (PGA × scale)"}
 
 
+def number_text(value, values):
+    """A value of an axis with the fewest significant digits (2 to 6) that still tell every
+    value of the axis apart: 0.00857143 among 0.004, 0.00857143 and 0.0171 is `0.0086`."""
+    numbers = [float(v) for v in values if not isinstance(v, str)]
+    for digits in range(2, 7):
+        texts = {f"{v:.{digits}g}" for v in numbers}
+        if len(texts) == len(set(numbers)):
+            return f"{float(value):.{digits}g}"
+    return f"{float(value):.6g}"
+
+
+# Axis names in the legends of the fits' combinations, beyond AXIS_TEXT (plain Unicode).
+COMBINATION_TEXT = {"seat_over_L": "seat/L", "seat_m": "seat"}
+
+
+def value_with_unit(sweep, key, value):
+    """`α = 20°`, `seat/L = 0.0086`, `δ = 0.03 m`: a value of an axis in plain Unicode with the
+    digits that tell the axis's values apart (number_text) and the cube's unit of the axis."""
+    if isinstance(value, str):
+        return f"{AXIS_TEXT.get(key, key)}: {value}"
+    unit = AXIS_UNIT.get(key) or unit_text(sweep.axis_attrs.get(key, {}).get("units", ""))
+    sep = "" if unit in ("", "°") else " "
+    name = AXIS_TEXT.get(key) or COMBINATION_TEXT.get(key, key)
+    return f"{name} = {number_text(value, sweep.axes[key])}{sep}{unit}"
+
+
 def combinations(sweep, order):
     """(flat index, multi-index, label) of every combination of the axes `order` of a fit."""
     shape = [len(sweep.axes[k]) for k in order]
     out = []
     for flat, idx in enumerate(np.ndindex(*shape) if shape else [()]):
-        label = ", ".join(f"{AXIS_TEXT.get(k, k)} = {sweep.axes[k][i]:g}"
-                          f"{AXIS_UNIT.get(k, '')}" for k, i in zip(order, idx))
+        label = ", ".join(value_with_unit(sweep, k, sweep.axes[k][i])
+                          for k, i in zip(order, idx))
         out.append((flat, idx, label or "all cells"))
     return out
 

@@ -55,7 +55,11 @@ MAX_COLUMNS = 6
 PANEL_IN = (3.3, 2.3)
 
 
-def axis_symbol(key):
+def axis_symbol(key, sweep=None):
+    """The symbol of an axis in mathtext; the stripes of a scaled record sweep by the name of
+    their measure (`Sa(T1, 5 %)`) when `sweep` stores it."""
+    if key in ("im_g", "im_mps") and sweep is not None and common.im_name(sweep):
+        return common.im_name(sweep)
     return common.AXIS_LABEL.get(key) or AXIS_SYMBOL.get(key) or key.replace("_", " ")
 
 
@@ -69,7 +73,7 @@ def axis_unit(sweep, key):
 def axis_label(sweep, key):
     """`α [°]`, `$T_g$ [s]`: the axis symbol with its unit from the cube's attributes."""
     unit = axis_unit(sweep, key)
-    return axis_symbol(key) + (f" [{unit}]" if unit else "")
+    return axis_symbol(key, sweep) + (f" [{unit}]" if unit else "")
 
 
 def value_label(sweep, key, value):
@@ -77,10 +81,11 @@ def value_label(sweep, key, value):
     if key == "deck":
         return f"deck {value}"
     if isinstance(value, str):
-        return f"{axis_symbol(key)}: {value}"
+        return f"{axis_symbol(key, sweep)}: {value}"
     unit = axis_unit(sweep, key)
     sep = "" if unit == "°" else " "
-    return f"{axis_symbol(key)} = {value:.4g}" + (f"{sep}{unit}" if unit else "")
+    text = common.number_text(value, sweep.axes.get(key, [value]))
+    return f"{axis_symbol(key, sweep)} = {text}" + (f"{sep}{unit}" if unit else "")
 
 
 def quantity_label(q, unit=None):
@@ -110,7 +115,7 @@ def intensity_of(sweep):
         shape = [1] * len(sweep.axis_order)
         shape[sweep.axis_order.index("record")] = len(pga)
         return np.broadcast_to(pga.reshape(shape), sweep.shape()), "PGA [m/s²]", "PGA"
-    text = "IM" if source == "im" else "PGA"
+    text = (common.im_name(sweep) or "IM") if source == "im" else "PGA"
     unit = unit_text(str(sweep.response_attrs.get(source, {}).get("units", "")))
     return (np.asarray(sweep.responses[source], dtype=float),
             text + (f" [{unit}]" if unit else ""), text)
@@ -184,16 +189,19 @@ class Layout:
     fixed_text: str  # the axes of one value, as `key = value, ...`
 
 
-def _column_axes(sweep, x, curve):
+def _column_axes(sweep, x, curve, hold=()):
     keys = [k for k in sweep.axis_order
-            if k not in (x, curve) and sweep.has_axis(k, 2)]
+            if k not in (x, curve) and k not in hold and sweep.has_axis(k, 2)]
     return [(k, list(range(len(sweep.axes[k])))) for k in keys]
 
 
-def layouts(sweep, x):
+def layouts(sweep, x, hold=()):
     """The pages of figures for abscissa x: curves over the other numeric axis of most values
-    (else a label axis; over the records when there is a record axis), columns over the rest."""
-    others = [k for k in sweep.axis_order if k != x and sweep.has_axis(k, 2)]
+    (else a label axis; over the records when there is a record axis), columns over the rest.
+    The axes in `hold` (those of the limit states alone, for the responses) are held at their
+    first value and named once in the title: every value draws the same."""
+    others = [k for k in sweep.axis_order
+              if k != x and k not in hold and sweep.has_axis(k, 2)]
     sample = "record" in others
     if sample:
         curve = "record"
@@ -203,10 +211,12 @@ def layouts(sweep, x):
         numeric = [k for k in others if not isinstance(sweep.axes[k], list)]
         numeric.sort(key=lambda k: -len(sweep.axes[k]))
         curve = (numeric or others or [None])[0]
-    col_axes = _column_axes(sweep, x, curve)
+    col_axes = _column_axes(sweep, x, curve, hold)
     combos = list(itertools.product(*[[(key, i) for i in idx] for key, idx in col_axes])) or [()]
     fixed = [value_label(sweep, k, sweep.axes[k][0]) for k in sweep.axis_order
              if len(sweep.axes[k]) == 1]
+    fixed += [f"the same at every {axis_symbol(k, sweep)}" for k in hold
+              if k != x and sweep.has_axis(k, 2)]
     pages = [combos[i:i + MAX_COLUMNS] for i in range(0, len(combos), MAX_COLUMNS)]
     return [Layout(x, curve, sample, list(page), ", ".join(fixed)) for page in pages]
 
@@ -278,10 +288,54 @@ def _caption_keys(sweep, layout, qs=()):
 
 
 def _figure(n_rows, n_cols, legend_cols):
+    """The figure of a grid of panels, sized and placed by _place when it is finished (a fixed
+    layout: the margins are known in inches, so no layout engine measures every tick label)."""
     width = PANEL_IN[0] * n_cols + 1.9 + 0.2 * legend_cols
     height = PANEL_IN[1] * n_rows + 1.4
-    return plt.subplots(n_rows, n_cols, figsize=(width, height), squeeze=False,
-                        sharex=True, constrained_layout=True)
+    return plt.subplots(n_rows, n_cols, figsize=(width, height), squeeze=False, sharex=True)
+
+
+# The fixed layout of a grid of panels, in inches: the left margin (a y label of two lines and
+# its tick labels), the gap between columns (tick labels; a y label too where every column has
+# one), between rows (x tick labels and label where a panel above another has them), above the
+# panels (the title; panel titles) and under them (x tick labels and label), the pad beside
+# the legend.
+LEFT_IN, COLUMN_GAP_IN, COLUMN_GAP_LABELLED_IN = 1.0, 0.62, 1.05
+ROW_GAP_IN, ROW_GAP_LABELLED_IN = 0.22, 0.62
+TOP_IN, TOP_TITLED_IN, BOTTOM_IN, RIGHT_PAD_IN = 0.4, 0.62, 0.62, 0.2
+
+
+def _place(fig, axes, legend_artist, room_above=0.0, colorbar=False):
+    """Sizes the figure and places the panels of `axes` (rows x columns, removed ones left out)
+    at PANEL_IN each with the fixed margins, the legend beside them (its width measured), and
+    returns the figure's width in inches. `room_above`: inches for a legend over the panels."""
+    grid = np.asarray(axes)
+    n_rows, n_cols = grid.shape
+    shown = [[ax in fig.axes for ax in row] for row in grid]
+    labelled_columns = any(grid[r][c].get_ylabel() for r in range(n_rows)
+                           for c in range(1, n_cols) if shown[r][c])
+    labelled_rows = any(grid[r][c].get_xlabel() for r in range(n_rows - 1)
+                        for c in range(n_cols) if shown[r][c])
+    titled = any(grid[0][c].get_title() for c in range(n_cols) if shown[0][c])
+    col_gap = COLUMN_GAP_LABELLED_IN if labelled_columns else COLUMN_GAP_IN
+    row_gap = ROW_GAP_LABELLED_IN if labelled_rows else ROW_GAP_IN
+    if titled:
+        row_gap = max(row_gap, 0.3)
+    panel_w, panel_h = PANEL_IN[0] - COLUMN_GAP_IN, PANEL_IN[1] - ROW_GAP_IN
+    right = RIGHT_PAD_IN
+    if colorbar:
+        right += 1.2
+    elif legend_artist is not None:
+        renderer = fig.canvas.get_renderer()
+        right += legend_artist.get_window_extent(renderer).width / fig.dpi + 0.1
+    top = (TOP_TITLED_IN if titled else TOP_IN) + room_above
+    width = LEFT_IN + n_cols * panel_w + (n_cols - 1) * col_gap + right
+    height = top + n_rows * panel_h + (n_rows - 1) * row_gap + BOTTOM_IN
+    fig.set_size_inches(width, height)
+    fig.subplots_adjust(left=LEFT_IN / width, right=1 - right / width,
+                        bottom=BOTTOM_IN / height, top=1 - top / height,
+                        wspace=col_gap / panel_w, hspace=row_gap / panel_h)
+    return width
 
 
 def _draw(ax, sweep, layout, values, styles, legend):
@@ -322,21 +376,43 @@ def _x_scale(ax, sweep, key):
 
 
 def _finish(fig, axes, sweep, layout, legend, title, extra_caption="", qs=()):
+    """The legend (or colour bar) beside the panels, the title and the caption; sizes the
+    figure and places the panels (_place), the caption's lines added under them, before a
+    colour bar takes its share of the panels' room."""
     curves = list(sweep.axes[layout.curve]) if layout.curve and not layout.sample else []
-    if len(curves) > common.MAX_LEGEND:
-        shown = np.array([ax for ax in np.ravel(axes) if ax in fig.axes], dtype=object)
+    shown = np.array([ax for ax in np.ravel(axes) if ax in fig.axes], dtype=object)
+    many = len(curves) > common.MAX_LEGEND
+    artist = None
+    if legend and not many:
+        artist = np.asarray(axes)[0, -1].legend(list(legend.values()), list(legend.keys()),
+                                                loc="upper left", bbox_to_anchor=(1.02, 1.0),
+                                                borderaxespad=0.0)
+    _place(fig, axes, artist, room_above=0.35 if many and legend else 0.0, colorbar=many)
+    _grow_bottom(fig, common.caption(fig, _caption_keys(sweep, layout, qs), extra_caption))
+    if many:
         common.curve_key_legend(fig, shown, layout.curve, curves)
         fig.axes[-1].set_ylabel(axis_label(sweep, layout.curve))
         if legend:  # reference lines and sample entries still need their legend
             shown[0].legend(list(legend.values()), list(legend.keys()), loc="lower left",
                             bbox_to_anchor=(0.0, 1.08), ncol=len(legend), frameon=False)
-    elif legend:
-        np.asarray(axes)[0, -1].legend(list(legend.values()), list(legend.keys()),
-                                       loc="upper left", bbox_to_anchor=(1.02, 1.0),
-                                       borderaxespad=0.0)
     fixed = f" ({layout.fixed_text})" if layout.fixed_text else ""
-    fig.suptitle(f"{sweep.name}: {title}{fixed}", fontsize=10)
-    common.caption(fig, _caption_keys(sweep, layout, qs), extra_caption)
+    fig.suptitle(f"{sweep.name}: {title}{fixed}", fontsize=10, y=1 - 0.08 / fig.get_figheight())
+
+
+def _grow_bottom(fig, inches):
+    """Adds `inches` under the panels (the caption's band) keeping every panel's size and
+    place relative to the top."""
+    if inches <= 0:
+        return
+    width, height = fig.get_size_inches()
+    params = fig.subplotpars
+    top_in, bottom_in = (1 - params.top) * height, params.bottom * height
+    new_h = height + inches
+    fig.set_size_inches(width, new_h)
+    fig.subplots_adjust(top=1 - top_in / new_h, bottom=(bottom_in + inches) / new_h)
+    for text in fig.texts:  # the caption, anchored at the bottom
+        x, y = text.get_position()
+        text.set_position((x, y * height / new_h))
 
 
 def display_scale(sweep, q):
@@ -404,7 +480,7 @@ def response_vs_axis(sweep, layout, qs, out_dir, name, pdf):
             elif (r + 1, c) not in used:
                 axes[r][c].set_xlabel(axis_label(sweep, layout.x))
                 axes[r][c].xaxis.set_tick_params(labelbottom=True)
-    _finish(fig, axes, sweep, layout, legend, f"responses against {axis_symbol(layout.x)}",
+    _finish(fig, axes, sweep, layout, legend, f"responses against {axis_symbol(layout.x, sweep)}",
             qs=qs)
     return common.save(fig, out_dir, name, pdf), table
 
@@ -446,12 +522,13 @@ def unseating_margins(sweep, layout, q, out_dir, name, pdf):
             ax.set_title(_combo_title(sweep, combo), fontsize=9.5)
         ax.set_ylabel(quantity_label(q, unit) + _deck_note(q))
         ax.set_xlabel(axis_label(sweep, layout.x))
+        ax.xaxis.set_tick_params(labelbottom=True)
     for k in range(n, n_rows * n_cols):
         axes[k // n_cols][k % n_cols].remove()
     legend["margin = 0: a corner leaves its seat\n(shaded: unseated)"] = matplotlib.lines.Line2D(
         [], [], color="C3", lw=1.1, ls=(0, (4, 3)))
     _finish(fig, axes, sweep, layout, legend, f"unseating margins against "
-            f"{axis_symbol(layout.x)}", qs=[q], extra_caption="Unseating margin: seat width minus the largest travel "
+            f"{axis_symbol(layout.x, sweep)}", qs=[q], extra_caption="Unseating margin: seat width minus the largest travel "
             "of a corner normal to the deck's end line; below 0 the corner has left its seat.")
     return common.save(fig, out_dir, name, pdf), []
 

@@ -6,7 +6,9 @@ in memory plans as a cube read from disk (tests/report/planning_test.py).
   η_0, the record correlations) with the curve axis of each, and those not made with why;
 - plan_generic(): the generic figures of any sweep (each drawn quantity against each numeric
   axis, the unseating margins, the responses against each record's intensity), and those not
-  made with why; drawn_quantities() says which responses they draw;
+  made with why; drawn_quantities() says which responses they draw, drawn_against() which of
+  them change along an axis; no page against an axis of the limit states alone
+  (limit_state_axes) nor an axis of two values beside a longer one (two_point_axes);
 - draws_generic(): whether a sweep gets the generic figures at all."""
 import re
 from dataclasses import dataclass
@@ -17,6 +19,14 @@ import numpy as np
 # bridge's demand: listed in the table of responses, not drawn against the axes.
 DESCRIPTORS = {"a_g", "w_g", "L_e", "delta", "L", "pga", "pgv", "pgd", "arias", "T_m", "D5_95",
                "w0x_over_wg", "band", "min_impact_separation"}
+# The inputs of a cell scaled to an intensity ([records] scale_to or im): the fundamental period,
+# the intensity as applied and as recorded, the factor and its flag. They set the excitation;
+# drawn against the stripes they would only redraw the axis.
+SCALING_INPUTS = {"T1", "im", "im_unscaled", "scale_factor", "scaled_too_far"}
+# Axes that enter the limit states and the unseating margins alone: a seat width changes no
+# motion of the bridge, only how much of its seat a corner has left. The response figures hold
+# them at their first value; the fragility figures draw them.
+LIMIT_STATE_AXES = ("seat_over_L", "seat_m")
 # A normalised response and its dimensional twin: where the cube has both, the dimensional one
 # (in metres and radians, as an engineer reads their own bridge) is drawn.
 NORMALISED_TWIN = {"x_norm": "x_m", "y_norm": "y_m", "theta_norm": "theta_m",
@@ -135,7 +145,8 @@ def drawn_quantities(sweep):
     bases = {q.base for q in qs}
     drawn, margins = [], []
     for q in qs:
-        if (q.base in DESCRIPTORS or q.base in TABLE_ONLY or q.base.startswith(LIMIT_STATE_PREFIX)
+        if (q.base in DESCRIPTORS or q.base in SCALING_INPUTS or q.base in TABLE_ONLY
+                or q.base.startswith(LIMIT_STATE_PREFIX)
                 or q.base.startswith(IDA_PREFIX)):
             continue
         if NORMALISED_TWIN.get(q.base) in bases:
@@ -158,6 +169,56 @@ def numeric_axes(sweep):
             if sweep.has_axis(k, 2) and not isinstance(sweep.axes[k], list)]
 
 
+def two_point_axes(sweep, xs):
+    """The abscissas of xs with two values where another of xs (an axis of the limit states
+    alone aside) has three or more: a line between two points says no more than the two columns
+    (or curves) those values make in the pages against the longer axis, which draw every cell
+    already."""
+    longer = [k for k in xs if k not in LIMIT_STATE_AXES and len(sweep.axes[k]) >= 3]
+    return [k for k in xs if len(sweep.axes[k]) == 2 and longer]
+
+
+def limit_state_axes(sweep):
+    """The sweep's axes of two or more values that enter the limit states alone
+    (LIMIT_STATE_AXES): no response page is drawn against them or over them."""
+    return [k for k in sweep.axis_order if k in LIMIT_STATE_AXES and sweep.has_axis(k, 2)]
+
+
+# A response varies along an axis when, in some cell, its values along the axis differ by more
+# than this fraction of its largest magnitude over the sweep (and by more than ZERO_RESPONSE):
+# bit-identical repeats (a seat width) and round-off stay "equal".
+VARY_RTOL = 1e-9
+ZERO_RESPONSE = 1e-9
+
+
+def varies_along(sweep, q, key):
+    """Whether quantity q (any of its decks) takes different values along axis `key` in some
+    combination of the other axes; NaN cells are left out."""
+    axis = sweep.axis_order.index(key)
+    for name in q.names:
+        values = np.asarray(sweep.responses[name], dtype=float)
+        finite = np.isfinite(values)
+        if not np.any(finite):
+            continue
+        scale = max(float(np.max(np.abs(values[finite]))), ZERO_RESPONSE)
+        with np.errstate(all="ignore"):
+            hi = np.max(np.where(finite, values, -np.inf), axis=axis)
+            lo = np.min(np.where(finite, values, np.inf), axis=axis)
+        spread = np.where(np.isfinite(hi) & np.isfinite(lo), hi - lo, 0.0)
+        if np.any(spread > max(VARY_RTOL * scale, ZERO_RESPONSE)):
+            return True
+    return False
+
+
+def drawn_against(sweep, key, qs):
+    """(varying, equal): the quantities of qs that vary along axis `key` (drawn against it) and
+    those equal at every value of it in every cell (left out, stated once)."""
+    varying, equal = [], []
+    for q in qs:
+        (varying if varies_along(sweep, q, key) else equal).append(q)
+    return varying, equal
+
+
 def intensity_source(sweep):
     """Where the intensity each cell of a record sweep felt comes from: "im" (the measure as
     applied, records scaled to stripes), else the cell's PGA "pga" or "a_g" (the PGA of a
@@ -174,26 +235,91 @@ def intensity_source(sweep):
     return None
 
 
+def quantity_names(qs):
+    """The bases of quantities as a comma-separated list."""
+    return ", ".join(q.base for q in qs)
+
+
+STRIPE_AXES = ("im_g", "im_mps")
+
+
+def stripe_axis(sweep):
+    """The stripe axis (im_g, im_mps) that every cell's stored intensity `im` equals, when the
+    intensity of a record sweep is that (records scaled to stripes), else None: drawn against
+    their intensity, the cells would redraw the pages against the stripes."""
+    if intensity_source(sweep) != "im":
+        return None
+    im = np.asarray(sweep.responses["im"], dtype=float)
+    for key in STRIPE_AXES:
+        if not sweep.has_axis(key, 2) or isinstance(sweep.axes[key], list):
+            continue
+        shape = [-1 if k == key else 1 for k in sweep.axis_order]
+        stripe = np.broadcast_to(np.asarray(sweep.axes[key], dtype=float).reshape(shape),
+                                 im.shape)
+        finite = np.isfinite(im)
+        if np.any(finite) and np.allclose(im[finite], stripe[finite], rtol=1e-9, atol=0.0):
+            return key
+    return None
+
+
 def plan_generic(sweep):
-    """[(kind, x_axis)] of the generic figures and [(kind, reason)] of those not made."""
+    """[(kind, x_axis)] of the generic figures and [(kind, reason)] of those not made: no
+    response page against an axis of the limit states alone (limit_state_axes), and a response
+    equal at every value of an axis is not drawn against it (one reason per axis)."""
     todo, skipped = [], []
     drawn, margins = drawn_quantities(sweep)
     xs = numeric_axes(sweep)
+    held = limit_state_axes(sweep)
+    short = two_point_axes(sweep, xs)
     if drawn and intensity_source(sweep) is not None:
-        todo.append(("response_vs_intensity", None))
+        stripes = stripe_axis(sweep)
+        if stripes:
+            skipped.append(("response_vs_intensity", f"the intensity of every cell is its "
+                            f"stripe {stripes}: the pages against {stripes} draw them"))
+        else:
+            todo.append(("response_vs_intensity", None))
     if not xs:
         skipped.append(("response_vs_axis", "no numeric axis with two or more values"))
         return todo, skipped
-    if drawn:
-        todo += [("response_vs_axis", x) for x in xs]
-    else:
+    if not drawn:
         skipped.append(("response_vs_axis", "no response of the bridge's demand in the cube"))
-    if margins:
-        todo += [("unseating_margins", x) for x in xs]
-    else:
+    for x in xs:
+        if not drawn:
+            break
+        if x in held:
+            skipped.append(("response_vs_axis", f"against {x}: it enters the limit states "
+                            "alone, no response changes along it (the fragility figures draw "
+                            "it)"))
+            continue
+        if x in short:
+            skipped.append(("response_vs_axis", _two_points(sweep, x, xs)))
+            continue
+        varying, equal = drawn_against(sweep, x, drawn)
+        if varying:
+            todo.append(("response_vs_axis", x))
+        if equal:
+            skipped.append(("response_vs_axis", f"against {x}: {quantity_names(equal)} equal "
+                            f"at every {x} in every cell"))
+    if not margins:
         skipped.append(("unseating_margins", "the cube stores no unseating margin "
                         "(give seat_over_L)"))
+        return todo, skipped
+    for x in xs:
+        if x in held:
+            skipped.append(("unseating_margins", f"against {x}: the margin moves with the "
+                            "seat width alone, the corner travel is the same at every value "
+                            "(the fragility figures draw it)"))
+        elif x in short:
+            skipped.append(("unseating_margins", _two_points(sweep, x, xs)))
+        else:
+            todo.append(("unseating_margins", x))
     return todo, skipped
+
+
+def _two_points(sweep, x, xs):
+    longer = [k for k in xs if k not in LIMIT_STATE_AXES and len(sweep.axes[k]) >= 3]
+    return (f"against {x}: two values, drawn as columns or curves of the pages against "
+            f"{', '.join(longer)}")
 
 
 def draws_generic(sweep, todo, forced=False):

@@ -8,7 +8,9 @@ eta0 axis and one curve axis besides; the correlations take records over at most
 generic figures draw every response of the bridge's demand (not descriptors, limit states,
 IDA runs, residual displacements, nor a normalised twin of a dimensional one, nor a response
 computed in no cell) against every numeric axis, the margins apart, and against the intensity
-of each record. No MPI, no HDF5 file, no figure.
+of each record; never against an axis of the limit states alone (a seat width), nor a
+response against an axis it does not change along, nor the inputs of scaled records. No MPI,
+no HDF5 file, no figure.
 
 usage: planning_test.py SOURCE_ROOT"""
 import os
@@ -29,16 +31,25 @@ NUMBERS = {"w0_over_wg": 12, "a_deg": 4, "eta0": 6, "Pi_delta": 3, "W0_over_w0":
 LABELS = {"pulse": ["cosine", "sine"], "record": ["r1", "r2", "r3"]}
 
 
-def sweep(axes, responses, family="subsystem", nan=(), extra=None):
-    """A sweep over `axes` ({key: number of values} or a list of labels), every response 1.0 in
-    every cell except those in `nan` (computed in no cell)."""
+def sweep(axes, responses, family="subsystem", nan=(), extra=None, equal=None):
+    """A sweep over `axes` ({key: number of values} or a list of labels) whose responses differ
+    from cell to cell (1 + the cell's flat index: they vary along every axis), except those in
+    `nan` (computed in no cell) and those `equal` ({response: [axis, ...]}) names: the same at
+    every value of those axes (the value at their first index, as a seat width leaves a
+    response bit for bit)."""
     values = {}
     for key, n in axes.items():
         values[key] = list(n) if isinstance(n, list) else np.linspace(1.0, 2.0, n)
     shape = tuple(len(v) for v in values.values())
+    out = {}
+    for r in responses:
+        v = 1.0 + np.arange(int(np.prod(shape)), dtype=float).reshape(shape)
+        for key in (equal or {}).get(r, []):
+            k = list(axes).index(key)
+            v = np.broadcast_to(np.take(v, [0], axis=k), shape).copy()
+        out[r] = np.full(shape, np.nan) if r in nan else v
     return Sweep(path="memory", name="s", family=family, complete=True,
-                 axis_order=list(axes), axes=values,
-                 responses={r: np.full(shape, np.nan if r in nan else 1.0) for r in responses},
+                 axis_order=list(axes), axes=values, responses=out,
                  status=np.zeros(shape, dtype=int), status_names={0: "ok"}, fixed={},
                  spec_text="", response_attrs={r: {} for r in responses},
                  extra=extra or {})
@@ -118,7 +129,7 @@ RECORD_TABLE = {"records": {"pga_mps2": np.array([1.0, 2.0, 3.0])}}
 # (what, axes, responses, responses computed in no cell, extra groups, family, drawn
 # quantities, margins, figures made, figures not made with the reason)
 GENERIC = [
-    ("one's own bridge over skew and stiffness", {"a_deg": 4, "k_factor": 2}, OWN, (), None,
+    ("one's own bridge over skew and stiffness", {"a_deg": 4, "k_factor": 3}, OWN, (), None,
      "model-file", DRAWN, ["margin_m"],
      [("response_vs_axis", "a_deg"), ("response_vs_axis", "k_factor"),
       ("unseating_margins", "a_deg"), ("unseating_margins", "k_factor")], []),
@@ -143,6 +154,67 @@ GENERIC = [
      {"Pi_delta": 3}, ["x_norm", "theta_norm_max", "margin_norm"], (), None, "multi-span",
      ["x_norm", "theta_norm_max"], ["margin_norm"],
      [("response_vs_axis", "Pi_delta"), ("unseating_margins", "Pi_delta")], []),
+]
+
+# Sweeps of one's own bridge with an axis of the limit states alone (a seat width), responses
+# equal along an axis, the inputs of scaled records, an axis of two values beside a longer
+# one, records scaled to stripes: (what, axes, responses, {response: axes it is equal along},
+# drawn quantities, figures made, figures not made with the reason), written out by hand from
+# the rules: no response page against, nor margin page against, an axis that enters the
+# limit states alone; a response equal at every value of an axis is not drawn against it,
+# stated in one line per axis; T1, im, im_unscaled, scale_factor and scaled_too_far are
+# inputs, never drawn; an axis of two values is no abscissa beside one of three or more; a
+# stripe sweep's responses are not drawn again against the stripe they were scaled to.
+SEAT_REASON = ("response_vs_axis", "against seat_over_L: it enters the limit states alone, no "
+               "response changes along it (the fragility figures draw it)")
+SEAT_MARGIN = ("unseating_margins", "against seat_over_L: the margin moves with the seat width "
+               "alone, the corner travel is the same at every value (the fragility figures draw "
+               "it)")
+SCALED = ["x_m", "theta_m", "impacts", "margin_m", "T1", "im", "im_unscaled", "scale_factor",
+          "scaled_too_far", "ls_unseating"]
+ALL_BUT_MARGIN = {r: ["seat_over_L"] for r in SCALED if r not in ("margin_m", "ls_unseating")}
+RECORD_STRIPES = {"record": LABELS["record"], "im_g": 4, "k_factor": 3, "seat_over_L": 3}
+LIMITS = [
+    ("a seat axis: no response page, no margin page against it; inputs not drawn",
+     {"im_g": 4, "k_factor": 3, "seat_over_L": 3}, SCALED, ALL_BUT_MARGIN,
+     ["x_m", "theta_m", "impacts"],
+     [("response_vs_axis", "im_g"), ("response_vs_axis", "k_factor"),
+      ("unseating_margins", "im_g"), ("unseating_margins", "k_factor")],
+     [SEAT_REASON, SEAT_MARGIN]),
+    ("a response equal along an axis: not drawn against it, said once",
+     {"a_deg": 4, "k_factor": 3}, ["x_m", "theta_m", "impacts", "y_m"],
+     {"impacts": ["k_factor"], "theta_m": ["k_factor", "a_deg"]},
+     ["x_m", "theta_m", "impacts", "y_m"],
+     [("response_vs_axis", "a_deg"), ("response_vs_axis", "k_factor")],
+     [("response_vs_axis", "against a_deg: theta_m equal at every a_deg in every cell"),
+      ("response_vs_axis", "against k_factor: theta_m, impacts equal at every k_factor in "
+       "every cell"), NO_MARGIN]),
+    ("no response changes along an axis: no page against it",
+     {"a_deg": 4, "k_factor": 3}, ["x_m", "impacts"],
+     {"x_m": ["a_deg"], "impacts": ["a_deg"]}, ["x_m", "impacts"],
+     [("response_vs_axis", "k_factor")],
+     [("response_vs_axis", "against a_deg: x_m, impacts equal at every a_deg in every cell"),
+      NO_MARGIN]),
+    ("an axis of two values beside a longer one: columns, no abscissa",
+     {"a_deg": 2, "T_g": 5}, ["x_m", "margin_m"], {}, ["x_m"],
+     [("response_vs_axis", "T_g"), ("unseating_margins", "T_g")],
+     [("response_vs_axis", "against a_deg: two values, drawn as columns or curves of the pages "
+       "against T_g"),
+      ("unseating_margins", "against a_deg: two values, drawn as columns or curves of the "
+       "pages against T_g")]),
+    ("two axes of two values: both abscissas",
+     {"a_deg": 2, "k_factor": 2}, ["x_m"], {}, ["x_m"],
+     [("response_vs_axis", "a_deg"), ("response_vs_axis", "k_factor")], [NO_MARGIN]),
+    ("a seat axis of three values is no longer axis for one of two",
+     {"a_deg": 2, "seat_over_L": 3}, ["x_m", "margin_m"], {"x_m": ["seat_over_L"]}, ["x_m"],
+     [("response_vs_axis", "a_deg"), ("unseating_margins", "a_deg")],
+     [SEAT_REASON, SEAT_MARGIN]),
+    ("records scaled to stripes: no second figure against the intensity",
+     RECORD_STRIPES, SCALED, ALL_BUT_MARGIN, ["x_m", "theta_m", "impacts"],
+     [("response_vs_axis", "im_g"), ("response_vs_axis", "k_factor"),
+      ("unseating_margins", "im_g"), ("unseating_margins", "k_factor")],
+     [("response_vs_intensity", "the intensity of every cell is its stripe im_g: the pages "
+       "against im_g draw them"), SEAT_REASON, SEAT_MARGIN]),
 ]
 
 # (what, axes, responses, responses computed in no cell, extra groups, where the intensity of
@@ -185,6 +257,35 @@ class Planning(unittest.TestCase):
                 self.assertEqual([q.base for q in got_drawn], drawn)
                 self.assertEqual([q.base for q in got_margins], margins)
                 self.assertEqual(planning.plan_generic(s), (todo, skipped))
+
+    def test_limit_states_and_equal_responses(self):
+        for what, axes, responses, equal, drawn, todo, skipped in LIMITS:
+            with self.subTest(what):
+                s = sweep(axes, responses, "model-file", equal=equal)
+                if "im" in responses and "im_g" in axes:  # the intensity each cell was scaled to
+                    k = list(axes).index("im_g")
+                    shape = [-1 if i == k else 1 for i in range(len(axes))]
+                    s.responses["im"] = np.broadcast_to(
+                        s.axes["im_g"].reshape(shape), s.shape()).copy()
+                got_drawn, _ = planning.drawn_quantities(s)
+                self.assertEqual([q.base for q in got_drawn], drawn)
+                self.assertEqual(planning.plan_generic(s), (todo, skipped))
+
+    def test_seat_axes(self):
+        """The axes of the limit states alone, only with two or more values."""
+        s = sweep({"a_deg": 2, "seat_over_L": 3, "T_g": 4}, ["x_m"])
+        self.assertEqual(planning.limit_state_axes(s), ["seat_over_L"])
+        s = sweep({"a_deg": 2, "seat_over_L": 1}, ["x_m"])
+        self.assertEqual(planning.limit_state_axes(s), [])
+
+    def test_equal_within_round_off(self):
+        """A difference of round-off (1e-12 of the response) is no variation; one of 1e-6 is."""
+        s = sweep({"a_deg": 3, "k_factor": 2}, ["x_m"], equal={"x_m": ["k_factor"]})
+        q = planning.quantities(s)[0]
+        s.responses["x_m"][:, 1] *= 1 + 1e-12
+        self.assertFalse(planning.varies_along(s, q, "k_factor"))
+        s.responses["x_m"][:, 1] *= 1 + 1e-6
+        self.assertTrue(planning.varies_along(s, q, "k_factor"))
 
     def test_intensity_source(self):
         for what, axes, responses, nan, extra, want in INTENSITY:
