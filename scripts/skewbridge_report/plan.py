@@ -49,8 +49,11 @@ def _draw_axes_cross(ax, p, s, size, color):
                 zorder=5)
 
 
-def draw_plan(plan, out_dir, name, pdf, title=None):
-    """Draws `plan` (load_plan) and returns (path, rows): rows of (item, value) for a table."""
+def draw_plan(plan, out_dir, name, pdf, title=None, kind_of=None, note=""):
+    """Draws `plan` (load_plan) and returns (path, rows): rows of (item, value) for a table.
+    kind_of(bearing) names what a bearing of the plan stands for (None: "bearing"); `note` ends
+    the caption. A centre of rigidity closer to the mass centre than the markers' size is shown
+    in a zoomed inset as well."""
     decks = plan["decks"]
     pts = np.array([c for d in decks for c in d["corners_m"]])
     span = np.ptp(pts, axis=0)
@@ -143,9 +146,11 @@ def draw_plan(plan, out_dir, name, pdf, title=None):
     groups = {}
     for b in plan["bearings"]:
         p = np.array(b["position_m"])
-        groups.setdefault(("bearing" if b["pier"] is None else "bearing on a pier",
-                           _spring_text(b)), []).append(p)
-        _draw_axes_cross(ax, p, b, 1.2 * size, "C1" if b["pier"] is None else "C5")
+        kind = (kind_of(b) if kind_of else None) or ("bearing" if b["pier"] is None else
+                                                      "bearing on a pier")
+        groups.setdefault((kind, _spring_text(b)), []).append(p)
+        color = "C1" if kind == "bearing" else "C5" if kind == "bearing on a pier" else "C6"
+        _draw_axes_cross(ax, p, b, 1.2 * size, color)
     for pr in plan["piers"]:
         p = np.array(pr["position_m"])
         groups.setdefault(("pier", _spring_text(pr)), []).append(p)
@@ -153,9 +158,9 @@ def draw_plan(plan, out_dir, name, pdf, title=None):
     markers = {"bearing": ("s", "C1"), "bearing on a pier": ("s", "C5"), "pier": ("o", "C6")}
     for (kind, text), ps in groups.items():
         ps = np.array(ps)
-        mk, color = markers[kind]
-        h, = ax.plot(ps[:, 0], ps[:, 1], marker=mk, ms=8 if kind == "pier" else 6, mfc="none",
-                     mec=color, mew=1.3, ls="none", zorder=6)
+        mk, color = markers.get(kind, ("o", "C6"))
+        h, = ax.plot(ps[:, 0], ps[:, 1], marker=mk, ms=6 if kind.startswith("bearing") else 8,
+                     mfc="none", mec=color, mew=1.3, ls="none", zorder=6)
         handles[f"{len(ps)} × {kind}: {text}"] = h
         rows.append((f"{len(ps)} × {kind}", text))
     for s in plan["supports"]:  # lumped springs: in the table, and as the principal axes drawn
@@ -164,6 +169,8 @@ def draw_plan(plan, out_dir, name, pdf, title=None):
     ax.set_aspect("equal")
     ax.margins(0.04, 0.12)
     ax.autoscale_view()
+    for d in decks:
+        _zoom_on_centres(ax, d, size)
     (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
     fig.set_size_inches(width_in, min(max(0.88 * width_in * (y1 - y0) / (x1 - x0), 2.5), 9.0)
                         + 2.6)
@@ -175,5 +182,35 @@ def draw_plan(plan, out_dir, name, pdf, title=None):
     common.caption(fig, ["alpha"], "Contact points as in solver/NOTATION.md (P1, P3 acute; "
                    "P2, P4 obtuse); gap: normal to the face at rest; crosses at bearings and "
                    "piers: long bar along the strong axis, short bar across, in proportion; red "
-                   "arrows: principal stiffness axes at the centre of rigidity.")
+                   "arrows: principal stiffness axes at the centre of rigidity." +
+                   (" " + note if note else ""))
     return common.save(fig, out_dir, name, pdf), rows
+
+
+def _zoom_on_centres(ax, deck, size):
+    """An inset in the lower right of the plan, magnified about the mass centre, when the
+    centre of rigidity lies within the markers' size of it (hidden under the mass centre's
+    marker at the plan's scale): both centres and their offset."""
+    cr = deck.get("centre_of_rigidity_m")
+    if cr is None:
+        return
+    m, cr = np.array(deck["mass_centre_m"]), np.array(cr)
+    e = cr - m
+    if np.hypot(*e) >= size or np.hypot(*e) == 0.0:
+        return
+    half = 2.0 * max(abs(e[0]), abs(e[1]))
+    # in the axes' own coordinates, below the deck's centre line to the right of the mass
+    # centre, where the plan draws nothing: the plan's limits stay as they are
+    inset = ax.inset_axes([0.62, 0.05, 0.18, 0.15], zorder=12)
+    inset.plot(*m, marker="o", ms=11, mfc="white", mec="k", mew=1.6, ls="none")
+    inset.plot(*m, marker="+", ms=11, color="k", mew=1.4)
+    inset.plot(*cr, marker="D", ms=6, color="C3", ls="none")
+    inset.annotate("", xy=cr, xytext=m, arrowprops={"arrowstyle": "->", "color": "0.3",
+                                                    "lw": 1.0})
+    inset.text(0.5, 0.04, f"e = ({e[0]:.3g}, {e[1]:.3g}) m", transform=inset.transAxes,
+               fontsize=8, ha="center", va="bottom", color="0.2")
+    inset.set_xlim(m[0] - half * 1.5, m[0] + half * 1.5)
+    inset.set_ylim(m[1] - half * 0.75, m[1] + half * 0.75)
+    inset.tick_params(labelsize=7)
+    inset.locator_params(nbins=3)
+    inset.set_title("the two centres, magnified [m]", fontsize=8)
