@@ -67,6 +67,22 @@ def quick_spec(doc):
     return doc
 
 
+def openmpi_env(path=os.path.join(ROOT, "scripts", "openmpi.env")):
+    """Open MPI's environment of every script that starts MPI programs: the NAME=VALUE lines of
+    scripts/openmpi.env (root containers, more ranks than free cores), as a dict."""
+    env = {}
+    with open(path, encoding="utf-8") as f:
+        for number, line in enumerate(f, 1):
+            line = line.strip()
+            if not line or line.startswith("#"):
+                continue
+            name, sep, value = line.partition("=")
+            if not sep or not name.strip():
+                raise ReportError(f"{path}:{number}: expected NAME=VALUE, got '{line}'")
+            env[name.strip()] = value.strip()
+    return env
+
+
 class Runner:
     """Runs `skewbridge sweep` and `skewbridge run` into the work folder, reusing what is done."""
 
@@ -76,9 +92,7 @@ class Runner:
         self.suite_changed = False
 
     def _call(self, cmd, what):
-        # As scripts/validation/run.sh: root containers, and more ranks than free cores.
-        env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-                   OMPI_MCA_rmaps_base_oversubscribe="1")
+        env = dict(os.environ, **openmpi_env())
         done = subprocess.run(cmd, cwd=self.work, stdout=subprocess.PIPE,
                               stderr=subprocess.PIPE, text=True, env=env)
         if done.returncode not in (0, 3):  # 3: a run stopped with an expected numerical status
