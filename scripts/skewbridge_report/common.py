@@ -45,12 +45,14 @@ RESPONSE_LABEL = {
     "y_norm": r"$y_m\,\omega_g^2/a_g$",
     "theta_norm": r"$\theta_m\,\rho\,\omega_g^2/a_g$",
     "theta_m": r"$\theta_m$ [rad]",
+    "y_m": r"$y_m$ [m]",
     "L_e": r"$L_e = a_g/\omega_g^2$ [m]",
     "impacts": "impacts",
 }
 # The same quantities in plain Unicode, for the Markdown tables.
 RESPONSE_TEXT = {"x_norm": "x_m ω_g²/a_g", "y_norm": "y_m ω_g²/a_g",
-                 "theta_norm": "θ_m ρ ω_g²/a_g", "theta_m": "θ_m [rad]", "L_e": "L_e [m]"}
+                 "theta_norm": "θ_m ρ ω_g²/a_g", "theta_m": "θ_m [rad]", "y_m": "y_m [m]",
+                 "L_e": "L_e [m]"}
 AXIS_LABEL = {
     "w0_over_wg": r"$\omega_0/\omega_g$",
     "a_deg": r"$\alpha$",

@@ -12,8 +12,8 @@ import numpy as np
 
 from . import common, stats
 from .common import (AXIS_LABEL, AXIS_TEXT, AXIS_UNIT, LINESTYLES, MAX_LEGEND, RESPONSE_LABEL,
-                     ZERO, caption, curve_key_legend, curve_styles, integer_axis, log_axis,
-                     no_data, peak_of, select, select_array)
+                     RESPONSE_TEXT, ZERO, caption, curve_key_legend, curve_styles, integer_axis,
+                     log_axis, no_data, peak_of, select, select_array)
 
 FIGSIZE_IN = {"spectra": (10.0, 9.0), "rotation_vs_eta0": (10.0, 9.0),
               "correlation_theta_vs_Le": (12.0, 4.8), "correlation_rotation_vs_w0x": (12.0, 4.8),
@@ -49,10 +49,12 @@ def _caption_keys(sweep, base, *keys):
     return out
 
 
-def spectra(sweep, curve_key, out_dir, name, pdf):
+def spectra(sweep, curve_key, out_dir, name, pdf, title=None):
     """x, y, theta maxima against w0/w_g: one curve per value of curve_key (or one curve),
-    one column per pulse. Returns table rows (pulse, curve, response, peak, w0/w_g at peak,
-    at the grid edge, no response)."""
+    one column per pulse; a panel whose curves take their largest value at an end of the grid
+    says so (no peak inside it). `title` replaces the sweep's name and fixed values above
+    the panels. Returns table rows (pulse, curve, response, peak, w0/w_g at peak, at the grid
+    edge, no response)."""
     rows_resp = [r for r in ("x_norm", "y_norm", "theta_norm") if r in sweep.responses]
     pulses = _pulses(sweep)
     fig, axes = plt.subplots(len(rows_resp), len(pulses), figsize=FIGSIZE_IN["spectra"],
@@ -71,6 +73,7 @@ def spectra(sweep, curve_key, out_dir, name, pdf):
                 data = data[np.newaxis, :]
             # round-off (1e-16) of a deck that does not move is drawn as the 0 it is
             data = np.where(np.abs(data) < ZERO, 0.0, data)
+            at_edge = set()
             for ic, value in enumerate(curves):
                 label = axis_value_label(curve_key, value) if curve_key else None
                 color, marker, ls = styles[ic]
@@ -83,6 +86,8 @@ def spectra(sweep, curve_key, out_dir, name, pdf):
                     ax.plot(w, data[ic], color=color, ls=ls, marker=marker, ms=4,
                             markevery=(ic % step, step), label=label)
                 peak, at, _, edge, zero = peak_of(data[ic], w)
+                if edge:
+                    at_edge.add(at)
                 if np.isfinite(peak) or zero:
                     table.append((pulse, "" if value is None else f"{value:g}", resp, peak, at,
                                   edge, zero))
@@ -91,6 +96,10 @@ def spectra(sweep, curve_key, out_dir, name, pdf):
             elif not np.any(data[np.isfinite(data)]):
                 ax.text(0.5, 0.6, f"no response: 0 everywhere (below {ZERO:g})",
                         transform=ax.transAxes, ha="center", color="0.4", fontsize=11)
+            if at_edge:  # the largest value at an end of the grid: no peak inside it
+                ends = " and ".join(f"{v:g}" for v in sorted(at_edge))
+                ax.text(0.98, 0.96, f"largest at the grid's end {ends}:\nno peak inside the grid",
+                        transform=ax.transAxes, ha="right", va="top", color="0.3", fontsize=8.5)
             log_axis(ax, "x")
             ax.set_ylabel(RESPONSE_LABEL[resp])
             if row == 0:
@@ -98,7 +107,7 @@ def spectra(sweep, curve_key, out_dir, name, pdf):
             if row == len(rows_resp) - 1:
                 ax.set_xlabel(_w0_label(sweep))
     curve_key_legend(fig, axes, curve_key, curves)
-    fig.suptitle(f"{sweep.name}: {_fixed_text(sweep)}", fontsize=10)
+    fig.suptitle(title or f"{sweep.name}: {_fixed_text(sweep)}", fontsize=10)
     caption(fig, _caption_keys(sweep, ["x", "rho", "ag", "w0"], curve_key))
     return common.save(fig, out_dir, name, pdf), table
 
@@ -217,79 +226,91 @@ def strikes(sweep, keep, at):
     return select(sweep, "impacts", keep, at) > 0
 
 
-def correlation_theta_vs_le(sweep, out_dir, name, pdf):
-    """theta_m against L_e over the records, one panel per Pi_delta, log-log, with two fitted
-    lines: over every record with theta_m > 0, and over the records that strike an abutment
-    alone, since the records that never strike rotate by eccentricity only and form a
-    separate group that one line through both would misrepresent. Returns rows
-    (Pi_delta, statistics over all, statistics over those that strike or None, stored)."""
+def correlation_theta_vs_le(sweep, out_dir, name, pdf, title=None, responses=("theta_m",)):
+    """theta_m (and any other response in `responses`, one row of panels each) against L_e over
+    the records, one panel per Pi_delta, log-log. The records that strike an abutment and those
+    that never do (whose rotation comes from the eccentric stiffness alone) are two
+    populations: each is drawn and fitted apart (least squares of log10 of the response on
+    log10 L_e), and the panel states Spearman's rank correlation rho_s of the response with L_e
+    for each and for all records, the one correlation statistic of the pilot study
+    (docs/validation.md). Returns rows of the first response (Pi_delta, statistics over all,
+    statistics over those that strike or None, stored)."""
     pis = _pi_values(sweep)
-    fig, axes = plt.subplots(1, len(pis), figsize=FIGSIZE_IN["correlation_theta_vs_Le"],
-                             squeeze=False, constrained_layout=True, sharey=True)
+    width, height = FIGSIZE_IN["correlation_theta_vs_Le"]
+    fig, axes = plt.subplots(len(responses), len(pis), squeeze=False, sharey="row",
+                             figsize=(width, height + 4.0 * (len(responses) - 1)),
+                             constrained_layout=True)
     keep = ["record"]
     table = []
     handles = {}
-    for col, (ipi, pi) in enumerate(pis):
-        ax = axes[0][col]
-        at = {"Pi_delta": ipi}
-        le = select(sweep, "L_e", keep, at)
-        theta = select(sweep, "theta_m", keep, at)
-        row = stats.correlation_row(le, theta)
-        hits = strikes(sweep, keep, at)
-        row_hit = stats.correlation_row(le[hits], theta[hits]) if hits is not None else None
-        positive = theta > 0
-        hit = positive & (hits if hits is not None else True)
-        miss = positive & ~hits if hits is not None else np.zeros_like(positive)
-        handles["hit"], = ax.loglog(le[hit], theta[hit], "o", ms=5, color="C0")
-        if np.any(miss):
-            handles["miss"], = ax.loglog(le[miss], theta[miss], "s", ms=5, mfc="none",
-                                         color="0.4")
-        for key, r, sel, style in (("fit_all", row, positive, dict(color="C3", ls="-")),
-                                   ("fit_hit", row_hit, hit, dict(color="C2", ls="--"))):
-            if r is None or not np.isfinite(r["slope"]) or np.count_nonzero(sel) < 3:
-                continue
-            xs = np.geomspace(np.nanmin(le[sel]), np.nanmax(le[sel]), 20)
-            handles[key], = ax.loglog(xs, 10 ** (r["slope"] * np.log10(xs) + r["intercept"]),
-                                      lw=1.6, **style)
-        if not np.any(positive):
-            no_data(ax, "no record rotates")
-        else:
-            log_axis(ax, "x")
-            log_axis(ax, "y")
-        zero = int(np.count_nonzero(theta == 0))
-        title = f"{AXIS_LABEL['Pi_delta']} = {pi:g}: " + _fit_text("all", row)
-        if row_hit is not None:
-            title += "\n" + _fit_text("strike", row_hit)
-        if zero:
-            title += f"; {zero} with $\\theta_m$ = 0 not drawn"
-        ax.set_title(title, fontsize=9.5)
-        ax.set_xlabel(RESPONSE_LABEL["L_e"])
-        if col == 0:
-            ax.set_ylabel(RESPONSE_LABEL["theta_m"])
-        table.append((pi, row, row_hit, stored_correlation(sweep, ipi)))
+    for irow, resp in enumerate(responses):
+        for col, (ipi, pi) in enumerate(pis):
+            ax = axes[irow][col]
+            at = {"Pi_delta": ipi}
+            le = select(sweep, "L_e", keep, at)
+            value = select(sweep, resp, keep, at)
+            row = stats.correlation_row(le, value)
+            hits = strikes(sweep, keep, at)
+            row_hit = stats.correlation_row(le[hits], value[hits]) if hits is not None else None
+            row_miss = (stats.correlation_row(le[~hits], value[~hits]) if hits is not None
+                        else None)
+            positive = value > 0
+            hit = positive & (hits if hits is not None else True)
+            miss = positive & ~hits if hits is not None else np.zeros_like(positive)
+            handles["hit"], = ax.loglog(le[hit], value[hit], "o", ms=5, color="C0")
+            if np.any(miss):
+                handles["miss"], = ax.loglog(le[miss], value[miss], "s", ms=5, mfc="none",
+                                             color="0.4")
+            fits = (("fit_hit", row_hit, hit, dict(color="C0", ls="--")),
+                    ("fit_miss", row_miss, miss, dict(color="0.4", ls=":")))
+            if hits is None:
+                fits = (("fit_all", row, positive, dict(color="C3", ls="-")),)
+            for key, r, sel, style in fits:
+                if r is None or not np.isfinite(r["slope"]) or np.count_nonzero(sel) < 3:
+                    continue
+                xs = np.geomspace(np.nanmin(le[sel]), np.nanmax(le[sel]), 20)
+                handles[key], = ax.loglog(xs, 10 ** (r["slope"] * np.log10(xs) +
+                                                     r["intercept"]), lw=1.6, **style)
+            if not np.any(positive):
+                no_data(ax, "no record moves" if resp != "theta_m" else "no record rotates")
+            else:
+                log_axis(ax, "x")
+                log_axis(ax, "y")
+            zero = int(np.count_nonzero(value == 0))
+            lines = [f"{AXIS_LABEL['Pi_delta']} = {pi:g}: " + _fit_text("all", row)]
+            if row_hit is not None:
+                lines += [_fit_text("strike", row_hit), _fit_text("never strike", row_miss)]
+            if zero:
+                lines[-1] += f"; {zero} at 0 not drawn"
+            ax.set_title("\n".join(lines), fontsize=9)
+            if irow == len(responses) - 1:
+                ax.set_xlabel(RESPONSE_LABEL["L_e"])
+            if col == 0:
+                ax.set_ylabel(RESPONSE_LABEL[resp])
+            if irow == 0:
+                table.append((pi, row, row_hit, stored_correlation(sweep, ipi)))
     names = {"hit": "strikes an abutment", "miss": "never strikes\n(eccentricity only)",
-             "fit_all": "log-log fit, all records\n(both groups)",
-             "fit_hit": "log-log fit, records\nthat strike"}
+             "fit_all": "log-log fit, all records", "fit_hit": "log-log fit, records\nthat strike",
+             "fit_miss": "log-log fit, records\nthat never strike"}
     keys = [k for k in names if k in handles]
     axes[0][-1].legend([handles[k] for k in keys], [names[k] for k in keys], loc="upper left",
                        bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)
-    fig.suptitle(f"{sweep.name}: rotation against the persistency of each record", fontsize=10)
-    caption(fig, ["Le", "Pi"], "r_log: Pearson's correlation of log10 θ_m with log10 L_e, the "
-            "variables of the fitted line; slope of log10 θ_m against log10 L_e.")
+    fig.suptitle(title or f"{sweep.name}: rotation against the persistency of each record",
+                 fontsize=10)
+    what = " and ".join(RESPONSE_TEXT[r].split(" [")[0] for r in responses)
+    caption(fig, ["x", "Le", "Pi"] if len(responses) > 1 else ["Le", "Pi"],
+            f"ρ_s: Spearman's rank correlation of {what} with L_e over the records named (in "
+            "brackets, their number), the one statistic stated; the lines are least-squares fits "
+            "of the logarithms, one per group, drawn as a guide to the eye.")
     return common.save(fig, out_dir, name, pdf), table
 
 
 def _fit_text(group, row):
-    """`group, r = ..., slope ...`, or that the group is too small for a correlation."""
-    if row["n_log"] < 3 or not np.isfinite(row["slope"]):
-        return f"{group}: {row['n']} records, too few to fit"
-    return f"{group}, $r_{{log}}$ = {log_pearson(row):.2f}, slope {row['slope']:.2f}"
-
-
-def log_pearson(row):
-    """Pearson's r of log10 theta_m with log10 L_e: the correlation of the log-log fit drawn,
-    sign(slope) sqrt(R^2) of that least-squares line."""
-    return float(np.sign(row["slope"]) * np.sqrt(max(row["r2"], 0.0)))
+    """`group (n): rho_s = ...` (the one statistic a panel states), or that the group is too
+    small for a correlation."""
+    if row["n"] < 3 or not np.isfinite(row["spearman"]):
+        return f"{group}: {row['n']} records, too few"
+    return f"{group} ({row['n']}): $\\rho_s$ = {row['spearman']:+.2f}"
 
 
 def stored_correlation(sweep, ipi):
@@ -307,51 +328,57 @@ def stored_correlation(sweep, ipi):
     return out or None
 
 
-def correlation_rotation_vs_w0x(sweep, out_dir, name, pdf):
-    """theta rho w_g^2/a_g against w0x/w_g, one panel per Pi_delta, by frequency-ratio group
-    (colour and marker); records that never strike drawn open. Groups with no record are left
-    out of the legend and the table. Returns rows (Pi_delta, band label, count, median, max)."""
+def correlation_rotation_vs_w0x(sweep, out_dir, name, pdf, title=None,
+                                responses=("theta_norm",)):
+    """theta rho w_g^2/a_g (and any other response in `responses`, one row of panels each)
+    against w0x/w_g, one panel per Pi_delta, by frequency-ratio group (colour and marker);
+    records that never strike drawn open. Groups with no record are left out of the legend and
+    the table. Returns rows of the first response (Pi_delta, band label, count, median, max)."""
     pis = _pi_values(sweep)
-    fig, axes = plt.subplots(1, len(pis), figsize=FIGSIZE_IN["correlation_rotation_vs_w0x"],
-                             squeeze=False, constrained_layout=True, sharey=True)
+    width, height = FIGSIZE_IN["correlation_rotation_vs_w0x"]
+    fig, axes = plt.subplots(len(responses), len(pis), squeeze=False, sharey="row",
+                             sharex=True, figsize=(width, height + 3.6 * (len(responses) - 1)),
+                             constrained_layout=True)
     w0x_all = sweep.responses["w0x_over_wg"]
     band_all, labels, _ = band_of(sweep, w0x_all)
     styles = curve_styles(len(labels), "plasma")
     table = []
     shown = {}
-    for col, (ipi, pi) in enumerate(pis):
-        ax = axes[0][col]
-        at = {"Pi_delta": ipi}
-        w0x = select(sweep, "w0x_over_wg", ["record"], at)
-        theta = select(sweep, "theta_norm", ["record"], at)
-        band = select_array(sweep, band_all, ["record"], at)
-        hits = strikes(sweep, ["record"], at)
-        if hits is None:
-            hits = np.ones(len(theta), dtype=bool)
-        for b, label in enumerate(labels):
-            mask = band == b
-            color, marker, _ = styles[b]
-            if np.any(mask & hits):
-                shown[b], = ax.plot(w0x[mask & hits], theta[mask & hits], marker, ms=5,
-                                    color=color, ls="none")
-            if np.any(mask & ~hits):
-                h, = ax.plot(w0x[mask & ~hits], theta[mask & ~hits], marker, ms=5,
-                             mfc="none", color=color, ls="none")
-                shown.setdefault(b, h)
-            finite = theta[mask][np.isfinite(theta[mask])]
-            if not len(finite):  # an empty group is neither drawn nor listed
-                continue
-            table.append((pi, label, len(finite),
-                          float(np.median(finite)) if len(finite) else float("nan"),
-                          float(np.max(finite)) if len(finite) else float("nan")))
-        if not np.any(np.isfinite(theta)):
-            no_data(ax)
-        ax.axvline(2.0, color="0.5", lw=0.9, ls=(0, (4, 3)))
-        log_axis(ax, "x")
-        ax.set_xlabel(r"$\omega_{0x}/\omega_g$")
-        if col == 0:
-            ax.set_ylabel(RESPONSE_LABEL["theta_norm"])
-        ax.set_title(f"{AXIS_LABEL['Pi_delta']} = {pi:g}")
+    for irow, resp in enumerate(responses):
+        for col, (ipi, pi) in enumerate(pis):
+            ax = axes[irow][col]
+            at = {"Pi_delta": ipi}
+            w0x = select(sweep, "w0x_over_wg", ["record"], at)
+            value = select(sweep, resp, ["record"], at)
+            band = select_array(sweep, band_all, ["record"], at)
+            hits = strikes(sweep, ["record"], at)
+            if hits is None:
+                hits = np.ones(len(value), dtype=bool)
+            for b, label in enumerate(labels):
+                mask = band == b
+                color, marker, _ = styles[b]
+                if np.any(mask & hits):
+                    shown[b], = ax.plot(w0x[mask & hits], value[mask & hits], marker, ms=5,
+                                        color=color, ls="none")
+                if np.any(mask & ~hits):
+                    h, = ax.plot(w0x[mask & ~hits], value[mask & ~hits], marker, ms=5,
+                                 mfc="none", color=color, ls="none")
+                    shown.setdefault(b, h)
+                finite = value[mask][np.isfinite(value[mask])]
+                if not len(finite) or irow:  # an empty group is neither drawn nor listed
+                    continue
+                table.append((pi, label, len(finite), float(np.median(finite)),
+                              float(np.max(finite))))
+            if not np.any(np.isfinite(value)):
+                no_data(ax)
+            ax.axvline(2.0, color="0.5", lw=0.9, ls=(0, (4, 3)))
+            log_axis(ax, "x")
+            if irow == len(responses) - 1:
+                ax.set_xlabel(r"$\omega_{0x}/\omega_g$")
+            if col == 0:
+                ax.set_ylabel(RESPONSE_LABEL[resp])
+            if irow == 0:
+                ax.set_title(f"{AXIS_LABEL['Pi_delta']} = {pi:g}")
     ref = matplotlib.lines.Line2D([], [], color="0.5", lw=0.9, ls=(0, (4, 3)))
     open_marker = matplotlib.lines.Line2D([], [], marker="o", mfc="none", color="0.3",
                                           ls="none")
@@ -359,10 +386,11 @@ def correlation_rotation_vs_w0x(sweep, out_dir, name, pdf):
     axes[0][-1].legend([shown[b] for b in keys] + [open_marker, ref],
                        [band_legend_label(labels[b]) for b in keys] + ["open: never strikes",
                                                     r"$\omega_{0x}/\omega_g = 2$: rotations" +
-                                                    "\nfade above (§6)"],
+                                                    "\nfade above it (paper, §4)"],
                        loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)
-    fig.suptitle(f"{sweep.name}: dimensionless rotation by frequency-ratio group", fontsize=10)
-    caption(fig, ["rho", "ag", "w0x", "Pi"])
+    fig.suptitle(title or f"{sweep.name}: dimensionless rotation by frequency-ratio group",
+                 fontsize=10)
+    caption(fig, (["x"] if len(responses) > 1 else []) + ["rho", "ag", "w0x", "Pi"])
     return common.save(fig, out_dir, name, pdf), table
 
 

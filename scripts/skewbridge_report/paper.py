@@ -1,5 +1,5 @@
 """The `scripts/paper` command: the analogue of each result figure of Dimitrakopoulos (2011),
-Figs. 5 to 13 (sections 3 and 4 of the paper) and one extension, with paper.md: per figure the
+Figs. 5 to 13 (sections 3 and 4 of the paper) and two extensions, with paper.md: per figure the
 paper's statement, this reproduction's parameters, the measured numbers and a verdict
 (reproduced / partly / not), then a table of every claim of sections 3 and 4.
 
@@ -22,13 +22,13 @@ def _md_figure(paths, out):
 
 
 def _name(key):
-    """A figure by its claim's key: "Fig. 5"; "after Fig. 10" for the extension "10x"."""
+    """A figure by its claim's key: "Fig. 5"; "after Fig. 10" for an extension "10x"."""
     return "Fig. " + key if not key.endswith("x") else "after Fig. " + key[:-1]
 
 
 def main(argv):
     parser = argparse.ArgumentParser(prog="paper", description="The paper's result figures "
-                                     "(Figs. 5-11, 13) with paper.md, from fresh sweeps.")
+                                     "(Figs. 5-13) with paper.md, from fresh sweeps.")
     parser.add_argument("--quick", action="store_true", help="thin every grid (tests)")
     parser.add_argument("--exe", default=os.path.join(ROOT, "build", "release", "skewbridge"))
     parser.add_argument("--mpiexec", default="mpiexec")
@@ -73,7 +73,7 @@ def run(args):
     measurements = {}
     for claim in paper_claims.FIGURES:
         paths, m = paper_figures.BY_CLAIM[claim.key](runner, args.out)
-        judged = claim.judge(m)
+        judged = claim.judge(m, measurements)
         heading = _name(claim.key)
         md.extend([f"## {heading[0].upper() + heading[1:]}: {claim.title}", ""]
                   + _md_figure(paths, args.out) + [
@@ -83,9 +83,8 @@ def run(args):
         verdicts.append((claim.key, claim.title, judged.verdict))
         measurements[claim.key] = m
         print(f"Fig. {claim.key}: {judged.verdict}", flush=True)
-    pilot = measurements["13"]
-    claims = paper_claims.claim_table({key: verdict for key, _, verdict in verdicts},
-                                      pilot["synthetic"], pilot["real"])
+    claims = paper_claims.claim_table(measurements,
+                                      {key: verdict for key, _, verdict in verdicts})
     md.extend(["## Every claim of sections 3 and 4", "",
                "One row per claim of the paper's sections 3 (the subsystem) and 4 (the pilot "
                "bridge); the verdict is held by the source named, here or in "

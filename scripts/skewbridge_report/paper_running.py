@@ -90,6 +90,7 @@ class Runner:
         self.exe, self.work, self.quick, self.ranks = args.exe, args.work, args.quick, args.ranks
         self.mpiexec = args.mpiexec
         self.suite_changed = False
+        self._suite = None  # the suite's folder name once made in this run
 
     def _call(self, cmd, what):
         env = dict(os.environ, **openmpi_env())
@@ -107,6 +108,9 @@ class Runner:
             doc = tomllib.load(f)
         if self.quick:
             doc = quick_spec(doc)
+        if "model" in doc["sweep"]:  # a model-file sweep: its model beside the specification
+            doc["sweep"]["model"] = os.path.normpath(os.path.join(os.path.dirname(spec_path),
+                                                                  doc["sweep"]["model"]))
         if "records" in doc and not own_records:
             doc["records"]["set"] = self.suite() + "/set.toml"
             labels = [f"synth-2011-{i:03d}" for i in range(8 if self.quick else 62)]
@@ -134,8 +138,10 @@ class Runner:
 
     def suite(self):
         """The synthetic record suite standing in for the study's 62 Greek records. Generated
-        afresh on every call (about 1 s) and compared with the one in the work folder: when the
+        afresh once per run (about 1 s) and compared with the one in the work folder: when the
         program's records changed, the suite is replaced and the record cubes are recomputed."""
+        if self._suite is not None:
+            return self._suite
         name = "synth8" if self.quick else "synth62"
         fresh = name + ".new"
         shutil.rmtree(os.path.join(self.work, fresh), ignore_errors=True)
@@ -153,6 +159,7 @@ class Runner:
             shutil.rmtree(old, ignore_errors=True)
             os.rename(new, old)
             self.suite_changed = True
+        self._suite = name
         return name
 
     def run(self, name, changes):
@@ -191,10 +198,31 @@ def pulse_run(runner, name, a_g_g, eta0, mu, pi_delta=1.0, a_deg=30.0, w0=None, 
     return runner.run(name, changes)
 
 
-# The cell of the Fig. 8 map whose histories are run: the paper states a = 30 deg, eta0 = 0.87,
-# mu = 0.08 and 0.1, the cosine pulse and xi = 5 %; w0/w_g, Pi_delta and eps_N are this
-# reproduction's choice.
-FIG08_CELL = {"w0_over_wg": 0.5, "Pi_delta": 0.5, "eps_N": 0.5}
+def _subsystem_run():
+    with open(os.path.join(SPECS, "paper", "subsystem-run.toml"), "rb") as f:
+        return tomllib.load(f)
+
+
+# The configuration of the paper's Fig. 6 (left) as this reproduction runs it, which the paper
+# runs its Fig. 8 in ("the mechanical configuration of Fig. 6 (left)"): a = 30 deg, eta0 = 0.87
+# (the paper's); w0/w_g (w0 of jobs/specs/paper/subsystem-run.toml against its pulse),
+# Pi_delta = 1, eps_N = 0.5, a_g = 0.5 g and the deck length of that file, hence delta/L
+# (this reproduction's choice, as the paper does not state them).
+FIG06_CONFIG = {"a_deg": 30.0, "eta0": 0.87, "a_g_g": 0.5, "Pi_delta": 1.0,
+         "w0_over_wg": _subsystem_run()["substructure"]["w0"] / W_G,
+         "eps_N": _subsystem_run()["abutments"]["eps_N"],
+         "delta_over_L": 1.0 * 0.5 * G / W_G ** 2 / _subsystem_run()["deck"]["L"]}
+
+# The friction coefficient of Fig. 5's frictional column: the paper's mu of Fig. 8 at which
+# the deck of Fig. 6 (left) turns.
+FIG05_MU = 0.1
+
+
+# The pilot bridge's uncoupled frequencies (rad/s) along its principal axes 1 and 2 and in
+# torsion about the centre of rigidity, and that centre from the mass centre (m), as published
+# [Dimitrakopoulos 2011, §4; docs/theory.md §6].
+PILOT_W_RADPS = (18.0, 19.0, 26.0)
+PILOT_E_M = (-0.24, 0.01)
 
 
 def real_pilot_sweep(runner):

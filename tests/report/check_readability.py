@@ -16,10 +16,22 @@ in-process and inspecting each figure just before it is saved, then the saved im
   position t . ((x, y) + R(theta) p) computed here from q (an independent second method), and
   its ground acceleration with the model's samples.
 
-usage: check_readability.py SOURCE_ROOT OUT_DIR CUBE.h5... --run RUN.h5..."""
+With --paper it checks scripts/paper instead, run in-process on a work folder of finished cubes
+(paper_test.sh's second run):
+
+- every figure's title starts with the paper's figure number its file is named for ("Fig. 7",
+  "Fig. 13a", "After Fig. 10" for an extension) and names no sweep of jobs/specs/;
+- one correlation statistic per claim: the pilot-bridge sections of paper.md state Spearman's
+  rho_s (paper_claims.STATISTIC) and no other (no Pearson r, log-log slope or R^2), and
+  docs/validation.md states the same one for the same claims.
+
+usage: check_readability.py SOURCE_ROOT OUT_DIR CUBE.h5... --run RUN.h5...
+       check_readability.py SOURCE_ROOT --paper EXE MPIEXEC WORK_DIR OUT_DIR"""
+import glob
 import os
 import re
 import sys
+import tomllib
 
 import matplotlib.image
 import numpy as np
@@ -31,7 +43,7 @@ from skewbridge_report import cli, common, data, figures  # noqa: E402
 
 IDENTIFIERS = re.compile(r"\b(eta0|Pi_delta|eps_N|w0_over_wg|a_deg|W0_over_w0)\b")
 # A symbol in a label (mathtext source) and the text its caption definition starts with.
-DEFINED = {r"\rho": "ρ:", r"\eta_0": "η_0", r"\Pi_\delta": "Π_δ", r"\alpha": "α:",
+DEFINED = {r"\rho": "ρ:", r"\rho_s": "ρ_s:", r"\eta_0": "η_0", r"\Pi_\delta": "Π_δ", r"\alpha": "α:",
            r"\omega_0": "ω_0", r"L_e": "L_e", r"g_N": "g_N", r"\gamma_T": "γ_T",
            r"T_g": "T_g =", r"$K$ factor": "K factor:", r"\theta_{end}": "θ_end:",
            "worst deck": "worst deck:", "median of the records": "the median over the records"}
@@ -69,7 +81,8 @@ def check_figure(fig, name):
     for text in visible_texts(fig):
         assert not IDENTIFIERS.search(text.replace("$", "")), f"{name}: identifier in '{text}'"
         for symbol, definition in DEFINED.items():
-            if symbol in text:
+            # rho_s (Spearman's) is its own symbol, not the radius of gyration rho
+            if symbol in (text.replace(r"\rho_s", "") if symbol == r"\rho" else text):
                 assert definition in caption, f"{name}: '{symbol}' of '{text}' not in caption"
     for ax in data_axes:
         for axis, scale in ((ax.xaxis, ax.get_xscale()), (ax.yaxis, ax.get_yscale())):
@@ -156,7 +169,101 @@ def check_ground(run_path):
     print(f"{os.path.basename(run_path)}: ground acceleration matches the model's samples")
 
 
+def figure_title(fig):
+    """The figure's title: its suptitle, else the title of its first panel."""
+    if fig._suptitle is not None and fig._suptitle.get_text():
+        return fig._suptitle.get_text()
+    return fig.axes[0].get_title() if fig.axes else ""
+
+
+def paper_number(name):
+    """The title prefix a figure file of scripts/paper must carry: fig07_... -> "Fig. 7",
+    fig13a_... -> "Fig. 13a", fig13x_... -> "After Fig. 13", ext_... -> "After Fig. 10"."""
+    if name.startswith("ext_"):
+        return "After Fig. 10"
+    m = re.match(r"fig(\d+)([a-z]?)_", name)
+    assert m, f"{name}: not named after a figure of the paper"
+    if m.group(2) == "x":
+        return f"After Fig. {int(m.group(1))}"
+    return f"Fig. {int(m.group(1))}{m.group(2)}"
+
+
+def sweep_names(root):
+    """The [sweep] names of every specification under jobs/specs/."""
+    names = set()
+    for path in glob.glob(os.path.join(root, "jobs", "specs", "**", "*.toml"), recursive=True):
+        with open(path, "rb") as f:
+            doc = tomllib.load(f)
+        if "sweep" in doc and "name" in doc["sweep"]:
+            names.add(doc["sweep"]["name"])
+    return names
+
+
+# Correlation statistics other than the one of the pilot-bridge claims.
+OTHER_STATISTICS = re.compile(r"Pearson|r_log|log-log slope|slope|R²|R\^2|\br = ")
+
+
+def check_statistic(md, validation, statistic):
+    """One correlation statistic per claim: the Fig. 13 section of paper.md and its rows of the
+    claim table name `statistic` (its symbol ρ_s) and no other; docs/validation.md's rows and
+    section on the pilot bridge's persistency claim do the same."""
+    section = md.split("\n## Fig. 13")[1].split("\n## ")[0]
+    rows = [line for line in md.splitlines() if line.startswith("| pilot bridge")]
+    assert statistic in section, f"paper.md: Fig. 13 does not name {statistic}"
+    for text in [section] + rows:
+        bad = OTHER_STATISTICS.search(text)
+        assert not bad, f"paper.md: a second statistic '{bad.group(0)}' in '{text[:80]}...'"
+        assert "ρ_s" in text or "persistency" not in text, f"paper.md: no ρ_s in '{text[:80]}'"
+    pilot = validation.split("### The pilot bridge")[1].split("\n### ")[0] \
+        if "### The pilot bridge" in validation else ""
+    row = next(line for line in validation.splitlines()
+               if line.startswith("| §6 pilot: theta_m grows with persistency"))
+    for text in (row, pilot):
+        assert text, "docs/validation.md: no pilot-bridge section"
+        bad = OTHER_STATISTICS.search(text)
+        assert not bad, f"docs/validation.md: a second statistic '{bad.group(0)}'"
+        assert "ρ_s" in text, "docs/validation.md: the pilot claim does not state ρ_s"
+    print(f"one statistic per claim: {statistic} in paper.md and docs/validation.md")
+
+
+def paper_main(root, exe, mpiexec, work, out):
+    from skewbridge_report import paper, paper_claims
+    names = sweep_names(root)
+    titles = []
+    save = common.save
+
+    def titled_save(fig, out_dir, name, pdf):
+        title = figure_title(fig)
+        want = paper_number(name)
+        assert title.startswith(want + ":") or title.startswith(want + " ") or \
+            title.startswith(want + ","), f"{name}: title '{title}' does not start '{want}'"
+        named = [n for n in names if re.search(rf"(?<![\w-]){re.escape(n)}(?![\w-])", title)]
+        assert not named, f"{name}: title names the sweep {named}: '{title}'"
+        assert not IDENTIFIERS.search(title.replace("$", "")), f"{name}: identifier in title"
+        titles.append((name, title))
+        return save(fig, out_dir, name, pdf)
+
+    common.save = titled_save
+    try:
+        status = paper.main(["--quick", "--exe", exe, "--mpiexec", mpiexec, "--work", work,
+                             "--out", out])
+    finally:
+        common.save = save
+    assert status == 0, f"scripts/paper --quick: status {status}"
+    assert len(titles) >= 15, titles
+    for name, title in titles:
+        print(f"{name}: '{title[:60]}...'")
+    with open(os.path.join(out, "paper.md"), encoding="utf-8") as f:
+        md = f.read()
+    with open(os.path.join(root, "docs", "validation.md"), encoding="utf-8") as f:
+        validation = f.read()
+    check_statistic(md, validation, paper_claims.STATISTIC)
+    print("check_readability --paper: ok")
+
+
 def main(argv):
+    if argv[1] == "--paper":
+        return paper_main(argv[0], *argv[2:6])
     out = argv[1]
     save = common.save
 

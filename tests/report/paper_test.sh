@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # scripts/paper --quick end to end on 2 ranks: every figure and paper.md (check_paper.py), then
-# a second run that must reuse every cube and run file (their modification times unchanged).
+# a second run, in-process under check_readability.py --paper (figure titles carry the paper's
+# figure numbers, one correlation statistic per claim), that must reuse every cube and run file
+# (their modification times unchanged).
 # usage: paper_test.sh SKEWBRIDGE MPIEXEC SOURCE_ROOT WORK_DIR
 source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
 args exe mpiexec root work -- "$@"
@@ -13,7 +15,9 @@ paper
 /usr/bin/python3 "$root/tests/report/check_paper.py" "$work/out" "$work/cubes" || fail "outputs"
 before=$(stat -c '%n %Y' "$work"/cubes/*.h5 | sort)
 sleep 1
-paper
+/usr/bin/python3 "$root/tests/report/check_readability.py" "$root" --paper "$exe" "$mpiexec" \
+  "$work/cubes" "$work/out" >"$work/readability.log" 2>&1 ||
+  fail "check_readability --paper: $(tail -3 "$work/readability.log")"
 after=$(stat -c '%n %Y' "$work"/cubes/*.h5 | sort)
 [ "$before" = "$after" ] || fail "a re-run recomputed a cube or run file"
 echo "paper_test: ok"
