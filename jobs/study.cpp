@@ -92,6 +92,16 @@ std::vector<FragilityStudy> MakeFragility(const SweepSpec& spec, const CubeLayou
   for (std::uint64_t cell = 0; cell < data.Cells(); ++cell) {
     usable[cell] = data.done[cell] != 0 && data.status[cell] == kStatusOk ? 1 : 0;
   }
+  // [records] beyond_max_scale = "exclude": the cells flagged scaled_too_far enter no fit (the
+  // parser demands the response in a subset; an IDA sweep has none and fits no stripes).
+  std::vector<std::uint8_t> excluded;
+  const std::optional<std::size_t> far = ResponseColumn(layout, "scaled_too_far");
+  if (spec.im.exclude_beyond_max_scale && far) {
+    excluded.resize(data.Cells());
+    for (std::uint64_t cell = 0; cell < data.Cells(); ++cell) {
+      excluded[cell] = data.responses[*far][cell] == 1.0 ? 1 : 0;
+    }
+  }
   for (const spectra::LimitState& ls : spec.limit_states) {
     const auto [demand_name, exceeded_name] = spectra::LimitStateResponseNames(ls);
     const std::optional<std::size_t> demand = ResponseColumn(layout, demand_name);
@@ -105,8 +115,8 @@ std::vector<FragilityStudy> MakeFragility(const SweepSpec& spec, const CubeLayou
     f.im_description = im_description;
     std::string no_cloud;
     const std::vector<double> dc = DemandOverCapacity(ls, data.responses[*demand], &no_cloud);
-    f.table = spectra::FitFragilityOverCells(spec, stripe_axis,
-                                             {im, data.responses[*exceeded], dc, usable}, no_cloud);
+    f.table = spectra::FitFragilityOverCells(
+        spec, stripe_axis, {im, data.responses[*exceeded], dc, usable, excluded}, no_cloud);
     out.push_back(std::move(f));
   }
   return out;
@@ -138,6 +148,7 @@ std::vector<IdaFragilityStudy> MakeIdaFragility(const SweepSpec& spec, const Cub
         ResponseColumn(layout, "ida_capacity_below_" + ls.name);
     const std::optional<std::size_t> own_col = ResponseColumn(layout, "im_unscaled");
     const double max_scale = spec.im.max_scale;
+    const bool exclude = spec.im.exclude_beyond_max_scale;
     std::vector<std::vector<double>> capacities(combos), censor_at(combos);
     std::vector<std::int64_t> too_far(combos, 0);
     for (std::uint64_t c = 0; c < data.Cells(); ++c) {
@@ -156,6 +167,8 @@ std::vector<IdaFragilityStudy> MakeIdaFragility(const SweepSpec& spec, const Cub
         const double trusted = max_scale * data.responses[*own_col][c];
         if (std::isfinite(capacity) && capacity > trusted) {
           ++too_far[combo];
+          // beyond_max_scale = "exclude": the record enters no fit.
+          if (exclude) continue;
           capacity = std::numeric_limits<double>::infinity();
         }
         if (std::isinf(capacity)) at = std::min(at, trusted);
@@ -173,11 +186,19 @@ std::vector<IdaFragilityStudy> MakeIdaFragility(const SweepSpec& spec, const Cub
       f.censored.push_back(fit.censored);
       std::string why = fit.reason, note = fit.note;
       if (too_far[combo] > 0) {
-        const std::string far = fmt::format(
-            "; {} of the censored reached it only beyond records.max_scale = {} (censored there)",
-            too_far[combo], max_scale);
+        const std::string far =
+            exclude ? fmt::format(
+                          "; {} record(s) reaching it only beyond records.max_scale = {} left "
+                          "out (beyond_max_scale = \"exclude\")",
+                          too_far[combo], max_scale)
+                    : fmt::format(
+                          "; {} of the censored reached it only beyond records.max_scale = {} "
+                          "(censored there)",
+                          too_far[combo], max_scale);
         if (!why.empty()) why += far;
         if (!note.empty()) note += far;
+        // A left-out record changes the fit even when none is censored: always said.
+        if (exclude && note.empty()) note = far.substr(2);
       }
       f.reason.push_back(why);
       f.note.push_back(note);

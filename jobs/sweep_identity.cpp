@@ -64,6 +64,8 @@ std::string SweepSpec::CanonicalText() const {
     out << "}\n";
   }
   if (im.max_scale > 0.0) out << "records.max_scale = " << Fmt(im.max_scale) << "\n";
+  // Written only when chosen, so that the identity of a sweep that keeps them stays as it was.
+  if (im.exclude_beyond_max_scale) out << "records.beyond_max_scale = \"exclude\"\n";
   if (ida.enabled) {
     out << "ida = {start = " << Fmt(ida.start) << ", step = " << Fmt(ida.step)
         << ", step_increase = " << Fmt(ida.step_increase) << ", tolerance = " << Fmt(ida.tolerance)

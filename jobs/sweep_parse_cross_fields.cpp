@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <array>
 
 #include "jobs/sweep_parser.h"
@@ -17,6 +18,13 @@ void SpecParser::CheckCrossFields(const SweepSpec& spec) const {
     throw InputError::AtField(source_, "sweep.responses",
                               "not with [ida]: an IDA cell stores its search (the runs and the "
                               "capacities), not the responses of one run");
+  }
+  if (spec.im.exclude_beyond_max_scale && !spec.responses.empty() &&
+      std::find(spec.responses.begin(), spec.responses.end(), "scaled_too_far") ==
+          spec.responses.end()) {
+    throw InputError::AtField(source_, "sweep.responses",
+                              "records.beyond_max_scale = \"exclude\" needs the response "
+                              "scaled_too_far in the list (the fits read it to leave cells out)");
   }
   if (spec.ida.enabled && spec.limit_states.empty()) {
     throw InputError::AtField(source_, "ida",

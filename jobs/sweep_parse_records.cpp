@@ -12,13 +12,13 @@ void SpecParser::ParseRecordsTable(const toml::table& records, SweepSpec& spec) 
   for (auto&& [key, node] : records) {
     const std::string_view k = key.str();
     const bool folder_key = k == "folder" || k == "pattern" || k == "units" || k == "dt";
-    const bool im_key = k == "scale_to" || k == "im" || k == "max_scale";
+    const bool im_key = k == "scale_to" || k == "im" || k == "max_scale" || k == "beyond_max_scale";
     if (k != "set" && k != "synthetic" && !im_key && !(folder_form && folder_key)) {
       throw Error(key.source(), "records." + std::string(k),
                   "unknown key; allowed: set, synthetic, or folder and pattern (with units, "
-                  "dt); scale_to or im, max_scale" +
+                  "dt); scale_to or im, max_scale, beyond_max_scale" +
                       DidYouMean(k, {"set", "synthetic", "folder", "pattern", "units", "dt",
-                                     "scale_to", "im", "max_scale"}));
+                                     "scale_to", "im", "max_scale", "beyond_max_scale"}));
     }
   }
   ParseIntensityMeasure(records, spec);
@@ -80,6 +80,18 @@ void SpecParser::ParseIntensityMeasure(const toml::table& records, SweepSpec& sp
       throw Error(node->source(), "records.max_scale", "must be a number > 0");
     }
     spec.im.max_scale = *v;
+  }
+  if (const toml::node* node = records.get("beyond_max_scale")) {
+    const std::optional<std::string> rule = node->value<std::string>();
+    if (!rule || (*rule != "keep" && *rule != "exclude")) {
+      throw Error(node->source(), "records.beyond_max_scale",
+                  "must be \"keep\" (the cells beyond max_scale enter the fits) or \"exclude\" "
+                  "(the fits leave them out)");
+    }
+    if (!records.contains("max_scale")) {
+      throw Error(node->source(), "records.beyond_max_scale", "needs records.max_scale");
+    }
+    spec.im.exclude_beyond_max_scale = *rule == "exclude";
   }
   const toml::node* node = records.get(scale ? "scale_to" : "im");
   if (node == nullptr) return;

@@ -34,7 +34,8 @@ FragilityTable FitFragilityOverCells(const CellGrid& grid, const std::string& st
   SB_DEMAND(
       cells.im.size() == n_cells && cells.exceeded.size() == n_cells &&
           cells.usable.size() == n_cells &&
-          (cells.demand_over_capacity.empty() || cells.demand_over_capacity.size() == n_cells),
+          (cells.demand_over_capacity.empty() || cells.demand_over_capacity.size() == n_cells) &&
+          (cells.excluded.empty() || cells.excluded.size() == n_cells),
       "fragility inputs do not match the grid");
   FragilityTable t;
   t.stripe_axis = stripe_axis;
@@ -66,11 +67,22 @@ FragilityTable FitFragilityOverCells(const CellGrid& grid, const std::string& st
     std::size_t stripe;
   };
   std::vector<std::vector<Cell>> members(combos);
+  if (!cells.excluded.empty()) {
+    t.n_excluded.assign(combos, 0);
+    t.stripe_excluded.assign(combos * t.stripes, 0);
+  }
   for (std::uint64_t c = 0; c < n_cells; ++c) {
     if (!cells.usable[c] || std::isnan(cells.exceeded[c])) continue;
     const std::vector<std::size_t> index = grid.AxisIndex(c);
     std::size_t combo = 0;
     for (std::size_t k : combo_axes) combo = combo * grid.axes[k].Size() + index[k];
+    if (!cells.excluded.empty() && cells.excluded[c]) {
+      ++t.n_excluded[combo];
+      if (stripe_k >= 0) {
+        ++t.stripe_excluded[combo * t.stripes + index[static_cast<std::size_t>(stripe_k)]];
+      }
+      continue;
+    }
     members[combo].push_back({c, record_k >= 0 ? index[static_cast<std::size_t>(record_k)] : 0,
                               stripe_k >= 0 ? index[static_cast<std::size_t>(stripe_k)] : 0});
   }

@@ -25,6 +25,9 @@ struct FragilityCells {
   std::span<const double> exceeded;              ///< 0, 1, or NaN (failed)
   std::span<const double> demand_over_capacity;  ///< D / C of the cloud fit; empty: none
   std::span<const std::uint8_t> usable;          ///< 1 when done with status ok
+  /// 1 for a usable cell that the fits leave out (scaled beyond [records] max_scale with
+  /// beyond_max_scale = "exclude"), counted per combination and stripe; empty: none.
+  std::span<const std::uint8_t> excluded;
 };
 
 /// One limit state's fragility table; per-combination arrays are row-major over `shape`, the
@@ -50,14 +53,19 @@ struct FragilityTable {
   std::vector<std::int64_t> cloud_n, cloud_excluded;
   std::vector<double> cloud_intercept, cloud_slope, cloud_sigma, cloud_theta, cloud_beta;
   std::vector<std::string> cloud_reason;  ///< "" or why the cloud fit is NaN
+  /// Usable cells left out of every fit (FragilityCells::excluded), per combination and per
+  /// [combination][stripe]; empty when no cell is marked for exclusion (no such rule).
+  std::vector<std::int64_t> n_excluded, stripe_excluded;
 };
 
 /// Fits one limit state over the cells of `grid`: for every combination of the axes other than
 /// `record` and `stripe_axis`, FitLognormalMle over its usable cells (one trial each, so
 /// stripes and clouds alike), FitCloud over D / C when given (else `no_cloud` as the reason),
 /// and a percentile bootstrap that resamples the records with replacement (no bootstrap
-/// without a record axis). Deterministic: the generator is seeded per combination.
-/// @pre every span of `cells` has grid.CellCount() entries (demand_over_capacity: or none)
+/// without a record axis). Deterministic: the generator is seeded per combination. A cell
+/// marked in `cells.excluded` enters no fit, count or stripe; it is counted in n_excluded.
+/// @pre every span of `cells` has grid.CellCount() entries (demand_over_capacity, excluded:
+/// or none)
 FragilityTable FitFragilityOverCells(const CellGrid& grid, const std::string& stripe_axis,
                                      const FragilityCells& cells, const std::string& no_cloud,
                                      int bootstrap_resamples = kBootstrapResamples,

@@ -75,6 +75,9 @@ struct IntensityMeasureSpec {
   /// [records] max_scale: cells whose scale factor exceeds it are flagged scaled_too_far (and
   /// still computed); 0 = no limit.
   double max_scale = 0.0;
+  /// [records] beyond_max_scale = "exclude": the fragility fits (stripes, cloud, IDA) leave out
+  /// the cells scaled beyond max_scale and count them; false ("keep"): they enter every fit.
+  bool exclude_beyond_max_scale = false;
   /// The axis (or fixed) key that carries the target: "im_g" (Sa, AvgSa, PGA) or "im_mps" (PGV).
   std::string AxisKey() const { return measure == "PGV" ? "im_mps" : "im_g"; }
 };

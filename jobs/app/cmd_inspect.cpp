@@ -150,6 +150,15 @@ void PrintFixed(const jobs::h5::SweepSummary& s) {
   }
 }
 
+// "records.max_scale = X" as the sweep's canonical text holds it, or "records.max_scale".
+std::string MaxScaleText(const jobs::h5::SweepSummary& s) {
+  const std::string key = "records.max_scale = ";
+  const std::size_t at = s.spec_canonical.find(key);
+  if (at == std::string::npos) return "records.max_scale";
+  const std::size_t end = s.spec_canonical.find('\n', at);
+  return s.spec_canonical.substr(at, end == std::string::npos ? std::string::npos : end - at);
+}
+
 // The limit states of an IDA sweep ([ida], docs/sweep-format.md): per limit state the records
 // whose search reached it and the range of their capacities, then, in a final cube, the
 // lognormal fit of the capacities (fragility/<name>/: theta, beta, records, censored) per
@@ -198,6 +207,12 @@ bool PrintIdaLimitStates(const std::string& path, const jobs::h5::SweepSummary& 
       "  fragility (fragility/, method ida): theta [%s] = geometric mean of the capacities, "
       "beta = std of their logs (censored records: maximum likelihood), per %s\n",
       unit.c_str(), row_label.empty() ? "sweep" : row_label.c_str());
+  if (s.spec_canonical.find("records.beyond_max_scale = \"exclude\"") != std::string::npos) {
+    std::printf(
+        "    records whose capacity lies beyond %s are left out of the fit "
+        "(records.beyond_max_scale = \"exclude\"); column too_far counts them\n",
+        MaxScaleText(s).c_str());
+  }
   std::printf("    %-18s %-22s %8s %9s %9s %12s %10s\n", "limit state",
               row_label.empty() ? "-" : row_label.c_str(), "records", "censored", "too_far",
               "theta", "beta");
@@ -307,9 +322,20 @@ void PrintLimitStates(const std::string& path, const jobs::h5::SweepSummary& s) 
   }
   std::printf("  fragility (fragility/): P = Phi(ln(IM / theta) / beta), theta [g], per %s\n",
               row_label.empty() ? "sweep" : row_label.c_str());
-  std::printf("    %-18s %-22s %8s %9s %12s %10s %12s %12s\n", "limit state",
+  // records.beyond_max_scale = "exclude": the cells scaled beyond max_scale are in no fit.
+  const bool excluding = std::any_of(names.begin(), names.end(), [&](const std::string& name) {
+    return ReadIfPresent(path, s.name, "fragility/" + name + "/n_excluded_beyond_max_scale")
+        .has_value();
+  });
+  if (excluding) {
+    std::printf(
+        "    cells scaled beyond %s are left out of every fit (records.beyond_max_scale = "
+        "\"exclude\"); column excluded counts them\n",
+        MaxScaleText(s).c_str());
+  }
+  std::printf("    %-18s %-22s %8s %9s %12s %10s %12s %12s%s\n", "limit state",
               row_label.empty() ? "-" : row_label.c_str(), "cells", "exceeded", "theta", "beta",
-              "theta_lo", "theta_hi");
+              "theta_lo", "theta_hi", excluding ? "     excluded" : "");
   for (const std::string& name : names) {
     const std::string g = "fragility/" + name + "/";
     const std::optional<std::vector<double>> theta = ReadIfPresent(path, s.name, g + "theta");
@@ -323,6 +349,8 @@ void PrintLimitStates(const std::string& path, const jobs::h5::SweepSummary& s) 
       continue;
     }
     const std::vector<std::string> reasons = ReadStringsIfPresent(path, s.name, g + "reason");
+    const std::optional<std::vector<double>> excluded =
+        ReadIfPresent(path, s.name, g + "n_excluded_beyond_max_scale");
     std::size_t combinations = 1;
     for (const jobs::h5::AxisSummary* a : others) combinations *= a->size;
     for (std::size_t row = 0; row < theta->size(); ++row) {
@@ -336,14 +364,18 @@ void PrintLimitStates(const std::string& path, const jobs::h5::SweepSummary& s) 
           rest /= size;
         }
       }
+      const std::string left_out =
+          excluded ? fmt::format("{:13.0f}", (*excluded)[row]) : std::string();
       if (!std::isfinite((*theta)[row])) {
-        std::printf("    %-18s %-22s %8.0f %9.0f  no fit: %s\n", name.c_str(), label.c_str(),
-                    (*n)[row], (*k)[row], NoFitReason(reasons, row).c_str());
+        std::printf("    %-18s %-22s %8.0f %9.0f  no fit%s: %s\n", name.c_str(), label.c_str(),
+                    (*n)[row], (*k)[row],
+                    excluded ? fmt::format(" ({:.0f} excluded)", (*excluded)[row]).c_str() : "",
+                    NoFitReason(reasons, row).c_str());
         continue;
       }
-      std::printf("    %-18s %-22s %8.0f %9.0f %12.6g %10.6g %12.6g %12.6g\n", name.c_str(),
+      std::printf("    %-18s %-22s %8.0f %9.0f %12.6g %10.6g %12.6g %12.6g%s\n", name.c_str(),
                   label.c_str(), (*n)[row], (*k)[row], (*theta)[row], (*beta)[row], (*lo)[row],
-                  (*hi)[row]);
+                  (*hi)[row], left_out.c_str());
     }
   }
 }

@@ -235,6 +235,11 @@ void WriteFragility(hid_t sweep_group, const std::vector<FragilityStudy>& studie
     put("cloud_beta", t.cloud_beta, "1", "cloud dispersion sigma / slope");
     WriteStrings(ls.get(), "reason", t.reason);
     WriteStrings(ls.get(), "cloud_reason", t.cloud_reason);
+    if (!t.n_excluded.empty()) {
+      put("n_excluded_beyond_max_scale", t.n_excluded, "1",
+          "cells done with status ok left out of every fit: scaled beyond records.max_scale "
+          "(records.beyond_max_scale = \"exclude\")");
+    }
     if (t.stripes == 0) continue;
     std::vector<hsize_t> stripe_shape(t.shape.begin(), t.shape.end());
     stripe_shape.push_back(t.stripes);
@@ -250,10 +255,16 @@ void WriteFragility(hid_t sweep_group, const std::vector<FragilityStudy>& studie
     put_stripes("stripe_im", t.stripe_im, "g", "geometric mean IM of the stripe's cells");
     put_stripes("stripe_n", t.stripe_n, "1", "cells of the stripe used");
     put_stripes("stripe_exceeded", t.stripe_exceeded, "1", "cells of the stripe that exceeded");
+    if (!t.stripe_excluded.empty()) {
+      put_stripes("stripe_excluded", t.stripe_excluded, "1",
+                  "cells of the stripe left out: scaled beyond records.max_scale");
+    }
   }
 }
 
-void WriteIdaFragility(hid_t sweep_group, const std::vector<IdaFragilityStudy>& studies) {
+// `exclude`: records.beyond_max_scale = "exclude" (capacities beyond max_scale left out).
+void WriteIdaFragility(hid_t sweep_group, const std::vector<IdaFragilityStudy>& studies,
+                       bool exclude) {
   Id g = CreateGroup(sweep_group, "fragility");
   const IdaFragilityStudy& first = studies.front();
   std::vector<std::string> names;
@@ -308,9 +319,17 @@ void WriteIdaFragility(hid_t sweep_group, const std::vector<IdaFragilityStudy>& 
     put("n_censored", f.censored, "1",
         "records not reaching the limit state up to ida.max_im (censored in the fit)");
     WriteStrings(ls.get(), "reason", f.reason);
-    put("n_scaled_too_far", f.too_far, "1",
-        "capacities reached at a scale factor above records.max_scale: censored at max_scale "
-        "(in n_censored)");
+    if (exclude) {
+      put("n_scaled_too_far", f.too_far, "1",
+          "capacities reached at a scale factor above records.max_scale: left out of the fit");
+      put("n_excluded_beyond_max_scale", f.too_far, "1",
+          "records left out of the fit: capacity beyond records.max_scale "
+          "(records.beyond_max_scale = \"exclude\")");
+    } else {
+      put("n_scaled_too_far", f.too_far, "1",
+          "capacities reached at a scale factor above records.max_scale: censored at max_scale "
+          "(in n_censored)");
+    }
     WriteStrings(ls.get(), "note", f.note);
   }
 }
@@ -334,10 +353,15 @@ void WriteStudyTables(const Datasets& d, const CubeLayout& layout, const StudyTa
         study.im.max_scale > 0.0 ? study.im.max_scale : std::numeric_limits<double>::infinity());
     if (study.scaled_too_far >= 0)
       SetAttr(d.group.get(), "scaled_too_far_count", study.scaled_too_far);
+    if (study.im.max_scale > 0.0) {
+      SetAttr(d.group.get(), "beyond_max_scale",
+              std::string(study.im.exclude_beyond_max_scale ? "exclude" : "keep"));
+    }
   }
   if (study.correlation) WriteCorrelation(d.group.get(), *study.correlation, study.band_edges);
   if (!study.fragility.empty()) WriteFragility(d.group.get(), study.fragility);
-  if (!study.ida_fragility.empty()) WriteIdaFragility(d.group.get(), study.ida_fragility);
+  if (!study.ida_fragility.empty())
+    WriteIdaFragility(d.group.get(), study.ida_fragility, study.im.exclude_beyond_max_scale);
 }
 
 }  // namespace skewbridge::jobs::h5

@@ -52,7 +52,8 @@ def tree_attrs(tree):
     return {k: as_text(v) if isinstance(v, (str, bytes)) else v for k, v in tree["attrs"].items()}
 
 
-IM_ATTRS = ("im_measure", "im_description", "im_units")  # the sweep group's, when stored
+# The sweep group's, when stored; max_scale is "inf" without a limit.
+IM_ATTRS = ("im_measure", "im_description", "im_units", "max_scale", "beyond_max_scale")
 
 
 def load_cube(path, allow_partial=False):

@@ -27,6 +27,29 @@ def cell_im(sweep, fa):
     return np.asarray(sweep.responses["a_g"], dtype=float) / 9.80665
 
 
+def beyond_max_scale(sweep):
+    """The cells scaled beyond [records] max_scale (response scaled_too_far), the rule
+    ("keep" or "exclude") and the limit; (None, "", None) without a limit."""
+    limit = float(sweep.im_attrs.get("max_scale", "inf"))
+    if not math.isfinite(limit) or "scaled_too_far" not in sweep.responses:
+        return None, "", None
+    far = np.asarray(sweep.responses["scaled_too_far"], dtype=float) == 1.0
+    return far, sweep.im_attrs.get("beyond_max_scale", "keep"), limit
+
+
+def beyond_text(rule, limit):
+    """The legend label of the cells scaled beyond max_scale."""
+    return f"scaled > {limit:g} ({'left out' if rule == 'exclude' else 'in the fit'})"
+
+
+def _select(sweep, order, idx):
+    """The index of one combination's cells in the cube's arrays."""
+    sel = [slice(None)] * len(sweep.axis_order)
+    for key, i in zip(order, idx):
+        sel[sweep.axis_order.index(key)] = i
+    return tuple(sel)
+
+
 def _at(array, idx):
     return np.asarray(array)[idx] if idx else np.asarray(array).ravel()[0]
 
@@ -62,8 +85,24 @@ def fragility_curves(sweep, out_dir, name, pdf):
         hi = np.nanmax(im_vals) if np.any(im_vals > 0) else 1.0
         x = np.geomspace(lo / 1.5, hi * 1.5, 200)
         notes = []
+        far, rule, limit = beyond_max_scale(sweep)
+        z_cells = np.asarray(sweep.responses["ls_" + ls], dtype=float)
+        im_cells = cell_im(sweep, fa)
+        far_label = beyond_text(rule, limit) if far is not None else ""
         for (flat, idx, label), (color, marker, ls_style) in zip(shown, styles):
             theta, beta = float(_at(g["theta"], idx)), float(_at(g["beta"], idx))
+            if far is not None:
+                # The cells beyond max_scale: their own fraction per stripe (a cloud: each 0/1),
+                # grey crosses, so that what they say is seen beside what the fit uses.
+                sel = _select(sweep, order, idx)
+                fz, fx, ff = z_cells[sel], im_cells[sel], far[sel]
+                pick = ff & np.isfinite(fz) & (fx > 0)
+                if pick.any():
+                    xs, inv = np.unique(fx[pick], return_inverse=True)
+                    frac = np.bincount(inv, weights=fz[pick]) / np.bincount(inv)
+                    ax.plot(xs, frac, marker="x", ls="none", color="0.45", ms=5, mew=1.0,
+                            label=far_label, zorder=1)
+                    far_label = ""
             if "stripe_im" in g:
                 sx = np.asarray(g["stripe_im"])[idx] if idx else np.asarray(g["stripe_im"])[0]
                 sn = np.asarray(g["stripe_n"])[idx] if idx else np.asarray(g["stripe_n"])[0]
@@ -100,8 +139,22 @@ def fragility_curves(sweep, out_dir, name, pdf):
         "Markers: fraction of the cells of a stripe that exceeded the limit state (a cloud: each "
         "cell's 0 or 1). Lines: the maximum-likelihood lognormal fragility "
         "Φ(ln(IM/θ)/β) (binomial likelihood, Baker 2015); bands: its pointwise 95 % interval "
-        "from the observed information (delta method)." + shown_text(len(shown), len(combos))))
+        "from the observed information (delta method)." + _far_caption(sweep)
+        + shown_text(len(shown), len(combos))))
     return common.save(fig, out_dir, name, pdf), table
+
+
+def _far_caption(sweep):
+    """The caption's sentence on the cells scaled beyond max_scale, or ""."""
+    far, rule, limit = beyond_max_scale(sweep)
+    if far is None:
+        return ""
+    if rule == "exclude":
+        return (f" Grey crosses: the cells whose record was scaled by more than max_scale = "
+                f"{limit:g} ({int(far.sum())} cells), left out of every fit; the open markers "
+                f"count the other cells only.")
+    return (f" Grey crosses: the cells whose record was scaled by more than max_scale = "
+            f"{limit:g} ({int(far.sum())} cells), kept in the fits (beyond_max_scale = keep).")
 
 
 def _short(reason):
@@ -142,6 +195,10 @@ def _row(ls, g, flat, idx, label):
     boot = (f"{num('boot_theta_lo')}–{num('boot_theta_hi')}"
             if math.isfinite(float(_at(g["boot_theta_lo"], idx))) else "–")
     reason = as_text(g["reason"][flat]) or as_text(g["cloud_reason"][flat])
+    if "n_excluded_beyond_max_scale" in g:
+        out = int(_at(g["n_excluded_beyond_max_scale"], idx))
+        left = f"{out} cell(s) scaled beyond max_scale left out of the fits"
+        reason = f"{left}; {reason}" if reason else left
     return (ls, label, int(_at(g["n_cells"], idx)), int(_at(g["n_exceeded"], idx)), theta, ci,
             boot, num("beta"), num("se_beta"), num("cloud_theta"), num("cloud_beta"), reason)
 
@@ -177,17 +234,28 @@ def cloud(sweep, out_dir, name, pdf):
         cap = 1.0 if a.get("kind") == "unseating" else float(a.get("threshold", 1.0))
         d_all = np.asarray(sweep.responses["ls_" + ls + "_demand"], dtype=float) / cap
         im_all = cell_im(sweep, fa)
+        far_all, rule, limit = beyond_max_scale(sweep)
+        far_label = beyond_text(rule, limit) if far_all is not None else ""
         for (flat, idx, label), (color, marker, ls_style) in zip(shown, styles):
-            sel = [slice(None)] * len(sweep.axis_order)
-            for key, i in zip(order, idx):
-                sel[sweep.axis_order.index(key)] = i
-            d, im = d_all[tuple(sel)].ravel(), im_all[tuple(sel)].ravel()
+            sel = _select(sweep, order, idx)
+            d, im = d_all[sel].ravel(), im_all[sel].ravel()
+            far = (far_all[sel].ravel() if far_all is not None
+                   else np.zeros(d.shape, dtype=bool))
             ok = np.isfinite(d) & (d > 0) & (im > 0)
-            ax.plot(im[ok], d[ok], marker=marker, ls="none", color=color, ms=4, alpha=0.6,
-                    mfc="none", label=label)
+            if rule == "exclude":
+                # The stored line is the fit without them: so is the range it is drawn over.
+                ok_line = ok & ~far
+            else:
+                ok_line = ok
+            ax.plot(im[ok & ~far], d[ok & ~far], marker=marker, ls="none", color=color, ms=4,
+                    alpha=0.6, mfc="none", label=label)
+            if (ok & far).any():
+                ax.plot(im[ok & far], d[ok & far], marker="x", ls="none", color="0.45", ms=4,
+                        mew=0.9, label=far_label, zorder=1)
+                far_label = ""
             b, c = float(_at(g["cloud_slope"], idx)), float(_at(g["cloud_intercept"], idx))
-            if math.isfinite(b) and ok.any():
-                x = np.geomspace(im[ok].min(), im[ok].max(), 50)
+            if math.isfinite(b) and ok_line.any():
+                x = np.geomspace(im[ok_line].min(), im[ok_line].max(), 50)
                 ax.plot(x, np.exp(c + b * np.log(x)), color=color, ls=ls_style)
         ax.axhline(1.0, color="k", lw=1.0, ls=":")
         ax.text(0.02, 1.0, " D/C = 1", transform=ax.get_yaxis_transform(), ha="left",
@@ -201,5 +269,6 @@ def cloud(sweep, out_dir, name, pdf):
         "Markers: each cell's demand over the limit state's capacity (unseating: corner travel "
         "over seat width). Lines: least squares of ln(D/C) on ln(IM) per combination (cloud "
         "analysis, Cornell et al. 2002); their crossing of D/C = 1 is the cloud median θ."
+        + _far_caption(sweep).replace("open markers count", "lines fit")
         + shown_text(len(shown), len(combos))))
     return common.save(fig, out_dir, name, pdf)

@@ -2,7 +2,9 @@
 cube's own cells: the maximum-likelihood (theta, beta) against scipy.optimize.minimize on the
 binomial likelihood written out here (Baker 2015, eq. 11), the standard errors against a
 finite-difference Hessian of that likelihood, the cloud fit against numpy.polyfit, and the
-counts per stripe against the exceedance columns.
+counts per stripe against the exceedance columns. With records.beyond_max_scale = "exclude" the
+cells whose scale_factor exceeds max_scale are removed before the refit, and the stored counts of
+left-out cells (per fit and per stripe) are checked against them.
 
 usage: check_fragility_cube.py FILE.h5 SWEEP [MIN_FITTED]
 MIN_FITTED: fail unless at least this many (limit state, combination) pairs have a fit.
@@ -37,6 +39,13 @@ def main():
     combo_axes = list(f.attrs["axis_order"])
     stripe_axis = f.attrs["stripe_axis"]
     ok = (g["done"][()] == 1) & (g["status"][()] == 0)
+    # The cells the fits leave out, from the scale factors themselves (not the stored flag).
+    far = np.zeros(ok.shape, dtype=bool)
+    excluding = g.attrs.get("beyond_max_scale", "keep") == "exclude"
+    if excluding:
+        far = g["responses/scale_factor"][()] > float(g.attrs["max_scale"])
+        assert far.any(), "beyond_max_scale = exclude but no cell beyond max_scale"
+    in_fit = ok & ~far
     if f.attrs["im"] == "im_g":
         im = np.broadcast_to(g["axes/im_g"][()].reshape(
             [-1 if a == "im_g" else 1 for a in axes]), ok.shape)
@@ -56,9 +65,15 @@ def main():
             for a, i in zip(combo_axes, idx):
                 sel[axes.index(a)] = i
             sel = tuple(sel)
-            use = ok[sel] & np.isfinite(z_all[sel])
+            use = in_fit[sel] & np.isfinite(z_all[sel])
             x, z, d = im[sel][use], z_all[sel][use], d_all[sel][use]
             at = idx if idx else 0
+            out = ok[sel] & far[sel] & np.isfinite(z_all[sel])
+            if excluding:
+                assert int(h["n_excluded_beyond_max_scale"][at]) == int(out.sum()), \
+                    "%s %s: n_excluded_beyond_max_scale" % (name, idx)
+            else:
+                assert "n_excluded_beyond_max_scale" not in h, "counts stored without the rule"
             assert int(h["n_cells"][at]) == len(x), "%s %s: n_cells" % (name, idx)
             assert int(h["n_exceeded"][at]) == int(z.sum()), "%s %s: n_exceeded" % (name, idx)
             assert set(np.unique(z)) <= {0.0, 1.0}, "exceedance not 0/1"
@@ -71,8 +86,10 @@ def main():
                     take = [slice(None)] * len(rest)
                     take[ks] = s
                     take = tuple(take)
-                    u = ok[sel][take] & np.isfinite(zs[take])
+                    u = in_fit[sel][take] & np.isfinite(zs[take])
                     assert h["stripe_n"][at][s] == u.sum(), "%s stripe_n" % name
+                    if excluding:
+                        assert h["stripe_excluded"][at][s] == out[take].sum(), "stripe_excluded"
                     assert h["stripe_exceeded"][at][s] == zs[take][u].sum(), "%s stripe_exceeded" % name
                     if u.any():
                         close(h["stripe_im"][at][s], math.exp(np.log(xs[take][u]).mean()), 1e-12,

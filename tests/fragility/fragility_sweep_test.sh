@@ -6,7 +6,9 @@
 #     closes a joint or unseats, P = 0 at every stripe and the fit says why it gives no number;
 #  3. the same records with zero gaps and zero seats: every cell impacts and unseats (P = 1);
 #  the report draws both figures and tabulates the stored fits;
-#  4. bad [limit_states] keys: one line naming the key, exit status 2, no output file.
+#  4. a synthetic suite scaled to stripes with max_scale, the cells beyond it kept in the fits
+#     or left out (beyond_max_scale = "exclude"): the same cells, fits refitted without them;
+#  5. bad [limit_states] keys: one line naming the key, exit status 2, no output file.
 # usage: fragility_sweep_test.sh SKEWBRIDGE MPIEXEC SOURCE_DIR WORK_DIR
 source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
 args exe mpiexec src work -- "$@"
@@ -92,6 +94,73 @@ for name in ("joint_closing", "unseating"):
 print("wide gap: P = 0 in all 48 cells; zero gap and seat: P = 1 in all 9 cells")
 PY
 
+# Stripes of Sa(T1) from a synthetic suite with max_scale: the cells scaled beyond it are kept
+# in the fits (the default) or left out (beyond_max_scale = "exclude"). Both cubes hold the same
+# cells; check_fragility_cube.py refits the excluding cube with those cells removed (found from
+# scale_factor > max_scale, not from the stored flag) and checks the counts per fit and stripe.
+cat > scaled.toml <<'TOML'
+[sweep]
+name = "scaled"
+family = "model-file"
+model = "pilot-bridge.toml"
+[records]
+synthetic = {count = 20, seed = 5}
+scale_to = {measure = "Sa", period = "T1", xi = 0.05}
+max_scale = 3.0
+[axes]
+record = "*"
+im_g = {logspace = [0.2, 4.0, 8]}
+a_deg = [20, 40]
+[fixed]
+gap_m = 0.02
+[limit_states]
+rotation = {above_rad = 0.0003}
+response = {x_m_d0 = 0.025}
+TOML
+sed -e 's/^name = "scaled"/name = "kept"/' scaled.toml > kept.toml
+sed -i -e 's/^max_scale = 3.0/max_scale = 3.0\nbeyond_max_scale = "exclude"/' scaled.toml
+on_ranks 2 "$exe" sweep scaled.toml --out scaled.h5 --quiet || fail "the excluding sweep failed"
+"$exe" sweep kept.toml --out kept.h5 --quiet || fail "the keeping sweep failed"
+/usr/bin/python3 "$src/tests/fragility/check_fragility_cube.py" scaled.h5 scaled 3 \
+  || fail "scaled.h5: the fits with the cells beyond max_scale left out differ from scipy's"
+/usr/bin/python3 "$src/tests/fragility/check_fragility_cube.py" kept.h5 kept 1 \
+  || fail "kept.h5: the stored fits differ from scipy's"
+/usr/bin/python3 - scaled.h5 kept.h5 <<'PY' || fail "exclude and keep: cells or counts"
+import sys, h5py, numpy as np
+s, k = h5py.File(sys.argv[1], "r")["sweeps/scaled"], h5py.File(sys.argv[2], "r")["sweeps/kept"]
+assert s.attrs["beyond_max_scale"] == "exclude" and k.attrs["beyond_max_scale"] == "keep"
+for name in s["responses"]:
+    assert np.array_equal(s["responses/" + name][()], k["responses/" + name][()], equal_nan=True), name
+far = int((s["responses/scale_factor"][()] > 3.0).sum())
+assert 0 < far < s["responses/scale_factor"].size, "max_scale = 3 must split the cells: %d" % far
+for ls in ("rotation", "x_m_d0"):
+    n_out = s["fragility/%s/n_excluded_beyond_max_scale" % ls][()]
+    assert n_out.sum() == far, (ls, n_out, far)
+    assert (s["fragility/%s/n_cells" % ls][()] + n_out == k["fragility/%s/n_cells" % ls][()]).all()
+    assert "n_excluded_beyond_max_scale" not in k["fragility/" + ls]
+print("exclude: %d of %d cells beyond max_scale left out of every fit; keep: all in"
+      % (far, s["responses/scale_factor"].size))
+PY
+"$exe" inspect scaled.h5 > scaled.txt || fail "inspect scaled.h5"
+grep -q 'cells scaled beyond records.max_scale = 3 are left out of every fit' scaled.txt ||
+  { cat scaled.txt; fail "inspect: no line on the excluded cells"; }
+# The report's fragility table states the count per fit; both figures are drawn.
+mkdir -p scaled_report
+/usr/bin/python3 - scaled.h5 "$src/scripts" <<'PY' || fail "the report's fragility table or figures"
+import sys
+sys.path.insert(0, sys.argv[2])
+import h5py
+from skewbridge_report import data, fragility
+sweep = data.load_cube(sys.argv[1])[0]
+path, rows = fragility.fragility_curves(sweep, "scaled_report", "fragility_scaled", False)
+f = h5py.File(sys.argv[1], "r")["sweeps/scaled/fragility"]
+for row in rows:
+    n = f[row[0]]["n_excluded_beyond_max_scale"][()][1 if "40" in row[1] else 0]
+    assert row[-1].startswith("%d cell(s) scaled beyond max_scale left out of the fits" % n), row
+assert fragility.cloud(sweep, "scaled_report", "cloud_scaled", False)
+print("report: the table states the cells left out per fit")
+PY
+
 # Bad keys: one line each, status 2, no cube.
 check_bad() {  # check_bad NAME EXPECTED_TEXT < TOML
   cat > "$1.toml"
@@ -139,5 +208,30 @@ check_bad response "limit_states.response.theta_max: unknown response; allowed: 
 $head_spec
 [limit_states]
 response = {theta_max = 0.01}
+TOML
+scaled_head='[sweep]
+name = "bad"
+family = "model-file"
+model = "pilot-bridge.toml"
+[axes]
+record = "*"
+im_g = [0.1, 0.2]
+[records]
+folder = "rec"
+pattern = "*"
+scale_to = {measure = "Sa", period = "T1", xi = 0.05}'
+check_bad beyond_value 'records.beyond_max_scale: must be "keep" (the cells beyond max_scale enter the fits) or "exclude"' <<TOML
+$scaled_head
+max_scale = 3.0
+beyond_max_scale = "drop"
+TOML
+check_bad beyond_alone "records.beyond_max_scale: needs records.max_scale" <<TOML
+$scaled_head
+beyond_max_scale = "exclude"
+TOML
+check_bad beyond_subset "sweep.responses: records.beyond_max_scale = \"exclude\" needs the response scaled_too_far" <<TOML
+$(printf '%s\n' "$scaled_head" | sed 's/^model = .*/&\nresponses = ["x_m_d0"]/')
+max_scale = 3.0
+beyond_max_scale = "exclude"
 TOML
 echo "fragility_sweep_test: ok"

@@ -140,6 +140,55 @@ assert flagged >= 1, "max_scale = 4 flags no capacity: the test checks nothing"
 print(f"max_scale: {flagged} capacities flagged beyond it")
 PY
 
+echo "== beyond_max_scale = exclude: the flagged capacities are left out of the fit, counted"
+sed -e 's/^max_scale = 4$/max_scale = 4\nbeyond_max_scale = "exclude"/' \
+    -e 's/name = "idafar"/name = "idaout"/' far.toml > out.toml
+grep -q '^beyond_max_scale = "exclude"' out.toml || fail "out.toml: no beyond_max_scale"
+"$exe" sweep out.toml --out out.h5 --quiet 2> out.err || { cat out.err; fail "exclude sweep"; }
+"$exe" inspect out.h5 > out.txt || fail "inspect exclude"
+grep -q 'left out of the fit (records.beyond_max_scale = "exclude")' out.txt ||
+  { cat out.txt; fail "inspect: no exclusion line"; }
+/usr/bin/python3 - out.h5 far.h5 "$(dirname "$check")" <<'PY' || fail "beyond_max_scale = exclude"
+import sys
+import h5py
+import numpy as np
+sys.path.insert(0, sys.argv[3])
+from check_ida import censored_mle
+g = h5py.File(sys.argv[1])["sweeps/idaout"]
+keep = h5py.File(sys.argv[2])["sweeps/idafar"]
+assert g.attrs["beyond_max_scale"] == "exclude" and keep.attrs["beyond_max_scale"] == "keep"
+r, fr = g["responses"], g["fragility"]
+left = 0
+for ls in fr.attrs["limit_states"]:
+    # The same cells as the sweep that keeps them; the fit of those cells without the flagged.
+    cap = r[f"ida_capacity_{ls}"][()]
+    assert np.array_equal(cap, keep["responses"][f"ida_capacity_{ls}"][()], equal_nan=True)
+    below = r[f"ida_capacity_below_{ls}"][()]
+    trusted = 4.0 * r["im_unscaled"][()]
+    flag = np.isfinite(cap) & (cap > trusted)
+    for k in range(cap.shape[1]):
+        c, f, b = cap[~flag[:, k], k], flag[:, k], below[~flag[:, k], k]
+        t_k = trusted[~flag[:, k], k]
+        assert fr[ls]["n_excluded_beyond_max_scale"][k] == f.sum() == fr[ls]["n_scaled_too_far"][k]
+        left += int(f.sum())
+        cens = ~np.isfinite(c)
+        assert fr[ls]["n_records"][k] == (~cens).sum() and fr[ls]["n_censored"][k] == cens.sum()
+        theta, beta = fr[ls]["theta"][k], fr[ls]["beta"][k]
+        y = np.log(c[~cens])
+        if y.size < 2:
+            assert np.isnan(theta), (ls, k)
+        elif not cens.any():
+            assert abs(theta - np.exp(y.mean())) <= 1e-12 * theta
+            assert abs(beta - np.std(y, ddof=1)) <= 1e-12 * beta
+        else:
+            t, bb = censored_mle(y, np.log(np.minimum(b, t_k)[cens]))
+            assert abs(theta - t) <= 1e-6 * t and abs(beta - bb) <= 1e-6 * bb, (theta, t, beta, bb)
+        if f.any():
+            assert b"left out (beyond_max_scale" in fr[ls]["note"][k], fr[ls]["note"][k]
+assert left >= 1, "no capacity left out: the test checks nothing"
+print(f"beyond_max_scale = exclude: {left} capacities left out, fits as numpy/scipy refit them")
+PY
+
 echo "== SIGTERM and --resume"
 sed -e 's/^set = .*/synthetic = { count = 40, seed = 7 }/' -e 's/name = "ida"/name = "idakill"/' \
     -e 's/^max_runs = 30/max_runs = 12/' ida.toml > kill.toml
