@@ -302,7 +302,7 @@ def _figure(n_rows, n_cols, legend_cols):
 # the legend.
 LEFT_IN, COLUMN_GAP_IN, COLUMN_GAP_LABELLED_IN = 1.0, 0.62, 1.05
 ROW_GAP_IN, ROW_GAP_LABELLED_IN = 0.22, 0.62
-TOP_IN, TOP_TITLED_IN, BOTTOM_IN, RIGHT_PAD_IN = 0.4, 0.62, 0.62, 0.2
+TOP_IN, TOP_TITLED_IN, BOTTOM_IN, RIGHT_PAD_IN, TITLE_IN = 0.4, 0.62, 0.62, 0.2, 0.25
 
 
 def _place(fig, axes, legend_artist, room_above=0.0, colorbar=False):
@@ -317,10 +317,12 @@ def _place(fig, axes, legend_artist, room_above=0.0, colorbar=False):
     labelled_rows = any(grid[r][c].get_xlabel() for r in range(n_rows - 1)
                         for c in range(n_cols) if shown[r][c])
     titled = any(grid[0][c].get_title() for c in range(n_cols) if shown[0][c])
+    titled_below = any(grid[r][c].get_title() for r in range(1, n_rows)
+                       for c in range(n_cols) if shown[r][c])
     col_gap = COLUMN_GAP_LABELLED_IN if labelled_columns else COLUMN_GAP_IN
     row_gap = ROW_GAP_LABELLED_IN if labelled_rows else ROW_GAP_IN
-    if titled:
-        row_gap = max(row_gap, 0.3)
+    if titled_below:  # a panel title over each row: its line besides
+        row_gap += TITLE_IN
     panel_w, panel_h = PANEL_IN[0] - COLUMN_GAP_IN, PANEL_IN[1] - ROW_GAP_IN
     right = RIGHT_PAD_IN
     if colorbar:
@@ -535,7 +537,8 @@ def unseating_margins(sweep, layout, q, out_dir, name, pdf):
 
 # Axis symbols in plain Unicode for the Markdown tables, beyond common.AXIS_TEXT.
 AXIS_PLAIN = {"T_g": "T_g", "w_g": "ω_g", "k_factor": "K factor", "scale": "scale",
-              "gap_m": "δ", "a_g_g": "a_g", "record": "record", "method": "method"}
+              "gap_m": "δ", "a_g_g": "a_g", "record": "record", "method": "method",
+              "seat_over_L": "seat/L", "seat_m": "seat"}
 
 
 def value_text(sweep, key, value):
@@ -545,7 +548,8 @@ def value_text(sweep, key, value):
         return f"{symbol}: {value}"
     unit = axis_unit(sweep, key)
     sep = "" if unit == "°" else " "
-    return f"{symbol} = {value:g}" + (f"{sep}{unit}" if unit else "")
+    text = common.number_text(value, sweep.axes.get(key, [value]))
+    return f"{symbol} = {text}" + (f"{sep}{unit}" if unit else "")
 
 
 def cell_text(sweep, flat_index):
