@@ -11,6 +11,8 @@
 #include "jobs/cube.h"
 #include "jobs/h5/cube_file.h"
 #include "solver/common/error.h"
+#include "spectra/model_file_evaluator.h"
+#include "spectra/spectra_evaluator.h"
 
 namespace skewbridge::jobs {
 namespace {
@@ -161,10 +163,11 @@ CellRerun PrepareCellRerun(const std::filesystem::path& cube, const CellChoice& 
                                 "no such sweep in " + where + "; it holds: " + names);
     }
   }
-  if (summary->family != "model-file") {
+  if (summary->family == "multi-span") {
     throw InputError::AtLine(where, 0,
                              "sweep '" + summary->name + "' is of family " + summary->family +
-                                 "; a cell is re-run for the model-file family only");
+                                 "; a cell is re-run for the model-file, subsystem and "
+                                 "pilot-bridge families");
   }
   if (summary->spec_text.empty()) {
     throw InputError::AtLine(where, 0, "sweep '" + summary->name + "' stores no specification");
@@ -226,14 +229,31 @@ CellRerun PrepareCellRerun(const std::filesystem::path& cube, const CellChoice& 
     out.responses.push_back(column[out.index]);
   }
 
-  out.evaluator = std::make_unique<spectra::ModelFileEvaluator>(out.spec);
+  const std::vector<std::size_t> axis_index = out.spec.AxisIndex(out.index);
+  if (out.spec.family == "model-file") {
+    auto evaluator = std::make_unique<spectra::ModelFileEvaluator>(out.spec);
+    spectra::ModelFileCell c = evaluator->MakeCell(axis_index, true);
+    out.model = std::move(c.model);
+    out.excitation = std::move(c.excitation);
+    out.control = c.control;
+    out.record = c.record;
+    out.scale = c.scale;
+    out.model_text = ReadFileText(out.spec.model_path);
+    out.evaluator = std::move(evaluator);
+  } else {
+    auto evaluator = std::make_unique<spectra::SpectraEvaluator>(out.spec);
+    spectra::SpectraEvaluator::CellRun c = evaluator->MakeRun(axis_index);
+    out.model.emplace(std::move(c.run->model));
+    out.excitation = std::move(c.excitation);
+    out.control = c.run->control;
+    out.record = c.record;
+    out.evaluator = std::move(evaluator);
+  }
   const CubeLayout layout = MakeCubeLayout(*out.evaluator, {}, out.spec.source);
   out.status_name = fmt::format("status {}", out.status);
   for (const auto& [code, name] : layout.status_names) {
     if (code == out.status) out.status_name = name;
   }
-  out.cell = out.evaluator->MakeCell(out.spec.AxisIndex(out.index), true);
-  out.model_text = ReadFileText(out.spec.model_path);
   return out;
 }
 

@@ -4,7 +4,8 @@
 /// the cube (its stored text, parsed against the folder it was read from), every input file
 /// checked against the checksums the cube stores (a result never outlives its inputs), the cell
 /// found by its coordinates or its index, and its model, scaled excitation and run control made
-/// by the sweep's own evaluator (spectra::ModelFileEvaluator::MakeCell), so that a run of them
+/// by the sweep's own evaluator (spectra::ModelFileEvaluator::MakeCell for the model-file family,
+/// spectra::SpectraEvaluator::MakeRun for subsystem and pilot-bridge), so that a run of them
 /// repeats the cell's maxima bit for bit (`skewbridge run --from-cube`, docs/run-output.md).
 
 #include <cstdint>
@@ -16,8 +17,11 @@
 #include <vector>
 
 #include "jobs/sweep_spec.h"
+#include "solver/common/excitation.h"
+#include "spectra/cell.h"
 #include "spectra/grid.h"
-#include "spectra/model_file_evaluator.h"
+#include "spectra/point.h"
+#include "spectra/study.h"
 
 namespace skewbridge::jobs {
 
@@ -44,16 +48,21 @@ std::string CellCoordinates(const spectra::CellGrid& grid, std::uint64_t cell);
 struct CellRerun {
   SweepSpec spec;  ///< the sweep's specification, parsed from the cube's stored text
   /// The sweep's evaluator (owns the records the cell's excitation was made from).
-  std::unique_ptr<spectra::ModelFileEvaluator> evaluator;
-  spectra::ModelFileCell cell;  ///< model, scaled excitation and run control of the cell
-  std::uint64_t index = 0;      ///< the cell's row-major index
-  std::string coordinates;      ///< CellCoordinates of the cell
-  bool done = false;            ///< the cube holds the cell's results
-  std::int32_t status = 0;      ///< the cube's status code of the cell
-  std::string status_name;      ///< its name in the cube's status table
-  std::vector<std::string> response_names;  ///< the cube's responses, in stored order
-  std::vector<double> responses;            ///< the cell's stored values, in that order
-  std::string model_text;                   ///< the model file's text (the cell changes values)
+  std::unique_ptr<spectra::CellEvaluator> evaluator;
+  std::optional<model::Model> model;       ///< the cell's model
+  std::unique_ptr<Excitation> excitation;  ///< its ground motion, scaled as the cell scales it
+  model::RunControl control;               ///< its run control (method, end time, tolerances)
+  const spectra::SweepRecord* record = nullptr;  ///< its record, or nullptr for a pulse
+  double scale = 1.0;                            ///< the factor on the record's accelerations
+  std::uint64_t index = 0;                       ///< the cell's row-major index
+  std::string coordinates;                       ///< CellCoordinates of the cell
+  bool done = false;                             ///< the cube holds the cell's results
+  std::int32_t status = 0;                       ///< the cube's status code of the cell
+  std::string status_name;                       ///< its name in the cube's status table
+  std::vector<std::string> response_names;       ///< the cube's responses, in stored order
+  std::vector<double> responses;                 ///< the cell's stored values, in that order
+  /// The model file's text (model-file family; the cell changes values), else "".
+  std::string model_text;
 };
 
 /// Prepares the re-run of one cell of `cube`: reads the sweep, parses its stored specification
@@ -61,7 +70,7 @@ struct CellRerun {
 /// file (model, record set, records) are the ones the cube was computed from, and makes the
 /// cell's model, excitation and control.
 /// @throws InputError naming the cube: not a cube, no such sweep (naming those it holds), several
-/// sweeps and none chosen, a family other than model-file, an [ida] sweep, a changed input
+/// sweeps and none chosen, the multi-span family, an [ida] sweep, a changed input
 /// (DescribeIdentityChange), or a bad `--cell` / `--cell-index` (naming the axis and its
 /// allowed values, or the cell count); InputError from the specification's parser.
 CellRerun PrepareCellRerun(const std::filesystem::path& cube, const CellChoice& choice);

@@ -192,19 +192,11 @@ DimensionalPoint ToDimensional(const PointParameters& p, const ExcitationScales&
   return out;
 }
 
-PointResult EvaluatePoint(const DimensionalPoint& point, const Excitation& excitation) {
-  const model::Model model = model::BuildDeckModel(point.deck, "point");
-  // The event-driven workspace has solved the modes already (its flow's); the time-stepping
-  // method solves them here.
-  std::optional<dynamics::SimulationWorkspace> workspace;
-  double w_min = 0.0;
-  if (point.method == Method::kTimeStepping) {
-    const model::Modes modes = model::ComputeModes(model.M(), model.K());
-    w_min = modes.omega_radps.size() > 0 ? modes.omega_radps.minCoeff() : 0.0;
-  } else {
-    workspace.emplace(model);
-    w_min = workspace->omega_min_radps();
-  }
+namespace {
+
+// The control of a point's run, given the lowest natural frequency w_min of its model (rad/s).
+model::RunControl PointControl(const DimensionalPoint& point, const Excitation& excitation,
+                               double w_min) {
   const double excitation_period_s = 2.0 * std::numbers::pi / point.scales.w_g_radps;
   const double natural_period_s = w_min > 0.0 ? 2.0 * std::numbers::pi / w_min : 0.0;
 
@@ -217,10 +209,47 @@ PointResult EvaluatePoint(const DimensionalPoint& point, const Excitation& excit
   // A cell stores no energy: the ledger's forms would only cost time (the responses are the same
   // bits without them).
   control.energy_ledger = false;
+  if (point.method == Method::kTimeStepping) {
+    control.time_step_s = point.time_step_s;
+    control.method = "time-stepping";
+  }
+  return control;
+}
+
+// The time-stepping method's lowest natural frequency (rad/s), solved from M and K.
+double LowestFrequency(const model::Model& model) {
+  const model::Modes modes = model::ComputeModes(model.M(), model.K());
+  return modes.omega_radps.size() > 0 ? modes.omega_radps.minCoeff() : 0.0;
+}
+
+}  // namespace
+
+PointRun MakePointRun(const DimensionalPoint& point, const Excitation& excitation) {
+  PointRun out{model::BuildDeckModel(point.deck, "point"), {}, false};
+  out.time_stepping = point.method == Method::kTimeStepping;
+  const double w_min = out.time_stepping
+                           ? LowestFrequency(out.model)
+                           : dynamics::SimulationWorkspace(out.model).omega_min_radps();
+  out.control = PointControl(point, excitation, w_min);
+  return out;
+}
+
+PointResult EvaluatePoint(const DimensionalPoint& point, const Excitation& excitation) {
+  const model::Model model = model::BuildDeckModel(point.deck, "point");
+  // The event-driven workspace has solved the modes already (its flow's); the time-stepping
+  // method solves them here.
+  std::optional<dynamics::SimulationWorkspace> workspace;
+  double w_min = 0.0;
+  if (point.method == Method::kTimeStepping) {
+    w_min = LowestFrequency(model);
+  } else {
+    workspace.emplace(model);
+    w_min = workspace->omega_min_radps();
+  }
+  const model::RunControl control = PointControl(point, excitation, w_min);
 
   dynamics::RunResult run;
   if (point.method == Method::kTimeStepping) {
-    control.time_step_s = point.time_step_s;
     dynamics::TimeSteppingWorkspace workspace(model);
     run = dynamics::SimulateTimeStepping(model, excitation, control, workspace);
   } else {

@@ -20,6 +20,7 @@
 #include "records/excitations.h"
 #include "solver/dynamics/run_result.h"
 #include "solver/model/builders.h"
+#include "solver/model/run_control.h"
 
 namespace skewbridge::spectra {
 
@@ -135,6 +136,20 @@ struct PointResult {
   long steps = 0;               ///< integration steps (exact + Runge-Kutta)
   double min_impact_separation_s = 0.0;  ///< smallest separation of distinct impacts (s)
 };
+
+/// The run EvaluatePoint makes of a point: the model built from the deck, the run control (the
+/// absolute tolerance tied to L_e, the end time of EvaluatePoint, no energy ledger) and the
+/// integrator. `skewbridge run --from-cube` runs a cell from it with histories, which leave the
+/// maxima as they are.
+struct PointRun {
+  model::Model model;          ///< BuildDeckModel(point.deck)
+  model::RunControl control;   ///< as EvaluatePoint sets it
+  bool time_stepping = false;  ///< Moreau-Jean (point.method), else the event-driven integrator
+};
+
+/// The model, control and integrator of EvaluatePoint for `point` under `excitation`.
+/// @throws InputError as ToDimensional.
+PointRun MakePointRun(const DimensionalPoint& point, const Excitation& excitation);
 
 /// Runs the point under `excitation` (the pulse of PulseScales or a record whose scales are
 /// given) by point.method and normalises the maxima. The end time is the excitation's duration plus

@@ -191,6 +191,25 @@ std::vector<std::pair<std::int32_t, std::string>> SpectraEvaluator::StatusNames(
   return SolverStatusNames();
 }
 
+SpectraEvaluator::CellRun SpectraEvaluator::MakeRun(std::span<const std::size_t> axis_index) const {
+  CellRun out;
+  const spectra::PointParameters p = Parameters(axis_index, &out.record);
+  // As Evaluate: the record's PGA and 2 pi / T_m, or the pulse's scales.
+  if (out.record != nullptr) {
+    const spectra::ExcitationScales scales{out.record->measures.pga_mps2,
+                                           out.record->measures.omega_g_radps};
+    out.excitation =
+        std::make_unique<records::SampledExcitation>(records::ToExcitation(out.record->motion));
+    out.run = spectra::MakePointRun(spectra::ToDimensional(p, scales), *out.excitation);
+  } else {
+    const spectra::ExcitationScales scales = spectra::PulseScales(p);
+    out.excitation =
+        std::make_unique<records::PulseExcitation>(p.pulse, scales.a_g_mps2, scales.w_g_radps);
+    out.run = spectra::MakePointRun(spectra::ToDimensional(p, scales), *out.excitation);
+  }
+  return out;
+}
+
 CellOutcome SpectraEvaluator::Evaluate(std::span<const std::size_t> axis_index) const {
   const auto start = std::chrono::steady_clock::now();
   const SweepRecord* record = nullptr;

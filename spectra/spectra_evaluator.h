@@ -7,6 +7,7 @@
 /// the responses).
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,16 @@ class SpectraEvaluator final : public CellEvaluator {
   const std::vector<SweepRecord>* Records() const override {
     return records_.empty() ? nullptr : &records_;
   }
+
+  /// A cell's run as Evaluate makes it: the model, control and integrator (MakePointRun), the
+  /// excitation (the record as read, or the pulse of PulseScales) and the record (nullptr for a
+  /// pulse). @throws InputError as ToDimensional.
+  struct CellRun {
+    std::optional<PointRun> run;             ///< model, control, integrator
+    std::unique_ptr<Excitation> excitation;  ///< the cell's ground motion
+    const SweepRecord* record = nullptr;     ///< the cell's record, or nullptr
+  };
+  CellRun MakeRun(std::span<const std::size_t> axis_index) const;
 
   /// The point parameters of a cell, and the record it uses (nullptr for a pulse).
   spectra::PointParameters Parameters(std::span<const std::size_t> axis_index,

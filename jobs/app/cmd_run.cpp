@@ -2,10 +2,10 @@
 // --target-sa-g X | --target-pga-g X] [--csv run.csv] [--out run.h5]`: one run of a model file by
 // the method of run.method (event-driven or time-stepping), under its own excitation or a record
 // of any format the readers know; and `skewbridge run --from-cube CUBE.h5 --cell AXIS=VALUE,...`
-// (or --cell-index N): one cell of a model-file sweep run again as the sweep ran it, with
-// histories. Prints a summary, writes the time histories as CSV and the whole run as HDF5
-// (docs/run-output.md), each to a temporary name renamed on success. A run that stops with a
-// status other than ok exits with status 3.
+// (or --cell-index N): one cell of a model-file, subsystem or pilot-bridge sweep run again as
+// the sweep ran it, with histories. Prints a summary, writes the time histories as CSV and the
+// whole run as HDF5 (docs/run-output.md), each to a temporary name renamed on success. A run
+// that stops with a status other than ok exits with status 3.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -407,12 +407,11 @@ void RunCubeCell(const RunOptions& o) {
   if (o.cell_index >= 0) choice.index = static_cast<std::uint64_t>(o.cell_index);
   const jobs::CellRerun rerun = jobs::PrepareCellRerun(o.from_cube, choice);
   PrintWarnings(rerun.evaluator->Warnings());
-  const spectra::ModelFileCell& c = rerun.cell;
   RunInput in;
   in.model_text = rerun.model_text;
-  in.model = &*c.model;
-  in.excitation = c.excitation.get();
-  in.control = c.control;
+  in.model = &*rerun.model;
+  in.excitation = rerun.excitation.get();
+  in.control = rerun.control;
   // Histories and the energy ledger are what a re-run is for; the sweep leaves both out because
   // the maxima are the same bits with or without them (tests/app/rerun_cell_test.sh).
   if (in.control.output_interval_s <= 0.0) in.control.output_interval_s = 0.01;
@@ -423,15 +422,17 @@ void RunCubeCell(const RunOptions& o) {
   origin.text = {{"kind", "cube-cell"},
                  {"cube", o.from_cube},
                  {"sweep", rerun.spec.name},
+                 {"family", rerun.spec.family},
                  {"coordinates", rerun.coordinates},
                  {"specification", rerun.spec.source},
                  {"cube_status", rerun.done ? rerun.status_name : "not_done"}};
-  if (c.record != nullptr) {
-    origin.text.push_back({"record_label", c.record->label});
-    origin.text.push_back({"record_file", c.record->file});
+  if (rerun.record != nullptr) {
+    origin.text.push_back({"record_label", rerun.record->label});
+    origin.text.push_back({"record_file", rerun.record->file});
   }
-  origin.numbers = {{"cell_index", static_cast<double>(rerun.index)}, {"scale_factor", c.scale}};
-  KeepGround(*c.excitation, origin);
+  origin.numbers = {{"cell_index", static_cast<double>(rerun.index)},
+                    {"scale_factor", rerun.scale}};
+  KeepGround(*rerun.excitation, origin);
   if (!rerun.done) {
     PrintWarnings({o.from_cube + ": cell " + std::to_string(rerun.index) +
                    " is not done in the cube: there is nothing stored to compare the run with"});
@@ -464,7 +465,8 @@ void AddRunCommand(CLI::App& app) {
                   "Scale the record to Sa(T1, 5 %) = X g at the model's fundamental period T1");
   cmd->add_option("--target-pga-g", o->target_pga_g, "Scale the record to PGA = X g");
   cmd->add_option("--from-cube", o->from_cube,
-                  "Re-run one cell of a model-file sweep's cube, as the sweep ran it");
+                  "Re-run one cell of a sweep's cube (model-file, subsystem, pilot-bridge) as the "
+                  "sweep ran it");
   cmd->add_option("--sweep", o->sweep, "The sweep of --from-cube (when the cube holds several)");
   cmd->add_option("--cell", o->cell,
                   "The cell of --from-cube by its coordinates: AXIS=VALUE,AXIS=VALUE,...");

@@ -1,6 +1,7 @@
 """Run files of re-run cells against their cube, with h5py and numpy (tests/app/rerun_cell_test.sh).
 
 usage: check_rerun.py CUBE RECORDS_DIR CELL_RUN... -- RECORD_RUN...
+       check_rerun.py --spectra CUBE CELL_RUN...  (a subsystem or pilot-bridge cube)
 
 Each CELL_RUN (`skewbridge run --from-cube`) names its cell in origin/cell_index: its maxima,
 residuals, exact corner travel, impacts and smallest impact separation must equal the cube's
@@ -81,8 +82,44 @@ def as_text(value):
     return value.decode() if isinstance(value, bytes) else str(value)
 
 
+def compare_spectra(cube_path, run_paths):
+    """Cells of a subsystem or pilot-bridge cube: every stored maximum, residual, travel and
+    impact count the run file also holds, bit for bit. Returns the impact counts."""
+    cube = h5py.File(cube_path, "r")
+    (name,) = list(cube["sweeps"])
+    g = cube["sweeps"][name]
+    impacts = []
+    for path in run_paths:
+        with h5py.File(path, "r") as f:
+            cell = int(f["origin"].attrs["cell_index"])
+            at = np.unravel_index(cell, g["status"].shape)
+            s = f["summary"]
+            mine = {"x_m": s["max_abs_q"][0], "y_m": s["max_abs_q"][1],
+                    "theta_m": s["max_abs_q"][2], "x_end": s["q_end"][0],
+                    "theta_end": s["q_end"][2], "travel_m": s["max_travel_m"][0],
+                    "impacts": float(s.attrs["impacts"]),
+                    "min_impact_separation": s.attrs["min_impact_separation_s"]}
+            compared = [k for k in mine if k in g["responses"]]
+            if len(compared) < 6:
+                fail(f"{path}: only {compared} to compare")
+            for k in compared:
+                stored = g["responses"][k][at]
+                if np.float64(mine[k]).tobytes() != np.float64(stored).tobytes():
+                    fail(f"{path}: {k} = {mine[k]!r}, cube cell {cell} stores {stored!r}")
+            if f["histories/t_s"].shape[0] < 50:
+                fail(f"{path}: no histories")
+            impacts.append(mine["impacts"])
+    if not any(n > 0 for n in impacts):
+        fail(f"no re-run cell of {cube_path} with impacts: {impacts}")
+    print(f"check_rerun: {len(run_paths)} cells of {cube_path} equal the cube bit for bit "
+          f"(impacts {impacts})")
+
+
 def main():
     args = sys.argv[1:]
+    if args[0] == "--spectra":
+        compare_spectra(args[1], args[2:])
+        return
     split = args.index("--")
     cube_path, records_dir = args[0], args[1]
     cell_runs, record_runs = args[2:split], args[split + 1:]

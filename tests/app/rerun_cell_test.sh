@@ -6,8 +6,10 @@
 # corner travel and impacts with the cube's stored responses bit for bit (at least one cell with
 # impacts), and the ground acceleration the runs applied with the AT2 files parsed by numpy.
 # `run --record FILE.AT2 --scale F` (F the cube's scale_factor) and `run --record-set --label
-# --target-sa-g` give the cell again. Bad coordinates, a changed input and a cube of another
-# family are refused with one line, status 2, no output. The report draws a re-run's histories.
+# --target-sa-g` give the cell again. Cells of a subsystem sweep under pulses and of a
+# pilot-bridge sweep under synthetic records equal their cubes the same way. Bad coordinates, a
+# changed input and a multi-span cube are refused with one line, status 2, no output. The report
+# draws a re-run's histories.
 # usage: rerun_cell_test.sh SKEWBRIDGE SOURCE_DIR WORK_DIR
 source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
 args exe src work -- "$@"
@@ -105,19 +107,59 @@ bad "recs/NIS090.AT2 (record) has changed since the cube was computed from it" \
 mv nis.keep recs/NIS090.AT2
 "$exe" run --from-cube cube.h5 --cell-index 0 > /dev/null || fail "restored inputs refused"
 
-# Another family: refused by name.
+# The subsystem under pulses (with limit states, so the exact travel is stored) and the pilot
+# bridge under two synthetic records: cells re-run equal the cube too.
 cat > pulse.toml <<'TOML'
 [sweep]
 name = "pulse"
 family = "subsystem"
 [fixed]
 eta0 = 1.0
+[limit_states]
+joint_closing = true
 [axes]
-Pi_delta = [0.5, 1.0]
+a_deg = [20, 45]
+Pi_delta = [0.5, 4.0]
+w0_over_wg = [0.5, 3.0]
 TOML
 "$exe" sweep pulse.toml --out pulse.h5 --quiet 2> pulse.err || { cat pulse.err; fail "sweep pulse"; }
-bad "pulse.h5: sweep 'pulse' is of family subsystem; a cell is re-run for the model-file family only" \
-  --from-cube pulse.h5 --cell-index 0
+cat > pilot.toml <<'TOML'
+[sweep]
+name = "pilot"
+family = "pilot-bridge"
+[records]
+synthetic = {count = 2, seed = 2011}
+[axes]
+record = "*"
+Pi_delta = [0.5, 2.0]
+TOML
+"$exe" sweep pilot.toml --out pilot.h5 --quiet 2> pilot.err || { cat pilot.err; fail "sweep pilot"; }
+for i in 0 3 5; do
+  "$exe" run --from-cube pulse.h5 --cell-index "$i" --out "p_$i.h5" > /dev/null ||
+    fail "re-run subsystem cell $i"
+done
+"$exe" run --from-cube pilot.h5 --cell "record=synth-2011-001,Pi_delta=0.5" --out q_1.h5 > /dev/null ||
+  fail "re-run pilot cell"
+"$exe" run --from-cube pilot.h5 --cell-index 0 --out q_0.h5 > /dev/null || fail "re-run pilot cell 0"
+/usr/bin/python3 "$src/tests/app/check_rerun.py" --spectra pulse.h5 p_0.h5 p_3.h5 p_5.h5 ||
+  fail "subsystem re-runs against the cube"
+/usr/bin/python3 "$src/tests/app/check_rerun.py" --spectra pilot.h5 q_0.h5 q_1.h5 ||
+  fail "pilot-bridge re-runs against the cube"
+
+# The multi-span family is refused by name.
+cat > spans.toml <<'TOML'
+[sweep]
+name = "spans"
+family = "multi-span"
+[axes]
+spans = [1, 2]
+[fixed]
+W_over_L = 0.3
+w0_over_wg = 1.0
+TOML
+"$exe" sweep spans.toml --out spans.h5 --quiet 2> spans.err || { cat spans.err; fail "sweep spans"; }
+bad "spans.h5: sweep 'spans' is of family multi-span; a cell is re-run for the model-file, subsystem and pilot-bridge families" \
+  --from-cube spans.h5 --cell-index 0
 
 # The report draws a re-run's histories, the ground acceleration from the run file.
 "$src/scripts/report" --run c_a.h5 --out report > report.txt 2>&1 || { cat report.txt; fail "report"; }
