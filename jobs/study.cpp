@@ -10,6 +10,7 @@
 
 #include "spectra/ida.h"
 #include "spectra/limit_states.h"
+#include "spectra/round_off.h"
 
 namespace skewbridge::jobs {
 namespace {
@@ -113,10 +114,21 @@ std::vector<FragilityStudy> MakeFragility(const SweepSpec& spec, const CubeLayou
     f.im = im_name;
     f.im_units = im_units;
     f.im_description = im_description;
+    // A demand in rad below the round-off floor is zero (spectra::kRotationRoundOffFloor_rad):
+    // no point of the cloud, and not above a threshold of 0.
+    const double floor = spectra::RoundOffFloor(f.demand_unit);
+    std::vector<double> demand_read = data.responses[*demand];
+    std::vector<double> exceeded_read = data.responses[*exceeded];
+    for (std::uint64_t c = 0; c < data.Cells(); ++c) {
+      if (std::abs(demand_read[c]) < floor) {
+        demand_read[c] = 0.0;
+        if (std::isfinite(exceeded_read[c])) exceeded_read[c] = 0.0 > ls.threshold ? 1.0 : 0.0;
+      }
+    }
     std::string no_cloud;
-    const std::vector<double> dc = DemandOverCapacity(ls, data.responses[*demand], &no_cloud);
-    f.table = spectra::FitFragilityOverCells(
-        spec, stripe_axis, {im, data.responses[*exceeded], dc, usable, excluded}, no_cloud);
+    const std::vector<double> dc = DemandOverCapacity(ls, demand_read, &no_cloud);
+    f.table = spectra::FitFragilityOverCells(spec, stripe_axis,
+                                             {im, exceeded_read, dc, usable, excluded}, no_cloud);
     out.push_back(std::move(f));
   }
   return out;
@@ -256,9 +268,12 @@ StudyTables MakeStudyTables(const SweepSpec& spec, const CubeLayout& layout, con
   }
   std::vector<double> no_band;
   const std::vector<double>& band = band_col ? data.responses[*band_col] : no_band;
-  CorrelationTable table =
-      spectra::CorrelateOverRecords(spec, data.responses[*theta_col], data.responses[*le_col], band,
-                                    usable, BandEdges(spec).size() + 1);
+  // A rotation below the round-off floor is zero: out of the log-log statistics.
+  std::vector<double> theta = data.responses[*theta_col];
+  const double floor = spectra::RoundOffFloor(layout.responses[*theta_col].unit);
+  for (double& v : theta) v = spectra::AboveRoundOff(v, floor);
+  CorrelationTable table = spectra::CorrelateOverRecords(spec, theta, data.responses[*le_col], band,
+                                                         usable, BandEdges(spec).size() + 1);
   table.y = layout.responses[*theta_col].name;
   tables.correlation = std::move(table);
   return tables;

@@ -4,6 +4,7 @@
 #include <type_traits>
 
 #include "spectra/limit_states.h"
+#include "spectra/round_off.h"
 
 namespace skewbridge::jobs::h5 {
 namespace {
@@ -193,6 +194,9 @@ void WriteFragility(hid_t sweep_group, const std::vector<FragilityStudy>& studie
     SetAttr(ls.get(), "kind", spectra::LimitStateKindName(f.ls.kind));
     SetAttr(ls.get(), "threshold", f.ls.threshold);
     SetAttr(ls.get(), "demand_units", f.demand_unit);
+    if (const double floor = spectra::RoundOffFloor(f.demand_unit); floor > 0.0) {
+      SetAttr(ls.get(), "round_off_floor", floor);
+    }
     if (!f.ls.seat_m.empty()) SetDoublesAttr(ls.get(), "seat_m", f.ls.seat_m);
     if (f.ls.kind == spectra::LimitStateKind::kResponse)
       SetAttr(ls.get(), "response", f.ls.response);
@@ -337,6 +341,8 @@ void WriteIdaFragility(hid_t sweep_group, const std::vector<IdaFragilityStudy>& 
 }  // namespace
 
 void WriteStudyTables(const Datasets& d, const CubeLayout& layout, const StudyTables& study) {
+  // Below it a stored rotation is round-off, zero for every fit and figure.
+  SetAttr(d.group.get(), "round_off_floor_rad", spectra::kRotationRoundOffFloor_rad);
   for (std::size_t r = 0; r < layout.responses.size(); ++r) {
     if (layout.responses[r].name == "band" && !study.band_edges.empty()) {
       SetDoublesAttr(d.responses[r].get(), "band_edges", study.band_edges);

@@ -50,6 +50,13 @@ def _select(sweep, order, idx):
     return tuple(sel)
 
 
+def floored(demand, ls_attrs):
+    """A limit state's demands with the values below the cube's round-off floor (rotations:
+    spectra::kRotationRoundOffFloor_rad) set to 0, as the fits read them."""
+    floor = float(ls_attrs.get("round_off_floor", 0.0))
+    return np.where(np.abs(demand) < floor, 0.0, demand)
+
+
 def _at(array, idx):
     return np.asarray(array)[idx] if idx else np.asarray(array).ravel()[0]
 
@@ -232,7 +239,8 @@ def cloud(sweep, out_dir, name, pdf):
         g = f[ls]
         a = tree_attrs(g)
         cap = 1.0 if a.get("kind") == "unseating" else float(a.get("threshold", 1.0))
-        d_all = np.asarray(sweep.responses["ls_" + ls + "_demand"], dtype=float) / cap
+        d_all = floored(np.asarray(sweep.responses["ls_" + ls + "_demand"], dtype=float),
+                        a) / cap
         im_all = cell_im(sweep, fa)
         far_all, rule, limit = beyond_max_scale(sweep)
         far_label = beyond_text(rule, limit) if far_all is not None else ""
@@ -267,7 +275,8 @@ def cloud(sweep, out_dir, name, pdf):
         ax.set_title(limit_state_text(ls, g), fontsize=10)
     common.finish_panels(fig, axes, len(names), (
         "Markers: each cell's demand over the limit state's capacity (unseating: corner travel "
-        "over seat width). Lines: least squares of ln(D/C) on ln(IM) per combination (cloud "
+        "over seat width; a rotation below the cube's round-off floor round_off_floor_rad is 0, "
+        "not drawn). Lines: least squares of ln(D/C) on ln(IM) per combination (cloud "
         "analysis, Cornell et al. 2002); their crossing of D/C = 1 is the cloud median θ."
         + _far_caption(sweep).replace("open markers count", "lines fit")
         + shown_text(len(shown), len(combos))))

@@ -386,6 +386,76 @@ TEST(MakeStudyTables, NeedsAPiDeltaAxisForTheCorrelation) {
   EXPECT_FALSE(tables.correlation.has_value());
 }
 
+// Rotations below the round-off floor (spectra::kRotationRoundOffFloor_rad), as cells with
+// impacts and no physical rotation store them, are zero for the fits: the cloud fit of the
+// rotation limit state equals least squares written out here over the other cells only, it
+// counts the sub-floor cells as left out, and a threshold of 0 is not exceeded by them.
+TEST(MakeStudyTables, ReadsRotationsBelowTheRoundOffFloorAsZero) {
+  for (const double threshold : {1e-4, 0.0}) {
+    const SweepSpec spec =
+        SyntheticPilotSpec("r", 12,
+                           "[fixed]\na_deg = 20\n[limit_states]\nrotation = {above_rad = " +
+                               std::string(threshold > 0.0 ? "1e-4" : "0.0") + "}\n");
+    const CubeLayout layout = OwnColumns(
+        {{"a_g", "m/s2", ""}, {"ls_rotation", "1", ""}, {"ls_rotation_demand", "rad", ""}});
+    CubeData data;
+    data.Reset(spec.CellCount(), 3);
+    std::vector<double> ln_im, ln_dc;  // the cells above the floor
+    std::int64_t exceeded = 0;
+    for (std::uint64_t c = 0; c < spec.CellCount(); ++c) {
+      const double im_g = 0.2 + 0.15 * static_cast<double>(c);
+      const bool round_off = c == 2 || c == 7 || c == 9;
+      const double theta =
+          round_off ? 1e-20 * static_cast<double>(c * c)
+                    : 2e-4 * std::pow(im_g, 1.5) * (1.0 + 0.2 * static_cast<double>((c * 5) % 3));
+      // Stored as the limit state stores it: exceeded when above the threshold.
+      data.Store(c, kStatusOk,
+                 {im_g * records::kStandardGravity_mps2, theta > threshold ? 1.0 : 0.0, theta},
+                 CellStats{}, 1);
+      data.done[c] = 1;
+      if (round_off) continue;
+      exceeded += theta > threshold ? 1 : 0;
+      ln_im.push_back(std::log(im_g));
+      ln_dc.push_back(std::log(threshold > 0.0 ? theta / threshold : theta));
+    }
+    const StudyTables tables = MakeStudyTables(spec, layout, data);
+    ASSERT_EQ(tables.fragility.size(), 1U);
+    const spectra::FragilityTable& t = tables.fragility[0].table;
+    EXPECT_EQ(t.n_cells[0], 12);
+    EXPECT_EQ(t.n_exceeded[0], exceeded) << "threshold " << threshold;
+    if (threshold == 0.0) {
+      EXPECT_EQ(t.cloud_reason[0], "a threshold of 0 or less: no ln(demand / capacity)");
+      continue;
+    }
+    // Least squares of ln(D / C) on ln(IM) over the 9 cells above the floor.
+    const double n = static_cast<double>(ln_im.size());
+    double mx = 0.0, my = 0.0;
+    for (std::size_t i = 0; i < ln_im.size(); ++i) {
+      mx += ln_im[i] / n;
+      my += ln_dc[i] / n;
+    }
+    double sxx = 0.0, sxy = 0.0;
+    for (std::size_t i = 0; i < ln_im.size(); ++i) {
+      sxx += (ln_im[i] - mx) * (ln_im[i] - mx);
+      sxy += (ln_im[i] - mx) * (ln_dc[i] - my);
+    }
+    const double slope = sxy / sxx, intercept = my - slope * mx;
+    double ss = 0.0;
+    for (std::size_t i = 0; i < ln_im.size(); ++i) {
+      const double r = ln_dc[i] - intercept - slope * ln_im[i];
+      ss += r * r;
+    }
+    const double sigma = std::sqrt(ss / (n - 2.0));
+    EXPECT_EQ(t.cloud_reason[0], "");
+    EXPECT_EQ(t.cloud_n[0], 9);
+    EXPECT_EQ(t.cloud_excluded[0], 3);
+    EXPECT_NEAR(t.cloud_slope[0], slope, 1e-12 * slope);
+    EXPECT_NEAR(t.cloud_intercept[0], intercept, 1e-12 * std::abs(intercept));
+    EXPECT_NEAR(t.cloud_sigma[0], sigma, 1e-10 * sigma);
+    EXPECT_NEAR(t.cloud_beta[0], sigma / slope, 1e-10 * sigma / slope);
+  }
+}
+
 // The default study needs no generated files: its spec names the 62-record suite of seed 2011,
 // at least 0.1 g each, 3 Pi_delta values.
 TEST(StudySpecs, TheDefaultStudyMakesItsSixtyTwoRecordsInMemory) {
