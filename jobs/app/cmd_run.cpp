@@ -166,10 +166,25 @@ struct RunInput {
   jobs::RunOrigin origin;
 };
 
-// The ground acceleration of a sampled excitation, for the run file's origin group.
+// Samples a smooth ground motion (a pulse) is drawn with: enough that straight lines between
+// them follow one cycle to the eye.
+constexpr int kPulseDrawSamples = 2000;
+
+// The ground acceleration of the run for the run file's origin group: a sampled excitation's
+// samples, or a pulse sampled kPulseDrawSamples times over its duration.
 void KeepGround(const Excitation& excitation, jobs::RunOrigin& origin) {
   const auto* sampled = dynamic_cast<const records::SampledExcitation*>(&excitation);
-  if (sampled == nullptr) return;
+  if (sampled == nullptr) {
+    const double duration_s = excitation.Duration();
+    if (!(duration_s > 0.0) || !std::isfinite(duration_s)) return;
+    origin.ground_dt_s = duration_s / kPulseDrawSamples;
+    for (int k = 0; k <= kPulseDrawSamples; ++k) {
+      const Eigen::Vector2d a = excitation.At(k * origin.ground_dt_s);
+      origin.ground_ax_mps2.push_back(a.x());
+      origin.ground_ay_mps2.push_back(a.y());
+    }
+    return;
+  }
   origin.ground_ax_mps2 = sampled->ax_mps2();
   origin.ground_ay_mps2 = sampled->ay_mps2().empty()
                               ? std::vector<double>(sampled->ax_mps2().size(), 0.0)
