@@ -11,6 +11,7 @@
 #include "solver/common/error.h"
 #include "solver/dynamics/simulate.h"
 #include "solver/dynamics/time_stepping.h"
+#include "solver/model/builders.h"
 #include "solver/model/deck.h"
 
 namespace skewbridge::spectra {
@@ -216,44 +217,26 @@ model::RunControl PointControl(const DimensionalPoint& point, const Excitation& 
   return control;
 }
 
-// The time-stepping method's lowest natural frequency (rad/s), solved from M and K.
-double LowestFrequency(const model::Model& model) {
-  const model::Modes modes = model::ComputeModes(model.M(), model.K());
-  return modes.omega_radps.size() > 0 ? modes.omega_radps.minCoeff() : 0.0;
-}
-
 }  // namespace
 
 PointRun MakePointRun(const DimensionalPoint& point, const Excitation& excitation) {
   PointRun out{model::BuildDeckModel(point.deck, "point"), {}, false};
   out.time_stepping = point.method == Method::kTimeStepping;
-  const double w_min = out.time_stepping
-                           ? LowestFrequency(out.model)
-                           : dynamics::SimulationWorkspace(out.model).omega_min_radps();
-  out.control = PointControl(point, excitation, w_min);
+  out.control = PointControl(point, excitation, model::LowestFrequency(out.model));
   return out;
 }
 
 PointResult EvaluatePoint(const DimensionalPoint& point, const Excitation& excitation) {
   const model::Model model = model::BuildDeckModel(point.deck, "point");
-  // The event-driven workspace has solved the modes already (its flow's); the time-stepping
-  // method solves them here.
-  std::optional<dynamics::SimulationWorkspace> workspace;
-  double w_min = 0.0;
-  if (point.method == Method::kTimeStepping) {
-    w_min = LowestFrequency(model);
-  } else {
-    workspace.emplace(model);
-    w_min = workspace->omega_min_radps();
-  }
-  const model::RunControl control = PointControl(point, excitation, w_min);
+  const model::RunControl control = PointControl(point, excitation, model::LowestFrequency(model));
 
   dynamics::RunResult run;
   if (point.method == Method::kTimeStepping) {
     dynamics::TimeSteppingWorkspace workspace(model);
     run = dynamics::SimulateTimeStepping(model, excitation, control, workspace);
   } else {
-    run = dynamics::Simulate(model, excitation, control, *workspace);
+    dynamics::SimulationWorkspace workspace(model);
+    run = dynamics::Simulate(model, excitation, control, workspace);
   }
 
   PointResult r;

@@ -10,6 +10,7 @@
 #include "solver/common/error.h"
 #include "solver/dynamics/corner_travel.h"
 #include "solver/lcp/enumeration.h"
+#include "solver/model/builders.h"
 
 namespace skewbridge::dynamics {
 
@@ -213,11 +214,7 @@ RunResult SimulateTimeStepping(const model::Model& model, const Excitation& exci
   double v_ref = PeakAcceleration(excitation);
   {
     // Velocity scale a_peak / omega_1 as the event-driven integrator uses.
-    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> modes(
-        (model.inverse_mass_diagonal().cwiseSqrt().asDiagonal() * model.K() *
-         model.inverse_mass_diagonal().cwiseSqrt().asDiagonal())
-            .eval());
-    const double omega_min = std::sqrt(std::max(0.0, modes.eigenvalues().minCoeff()));
+    const double omega_min = model::LowestFrequency(model);
     v_ref /= omega_min > 1e-9 ? omega_min : 1.0;
     v_ref = std::max(v_ref, u.cwiseAbs().maxCoeff());
     if (v_ref == 0.0) {

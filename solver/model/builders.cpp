@@ -1,6 +1,7 @@
 #include "solver/model/builders.h"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -128,6 +129,25 @@ Modes ComputeModes(const Eigen::Ref<const Eigen::MatrixXd>& M,
   modes.eigenvalues = eig.eigenvalues();
   return modes;
 }
+
+FrequencyRange NaturalFrequencyRange(const Model& model) {
+  double smallest = 0.0, largest = 0.0;
+  if (model.modes() != nullptr) {
+    smallest = model.modes()->eigenvalues.minCoeff();
+    largest = model.modes()->eigenvalues.maxCoeff();
+  } else {
+    // The eigenvalues of the generalised solver do not depend on whether it also forms the
+    // eigenvectors (the same reduction and QR sweeps), so these are ComputeModes' bits.
+    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(model.K(), model.M(),
+                                                                        Eigen::EigenvaluesOnly);
+    SB_DEMAND(eig.info() == Eigen::Success, "generalised eigenproblem failed");
+    smallest = eig.eigenvalues().minCoeff();
+    largest = eig.eigenvalues().maxCoeff();
+  }
+  return {std::sqrt(std::max(smallest, 0.0)), std::sqrt(std::max(largest, 0.0))};
+}
+
+double LowestFrequency(const Model& model) { return NaturalFrequencyRange(model).lowest_radps; }
 
 Eigen::MatrixXd DisplayModeShapes(const Modes& modes, const std::vector<Body>& bodies) {
   SB_DEMAND(modes.phi.rows() == 3 * static_cast<Eigen::Index>(bodies.size()),

@@ -37,6 +37,21 @@ Eigen::MatrixXd GroundInfluence(int n_bodies);
 Modes ComputeModes(const Eigen::Ref<const Eigen::MatrixXd>& M,
                    const Eigen::Ref<const Eigen::MatrixXd>& K);
 
+/// The lowest and highest natural frequency of a model (rad/s).
+struct FrequencyRange {
+  double lowest_radps = 0.0;   ///< 0 for a free body (rigid modes)
+  double highest_radps = 0.0;  ///< the stiffest mode's frequency
+};
+
+/// The natural frequencies' range of `model`: from Model::modes() when the model carries them,
+/// else from one eigenvalue-only solve of (K, M) (the eigenvalues of ComputeModes, same bits);
+/// a free body's rigid modes, solved a rounding below zero, count as 0.
+FrequencyRange NaturalFrequencyRange(const Model& model);
+
+/// The lowest natural frequency of `model` (rad/s; 0 for a free body): what the integrators'
+/// velocity scales, the spectra's end times and the plausibility warnings all use.
+double LowestFrequency(const Model& model);
+
 /// Mode shapes for display: column k is phi_k with each body's rotation times its radius of
 /// gyration (x_i, y_i, rho_i theta_i, all in m), scaled so that its largest entry in magnitude
 /// is +1; the components are then comparable across DOFs and independent of the

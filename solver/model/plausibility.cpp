@@ -56,9 +56,7 @@ std::optional<std::string> IntensityWarning(std::string_view field, double large
 }
 
 double FundamentalPeriod(const Model& model) {
-  const Modes modes =
-      model.modes() != nullptr ? *model.modes() : ComputeModes(model.M(), model.K());
-  const double w1 = modes.omega_radps.size() > 0 ? modes.omega_radps.minCoeff() : 0.0;
+  const double w1 = LowestFrequency(model);
   return w1 > 0.0 ? 2.0 * std::numbers::pi / w1 : std::numeric_limits<double>::infinity();
 }
 

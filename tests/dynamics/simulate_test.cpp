@@ -89,9 +89,9 @@ model::RunControl EndAt(double t_end) {
 
 // docs/theory.md §4 fact 1: a translating deck striking the +x abutment full-edge leaves without
 // rotating iff eta0 <= 1; for eta0 > 1 only the obtuse corner P2 takes an impulse.
-TEST(SimulationWorkspace, LowestFrequencyIsTheModelsFirstMode) {
-  // The workspace takes its frequency range from the modes its flow solved (modal path) or from
-  // an eigenvalue solve of its own (general path); a sweep cell's run length uses the lowest.
+TEST(LowestFrequency, IsTheModelsFirstModeWithOrWithoutItsModes) {
+  // The one lowest frequency of every scale and end time: from the modes a builder solved, or
+  // from an eigenvalue solve of its own, the bits of ComputeModes either way; 0 for a free body.
   model::DeckSpec deck;
   deck.mass_kg = 2e5;
   deck.geometry = {40.0, 15.0, 0.4};
@@ -100,18 +100,31 @@ TEST(SimulationWorkspace, LowestFrequencyIsTheModelsFirstMode) {
   deck.W0_radps = 6.0;
   deck.xi = 0.05;
   const model::Model classical = model::BuildDeckModel(deck);
+  ASSERT_NE(classical.modes(), nullptr);
+  const model::Model without_modes(classical.bodies(), classical.K(), classical.C(), classical.r(),
+                                   classical.contacts());
+  ASSERT_EQ(without_modes.modes(), nullptr);
   Eigen::MatrixXd C = Eigen::MatrixXd::Zero(3, 3);
   C(0, 0) = 1e4;
   C(1, 1) = 2e3;
   C(0, 1) = C(1, 0) = 3e3;
   const model::Model general(classical.bodies(), classical.K(), C, classical.r(),
                              classical.contacts());
-  for (const model::Model* m : {&classical, &general}) {
-    const SimulationWorkspace workspace(*m);
+  for (const model::Model* m : {&classical, &without_modes, &general}) {
     const model::Modes modes = model::ComputeModes(m->M(), m->K());
-    EXPECT_EQ(workspace.omega_min_radps(), modes.omega_radps.minCoeff());
-    EXPECT_GT(workspace.omega_min_radps(), 2.0);
+    EXPECT_EQ(model::LowestFrequency(*m), modes.omega_radps.minCoeff());
+    EXPECT_EQ(model::NaturalFrequencyRange(*m).highest_radps, modes.omega_radps.maxCoeff());
+    // K = diag(m w0x^2, m w0y^2, I W0^2) about the centre of mass: the frequencies are 3, 4, 6.
+    EXPECT_NEAR(model::LowestFrequency(*m), 3.0, 1e-12);
+    EXPECT_NEAR(model::NaturalFrequencyRange(*m).highest_radps, 6.0, 1e-12);
+    // The workspace reads its own from its flow's modes or its own eigenvalue solve: the same
+    // bits.
+    const SimulationWorkspace workspace(*m);
+    EXPECT_EQ(workspace.omega_min_radps(), model::LowestFrequency(*m));
   }
+  const model::Model free_body(classical.bodies(), Eigen::MatrixXd::Zero(3, 3),
+                               Eigen::MatrixXd::Zero(3, 3), classical.r(), classical.contacts());
+  EXPECT_EQ(model::LowestFrequency(free_body), 0.0);
   EXPECT_TRUE(LinearFlow(classical.M(), classical.K(), classical.C(), classical.r()).modal());
   EXPECT_FALSE(LinearFlow(general.M(), general.K(), general.C(), general.r()).modal());
 }
