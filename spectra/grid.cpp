@@ -1,6 +1,7 @@
 #include "spectra/grid.h"
 
 #include <limits>
+#include <optional>
 
 #include "solver/common/error.h"
 
@@ -78,6 +79,22 @@ std::string LabelOf(const CellGrid& grid, std::span<const std::size_t> index, st
   }
   if (const FixedValue* fixed = grid.FindFixed(key)) return fixed->label;
   return fallback;
+}
+
+namespace {
+
+model::Method ParseMethodLabel(const CellGrid& grid, const std::string& label) {
+  if (const std::optional<model::Method> method = model::ParseMethod(label)) return *method;
+  throw InputError::AtField(grid.source, "method",
+                            "must be event-driven or time-stepping (got \"" + label + "\")");
+}
+
+}  // namespace
+
+model::Method MethodOf(const CellGrid& grid, std::span<const std::size_t> index,
+                       model::Method fallback) {
+  const std::string label = LabelOf(grid, index, "method");
+  return label.empty() ? fallback : ParseMethodLabel(grid, label);
 }
 
 bool Mentions(const CellGrid& grid, std::string_view key) {

@@ -13,6 +13,8 @@
 #include <string_view>
 #include <vector>
 
+#include "solver/model/run_control.h"
+
 namespace skewbridge::spectra {
 
 /// Whether a parameter takes numbers or text labels (pulse shape, record label).
@@ -149,6 +151,12 @@ double NumberOf(const CellGrid& grid, std::span<const std::size_t> index, std::s
 /// The label of parameter `key` in the cell (axis, fixed value or `fallback`).
 std::string LabelOf(const CellGrid& grid, std::span<const std::size_t> index, std::string_view key,
                     std::string fallback = {});
+
+/// The integrator of the cell: its label of parameter "method" (event-driven or time-stepping),
+/// or `fallback` where the grid does not name the key.
+/// @throws InputError naming the grid's source for another label.
+model::Method MethodOf(const CellGrid& grid, std::span<const std::size_t> index,
+                       model::Method fallback);
 
 /// Whether the grid names `key` as an axis or a fixed value.
 bool Mentions(const CellGrid& grid, std::string_view key);

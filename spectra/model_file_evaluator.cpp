@@ -10,8 +10,7 @@
 
 #include "records/excitations.h"
 #include "solver/common/error.h"
-#include "solver/dynamics/simulate.h"
-#include "solver/dynamics/time_stepping.h"
+#include "solver/dynamics/run.h"
 #include "solver/model/builders.h"
 #include "solver/model/deck.h"
 #include "solver/model/multispan.h"
@@ -361,9 +360,7 @@ ModelFileCell ModelFileEvaluator::MakeCell(std::span<const std::size_t> index, b
   // A cell stores maxima, not histories nor the energy ledger (the maxima are the same bits).
   c.control.energy_ledger = false;
   c.control.output_interval_s = 0.0;
-  if (const std::string method = LabelOf(spec_, index, "method"); !method.empty()) {
-    c.control.method = method;
-  }
+  c.control.method = MethodOf(spec_, index, file_.run.method);
   c.scale = NumberOf(spec_, index, "scale", 1.0);
   if (!scale_of_cell_.empty()) c.scale = scale_of_cell_[CellIndex(index)];
   if (factor) c.scale = *factor;
@@ -650,8 +647,7 @@ CellOutcome ModelFileEvaluator::EvaluateAt(std::span<const std::size_t> axis_ind
   const auto start = std::chrono::steady_clock::now();
   const ModelFileCell c = MakeCell(axis_index, true, factor);
   // As `skewbridge run`: run.method picks the integrator, the file's [run] its controls.
-  const dynamics::RunResult run =
-      RunCellModel(*c.model, *c.excitation, c.control, c.control.method == "time-stepping");
+  const dynamics::RunResult run = dynamics::Run(*c.model, *c.excitation, c.control);
 
   CellOutcome out;
   out.status = CellStatusOf(run.status);

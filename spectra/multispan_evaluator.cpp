@@ -8,8 +8,7 @@
 
 #include "records/excitations.h"
 #include "solver/common/error.h"
-#include "solver/dynamics/simulate.h"
-#include "solver/dynamics/time_stepping.h"
+#include "solver/dynamics/run.h"
 #include "solver/model/multispan.h"
 
 namespace skewbridge::spectra {
@@ -26,7 +25,7 @@ struct Cell {
   double w_g_radps = 2.0 * std::numbers::pi;  // T_g = 1 s; cancels out
   double persistency_m = 0.0;                 // L_e = a_g / w_g^2
   records::PulseShape shape = records::PulseShape::kCosine;
-  bool time_stepping = false;
+  model::Method method = model::Method::kEventDriven;
 };
 
 Cell MakeCell(const CellGrid& spec, std::span<const std::size_t> index) {
@@ -36,7 +35,7 @@ Cell MakeCell(const CellGrid& spec, std::span<const std::size_t> index) {
   c.persistency_m = c.a_g_mps2 / (c.w_g_radps * c.w_g_radps);
   c.shape = LabelOf(spec, index, "pulse", "cosine") == "sine" ? records::PulseShape::kSine
                                                               : records::PulseShape::kCosine;
-  c.time_stepping = LabelOf(spec, index, "method", "event-driven") == "time-stepping";
+  c.method = MethodOf(spec, index, model::Method::kEventDriven);
   model::MultiSpanSpec& b = c.bridge;
   b.n_spans = static_cast<int>(NumberOf(spec, index, "spans", 1.0));
   const double Pi_delta = NumberOf(spec, index, "Pi_delta", 1.0);
@@ -236,8 +235,9 @@ CellOutcome MultiSpanEvaluator::Evaluate(std::span<const std::size_t> axis_index
   // A cell stores maxima, not the energy ledger: its work integrals are not computed.
   control.energy_ledger = false;
   control.end_time_s = pulse.Duration() + 2.0 * std::max(excitation_period_s, natural_period_s);
-  if (c.time_stepping) control.time_step_s = 1e-4 * excitation_period_s;
-  const dynamics::RunResult run = RunCellModel(model, pulse, control, c.time_stepping);
+  control.method = c.method;
+  if (c.method == model::Method::kTimeStepping) control.time_step_s = 1e-4 * excitation_period_s;
+  const dynamics::RunResult run = dynamics::Run(model, pulse, control);
 
   CellOutcome out;
   out.status = CellStatusOf(run.status);

@@ -9,8 +9,7 @@
 #include <string>
 
 #include "solver/common/error.h"
-#include "solver/dynamics/simulate.h"
-#include "solver/dynamics/time_stepping.h"
+#include "solver/dynamics/run.h"
 #include "solver/model/builders.h"
 #include "solver/model/deck.h"
 
@@ -102,10 +101,6 @@ ExcitationScales PulseScales(const PointParameters& p) {
     return {p.pulse_a_g_mps2, PrincipalW0x(PilotBridgeDeck()) / p.w0_over_wg};
   }
   return {p.pulse_a_g_mps2, p.pulse_w_g_radps};
-}
-
-const char* ToString(Method method) {
-  return method == Method::kTimeStepping ? "time-stepping" : "event-driven";
 }
 
 DimensionalPoint ToDimensional(const PointParameters& p, const ExcitationScales& scales) {
@@ -210,9 +205,9 @@ model::RunControl PointControl(const DimensionalPoint& point, const Excitation& 
   // A cell stores no energy: the ledger's forms would only cost time (the responses are the same
   // bits without them).
   control.energy_ledger = false;
+  control.method = point.method;
   if (point.method == Method::kTimeStepping) {
     control.time_step_s = point.time_step_s;
-    control.method = "time-stepping";
   }
   return control;
 }
@@ -229,15 +224,7 @@ PointRun MakePointRun(const DimensionalPoint& point, const Excitation& excitatio
 PointResult EvaluatePoint(const DimensionalPoint& point, const Excitation& excitation) {
   const model::Model model = model::BuildDeckModel(point.deck, "point");
   const model::RunControl control = PointControl(point, excitation, model::LowestFrequency(model));
-
-  dynamics::RunResult run;
-  if (point.method == Method::kTimeStepping) {
-    dynamics::TimeSteppingWorkspace workspace(model);
-    run = dynamics::SimulateTimeStepping(model, excitation, control, workspace);
-  } else {
-    dynamics::SimulationWorkspace workspace(model);
-    run = dynamics::Simulate(model, excitation, control, workspace);
-  }
+  const dynamics::RunResult run = dynamics::Run(model, excitation, control);
 
   PointResult r;
   r.status = run.status;

@@ -30,14 +30,9 @@ enum class Family {
   kPilotBridge,  ///< the two-span pilot bridge of [docs/theory.md §6], both abutments
 };
 
-/// How a point is integrated [docs/theory.md §3].
-enum class Method {
-  kEventDriven,   ///< dynamics::Simulate (the reference)
-  kTimeStepping,  ///< dynamics::SimulateTimeStepping, Moreau-Jean, the independent check
-};
-
-/// "event-driven" or "time-stepping".
-const char* ToString(Method method);
+/// How a point is integrated [docs/theory.md §3]: the method of the run (model::ToString spells
+/// it).
+using Method = model::Method;
 
 /// The dimensionless coordinates of one point, with the defaults of the studies of
 /// [docs/theory.md §6] (xi = 5 %, eps_N = 0.5).

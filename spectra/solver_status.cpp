@@ -1,7 +1,6 @@
 #include "spectra/solver_status.h"
 
 #include "solver/dynamics/simulate.h"
-#include "solver/dynamics/time_stepping.h"
 #include "spectra/cell.h"
 
 namespace skewbridge::spectra {
@@ -22,16 +21,6 @@ std::int32_t CellStatusOf(dynamics::RunStatus status) {
       return kStatusEventCascade;
   }
   return kStatusStepLimit;  // unreachable: every enumerator is handled above
-}
-
-dynamics::RunResult RunCellModel(const model::Model& model, const Excitation& excitation,
-                                 const model::RunControl& control, bool time_stepping) {
-  if (time_stepping) {
-    dynamics::TimeSteppingWorkspace workspace(model);
-    return dynamics::SimulateTimeStepping(model, excitation, control, workspace);
-  }
-  dynamics::SimulationWorkspace workspace(model);
-  return dynamics::Simulate(model, excitation, control, workspace);
 }
 
 std::vector<std::pair<std::int32_t, std::string>> SolverStatusNames() {

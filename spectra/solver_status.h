@@ -27,11 +27,6 @@ enum SolverStatus : std::int32_t {
 /// The cell status of a run that ended with `status`.
 std::int32_t CellStatusOf(dynamics::RunStatus status);
 
-/// One run of a cell's model with a workspace of its own: Moreau-Jean time-stepping when
-/// `time_stepping`, else the event-driven integrator (what `skewbridge run` does for run.method).
-dynamics::RunResult RunCellModel(const model::Model& model, const Excitation& excitation,
-                                 const model::RunControl& control, bool time_stepping);
-
 /// The names of the SolverStatus codes, as CellEvaluator::StatusNames returns them.
 std::vector<std::pair<std::int32_t, std::string>> SolverStatusNames();
 

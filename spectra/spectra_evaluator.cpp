@@ -175,8 +175,7 @@ spectra::PointParameters SpectraEvaluator::Parameters(std::span<const std::size_
   p.pulse_a_g_mps2 = NumberOf(spec_, index, "a_g_g", 0.5) * kStandardGravity_mps2;
   p.pulse = LabelOf(spec_, index, "pulse") == "sine" ? records::PulseShape::kSine
                                                      : records::PulseShape::kCosine;
-  p.method = LabelOf(spec_, index, "method") == "time-stepping" ? spectra::Method::kTimeStepping
-                                                                : spectra::Method::kEventDriven;
+  p.method = MethodOf(spec_, index, spectra::Method::kEventDriven);
   *record = nullptr;
   if (!records_.empty()) {
     const std::string label = LabelOf(spec_, index, "record");

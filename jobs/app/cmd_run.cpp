@@ -28,8 +28,8 @@
 #include "records/measures.h"
 #include "records/record_set.h"
 #include "solver/common/error.h"
+#include "solver/dynamics/run.h"
 #include "solver/dynamics/simulate.h"
-#include "solver/dynamics/time_stepping.h"
 #include "solver/model/model_file.h"
 #include "solver/model/plausibility.h"
 #include "spectra/model_file_evaluator.h"
@@ -114,10 +114,11 @@ void WriteHdf5(const std::filesystem::path& path, const std::string& model_text,
   const std::filesystem::path temporary = path.string() + ".partial";
   try {
     // The step h means nothing to the event-driven integrator: NaN says so in the file.
-    const double time_step_s = control.method == "time-stepping"
+    const double time_step_s = control.method == model::Method::kTimeStepping
                                    ? control.time_step_s
                                    : std::numeric_limits<double>::quiet_NaN();
-    jobs::WriteRunHdf5(temporary, model, r, model_text, control.method, time_step_s, origin);
+    jobs::WriteRunHdf5(temporary, model, r, model_text, model::ToString(control.method),
+                       time_step_s, origin);
   } catch (const jobs::h5::H5Error& e) {
     std::error_code ignored;
     std::filesystem::remove(temporary, ignored);
@@ -313,10 +314,9 @@ void Execute(const RunInput& in, const RunOptions& o) {
     control.output_interval_s = 0.01;
   }
   const model::Model& model = *in.model;
-  const bool time_stepping = control.method == "time-stepping";
-  const dynamics::RunResult r =
-      spectra::RunCellModel(model, *in.excitation, control, time_stepping);
-  std::printf("%s: method %s", in.title.c_str(), control.method.c_str());
+  const bool time_stepping = control.method == model::Method::kTimeStepping;
+  const dynamics::RunResult r = dynamics::Run(model, *in.excitation, control);
+  std::printf("%s: method %s", in.title.c_str(), model::ToString(control.method));
   if (time_stepping) {
     std::printf(" (h = %.6g s)", control.time_step_s);
   }

@@ -65,7 +65,7 @@ void CheckRunSize(const RunControl& run, double excitation_duration_s,
                " history samples; allowed at most 1e7 (a larger interval, or 0 for none)");
     }
   }
-  if (run.method == "time-stepping") {
+  if (run.method == Method::kTimeStepping) {
     const double steps = t_end / run.time_step_s;
     if (!(steps <= static_cast<double>(run.max_steps))) {
       Fail(where, "run.time_step_s",
@@ -247,7 +247,10 @@ void ReadRun(Section& s, RunControl& run) {
       s.Number("simultaneity_tol_s").value_or(run.simultaneity_tolerance_s);
   CheckNonNegative(run.simultaneity_tolerance_s, s.Field("simultaneity_tol_s"),
                    s.At("simultaneity_tol_s"));
-  run.method = s.String("method", {"event-driven", "time-stepping"}).value_or(run.method);
+  if (const auto method =
+          s.String("method", {ToString(Method::kEventDriven), ToString(Method::kTimeStepping)})) {
+    run.method = *ParseMethod(*method);
+  }
   run.linear_algebra =
       s.String("linear_algebra", {"auto", "dense", "sparse"}).value_or(run.linear_algebra);
   run.time_step_s = s.Number("time_step_s").value_or(run.time_step_s);

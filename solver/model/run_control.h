@@ -6,8 +6,21 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 
 namespace skewbridge::model {
+
+/// The integrator of a run (run.method).
+enum class Method {
+  kEventDriven,   ///< "event-driven": dynamics::Simulate, the reference
+  kTimeStepping,  ///< "time-stepping": dynamics::SimulateTimeStepping, Moreau-Jean, the check
+};
+
+/// The spelling of `method` in run.method, sweep specs and stored files.
+const char* ToString(Method method);
+
+/// The method spelt `name` ("event-driven" or "time-stepping"), or nothing for another.
+std::optional<Method> ParseMethod(std::string_view name);
 
 /// Integration controls from the [run] section (the integrator defines their precise use).
 struct RunControl {
@@ -18,7 +31,7 @@ struct RunControl {
   double absolute_tolerance = 1e-12;       ///< run.abs_tol (state units)
   double accumulation_threshold = 1e-6;    ///< run.accumulation_threshold (scaled, see the format)
   double simultaneity_tolerance_s = 1e-9;  ///< run.simultaneity_tol_s for simultaneous impacts
-  std::string method = "event-driven";     ///< run.method: "event-driven" | "time-stepping"
+  Method method = Method::kEventDriven;    ///< run.method: the integrator
   double time_step_s = 1e-4;               ///< run.time_step_s (time-stepping only)
   long max_steps = 10'000'000;             ///< run.max_steps
   /// run.linear_algebra: "auto" | "dense" | "sparse", the time-stepping integrator's

@@ -125,7 +125,21 @@ TEST(ModelFile, ValidTextGivesTheDeckItDescribes) {
   EXPECT_EQ(file.excitation.shape, ExcitationSpec::PulseShape::kSine);
   EXPECT_EQ(file.excitation.direction, Eigen::Vector2d::UnitX());
   EXPECT_FALSE(file.run.end_time_s.has_value());
-  EXPECT_EQ(file.run.method, "event-driven");
+  EXPECT_EQ(file.run.method, model::Method::kEventDriven);
+}
+
+TEST(ModelFile, RunMethodIsTheEnumOfItsSpelling) {
+  const ModelFile file = ParseModelString(
+      Replace(kValid, "[excitation]", "[run]\nmethod = \"time-stepping\"\n[excitation]"),
+      "bridge.toml");
+  EXPECT_EQ(file.run.method, model::Method::kTimeStepping);
+  for (const model::Method m : {model::Method::kEventDriven, model::Method::kTimeStepping}) {
+    EXPECT_EQ(model::ParseMethod(model::ToString(m)), m);
+  }
+  EXPECT_EQ(std::string(model::ToString(model::Method::kTimeStepping)), "time-stepping");
+  EXPECT_EQ(std::string(model::ToString(model::Method::kEventDriven)), "event-driven");
+  EXPECT_FALSE(model::ParseMethod("Event-driven").has_value());
+  EXPECT_FALSE(model::ParseMethod("").has_value());
 }
 
 TEST(ModelFile, AlternativeSpellingsAgree) {

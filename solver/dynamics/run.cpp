@@ -1,0 +1,21 @@
+#include "solver/dynamics/run.h"
+
+#include "solver/dynamics/time_stepping.h"
+
+namespace skewbridge::dynamics {
+
+RunResult Run(const model::Model& model, const Excitation& excitation,
+              const model::RunControl& control, const InitialState& initial) {
+  switch (control.method) {
+    case model::Method::kTimeStepping: {
+      TimeSteppingWorkspace workspace(model);
+      return SimulateTimeStepping(model, excitation, control, workspace, initial);
+    }
+    case model::Method::kEventDriven:
+      break;
+  }
+  SimulationWorkspace workspace(model);
+  return Simulate(model, excitation, control, workspace, initial);
+}
+
+}  // namespace skewbridge::dynamics
