@@ -4,6 +4,8 @@
 #include <limits>
 
 #include "solver/common/error.h"
+#include "spectra/grid.h"
+#include "spectra/model_file_evaluator.h"
 
 namespace skewbridge::jobs {
 
@@ -41,6 +43,14 @@ CubeLayout MakeCubeLayout(const CellEvaluator& evaluator, const std::vector<std:
     layout.status_names.push_back(entry);
   }
   return layout;
+}
+
+std::vector<model::Method> SweepMethods(const SweepSpec& spec) {
+  model::Method fallback = model::Method::kEventDriven;
+  if (spec.family == "model-file" && !spectra::Mentions(spec, "method")) {
+    fallback = model::ParseModelFile(spec.model_path).run.method;
+  }
+  return spectra::MethodsOf(spec, fallback);
 }
 
 void CubeData::Reset(std::uint64_t cells, std::size_t response_count) {

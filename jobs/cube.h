@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "jobs/cell.h"
+#include "jobs/sweep_spec.h"
 
 namespace skewbridge::jobs {
 
@@ -21,6 +22,8 @@ struct CubeLayout {
   std::size_t evaluator_responses = 0;
   /// Every status code that may appear, with its name (reserved codes included).
   std::vector<std::pair<std::int32_t, std::string>> status_names;
+  /// The integrators the cells run with: the cube stores each one's policy (SweepMethods).
+  std::vector<model::Method> methods = {model::Method::kEventDriven};
 };
 
 /// The layout for an evaluator: its responses (all, or those named in `requested`, in that
@@ -29,6 +32,12 @@ struct CubeLayout {
 /// @throws InputError("sweep.responses: unknown response ...") naming the allowed ones.
 CubeLayout MakeCubeLayout(const CellEvaluator& evaluator, const std::vector<std::string>& requested,
                           const std::string& source);
+
+/// The integrators a sweep's cells run with, each once: the labels of its `method` (axis or
+/// fixed value), else the model file's run.method for the model-file family, else the
+/// event-driven integrator.
+/// @throws InputError for a method label or a model file the evaluator would refuse too.
+std::vector<model::Method> SweepMethods(const SweepSpec& spec);
 
 /// The per-cell arrays of a cube.
 struct CubeData {

@@ -262,9 +262,10 @@ void WriteRunHdf5(const std::filesystem::path& path, const model::Model& model,
   h5::SetAttr(f, "n_bodies", static_cast<std::int64_t>(model.n_bodies()));
   h5::SetAttr(f, "n_dof", static_cast<std::int64_t>(model.n_dof()));
   h5::SetAttr(f, "contact_names", ContactNames(model));
-  // The thresholds and rules of the event-driven integrator (a run of either method stores
-  // them: they are part of the program that made the file).
-  h5::WriteEventPolicy(f, spectra::EvaluatorEventPolicy());
+  // The thresholds and rules of the integrator that ran.
+  const std::optional<model::Method> ran = model::ParseMethod(method);
+  SB_DEMAND(ran.has_value(), "WriteRunHdf5: unknown method");
+  h5::WriteMethodPolicies(f, {*ran});
 
   const DofLabels labels = MakeDofLabels(model.n_bodies());
   WriteSummary(f, model, result, labels);

@@ -491,7 +491,8 @@ SweepReport RunSweep(const SweepSpec& spec, const CellEvaluator& evaluator, Tran
   report.rank = transport.Rank();
   report.ranks = transport.Size();
   const bool root = transport.Rank() == 0;
-  const CubeLayout layout = MakeCubeLayout(evaluator, spec.responses, spec.source);
+  CubeLayout layout = MakeCubeLayout(evaluator, spec.responses, spec.source);
+  layout.methods = SweepMethods(spec);
 
   // Every rank read and checksummed the inputs itself: all must have seen rank 0's bytes.
   const std::string root_identity = transport.BroadcastText(root ? spec.Hash() : "");

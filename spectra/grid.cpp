@@ -1,5 +1,6 @@
 #include "spectra/grid.h"
 
+#include <algorithm>
 #include <limits>
 #include <optional>
 
@@ -95,6 +96,24 @@ model::Method MethodOf(const CellGrid& grid, std::span<const std::size_t> index,
                        model::Method fallback) {
   const std::string label = LabelOf(grid, index, "method");
   return label.empty() ? fallback : ParseMethodLabel(grid, label);
+}
+
+std::vector<model::Method> MethodsOf(const CellGrid& grid, model::Method fallback) {
+  std::vector<std::string> labels;
+  if (const Axis* axis = grid.FindAxis("method")) {
+    labels = axis->labels;
+  } else if (const FixedValue* fixed = grid.FindFixed("method")) {
+    labels = {fixed->label};
+  }
+  std::vector<model::Method> methods;
+  for (const std::string& label : labels) {
+    const model::Method method = ParseMethodLabel(grid, label);
+    if (std::find(methods.begin(), methods.end(), method) == methods.end()) {
+      methods.push_back(method);
+    }
+  }
+  if (methods.empty()) methods.push_back(fallback);
+  return methods;
 }
 
 bool Mentions(const CellGrid& grid, std::string_view key) {

@@ -158,6 +158,11 @@ std::string LabelOf(const CellGrid& grid, std::span<const std::size_t> index, st
 model::Method MethodOf(const CellGrid& grid, std::span<const std::size_t> index,
                        model::Method fallback);
 
+/// The integrators of all the grid's cells, each once: the labels of its "method" axis or fixed
+/// value, else `fallback`.
+/// @throws InputError as MethodOf.
+std::vector<model::Method> MethodsOf(const CellGrid& grid, model::Method fallback);
+
 /// Whether the grid names `key` as an axis or a fixed value.
 bool Mentions(const CellGrid& grid, std::string_view key);
 

@@ -70,8 +70,8 @@ Datasets CreateLayout(const std::string& path, const SweepSpec& spec, const Cube
     response_links.push_back(ResponseLinkName(r.name, spec));
   }
   SetAttr(g, "response_links", response_links);
-  // The event-driven integrator's thresholds and rules that computed the cells.
-  WriteEventPolicy(g, spectra::EvaluatorEventPolicy());
+  // The thresholds and rules of the integrators that computed the cells.
+  WriteMethodPolicies(g, layout.methods);
 
   Id fixed = CreateGroup(g, "fixed");
   std::vector<std::string> fixed_keys;

@@ -1,8 +1,10 @@
 #pragma once
 /// @file
-/// The event policy of the integrator as HDF5 attributes, so that a run file or a cube says
-/// which thresholds and rules made it (docs/hdf5-layout.md, "The event policy").
+/// The integrators' policies as HDF5 attributes, so that a run file or a cube says which
+/// thresholds and rules made it (docs/hdf5-layout.md, "The event policy"): `event_policy` for the
+/// event-driven integrator, `time_stepping_policy` for Moreau-Jean.
 
+#include <string>
 #include <vector>
 #include "jobs/h5/h5.h"
 
@@ -10,10 +12,17 @@
 
 namespace skewbridge::jobs::h5 {
 
-/// Creates the group `event_policy` under `parent` with one attribute per member of the policy
+/// Creates the group `group` under `parent` with one attribute per member of the policy
 /// `entries` (schema::Entries of the policy: float64, or int64 for counts and rules) and the
 /// string lists `keys`, `units` and `relative_to` (the scale each member multiplies, "" for
 /// none).
-void WriteEventPolicy(hid_t parent, const std::vector<schema::Entry>& entries);
+void WritePolicy(hid_t parent, const std::string& group, const std::vector<schema::Entry>& entries);
+
+/// The group name of the policy of `method`: "event_policy" or "time_stepping_policy".
+const char* PolicyGroup(model::Method method);
+
+/// Writes, for each of `methods` once, the policy the evaluators run it with
+/// (spectra::EvaluatorPolicy) in its group (PolicyGroup).
+void WriteMethodPolicies(hid_t parent, const std::vector<model::Method>& methods);
 
 }  // namespace skewbridge::jobs::h5

@@ -9,6 +9,7 @@
 
 #include "solver/common/error.h"
 #include "solver/dynamics/corner_travel.h"
+#include "solver/dynamics/run_scales.h"
 #include "solver/lcp/enumeration.h"
 #include "solver/model/builders.h"
 
@@ -150,9 +151,6 @@ Eigen::Vector2d MeanAcceleration(const Excitation& excitation, double t0_s, doub
 
 namespace {
 
-// Relative compliance of the normal rows of the step's LCP (see Run).
-constexpr double kNormalCompliance = 1e-9;
-
 int StateOf(double P_N, double gamma_T, double v_tol) {
   if (P_N <= 0.0) {
     return static_cast<int>(ContactState::kOpen);
@@ -164,29 +162,13 @@ int StateOf(double P_N, double gamma_T, double v_tol) {
                                         : ContactState::kSlideNegative);
 }
 
-// The largest |a_g| of the excitation from its pieces, for the velocity scale of v_tol.
-double PeakAcceleration(const Excitation& excitation) {
-  double a_peak = 0.0;
-  for (double t = 0.0; t < excitation.Duration();) {
-    const ExcitationPiece piece = excitation.PieceAt(t);
-    a_peak =
-        std::max({a_peak, piece.a_begin.norm(),
-                  piece.a_begin.norm() + piece.cos_amplitude.norm() + piece.sin_amplitude.norm() +
-                      piece.slope.norm() * std::min(piece.t_end - t, 1e3)});
-    if (!(piece.t_end > t)) {
-      break;
-    }
-    t = piece.t_end;
-  }
-  return a_peak;
-}
-
 }  // namespace
 
 RunResult SimulateTimeStepping(const model::Model& model, const Excitation& excitation,
                                const model::RunControl& control, TimeSteppingWorkspace& ws,
-                               const InitialState& initial) {
+                               const InitialState& initial, const TimeSteppingPolicy& policy) {
   SB_DEMAND(&ws.model() == &model, "time-stepping workspace built for another model");
+  ValidatePolicy(policy);
   const int n = model.n_dof();
   const int nc = model.n_contacts();
   const double h = control.time_step_s;
@@ -211,17 +193,19 @@ RunResult SimulateTimeStepping(const model::Model& model, const Excitation& exci
   result.energy.initial_J = model.MechanicalEnergy(q, u);
 
   const Eigen::VectorXd& mass = model.mass_diagonal();
-  double v_ref = PeakAcceleration(excitation);
+  // The velocity scale a_peak / omega_1, a_peak and omega_1 as the event-driven integrator takes
+  // them (ExcitationPeak, LowestFrequency).
+  double v_ref = ExcitationPeak(excitation, policy.ramp_horizon_s);
   {
-    // Velocity scale a_peak / omega_1 as the event-driven integrator uses.
     const double omega_min = model::LowestFrequency(model);
-    v_ref /= omega_min > 1e-9 ? omega_min : 1.0;
+    v_ref /=
+        omega_min > policy.free_body_omega_floor_radps ? omega_min : policy.free_body_omega_radps;
     v_ref = std::max(v_ref, u.cwiseAbs().maxCoeff());
     if (v_ref == 0.0) {
       v_ref = 1.0;
     }
   }
-  const double v_tol = 1e-9 * v_ref;
+  const double v_tol = policy.velocity_tolerance * v_ref;
 
   Histories& hist = result.histories;
   hist.n_dof = n;
@@ -232,7 +216,8 @@ RunResult SimulateTimeStepping(const model::Model& model, const Excitation& exci
                                 const Vec& uu1, double step) {
     while (record) {
       const double ts = control.output_interval_s * static_cast<double>(next_sample);
-      if (ts > t1 + 1e-12 * std::max(1.0, t1) || ts > t_end + 1e-12) {
+      if (ts > t1 + policy.output_time_band * std::max(1.0, t1) ||
+          ts > t_end + policy.output_time_band) {
         break;
       }
       const double s = t1 > t0 ? std::clamp((ts - t0) / (t1 - t0), 0.0, 1.0) : 1.0;
@@ -262,7 +247,8 @@ RunResult SimulateTimeStepping(const model::Model& model, const Excitation& exci
   std::fill(ws.state_previous_.begin(), ws.state_previous_.end(), 0);
   record_until(0.0, q, u, 0.0, q, u, 0.0);
 
-  const long n_steps = std::max(1L, static_cast<long>(std::ceil(t_end / h - 1e-9)));
+  const long n_steps =
+      std::max(1L, static_cast<long>(std::ceil(t_end / h - policy.step_count_band)));
   double last_impact_t = -std::numeric_limits<double>::infinity();
   double t = 0.0;
   for (long k = 0; k < n_steps; ++k) {
@@ -302,7 +288,7 @@ RunResult SimulateTimeStepping(const model::Model& model, const Excitation& exci
     contact::Evaluate(model, q, u, ws.kin_);
     ws.active_.clear();
     for (int c = 0; c < nc; ++c) {
-      if (ws.kin_.gap_m[c] + 0.5 * hk * ws.kin_.gamma_N[c] <= 0.0) {
+      if (ws.kin_.gap_m[c] + policy.active_set_lookahead * hk * ws.kin_.gamma_N[c] <= 0.0) {
         ws.active_.push_back(c);
       }
     }
@@ -361,7 +347,7 @@ RunResult SimulateTimeStepping(const model::Model& model, const Excitation& exci
         ws.b_[2 * ka + j] = 0.0;
       }
       {
-        // A compliance of kNormalCompliance of the largest normal entry per unit impulse
+        // A compliance of normal_compliance of the largest normal entry per unit impulse
         // (gamma_N + eps gamma_N,A = -c P_N at a contact that carries): with a deck clamped
         // between two closed faces the rigid problem has a squeeze of both faces among its
         // solutions (it changes no velocity), and Lemke's algorithm may return one, a prestress
@@ -373,7 +359,7 @@ RunResult SimulateTimeStepping(const model::Model& model, const Excitation& exci
           top = std::max(top, std::abs(A(j, j)));
         }
         for (int j = 0; j < ka; ++j) {
-          A(j, j) += kNormalCompliance * top;
+          A(j, j) += policy.normal_compliance * top;
         }
       }
       lcp::LcpSolution& sol = ws.solutions_[static_cast<std::size_t>(3 * ka)];

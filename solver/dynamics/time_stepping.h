@@ -18,16 +18,19 @@
 ///
 /// (Newton's law at velocity level, Coulomb's law in the split form of docs/theory.md §3). A
 /// contact is active when its predicted gap g_k + (h / 2) gamma_N,k <= 0 [Acary and Brogliato 2008,
-/// §10.1.2, the index set I_1 with gamma = 1/2]. Solved with the same Lemke solver
-/// (solver/lcp/lemke.h). With theta = 1/2 the contact-free scheme is the trapezoidal rule:
-/// second order without contacts, first order with impacts.
+/// §10.1.2, the index set I_1 with gamma = 1/2]. Every threshold of the scheme is a member of
+/// TimeSteppingPolicy (solver/dynamics/time_stepping_policy.h), its defaults these values. Solved
+/// with the same Lemke solver (solver/lcp/lemke.h). With theta = 1/2 the contact-free scheme is the
+/// trapezoidal rule: second order without contacts, first order with impacts.
 ///
 /// The RunResult is filled as by the event-driven integrator, with these readings:
 /// - maxima over the grid points (q is piecewise linear in t, so they are its true maxima);
 /// - the decks' corner travels (max_travel_m) over the grid points, as the maxima;
 /// - impacts: steps in which a contact has a positive P_N while it had none in the previous
 ///   step (one event entry per such contact); detachments: the reverse; stick / slip
-///   transitions: changes of a loaded contact between |gamma_T,k+1| <= v_tol and above;
+///   transitions: changes of a loaded contact between |gamma_T,k+1| <= v_tol and above, v_tol =
+///   TimeSteppingPolicy::velocity_tolerance max(a_peak / omega_1, |u(0)|_inf) with a_peak and
+///   omega_1 as the event-driven integrator takes them (ExcitationPeak, model::LowestFrequency);
 /// - free_steps counts steps without an active contact, rk_steps steps with an LCP solve;
 ///   plastic_closures is 0 (the scheme needs no accumulation threshold);
 /// - min_impact_separation_s: the smallest time between two impact steps (a multiple of h);
@@ -55,6 +58,7 @@
 #include "solver/contact/kinematics.h"
 #include "solver/dynamics/run_result.h"
 #include "solver/dynamics/simulate.h"
+#include "solver/dynamics/time_stepping_policy.h"
 #include "solver/lcp/lemke.h"
 #include "solver/model/model.h"
 #include "solver/model/run_control.h"
@@ -85,7 +89,7 @@ class TimeSteppingWorkspace {
  private:
   friend RunResult SimulateTimeStepping(const model::Model&, const Excitation&,
                                         const model::RunControl&, TimeSteppingWorkspace&,
-                                        const InitialState&);
+                                        const InitialState&, const TimeSteppingPolicy&);
 
   /// Factorises W for step h (no-op when h is the factorised step).
   void Factorise(double h_s);
@@ -119,14 +123,16 @@ class TimeSteppingWorkspace {
 };
 
 /// One Moreau-Jean run of `model` under `excitation` with step control.time_step_s up to
-/// control.EndTime(excitation.Duration()) from `initial`.
+/// control.EndTime(excitation.Duration()) from `initial`, with the thresholds of `policy`.
 /// @pre workspace built for `model`.
-/// @throws InputError when time_step_s <= 0 or the initial state has the wrong size.
+/// @throws InputError when time_step_s <= 0, the initial state has the wrong size or a member of
+/// `policy` is outside its range.
 /// @return status kLcpFailure (with the LCP status and time in the message) when Lemke fails,
 /// kStepLimit when more than control.max_steps steps would be needed (run stops there).
 RunResult SimulateTimeStepping(const model::Model& model, const Excitation& excitation,
                                const model::RunControl& control, TimeSteppingWorkspace& workspace,
-                               const InitialState& initial = {});
+                               const InitialState& initial = {},
+                               const TimeSteppingPolicy& policy = {});
 
 /// The mean ground acceleration (m/s^2) over [t0_s, t1_s], exact for the excitation's pieces.
 /// @pre t1_s > t0_s >= 0.

@@ -2,7 +2,8 @@
 # `skewbridge run --out`: the HDF5 file has the layout of docs/run-output.md and agrees with the
 # CSV text and the printed summary (run_h5_check.py), with the root attributes method and
 # time_step_s naming the integrator of run.method (event-driven: NaN step; time-stepping: the
-# model's run.time_step_s); histories only when requested; a bad model
+# model's run.time_step_s) and the policy of that integrator stored (event_policy or
+# time_stepping_policy); histories only when requested; a bad model
 # or an unwritable path leaves neither FILE.h5 nor FILE.h5.partial.
 source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
 args exe root -- "$@"
@@ -23,6 +24,17 @@ printf 'method = "time-stepping"\ntime_step_s = 2e-4\n' >>"$work/ts.toml"
   fail "time-stepping model: exit status $? ($(cat "$work/err"))"
 "$python" "$root/tests/app/run_h5_check.py" "$work/T.h5" "$work/T.csv" "$work/ts.toml" \
   "$work/tsummary" time-stepping 2e-4 || fail "time-stepping run file: layout or values"
+"$python" - "$work/T.h5" <<'PY' || fail "time-stepping run file: its policy"
+import sys, h5py
+f = h5py.File(sys.argv[1], "r")
+assert "event_policy" not in f, "a time-stepping run file stores the event-driven policy"
+pol = f["time_stepping_policy"].attrs
+keys = [k.decode() if isinstance(k, bytes) else str(k) for k in pol["keys"]]
+assert keys == ["velocity_tolerance", "free_body_omega_floor_radps", "free_body_omega_radps",
+                "ramp_horizon_s", "active_set_lookahead", "normal_compliance", "step_count_band",
+                "output_time_band"], keys
+assert pol["velocity_tolerance"] == 1e-9 and pol["active_set_lookahead"] == 0.5, dict(pol)
+PY
 
 sed 's/^output_interval_s.*/output_interval_s = 0.0/' "$model" >"$work/nohist.toml"
 "$exe" run "$work/nohist.toml" --out "$work/N.h5" >/dev/null 2>&1 || fail "no histories: exit $?"
@@ -32,6 +44,7 @@ sed 's/^output_interval_s.*/output_interval_s = 0.0/' "$model" >"$work/nohist.to
 import sys, h5py
 without, with_interval = (h5py.File(p, "r") for p in sys.argv[1:3])
 assert "histories" not in without, "histories written though none were requested"
+assert "time_stepping_policy" not in without, "an event-driven run file stores Moreau-Jean's"
 pol = without["event_policy"].attrs
 assert pol["zeno_ratio"] == 0.9 and pol["jam"] == 1, dict(pol)
 assert pol["contact.tie_tolerance"] == 1e-9 and pol["contact.enumeration_unknowns"] == 14, dict(pol)

@@ -2,7 +2,8 @@
 // it visits every member of both structs, names each once in the stored order with its value,
 // refuses a value outside each member's range with one line naming that member (every member
 // tried, at and beyond its bounds), and docs/theory.md §3.16 lists exactly its members with
-// their defaults, units, scales and ranges.
+// their defaults, units, scales and ranges; the same for the time-stepping scheme's policy
+// (TimeSteppingPolicy::Describe) and its table in §3.16.
 
 #include <gtest/gtest.h>
 
@@ -18,6 +19,7 @@
 
 #include "solver/common/error.h"
 #include "solver/dynamics/event_policy.h"
+#include "solver/dynamics/time_stepping_policy.h"
 
 namespace skewbridge::dynamics {
 namespace {
@@ -96,8 +98,9 @@ std::vector<double> OutsideValues(const Entry& e) {
 }
 
 // The policy with the member `name` set to `value` through the description.
-EventPolicy With(const std::string& name, double value) {
-  EventPolicy p;
+template <typename Policy>
+Policy With(const std::string& name, double value) {
+  Policy p;
   schema::Assign(&p, [&](const std::string& n) -> std::optional<double> {
     if (n == name) return value;
     return std::nullopt;
@@ -105,18 +108,21 @@ EventPolicy With(const std::string& name, double value) {
   return p;
 }
 
-TEST(EventPolicySchema, EveryMemberOutsideItsRangeIsRefusedByName) {
+// Every number member of `Policy` just outside its range is refused in the line "`what`: NAME:
+// must be ALLOWED (got VALUE)", its closed bounds are accepted; returns the refusals.
+template <typename Policy>
+int ExpectEveryMemberOutsideItsRangeRefused(const std::string& what) {
   int refused = 0;
-  for (const Entry& e : schema::Entries(EventPolicy{})) {
+  for (const Entry& e : schema::Entries(Policy{})) {
     if (e.kind == schema::Kind::kRule) continue;  // a bool has no value outside
     for (const double bad : OutsideValues(e)) {
-      const EventPolicy p = With(e.name, bad);
+      const Policy p = With<Policy>(e.name, bad);
       try {
         ValidatePolicy(p);
         ADD_FAILURE() << e.name << " = " << bad << " accepted (allowed: " << e.allowed.Text()
                       << ")";
       } catch (const InputError& error) {
-        const std::string expected = "event policy: " + e.name + ": must be " + e.allowed.Text() +
+        const std::string expected = what + ": " + e.name + ": must be " + e.allowed.Text() +
                                      " (got " + schema::FormatNumber(bad) + ")";
         EXPECT_EQ(std::string(error.what()), expected);
         ++refused;
@@ -124,14 +130,37 @@ TEST(EventPolicySchema, EveryMemberOutsideItsRangeIsRefusedByName) {
     }
     // The closed bounds themselves are allowed.
     if (std::isfinite(e.allowed.lower) && !e.allowed.lower_open) {
-      EXPECT_NO_THROW(ValidatePolicy(With(e.name, e.allowed.lower))) << e.name;
+      EXPECT_NO_THROW(ValidatePolicy(With<Policy>(e.name, e.allowed.lower))) << e.name;
     }
     if (std::isfinite(e.allowed.upper) && !e.allowed.upper_open) {
-      EXPECT_NO_THROW(ValidatePolicy(With(e.name, e.allowed.upper))) << e.name;
+      EXPECT_NO_THROW(ValidatePolicy(With<Policy>(e.name, e.allowed.upper))) << e.name;
     }
   }
-  EXPECT_GE(refused, 2 * 30);  // every number member has at least one side and NaN or a count
-  EXPECT_NO_THROW(ValidatePolicy(EventPolicy{}));
+  EXPECT_NO_THROW(ValidatePolicy(Policy{}));
+  return refused;
+}
+
+TEST(EventPolicySchema, EveryMemberOutsideItsRangeIsRefusedByName) {
+  // Every number member has at least one side and NaN or a count.
+  EXPECT_GE(ExpectEveryMemberOutsideItsRangeRefused<EventPolicy>("event policy"), 2 * 30);
+}
+
+TEST(TimeSteppingPolicySchema, DescribesEveryMemberAndRefusesEachOutsideItsRange) {
+  EXPECT_EQ(schema::MemberCount<TimeSteppingPolicy>(), 8u);
+  EXPECT_TRUE(schema::DescribesEveryMember<TimeSteppingPolicy>());
+  const std::vector<Entry> entries = schema::Entries(TimeSteppingPolicy{});
+  ASSERT_EQ(entries.size(), 8u);
+  std::set<std::string> names;
+  for (const Entry& e : entries) {
+    EXPECT_TRUE(names.insert(e.name).second) << e.name << " listed twice";
+    EXPECT_EQ(e.kind, schema::Kind::kReal) << e.name;
+  }
+  EXPECT_EQ(entries.front().name, "velocity_tolerance");
+  EXPECT_EQ(entries.front().value, 1e-9);
+  EXPECT_EQ(entries.front().relative_to, "v_ref");
+  // Each of the 8 members has a finite bound and NaN outside.
+  EXPECT_GE(ExpectEveryMemberOutsideItsRangeRefused<TimeSteppingPolicy>("time-stepping policy"),
+            2 * 8);
 }
 
 // The cells of a Markdown table row, trimmed, with escaped bars kept as written:
@@ -156,16 +185,19 @@ std::vector<std::string> Cells(const std::string& row) {
   return cells;
 }
 
-TEST(EventPolicySchema, TheoryTableListsExactlyTheDescribedMembers) {
+// The rows of the first table of docs/theory.md §3.16 after the line that starts with `marker`
+// (the section's heading for the event policy), after the table's header and separator lines.
+std::vector<std::string> TheoryTableAfter(const std::string& marker) {
   const std::string path = std::string(SKEWBRIDGE_TEST_DATA_DIR) + "/../../docs/theory.md";
   std::ifstream in(path);
-  ASSERT_TRUE(in) << path;
-  // The first table of §3.16, after its header and separator lines.
+  EXPECT_TRUE(in) << path;
   std::vector<std::string> rows;
-  bool in_section = false, in_table = false;
+  bool in_section = false, after_marker = false, in_table = false;
   for (std::string line; std::getline(in, line);) {
     if (line.rfind("### ", 0) == 0) in_section = line.rfind("### 3.16 ", 0) == 0;
     if (!in_section) continue;
+    if (line.rfind(marker, 0) == 0) after_marker = true;
+    if (!after_marker) continue;
     if (line.rfind("|", 0) == 0) {
       in_table = true;
       rows.push_back(line);
@@ -173,10 +205,17 @@ TEST(EventPolicySchema, TheoryTableListsExactlyTheDescribedMembers) {
       break;
     }
   }
-  ASSERT_GE(rows.size(), 2u) << "no table in §3.16 of " << path;
-  rows.erase(rows.begin(), rows.begin() + 2);
+  EXPECT_GE(rows.size(), 2u) << "no table after \"" << marker << "\" in §3.16 of " << path;
+  if (rows.size() >= 2) rows.erase(rows.begin(), rows.begin() + 2);
+  return rows;
+}
 
-  const std::vector<std::string> expected = schema::MarkdownRows(EventPolicy{});
+// The table's rows list exactly the described members of `policy`, with the described columns,
+// each with a reason.
+template <typename Policy>
+void ExpectTableListsExactlyTheDescribedMembers(const std::vector<std::string>& rows,
+                                                const Policy& policy) {
+  const std::vector<std::string> expected = schema::MarkdownRows(policy);
   std::string generated;
   for (const std::string& row : expected) generated += row.substr(0, row.size() - 1) + " why |\n";
   ASSERT_EQ(rows.size(), expected.size())
@@ -193,6 +232,15 @@ TEST(EventPolicySchema, TheoryTableListsExactlyTheDescribedMembers) {
     }
     EXPECT_FALSE(doc.back().empty()) << "row " << i + 1 << " gives no reason: " << rows[i];
   }
+}
+
+TEST(EventPolicySchema, TheoryTableListsExactlyTheDescribedMembers) {
+  ExpectTableListsExactlyTheDescribedMembers(TheoryTableAfter("### 3.16 "), EventPolicy{});
+}
+
+TEST(TimeSteppingPolicySchema, TheoryTableListsExactlyTheDescribedMembers) {
+  ExpectTableListsExactlyTheDescribedMembers(
+      TheoryTableAfter("#### The time-stepping scheme's thresholds"), TimeSteppingPolicy{});
 }
 
 }  // namespace

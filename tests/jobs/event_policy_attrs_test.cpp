@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "solver/dynamics/event_policy.h"
+#include "solver/dynamics/time_stepping_policy.h"
 
 namespace skewbridge::jobs::h5 {
 namespace {
@@ -29,7 +30,7 @@ TEST(EventPolicyAttrs, EveryMemberRoundTripsThroughAFileWithItsUnitAndScale) {
   const std::string path = ::testing::TempDir() + "event_policy_attrs_test.h5";
   {
     Id file = CreateFile(path);
-    WriteEventPolicy(file.get(), entries);
+    WritePolicy(file.get(), "event_policy", entries);
   }
   {
     Id file = OpenFile(path, false);
@@ -55,6 +56,42 @@ TEST(EventPolicyAttrs, EveryMemberRoundTripsThroughAFileWithItsUnitAndScale) {
     EXPECT_EQ(GetDoubleAttr(group.get(), "contact.contact_compliance"), 1e-7);
     EXPECT_EQ(GetDoubleAttr(group.get(), "contact.impact_compliance"), 4e-8);
     EXPECT_EQ(GetIntAttr(group.get(), "contact.enumeration_unknowns"), 9);
+  }
+  std::filesystem::remove(path);
+}
+
+// Each method's policy in its own group, written once whatever the repeats: a run file of one
+// method carries that method's thresholds only, a cube of both carries both.
+TEST(EventPolicyAttrs, EachMethodStoresItsOwnPolicy) {
+  const std::string path = ::testing::TempDir() + "method_policies_test.h5";
+  const auto groups = [&](const std::vector<model::Method>& methods) {
+    {
+      Id file = CreateFile(path);
+      WriteMethodPolicies(file.get(), methods);
+    }
+    Id file = OpenFile(path, false);
+    std::vector<std::string> out;
+    for (const char* name : {"event_policy", "time_stepping_policy"}) {
+      if (Exists(file.get(), name)) out.push_back(name);
+    }
+    return out;
+  };
+  using V = std::vector<std::string>;
+  EXPECT_EQ(groups({model::Method::kEventDriven}), V{"event_policy"});
+  EXPECT_EQ(groups({model::Method::kTimeStepping}), V{"time_stepping_policy"});
+  EXPECT_EQ(groups({model::Method::kTimeStepping, model::Method::kEventDriven,
+                    model::Method::kTimeStepping}),
+            (V{"event_policy", "time_stepping_policy"}));
+  {
+    Id file = OpenFile(path, false);
+    Id group = OpenGroup(file.get(), "time_stepping_policy");
+    const std::vector<schema::Entry> entries = schema::Entries(dynamics::TimeSteppingPolicy{});
+    std::vector<std::string> names;
+    for (const schema::Entry& e : entries) names.push_back(e.name);
+    EXPECT_EQ(GetStringListAttr(group.get(), "keys"), names);
+    EXPECT_EQ(GetDoubleAttr(group.get(), "velocity_tolerance"), 1e-9);
+    EXPECT_EQ(GetDoubleAttr(group.get(), "normal_compliance"), 1e-9);
+    EXPECT_EQ(GetDoubleAttr(group.get(), "active_set_lookahead"), 0.5);
   }
   std::filesystem::remove(path);
 }
