@@ -58,7 +58,7 @@ struct LimitState {
   double threshold = 0.0;  ///< rad, m or the response's unit; unused by unseating and joints
   std::string response;    ///< kResponse: the response compared
   /// kUnseating: seat widths (m) per support line (abutment, pier lines, abutment) or one for
-  /// all; empty: the sweep's own (seat_over_L or the model file's seat width).
+  /// all; empty: the sweep's own (seat_over_L times each deck's length).
   std::vector<double> seat_m;
   std::string at;  ///< "spec.toml:LINE" of its key, for messages
 };

@@ -120,9 +120,8 @@ LimitStateEvaluator::LimitStateEvaluator(std::unique_ptr<CellEvaluator> inner, c
           if (plan.margins.size() != decks) {
             throw InputError::AtField(
                 ls.at, field,
-                std::string("needs seat widths: give seat_over_L (axis or fixed), ") +
-                    (grid.family == "model-file" ? "a seat width in the model file, " : "") +
-                    "or unseating = {seat_m = [...]} (m, one or one per support line)");
+                "needs seat widths: give seat_over_L (axis or fixed), or unseating = {seat_m = "
+                "[...]} (m, one or one per support line)");
           }
         } else if (ls.seat_m.size() == 1) {
           plan.seats_m.assign(decks, ls.seat_m.front());
