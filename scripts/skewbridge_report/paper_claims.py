@@ -571,14 +571,14 @@ def _fig11(m, ms=None):
         lines.append(f"| {p['pulse']} | {p['pis'][0]:g} vs {p['pis'][1]:g} | {p['both']} | "
                      f"{p['theta']}{where} | {p['y']} |")
     shares = fig11_shares(m)
-    text = "; ".join(f"{pulse}: θ_m in {th} of {both}, y_m in {y} of {both}"
+    text = "; ".join(f"under the {pulse} pulse θ_m in {th} of {both} frequencies, y_m in {y}"
                      for pulse, (both, th, y) in shares.items())
     counted = [(th / both, y / both) for both, th, y in shares.values() if both]
     if not counted:
         return Judgement(measured, "not tested", "no frequency strikes at two gaps", tuple(lines))
     verdict = _share_verdict([s for pair in counted for s in pair])
     reason = (f"paired per frequency where both gaps see an impact, the response is smaller at "
-              f"the smaller gap {text}: ")
+              f"the smaller gap ({text}): ")
     reason += {"reproduced": "as the paper states",
                "partly": "in part of the range only; peak by peak a narrower gap gives the "
                          "larger rotation",
