@@ -11,7 +11,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // The one table of parameter names. The spectra mapping extends it here (and in
 // docs/sweep-format.md); the order is the canonical axis order of every cube.
 // clang-format off
-constexpr std::array<ParameterInfo, 24> kParameters{{
+constexpr std::array<ParameterInfo, 25> kParameters{{
   {"record", "record", "", "ground-motion record, by its label in the [records] set",
    ParameterKind::kLabel, 0, true, 0, true, false, ""},
   {"pulse", "pulse", "", "one cycle of a_g cos(w_g t) or a_g sin(w_g t) [docs/theory.md §5]",
@@ -54,6 +54,8 @@ constexpr std::array<ParameterInfo, 24> kParameters{{
   {"k_factor", "k_factor", "1", "factor on the substructure stiffness K (family model-file)",
    ParameterKind::kNumber, 0, false, 1e6, true, false, ""},
   {"seat_over_L", "seat/L", "1", "support seat width over span length (unseating margins)",
+   ParameterKind::kNumber, 0, false, kInf, false, false, ""},
+  {"seat_m", "seat", "m", "support seat width, the same for every deck (unseating margins; or seat_over_L)",
    ParameterKind::kNumber, 0, false, kInf, false, false, ""},
   {"w0_over_wg", "w0/w_g", "1", "substructure over excitation frequency w0 / w_g",
    ParameterKind::kNumber, 0, false, kInf, false, false, ""},

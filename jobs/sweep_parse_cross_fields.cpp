@@ -59,6 +59,11 @@ void SpecParser::CheckCrossFields(const SweepSpec& spec) const {
     throw InputError::AtField(source_, "gap_m",
                               "give gap_m or Pi_delta, not both (the gap is Pi_delta L_e)");
   }
+  if (given("seat_over_L") && given("seat_m")) {
+    throw InputError::AtField(source_, "seat_m",
+                              "give seat_over_L or seat_m, not both (the seat width is "
+                              "seat_over_L L, or seat_m in metres)");
+  }
   if (given("pulse") && given("record")) {
     throw InputError::AtField(source_, "record",
                               "give pulse or record, not both (one excitation per cell)");

@@ -120,4 +120,21 @@ bool Mentions(const CellGrid& grid, std::string_view key) {
   return grid.FindAxis(key) != nullptr || grid.FindFixed(key) != nullptr;
 }
 
+bool MentionsSeat(const CellGrid& grid) {
+  return Mentions(grid, "seat_over_L") || Mentions(grid, "seat_m");
+}
+
+double SeatWidthOf(const CellGrid& grid, std::span<const std::size_t> index, double length_m,
+                   bool* given) {
+  bool relative = false, absolute = false;
+  const double seat_over_L = NumberOf(grid, index, "seat_over_L", 0.0, &relative);
+  if (relative) {
+    if (given != nullptr) *given = true;
+    return seat_over_L * length_m;
+  }
+  const double seat_m = NumberOf(grid, index, "seat_m", 0.0, &absolute);
+  if (given != nullptr) *given = absolute;
+  return seat_m;
+}
+
 }  // namespace skewbridge::spectra

@@ -166,4 +166,12 @@ std::vector<model::Method> MethodsOf(const CellGrid& grid, model::Method fallbac
 /// Whether the grid names `key` as an axis or a fixed value.
 bool Mentions(const CellGrid& grid, std::string_view key);
 
+/// Whether the grid gives seat widths: seat_over_L or seat_m (axis or fixed value).
+bool MentionsSeat(const CellGrid& grid);
+
+/// The seat width (m) of a deck of length `length_m` in the cell: seat_over_L times the length,
+/// else seat_m as given, else 0 with `given` (if not null) false.
+double SeatWidthOf(const CellGrid& grid, std::span<const std::size_t> index, double length_m,
+                   bool* given = nullptr);
+
 }  // namespace skewbridge::spectra

@@ -120,8 +120,8 @@ LimitStateEvaluator::LimitStateEvaluator(std::unique_ptr<CellEvaluator> inner, c
           if (plan.margins.size() != decks) {
             throw InputError::AtField(
                 ls.at, field,
-                "needs seat widths: give seat_over_L (axis or fixed), or unseating = {seat_m = "
-                "[...]} (m, one or one per support line)");
+                "needs seat widths: give seat_over_L or seat_m (axis or fixed), or unseating = "
+                "{seat_m = [...]} (m, one or one per support line)");
           }
         } else if (ls.seat_m.size() == 1) {
           plan.seats_m.assign(decks, ls.seat_m.front());
@@ -129,8 +129,8 @@ LimitStateEvaluator::LimitStateEvaluator(std::unique_ptr<CellEvaluator> inner, c
           // The last abutment is line 1, 2, ... as the cell has 1, 2, ... spans.
           throw InputError::AtField(ls.at, field + ".seat_m",
                                     "one seat width per support line needs a fixed number of "
-                                    "spans (spans is an axis); give one seat width or "
-                                    "seat_over_L");
+                                    "spans (spans is an axis); give one seat width, "
+                                    "seat_over_L or seat_m");
         } else if (ls.seat_m.size() == decks + 1) {
           // Deck i rests on support lines i and i + 1; its corners are all bounded by the same
           // travel, so the narrower seat governs.

@@ -46,7 +46,7 @@ model::ModelFile CheckedModelFile(const CellGrid& spec) {
                                 "not a parameter of family 'model-file' (the model file gives "
                                 "the bridge; allowed: record, pulse, a_g_g, w_g, T_g, scale, "
                                 "a_deg, eta0, xi, eps_N, mu, Pi_delta, gap_m, k_factor, "
-                                "seat_over_L, method)");
+                                "seat_over_L, seat_m, method)");
     }
   }
   const bool by_record = Mentions(spec, "record");
@@ -165,7 +165,7 @@ ModelFileEvaluator::ModelFileEvaluator(const CellGrid& spec)
       }
     }
   }
-  seats_ = Mentions(spec, "seat_over_L") || (file_.decks && file_.decks->seat_width_m);
+  seats_ = MentionsSeat(spec) || (file_.decks && file_.decks->seat_width_m);
   travel_ = !spec.limit_states.empty();
   MakeResponseTable();
   if (by_record) records_ = LoadSweepRecords(spec);
@@ -305,6 +305,13 @@ std::vector<std::string> ModelFileEvaluator::BridgeWarnings() const {
   } else if (const FixedValue* fixed = spec_.FindFixed("gap_m")) {
     add(src, model::WidthWarning("fixed.gap_m", "gap", fixed->value, shortest_m));
   }
+  if (const Axis* axis = spec_.FindAxis("seat_m"); axis != nullptr && !axis->values.empty()) {
+    add(src, model::WidthWarning("axes.seat_m", "seat",
+                                 *std::max_element(axis->values.begin(), axis->values.end()),
+                                 shortest_m));
+  } else if (const FixedValue* fixed = spec_.FindFixed("seat_m")) {
+    add(src, model::WidthWarning("fixed.seat_m", "seat", fixed->value, shortest_m));
+  }
   for (const LimitState& ls : spec_.limit_states) {
     if (ls.seat_m.empty()) continue;
     add(ls.at,
@@ -435,7 +442,9 @@ ModelFileCell ModelFileEvaluator::MakeCell(std::span<const std::size_t> index, b
   const double a_deg = NumberOf(spec_, index, "a_deg", 0.0, &has_a);
   const double eta0 = NumberOf(spec_, index, "eta0", 0.0, &has_eta0);
   const double k_factor = NumberOf(spec_, index, "k_factor", 1.0);
-  const double seat_over_L = NumberOf(spec_, index, "seat_over_L", 0.0, &has_seat);
+  // seat_over_L scales with each deck's length; seat_m is the same for every deck.
+  has_seat = MentionsSeat(spec_);
+  const auto seat_of = [&](double length_m) { return SeatWidthOf(spec_, index, length_m); };
 
   // The deck re-derived as the file defines it: L kept, W kept or from eta0 at the new angle;
   // a uniform deck's I_m follows its geometry.
@@ -474,7 +483,7 @@ ModelFileCell ModelFileEvaluator::MakeCell(std::span<const std::size_t> index, b
         c.model = model::BuildDeckModel(scaled, model_source);
       }
       c.gap_m = d.gap_plus_m;
-      if (has_seat) c.seat_width_m = {seat_over_L * d.geometry.length_m};
+      if (has_seat) c.seat_width_m = {seat_of(d.geometry.length_m)};
     } else {
       model::MultiDeckSpec m = *file_.decks;
       for (std::size_t i = 0; i < m.decks.size(); ++i) {
@@ -504,7 +513,7 @@ ModelFileCell ModelFileEvaluator::MakeCell(std::span<const std::size_t> index, b
       c.gap_m = m.gap_plus_m;
       for (const model::Body& b : m.decks) {
         if (has_seat) {
-          c.seat_width_m.push_back(seat_over_L * b.geometry.length_m);
+          c.seat_width_m.push_back(seat_of(b.geometry.length_m));
         } else if (m.seat_width_m) {
           c.seat_width_m.push_back(*m.seat_width_m);
         }

@@ -83,9 +83,9 @@ Cell MakeCell(const CellGrid& spec, std::span<const std::size_t> index) {
   b.restitution = NumberOf(spec, index, "eps_N", 0.5);
   b.friction = NumberOf(spec, index, "mu", 0.0);
   bool has_seat = false;
-  const double seat_over_L = NumberOf(spec, index, "seat_over_L", 0.0, &has_seat);
+  const double seat_m = SeatWidthOf(spec, index, L_m, &has_seat);
   if (has_seat) {
-    b.seat_width_m = seat_over_L * L_m;
+    b.seat_width_m = seat_m;
   }
   return c;
 }
@@ -151,7 +151,7 @@ void MultiSpanEvaluator::MakeResponseTable() {
   using V = const CellValues&;
   constexpr double kNoDeck = kNaN;
   ResponseTable<CellValues>& t = table_;
-  const bool seat = Mentions(spec_, "seat_over_L");
+  const bool seat = MentionsSeat(spec_);
   // Per deck (suffix _d<i>): NaN for a failed cell and for a deck the cell's bridge lacks.
   const auto deck = [](int d, double (*read)(V, int)) {
     return [d, read](V v) { return v.Has(d) ? read(v, d) : kNoDeck; };

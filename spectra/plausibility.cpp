@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "solver/model/plausibility.h"
+#include "spectra/point.h"
 
 namespace skewbridge::spectra {
 namespace {
@@ -35,6 +36,14 @@ std::vector<std::string> GridWarnings(const CellGrid& grid) {
         "{}: {}: up to {:g}, a seat wider than a tenth of the span: a width in metres typed as a "
         "fraction of L?",
         grid.source, seat->second, seat->first));
+  }
+  // The pilot bridge's span is fixed; a model file's is judged with the file
+  // (ModelFileEvaluator::Warnings).
+  if (const auto seat = Largest(grid, "seat_m"); seat && grid.family == "pilot-bridge") {
+    if (std::optional<std::string> w = model::WidthWarning(seat->second, "seat", seat->first,
+                                                           PilotBridgeDeck().geometry.length_m)) {
+      out.push_back(grid.source + ": " + *w);
+    }
   }
   if (const auto im = Largest(grid, "im_g")) {
     if (std::optional<std::string> w = model::IntensityWarning(im->second, im->first)) {

@@ -12,8 +12,8 @@
 
 namespace skewbridge::spectra {
 
-/// The warnings of `grid` itself, one line each, "SPEC: KEY: ...": a seat_over_L above 0.1, an
-/// im_g above 5 g.
+/// The warnings of `grid` itself, one line each, "SPEC: KEY: ...": a seat_over_L above 0.1 (a
+/// seat_m above a tenth of the pilot bridge's span), an im_g above 5 g.
 std::vector<std::string> GridWarnings(const CellGrid& grid);
 
 }  // namespace skewbridge::spectra

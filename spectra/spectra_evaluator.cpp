@@ -16,7 +16,7 @@ constexpr double kStandardGravity_mps2 = 9.80665;
 struct SpectraEvaluator::CellValues {
   const spectra::PointResult& run;
   const spectra::DimensionalPoint& point;
-  double seat_m = 0.0;  ///< seat width seat_over_L L (with seats)
+  double seat_m = 0.0;  ///< seat width: seat_over_L L, or seat_m (with seats)
 };
 
 SpectraEvaluator::SpectraEvaluator(const CellGrid& spec) : spec_(spec) {
@@ -62,7 +62,7 @@ SpectraEvaluator::SpectraEvaluator(const CellGrid& spec) : spec_(spec) {
     records_ = LoadSweepRecords(spec);
   }
   band_edges_ = BandEdges(spec);
-  seats_ = Mentions(spec, "seat_over_L");
+  seats_ = MentionsSeat(spec);
   travel_ = !spec.limit_states.empty();
 
   // The responses [docs/theory.md §5]: the run's maxima (NaN for a failed cell), then the
@@ -105,7 +105,8 @@ SpectraEvaluator::SpectraEvaluator(const CellGrid& spec) : spec_(spec) {
       });
   if (seats_) {
     t.Add({"margin_m", "m",
-           "unseating margin: seat width (seat_over_L L) - largest corner travel normal to the end "
+           "unseating margin: seat width (seat_over_L L or seat_m) - largest corner travel normal "
+           "to the end "
            "line (travel_m)"},
           [](V v) { return v.seat_m - v.run.travel_m; });
     t.Add({"margin_norm", "1", "margin_m w_g^2 / a_g"},
@@ -233,7 +234,7 @@ CellOutcome SpectraEvaluator::Evaluate(std::span<const std::size_t> axis_index) 
   out.status_text = r.message;
   CellValues values{r, point};
   if (seats_) {
-    values.seat_m = NumberOf(spec_, axis_index, "seat_over_L", 0.0) * point.deck.geometry.length_m;
+    values.seat_m = SeatWidthOf(spec_, axis_index, point.deck.geometry.length_m);
   }
   out.responses = table_.Values(values, out.status == kStatusOk);
   out.stats.events = r.events;

@@ -32,8 +32,8 @@ IDA_RUN = re.compile(r"^ida_.*_\d+$")
 # Axis symbols for mathtext, beyond common.AXIS_LABEL.
 AXIS_SYMBOL = {"T_g": r"$T_g$", "w_g": r"$\omega_g$", "k_factor": r"$K$ factor",
                "scale": "scale factor", "gap_m": r"$\delta$", "a_g_g": r"$a_g$",
-               "seat_over_L": "seat/$L$", "spans": "spans", "L_over_Le": r"$L/L_e$",
-               "method": "method", "pulse": "pulse", "record": "record"}
+               "seat_over_L": "seat/$L$", "seat_m": "seat", "spans": "spans",
+               "L_over_Le": r"$L/L_e$", "method": "method", "pulse": "pulse", "record": "record"}
 QUANTITY_SYMBOL = {
     "x_m": r"$x_m$", "y_m": r"$y_m$", "theta_m": r"$\theta_m$", "x_end": r"$x_{end}$",
     "y_end": r"$y_{end}$", "theta_end": r"$\theta_{end}$", "margin_m": "unseating margin",

@@ -77,7 +77,7 @@ sed 's/^\[excitation\]/[excitaton]/' model.toml > section.toml
 expect "section.toml:26: excitaton: unknown section (allowed: deck, substructure, abutments, excitation, run); did you mean \`excitation\`?" \
   run section.toml --out run.h5
 sed 's/^a_deg = /skew = /' "$spec" > skew_spec.toml
-expect "skew_spec.toml:10: axes.skew: unknown parameter; allowed: record, pulse, spans, a_g_g, w_g, T_g, scale, im_g, im_mps, a_deg, eta0, W_over_L, delta_over_L, L_over_Le, W0_over_w0, xi, eps_N, mu, Pi_delta, gap_m, k_factor, seat_over_L, w0_over_wg, method; did you mean \`a_deg\` (skew angle a)?" \
+expect "skew_spec.toml:10: axes.skew: unknown parameter; allowed: record, pulse, spans, a_g_g, w_g, T_g, scale, im_g, im_mps, a_deg, eta0, W_over_L, delta_over_L, L_over_Le, W0_over_w0, xi, eps_N, mu, Pi_delta, gap_m, k_factor, seat_over_L, seat_m, w0_over_wg, method; did you mean \`a_deg\` (skew angle a)?" \
   sweep skew_spec.toml --out out.h5
 # --- the wrong kind of file, named as what it is ---
 cp "$spec" spec.toml

@@ -242,7 +242,7 @@ check_bad() {
   grep -qF -- "$expected" err.txt || fail "$name: expected '$expected' in: $(cat err.txt)"
   [ ! -e "$name.h5" ] && [ ! -e "$name.h5.partial" ] || fail "$name: an output file was left"
 }
-check_bad no_seats pilot-bridge "limit_states.unseating: needs seat widths: give seat_over_L (axis or fixed), or unseating = {seat_m" <<TOML
+check_bad no_seats pilot-bridge "limit_states.unseating: needs seat widths: give seat_over_L or seat_m (axis or fixed), or unseating = {seat_m" <<TOML
 [axes]
 Pi_delta = [0.5, 1.0]
 [limit_states]
