@@ -156,6 +156,11 @@ def generic_sections(sweep, args, used, written, skipped_all):
     md += [f"## {sweep.name}: fixed parameters", "",
            _table(["parameter", "value", "unit"], fixed) if fixed else
            "None: the parameters on no axis take the family's defaults.", ""]
+    if sweep.floored_cells:
+        md += [f"Rotations below the cube's round-off floor round_off_floor_rad = "
+               f"{sweep.round_off_floor_rad:g} rad are 0 in every figure and table "
+               f"({sweep.floored_cells} values, with their normalised twins; on a log axis a 0 "
+               "is not drawn).", ""]
     todo, skipped = planning.plan_generic(sweep)
     for kind, reason in skipped:
         skipped_all.append((sweep.name, kind, reason))

@@ -110,6 +110,8 @@ def load_cube(path, allow_partial=False):
             response_attrs = {key: {k: as_text(v) if isinstance(v, (str, bytes)) else v
                                     for k, v in g["responses"][key].attrs.items()}
                               for key in g["responses"]}
+            floor = float(g.attrs.get("round_off_floor_rad", 0.0))
+            floored = floor_rotations(responses, response_attrs, floor)
             sweeps.append(Sweep(path=path, name=name, family=as_text(g.attrs.get("family", "")),
                                 complete=complete, axis_order=axis_order, axes=axes,
                                 responses=responses, status=status, status_names=names,
@@ -117,8 +119,33 @@ def load_cube(path, allow_partial=False):
                                 response_attrs=response_attrs, axis_attrs=axis_attrs,
                                 fixed_units=fixed_units, extra=extra,
                                 im_attrs={k: as_text(g.attrs[k]) for k in IM_ATTRS
-                                          if k in g.attrs}))
+                                          if k in g.attrs},
+                                round_off_floor_rad=floor, floored_cells=floored))
         return sweeps
+
+
+def floor_rotations(responses, response_attrs, floor):
+    """Sets to 0, in place, every rotation (a response in rad) below `floor` in magnitude and,
+    in the same cells, its normalised twin (theta_norm[_d<i>] of theta_m[_d<i>],
+    theta_end_norm[_d<i>] of theta_end[_d<i>]), as the fits read them. Returns the number of
+    response values set to 0."""
+    if not floor > 0:
+        return 0
+    count = 0
+    for name, values in responses.items():
+        if response_attrs.get(name, {}).get("units") != "rad":
+            continue
+        below = np.abs(values) < floor
+        below &= values != 0
+        if not below.any():
+            continue
+        count += int(below.sum())
+        values[below] = 0.0
+        for twin in (name.replace("_m", "_norm", 1), name.replace("_end", "_end_norm", 1)):
+            if twin != name and twin in responses and twin.startswith("theta"):
+                responses[twin][below] = 0.0
+                break
+    return count
 
 
 @dataclass

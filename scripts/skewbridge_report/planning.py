@@ -302,7 +302,7 @@ def plan_generic(sweep):
                             f"at every {x} in every cell"))
     if not margins:
         skipped.append(("unseating_margins", "the cube stores no unseating margin "
-                        "(give seat_over_L)"))
+                        "(give seat_over_L or seat_m)"))
         return todo, skipped
     for x in xs:
         if x in held:

@@ -28,6 +28,11 @@ class Sweep:
     # The intensity measure of a record sweep (attributes im_measure, im_description, im_units of
     # the sweep group; empty without [records] scale_to or im).
     im_attrs: dict = field(default_factory=dict)
+    # Rotations (rad) below it are round-off, drawn and tabulated as 0 with their normalised
+    # twins (attribute round_off_floor_rad of the sweep group; 0: none given); floored_cells
+    # counts the cells of the responses set to 0 (data.floor_rotations).
+    round_off_floor_rad: float = 0.0
+    floored_cells: int = 0
 
     def shape(self):
         """The axis lengths in axis_order: the shape of every response."""

@@ -25,6 +25,7 @@ sys.dont_write_bytecode = True
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
 from skewbridge_report import planning  # noqa: E402
 from skewbridge_report.sweep import Sweep  # noqa: E402
+from skewbridge_report.data import floor_rotations  # noqa: E402
 
 NUMBERS = {"w0_over_wg": 12, "a_deg": 4, "eta0": 6, "Pi_delta": 3, "W0_over_w0": 4, "mu": 2,
            "k_factor": 2, "T_g": 5, "im_g": 3, "seat_over_L": 1}
@@ -122,7 +123,7 @@ OWN = ["x_m", "y_m", "theta_m", "impacts", "x_norm", "theta_norm", "x_end", "the
        "L_e", "pga", "ls_unseating", "ls_unseating_demand", "ida_im_00", "margin_m_d0",
        "margin_m_d1", "margin_norm_d0", "theta_norm_max"]
 DRAWN = ["x_m", "y_m", "theta_m", "impacts", "theta_end"]
-NO_MARGIN = ("unseating_margins", "the cube stores no unseating margin (give seat_over_L)")
+NO_MARGIN = ("unseating_margins", "the cube stores no unseating margin (give seat_over_L or seat_m)")
 NO_NUMERIC = ("response_vs_axis", "no numeric axis with two or more values")
 RECORD_TABLE = {"records": {"pga_mps2": np.array([1.0, 2.0, 3.0])}}
 
@@ -308,6 +309,28 @@ class Planning(unittest.TestCase):
                 s = sweep({"a_deg": 2}, ["x_m"], family)
                 self.assertEqual(planning.draws_generic(s, todo, forced), want)
 
+
+
+class RoundOffFloor(unittest.TestCase):
+    """A rotation below the cube's round_off_floor_rad is 0, and its normalised twin in the same
+    cells; a rotation above it, responses in other units and NaN keep their values."""
+
+    def test_rotations_below_the_floor_and_their_twins_are_zero(self):
+        responses = {"theta_m": np.array([1e-19, 2e-4, np.nan, -5e-13]),
+                     "theta_norm": np.array([3e-9, 0.05, np.nan, 4e-10]),
+                     "theta_end_d0": np.array([1e-14, 1e-3, 0.0, 0.0]),
+                     "theta_end_norm_d0": np.array([7e-11, 0.2, 0.0, 0.0]),
+                     "x_m": np.array([1e-19, 0.1, 0.2, 0.3])}
+        attrs = {"theta_m": {"units": "rad"}, "theta_norm": {"units": "1"},
+                 "theta_end_d0": {"units": "rad"}, "theta_end_norm_d0": {"units": "1"},
+                 "x_m": {"units": "m"}}
+        self.assertEqual(floor_rotations(responses, attrs, 1e-12), 3)
+        np.testing.assert_array_equal(responses["theta_m"], [0.0, 2e-4, np.nan, 0.0])
+        np.testing.assert_array_equal(responses["theta_norm"], [0.0, 0.05, np.nan, 0.0])
+        np.testing.assert_array_equal(responses["theta_end_d0"], [0.0, 1e-3, 0.0, 0.0])
+        np.testing.assert_array_equal(responses["theta_end_norm_d0"], [0.0, 0.2, 0.0, 0.0])
+        np.testing.assert_array_equal(responses["x_m"], [1e-19, 0.1, 0.2, 0.3])
+        self.assertEqual(floor_rotations(responses, attrs, 0.0), 0)
 
 if __name__ == "__main__":
     unittest.main(verbosity=1)
