@@ -12,6 +12,38 @@ namespace {
 
 constexpr std::size_t kCacheCapacity = 8;
 
+// Apply's modal path from Y = ToModal(z) (n x 6, column-major) to (q, u) at the step's end, in
+// one pass over plain arrays: the per-mode rows T (12 x n) and the back transform
+// (q, u) = (Phi eta, Phi eta'). Every sum runs over the same terms in the same order from the same
+// 0.0 as the mode loop and ModalProduct (row-wise or by columns), so the result is the same bits;
+// with the mode count kN known at compile time (a deck's 3) the loops unroll and no Eigen
+// expression is built per step. kN = 0: the count `n_runtime`.
+template <int kN>
+void ModalStep(const double* Phi, int n_runtime, const double* T, const double* Y, double* eta,
+               double* deta, double* q_next, double* u_next) {
+  const int n = kN > 0 ? kN : n_runtime;
+  for (int k = 0; k < n; ++k) {
+    const double* Tk = T + 12 * k;
+    double e = 0.0, de = 0.0;
+    for (int j = 0; j < 6; ++j) {
+      e += Tk[j] * Y[j * n + k];
+      de += Tk[6 + j] * Y[j * n + k];
+    }
+    eta[k] = e;
+    deta[k] = de;
+  }
+  for (int i = 0; i < n; ++i) {
+    double s = 0.0;
+    for (int j = 0; j < n; ++j) s += Phi[i + j * n] * eta[j];
+    q_next[i] = s;
+  }
+  for (int i = 0; i < n; ++i) {
+    double s = 0.0;
+    for (int j = 0; j < n; ++j) s += Phi[i + j * n] * deta[j];
+    u_next[i] = s;
+  }
+}
+
 }  // namespace
 
 LinearFlow::LinearFlow(const Eigen::Ref<const Eigen::MatrixXd>& M,
@@ -166,21 +198,19 @@ void LinearFlow::Apply(const FreePropagator& p, const Eigen::Ref<const Eigen::Ve
     return;
   }
   modal_->ToModal(z, Y_);
+  // z and z_next are distinct (the precondition): the (q, u) written here is read by nothing after.
+  const double* Phi = modal_->Phi().data();
+  if (n_ == 3) {
+    ModalStep<3>(Phi, n_, p.modal_rows.data(), Y_.data(), eta_.data(), deta_.data(), z_next.data(),
+                 z_next.data() + n_);
+  } else {
+    ModalStep<0>(Phi, n_, p.modal_rows.data(), Y_.data(), eta_.data(), deta_.data(), z_next.data(),
+                 z_next.data() + n_);
+  }
   if (energy) {
     SB_DEMAND(p.has_energy, "LinearFlow: the propagator was built without its energy forms");
     ModalEnergy(p, *input_J, *damping_J);
   }
-  const double* T = p.modal_rows.data();
-  for (int k = 0; k < n_; ++k, T += 12) {
-    double eta = 0.0, deta = 0.0;
-    for (int j = 0; j < 6; ++j) {
-      eta += T[j] * Y_(k, j);
-      deta += T[6 + j] * Y_(k, j);
-    }
-    eta_[k] = eta;
-    deta_[k] = deta;
-  }
-  ModalProduct(modal_->Phi(), n_, eta_.data(), deta_.data(), z_next.data(), z_next.data() + n_);
   // The generator: a + slope tau, slope, and (p, k) turned by omega tau.
   const int ia = 2 * n_;
   z_next.segment<2>(ia) = z.segment<2>(ia) + p.tau_s * z.segment<2>(ia + 2);

@@ -366,6 +366,65 @@ TEST(ModalFlow, ProductsSumEachRowInColumnOrder) {
   }
 }
 
+TEST(LinearFlow, ModalApplyIsTheBitsOfToModalRowsAndProducts) {
+  // Apply's fused modal step (a deck's 3 modes unrolled, any other count at run time) must give
+  // the bits of its parts: Y = ToModal(z) (its unrolled 3-mode path the bits of its general
+  // one), eta_k = sum_j T_kj y_kj from 0.0 in column order, and
+  // (q, u) = ModalProduct(Phi, eta, eta'); with and without the energy forms, whose sums must
+  // equal StepEnergy's. 1, 3, 4 and 8 modes take ModalProduct's row-wise kernels, 9 and 12 its
+  // column sweep.
+  std::mt19937 rng(29u);
+  for (int n : {1, 3, 4, 8, 9, 12}) {
+    const RandomModel m = MakeModel(rng, n, n > 2 ? 1 : 0, {0.02, 0.3});
+    LinearFlow flow(m.M, m.K, m.C, m.r);
+    ASSERT_TRUE(flow.modal()) << n << " modes";
+    const ModalFlow& modal = flow.modal_flow();
+    for (double rate : {0.0, 7.5}) {
+      const ExcitationPiece piece = RandomPiece(rng, rate);
+      for (double h : {0.01, 0.37}) {
+        const Eigen::VectorXd z = RandomState(rng, flow, piece, 0.02);
+        const FreePropagator& p = flow.Propagator(h, rate, true);
+        Eigen::MatrixXd Y(n, 6);
+        modal.ToModal(z, Y);
+        // A Y inside a taller matrix takes ToModal's general loops (ModalProduct): a deck's
+        // unrolled path must give their bits.
+        Eigen::MatrixXd taller = Eigen::MatrixXd::Constant(n + 2, 6, 7.0);
+        modal.ToModal(z, taller.topRows(n));
+        for (int j = 0; j < 6; ++j) {
+          for (int k = 0; k < n; ++k) {
+            EXPECT_EQ(Y(k, j), taller(k, j)) << n << " modes, Y(" << k << ", " << j << ")";
+          }
+          EXPECT_EQ(taller(n, j), 7.0) << "wrote past its rows";
+        }
+        Eigen::VectorXd eta(n), deta(n), want(2 * n);
+        for (int k = 0; k < n; ++k) {
+          double e = 0.0, de = 0.0;
+          for (int j = 0; j < 6; ++j) {
+            e += p.modal_rows(j, k) * Y(k, j);
+            de += p.modal_rows(6 + j, k) * Y(k, j);
+          }
+          eta[k] = e;
+          deta[k] = de;
+        }
+        ModalProduct(modal.Phi(), n, eta.data(), deta.data(), want.data(), want.data() + n);
+        Eigen::VectorXd plain(flow.augmented_size()), with_energy(flow.augmented_size());
+        double input = 0.0, damping = 0.0, input_ref = 0.0, damping_ref = 0.0;
+        flow.Apply(p, z, plain);
+        flow.Apply(p, z, with_energy, &input, &damping);
+        flow.StepEnergy(p, z, input_ref, damping_ref);
+        for (int i = 0; i < 2 * n; ++i) {
+          EXPECT_EQ(plain[i], want[i]) << n << " modes, entry " << i << ", h " << h;
+          EXPECT_EQ(with_energy[i], want[i]) << n << " modes, entry " << i << ", h " << h;
+        }
+        EXPECT_EQ(plain.tail(kGeneratorSize), with_energy.tail(kGeneratorSize));
+        EXPECT_EQ(input, input_ref) << n << " modes";
+        EXPECT_EQ(damping, damping_ref) << n << " modes";
+        EXPECT_NE(input, 0.0) << n << " modes";
+      }
+    }
+  }
+}
+
 TEST(LinearFlow, AugmentedPartsOfAModalFlowAreBuiltOnDemandAndMatchTheGeneralPath) {
   // A modal flow builds A_hat only when asked (AugmentedMatrix, Derivative, or a dense output
   // longer than the modal series' radius): the same matrix and series as the general path's.
