@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Fails when a module includes a header it must not see (docs/architecture.md, "Layers"):
 #   solver/common <- solver/lcp, solver/model, records
-#   solver/lcp + solver/model <- solver/contact <- solver/dynamics (one CMake target per solver
-#   module, solver/CMakeLists.txt); in the solver, toml++ only in the model-file parser solver/model/model_file*
+#   solver/lcp + solver/model <- solver/contact <- solver/dynamics, solver/common <- solver/joint
+#   <- solver/dynamics (one CMake target per solver module, solver/CMakeLists.txt); in the solver, toml++ only in the model-file parser solver/model/model_file*
 #   solver, records <- spectra <- jobs <- jobs/app
 # jobs (but jobs/app and the run output) includes no solver or records header but solver/common.
 # <mpi.h> only in jobs/mpi (and the MPI test main), <hdf5.h> only in jobs/h5. jobs/h5 names
@@ -19,14 +19,15 @@ forbid() {  # forbid FOLDER PATTERN WHY
     echo "layering: $1 must not include $3:"; echo "$hits"; status=1
   fi
 }
-forbid solver/common '#include "(solver/(lcp|model|contact|dynamics)|records|spectra|jobs)/' "modules above it"
+forbid solver/common '#include "(solver/(lcp|model|joint|contact|dynamics)|records|spectra|jobs)/' "modules above it"
 forbid solver/lcp '#include "solver/(model|contact|dynamics)/' "model, contact or dynamics"
 forbid solver/model '#include "solver/(lcp|contact|dynamics)/' "lcp, contact or dynamics"
 forbid solver/contact '#include "solver/dynamics/' "dynamics"
+forbid solver/joint '#include "solver/(lcp|model|contact|dynamics)/' "lcp, model, contact or dynamics"
 hits=$(grep -rnE --include='*.h' --include='*.cpp' '#include <toml\+\+/' solver | grep -vE '^solver/model/model_file(_[a-z_]+)?\.(cpp|h):')
 [ -z "$hits" ] || { echo "layering: toml++ in the solver outside the model-file parser (solver/model/model_file*):"; echo "$hits"; status=1; }
 forbid solver '#include "(records|spectra|jobs)/' "records, spectra or jobs"
-forbid records '#include "(solver/(lcp|model|contact|dynamics)|spectra|jobs)/' "the solver, spectra or jobs"
+forbid records '#include "(solver/(lcp|model|joint|contact|dynamics)|spectra|jobs)/' "the solver, spectra or jobs"
 forbid spectra '#include "jobs/' "jobs"
 forbid solver '#include <(mpi|hdf5)\.h>' "MPI or HDF5"
 forbid records '#include <(mpi|hdf5)\.h>' "MPI or HDF5"
