@@ -33,5 +33,8 @@ void AddInspectCommand(CLI::App& app);
 void AddRiskCommand(CLI::App& app);
 /// `skewbridge records info FILE|SET.toml`, `records synth`: record measures, synthetic suites.
 void AddRecordsCommand(CLI::App& app);
+/// `skewbridge restitution --mass-kg M ...`: the equivalent restitution, contact duration and
+/// permanent set of a compliant abutment struck by a mass (docs/compliant.md).
+void AddRestitutionCommand(CLI::App& app);
 
 }  // namespace skewbridge::app

@@ -42,6 +42,7 @@ int main(int argc, char** argv) {
   skewbridge::app::AddInspectCommand(app);
   skewbridge::app::AddRecordsCommand(app);
   skewbridge::app::AddRiskCommand(app);
+  skewbridge::app::AddRestitutionCommand(app);
   if (argc == 1) {  // no arguments: the usage, not "A subcommand is required"
     std::fputs(app.help().c_str(), stdout);
     return 0;
