@@ -11,11 +11,13 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // The one table of parameter names. The spectra mapping extends it here (and in
 // docs/sweep-format.md); the order is the canonical axis order of every cube.
 // clang-format off
-constexpr std::array<ParameterInfo, 25> kParameters{{
+constexpr std::array<ParameterInfo, 26> kParameters{{
   {"record", "record", "", "ground-motion record, by its label in the [records] set",
    ParameterKind::kLabel, 0, true, 0, true, false, ""},
   {"pulse", "pulse", "", "one cycle of a_g cos(w_g t) or a_g sin(w_g t) [docs/theory.md §5]",
    ParameterKind::kLabel, 0, true, 0, true, false, "cosine|sine"},
+  {"incidence_deg", "incidence", "deg", "incidence angle: H1 (or the one component) along alpha from the bridge's x axis, H2 at alpha + 90 deg",
+   ParameterKind::kNumber, -360, true, 360, true, false, ""},
   {"spans", "spans", "1", "number of deck spans", ParameterKind::kNumber, 1, true, 64, true,
    true, ""},
   {"a_g_g", "a_g", "g", "pulse amplitude a_g (cancels out of the dimensionless responses)",

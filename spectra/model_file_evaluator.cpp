@@ -46,7 +46,7 @@ model::ModelFile CheckedModelFile(const CellGrid& spec) {
                                 "not a parameter of family 'model-file' (the model file gives "
                                 "the bridge; allowed: record, pulse, a_g_g, w_g, T_g, scale, "
                                 "a_deg, eta0, xi, eps_N, mu, Pi_delta, gap_m, k_factor, "
-                                "seat_over_L, seat_m, method)");
+                                "seat_over_L, seat_m, incidence_deg, method)");
     }
   }
   const bool by_record = Mentions(spec, "record");
@@ -357,6 +357,12 @@ records::SampledExcitation ScaledRecordExcitation(const records::GroundMotion& m
   return records::ToExcitation(scaled, direction);
 }
 
+records::SampledExcitation ScaledPairExcitation(const records::GroundMotion& h1,
+                                                const records::GroundMotion& h2, double factor,
+                                                double incidence_deg) {
+  return records::PairExcitation(h1, h2, incidence_deg, factor);
+}
+
 ModelFileCell ModelFileEvaluator::MakeCell(std::span<const std::size_t> index, bool with_excitation,
                                            std::optional<double> factor) const {
   const std::string& src = spec_.source;
@@ -372,7 +378,11 @@ ModelFileCell ModelFileEvaluator::MakeCell(std::span<const std::size_t> index, b
   if (!scale_of_cell_.empty()) c.scale = scale_of_cell_[CellIndex(index)];
   if (factor) c.scale = *factor;
 
-  // The excitation and its scales a_g, w_g, L_e [docs/theory.md §5].
+  // The excitation and its scales a_g, w_g, L_e [docs/theory.md §5], along the file's
+  // direction or, with incidence_deg, along that angle from the bridge's x axis.
+  bool turned = false;
+  const double incidence_deg = NumberOf(spec_, index, "incidence_deg", 0.0, &turned);
+  const Eigen::Vector2d direction = turned ? records::DirectionAt(incidence_deg) : ex.direction;
   const std::string label = LabelOf(spec_, index, "record");
   if (!label.empty()) {
     for (const SweepRecord& r : records_) {
@@ -386,7 +396,7 @@ ModelFileCell ModelFileEvaluator::MakeCell(std::span<const std::size_t> index, b
     c.excitation_duration_s = c.record->motion.dt_s * static_cast<double>(c.excitation_samples - 1);
     if (with_excitation) {
       c.excitation = std::make_unique<records::SampledExcitation>(
-          ScaledRecordExcitation(c.record->motion, c.scale, ex.direction));
+          ScaledRecordExcitation(c.record->motion, c.scale, direction));
     }
   } else if (samples_measures_) {
     c.a_g_mps2 = samples_measures_->pga_mps2 * c.scale;
@@ -399,8 +409,8 @@ ModelFileCell ModelFileEvaluator::MakeCell(std::span<const std::size_t> index, b
       std::vector<double> ax(samples_mps2_.size()), ay(samples_mps2_.size());
       for (std::size_t i = 0; i < samples_mps2_.size(); ++i) {
         const double v = c.scale == 1.0 ? samples_mps2_[i] : samples_mps2_[i] * c.scale;
-        ax[i] = v * ex.direction.x();
-        ay[i] = v * ex.direction.y();
+        ax[i] = v * direction.x();
+        ay[i] = v * direction.y();
       }
       c.excitation =
           std::make_unique<records::SampledExcitation>(samples_dt_s_, std::move(ax), std::move(ay));
@@ -424,7 +434,7 @@ ModelFileCell ModelFileEvaluator::MakeCell(std::span<const std::size_t> index, b
     if (with_excitation) {
       c.excitation = std::make_unique<records::PulseExcitation>(
           sine ? records::PulseShape::kSine : records::PulseShape::kCosine, c.a_g_mps2, c.w_g_radps,
-          ex.direction);
+          direction);
     }
   }
 

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "records/excitations.h"
+#include "records/incidence.h"
 #include "records/measures.h"
 #include "solver/common/excitation.h"
 #include "solver/model/model_file.h"
@@ -48,6 +49,15 @@ struct ModelFileCell {
 /// `skewbridge run --record` makes its excitation here too, so a run and a cell agree bit for bit.
 records::SampledExcitation ScaledRecordExcitation(const records::GroundMotion& motion,
                                                   double factor, const Eigen::Vector2d& direction);
+
+/// A pair of components as a cell applies it: both times `factor` (left as read when the factor
+/// is 1), H1 along `incidence_deg` from the bridge's x axis and H2 at +90 deg
+/// (records::PairExcitation). A pair (a, 0) gives the excitation of
+/// ScaledRecordExcitation(a, factor, records::DirectionAt(incidence_deg)) sample for sample.
+/// @throws InputError as records::PairExcitation.
+records::SampledExcitation ScaledPairExcitation(const records::GroundMotion& h1,
+                                                const records::GroundMotion& h2, double factor,
+                                                double incidence_deg);
 
 /// Evaluates the cells of a model-file sweep. Immutable after construction: Evaluate is a pure
 /// function of the cell index.

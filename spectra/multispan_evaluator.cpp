@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "records/excitations.h"
+#include "records/incidence.h"
 #include "solver/common/error.h"
 #include "solver/dynamics/run.h"
 #include "solver/model/multispan.h"
@@ -26,6 +27,7 @@ struct Cell {
   double persistency_m = 0.0;                 // L_e = a_g / w_g^2
   records::PulseShape shape = records::PulseShape::kCosine;
   model::Method method = model::Method::kEventDriven;
+  Eigen::Vector2d direction = Eigen::Vector2d::UnitX();  // incidence_deg, else x
 };
 
 Cell MakeCell(const CellGrid& spec, std::span<const std::size_t> index) {
@@ -36,6 +38,9 @@ Cell MakeCell(const CellGrid& spec, std::span<const std::size_t> index) {
   c.shape = LabelOf(spec, index, "pulse", "cosine") == "sine" ? records::PulseShape::kSine
                                                               : records::PulseShape::kCosine;
   c.method = MethodOf(spec, index, model::Method::kEventDriven);
+  bool turned = false;
+  const double incidence_deg = NumberOf(spec, index, "incidence_deg", 0.0, &turned);
+  if (turned) c.direction = records::DirectionAt(incidence_deg);
   model::MultiSpanSpec& b = c.bridge;
   b.n_spans = static_cast<int>(NumberOf(spec, index, "spans", 1.0));
   const double Pi_delta = NumberOf(spec, index, "Pi_delta", 1.0);
@@ -224,7 +229,7 @@ CellOutcome MultiSpanEvaluator::Evaluate(std::span<const std::size_t> axis_index
   const auto start = std::chrono::steady_clock::now();
   const Cell c = MakeCell(spec_, axis_index);
   const model::Model model = model::BuildMultiSpanBridge(c.bridge, spec_.source);
-  const records::PulseExcitation pulse(c.shape, c.a_g_mps2, c.w_g_radps);
+  const records::PulseExcitation pulse(c.shape, c.a_g_mps2, c.w_g_radps, c.direction);
   const double excitation_period_s = 2.0 * std::numbers::pi / c.w_g_radps;
   const double w_min = std::min({c.bridge.w0x_radps, c.bridge.W0_radps});
   const double natural_period_s = w_min > 0.0 ? 2.0 * std::numbers::pi / w_min : 0.0;

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "records/incidence.h"
 #include "solver/common/error.h"
 #include "solver/model/deck.h"
 
@@ -38,6 +39,12 @@ SpectraEvaluator::SpectraEvaluator(const CellGrid& spec) : spec_(spec) {
                               "family '" + spec.family +
                                   "' cannot be swept by this build (allowed: subsystem, "
                                   "pilot-bridge)");
+  }
+  if (family_ == spectra::Family::kSubsystem && Mentions(spec, "incidence_deg")) {
+    throw InputError::AtField(spec.source, "incidence_deg",
+                              "not a parameter of family 'subsystem' (its responses are "
+                              "normalised by one component along x, docs/theory.md §5; the "
+                              "pilot-bridge, multi-span and model-file families take it)");
   }
   if (Mentions(spec, "spans") && NumberOf(spec, {}, "spans", 1.0) != 1.0) {
     throw InputError::AtField(spec.source, "spans", "only single-span decks are supported (1)");
@@ -195,19 +202,29 @@ SpectraEvaluator::CellRun SpectraEvaluator::MakeRun(std::span<const std::size_t>
   CellRun out;
   const spectra::PointParameters p = Parameters(axis_index, &out.record);
   // As Evaluate: the record's PGA and 2 pi / T_m, or the pulse's scales.
-  if (out.record != nullptr) {
-    const spectra::ExcitationScales scales{out.record->measures.pga_mps2,
-                                           out.record->measures.omega_g_radps};
-    out.excitation =
-        std::make_unique<records::SampledExcitation>(records::ToExcitation(out.record->motion));
-    out.run = spectra::MakePointRun(spectra::ToDimensional(p, scales), *out.excitation);
-  } else {
-    const spectra::ExcitationScales scales = spectra::PulseScales(p);
-    out.excitation =
-        std::make_unique<records::PulseExcitation>(p.pulse, scales.a_g_mps2, scales.w_g_radps);
-    out.run = spectra::MakePointRun(spectra::ToDimensional(p, scales), *out.excitation);
-  }
+  const spectra::ExcitationScales scales =
+      out.record != nullptr ? spectra::ExcitationScales{out.record->measures.pga_mps2,
+                                                        out.record->measures.omega_g_radps}
+                            : spectra::PulseScales(p);
+  out.excitation = MakeExcitation(axis_index, p, out.record, scales);
+  out.run = spectra::MakePointRun(spectra::ToDimensional(p, scales), *out.excitation);
   return out;
+}
+
+std::unique_ptr<Excitation> SpectraEvaluator::MakeExcitation(
+    std::span<const std::size_t> axis_index, const spectra::PointParameters& p,
+    const SweepRecord* record, const spectra::ExcitationScales& scales) const {
+  bool turned = false;
+  const double incidence_deg = NumberOf(spec_, axis_index, "incidence_deg", 0.0, &turned);
+  // Without incidence_deg the default direction x, as the excitations make it.
+  const Eigen::Vector2d direction =
+      turned ? records::DirectionAt(incidence_deg) : Eigen::Vector2d::UnitX();
+  if (record != nullptr) {
+    return std::make_unique<records::SampledExcitation>(
+        records::ToExcitation(record->motion, direction));
+  }
+  return std::make_unique<records::PulseExcitation>(p.pulse, scales.a_g_mps2, scales.w_g_radps,
+                                                    direction);
 }
 
 CellOutcome SpectraEvaluator::Evaluate(std::span<const std::size_t> axis_index) const {
@@ -217,17 +234,12 @@ CellOutcome SpectraEvaluator::Evaluate(std::span<const std::size_t> axis_index) 
 
   spectra::PointResult r;
   spectra::DimensionalPoint point;
-  if (record != nullptr) {
-    const spectra::ExcitationScales scales{record->measures.pga_mps2,
-                                           record->measures.omega_g_radps};
-    point = spectra::ToDimensional(p, scales);
-    r = spectra::EvaluatePoint(point, records::ToExcitation(record->motion));
-  } else {
-    const spectra::ExcitationScales scales = spectra::PulseScales(p);
-    point = spectra::ToDimensional(p, scales);
-    const records::PulseExcitation pulse(p.pulse, scales.a_g_mps2, scales.w_g_radps);
-    r = spectra::EvaluatePoint(point, pulse);
-  }
+  const spectra::ExcitationScales scales =
+      record != nullptr
+          ? spectra::ExcitationScales{record->measures.pga_mps2, record->measures.omega_g_radps}
+          : spectra::PulseScales(p);
+  point = spectra::ToDimensional(p, scales);
+  r = spectra::EvaluatePoint(point, *MakeExcitation(axis_index, p, record, scales));
 
   CellOutcome out;
   out.status = CellStatusOf(r.status);

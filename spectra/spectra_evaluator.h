@@ -54,6 +54,13 @@ class SpectraEvaluator final : public CellEvaluator {
   spectra::PointParameters Parameters(std::span<const std::size_t> axis_index,
                                       const SweepRecord** record) const;
 
+  /// The ground motion of a cell: the record as read (or the pulse of `scales`) along x, or,
+  /// with incidence_deg, along that angle from the bridge's x axis.
+  std::unique_ptr<Excitation> MakeExcitation(std::span<const std::size_t> axis_index,
+                                             const spectra::PointParameters& p,
+                                             const SweepRecord* record,
+                                             const spectra::ExcitationScales& scales) const;
+
  private:
   CellGrid spec_;
   spectra::Family family_;

@@ -49,15 +49,11 @@ inline constexpr double kPilotStressGap_m = 0.002;
 /// §6).
 inline constexpr double kPilotStudyGap_m = 0.0095;
 
-/// The pilot bridge of docs/examples/pilot-bridge.toml with both gaps `gap_m` (or 1 km) under a
-/// record-like signal: seeded white noise through a 2 Hz resonator, 40 s at 0.01 s, PGA 3 m/s^2.
-inline Case PilotBridgeRecord(bool contacts, double gap_m = kPilotStressGap_m) {
+/// A record-like signal: white noise of seed `seed` through a 2 Hz resonator under a sine
+/// envelope, 40 s at 0.01 s (4001 samples), PGA 3 m/s^2.
+inline std::vector<double> RecordLikeSignal(unsigned seed = 12345) {
   constexpr double kPi = std::numbers::pi;
-  const model::ModelFile file = model::ParseModelFile(std::string(SKEWBRIDGE_TEST_DATA_DIR) +
-                                                      "/../../docs/examples/pilot-bridge.toml");
-  model::DeckSpec spec = file.deck;
-  spec.gap_plus_m = spec.gap_minus_m = contacts ? gap_m : 1e3;
-  std::mt19937 rng(12345);
+  std::mt19937 rng(seed);
   std::normal_distribution<double> noise(0.0, 1.0);
   std::vector<double> a(4001);
   double x = 0.0, v = 0.0, peak = 0.0;
@@ -70,7 +66,23 @@ inline Case PilotBridgeRecord(bool contacts, double gap_m = kPilotStressGap_m) {
     peak = std::max(peak, std::abs(a[i]));
   }
   for (double& ai : a) ai *= 3.0 / peak;
-  Case c{model::BuildDeckModel(spec), std::make_unique<records::SampledExcitation>(dt, a), {}};
+  return a;
+}
+
+/// The pilot bridge of docs/examples/pilot-bridge.toml with both gaps `gap_m` (or 1 km).
+inline model::Model PilotBridge(bool contacts, double gap_m) {
+  const model::ModelFile file = model::ParseModelFile(std::string(SKEWBRIDGE_TEST_DATA_DIR) +
+                                                      "/../../docs/examples/pilot-bridge.toml");
+  model::DeckSpec spec = file.deck;
+  spec.gap_plus_m = spec.gap_minus_m = contacts ? gap_m : 1e3;
+  return model::BuildDeckModel(spec);
+}
+
+/// The pilot bridge with both gaps `gap_m` (or 1 km) under RecordLikeSignal() along x.
+inline Case PilotBridgeRecord(bool contacts, double gap_m = kPilotStressGap_m) {
+  Case c{PilotBridge(contacts, gap_m),
+         std::make_unique<records::SampledExcitation>(0.01, RecordLikeSignal()),
+         {}};
   c.control.end_time_s = 40.0;
   return c;
 }

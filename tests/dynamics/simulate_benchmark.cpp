@@ -3,9 +3,12 @@
 // results, independent of its number of steps.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdlib>
 
+#include "records/incidence.h"
+#include "solver/dynamics/run.h"
 #include "solver/dynamics/simulate.h"
 #include "tests/dynamics/benchmark_cases.h"
 
@@ -108,6 +111,57 @@ void BM_PilotBridgeRecordStudyGap(benchmark::State& state) {
   Run(state, c.model, *c.excitation, c.control);
 }
 BENCHMARK(BM_PilotBridgeRecordStudyGap)->Unit(benchmark::kMillisecond);
+
+// A record cell against a pair cell of the same length (docs/theory.md §2), cold as a sweep runs
+// it: the excitation made from the components (records::PairExcitation), a new workspace, the run.
+// Arg 0: one record along x (one column, as every record cell without incidence_deg); 1: one
+// record along 30 deg (two columns); 2: the pair (H1, 0) at 30 deg, the same run as 1 through the
+// pair's path; 3: the pair (H1, H2) at 30 deg, H2 a second signal of another seed. The cost
+// ratio of a pair cell is 3 against 0 (different motions, so different impacts and steps: see
+// the counters) and 2 against 1 (the same motion: the plumbing alone).
+void BM_PilotBridgeCellComponents(benchmark::State& state) {
+  const model::Model bridge = bench::PilotBridge(true, bench::kPilotStudyGap_m);
+  records::GroundMotion h1, h2, zero;
+  h1.file = "h1";
+  h1.dt_s = 0.01;
+  h1.acc_mps2 = bench::RecordLikeSignal(12345);
+  h2 = h1;
+  h2.file = "h2";
+  h2.acc_mps2 = bench::RecordLikeSignal(54321);
+  zero = h1;
+  zero.file = "zero";
+  std::fill(zero.acc_mps2.begin(), zero.acc_mps2.end(), 0.0);
+  model::RunControl control;
+  control.end_time_s = 40.0;
+  control.energy_ledger = false;
+  const long which = state.range(0);
+  RunResult r;
+  long runs = 0;
+  for (auto _ : state) {
+    const records::SampledExcitation ex =
+        which == 0   ? records::ToExcitation(h1)
+        : which == 1 ? records::ToExcitation(h1, records::DirectionAt(30.0))
+        : which == 2 ? records::PairExcitation(h1, zero, 30.0)
+                     : records::PairExcitation(h1, h2, 30.0);
+    const model::Model cell = bridge;
+    r = dynamics::Run(cell, ex, control);
+    benchmark::DoNotOptimize(r.max_abs_q.data());
+    ++runs;
+  }
+  state.counters["runs_per_s"] =
+      benchmark::Counter(static_cast<double>(runs), benchmark::Counter::kIsRate);
+  state.counters["steps_per_run"] = static_cast<double>(r.free_steps + r.rk_steps + r.rk_rejected);
+  state.counters["events"] = static_cast<double>(r.events.size());
+  state.counters["impacts"] = static_cast<double>(r.impacts);
+  state.counters["ok"] = r.status == RunStatus::kOk ? 1.0 : 0.0;
+}
+BENCHMARK(BM_PilotBridgeCellComponents)
+    ->Arg(0)
+    ->Arg(1)
+    ->Arg(2)
+    ->Arg(3)
+    ->ArgName("components")
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace skewbridge::dynamics

@@ -29,7 +29,7 @@ VALUES = {
     "delta_over_L": [0.001, 0.002], "L_over_Le": [100.0, 250.0], "W0_over_w0": [0.8, 1.2],
     "xi": [0.02, 0.05], "eps_N": [0.3, 0.7], "mu": [0.0, 0.2], "Pi_delta": [0.5, 1.0],
     "gap_m": [0.02, 0.04], "k_factor": [1.0, 2.0], "seat_over_L": [0.02, 0.05],
-    "seat_m": [0.5, 1.0],
+    "seat_m": [0.5, 1.0], "incidence_deg": [0.0, 90.0],
     "w0_over_wg": [0.5, 2.0], "method": ["event-driven", "time-stepping"],
 }
 
