@@ -1,5 +1,6 @@
 #include "records/record_set.h"
 
+#include <fmt/format.h>
 #include <toml++/toml.h>
 #include <algorithm>
 #include <cmath>
@@ -89,6 +90,48 @@ void ReadEntryOptions(const toml::table& table, const std::filesystem::path& man
     }
     entry.options.channel = static_cast<int>(*value);
   }
+}
+
+// The file of a [[record]] table (file), or the two of a pair (h1 and h2), resolved against the
+// manifest's folder, with their component labels.
+void ReadEntryFiles(const toml::table& table, const std::filesystem::path& manifest,
+                    RecordEntry& entry) {
+  const std::filesystem::path base = manifest.parent_path();
+  const bool pair = table.contains("h1") || table.contains("h2");
+  if (!pair) {
+    for (const char* key : {"component_h1", "component_h2"}) {
+      if (const toml::node* node = table.get(key)) {
+        throw InputError::AtField(Where(manifest, LineOf(*node)), key,
+                                  "only for a pair (h1 and h2); a single record takes component");
+      }
+    }
+    entry.file = base / RequireString(table, "file", manifest, true);
+    entry.component = RequireString(table, "component", manifest, false);
+    return;
+  }
+  for (const char* key : {"file", "component"}) {
+    if (const toml::node* node = table.get(key)) {
+      throw InputError::AtField(Where(manifest, LineOf(*node)), key,
+                                std::string("a pair names its files h1 and h2 (and their "
+                                            "components component_h1, component_h2), not ") +
+                                    key);
+    }
+  }
+  for (const char* key : {"h1", "h2"}) {
+    if (!table.contains(key)) {
+      throw InputError::AtField(Where(manifest, LineOf(table)), key,
+                                "is required for a pair: the files of both horizontal "
+                                "components, h1 and h2");
+    }
+  }
+  entry.file = base / RequireString(table, "h1", manifest, true);
+  entry.file_h2 = base / RequireString(table, "h2", manifest, true);
+  if (entry.file.lexically_normal() == entry.file_h2.lexically_normal()) {
+    throw InputError::AtField(Where(manifest, LineOf(*table.get("h2"))), "h2",
+                              "is the file of h1; a pair has two files, one per component");
+  }
+  entry.component = RequireString(table, "component_h1", manifest, false);
+  entry.component_h2 = RequireString(table, "component_h2", manifest, false);
 }
 
 // The folder form: every regular file of `folder` whose name matches `pattern`, in byte order
@@ -300,7 +343,8 @@ RecordSet LoadRecordSet(const std::filesystem::path& manifest) {
   }
   const std::filesystem::path base = manifest.parent_path();
   static const std::set<std::string_view> kKeys = {
-      "file", "label", "component", "scale", "units", "dt", "format", "channel", "max_pga_g"};
+      "file",    "label",     "component", "scale", "units",        "dt",          "format",
+      "channel", "max_pga_g", "h1",        "h2",    "component_h1", "component_h2"};
   for (const toml::node& item : *records) {
     const toml::table* table = item.as_table();
     if (table == nullptr) {
@@ -312,15 +356,14 @@ RecordSet LoadRecordSet(const std::filesystem::path& manifest) {
         throw InputError::AtField(
             Where(manifest, LineOf(value)), key.str(),
             "unknown key (allowed: file, label, component, scale, units, dt, format, channel, "
-            "max_pga_g)" +
+            "max_pga_g; h1, h2, component_h1, component_h2 for a pair)" +
                 DidYouMean(key.str(), std::vector<std::string>(kKeys.begin(), kKeys.end())));
       }
     }
     RecordEntry entry;
     entry.line = LineOf(*table);
-    entry.file = base / RequireString(*table, "file", manifest, true);
+    ReadEntryFiles(*table, manifest, entry);
     entry.label = RequireString(*table, "label", manifest, false);
-    entry.component = RequireString(*table, "component", manifest, false);
     ReadEntryOptions(*table, manifest, entry);
     // A record axis names records by label: two records of one label would make the label
     // bind to whichever the lookup meets first.
@@ -338,15 +381,85 @@ RecordSet LoadRecordSet(const std::filesystem::path& manifest) {
   return set;
 }
 
-std::string RecordLabel(const RecordEntry& entry) {
-  return entry.label.empty() ? entry.file.filename().string() : entry.label;
+std::string PairLabel(const std::filesystem::path& h1, const std::filesystem::path& h2) {
+  const std::string a = h1.filename().string();
+  const std::string b = h2.filename().string();
+  std::size_t n = 0;
+  while (n < a.size() && n < b.size() && a[n] == b[n]) ++n;
+  while (n > 0 && (a[n - 1] == '_' || a[n - 1] == '-' || a[n - 1] == '.' || a[n - 1] == ' ')) --n;
+  return n == 0 ? a : a.substr(0, n);
 }
 
-GroundMotion LoadRecord(const RecordEntry& entry) {
-  GroundMotion motion = ReadRecord(entry.file, entry.options);
-  for (double& a : motion.acc_mps2) a *= entry.scale;
-  if (!entry.component.empty()) motion.component = entry.component;
+std::string RecordLabel(const RecordEntry& entry) {
+  if (!entry.label.empty()) return entry.label;
+  return entry.IsPair() ? PairLabel(entry.file, entry.file_h2) : entry.file.filename().string();
+}
+
+namespace {
+
+// ReadRecord of one file with the entry's options, scaled, with the manifest's component.
+GroundMotion ReadComponent(const std::filesystem::path& file, const RecordEntry& entry,
+                           const std::string& component) {
+  GroundMotion motion = ReadRecord(file, entry.options);
+  if (entry.scale != 1.0) {
+    for (double& a : motion.acc_mps2) a *= entry.scale;
+  }
+  if (!component.empty()) motion.component = component;
   return motion;
+}
+
+}  // namespace
+
+GroundMotion LoadRecord(const RecordEntry& entry) {
+  if (entry.IsPair()) {
+    throw InputError("record '" + RecordLabel(entry) +
+                     "' is a pair of two horizontal components (h1 " + entry.file.string() +
+                     ", h2 " + entry.file_h2.string() + "); this use takes a single record");
+  }
+  return ReadComponent(entry.file, entry, entry.component);
+}
+
+RecordComponents MatchPair(GroundMotion h1, GroundMotion h2) {
+  const double dt1 = h1.dt_s;
+  const double dt2 = h2.dt_s;
+  if (std::abs(dt1 - dt2) > 1e-9 * std::max(dt1, dt2)) {
+    throw InputError(fmt::format(
+        "{}, {}: the two components of a pair have different time steps ({:g} s and {:g} s); "
+        "allowed: two components sampled at one dt (resample one of them outside skewbridge)",
+        h1.file, h2.file, dt1, dt2));
+  }
+  if (!h1.station.empty() && !h2.station.empty() && h1.station != h2.station) {
+    throw InputError(fmt::format(
+        "{}, {}: the two components of a pair are of different stations ('{}' and '{}' in "
+        "their headers); allowed: two horizontal components of one station",
+        h1.file, h2.file, h1.station, h2.station));
+  }
+  RecordComponents out;
+  const std::size_t n = std::max(h1.npts(), h2.npts());
+  for (std::size_t k = 0; k < 2; ++k) {
+    GroundMotion& m = k == 0 ? h1 : h2;
+    const GroundMotion& other = k == 0 ? h2 : h1;
+    if (m.npts() == n) continue;
+    out.padded_samples[k] = n - m.npts();
+    m.notes.push_back(fmt::format(
+        "{}: padded with {} zero sample(s) at the end to the {} samples of its pair's {} ({})",
+        m.file, n - m.npts(), n, k == 0 ? "H2" : "H1", other.file));
+    m.acc_mps2.resize(n, 0.0);
+  }
+  h2.dt_s = h1.dt_s;  // one time grid for both (equal within the check above)
+  out.motions.push_back(std::move(h1));
+  out.motions.push_back(std::move(h2));
+  return out;
+}
+
+RecordComponents LoadComponents(const RecordEntry& entry) {
+  if (!entry.IsPair()) {
+    RecordComponents out;
+    out.motions.push_back(LoadRecord(entry));
+    return out;
+  }
+  return MatchPair(ReadComponent(entry.file, entry, entry.component),
+                   ReadComponent(entry.file_h2, entry, entry.component_h2));
 }
 
 }  // namespace skewbridge::records

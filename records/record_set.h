@@ -15,6 +15,15 @@
 ///     format = "itsak"          # default: detected by content
 ///     channel = 1               # CSMIP V2 channel
 ///
+/// A [[record]] table may instead name a pair, the two horizontal components of one station
+/// (h1 and h2 in place of file; component_h1, component_h2 default to the headers'; the other
+/// keys apply to both files):
+///
+///     [[record]]
+///     label = "RSN107"          # default: the common start of the two file names
+///     h1 = "RSN107_OROVILLE_B-OAP180.AT2"
+///     h2 = "RSN107_OROVILLE_B-OAP270.AT2"
+///
 /// or, instead of [[record]] tables, a folder and a file-name glob: every matching file, in
 /// byte order of the names, labelled by its file name, each with the top-level options:
 ///
@@ -24,6 +33,7 @@
 ///     units = "g"               # optional, as above (a file's header must agree)
 ///     dt = 0.01                 # optional, as above
 
+#include <array>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -33,14 +43,31 @@
 
 namespace skewbridge::records {
 
-/// One record of a set, as the manifest gives it.
+/// One record of a set, as the manifest gives it: a single component, or a pair (H1 and H2).
 struct RecordEntry {
-  std::filesystem::path file;  ///< resolved against the manifest's folder
-  std::string label;           ///< user label (default: the file name)
-  std::string component;       ///< overrides the header's component when not empty
-  double scale = 1.0;          ///< factor applied to the accelerations
-  ReadOptions options;         ///< format, dt, units, channel
-  long line = 0;               ///< line of the [[record]] table in the manifest
+  std::filesystem::path file;     ///< resolved against the manifest's folder; a pair's H1 file
+  std::string label;              ///< user label (default: the file name, for a pair see PairLabel)
+  std::string component;          ///< overrides the (H1) header's component when not empty
+  double scale = 1.0;             ///< factor applied to the accelerations (both of a pair)
+  ReadOptions options;            ///< format, dt, units, channel (both of a pair)
+  long line = 0;                  ///< line of the [[record]] table in the manifest
+  std::filesystem::path file_h2;  ///< a pair's H2 file, resolved; empty for a single record
+  std::string component_h2;       ///< overrides the H2 header's component when not empty
+
+  /// Whether the entry is a pair of horizontal components (h1 and h2 in the manifest).
+  bool IsPair() const { return !file_h2.empty(); }
+};
+
+/// The components of one record-set entry, ready for a two-component consumer: one motion for
+/// a single record; H1 and H2 of one dt and one length for a pair (the shorter padded with zeros
+/// at its end).
+struct RecordComponents {
+  std::vector<GroundMotion> motions;  ///< {record} or {H1, H2}, scaled and labelled
+  /// Zero samples appended at the end of motions[k] to reach the pair's common length.
+  std::array<std::size_t, 2> padded_samples{0, 0};
+
+  /// Whether the entry was a pair.
+  bool IsPair() const { return motions.size() == 2; }
 };
 
 /// A named list of records.
@@ -82,11 +109,29 @@ std::string GlobProblem(std::string_view pattern);
 /// @pre GlobProblem(pattern) is empty.
 bool GlobMatch(std::string_view pattern, std::string_view name);
 
-/// Reads one entry: ReadRecord with the entry's options, then scale, label and component.
-/// @throws InputError from the reader (naming the record file and line).
+/// Reads one single-record entry: ReadRecord with the entry's options, then scale, label and
+/// component.
+/// @throws InputError from the reader (naming the record file and line), or for a pair (which
+/// has two components: LoadComponents).
 GroundMotion LoadRecord(const RecordEntry& entry);
 
-/// A display label for a record: the entry label, else the file name.
+/// Reads every component of an entry (LoadRecord for a single record; both files of a pair with
+/// the entry's options and scale, made one dt and one length by MatchPair).
+/// @throws InputError from the readers, or as MatchPair.
+RecordComponents LoadComponents(const RecordEntry& entry);
+
+/// Makes two horizontal components of one station a pair of one length: the shorter is padded
+/// with zeros at its end (said in its GroundMotion::notes and in padded_samples).
+/// @throws InputError naming both files when their time steps differ (by more than 1e-9
+/// relative: the headers state one number).
+RecordComponents MatchPair(GroundMotion h1, GroundMotion h2);
+
+/// A display label for a record: the entry label, else the file name (PairLabel for a pair).
 std::string RecordLabel(const RecordEntry& entry);
+
+/// The default label of a pair: the common start of the two file names without a trailing
+/// '_', '-', '.' or blank ("RSN107_OROVILLE_B-OAP" of ...OAP180.AT2 and ...OAP270.AT2), or the
+/// H1 file name when they share none.
+std::string PairLabel(const std::filesystem::path& h1, const std::filesystem::path& h2);
 
 }  // namespace skewbridge::records

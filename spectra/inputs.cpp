@@ -60,6 +60,15 @@ std::vector<GridInput> GridInputFiles(const CellGrid& grid) {
             "record '" + label + "': " + WhyUnreadable(entry.file) + ": " + entry.file.string());
       }
       add("record", entry.file);
+      if (entry.IsPair()) {
+        // A pair's H2 file enters the input identity as its H1 file does.
+        if (!std::filesystem::is_regular_file(entry.file_h2, ec)) {
+          throw InputError::AtLine(set->manifest.string(), entry.line,
+                                   "record '" + label + "': h2: " + WhyUnreadable(entry.file_h2) +
+                                       ": " + entry.file_h2.string());
+        }
+        add("record", entry.file_h2);
+      }
     }
   }
   return out;

@@ -129,6 +129,114 @@ TEST(LoadRecordSet, FolderSetErrorsNameTheManifestLineAndKey) {
               HasSubstr("g9.toml:3: units: unknown units 'ft'"));
 }
 
+// A pair: two files of one station, H1 and H2, beside single records in one [[record]] array;
+// the shorter component is padded with zeros at its end, and the padding is said.
+TEST(LoadRecordSet, PairsGiveTwoComponentsOfOneLength) {
+  const RecordSet set = LoadRecordSet(kData / "pairs" / "pairs.toml");
+  ASSERT_EQ(set.records.size(), 3u);
+  EXPECT_TRUE(set.records[0].IsPair());
+  EXPECT_FALSE(set.records[1].IsPair());
+  EXPECT_EQ(RecordLabel(set.records[0]), "RSN107");
+  EXPECT_EQ(RecordLabel(set.records[1]), "NIS090.AT2");
+  EXPECT_EQ(RecordLabel(set.records[2]), "RSN430_SMART1.25_25M01");  // the files' common start
+
+  const RecordComponents pair = LoadComponents(set.records[0]);
+  ASSERT_TRUE(pair.IsPair());
+  const GroundMotion h1 = ReadRecord(kData / "pairs" / "RSN107_OROVILLE_B-OAP180.AT2");
+  const GroundMotion h2 = ReadRecord(kData / "pairs" / "RSN107_OROVILLE_B-OAP270.AT2");
+  ASSERT_EQ(h1.npts(), 2630u);  // PAIRS.csv
+  ASSERT_EQ(h2.npts(), 2405u);
+  for (const GroundMotion& m : pair.motions) {
+    EXPECT_EQ(m.npts(), 2630u);
+    EXPECT_EQ(m.dt_s, 0.005);
+    EXPECT_EQ(m.station, "Oroville Airport");
+  }
+  EXPECT_EQ(pair.motions[0].component, "180");
+  EXPECT_EQ(pair.motions[1].component, "270");
+  EXPECT_EQ(pair.padded_samples[0], 0u);
+  EXPECT_EQ(pair.padded_samples[1], 225u);
+  EXPECT_EQ(pair.motions[0].acc_mps2, h1.acc_mps2);
+  for (std::size_t i = 0; i < 2630; ++i) {
+    ASSERT_EQ(pair.motions[1].acc_mps2[i], i < 2405 ? h2.acc_mps2[i] : 0.0) << i;
+  }
+  ASSERT_EQ(pair.motions[1].notes.size(), 1u);
+  EXPECT_THAT(pair.motions[1].notes[0],
+              HasSubstr("RSN107_OROVILLE_B-OAP270.AT2: padded with 225 zero sample(s) at the end "
+                        "to the 2630 samples of its pair's H1"));
+  EXPECT_TRUE(pair.motions[0].notes.empty());
+
+  const RecordComponents single = LoadComponents(set.records[1]);
+  ASSERT_FALSE(single.IsPair());
+  EXPECT_EQ(single.motions[0].acc_mps2, LoadRecord(set.records[1]).acc_mps2);
+  // A consumer of one component is told it met a pair, never given H1 alone.
+  try {
+    LoadRecord(set.records[0]);
+    ADD_FAILURE() << "a pair read as one record";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("record 'RSN107' is a pair of two horizontal components"));
+  }
+}
+
+// The readers' strictness holds for both files; a pair of two time steps is refused with one
+// line naming both files; scale and the manifest's components apply to both.
+TEST(LoadRecordSet, PairsAreReadAsStrictlyAsSingleRecords) {
+  const std::string pairs = (kData / "pairs").string();
+  const std::string h1 = pairs + "/RSN430_SMART1.25_25M01EW.AT2";
+  const RecordSet scaled = LoadRecordSet(WriteManifest(
+      "p1.toml", "[[record]]\nh1 = \"" + h1 + "\"\nh2 = \"" + pairs +
+                     "/RSN430_SMART1.25_25M01NS.AT2\"\nscale = 3\ncomponent_h1 = \"E\"\n"
+                     "component_h2 = \"N\"\n"));
+  const RecordComponents three = LoadComponents(scaled.records[0]);
+  const GroundMotion ns = ReadRecord(pairs + "/RSN430_SMART1.25_25M01NS.AT2");
+  EXPECT_EQ(three.motions[1].acc_mps2[500], 3.0 * ns.acc_mps2[500]);
+  EXPECT_EQ(three.motions[0].component, "E");
+  EXPECT_EQ(three.motions[1].component, "N");
+  EXPECT_EQ(three.padded_samples[0] + three.padded_samples[1], 0u);
+
+  auto error_of_pair = [&](const std::string& name, const std::string& second) {
+    try {
+      LoadComponents(LoadRecordSet(WriteManifest(name, "[[record]]\nh1 = \"" + h1 + "\"\nh2 = \"" +
+                                                           second + "\"\n"))
+                         .records[0]);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_THAT(error_of_pair("p2.toml", (kData / "malformed" / "truncated.AT2").string()),
+              HasSubstr("truncated.AT2:4: header declares NPTS = 6 but the file holds 4"));
+  // The H2 file of RSN430 with its DT changed from .0100 to .0050.
+  std::ifstream in(pairs + "/RSN430_SMART1.25_25M01NS.AT2");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  text.replace(text.find("DT=   .0100"), 11, "DT=   .0050");
+  const std::filesystem::path other_dt =
+      std::filesystem::path(::testing::TempDir()) / "sets" / "NS-dt0.005.AT2";
+  std::ofstream(other_dt) << text;
+  const std::string dt_error = error_of_pair("p3.toml", other_dt.string());
+  EXPECT_THAT(dt_error, HasSubstr(h1 + ", " + other_dt.string() +
+                                  ": the two components of a pair have different time steps "
+                                  "(0.01 s and 0.005 s)"));
+  EXPECT_EQ(dt_error.find('\n'), std::string::npos);
+  EXPECT_THAT(error_of_pair("p4.toml", (kData / "NIS090.AT2").string()),
+              HasSubstr("the two components of a pair are of different stations"));
+}
+
+TEST(LoadRecordSet, PairErrorsNameTheManifestLineAndKey) {
+  EXPECT_THAT(ErrorOf(WriteManifest("q1.toml", "[[record]]\nh1 = \"a\"\n")),
+              HasSubstr("q1.toml:1: h2: is required for a pair"));
+  EXPECT_THAT(
+      ErrorOf(WriteManifest("q2.toml", "[[record]]\nh1 = \"a\"\nh2 = \"b\"\nfile = \"c\"\n")),
+      HasSubstr("q2.toml:4: file: a pair names its files h1 and h2"));
+  EXPECT_THAT(ErrorOf(WriteManifest("q3.toml", "[[record]]\nfile = \"a\"\ncomponent_h2 = \"N\"\n")),
+              HasSubstr("q3.toml:3: component_h2: only for a pair"));
+  EXPECT_THAT(ErrorOf(WriteManifest("q4.toml", "[[record]]\nh1 = \"a\"\nh2 = \"./a\"\n")),
+              HasSubstr("q4.toml:3: h2: is the file of h1"));
+  EXPECT_THAT(ErrorOf(WriteManifest("q5.toml",
+                                    "[[record]]\nh1 = \"a\"\nh2 = \"b\"\n"
+                                    "[[record]]\nfile = \"a\"\n")),
+              HasSubstr("duplicate record label 'a'"));
+}
+
 TEST(GlobMatch, StarQuestionMarkAndClasses) {
   EXPECT_TRUE(GlobMatch("*.AT2", "RSN6_IMPVALL.AT2"));
   EXPECT_FALSE(GlobMatch("*.AT2", "RSN6_IMPVALL.at2"));

@@ -103,6 +103,56 @@ TEST(SharedRecords, EveryFileLoadsAndMatchesTheManifest) {
   }
 }
 
+// Every pair of ../shared/records/pairs_nga_west2 loads through records/sets/pairs_nga_west2.toml
+// as two components of one dt and one length, each matching PAIRS.csv (npts before the padding,
+// dt, PGA to the file's 4 decimals of g), the shorter padded with exactly the difference.
+TEST(SharedRecords, EveryPairLoadsAndMatchesPairsCsv) {
+  const std::filesystem::path folder = kShared / "pairs_nga_west2";
+  if (!std::filesystem::exists(folder / "PAIRS.csv")) {
+    GTEST_SKIP() << "no shared pair collection at " << folder << "; nothing to check";
+  }
+  std::ifstream in(folder / "PAIRS.csv");
+  std::string line;
+  std::getline(in, line);
+  const std::vector<std::string> header = CsvFields(line);
+  std::map<std::string, std::map<std::string, std::string>> pairs;
+  while (std::getline(in, line)) {
+    if (line.empty()) continue;
+    const std::vector<std::string> fields = CsvFields(line);
+    std::map<std::string, std::string> row;
+    for (std::size_t i = 0; i < header.size() && i < fields.size(); ++i) row[header[i]] = fields[i];
+    pairs[row.at("pair")] = row;
+  }
+  const RecordSet set = LoadRecordSet(kSetManifest.parent_path() / "pairs_nga_west2.toml");
+  ASSERT_EQ(set.records.size(), pairs.size());
+  ASSERT_EQ(set.records.size(), 50u);
+  std::size_t padded_pairs = 0;
+  for (const RecordEntry& entry : set.records) {
+    SCOPED_TRACE(entry.label);
+    ASSERT_TRUE(entry.IsPair());
+    ASSERT_EQ(pairs.count(entry.label), 1u);
+    const auto& row = pairs.at(entry.label);
+    const RecordComponents c = LoadComponents(entry);
+    ASSERT_TRUE(c.IsPair());
+    const std::size_t n1 = std::stoul(row.at("h1_npts"));
+    const std::size_t n2 = std::stoul(row.at("h2_npts"));
+    EXPECT_EQ(c.motions[0].npts(), std::max(n1, n2));
+    EXPECT_EQ(c.motions[1].npts(), std::max(n1, n2));
+    EXPECT_EQ(c.padded_samples[0], std::max(n1, n2) - n1);
+    EXPECT_EQ(c.padded_samples[1], std::max(n1, n2) - n2);
+    padded_pairs += n1 != n2 ? 1 : 0;
+    for (std::size_t k = 0; k < 2; ++k) {
+      const std::string h = k == 0 ? "h1_" : "h2_";
+      EXPECT_NEAR(c.motions[k].dt_s, std::stod(row.at(h + "dt_s")), 1e-12);
+      EXPECT_EQ(c.motions[k].component, row.at(h + "component"));
+      double pga = 0.0;
+      for (double a : c.motions[k].acc_mps2) pga = std::max(pga, std::abs(a));
+      EXPECT_NEAR(pga / kStandardGravity_mps2, std::stod(row.at(h + "pga_g")), 0.5e-4 + 1e-9);
+    }
+  }
+  EXPECT_GT(padded_pairs, 0u);  // RSN107 at least (2630 and 2405 samples)
+}
+
 TEST(SharedRecords, FormatIsDetectedByContentNotExtension) {
   if (!std::filesystem::exists(kShared / "esm_ascii" / "KM.AT2")) {
     GTEST_SKIP() << "no shared record collection at " << kShared;
