@@ -195,7 +195,7 @@ std::string ScaleFactorReport(const SweepSpec& spec, const CellEvaluator& evalua
   }
 
   std::string measure = im.measure;
-  if (im.measure == "Sa" || im.measure == "AvgSa") {
+  if (im.Spectral()) {
     measure += im.at_t1 ? fmt::format("(T1, xi = {:g})", im.xi)
                         : fmt::format("({:g} s, xi = {:g})", im.period_s, im.xi);
   }

@@ -57,7 +57,7 @@ std::string SweepSpec::CanonicalText() const {
   }
   if (!im.measure.empty()) {
     out << (im.scale ? "records.scale_to" : "records.im") << " = {measure = " << str(im.measure);
-    if (im.measure == "Sa" || im.measure == "AvgSa") {
+    if (im.Spectral()) {
       out << ", period = " << (im.at_t1 ? std::string("\"T1\"") : Fmt(im.period_s))
           << ", xi = " << Fmt(im.xi);
     }

@@ -113,27 +113,33 @@ void SpecParser::ParseIntensityMeasure(const toml::table& records, SweepSpec& sp
   const std::optional<std::string> m = measure ? measure->value<std::string>() : std::nullopt;
   if (!m) {
     throw Error(measure ? measure->source() : node->source(), name + ".measure",
-                "must be one of \"Sa\", \"AvgSa\", \"PGA\", \"PGV\"");
-  }
-  if (*m != "Sa" && *m != "AvgSa" && *m != "PGA" && *m != "PGV") {
-    throw Error(measure->source(), name + ".measure",
-                "unknown measure '" + *m + "'; allowed: Sa, AvgSa, PGA, PGV");
+                "must be one of \"Sa\", \"AvgSa\", \"PGA\", \"PGV\" (single records) or "
+                "\"RotD50\", \"RotD100\", \"GM\" (record pairs)");
   }
   spec.im.measure = *m;
-  const bool spectral = *m == "Sa" || *m == "AvgSa";
+  if (!spec.im.Spectral() && *m != "PGA" && *m != "PGV") {
+    throw Error(measure->source(), name + ".measure",
+                "unknown measure '" + *m +
+                    "'; allowed: Sa, AvgSa, PGA, PGV (single records), RotD50, RotD100, GM "
+                    "(record pairs)" +
+                    DidYouMean(*m, {"Sa", "AvgSa", "PGA", "PGV", "RotD50", "RotD100", "GM"}));
+  }
+  const bool spectral = spec.im.Spectral();
   const toml::node* period = table->get("period");
   const toml::node* xi = table->get("xi");
   if (!spectral) {
     if (period != nullptr || xi != nullptr) {
-      throw Error((period ? period : xi)->source(), name + (period ? ".period" : ".xi"),
-                  "only for Sa and AvgSa (" + *m + " has no period or damping)");
+      throw Error(
+          (period ? period : xi)->source(), name + (period ? ".period" : ".xi"),
+          "only for Sa, AvgSa, RotD50, RotD100 and GM (" + *m + " has no period or damping)");
     }
     return;
   }
   if (period == nullptr) {
-    if (*m == "Sa") {
-      throw Error(node->source(), name + ".period",
-                  "missing: Sa needs a period in s or \"T1\" (the model's fundamental period)");
+    if (*m != "AvgSa") {
+      throw Error(
+          node->source(), name + ".period",
+          "missing: " + *m + " needs a period in s or \"T1\" (the model's fundamental period)");
     }
     spec.im.at_t1 = true;  // AvgSa is conditioned on T1 unless told otherwise
   } else if (const std::optional<std::string> text = period->value<std::string>()) {

@@ -3,6 +3,7 @@
 #include <fftw3.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <complex>
@@ -118,6 +119,46 @@ double SignificantDuration(std::span<const double> acc, double dt_s, double from
   return CrossingTime(cumulative, to * total, dt_s) - CrossingTime(cumulative, from * total, dt_s);
 }
 
+namespace {
+
+// The recurrence of [Nigam and Jennings 1969]: [u, v]_{k+1} = A [u, v]_k + B [a_k, a_{k+1}] for
+// u'' + 2 xi w u' + w^2 u = -a(t) with a linear on [t_k, t_{k+1}], exact for that excitation.
+struct OscillatorStep {
+  double a11, a12, a21, a22, b11, b12, b21, b22;
+
+  OscillatorStep(double period_s, double xi, double h) {
+    const double w = 2.0 * std::numbers::pi / period_s;
+    const double root = std::sqrt(1.0 - xi * xi);
+    const double wd = w * root;
+    const double e = std::exp(-xi * w * h);
+    const double s = std::sin(wd * h);
+    const double c = std::cos(wd * h);
+    const double r = xi / root;
+    a11 = e * (r * s + c);
+    a12 = e * s / wd;
+    a21 = -w / root * e * s;
+    a22 = e * (c - r * s);
+    const double k1 = (2.0 * xi * xi - 1.0) / (w * w * h);
+    const double k2 = 2.0 * xi / (w * w * w * h);
+    b11 = e * ((k1 + xi / w) * s / wd + (k2 + 1.0 / (w * w)) * c) - k2;
+    b12 = -e * (k1 * s / wd + k2 * c) - 1.0 / (w * w) + k2;
+    b21 = e * ((k1 + xi / w) * (c - r * s) - (k2 + 1.0 / (w * w)) * (wd * s + xi * w * c)) +
+          1.0 / (w * w * h);
+    b22 = -e * (k1 * (c - r * s) - k2 * (wd * s + xi * w * c)) - 1.0 / (w * w * h);
+  }
+};
+
+void RequireDampingAndPeriod(double xi, double period, std::string_view what) {
+  if (!(xi >= 0.0 && xi < 1.0)) {
+    throw InputError::AtField(what, "xi", fmt::format("must be in [0, 1) (got {})", xi));
+  }
+  if (!(std::isfinite(period) && period > 0.0)) {
+    throw InputError::AtField(what, "period", fmt::format("must be > 0 s (got {})", period));
+  }
+}
+
+}  // namespace
+
 ResponseSpectrum ElasticResponseSpectrum(std::span<const double> acc, double dt_s,
                                          std::span<const double> periods_s, double xi) {
   RequireRecord(acc, dt_s, "response spectrum");
@@ -128,39 +169,16 @@ ResponseSpectrum ElasticResponseSpectrum(std::span<const double> acc, double dt_
   ResponseSpectrum out;
   out.xi = xi;
   out.periods_s.assign(periods_s.begin(), periods_s.end());
-  const double h = dt_s;
   for (const double period : periods_s) {
-    if (!(std::isfinite(period) && period > 0.0)) {
-      throw InputError::AtField("response spectrum", "period",
-                                fmt::format("must be > 0 s (got {})", period));
-    }
-    // [Nigam and Jennings 1969]: [u, v]_{k+1} = A [u, v]_k + B [a_k, a_{k+1}] for
-    // u'' + 2 xi w u' + w^2 u = -a(t) with a linear on [t_k, t_{k+1}].
+    RequireDampingAndPeriod(xi, period, "response spectrum");
     const double w = 2.0 * std::numbers::pi / period;
-    const double root = std::sqrt(1.0 - xi * xi);
-    const double wd = w * root;
-    const double e = std::exp(-xi * w * h);
-    const double s = std::sin(wd * h);
-    const double c = std::cos(wd * h);
-    const double r = xi / root;
-    const double a11 = e * (r * s + c);
-    const double a12 = e * s / wd;
-    const double a21 = -w / root * e * s;
-    const double a22 = e * (c - r * s);
-    const double k1 = (2.0 * xi * xi - 1.0) / (w * w * h);
-    const double k2 = 2.0 * xi / (w * w * w * h);
-    const double b11 = e * ((k1 + xi / w) * s / wd + (k2 + 1.0 / (w * w)) * c) - k2;
-    const double b12 = -e * (k1 * s / wd + k2 * c) - 1.0 / (w * w) + k2;
-    const double b21 =
-        e * ((k1 + xi / w) * (c - r * s) - (k2 + 1.0 / (w * w)) * (wd * s + xi * w * c)) +
-        1.0 / (w * w * h);
-    const double b22 = -e * (k1 * (c - r * s) - k2 * (wd * s + xi * w * c)) - 1.0 / (w * w * h);
+    const OscillatorStep step(period, xi, dt_s);
     double u = 0.0;
     double v = 0.0;
     double peak = 0.0;
     for (std::size_t k = 0; k + 1 < acc.size(); ++k) {
-      const double u_next = a11 * u + a12 * v + b11 * acc[k] + b12 * acc[k + 1];
-      const double v_next = a21 * u + a22 * v + b21 * acc[k] + b22 * acc[k + 1];
+      const double u_next = step.a11 * u + step.a12 * v + step.b11 * acc[k] + step.b12 * acc[k + 1];
+      const double v_next = step.a21 * u + step.a22 * v + step.b21 * acc[k] + step.b22 * acc[k + 1];
       u = u_next;
       v = v_next;
       peak = std::max(peak, std::abs(u));
@@ -168,6 +186,79 @@ ResponseSpectrum ElasticResponseSpectrum(std::span<const double> acc, double dt_
     out.sd_m.push_back(peak);
     out.psv_mps.push_back(w * peak);
     out.psa_mps2.push_back(w * w * peak);
+  }
+  return out;
+}
+
+std::vector<double> OscillatorDisplacement(std::span<const double> acc, double dt_s,
+                                           double period_s, double xi) {
+  RequireRecord(acc, dt_s, "oscillator response");
+  RequireDampingAndPeriod(xi, period_s, "oscillator response");
+  const OscillatorStep step(period_s, xi, dt_s);
+  std::vector<double> out(acc.size(), 0.0);
+  double u = 0.0;
+  double v = 0.0;
+  for (std::size_t k = 0; k + 1 < acc.size(); ++k) {
+    const double u_next = step.a11 * u + step.a12 * v + step.b11 * acc[k] + step.b12 * acc[k + 1];
+    const double v_next = step.a21 * u + step.a22 * v + step.b21 * acc[k] + step.b22 * acc[k + 1];
+    u = u_next;
+    v = v_next;
+    out[k + 1] = u;
+  }
+  return out;
+}
+
+RotDValues RotDFromHistories(std::span<const double> u1, std::span<const double> u2) {
+  SB_DEMAND(u1.size() == u2.size() && !u1.empty(), "two response histories of one length");
+  std::array<double, kRotDAngles> peak{};
+  for (int angle = 0; angle < kRotDAngles; ++angle) {
+    const double theta = angle * std::numbers::pi / 180.0;
+    const double c = std::cos(theta);
+    const double s = std::sin(theta);
+    double m = 0.0;
+    for (std::size_t k = 0; k < u1.size(); ++k) m = std::max(m, std::abs(c * u1[k] + s * u2[k]));
+    peak[static_cast<std::size_t>(angle)] = m;
+  }
+  RotDValues out;
+  const auto largest = std::max_element(peak.begin(), peak.end());
+  out.rotd100 = *largest;
+  out.rotd100_angle_deg = static_cast<double>(largest - peak.begin());
+  out.rotd0 = *std::min_element(peak.begin(), peak.end());
+  std::array<double, kRotDAngles> sorted = peak;
+  std::sort(sorted.begin(), sorted.end());
+  out.rotd50 = 0.5 * (sorted[kRotDAngles / 2 - 1] + sorted[kRotDAngles / 2]);
+  return out;
+}
+
+PairSpectrum PairResponseSpectrum(std::span<const double> h1, std::span<const double> h2,
+                                  double dt_s, std::span<const double> periods_s, double xi) {
+  if (h1.size() != h2.size()) {
+    throw InputError::AtField(
+        "pair spectrum", "components",
+        fmt::format("H1 and H2 differ in length ({} and {} samples)", h1.size(), h2.size()));
+  }
+  PairSpectrum out;
+  out.xi = xi;
+  out.periods_s.assign(periods_s.begin(), periods_s.end());
+  for (const double period : periods_s) {
+    const double w = 2.0 * std::numbers::pi / period;
+    const double w2 = w * w;  // as ElasticResponseSpectrum's PSa = w^2 Sd
+    const std::vector<double> u1 = OscillatorDisplacement(h1, dt_s, period, xi);
+    const std::vector<double> u2 = OscillatorDisplacement(h2, dt_s, period, xi);
+    double peak1 = 0.0;
+    double peak2 = 0.0;
+    for (std::size_t k = 0; k < u1.size(); ++k) {
+      peak1 = std::max(peak1, std::abs(u1[k]));
+      peak2 = std::max(peak2, std::abs(u2[k]));
+    }
+    const RotDValues rotd = RotDFromHistories(u1, u2);
+    out.sa_h1_mps2.push_back(w2 * peak1);
+    out.sa_h2_mps2.push_back(w2 * peak2);
+    out.gm_mps2.push_back(w2 * std::sqrt(peak1 * peak2));
+    out.rotd0_mps2.push_back(w2 * rotd.rotd0);
+    out.rotd50_mps2.push_back(w2 * rotd.rotd50);
+    out.rotd100_mps2.push_back(w2 * rotd.rotd100);
+    out.rotd100_angle_deg.push_back(rotd.rotd100_angle_deg);
   }
   return out;
 }

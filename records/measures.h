@@ -93,6 +93,51 @@ struct ResponseSpectrum {
 ResponseSpectrum ElasticResponseSpectrum(std::span<const double> acc_mps2, double dt_s,
                                          std::span<const double> periods_s, double xi = 0.05);
 
+/// The relative displacement u(t_k) (m) of u'' + 2 xi w u' + w^2 u = -a(t), u(0) = u'(0) = 0,
+/// w = 2 pi / T, at every sample of the record (u[0] = 0), by the recurrence of
+/// ElasticResponseSpectrum (whose Sd is max_k |u[k]|) [Nigam and Jennings 1969].
+/// @throws InputError as ElasticResponseSpectrum.
+std::vector<double> OscillatorDisplacement(std::span<const double> acc_mps2, double dt_s,
+                                           double period_s, double xi = 0.05);
+
+/// Rotation angles of RotD: 0, 1, ..., 179 deg [Boore 2010].
+inline constexpr int kRotDAngles = 180;
+
+/// Orientation-independent peaks of two oscillator histories [Boore 2010, BSSA 100:1830]: at
+/// every angle theta = 0, 1, ..., 179 deg (from H1 towards H2) the peak over time of
+/// |u1 cos theta + u2 sin theta|; RotD00, RotD50 and RotD100 are the minimum, the median (the
+/// mean of the 90th and 91st of the 180 sorted peaks) and the maximum over the angles.
+struct RotDValues {
+  double rotd0 = 0.0;              ///< smallest peak over the angles (units of u)
+  double rotd50 = 0.0;             ///< median peak over the angles
+  double rotd100 = 0.0;            ///< largest peak over the angles
+  double rotd100_angle_deg = 0.0;  ///< the (first) angle of the largest peak, 0-179 deg
+};
+
+/// RotD of two response histories of one length [Boore 2010]. @pre u1.size() == u2.size() > 0.
+RotDValues RotDFromHistories(std::span<const double> u1, std::span<const double> u2);
+
+/// The spectral measures of a pair of horizontal components at each period (m/s^2), all
+/// pseudo-accelerations w^2 max |u|: Sa of H1 and H2, their geometric mean GM = sqrt(Sa1 Sa2),
+/// RotD00, RotD50, RotD100 and the angle of RotD100 (deg from H1 towards H2) [Boore 2010].
+struct PairSpectrum {
+  double xi = 0.05;                       ///< damping ratio
+  std::vector<double> periods_s;          ///< the periods T (s)
+  std::vector<double> sa_h1_mps2;         ///< PSa of H1
+  std::vector<double> sa_h2_mps2;         ///< PSa of H2
+  std::vector<double> gm_mps2;            ///< geometric mean sqrt(PSa_H1 PSa_H2)
+  std::vector<double> rotd0_mps2;         ///< RotD00
+  std::vector<double> rotd50_mps2;        ///< RotD50
+  std::vector<double> rotd100_mps2;       ///< RotD100
+  std::vector<double> rotd100_angle_deg;  ///< angle of RotD100, 0-179 deg
+};
+
+/// The pair's measures at `periods_s` and damping `xi`: both oscillator histories by
+/// OscillatorDisplacement, combined at every angle by RotDFromHistories [Boore 2010].
+/// @throws InputError when h1 and h2 differ in length, or as ElasticResponseSpectrum.
+PairSpectrum PairResponseSpectrum(std::span<const double> h1_mps2, std::span<const double> h2_mps2,
+                                  double dt_s, std::span<const double> periods_s, double xi = 0.05);
+
 /// The periods of AvgSa: `count` periods equally spaced in T from from_t1 T1 to to_t1 T1, both
 /// ends included (one period, from_t1 T1, when count = 1) [Eads et al. 2015].
 /// @throws InputError when T1 <= 0, 0 < from_t1 <= to_t1 does not hold, or count < 1.

@@ -65,9 +65,11 @@ struct LimitState {
 
 /// The intensity measure of a record-driven sweep's cells ([records] scale_to or im,
 /// docs/sweep-format.md): Sa(T, xi), AvgSa(T1, xi) over 0.2-3 T1 [Eads et al. 2015], PGA or PGV
-/// of the record as the cell applies it.
+/// of the record as the cell applies it; for record pairs RotD50, RotD100 [Boore 2010] or the
+/// geometric mean GM of the two components' Sa(T, xi).
 struct IntensityMeasureSpec {
-  std::string measure;    ///< "Sa", "AvgSa", "PGA" or "PGV"; empty: none given
+  /// "Sa", "AvgSa", "PGA", "PGV", or of a pair "RotD50", "RotD100", "GM"; empty: none given.
+  std::string measure;
   bool at_t1 = false;     ///< period = "T1": the fundamental period of each cell's model
   double period_s = 0.0;  ///< the period (Sa) or conditioning period (AvgSa) when !at_t1 (s)
   double xi = 0.05;       ///< damping ratio of the spectrum (Sa, AvgSa)
@@ -82,6 +84,11 @@ struct IntensityMeasureSpec {
   bool exclude_beyond_max_scale = false;
   /// The axis (or fixed) key that carries the target: "im_g" (Sa, AvgSa, PGA) or "im_mps" (PGV).
   std::string AxisKey() const { return measure == "PGV" ? "im_mps" : "im_g"; }
+  /// Whether the measure is of a pair of horizontal components (RotD50, RotD100, GM).
+  bool OfPair() const { return measure == "RotD50" || measure == "RotD100" || measure == "GM"; }
+  /// Whether the measure is a spectral ordinate with a period and a damping ratio (Sa, AvgSa
+  /// and the pair measures).
+  bool Spectral() const { return measure == "Sa" || measure == "AvgSa" || OfPair(); }
 };
 
 /// Incremental dynamic analysis ([ida], docs/sweep-format.md): each cell scales its record up

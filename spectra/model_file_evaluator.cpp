@@ -218,15 +218,8 @@ ModelFileEvaluator::ModelFileEvaluator(const CellGrid& spec)
   // The records' spectral measures at T1 for the record table, when T1 is one for the sweep.
   const IntensityMeasureSpec& im = spec.im;
   if (t1_values_s_.size() == 1 && std::isfinite(t1_values_s_[0])) {
-    const double t1 = t1_values_s_[0];
-    const std::vector<double> one{t1};
     for (SweepRecord& r : records_) {
-      r.t1_s = t1;
-      r.spectral_xi = im.measure.empty() ? 0.05 : im.xi;
-      r.sa_t1_mps2 = records::PseudoAccelerationSpectrum(r.motion.acc_mps2, r.motion.dt_s, one,
-                                                         r.spectral_xi)[0];
-      r.avgsa_mps2 = records::AverageSpectralAcceleration(r.motion.acc_mps2, r.motion.dt_s,
-                                                          records::AvgSaPeriods(t1), r.spectral_xi);
+      SetSpectralMeasuresAtT1(r, t1_values_s_[0], im.measure.empty() ? 0.05 : im.xi);
     }
   }
   if (im.measure.empty()) return;
@@ -244,16 +237,12 @@ ModelFileEvaluator::ModelFileEvaluator(const CellGrid& spec)
   }
   const std::size_t n_t1 = t1_values_s_.size();
   record_im_.resize(records_.size() * n_t1);
-  const bool per_t1 = im.at_t1 && (im.measure == "Sa" || im.measure == "AvgSa");
+  const bool per_t1 = im.at_t1 && im.Spectral();
   for (std::size_t r = 0; r < records_.size(); ++r) {
     for (std::size_t t = 0; t < n_t1; ++t) {
       const SweepRecord& record = records_[r];
-      // One T1: the record table's Sa(T1) and AvgSa(T1) are these very numbers (same calls).
-      if (per_t1 && n_t1 == 1 && record.t1_s == t1_values_s_[0] && record.spectral_xi == im.xi) {
-        record_im_[r] = (im.measure == "Sa" ? record.sa_t1_mps2 : record.avgsa_mps2) /
-                        records::kStandardGravity_mps2;
-        continue;
-      }
+      // One T1: RecordIntensity takes the record table's values at T1 (same calls, computed
+      // once by SetSpectralMeasuresAtT1).
       record_im_[r * n_t1 + t] =
           per_t1 || t == 0 ? RecordIntensity(record, im, t1_values_s_[t]) : record_im_[r * n_t1];
     }

@@ -98,6 +98,7 @@ std::vector<SweepRecord> LoadSweepRecords(const CellGrid& spec) {
       record.measures = records::ComputeMeasures(record.motion);
       out.push_back(std::move(record));
     }
+    CheckMeasureOfRecords(spec, out);
     return out;
   }
   if (spec.record_set_path.empty() && spec.record_folder.empty()) {
@@ -119,22 +120,93 @@ std::vector<SweepRecord> LoadSweepRecords(const CellGrid& spec) {
     }
     SweepRecord record;
     record.label = label;
-    const std::filesystem::path file = std::filesystem::absolute(found->file).lexically_normal();
-    const std::filesystem::path relative = file.lexically_relative(base);
-    record.file = (relative.empty() ? file : relative).generic_string();
+    auto relative_to_set = [&base](const std::filesystem::path& path) {
+      const std::filesystem::path file = std::filesystem::absolute(path).lexically_normal();
+      const std::filesystem::path relative = file.lexically_relative(base);
+      return (relative.empty() ? file : relative).generic_string();
+    };
+    record.file = relative_to_set(found->file);
     record.scale = found->scale;
-    record.motion = records::LoadRecord(*found);
+    records::RecordComponents components = records::LoadComponents(*found);
+    record.motion = std::move(components.motions[0]);
     record.measures = records::ComputeMeasures(record.motion);
+    if (components.IsPair()) {
+      record.file_h2 = relative_to_set(found->file_h2);
+      record.motion_h2 = std::move(components.motions[1]);
+      record.measures_h2 = records::ComputeMeasures(*record.motion_h2);
+      record.padded_samples = components.padded_samples;
+    }
     out.push_back(std::move(record));
   }
+  CheckMeasureOfRecords(spec, out);
   return out;
+}
+
+void SetSpectralMeasuresAtT1(SweepRecord& record, double t1_s, double xi) {
+  record.t1_s = t1_s;
+  record.spectral_xi = xi;
+  const std::vector<double> one{t1_s};
+  const std::span<const double> acc(record.motion.acc_mps2);
+  record.sa_t1_mps2 = records::PseudoAccelerationSpectrum(acc, record.motion.dt_s, one, xi)[0];
+  record.avgsa_mps2 = records::AverageSpectralAcceleration(acc, record.motion.dt_s,
+                                                           records::AvgSaPeriods(t1_s), xi);
+  if (!record.IsPair()) return;
+  const records::PairSpectrum pair =
+      records::PairResponseSpectrum(acc, record.motion_h2->acc_mps2, record.motion.dt_s, one, xi);
+  record.rotd50_t1_mps2 = pair.rotd50_mps2[0];
+  record.rotd100_t1_mps2 = pair.rotd100_mps2[0];
+  record.gm_t1_mps2 = pair.gm_mps2[0];
+  record.rotd100_angle_t1_deg = pair.rotd100_angle_deg[0];
+}
+
+void CheckMeasureOfRecords(const CellGrid& spec, const std::vector<SweepRecord>& records) {
+  const IntensityMeasureSpec& im = spec.im;
+  if (im.measure.empty()) return;
+  const std::string field = std::string(im.scale ? "records.scale_to" : "records.im") + ".measure";
+  for (const SweepRecord& r : records) {
+    if (im.OfPair() && !r.IsPair()) {
+      throw InputError::AtField(
+          spec.source, field,
+          "record '" + r.label + "' is a single component and " + im.measure +
+              " is a measure of a pair of horizontal components (h1, h2 in the record set, "
+              "docs/records.md); allowed for single records: Sa, AvgSa, PGA, PGV");
+    }
+    if (!im.OfPair() && r.IsPair()) {
+      throw InputError::AtField(
+          spec.source, field,
+          "record '" + r.label + "' is a pair of horizontal components and " + im.measure +
+              " is a measure of one component (it would depend on which is H1); allowed for "
+              "pairs: RotD50, RotD100, GM [Boore 2010]");
+    }
+  }
 }
 
 double RecordIntensity(const SweepRecord& record, const IntensityMeasureSpec& im, double t1_s) {
   constexpr double g = records::kStandardGravity_mps2;
+  const double period = im.at_t1 ? t1_s : im.period_s;
+  // Stored by SetSpectralMeasuresAtT1 for this very period and damping: taken as they are.
+  const bool stored = period == record.t1_s && im.xi == record.spectral_xi;
+  if (im.OfPair()) {
+    SB_DEMAND(record.IsPair(), "a pair measure of a single record (CheckMeasureOfRecords)");
+    if (stored) {
+      return (im.measure == "RotD50"    ? record.rotd50_t1_mps2
+              : im.measure == "RotD100" ? record.rotd100_t1_mps2
+                                        : record.gm_t1_mps2) /
+             g;
+    }
+    const std::vector<double> one{period};
+    const records::PairSpectrum pair = records::PairResponseSpectrum(
+        record.motion.acc_mps2, record.motion_h2->acc_mps2, record.motion.dt_s, one, im.xi);
+    return (im.measure == "RotD50"    ? pair.rotd50_mps2[0]
+            : im.measure == "RotD100" ? pair.rotd100_mps2[0]
+                                      : pair.gm_mps2[0]) /
+           g;
+  }
   if (im.measure == "PGA") return record.measures.pga_mps2 / g;
   if (im.measure == "PGV") return record.measures.pgv_mps;
-  const double period = im.at_t1 ? t1_s : im.period_s;
+  if (stored && (im.measure == "Sa" || im.measure == "AvgSa")) {
+    return (im.measure == "Sa" ? record.sa_t1_mps2 : record.avgsa_mps2) / g;
+  }
   const std::span<const double> acc(record.motion.acc_mps2);
   if (im.measure == "Sa") {
     const std::vector<double> one{period};
@@ -164,6 +236,16 @@ std::string IntensityDescription(const IntensityMeasureSpec& im) {
         "spaced from {} to {} times {} [Eads et al. 2015]",
         at, im.xi, records::kAvgSaPeriodCount, records::kAvgSaFromT1, records::kAvgSaToT1, at);
   }
+  if (im.OfPair()) {
+    const std::string what = im.measure == "RotD50" ? "median over the rotation angles 0-179 deg"
+                             : im.measure == "RotD100"
+                                 ? "largest over the rotation angles 0-179 deg"
+                                 : "geometric mean over the two components";
+    return fmt::format(
+        "{}({}, xi = {}): {} of the pair's peak oscillator responses, pseudo-spectral "
+        "acceleration in g [Boore 2010]",
+        im.measure, at, im.xi, what);
+  }
   if (im.measure == "PGA") return "PGA in g";
   return "PGV in m/s (no baseline correction)";
 }
@@ -176,7 +258,7 @@ std::optional<IntensityMeasureSpec> ParseIntensityDescription(std::string_view m
     if (description != IntensityDescription(im)) return std::nullopt;
     return im;
   }
-  if (measure != "Sa" && measure != "AvgSa") return std::nullopt;
+  if (!im.Spectral()) return std::nullopt;
   // "<measure>(<T1 | period s>, xi = <xi>): ..."
   const std::string head = std::string(measure) + "(";
   if (description.substr(0, head.size()) != head) return std::nullopt;

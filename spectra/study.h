@@ -24,11 +24,19 @@ namespace skewbridge::spectra {
 
 /// A record of the sweep's record set, read and measured once.
 struct SweepRecord {
-  std::string label;                    ///< label in the record set
-  std::string file;                     ///< relative to the manifest's folder; "" if synthesised
-  double scale = 1.0;                   ///< the manifest's factor on the accelerations
-  records::GroundMotion motion;         ///< accelerations (m/s^2), scaled as the set says
-  records::IntensityMeasures measures;  ///< PGA, T_m, w_g, L_e, CAV, ...
+  std::string label;             ///< label in the record set
+  std::string file;              ///< relative to the manifest's folder; "" if synthesised
+  double scale = 1.0;            ///< the manifest's factor on the accelerations
+  records::GroundMotion motion;  ///< accelerations (m/s^2), scaled as the set says; H1 of a pair
+  records::IntensityMeasures measures;  ///< PGA, T_m, w_g, L_e, CAV, ... of `motion`
+  /// The second horizontal component H2 of a pair (same dt and npts as `motion`, the shorter of
+  /// the two files padded with zeros at its end); empty for a single record.
+  std::optional<records::GroundMotion> motion_h2;
+  /// The measures of motion_h2 (of a pair only).
+  std::optional<records::IntensityMeasures> measures_h2;
+  std::string file_h2;  ///< a pair's H2 file, relative to the manifest's folder; "" if single
+  /// Zero samples appended at the end of H1 (0) and H2 (1) to make a pair's lengths equal.
+  std::array<std::size_t, 2> padded_samples{0, 0};
   /// The spectral measures at the sweep's fundamental period T1, when every cell of the sweep
   /// has the same T1 (a model-file sweep whose axes leave the model's modes alone); NaN
   /// otherwise (the cells then store T1 and their measure themselves).
@@ -36,13 +44,37 @@ struct SweepRecord {
   double spectral_xi = 0.05;  ///< damping ratio of sa_t1 and avgsa ([records] scale_to / im)
   double sa_t1_mps2 = std::numeric_limits<double>::quiet_NaN();  ///< Sa(T1, xi) (m/s^2)
   double avgsa_mps2 = std::numeric_limits<double>::quiet_NaN();  ///< AvgSa(T1, xi) (m/s^2)
+  /// A pair's measures at t1_s and spectral_xi (m/s^2; the angle in deg from H1 towards H2)
+  /// [Boore 2010], set with sa_t1_mps2 by SetSpectralMeasuresAtT1; NaN for a single record.
+  double rotd50_t1_mps2 = std::numeric_limits<double>::quiet_NaN();
+  double rotd100_t1_mps2 = std::numeric_limits<double>::quiet_NaN();  ///< RotD100(T1, xi)
+  double gm_t1_mps2 = std::numeric_limits<double>::quiet_NaN();       ///< sqrt(Sa_H1 Sa_H2) at T1
+  double rotd100_angle_t1_deg = std::numeric_limits<double>::quiet_NaN();  ///< angle of RotD100
+
+  /// Whether the record is a pair of horizontal components (motion is H1, motion_h2 is H2).
+  bool IsPair() const { return motion_h2.has_value(); }
 };
 
 /// The measure `im` names of a record as given (unscaled), at period t1_s where the measure
 /// takes "T1": Sa and AvgSa (0.2-3 T1, records::kAvgSaPeriodCount periods) in g, PGA in g,
-/// PGV in m/s: the unit of the intensity axis (im_g, im_mps).
-/// @pre im.measure is one of Sa, AvgSa, PGA, PGV; t1_s > 0 when im.at_t1.
+/// PGV in m/s, and of a pair RotD50, RotD100 and GM in g (records::PairResponseSpectrum): the
+/// unit of the intensity axis (im_g, im_mps). The values SetSpectralMeasuresAtT1 stored for
+/// this very period and damping are taken as they are (one computation per record and period).
+/// @pre im.measure is one of Sa, AvgSa, PGA, PGV (single records) or RotD50, RotD100, GM (pairs,
+/// CheckMeasureOfRecords); t1_s > 0 when im.at_t1.
 double RecordIntensity(const SweepRecord& record, const IntensityMeasureSpec& im, double t1_s);
+
+/// Sets the record's spectral measures at the sweep's one fundamental period t1_s and damping xi
+/// (t1_s, spectral_xi, sa_t1_mps2, avgsa_mps2; of a pair also RotD50, RotD100 with its angle,
+/// and GM), each computed once.
+void SetSpectralMeasuresAtT1(SweepRecord& record, double t1_s, double xi);
+
+/// Refuses a measure that does not fit a record of the sweep: a pair measure (RotD50, RotD100,
+/// GM) of a single record, or a one-component measure (Sa, AvgSa, PGA, PGV) of a pair, whose
+/// value would depend on which component is H1.
+/// @throws InputError naming spec.source, the field records.scale_to (or records.im).measure
+/// and the first record that does not fit.
+void CheckMeasureOfRecords(const CellGrid& spec, const std::vector<SweepRecord>& records);
 
 /// The unit of the measure's axis and of the cells' im: "g", or "m/s" for PGV.
 std::string IntensityUnit(const IntensityMeasureSpec& im);

@@ -9,6 +9,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
+#include <optional>
 #include <string>
 #include <system_error>
 #include <vector>
@@ -53,6 +55,9 @@ struct Row {
   IntensityMeasures measures;
   int channel = 1;  ///< the CSMIP V2 channel read (meaningful for multi-channel files only)
   std::string set;  ///< the set (manifest or folder) the record came from, "" alone
+  /// For a component of a pair: the pair's label; "" for a single record.
+  std::string pair;
+  int component = 0;  ///< 1 (H1) or 2 (H2) for a component of a pair, else 0
 };
 
 std::string CsvField(const std::string& text) {
@@ -116,13 +121,20 @@ void LoadPath(const std::string& text, const InfoArgs& args, std::string_view co
     }
     const records::RecordSet set = records::LoadRecordSet(path);
     for (const records::RecordEntry& entry : set.records) {
-      Row row{records::RecordLabel(entry),
-              records::LoadRecord(entry),
-              {},
-              entry.options.channel,
-              set.name};
-      row.measures = records::ComputeMeasures(row.motion);
-      rows.push_back(std::move(row));
+      // A pair gives a row per component, labelled "LABEL H1" and "LABEL H2".
+      records::RecordComponents components = records::LoadComponents(entry);
+      for (std::size_t k = 0; k < components.motions.size(); ++k) {
+        const std::string label =
+            records::RecordLabel(entry) + (components.IsPair() ? (k == 0 ? " H1" : " H2") : "");
+        Row row{label, std::move(components.motions[k]), {}, entry.options.channel, set.name, "",
+                0};
+        if (components.IsPair()) {
+          row.pair = records::RecordLabel(entry);
+          row.component = static_cast<int>(k) + 1;
+        }
+        row.measures = records::ComputeMeasures(row.motion);
+        rows.push_back(std::move(row));
+      }
     }
     return;
   }
@@ -135,8 +147,13 @@ void LoadPath(const std::string& text, const InfoArgs& args, std::string_view co
                                  ? path.lexically_normal().parent_path().filename().string()
                                  : path.lexically_normal().filename().string();
     for (const records::RecordEntry& entry : set.records) {
-      Row row{
-          records::RecordLabel(entry), records::LoadRecord(entry), {}, entry.options.channel, name};
+      Row row{records::RecordLabel(entry),
+              records::LoadRecord(entry),
+              {},
+              entry.options.channel,
+              name,
+              "",
+              0};
       row.measures = records::ComputeMeasures(row.motion);
       rows.push_back(std::move(row));
     }
@@ -146,7 +163,9 @@ void LoadPath(const std::string& text, const InfoArgs& args, std::string_view co
           records::ReadRecord(path, ReadOptionsOf(args, command)),
           {},
           args.channel,
-          ""};
+          "",
+          "",
+          0};
   row.measures = records::ComputeMeasures(row.motion);
   rows.push_back(std::move(row));
 }
@@ -398,6 +417,11 @@ void PrintInfo(const InfoArgs& args) {
   }
 }
 
+// ", N pairs" for the summary line of `records spectrum`, "" without pairs.
+std::string PairsText(std::size_t pairs) {
+  return pairs == 0 ? "" : fmt::format("; {} pair(s): GM, RotD00, RotD50, RotD100", pairs);
+}
+
 struct SpectrumArgs {
   InfoArgs read;                   ///< --dt, --units, --format, --channel
   std::vector<std::string> paths;  ///< records, folders or sets
@@ -442,6 +466,28 @@ void WriteSpectra(const SpectrumArgs& args, const std::string& command_line) {
   t.command = command_line;
   t.periods_s = periods;
   t.xi = xi;
+  // A pair's measures [Boore 2010] from its two rows (H1 directly followed by H2).
+  for (std::size_t i = 0; i + 1 < rows.size(); ++i) {
+    const Row& h1 = rows[i];
+    const Row& h2 = rows[i + 1];
+    if (h1.component != 1 || h2.component != 2 || h1.pair != h2.pair) continue;
+    t.pair_label.push_back(h1.pair);
+    t.pair_set.push_back(h1.set);
+    for (const double x : xi) {
+      const records::PairSpectrum s = records::PairResponseSpectrum(
+          h1.motion.acc_mps2, h2.motion.acc_mps2, h1.motion.dt_s, periods, x);
+      auto append = [](std::vector<double>& to, const std::vector<double>& from) {
+        to.insert(to.end(), from.begin(), from.end());
+      };
+      append(t.sa_h1_mps2, s.sa_h1_mps2);
+      append(t.sa_h2_mps2, s.sa_h2_mps2);
+      append(t.gm_mps2, s.gm_mps2);
+      append(t.rotd0_mps2, s.rotd0_mps2);
+      append(t.rotd50_mps2, s.rotd50_mps2);
+      append(t.rotd100_mps2, s.rotd100_mps2);
+      append(t.rotd100_angle_deg, s.rotd100_angle_deg);
+    }
+  }
   for (const Row& r : rows) {
     t.label.push_back(r.label);
     t.file.push_back(r.motion.file);
@@ -462,21 +508,59 @@ void WriteSpectra(const SpectrumArgs& args, const std::string& command_line) {
     } catch (const jobs::h5::H5Error& e) {
       throw InputError::AtField(kCommand, "--out", std::string("cannot write: ") + e.what());
     }
-    std::printf(
-        "%s", fmt::format("wrote {} spectra ({} records x {} damping ratios, {} periods) "
-                          "to {}\n",
-                          rows.size() * xi.size(), rows.size(), xi.size(), periods.size(), args.out)
-                  .c_str());
+    std::printf("%s", fmt::format("wrote {} spectra ({} records x {} damping ratios, {} periods{}) "
+                                  "to {}\n",
+                                  rows.size() * xi.size(), rows.size(), xi.size(), periods.size(),
+                                  PairsText(t.pair_label.size()), args.out)
+                          .c_str());
     return;
   }
-  std::string text = "label,set,xi,T_s,Sd_m,PSv_mps,PSa_mps2,PSa_g\n";
+  // With a pair among the records, a column names the measure of each line (H1, H2 of a pair's
+  // components; GM, RotD00, RotD50, RotD100 of the pair, with RotD100's angle); without, the
+  // table is that of single records.
+  const bool with_pairs = !t.pair_label.empty();
+  std::string text = with_pairs ? "label,set,measure,xi,T_s,Sd_m,PSv_mps,PSa_mps2,PSa_g,angle_deg\n"
+                                : "label,set,xi,T_s,Sd_m,PSv_mps,PSa_mps2,PSa_g\n";
+  // One line of the table with pairs; a pair measure's Sd and PSv are PSa / w^2 and PSa / w.
+  auto line = [&text](const std::string& label, const std::string& set, std::string_view measure,
+                      double x, double period, std::optional<double> sd, double psa,
+                      std::optional<double> angle) {
+    const double w = 2.0 * std::numbers::pi / period;
+    const double d = sd.value_or(psa / (w * w));
+    text +=
+        fmt::format("{},{},{},{},{},{},{},{},{},{}\n", CsvField(label), CsvField(set), measure, x,
+                    period, d, sd ? w * d : psa / w, psa, psa / records::kStandardGravity_mps2,
+                    angle ? fmt::format("{}", *angle) : std::string());
+  };
   std::size_t k = 0;
   for (std::size_t r = 0; r < rows.size(); ++r) {
+    const std::string measure =
+        rows[r].component == 0 ? "Sa" : (rows[r].component == 1 ? "H1" : "H2");
     for (const double x : xi) {
       for (const double p : periods) {
-        text += fmt::format("{},{},{},{},{},{},{},{}\n", CsvField(t.label[r]), CsvField(t.set[r]),
-                            x, p, t.sd_m[k], t.psv_mps[k], t.psa_mps2[k],
-                            t.psa_mps2[k] / records::kStandardGravity_mps2);
+        if (with_pairs) {
+          line(rows[r].component == 0 ? t.label[r] : rows[r].pair, t.set[r], measure, x, p,
+               t.sd_m[k], t.psa_mps2[k], std::nullopt);
+        } else {
+          text += fmt::format("{},{},{},{},{},{},{},{}\n", CsvField(t.label[r]), CsvField(t.set[r]),
+                              x, p, t.sd_m[k], t.psv_mps[k], t.psa_mps2[k],
+                              t.psa_mps2[k] / records::kStandardGravity_mps2);
+        }
+        ++k;
+      }
+    }
+  }
+  k = 0;
+  for (std::size_t q = 0; q < t.pair_label.size(); ++q) {
+    for (const double x : xi) {
+      for (const double p : periods) {
+        line(t.pair_label[q], t.pair_set[q], "GM", x, p, std::nullopt, t.gm_mps2[k], std::nullopt);
+        line(t.pair_label[q], t.pair_set[q], "RotD00", x, p, std::nullopt, t.rotd0_mps2[k],
+             std::nullopt);
+        line(t.pair_label[q], t.pair_set[q], "RotD50", x, p, std::nullopt, t.rotd50_mps2[k],
+             std::nullopt);
+        line(t.pair_label[q], t.pair_set[q], "RotD100", x, p, std::nullopt, t.rotd100_mps2[k],
+             t.rotd100_angle_deg[k]);
         ++k;
       }
     }
@@ -503,11 +587,11 @@ void WriteSpectra(const SpectrumArgs& args, const std::string& command_line) {
     std::filesystem::remove(tmp, ec);
     throw InputError::AtField(kCommand, "--out", "cannot write " + args.out + ": " + ec.message());
   }
-  std::printf("%s",
-              fmt::format("wrote {} spectra ({} records x {} damping ratios, {} periods) "
-                          "to {}\n",
-                          rows.size() * xi.size(), rows.size(), xi.size(), periods.size(), args.out)
-                  .c_str());
+  std::printf("%s", fmt::format("wrote {} spectra ({} records x {} damping ratios, {} periods{}) "
+                                "to {}\n",
+                                rows.size() * xi.size(), rows.size(), xi.size(), periods.size(),
+                                PairsText(t.pair_label.size()), args.out)
+                        .c_str());
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "jobs/h5/cube_study_tables.h"
 
+#include <algorithm>
 #include <limits>
 #include <type_traits>
 
@@ -29,6 +30,56 @@ Id WriteArray(hid_t parent, const std::string& name, const std::vector<hsize_t>&
   SetAttr(ds.get(), "units", units);
   SetAttr(ds.get(), "description", description);
   return ds;
+}
+
+// The columns of record pairs, only when the table holds one (a table of single records keeps
+// its layout): which rows are pairs, the H2 file and component, the zeros that made the two
+// components one length, and the H2 peaks (the columns above are H1's).
+void WritePairColumns(hid_t table, const StudyTables& study) {
+  const bool any_pair = std::any_of(study.records.begin(), study.records.end(),
+                                    [](const SweepRecord& r) { return r.IsPair(); });
+  if (!any_pair) return;
+  const std::vector<hsize_t> shape{study.records.size()};
+  std::vector<std::int64_t> pair, padded_h1, padded_h2;
+  std::vector<std::string> file_h2, component_h2;
+  std::vector<double> pga_h2, pgv_h2, tm_h2, rotd50, rotd100, gm, angle;
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  for (const SweepRecord& r : study.records) {
+    pair.push_back(r.IsPair() ? 1 : 0);
+    file_h2.push_back(r.file_h2);
+    component_h2.push_back(r.IsPair() ? r.motion_h2->component : "");
+    padded_h1.push_back(static_cast<std::int64_t>(r.padded_samples[0]));
+    padded_h2.push_back(static_cast<std::int64_t>(r.padded_samples[1]));
+    pga_h2.push_back(r.measures_h2 ? r.measures_h2->pga_mps2 : kNaN);
+    pgv_h2.push_back(r.measures_h2 ? r.measures_h2->pgv_mps : kNaN);
+    tm_h2.push_back(r.measures_h2 ? r.measures_h2->mean_period_s : kNaN);
+    rotd50.push_back(r.rotd50_t1_mps2);
+    rotd100.push_back(r.rotd100_t1_mps2);
+    gm.push_back(r.gm_t1_mps2);
+    angle.push_back(r.rotd100_angle_t1_deg);
+  }
+  WriteArray(table, "pair", shape, pair, "1",
+             "1: a pair of horizontal components (the other columns are of H1, the *_h2 of H2); "
+             "0: a single record");
+  WriteStrings(table, "file_h2", file_h2);
+  WriteStrings(table, "component_h2", component_h2);
+  WriteArray(table, "padded_samples_h1", shape, padded_h1, "1",
+             "zero samples appended at the end of H1 to reach the pair's npts");
+  WriteArray(table, "padded_samples_h2", shape, padded_h2, "1",
+             "zero samples appended at the end of H2 to reach the pair's npts");
+  WriteArray(table, "pga_h2_mps2", shape, pga_h2, "m/s^2", "peak ground acceleration of H2");
+  WriteArray(table, "pgv_h2_mps", shape, pgv_h2, "m/s", "peak ground velocity of H2");
+  WriteArray(table, "T_m_h2_s", shape, tm_h2, "s", "mean period of H2 [Rathje et al. 1998]");
+  const std::string at_t1 =
+      " at T1 (attribute T1_s) and spectral_xi, of the pair as given (unscaled) [Boore 2010]; "
+      "NaN for a single record or when the cells' T1 differ";
+  WriteArray(table, "RotD50_T1_mps2", shape, rotd50, "m/s^2",
+             "median over the angles 0-179 deg of the peak oscillator response" + at_t1);
+  WriteArray(table, "RotD100_T1_mps2", shape, rotd100, "m/s^2",
+             "largest over the angles 0-179 deg of the peak oscillator response" + at_t1);
+  WriteArray(table, "RotD100_angle_T1_deg", shape, angle, "deg",
+             "angle of RotD100 from H1 towards H2" + at_t1);
+  WriteArray(table, "GM_T1_mps2", shape, gm, "m/s^2", "geometric mean sqrt(Sa_H1 Sa_H2)" + at_t1);
 }
 
 void WriteRecordTable(hid_t sweep_group, const StudyTables& study) {
@@ -89,6 +140,7 @@ void WriteRecordTable(hid_t sweep_group, const StudyTables& study) {
   WriteArray(g.get(), "AvgSa_mps2", shape, avgsa, "m/s^2",
              "AvgSa(T1): geometric mean of Sa over " + std::to_string(records::kAvgSaPeriodCount) +
                  " periods equally spaced in 0.2-3 T1 [Eads et al. 2015]" + where_t1);
+  WritePairColumns(g.get(), study);
   // The table's rows are the record axis: attach its scale to every column (select by label).
   if (Exists(sweep_group, "axes/record")) {
     Id record_axis = OpenDataset(sweep_group, "axes/record");

@@ -58,6 +58,38 @@ void WriteSpectrumFile(const std::filesystem::path& path, const SpectrumTable& t
       AttachScale(ds.get(), xi.get(), 1, "xi");
       AttachScale(ds.get(), period.get(), 2, "period_s");
     }
+    const hsize_t q = t.pair_label.size();
+    if (q > 0) {
+      for (const std::vector<double>* values :
+           {&t.sa_h1_mps2, &t.sa_h2_mps2, &t.gm_mps2, &t.rotd0_mps2, &t.rotd50_mps2,
+            &t.rotd100_mps2, &t.rotd100_angle_deg}) {
+        SB_DEMAND(values->size() == q * x * p, "pair spectrum arrays of inconsistent sizes");
+      }
+      Id pairs = CreateGroup(file.get(), "pairs");
+      SetAttr(pairs.get(), "method",
+              std::string("the oscillator of /spectra under each horizontal component; at every "
+                          "angle theta = 0, 1, ..., 179 deg the peak over time of |u1 cos theta + "
+                          "u2 sin theta|, its median (mean of the 90th and 91st of the 180 sorted "
+                          "peaks) RotD50, maximum RotD100, minimum RotD00 [Boore 2010, BSSA "
+                          "100:1830]; GM = sqrt(Sa_H1 Sa_H2); all w^2 times a displacement"));
+      SetAttr(pairs.get(), "dims", std::vector<std::string>{"pair", "xi", "period"});
+      WriteStrings(pairs.get(), "label", t.pair_label);
+      WriteStrings(pairs.get(), "set", t.pair_set);
+      const std::vector<hsize_t> shape{q, x, p};
+      for (auto [name, values, units, what] :
+           {std::tuple{"Sa_H1_mps2", &t.sa_h1_mps2, "m/s^2", "PSa of H1 (= the record H1's)"},
+            std::tuple{"Sa_H2_mps2", &t.sa_h2_mps2, "m/s^2", "PSa of H2"},
+            std::tuple{"GM_mps2", &t.gm_mps2, "m/s^2", "geometric mean sqrt(Sa_H1 Sa_H2)"},
+            std::tuple{"RotD00_mps2", &t.rotd0_mps2, "m/s^2", "smallest peak over the angles"},
+            std::tuple{"RotD50_mps2", &t.rotd50_mps2, "m/s^2", "median peak over the angles"},
+            std::tuple{"RotD100_mps2", &t.rotd100_mps2, "m/s^2", "largest peak over the angles"},
+            std::tuple{"RotD100_angle_deg", &t.rotd100_angle_deg, "deg",
+                       "angle of RotD100 from H1 towards H2 (the first of ties), 0-179"}}) {
+        Id ds = WriteDoubles(pairs.get(), name, shape, *values, units, what);
+        AttachScale(ds.get(), xi.get(), 1, "xi");
+        AttachScale(ds.get(), period.get(), 2, "period_s");
+      }
+    }
     SaveFileImage(file.get(), tmp);
   } catch (const H5Error& e) {
     std::error_code ec;

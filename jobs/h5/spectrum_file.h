@@ -24,6 +24,14 @@ struct SpectrumTable {
   std::vector<double> sd_m;        ///< spectral displacement (m)
   std::vector<double> psv_mps;     ///< pseudo-spectral velocity w Sd (m/s)
   std::vector<double> psa_mps2;    ///< pseudo-spectral acceleration w^2 Sd (m/s^2)
+  /// Per pair of horizontal components (whose H1 and H2 are records of the table): its label.
+  std::vector<std::string> pair_label;
+  std::vector<std::string> pair_set;  ///< per pair: its set
+  /// Per pair, Q * X * P values row-major over (pair, xi, period), all pseudo-accelerations
+  /// (m/s^2) [Boore 2010]: Sa of H1 and H2, GM = sqrt(Sa_H1 Sa_H2), RotD00, RotD50, RotD100,
+  /// and the angle of RotD100 (deg from H1 towards H2).
+  std::vector<double> sa_h1_mps2, sa_h2_mps2, gm_mps2, rotd0_mps2, rotd50_mps2, rotd100_mps2,
+      rotd100_angle_deg;
 };
 
 /// Writes the table to `path` whole: built in memory, saved to PATH.tmp and renamed, so no

@@ -198,6 +198,69 @@ TEST(ElasticResponseSpectrum, RejectsDampingOutsideZeroToOne) {
   EXPECT_THROW(ElasticResponseSpectrum(acc, 0.01, period, -0.1), InputError);
 }
 
+// The displacement history's largest magnitude is the spectrum's Sd (one recurrence).
+TEST(OscillatorDisplacement, PeakIsTheSpectralDisplacement) {
+  const GroundMotion m = ReadRecord(kData / "NIS090.AT2");
+  for (const double period : {0.1, 1.0, 3.0}) {
+    const std::vector<double> u = OscillatorDisplacement(m.acc_mps2, m.dt_s, period, 0.05);
+    ASSERT_EQ(u.size(), m.npts());
+    EXPECT_EQ(u[0], 0.0);
+    double peak = 0.0;
+    for (const double x : u) peak = std::max(peak, std::abs(x));
+    const std::vector<double> one{period};
+    EXPECT_EQ(peak, ElasticResponseSpectrum(m.acc_mps2, m.dt_s, one, 0.05).sd_m[0]);
+  }
+}
+
+// Closed forms of RotD [Boore 2010]: a circular history has one peak at every angle; a history
+// along H1 alone has peaks |cos theta| max|u1|, whose median over 0-179 deg is cos 45 deg (the
+// 90th and 91st sorted values are those of 45 and 135 deg), minimum |cos 90 deg| and maximum at 0.
+TEST(RotD, ClosedFormsOfACircleAndOfOneComponent) {
+  std::vector<double> c(2000), s(2000), zero(2000, 0.0);
+  for (std::size_t k = 0; k < c.size(); ++k) {
+    const double t = 2.0 * std::numbers::pi * static_cast<double>(k) / 1000.0;
+    c[k] = 0.3 * std::cos(t);
+    s[k] = 0.3 * std::sin(t);
+  }
+  const RotDValues circle = RotDFromHistories(c, s);
+  EXPECT_NEAR(circle.rotd0, 0.3, 1e-5);  // sampled circle: peaks within 1 - cos(pi/1000)
+  EXPECT_NEAR(circle.rotd100, 0.3, 1e-12);
+  const RotDValues line = RotDFromHistories(c, zero);
+  EXPECT_DOUBLE_EQ(line.rotd100, 0.3);
+  EXPECT_EQ(line.rotd100_angle_deg, 0.0);
+  EXPECT_NEAR(line.rotd50, 0.3 * std::cos(std::numbers::pi / 4.0), 1e-15);
+  EXPECT_NEAR(line.rotd0, 0.0, 1e-16);
+  // Along H2 alone, the largest peak is at 90 deg.
+  EXPECT_EQ(RotDFromHistories(zero, c).rotd100_angle_deg, 90.0);
+}
+
+// A pair of two equal components: GM = Sa, RotD100 = sqrt(2) Sa at 45 deg, RotD00 = 0 at 135
+// deg; a pair (a, 0): RotD100 = Sa at 0 deg, RotD50 = Sa cos 45 deg, GM = 0.
+TEST(PairResponseSpectrum, EqualComponentsAndOneComponentAlone) {
+  const GroundMotion m = ReadRecord(kData / "NIS090.AT2");
+  const std::vector<double> periods{0.2, 1.0};
+  const std::vector<double> zero(m.npts(), 0.0);
+  const std::vector<double> sa = PseudoAccelerationSpectrum(m.acc_mps2, m.dt_s, periods, 0.05);
+  const PairSpectrum same = PairResponseSpectrum(m.acc_mps2, m.acc_mps2, m.dt_s, periods, 0.05);
+  const PairSpectrum alone = PairResponseSpectrum(m.acc_mps2, zero, m.dt_s, periods, 0.05);
+  for (std::size_t p = 0; p < periods.size(); ++p) {
+    EXPECT_EQ(same.sa_h1_mps2[p], sa[p]);
+    EXPECT_EQ(same.sa_h2_mps2[p], sa[p]);
+    EXPECT_NEAR(same.gm_mps2[p], sa[p], 1e-14 * sa[p]);
+    EXPECT_NEAR(same.rotd100_mps2[p], std::sqrt(2.0) * sa[p], 1e-14 * sa[p]);
+    EXPECT_EQ(same.rotd100_angle_deg[p], 45.0);
+    EXPECT_NEAR(same.rotd0_mps2[p], 0.0, 1e-14 * sa[p]);
+    EXPECT_EQ(alone.rotd100_mps2[p], sa[p]);
+    EXPECT_EQ(alone.rotd100_angle_deg[p], 0.0);
+    EXPECT_NEAR(alone.rotd50_mps2[p], sa[p] * std::cos(std::numbers::pi / 4.0), 1e-14 * sa[p]);
+    EXPECT_EQ(alone.gm_mps2[p], 0.0);
+    EXPECT_GE(same.rotd100_mps2[p], same.rotd50_mps2[p]);
+    EXPECT_GE(same.rotd50_mps2[p], same.rotd0_mps2[p]);
+  }
+  const std::vector<double> shorter(m.npts() - 1, 0.0);
+  EXPECT_THROW(PairResponseSpectrum(m.acc_mps2, shorter, m.dt_s, periods, 0.05), InputError);
+}
+
 TEST(AvgSa, FiftyPeriodsAreEquallySpacedFromPoint2To3TimesT1) {
   const std::vector<double> p = AvgSaPeriods(0.5);
   ASSERT_EQ(p.size(), 50u);
