@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "solver/dynamics/contact_modes.h"
 #include "solver/dynamics/event_policy.h"
@@ -154,6 +155,55 @@ double FirstGapRoot(double t0, double t1, double g0, double gN0, double g1, doub
   }
   const RootResult root = FindRootBrent(gap, a, b, ga, gb, x_tol);
   return root.fx <= 0.0 ? root.x : root.upper;
+}
+
+/// The first time in [t0, t1] (s) at which an event function of a closed contact fires
+/// [docs/theory.md §3.12], or +inf when none does. `f0`, `f1` are the 2 n_c event functions
+/// (ClosedEventValues) at the step's ends; `value_at(t, e)` evaluates function e at t inside
+/// the step. Only the functions of the contacts closed in `modes` are looked at, in index order.
+/// A function that starts non-negative and ends negative is bracketed and its root found by
+/// Brent's method to EventTimeBracket(t1), the time taken on the side where it is negative (or
+/// the bracket's upper end); one already negative at the step's start fires at t0. A function
+/// that dips below zero and recovers inside the step is not searched: the bands of
+/// ClosedEventValues make its ends the test.
+template <class ValueAt>
+double FirstClosedEvent(double t0, double t1, const Eigen::VectorXd& f0, const Eigen::VectorXd& f1,
+                        const ContactModes& modes, ValueAt&& value_at, const EventPolicy& policy) {
+  double t_event = std::numeric_limits<double>::infinity();
+  const double x_tol = EventTimeBracket(t1, policy);
+  for (int c = 0; c < modes.size(); ++c) {
+    if (!modes.closed(c)) {
+      continue;
+    }
+    for (int e = 2 * c; e <= 2 * c + 1; ++e) {
+      if (f1[e] < 0.0 && f0[e] >= 0.0) {
+        const auto f = [&](double t) { return value_at(t, e); };
+        const RootResult root = FindRootBrent(f, t0, t1, f0[e], f1[e], x_tol);
+        t_event = std::min(t_event, root.fx < 0.0 ? root.x : root.upper);
+      } else if (f1[e] < 0.0) {
+        t_event = std::min(t_event, t0);
+      }
+    }
+  }
+  return t_event;
+}
+
+/// The contacts that strike together with the first impact at `t_event_s` [docs/theory.md §3,
+/// nearly simultaneous impacts; §3.12]: the open contacts in `modes` whose gap is at most
+/// `gap_tol_m` at t_event + `simultaneity_s` (but not beyond the step's end `t_end_s`),
+/// appended to `forced` in index order. `positions_at(t)` gives q at a time inside the step,
+/// `gap_of(c, q)` contact c's gap there. The first impact itself is among them (its gap has
+/// closed at t_event); the decision takes them all as candidates of one impact (§3.3).
+template <class PositionsAt, class GapOf>
+void SimultaneousContacts(double t_event_s, double t_end_s, double simultaneity_s, double gap_tol_m,
+                          const ContactModes& modes, PositionsAt&& positions_at, GapOf&& gap_of,
+                          std::vector<int>& forced) {
+  const auto q_late = positions_at(std::min(t_event_s + simultaneity_s, t_end_s));
+  for (int c = 0; c < modes.size(); ++c) {
+    if (!modes.closed(c) && gap_of(c, q_late) <= gap_tol_m) {
+      forced.push_back(c);
+    }
+  }
 }
 
 }  // namespace skewbridge::dynamics

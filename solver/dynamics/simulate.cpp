@@ -106,24 +106,34 @@ class Integrator final : private ConstrainedForces {
   }
 
   // The result at the end of the run: the final state, the decisions' events and counts, the
-  // energy ledger, and the non-finite status if the state or its energy is no number.
-  RunResult Finish();
-  // Contact-free phase: one exact step (or up to an impact).
+  // energy ledger, and the non-finite status if the state or its energy is no number;
+  // `t_finite_s` is the last time the state was checked finite.
+  RunResult Finish(double t_finite_s);
+  // Contact-free phase: one exact step of the flow, up to its end or its first impact; there
+  // the decision.
   void FreeStep();
-  // Constrained phase: one Runge-Kutta step (or up to an event).
+  // Constrained phase: one Runge-Kutta step, up to its end or its first event (an impact of an
+  // open contact or an event function of a closed one); there the decision, else the
+  // projection.
   void ConstrainedStep();
+  // The step [t_, t1] done, its end state (q, u) in the heads of z_new_: the maxima, the corner
+  // travels and the history samples inside it, then (t_, z_) moved to its end.
+  // component_at(t, i) and state_at(t) read the step's dense output (ScanMaxima, RecordOutputs).
+  template <class ComponentAt, class StateAt>
+  void RecordStep(double t1, ComponentAt&& component_at, StateAt&& state_at);
 
   // Forces of the active set `modes` at (t, q, u) into `storage`: du/dt, lambda per contact,
-  // the friction power [solver/dynamics/active_forces.h]. Inside a constrained phase's stages
-  // and event searches (closed_only_) only the closed contacts' kinematics are evaluated.
+  // the friction power [solver/dynamics/active_forces.h], with the kinematics of `which`
+  // contacts: a constrained phase's stages and event searches need the closed ones' only (the
+  // open ones' gaps are read at the step's ends).
   void ActiveForces(const ContactModes& modes, double t, const Eigen::Ref<const Vec>& q,
-                    const Eigen::Ref<const Vec>& u, Eigen::Ref<Vec> du,
+                    const Eigen::Ref<const Vec>& u, KinematicsOf which, Eigen::Ref<Vec> du,
                     ActiveForcesStorage& storage) {
     EvaluateActiveForces(model_, modes, policy_, scales_.force_tol_N, GroundAcceleration(t), q, u,
-                         closed_only_ ? KinematicsOf::kClosedContacts : KinematicsOf::kAllContacts,
-                         du, storage);
+                         which, du, storage);
   }
-  void Rhs(double t, const Eigen::Ref<const Vec>& y, Eigen::Ref<Vec> dy);
+  // The constrained phase's right-hand side: dy/dt of y = (q, u, the three work integrals).
+  void Rhs(double t, const Eigen::Ref<const Vec>& y, KinematicsOf which, Eigen::Ref<Vec> dy);
   // Event-function values of the closed contacts at the last ActiveForces call.
   void ClosedEventValues(Eigen::Ref<Vec> values) const;
 
@@ -137,7 +147,7 @@ class Integrator final : private ConstrainedForces {
   void Project();
 
   // The first impact of an open contact in the step [t0, t1] (+inf: none) [docs/theory.md
-  // §3.12]: each contact whose gaps and rates at the step's ends (gap0_, gN0_, gap1_, gN1_) make
+  // §3.12]: each contact whose gaps and rates at the step's ends (ends_) make
   // an impact suspected (ImpactSuspected with `dip_margin`) is searched by FirstGapRoot on the
   // dense output: positions_at(t) gives q at t, state_at(t) a vector whose heads are q and u.
   template <class PositionsAt, class StateAt>
@@ -175,41 +185,53 @@ class Integrator final : private ConstrainedForces {
   }
   Eigen::Vector2d GroundAcceleration(double t) const { return excitation_.At(t); }
 
+  // The open contacts' gaps (m) and normal rates (m/s) at a step's two ends: what impact
+  // suspicion and FirstGapRoot start from. The end of one step is the start of the next,
+  // unless a decision there gives its own.
+  struct StepEnds {
+    Vec gap0, gN0, gap1, gN1;
+  };
+  // The closed contacts' event functions (2 n_c, ClosedEventValues): at the step's start, its
+  // end, and a trial time inside it.
+  struct ClosedEvents {
+    Vec f0, f1, f_eval;
+  };
+
+  // The run's inputs. The workspace is the model's, owned whole by one run at a time: the flow,
+  // the dense outputs, the constrained phase's force evaluations (ws_.forces_) and the mode
+  // decision's storage (ws_.decision_), whose kinematics are its own: a ConstrainedForces
+  // answer writes ws_.forces_ only.
   const model::Model& model_;
   const Excitation& excitation_;
   const model::RunControl& control_;
   const EventPolicy policy_;
   SimulationWorkspace& ws_;
   int n_, nc_;
-  double t_ = 0.0, t_end_ = 0.0;
-  long steps_ = 0;
-  double t_finite_ = 0.0;  // the last time the state was checked finite (s)
-  Vec z_, z_new_, z_eval_;
-  Vec y_, dy_, y_eval_, atol_;
-  Vec cu_;  // C u
-  Vec q_a_, u_a_, q_b_, u_b_, du_;
-  Vec gap0_, gN0_, gap1_, gN1_;
-  contact::GapRateScratch rates_;  // scratch of the gaps and normal rates
-  Vec f0_, f1_, f_eval_;           // closed-contact event functions: step start, end, trial
-  ContactModes modes_;             // every contact's mode and the closed set
-  std::vector<int> forced_;        // contacts striking together at the located impact
-  // Set inside Runge-Kutta stages and event searches of a constrained phase: ActiveForces then
-  // evaluates the kinematics of the closed contacts only (the open ones' gaps are read at the
-  // step's ends).
-  bool closed_only_ = false;
-  double h_rk_ = 0.0;
-  double h_free_ = 0.0;  // the last nominal free step (s)
   // The run's tolerances and scales [docs/theory.md §3.2], which the decision, the projection,
   // the event functions and the event searches compare with.
   DecisionScales scales_;
-  double next_output_t_ = kInf;
+  double t_ = 0.0, t_end_ = 0.0;  // the time and the end of the run (s)
+  double h_rk_ = 0.0;             // the next Runge-Kutta step the error control proposes (s)
+  double h_free_ = 0.0;           // the last nominal free step (s)
+  double next_output_t_ = kInf;   // the next history sample (s)
+  // The state (q, u and the excitation's states of the free flow), a step's end, and the free
+  // step's dense output at a trial time.
+  Vec z_, z_new_, z_eval_;
+  // The constrained phase's Runge-Kutta state y = (q, u, work integrals), its rate, its dense
+  // output at a trial time, and its absolute tolerances.
+  Vec y_, dy_, y_eval_, atol_;
+  Vec cu_, du_;                    // C u; du/dt of the last force evaluation
+  StepEnds ends_;                  // the open contacts' gaps and rates at the step's ends
+  contact::GapRateScratch rates_;  // scratch of the gaps and normal rates
+  ClosedEvents events_;            // the closed contacts' event functions
+  ContactModes modes_;             // every contact's mode and the closed set
+  std::vector<int> forced_;        // contacts striking together at the located impact
   RunResult result_;
-  CornerTravelTracker travel_;   // the decks' corner travels (result_.max_travel_m)
-  DecisionMemory memory_;        // what the mode decision remembers between instants
-  DecisionLog log_;              // the events and counts the decisions add
-  ActiveForcesStorage& forces_;  // the workspace's: the integrator's own force evaluations
-  // A history sample's force evaluation (with histories only): recording leaves forces_ as it
-  // was, so a run takes the same decisions whether it records histories or not.
+  CornerTravelTracker travel_;  // the decks' corner travels (result_.max_travel_m)
+  DecisionMemory memory_;       // what the mode decision remembers between instants
+  DecisionLog log_;             // the events and counts the decisions add
+  // A history sample's force evaluation (with histories only): recording leaves ws_.forces_ as
+  // it was, so a run takes the same decisions whether it records histories or not.
   std::unique_ptr<ActiveForcesStorage> sample_forces_;
 };
 
@@ -250,8 +272,7 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
       nc_(model.n_contacts()),
       modes_(model.n_contacts()),
       travel_(model),
-      memory_(model.n_contacts()),
-      forces_(ws.forces_) {
+      memory_(model.n_contacts()) {
   SB_DEMAND(&ws.model() == &model, "Simulate: workspace built for another model");
   ValidatePolicy(policy);
   // The contact layer's thresholds of this run [docs/theory.md §3.15]: the workspace's problems
@@ -276,12 +297,12 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   y_ = Vec::Zero(2 * n_ + 3);
   dy_ = y_eval_ = y_;
   atol_ = Vec::Constant(2 * n_ + 3, kInf);
-  q_a_ = u_a_ = q_b_ = u_b_ = du_ = cu_ = Vec::Zero(n_);
-  gap0_ = gN0_ = gap1_ = gN1_ = Vec::Zero(nc_);
-  f0_ = f1_ = f_eval_ = Vec::Zero(2 * nc_);
+  du_ = cu_ = Vec::Zero(n_);
+  ends_.gap0 = ends_.gN0 = ends_.gap1 = ends_.gN1 = Vec::Zero(nc_);
+  events_.f0 = events_.f1 = events_.f_eval = Vec::Zero(2 * nc_);
   forced_.reserve(static_cast<std::size_t>(nc_));
   rates_.Resize(model);
-  forces_.sys.SetRankThreshold(policy.rank_threshold);
+  ws.forces_.sys.SetRankThreshold(policy.rank_threshold);
   ws.decision_.projection.sys.SetRankThreshold(policy.rank_threshold);
 
   t_end_ = control.EndTime(excitation.Duration());
@@ -333,8 +354,10 @@ RunResult Integrator::Run() {
   RecordOutputs(0.0, 0.0, [&](double) -> const Vec& { return z_; });
   forced_.clear();
   ResolveContacts(forced_);
+  long steps = 0;
+  double t_finite = 0.0;  // the last time the state was checked finite (s)
   while (!Failed() && t_ < t_end_) {
-    if (++steps_ > control_.max_steps) {
+    if (++steps > control_.max_steps) {
       Fail(RunStatus::kStepLimit,
            fmt::format("step limit of {} reached at t = {:g} s", control_.max_steps, t_));
       break;
@@ -347,21 +370,21 @@ RunResult Integrator::Run() {
     // Every finite_check_steps steps (a fraction of a second of most runs) the state must
     // still be finite; so the check costs a few instructions a step, and a run that went
     // non-finite stops within that many steps, its message naming the window.
-    if ((steps_ & (policy_.finite_check_steps - 1)) == 0) {
+    if ((steps & (policy_.finite_check_steps - 1)) == 0) {
       if (!StateFinite(z_) || !std::isfinite(t_)) {
         break;
       }
-      t_finite_ = t_;
+      t_finite = t_;
     }
   }
-  return Finish();
+  return Finish(t_finite);
 }
 
-RunResult Integrator::Finish() {
+RunResult Integrator::Finish(double t_finite_s) {
   if (!StateFinite(z_) || !std::isfinite(t_)) {
     // Whatever else stopped the run, a state that is no number is the first thing to report.
-    Fail(RunStatus::kNonFinite, NonFiniteMessage(t_finite_, t_));
-    t_ = std::isfinite(t_) ? t_ : t_finite_;
+    Fail(RunStatus::kNonFinite, NonFiniteMessage(t_finite_s, t_));
+    t_ = std::isfinite(t_) ? t_ : t_finite_s;
   }
   result_.end_time_s = t_;
   result_.q_end = q();
@@ -395,20 +418,18 @@ RunResult Integrator::Finish() {
 }
 
 void Integrator::FreeStep() {
+  // Advance: the exact flow over one step of the piece's grid, the previous step reused and
+  // snapped [docs/theory.md §3.14].
   LinearFlow& flow = ws_.flow_;
   const ExcitationPiece piece = excitation_.PieceAt(t_);
   // The Excitation contract: the piece at t extends beyond t. A piece ending at t would make
   // zero-length steps until the step budget runs out, so stop at once instead.
   SB_DEMAND(piece.t_end > t_, "Excitation::PieceAt(t) returned a piece that ends at or before t");
-  // The step on the piece's grid, the previous step reused and snapped [docs/theory.md §3.14].
   const FreeStepPlan step =
       PlanFreeStep(t_, piece.t_begin, std::min(piece.t_end, t_end_),
                    FreeStepSize(piece, ws_.omega_max_radps_, policy_), h_free_, policy_);
   h_free_ = step.h_s;
-  const double h = step.h_s;
-  double t_next = step.t_next_s;
-  const double tau = t_next - t_;
-  const bool full = step.full;
+  const double tau = step.t_next_s - t_;
   flow.SetGenerator(piece, t_, z_);
   bool dense_built = false;
   auto ensure_dense = [&]() {
@@ -419,15 +440,14 @@ void Integrator::FreeStep() {
   };
   double input = 0.0, damping = 0.0;
   const bool ledger = control_.energy_ledger;
-  if (full) {
-    const FreePropagator& p = flow.Propagator(h, piece.omega, ledger);
+  if (step.full) {
+    const FreePropagator& p = flow.Propagator(step.h_s, piece.omega, ledger);
     flow.Apply(p, z_, z_new_, ledger ? &input : nullptr, ledger ? &damping : nullptr);
   } else {
     ensure_dense();
     ws_.free_dense_.Evaluate(tau, z_new_);
   }
   ++result_.free_steps;
-
   // The flow's dense output inside the step, in z_eval_: q alone (half the modal series: what a
   // gap needs), or q and u.
   const auto positions_at = [&](double t) {
@@ -440,25 +460,26 @@ void Integrator::FreeStep() {
     ws_.free_dense_.EvaluateHead(t - t_, 2 * n_, z_eval_);
     return z_eval_;
   };
-  GapsAndRates(z_new_.head(n_), z_new_.segment(n_, n_), gap1_, gN1_);
-  const double t_event = FirstImpact(t_, t_next, policy_.dip_margin, positions_at, state_at);
+
+  // Locate the first event: the first impact of an open contact, and the contacts that strike
+  // with it [§3.12]; the step ends there.
+  GapsAndRates(z_new_.head(n_), z_new_.segment(n_, n_), ends_.gap1, ends_.gN1);
+  const double t_event = FirstImpact(t_, step.t_next_s, policy_.dip_margin, positions_at, state_at);
   forced_.clear();
   if (t_event < kInf) {
-    // Near-simultaneous: contacts closed within the tolerance after the first are one impact.
-    const auto q_late = positions_at(std::min(t_event + control_.simultaneity_tolerance_s, t_next));
-    for (int c = 0; c < nc_; ++c) {
-      if (GapAt(c, q_late) <= scales_.gap_tol_m) {
-        forced_.push_back(c);
-      }
-    }
-    t_next = t_event;
-    ws_.free_dense_.EvaluateHead(t_next - t_, 2 * n_, z_new_);  // what state_at(t_next) gives
+    SimultaneousContacts(
+        t_event, step.t_next_s, scales_.simultaneity_s, scales_.gap_tol_m, modes_, positions_at,
+        [this](int c, const Eigen::Ref<const Vec>& qq) { return GapAt(c, qq); }, forced_);
+    ws_.free_dense_.EvaluateHead(t_event - t_, 2 * n_, z_new_);  // what state_at(t_event) gives
   }
-  if (ledger && (!full || t_event < kInf)) {
+  const double t1 = t_event < kInf ? t_event : step.t_next_s;
+
+  // Record: the work over the step, its maxima, corner travels and history samples.
+  if (ledger && (!step.full || t_event < kInf)) {
     // Energy of a partial step by Gauss-Legendre quadrature of the exact (Taylor) solution.
     ensure_dense();
     input = damping = 0.0;
-    const double len = t_next - t_;
+    const double len = t1 - t_;
     for (int i = 0; i < 8; ++i) {
       ws_.free_dense_.Evaluate(kGaussNode[i] * len, z_eval_);
       double p_in, p_d;
@@ -469,24 +490,33 @@ void Integrator::FreeStep() {
   }
   result_.energy.input_J += input;
   result_.energy.damping_J += damping;
-  // The step's ends in place (no copies): the velocity-zero search reads the dense output only.
+  // The velocity-zero and corner-rate searches read the dense output only.
   const auto component_at = [&](double t, int i) {
     ensure_dense();
     return ws_.free_dense_.EvaluateComponent(t - t_, i);
   };
-  ScanMaxima(t_, q(), u(), t_next, z_new_.head(n_), z_new_.segment(n_, n_), component_at);
-  // The corner travels, at the same exactness: step ends and the roots of each corner's rate.
-  travel_.Scan(t_, q(), u(), t_next, z_new_.head(n_), z_new_.segment(n_, n_),
-               MaximumTimeTolerance(t_next), component_at, result_.max_travel_m);
-  RecordOutputs(t_, t_next, state_at);
-  z_.head(2 * n_) = z_new_.head(2 * n_);
-  t_ = t_next;
+  RecordStep(t1, component_at, state_at);
+
+  // Decide: the mode decision at an impact; otherwise the step's end starts the next step.
   if (t_event < kInf) {
     ResolveContacts(forced_);
   } else {
-    gap0_ = gap1_;
-    gN0_ = gN1_;
+    ends_.gap0 = ends_.gap1;
+    ends_.gN0 = ends_.gN1;
   }
+}
+
+template <class ComponentAt, class StateAt>
+void Integrator::RecordStep(double t1, ComponentAt&& component_at, StateAt&& state_at) {
+  const auto q1 = z_new_.head(n_);
+  const auto u1 = z_new_.segment(n_, n_);
+  ScanMaxima(t_, q(), u(), t1, q1, u1, component_at);
+  // The corner travels, at the same exactness: step ends and the roots of each corner's rate.
+  travel_.Scan(t_, q(), u(), t1, q1, u1, MaximumTimeTolerance(t1), component_at,
+               result_.max_travel_m);
+  RecordOutputs(t_, t1, state_at);
+  z_.head(2 * n_) = z_new_.head(2 * n_);
+  t_ = t1;
 }
 
 template <class PositionsAt, class StateAt>
@@ -495,7 +525,8 @@ inline double Integrator::FirstImpact(double t0, double t1, double dip_margin,
   double t_event = kInf;
   for (int c = 0; c < nc_; ++c) {
     // The suspicion first: it is false for most contacts in most steps.
-    if (ImpactSuspected(gap0_[c], gN0_[c], gap1_[c], gN1_[c], t1 - t0, dip_margin) &&
+    if (ImpactSuspected(ends_.gap0[c], ends_.gN0[c], ends_.gap1[c], ends_.gN1[c], t1 - t0,
+                        dip_margin) &&
         !modes_.closed(c)) {
       t_event = std::min(t_event, GapRoot(c, t0, t1, positions_at, state_at));
     }
@@ -511,8 +542,8 @@ double Integrator::GapRoot(int c, double t0, double t1, PositionsAt&& positions_
     const Vec& s = state_at(t);
     return NormalRateAt(c, s.head(n_), s.segment(n_, n_));
   };
-  return FirstGapRoot(t0, t1, gap0_[c], gN0_[c], gap1_[c], gN1_[c], gap, gamma_N, scales_.gap_tol_m,
-                      scales_.v_tol_mps, policy_);
+  return FirstGapRoot(t0, t1, ends_.gap0[c], ends_.gN0[c], ends_.gap1[c], ends_.gN1[c], gap,
+                      gamma_N, scales_.gap_tol_m, scales_.v_tol_mps, policy_);
 }
 
 template <class ComponentAt>
@@ -560,7 +591,8 @@ void Integrator::RecordSample(double t, const Eigen::Ref<const Vec>& qq,
   Histories& hist = result_.histories;
   ActiveForcesStorage& forces = *sample_forces_;
   if (AnyClosed()) {
-    ActiveForces(modes_, t, qq, uu, du_, forces);  // du_: scratch, read by no later step
+    // du_: scratch, read by no later step
+    ActiveForces(modes_, t, qq, uu, KinematicsOf::kAllContacts, du_, forces);
   }
   hist.t_s.push_back(t);
   for (int i = 0; i < n_; ++i) {
@@ -576,10 +608,11 @@ void Integrator::RecordSample(double t, const Eigen::Ref<const Vec>& qq,
   }
 }
 
-void Integrator::Rhs(double t, const Eigen::Ref<const Vec>& y, Eigen::Ref<Vec> dy) {
+void Integrator::Rhs(double t, const Eigen::Ref<const Vec>& y, KinematicsOf which,
+                     Eigen::Ref<Vec> dy) {
   const auto qq = y.head(n_);
   const auto uu = y.segment(n_, n_);
-  ActiveForces(modes_, t, qq, uu, du_, forces_);
+  ActiveForces(modes_, t, qq, uu, which, du_, ws_.forces_);
   dy.head(n_) = uu;
   dy.segment(n_, n_) = du_;
   if (!control_.energy_ledger) {
@@ -595,31 +628,34 @@ void Integrator::Rhs(double t, const Eigen::Ref<const Vec>& y, Eigen::Ref<Vec> d
                  ag(1) * uu.dot(m_diag.cwiseProduct(model_.r().col(1))));
   cu_.noalias() = model_.C() * uu;
   dy[2 * n_ + 1] = uu.dot(cu_);
-  dy[2 * n_ + 2] = forces_.friction_power_W;
+  dy[2 * n_ + 2] = ws_.forces_.friction_power_W;
 }
 
 void Integrator::ClosedEventValues(Eigen::Ref<Vec> values) const {
-  dynamics::ClosedEventValues(model_, modes_, forces_.kin.gamma_T, forces_.lambda_N,
-                              forces_.lambda_T, scales_.force_tol_N, scales_.v_tol_mps, values);
+  const ActiveForcesStorage& f = ws_.forces_;
+  dynamics::ClosedEventValues(model_, modes_, f.kin.gamma_T, f.lambda_N, f.lambda_T,
+                              scales_.force_tol_N, scales_.v_tol_mps, values);
 }
 
 void Integrator::ConstrainedStep() {
+  // Advance: one Dormand-Prince step of the active set's motion, cut at the piece's end
+  // [docs/theory.md §3.14]; a rejected step only shortens the next try.
   const ExcitationPiece piece = excitation_.PieceAt(t_);
   SB_DEMAND(piece.t_end > t_, "Excitation::PieceAt(t) returned a piece that ends at or before t");
   const double h = ConstrainedStepLength(t_, std::min(piece.t_end, t_end_), h_rk_, policy_);
   y_.head(2 * n_) = z_.head(2 * n_);
   y_.tail(3).setZero();
+  // The stages need the closed contacts' kinematics only; the step's start needs every
+  // contact's (the open ones' gaps and rates there).
   const auto rhs = [this](double t, const Eigen::Ref<const Vec>& y, Eigen::Ref<Vec> dy) {
-    Rhs(t, y, dy);
+    Rhs(t, y, KinematicsOf::kClosedContacts, dy);
   };
-  Rhs(t_, y_, dy_);
-  ClosedEventValues(f0_);
-  gap0_ = forces_.kin.gap_m;
-  gN0_ = forces_.kin.gamma_N;
+  Rhs(t_, y_, KinematicsOf::kAllContacts, dy_);
+  ClosedEventValues(events_.f0);
+  ends_.gap0 = ws_.forces_.kin.gap_m;
+  ends_.gN0 = ws_.forces_.kin.gamma_N;
   DormandPrince45& rk = ws_.rk_;
-  closed_only_ = true;
   rk.Step(rhs, t_, y_, dy_, h);
-  closed_only_ = false;
   const double err = rk.ErrorNorm(atol_, control_.relative_tolerance);
   if (!(err <= 1.0)) {
     ++result_.rk_rejected;
@@ -633,8 +669,8 @@ void Integrator::ConstrainedStep() {
   // The last stage of the step was evaluated at (t1, y1) (first same as last): the closed
   // contacts' forces and kinematics are those of the step's end, so their event functions need
   // no further evaluation; the open contacts need only their gaps and normal rates.
-  ClosedEventValues(f1_);
-  GapsAndRates(y1.head(n_), y1.segment(n_, n_), gap1_, gN1_);
+  ClosedEventValues(events_.f1);
+  GapsAndRates(y1.head(n_), y1.segment(n_, n_), ends_.gap1, ends_.gN1);
   // The step's dense output, in y_eval_: q alone (what a gap needs), or the whole state.
   const auto positions_at = [&](double t) {
     rk.DenseHeadAt(t, n_, y_eval_);
@@ -644,54 +680,45 @@ void Integrator::ConstrainedStep() {
     rk.DenseAt(t, y_eval_);
     return y_eval_;
   };
-  // Every dip of an open contact's gap is searched (kEveryDip): the Hermite margin of the free
-  // step rests on its length, which a Runge-Kutta step does not have [docs/theory.md §3.12].
-  double t_event = FirstImpact(t_, t1, kEveryDip, positions_at, state_at);
-  const double x_tol = EventTimeBracket(t1, policy_);
-  for (int c = 0; c < nc_; ++c) {
-    if (!modes_.closed(c)) {
-      continue;
-    }
-    for (int e = 2 * c; e <= 2 * c + 1; ++e) {
-      if (f1_[e] < 0.0 && f0_[e] >= 0.0) {
-        const auto fe = [&](double t) {
-          const Vec& y = state_at(t);
-          closed_only_ = true;
-          ActiveForces(modes_, t, y.head(n_), y.segment(n_, n_), du_, forces_);
-          closed_only_ = false;
-          ClosedEventValues(f_eval_);
-          return f_eval_[e];
-        };
-        const RootResult root = FindRootBrent(fe, t_, t1, f0_[e], f1_[e], x_tol);
-        t_event = std::min(t_event, root.fx < 0.0 ? root.x : root.upper);
-      } else if (f1_[e] < 0.0) {
-        t_event = std::min(t_event, t_);
-      }
-    }
+
+  // Locate the first event [§3.12]: the first impact of an open contact, every dip searched
+  // (kEveryDip: the Hermite margin of the free step rests on its length, which a Runge-Kutta
+  // step does not have), then the first closed-contact event function to fire, on the active
+  // set's forces along the dense output.
+  const double t_impact = FirstImpact(t_, t1, kEveryDip, positions_at, state_at);
+  const auto event_value_at = [&](double t, int e) {
+    const Vec& y = state_at(t);
+    ActiveForces(modes_, t, y.head(n_), y.segment(n_, n_), KinematicsOf::kClosedContacts, du_,
+                 ws_.forces_);
+    ClosedEventValues(events_.f_eval);
+    return events_.f_eval[e];
+  };
+  const double t_event = std::min(
+      t_impact, FirstClosedEvent(t_, t1, events_.f0, events_.f1, modes_, event_value_at, policy_));
+  forced_.clear();
+  if (t_impact < kInf && t_impact == t_event) {
+    // An impact first: the open contacts that strike with it, as in the free step.
+    SimultaneousContacts(
+        t_impact, t1, scales_.simultaneity_s, scales_.gap_tol_m, modes_, positions_at,
+        [this](int c, const Eigen::Ref<const Vec>& qq) { return GapAt(c, qq); }, forced_);
   }
   const double t_new = t_event < kInf ? std::max(t_event, t_) : t1;
   rk.DenseAt(t_new, y_eval_);
   if (t_event == kInf) {
     y_eval_ = y1;
   }
+
+  // Record: the work integrals, the maxima, corner travels and history samples.
   result_.energy.input_J += y_eval_[2 * n_];
   result_.energy.damping_J += y_eval_[2 * n_ + 1];
   result_.energy.friction_J += y_eval_[2 * n_ + 2];
-  q_a_ = z_.head(n_);
-  u_a_ = z_.segment(n_, n_);
-  q_b_ = y_eval_.head(n_);
-  u_b_ = y_eval_.segment(n_, n_);
+  z_new_.head(2 * n_) = y_eval_.head(2 * n_);
   const auto component_at = [&](double t, int i) { return rk.DenseComponentAt(t, i); };
-  ScanMaxima(t_, q_a_, u_a_, t_new, q_b_, u_b_, component_at);
-  travel_.Scan(t_, q_a_, u_a_, t_new, q_b_, u_b_, MaximumTimeTolerance(t_new), component_at,
-               result_.max_travel_m);
-  RecordOutputs(t_, t_new, state_at);
-  z_.head(n_) = q_b_;
-  z_.segment(n_, n_) = u_b_;
-  t_ = t_new;
+  RecordStep(t_new, component_at, state_at);
   h_rk_ = t_event < kInf ? h : h * DormandPrince45::StepFactor(err);
+
+  // Decide: the mode decision at an event; otherwise the projection onto the closed contacts.
   if (t_event < kInf) {
-    forced_.clear();
     ResolveContacts(forced_);
   } else {
     Project();
@@ -716,16 +743,16 @@ void Integrator::ResolveContacts(const std::vector<int>& forced) {
   }
   // The decision left its kinematics of every contact at its final state: the gaps of the next
   // step's start need no further evaluation.
-  gap0_ = ws_.decision_.projection.kin.gap_m;
-  gN0_ = ws_.decision_.projection.kin.gamma_N;
+  ends_.gap0 = ws_.decision_.projection.kin.gap_m;
+  ends_.gN0 = ws_.decision_.projection.kin.gamma_N;
 }
 
 void Integrator::Forces(const ContactModes& modes, double t, const Eigen::Ref<const Vec>& qq,
                         const Eigen::Ref<const Vec>& uu, Eigen::Ref<Vec> lambda_N,
                         Eigen::Ref<Vec> lambda_T) {
-  ActiveForces(modes, t, qq, uu, du_, forces_);
-  lambda_N = forces_.lambda_N;
-  lambda_T = forces_.lambda_T;
+  ActiveForces(modes, t, qq, uu, KinematicsOf::kAllContacts, du_, ws_.forces_);
+  lambda_N = ws_.forces_.lambda_N;
+  lambda_T = ws_.forces_.lambda_T;
 }
 
 RunResult Simulate(const model::Model& model, const Excitation& excitation,
