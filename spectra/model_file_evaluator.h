@@ -19,6 +19,7 @@
 #include "records/incidence.h"
 #include "records/measures.h"
 #include "solver/common/excitation.h"
+#include "solver/dynamics/run_result.h"
 #include "solver/model/model_file.h"
 #include "spectra/cell.h"
 #include "spectra/grid.h"
@@ -59,8 +60,10 @@ records::SampledExcitation ScaledPairExcitation(const records::GroundMotion& h1,
                                                 const records::GroundMotion& h2, double factor,
                                                 double incidence_deg);
 
-/// Evaluates the cells of a model-file sweep. Immutable after construction: Evaluate is a pure
-/// function of the cell index.
+/// Evaluates the cells of a model-file sweep. Evaluate is a pure function of the cell index:
+/// cells that differ only along an axis of the limit states alone (seat_over_L, seat_m: a seat
+/// width moves no deck) share one dynamic run, the last ones kept, so a cell's responses are the
+/// bits its own run would give whatever the order of evaluation.
 class ModelFileEvaluator final : public CellEvaluator {
  public:
   /// Reads the model file and the records (LoadSweepRecords, if any), then builds every cell's
@@ -127,6 +130,26 @@ class ModelFileEvaluator final : public CellEvaluator {
   CellOutcome EvaluateAt(std::span<const std::size_t> axis_index,
                          std::optional<double> factor) const;
   std::size_t RecordIndex(std::span<const std::size_t> axis_index) const;
+  /// The axes that enter the limit states alone (seat_over_L, seat_m), by position.
+  std::vector<std::size_t> limit_only_axes_;
+  /// A dynamic run of Evaluate, for the cells that differ from it only along limit_only_axes_:
+  /// the cell with those axes at index 0 (row-major), its cell and run.
+  struct SharedRun {
+    std::uint64_t key = 0;
+    std::optional<ModelFileCell> cell;
+    dynamics::RunResult run;
+  };
+  /// The last runs, as many as there are cells between two seat widths of one run (the sizes
+  /// of the axes after the first limit-only axis that are not limit-only: `method`), replaced
+  /// in turn.
+  mutable std::vector<SharedRun> shared_;
+  std::size_t shared_capacity_ = 1;
+  mutable std::size_t next_shared_ = 0;
+  /// The row-major index of the cell with its limit-only axes at 0.
+  std::uint64_t RunKey(std::span<const std::size_t> axis_index) const;
+  /// The outcome of a cell from its cell and run (the cell's seat widths are its own).
+  CellOutcome Outcome(std::span<const std::size_t> axis_index, const ModelFileCell& c,
+                      const dynamics::RunResult& run) const;
   // The warnings of the bridge that do not need the cells' models (masses, gaps, seats).
   std::vector<std::string> BridgeWarnings() const;
 };

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -361,6 +362,50 @@ TEST(ModelFileEvaluator, EveryResponseByNameIsWhatTheCellsOwnRunGives) {
     EXPECT_DOUBLE_EQ(ValueOf(evaluator, out, "delta"), (cell == 0 ? 0.5 : 3.0) * L_e);
     if (cell == 0) {
       EXPECT_GT(run.impacts, 0);  // the small gap closes: not a linear run only
+    }
+  }
+}
+
+// Cells that differ only in the seat width share one dynamic run: evaluated in cube order
+// (each run serves the seat widths after it), every response of every cell has the bits of the
+// cell evaluated on its own (an order in which no two cells in a row share a run), for a
+// three-deck and a one-deck model file; the margins differ between the seat widths.
+TEST(ModelFileEvaluator, CellsOfOneRunAndSeveralSeatsAreTheCellsOwn) {
+  const std::string three_span = (std::filesystem::path(SKEWBRIDGE_TEST_DATA_DIR) / ".." / ".." /
+                                  "docs" / "examples" / "three-span.toml")
+                                     .string();
+  for (const std::string& model : {three_span, std::string("deck.toml")}) {
+    SCOPED_TRACE(model);
+    const std::string body = "[axes]\nPi_delta = [0.5, 3.0]\nseat_over_L = [0.001, 0.01, 0.02]\n" +
+                             std::string(model == three_span ? "" : "[fixed]\npulse = \"sine\"\n") +
+                             "[limit_states]\nunseating = true\nrotation = {above_rad = 0.01}\n";
+    const ModelFileEvaluator shared(Spec(body, model));
+    const ModelFileEvaluator alone(Spec(body, model));
+    const std::vector<spectra::ResponseInfo> names = shared.Responses();
+    std::size_t margin = names.size();
+    for (std::size_t r = 0; r < names.size(); ++r) {
+      if (names[r].name == "margin_m_d0") margin = r;
+    }
+    ASSERT_LT(margin, names.size());
+    std::vector<CellOutcome> in_order;
+    for (std::size_t cell = 0; cell < 6; ++cell) {
+      in_order.push_back(shared.Evaluate(std::vector<std::size_t>{cell / 3, cell % 3}));
+    }
+    for (std::size_t cell : {0u, 3u, 1u, 4u, 2u, 5u}) {
+      SCOPED_TRACE("cell " + std::to_string(cell));
+      const CellOutcome own = alone.Evaluate(std::vector<std::size_t>{cell / 3, cell % 3});
+      const CellOutcome& got = in_order[cell];
+      ASSERT_EQ(got.status, own.status);
+      ASSERT_EQ(got.responses.size(), own.responses.size());
+      for (std::size_t r = 0; r < own.responses.size(); ++r) {
+        EXPECT_EQ(std::memcmp(&got.responses[r], &own.responses[r], sizeof(double)), 0)
+            << names[r].name << ": " << got.responses[r] << " against " << own.responses[r];
+      }
+      EXPECT_EQ(got.stats.events, own.stats.events);
+      EXPECT_EQ(got.stats.steps, own.stats.steps);
+      if (cell % 3 > 0) {
+        EXPECT_NE(got.responses[margin], in_order[cell - 1].responses[margin]);
+      }
     }
   }
 }
