@@ -53,6 +53,23 @@ double Evaluate(const std::vector<Point>& pts, const Eigen::Vector2d& p, Eigen::
   if (h != nullptr) h->setZero();
   for (const Point& pt : pts) {
     const double u = p(0) + p(1) * pt.ln_x;
+    // A point of one trial (a cell) has one outcome: the other's terms are 0 times a finite
+    // number (|u| < 1e150, so u^2 does not overflow and every term below is finite), +0 or -0,
+    // which leave every sum below with the same bits; they are not computed.
+    if (pt.n == 1.0 && (pt.z == 0.0 || pt.z == 1.0) && std::abs(u) < 1e150) {
+      const double s = pt.z == 1.0 ? u : -u;  // the outcome's argument: Phi(u) or Phi(-u)
+      l += LogNormalCdf(s);
+      if (g == nullptr) continue;
+      const double lam = MillsLambda(s);
+      // z = 1: du = lambda(u), d2u = -lambda(u) (u + lambda(u)); z = 0: du = -lambda(-u),
+      // d2u = -lambda(-u) (lambda(-u) - u): the expressions of the general case below.
+      const double du = pt.z == 1.0 ? lam : -lam;
+      const double d2u = pt.z == 1.0 ? -lam * (u + lam) : -(lam * (lam - u));
+      const Eigen::Vector2d j(1.0, pt.ln_x);
+      *g += du * j;
+      *h += d2u * j * j.transpose();
+      continue;
+    }
     l += pt.z * LogNormalCdf(u) + (pt.n - pt.z) * LogNormalCdf(-u);
     if (g == nullptr) continue;
     // d ln Phi(u)/du = lambda(u); d ln Phi(-u)/du = -lambda(-u); second derivatives
