@@ -19,6 +19,14 @@ Eigen::Vector2d DirectionAt(double angle_deg) {
 
 SampledExcitation PairExcitation(const GroundMotion& h1, const GroundMotion& h2,
                                  double incidence_deg, double factor) {
+  if (!std::isfinite(incidence_deg)) {
+    throw InputError::AtField(h1.file, "incidence_deg", "must be finite");
+  }
+  return PairExcitation(h1, h2, DirectionAt(incidence_deg), factor);
+}
+
+SampledExcitation PairExcitation(const GroundMotion& h1, const GroundMotion& h2,
+                                 const Eigen::Vector2d& h1_direction, double factor) {
   if (!(std::abs(h2.dt_s - h1.dt_s) <= 1e-9 * std::max(h1.dt_s, h2.dt_s))) {
     throw InputError::AtField(h2.file, "dt",
                               fmt::format("{} s differs from the first component's {} s ({}): "
@@ -31,11 +39,7 @@ SampledExcitation PairExcitation(const GroundMotion& h1, const GroundMotion& h2,
                                           "the two components of a pair have one length",
                                           h2.npts(), h1.npts(), h1.file));
   }
-  if (!std::isfinite(incidence_deg)) {
-    throw InputError::AtField(h1.file, "incidence_deg", "must be finite");
-  }
-  const Eigen::Vector2d d = DirectionAt(incidence_deg);
-  const double c = d.x(), s = d.y();
+  const double c = h1_direction.x(), s = h1_direction.y();
   std::vector<double> ax(h1.npts()), ay(h1.npts());
   for (std::size_t k = 0; k < ax.size(); ++k) {
     const double a1 = factor == 1.0 ? h1.acc_mps2[k] : h1.acc_mps2[k] * factor;

@@ -28,4 +28,11 @@ Eigen::Vector2d DirectionAt(double angle_deg);
 SampledExcitation PairExcitation(const GroundMotion& h1, const GroundMotion& h2,
                                  double incidence_deg, double factor = 1.0);
 
+/// PairExcitation with (cos alpha, sin alpha) given as the unit vector `h1_direction` (a model
+/// file's excitation direction, or DirectionAt of a sweep's incidence_deg): H1 along it, H2 along
+/// it turned by +90 deg.
+/// @throws InputError as PairExcitation.
+SampledExcitation PairExcitation(const GroundMotion& h1, const GroundMotion& h2,
+                                 const Eigen::Vector2d& h1_direction, double factor = 1.0);
+
 }  // namespace skewbridge::records

@@ -392,7 +392,9 @@ ModelFileCell ModelFileEvaluator::MakeCell(std::span<const std::size_t> index, b
     c.excitation_duration_s = c.record->motion.dt_s * static_cast<double>(c.excitation_samples - 1);
     if (with_excitation) {
       c.excitation = std::make_unique<records::SampledExcitation>(
-          ScaledRecordExcitation(c.record->motion, c.scale, direction));
+          c.record->IsPair()
+              ? records::PairExcitation(c.record->motion, *c.record->motion_h2, direction, c.scale)
+              : ScaledRecordExcitation(c.record->motion, c.scale, direction));
     }
   } else if (samples_measures_) {
     c.a_g_mps2 = samples_measures_->pga_mps2 * c.scale;

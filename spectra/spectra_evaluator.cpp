@@ -219,6 +219,10 @@ std::unique_ptr<Excitation> SpectraEvaluator::MakeExcitation(
   // Without incidence_deg the default direction x, as the excitations make it.
   const Eigen::Vector2d direction =
       turned ? records::DirectionAt(incidence_deg) : Eigen::Vector2d::UnitX();
+  if (record != nullptr && record->IsPair()) {
+    return std::make_unique<records::SampledExcitation>(
+        records::PairExcitation(record->motion, *record->motion_h2, direction));
+  }
   if (record != nullptr) {
     return std::make_unique<records::SampledExcitation>(
         records::ToExcitation(record->motion, direction));

@@ -40,6 +40,34 @@ pilot_sweep across 'incidence_deg = 90.0\n'
 /usr/bin/python3 "$check" same zero.h5 along-x.h5 || fail "incidence_deg = 0 differs from no incidence"
 /usr/bin/python3 "$check" moved across.h5 along-x.h5 || fail "incidence_deg = 90 moved nothing"
 
+# A pair drives both columns: the pilot bridge under the pairs of tests/data/records/pairs and
+# under a set naming only their H1 files, at incidence 0: the single record's cells are the same
+# bytes, the pairs' transverse responses differ (H2 acts along y).
+pairs="$records/pairs"
+printf 'name = "h1"\n[[record]]\nlabel = "RSN107"\nfile = "%s/RSN107_OROVILLE_B-OAP180.AT2"\n[[record]]\nfile = "%s/../NIS090.AT2"\n' \
+  "$pairs" "$pairs" > h1.toml
+for set in "$pairs/pairs.toml" h1.toml; do
+  name=$(basename "$set" .toml)
+  printf '[sweep]\nname = "inc"\nfamily = "pilot-bridge"\n[records]\nset = "%s"\n[axes]\nrecord = ["RSN107", "NIS090.AT2"]\nPi_delta = [0.5]\n[fixed]\nincidence_deg = 0.0\n' \
+    "$set" > "p-$name.toml"
+  on_ranks 1 "$exe" sweep "p-$name.toml" --out "p-$name.h5" --quiet 2> "p-$name.err" || {
+    cat "p-$name.err" >&2
+    fail "p-$name: the sweep failed"
+  }
+done
+/usr/bin/python3 - p-pairs.h5 p-h1.h5 <<'PY' || fail "pairs: H2 not applied, or the single record moved"
+import sys
+import h5py
+import numpy as np
+a, b = (h5py.File(p, "r")["sweeps/inc"] for p in sys.argv[1:3])
+labels = [x.decode() if isinstance(x, bytes) else x for x in a["axes/record"][()]]
+i, j = labels.index("RSN107"), labels.index("NIS090.AT2")
+ya, yb = a["y_m"][()], b["y_m"][()]
+assert ya[i].tobytes() != yb[i].tobytes(), "the pair's y_m is H1's alone"
+assert ya[j].tobytes() == yb[j].tobytes(), "the single record's y_m moved"
+assert a["x_m"][()][j].tobytes() == b["x_m"][()][j].tobytes()
+PY
+
 # The subsystem's dimensionless pulse has one component along x: refused in one line.
 printf '[sweep]\nname = "inc"\nfamily = "subsystem"\n[axes]\nincidence_deg = [0, 90]\n' > sub.toml
 status=0
