@@ -30,7 +30,7 @@ model="$root/docs/examples/subsystem.toml"
 cp "$model" model.toml
 
 # --- the command line, every sub-command ---
-commands="version, run, modes, sweep, inspect, records, risk"
+commands="version, run, modes, sweep, inspect, records, risk, restitution"
 expect "unknown sub-command 'swep'; allowed: $commands; did you mean \`sweep\`?" swep x
 expect "unknown sub-command 'frobnicate'; allowed: $commands" frobnicate
 expect "unknown option --bogus; allowed: --help, -h, --version, -V" --bogus
@@ -52,6 +52,10 @@ expect "sweep: --checkpoint-seconds: '0' is not allowed; must be > 0" \
 expect "sweep: --max-cells: 'many' is not a number" sweep "$spec" --out out.h5 --max-cells many
 expect "sweep: unknown option --resmue; allowed: --help, -h, --out, -o, --resume, --force, --quiet, -q, --checkpoint-seconds, --checkpoint-cells, --max-cells, --dry-run, --ranks, --sample-cells, --scale-table; did you mean \`--resume\`?" \
   sweep "$spec" --out out.h5 --resmue
+expect "restitution: --velocity-mps: speeds must be > 0 m/s (got -1)" \
+  restitution --mass-kg 1e3 --k-max-Npm 1e8 --r-f 0.7 --f-ult-N 1e6 --velocity-mps -1
+expect "restitution: law: give exactly one of --k-max-Npm (OpenSees constants with --r-f and --f-ult-N), --k50-Npm (Shamsabadi, with --f-ult-N and --height-m or --y-max-m), --caltrans (with --width-m and --height-m)" \
+  restitution --mass-kg 1e3 --velocity-mps 1
 expect "inspect: file is required (Cube FILE.h5 (or FILE.h5.partial))" inspect
 expect "records: a sub-command is required; allowed: info, spectrum, synth" records
 expect "records: unknown sub-command 'inf'; allowed: info, spectrum, synth; did you mean \`info\`?" records inf x
@@ -77,7 +81,7 @@ sed 's/^\[excitation\]/[excitaton]/' model.toml > section.toml
 expect "section.toml:26: excitaton: unknown section (allowed: deck, substructure, abutments, excitation, run); did you mean \`excitation\`?" \
   run section.toml --out run.h5
 sed 's/^a_deg = /skew = /' "$spec" > skew_spec.toml
-expect "skew_spec.toml:10: axes.skew: unknown parameter; allowed: record, pulse, spans, a_g_g, w_g, T_g, scale, im_g, im_mps, a_deg, eta0, W_over_L, delta_over_L, L_over_Le, W0_over_w0, xi, eps_N, mu, Pi_delta, gap_m, k_factor, seat_over_L, seat_m, w0_over_wg, method; did you mean \`a_deg\` (skew angle a)?" \
+expect "skew_spec.toml:10: axes.skew: unknown parameter; allowed: record, pulse, incidence_deg, spans, a_g_g, w_g, T_g, scale, im_g, im_mps, a_deg, eta0, W_over_L, delta_over_L, L_over_Le, W0_over_w0, xi, eps_N, mu, Pi_delta, gap_m, k_factor, seat_over_L, seat_m, w0_over_wg, method; did you mean \`a_deg\` (skew angle a)?" \
   sweep skew_spec.toml --out out.h5
 # --- the wrong kind of file, named as what it is ---
 cp "$spec" spec.toml
@@ -97,7 +101,7 @@ expect "set.toml: this is a record-set manifest ([[record]] tables), not a model
 expect "spec.toml: this is a sweep specification ([sweep] table), not a record-set manifest (docs/records.md); \`skewbridge sweep SPEC --out FILE.h5\` takes it" \
   records info spec.toml
 printf 'name = "s"\n[[record]]\nfile = "a.AT2"\nlable = "A"\n' > lable.toml
-expect "lable.toml:4: lable: unknown key (allowed: file, label, component, scale, units, dt, format, channel, max_pga_g); did you mean \`label\`?" \
+expect "lable.toml:4: lable: unknown key (allowed: file, label, component, scale, units, dt, format, channel, max_pga_g; h1, h2, component_h1, component_h2 for a pair); did you mean \`label\`?" \
   records info lable.toml
 
 # An HDF5 file (a run file here) or a record file where a TOML file belongs.
