@@ -14,6 +14,7 @@ CubeLayout MakeCubeLayout(const CellEvaluator& evaluator, const std::vector<std:
   const std::vector<ResponseInfo> all = evaluator.Responses();
   CubeLayout layout;
   layout.evaluator_responses = all.size();
+  layout.policies = evaluator.policies();
   if (requested.empty()) {
     layout.responses = all;
     for (std::size_t i = 0; i < all.size(); ++i) {

@@ -24,6 +24,9 @@ struct CubeLayout {
   std::vector<std::pair<std::int32_t, std::string>> status_names;
   /// The integrators the cells run with: the cube stores each one's policy (SweepMethods).
   std::vector<model::Method> methods = {model::Method::kEventDriven};
+  /// The policies the evaluator's runs use (CellEvaluator::policies): the cube stores, for each
+  /// of `methods`, that one.
+  dynamics::RunPolicies policies;
 };
 
 /// The layout for an evaluator: its responses (all, or those named in `requested`, in that

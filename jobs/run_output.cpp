@@ -245,7 +245,8 @@ void WriteOrigin(hid_t file, const RunOrigin& origin) {
 
 void WriteRunHdf5(const std::filesystem::path& path, const model::Model& model,
                   const dynamics::RunResult& result, std::string_view model_text,
-                  std::string_view method, double time_step_s, const RunOrigin& origin) {
+                  std::string_view method, double time_step_s, const RunOrigin& origin,
+                  const dynamics::RunPolicies& policies) {
   h5::SilenceErrorStack();
   Id file = h5::CreateFile(path.string());
   const hid_t f = file.get();
@@ -265,7 +266,7 @@ void WriteRunHdf5(const std::filesystem::path& path, const model::Model& model,
   // The thresholds and rules of the integrator that ran.
   const std::optional<model::Method> ran = model::ParseMethod(method);
   SB_DEMAND(ran.has_value(), "WriteRunHdf5: unknown method");
-  h5::WriteMethodPolicies(f, {*ran});
+  h5::WriteMethodPolicies(f, {*ran}, policies);
 
   const DofLabels labels = MakeDofLabels(model.n_bodies());
   WriteSummary(f, model, result, labels);

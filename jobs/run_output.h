@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "solver/dynamics/run_policies.h"
 #include "solver/dynamics/run_result.h"
 #include "solver/model/model.h"
 
@@ -42,9 +43,12 @@ struct RunOrigin {
 /// step h in s, NaN for event-driven) become the root attributes of the same names.
 /// @pre result comes from dynamics::Simulate or dynamics::SimulateTimeStepping on `model`
 /// (sizes match n_dof and contacts). `origin`, when not empty, becomes the group `origin`.
+/// The policy of `method` in `policies`, the one the run used, becomes the group
+/// `event_policy` or `time_stepping_policy`.
 /// @throws h5::H5Error on I/O failure (the caller removes the partial file).
 void WriteRunHdf5(const std::filesystem::path& path, const model::Model& model,
                   const dynamics::RunResult& result, std::string_view model_text,
-                  std::string_view method, double time_step_s, const RunOrigin& origin = {});
+                  std::string_view method, double time_step_s, const RunOrigin& origin = {},
+                  const dynamics::RunPolicies& policies = {});
 
 }  // namespace skewbridge::jobs

@@ -78,6 +78,20 @@ std::string SweepSpec::CanonicalText() const {
     }
     out << "]\n";
   }
+  // The policy members the sweep sets away from the integrators' defaults (none: no line, so a
+  // sweep without [event_policy] or [time_stepping_policy] keeps its identity).
+  const auto changed = [&](const char* table, const std::vector<schema::Entry>& set,
+                           const std::vector<schema::Entry>& defaults) {
+    for (std::size_t i = 0; i < set.size(); ++i) {
+      if (set[i].value != defaults[i].value) {
+        out << table << "." << set[i].name << " = " << Fmt(set[i].value) << "\n";
+      }
+    }
+  };
+  changed("event_policy", schema::Entries(policies.event),
+          schema::Entries(dynamics::EventPolicy{}));
+  changed("time_stepping_policy", schema::Entries(policies.time_stepping),
+          schema::Entries(dynamics::TimeSteppingPolicy{}));
   for (const Axis& axis : axes) {
     out << "axes." << axis.key << " = [";
     for (std::size_t i = 0; i < axis.Size(); ++i) {

@@ -44,12 +44,12 @@ SweepSpec SpecParser::Parse(std::string_view text) {
   for (auto&& [key, node] : root) {
     const std::string k(key.str());
     if (k != "sweep" && k != "axes" && k != "fixed" && k != "records" && k != "study" &&
-        k != "limit_states" && k != "ida") {
-      throw Error(
-          key.source(), k,
-          "unknown table; allowed: [sweep], [axes], [fixed], [records], [study], "
-          "[limit_states], [ida]" +
-              DidYouMean(k, {"sweep", "axes", "fixed", "records", "study", "limit_states", "ida"}));
+        k != "limit_states" && k != "ida" && k != "event_policy" && k != "time_stepping_policy") {
+      throw Error(key.source(), k,
+                  "unknown table; allowed: [sweep], [axes], [fixed], [records], [study], "
+                  "[limit_states], [ida], [event_policy], [time_stepping_policy]" +
+                      DidYouMean(k, {"sweep", "axes", "fixed", "records", "study", "limit_states",
+                                     "ida", "event_policy", "time_stepping_policy"}));
     }
     if (!node.is_table()) {
       throw Error(node.source(), k, "must be a table [" + k + "]");
@@ -71,6 +71,12 @@ SweepSpec SpecParser::Parse(std::string_view text) {
   }
   if (const toml::table* ida = root["ida"].as_table()) {
     ParseIda(*ida, spec);
+  }
+  if (const toml::table* policy = root["event_policy"].as_table()) {
+    ParseEventPolicy(*policy, spec);
+  }
+  if (const toml::table* policy = root["time_stepping_policy"].as_table()) {
+    ParseTimeSteppingPolicy(*policy, spec);
   }
   if (const toml::table* axes = root["axes"].as_table()) {
     for (auto&& [key, node] : *axes) {

@@ -124,6 +124,15 @@ class SpecParser {
   /// [study]: the w0x/w_g band edges of the correlation statistics.
   void ParseStudyTable(const toml::table& study, SweepSpec& spec) const;
 
+  // [event_policy] and [time_stepping_policy] (sweep_parse_policies.cpp).
+
+  /// [event_policy]: members of the event-driven integrator's policy by their stored names (a
+  /// nested member as a dotted key, contact.tie_tolerance), each checked against its
+  /// description.
+  void ParseEventPolicy(const toml::table& table, SweepSpec& spec) const;
+  /// [time_stepping_policy]: members of Moreau-Jean's policy, as ParseEventPolicy.
+  void ParseTimeSteppingPolicy(const toml::table& table, SweepSpec& spec) const;
+
   // Rules across tables (sweep_parse_cross_fields.cpp).
 
   /// The parameters that exclude or need each other, and what [ida] needs.

@@ -13,6 +13,8 @@
 #include <utility>
 #include <vector>
 
+#include "solver/dynamics/run_policies.h"
+
 namespace skewbridge::spectra {
 
 struct SweepRecord;  // spectra/study.h
@@ -127,6 +129,20 @@ class CellEvaluator {
   /// Evaluates one cell; axis_index[k] indexes axis k of the CellGrid (its canonical order).
   /// A failed cell returns a non-zero status and, like every cell, one value per response.
   virtual CellOutcome Evaluate(std::span<const std::size_t> axis_index) const = 0;
+
+  /// The integrators' policies every run of this evaluator uses (the sweep's [event_policy] and
+  /// [time_stepping_policy] over the defaults); the cube stores the one of each method its
+  /// cells ran. A decorator holds its inner evaluator's.
+  const dynamics::RunPolicies& policies() const { return policies_; }
+
+ protected:
+  /// An evaluator whose runs use the integrators' default policies.
+  CellEvaluator() = default;
+  /// An evaluator whose runs use `policies`.
+  explicit CellEvaluator(const dynamics::RunPolicies& policies) : policies_(policies) {}
+
+ private:
+  dynamics::RunPolicies policies_;
 };
 
 }  // namespace skewbridge::spectra

@@ -13,6 +13,7 @@
 #include <string_view>
 #include <vector>
 
+#include "solver/dynamics/run_policies.h"
 #include "solver/model/run_control.h"
 
 namespace skewbridge::spectra {
@@ -135,6 +136,9 @@ struct CellGrid {
   std::vector<FixedValue> fixed;
   std::vector<LimitState> limit_states;  ///< [limit_states], in canonical order; may be empty
   IdaSpec ida;                           ///< [ida]; ida.enabled false when not given
+  /// [event_policy] and [time_stepping_policy]: the integrators' defaults with the members the
+  /// sweep sets; every run of the sweep uses the one of its method (CellEvaluator::policies).
+  dynamics::RunPolicies policies;
 
   /// The number of coordinates per axis, in axis order.
   std::vector<std::size_t> Shape() const;

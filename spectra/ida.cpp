@@ -259,7 +259,8 @@ CapacityFit FitCapacities(std::span<const double> capacities, std::span<const do
 }
 
 IdaEvaluator::IdaEvaluator(std::unique_ptr<CellEvaluator> inner, const CellGrid& grid)
-    : inner_(std::move(inner)),
+    : CellEvaluator(inner->policies()),
+      inner_(std::move(inner)),
       ida_(grid.ida),
       limit_states_(grid.limit_states),
       im_unit_(IntensityUnit(grid.im)),

@@ -83,7 +83,9 @@ std::string LimitStateDemandUnit(const LimitState& ls, std::span<const ResponseI
 }
 
 LimitStateEvaluator::LimitStateEvaluator(std::unique_ptr<CellEvaluator> inner, const CellGrid& grid)
-    : inner_(std::move(inner)), inner_responses_(inner_->Responses()) {
+    : CellEvaluator(inner->policies()),
+      inner_(std::move(inner)),
+      inner_responses_(inner_->Responses()) {
   const std::span<const ResponseInfo> r(inner_responses_);
   const std::string family = "family '" + grid.family + "'";
   for (const LimitState& ls : grid.limit_states) {

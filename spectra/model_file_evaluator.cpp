@@ -98,7 +98,7 @@ std::size_t ModelFileEvaluator::RecordIndex(std::span<const std::size_t> index) 
 }
 
 ModelFileEvaluator::ModelFileEvaluator(const CellGrid& spec)
-    : spec_(spec), file_(CheckedModelFile(spec)) {
+    : CellEvaluator(spec.policies), spec_(spec), file_(CheckedModelFile(spec)) {
   const std::string& src = spec.source;
   const bool by_record = Mentions(spec, "record");
   written_ = model::DecksAsWritten(spec.model_path);
@@ -694,13 +694,13 @@ CellOutcome ModelFileEvaluator::EvaluateAt(std::span<const std::size_t> axis_ind
       s.cell.reset();
       s.cell.emplace(MakeCell(axis_index, true, factor));
       // As `skewbridge run`: run.method picks the integrator, the file's [run] its controls.
-      s.run = dynamics::Run(*s.cell->model, *s.cell->excitation, s.cell->control);
+      s.run = dynamics::Run(*s.cell->model, *s.cell->excitation, s.cell->control, policies());
       s.key = key;
       out = Outcome(axis_index, *s.cell, s.run);
     }
   } else {
     const ModelFileCell c = MakeCell(axis_index, true, factor);
-    out = Outcome(axis_index, c, dynamics::Run(*c.model, *c.excitation, c.control));
+    out = Outcome(axis_index, c, dynamics::Run(*c.model, *c.excitation, c.control, policies()));
   }
   out.stats.wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

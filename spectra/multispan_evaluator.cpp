@@ -126,7 +126,8 @@ struct MultiSpanEvaluator::CellValues {
   double TravelOf(int d) const { return run.max_travel_m(d); }
 };
 
-MultiSpanEvaluator::MultiSpanEvaluator(const CellGrid& spec) : spec_(spec) {
+MultiSpanEvaluator::MultiSpanEvaluator(const CellGrid& spec)
+    : CellEvaluator(spec.policies), spec_(spec) {
   for (std::string_view key : {"record"}) {
     if (Mentions(spec, key)) {
       throw InputError::AtField(spec.source, key,
@@ -242,7 +243,7 @@ CellOutcome MultiSpanEvaluator::Evaluate(std::span<const std::size_t> axis_index
   control.end_time_s = pulse.Duration() + 2.0 * std::max(excitation_period_s, natural_period_s);
   control.method = c.method;
   if (c.method == model::Method::kTimeStepping) control.time_step_s = 1e-4 * excitation_period_s;
-  const dynamics::RunResult run = dynamics::Run(model, pulse, control);
+  const dynamics::RunResult run = dynamics::Run(model, pulse, control, policies());
 
   CellOutcome out;
   out.status = CellStatusOf(run.status);

@@ -221,10 +221,11 @@ PointRun MakePointRun(const DimensionalPoint& point, const Excitation& excitatio
   return out;
 }
 
-PointResult EvaluatePoint(const DimensionalPoint& point, const Excitation& excitation) {
+PointResult EvaluatePoint(const DimensionalPoint& point, const Excitation& excitation,
+                          const dynamics::RunPolicies& policies) {
   const model::Model model = model::BuildDeckModel(point.deck, "point");
   const model::RunControl control = PointControl(point, excitation, model::LowestFrequency(model));
-  const dynamics::RunResult run = dynamics::Run(model, excitation, control);
+  const dynamics::RunResult run = dynamics::Run(model, excitation, control, policies);
 
   PointResult r;
   r.status = run.status;

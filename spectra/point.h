@@ -18,6 +18,7 @@
 #include <string>
 
 #include "records/excitations.h"
+#include "solver/dynamics/run_policies.h"
 #include "solver/dynamics/run_result.h"
 #include "solver/model/builders.h"
 #include "solver/model/run_control.h"
@@ -147,9 +148,11 @@ struct PointRun {
 PointRun MakePointRun(const DimensionalPoint& point, const Excitation& excitation);
 
 /// Runs the point under `excitation` (the pulse of PulseScales or a record whose scales are
-/// given) by point.method and normalises the maxima. The end time is the excitation's duration plus
-/// two of the longer of 2 pi / w_g and the longest natural period, so it scales with 1 / w_g.
-/// @throws InputError as ToDimensional.
-PointResult EvaluatePoint(const DimensionalPoint& point, const Excitation& excitation);
+/// given) by point.method with that method's policy in `policies`, and normalises the maxima.
+/// The end time is the excitation's duration plus two of the longer of 2 pi / w_g and the
+/// longest natural period, so it scales with 1 / w_g.
+/// @throws InputError as ToDimensional, or a policy member outside its range.
+PointResult EvaluatePoint(const DimensionalPoint& point, const Excitation& excitation,
+                          const dynamics::RunPolicies& policies = {});
 
 }  // namespace skewbridge::spectra

@@ -20,7 +20,8 @@ struct SpectraEvaluator::CellValues {
   double seat_m = 0.0;  ///< seat width: seat_over_L L, or seat_m (with seats)
 };
 
-SpectraEvaluator::SpectraEvaluator(const CellGrid& spec) : spec_(spec) {
+SpectraEvaluator::SpectraEvaluator(const CellGrid& spec)
+    : CellEvaluator(spec.policies), spec_(spec) {
   if (spec.family == "subsystem") {
     family_ = spectra::Family::kSubsystem;
   } else if (spec.family == "pilot-bridge") {
@@ -243,7 +244,7 @@ CellOutcome SpectraEvaluator::Evaluate(std::span<const std::size_t> axis_index) 
           ? spectra::ExcitationScales{record->measures.pga_mps2, record->measures.omega_g_radps}
           : spectra::PulseScales(p);
   point = spectra::ToDimensional(p, scales);
-  r = spectra::EvaluatePoint(point, *MakeExcitation(axis_index, p, record, scales));
+  r = spectra::EvaluatePoint(point, *MakeExcitation(axis_index, p, record, scales), policies());
 
   CellOutcome out;
   out.status = CellStatusOf(r.status);

@@ -110,7 +110,8 @@ void WriteCsv(const std::filesystem::path& path, const model::Model& model,
 // The whole run as HDF5; a failed write removes the temporary file and names --out.
 void WriteHdf5(const std::filesystem::path& path, const std::string& model_text,
                const model::Model& model, const model::RunControl& control,
-               const dynamics::RunResult& r, const jobs::RunOrigin& origin) {
+               const dynamics::RunResult& r, const jobs::RunOrigin& origin,
+               const dynamics::RunPolicies& policies) {
   const std::filesystem::path temporary = path.string() + ".partial";
   try {
     // The step h means nothing to the event-driven integrator: NaN says so in the file.
@@ -118,7 +119,7 @@ void WriteHdf5(const std::filesystem::path& path, const std::string& model_text,
                                    ? control.time_step_s
                                    : std::numeric_limits<double>::quiet_NaN();
     jobs::WriteRunHdf5(temporary, model, r, model_text, model::ToString(control.method),
-                       time_step_s, origin);
+                       time_step_s, origin, policies);
   } catch (const jobs::h5::H5Error& e) {
     std::error_code ignored;
     std::filesystem::remove(temporary, ignored);
@@ -163,6 +164,7 @@ struct RunInput {
   const model::Model* model = nullptr;
   const Excitation* excitation = nullptr;
   model::RunControl control;
+  dynamics::RunPolicies policies;  // the integrators' defaults, or a cube cell's sweep's
   bool print_modes = false;
   jobs::RunOrigin origin;
 };
@@ -315,7 +317,7 @@ void Execute(const RunInput& in, const RunOptions& o) {
   }
   const model::Model& model = *in.model;
   const bool time_stepping = control.method == model::Method::kTimeStepping;
-  const dynamics::RunResult r = dynamics::Run(model, *in.excitation, control);
+  const dynamics::RunResult r = dynamics::Run(model, *in.excitation, control, in.policies);
   std::printf("%s: method %s", in.title.c_str(), model::ToString(control.method));
   if (time_stepping) {
     std::printf(" (h = %.6g s)", control.time_step_s);
@@ -352,7 +354,7 @@ void Execute(const RunInput& in, const RunOptions& o) {
     WriteCsv(o.csv, model, r.histories);
   }
   if (!o.out.empty()) {
-    WriteHdf5(o.out, in.model_text, model, control, r, in.origin);
+    WriteHdf5(o.out, in.model_text, model, control, r, in.origin, in.policies);
   }
   if (r.status != dynamics::RunStatus::kOk) {
     // An expected numerical outcome (Painleve, LCP failure, step limit, a state no longer
@@ -427,6 +429,8 @@ void RunCubeCell(const RunOptions& o) {
   in.model = &*rerun.model;
   in.excitation = rerun.excitation.get();
   in.control = rerun.control;
+  // The cell's runs used its sweep's policies ([event_policy], [time_stepping_policy]).
+  in.policies = rerun.evaluator->policies();
   // Histories and the energy ledger are what a re-run is for; the sweep leaves both out because
   // the maxima are the same bits with or without them (tests/app/rerun_cell_test.sh).
   if (in.control.output_interval_s <= 0.0) in.control.output_interval_s = 0.01;

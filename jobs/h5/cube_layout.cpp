@@ -71,7 +71,7 @@ Datasets CreateLayout(const std::string& path, const SweepSpec& spec, const Cube
   }
   SetAttr(g, "response_links", response_links);
   // The thresholds and rules of the integrators that computed the cells.
-  WriteMethodPolicies(g, layout.methods);
+  WriteMethodPolicies(g, layout.methods, layout.policies);
 
   Id fixed = CreateGroup(g, "fixed");
   std::vector<std::string> fixed_keys;

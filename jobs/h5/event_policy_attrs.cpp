@@ -30,10 +30,11 @@ const char* PolicyGroup(model::Method method) {
   return method == model::Method::kTimeStepping ? "time_stepping_policy" : "event_policy";
 }
 
-void WriteMethodPolicies(hid_t parent, const std::vector<model::Method>& methods) {
+void WriteMethodPolicies(hid_t parent, const std::vector<model::Method>& methods,
+                         const dynamics::RunPolicies& policies) {
   for (const model::Method method : {model::Method::kEventDriven, model::Method::kTimeStepping}) {
     if (std::find(methods.begin(), methods.end(), method) != methods.end()) {
-      WritePolicy(parent, PolicyGroup(method), spectra::EvaluatorPolicy(method));
+      WritePolicy(parent, PolicyGroup(method), spectra::PolicyEntries(method, policies));
     }
   }
 }

@@ -21,8 +21,9 @@ void WritePolicy(hid_t parent, const std::string& group, const std::vector<schem
 /// The group name of the policy of `method`: "event_policy" or "time_stepping_policy".
 const char* PolicyGroup(model::Method method);
 
-/// Writes, for each of `methods` once, the policy the evaluators run it with
-/// (spectra::EvaluatorPolicy) in its group (PolicyGroup).
-void WriteMethodPolicies(hid_t parent, const std::vector<model::Method>& methods);
+/// Writes, for each of `methods` once, its policy in `policies` (the one its runs used) in its
+/// group (PolicyGroup).
+void WriteMethodPolicies(hid_t parent, const std::vector<model::Method>& methods,
+                         const dynamics::RunPolicies& policies);
 
 }  // namespace skewbridge::jobs::h5

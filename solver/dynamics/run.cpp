@@ -5,17 +5,19 @@
 namespace skewbridge::dynamics {
 
 RunResult Run(const model::Model& model, const Excitation& excitation,
-              const model::RunControl& control, const InitialState& initial) {
+              const model::RunControl& control, const RunPolicies& policies,
+              const InitialState& initial) {
   switch (control.method) {
     case model::Method::kTimeStepping: {
       TimeSteppingWorkspace workspace(model);
-      return SimulateTimeStepping(model, excitation, control, workspace, initial);
+      return SimulateTimeStepping(model, excitation, control, workspace, initial,
+                                  policies.time_stepping);
     }
     case model::Method::kEventDriven:
       break;
   }
   SimulationWorkspace workspace(model);
-  return Simulate(model, excitation, control, workspace, initial);
+  return Simulate(model, excitation, control, workspace, initial, policies.event);
 }
 
 }  // namespace skewbridge::dynamics

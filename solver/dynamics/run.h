@@ -6,6 +6,7 @@
 /// workspace over many runs or study another policy.
 
 #include "solver/common/excitation.h"
+#include "solver/dynamics/run_policies.h"
 #include "solver/dynamics/run_result.h"
 #include "solver/dynamics/simulate.h"
 #include "solver/model/model.h"
@@ -13,11 +14,12 @@
 
 namespace skewbridge::dynamics {
 
-/// One run of `model` under `excitation` from `initial`: the event-driven integrator (Simulate,
-/// EventPolicy{}) or Moreau-Jean (SimulateTimeStepping with control.time_step_s, theta = 1/2)
-/// by control.method, with a workspace built for this run.
-/// @throws InputError as the integrator it calls.
+/// One run of `model` under `excitation` from `initial`: the event-driven integrator (Simulate
+/// with policies.event) or Moreau-Jean (SimulateTimeStepping with control.time_step_s, theta =
+/// 1/2, policies.time_stepping) by control.method, with a workspace built for this run.
+/// @throws InputError as the integrator it calls (a policy member outside its range too).
 RunResult Run(const model::Model& model, const Excitation& excitation,
-              const model::RunControl& control, const InitialState& initial = {});
+              const model::RunControl& control, const RunPolicies& policies = {},
+              const InitialState& initial = {});
 
 }  // namespace skewbridge::dynamics

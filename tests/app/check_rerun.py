@@ -108,6 +108,18 @@ def compare_spectra(cube_path, run_paths):
                     fail(f"{path}: {k} = {mine[k]!r}, cube cell {cell} stores {stored!r}")
             if f["histories/t_s"].shape[0] < 50:
                 fail(f"{path}: no histories")
+            # The run used the policy the cube's cells ran with: the run file's group of its
+            # method equals the cube's, attribute by attribute.
+            groups = [p for p in ("event_policy", "time_stepping_policy") if p in f]
+            if len(groups) != 1:
+                fail(f"{path}: policy groups {groups}")
+            mine_policy, cube_policy = f[groups[0]].attrs, g[groups[0]].attrs
+            if sorted(mine_policy) != sorted(cube_policy):
+                fail(f"{path}: {groups[0]} members differ from the cube's")
+            for k in mine_policy:
+                if not np.array_equal(mine_policy[k], cube_policy[k]):
+                    fail(f"{path}: {groups[0]}.{k} = {mine_policy[k]!r}, the cube's "
+                         f"{cube_policy[k]!r}")
             impacts.append(mine["impacts"])
     if not any(n > 0 for n in impacts):
         fail(f"no re-run cell of {cube_path} with impacts: {impacts}")

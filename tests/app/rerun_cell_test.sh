@@ -7,7 +7,8 @@
 # impacts), and the ground acceleration the runs applied with the AT2 files parsed by numpy.
 # `run --record FILE.AT2 --scale F` (F the cube's scale_factor) and `run --record-set --label
 # --target-sa-g` give the cell again. Cells of a subsystem sweep under pulses and of a
-# pilot-bridge sweep under synthetic records equal their cubes the same way. Bad coordinates, a
+# pilot-bridge sweep under synthetic records equal their cubes the same way, and so do cells of a
+# sweep under policies of its own, of either integrator. Bad coordinates, a
 # changed input and a multi-span cube are refused with one line, status 2, no output. The report
 # draws a re-run's histories.
 # usage: rerun_cell_test.sh SKEWBRIDGE SOURCE_DIR WORK_DIR
@@ -145,6 +146,55 @@ done
   fail "subsystem re-runs against the cube"
 /usr/bin/python3 "$src/tests/app/check_rerun.py" --spectra pilot.h5 q_0.h5 q_1.h5 ||
   fail "pilot-bridge re-runs against the cube"
+
+# A sweep under policies of its own for both integrators ([event_policy], [time_stepping_policy]):
+# cells of either method re-run equal the cube, each run file storing the cube's policy of its
+# method (check_rerun.py), which is the sweep's.
+cat > policy.toml <<'TOML'
+[sweep]
+name = "policy"
+family = "subsystem"
+[fixed]
+eta0 = 1.0
+a_deg = 30
+[limit_states]
+joint_closing = true
+[axes]
+method = ["event-driven", "time-stepping"]
+Pi_delta = [0.5, 4.0]
+w0_over_wg = [0.5, 3.0]
+[event_policy]
+steps_per_period = 7.5
+jam = false
+[time_stepping_policy]
+active_set_lookahead = 1.0
+normal_compliance = 1e-6
+TOML
+"$exe" sweep policy.toml --out policy.h5 --quiet 2> policy.err || { cat policy.err; fail "sweep policy"; }
+for i in 0 1 4 7; do  # 0, 1: both methods at the cell with impacts
+  "$exe" run --from-cube policy.h5 --cell-index "$i" --out "e_$i.h5" > /dev/null ||
+    fail "re-run policy cell $i"
+done
+/usr/bin/python3 "$src/tests/app/check_rerun.py" --spectra policy.h5 e_0.h5 e_1.h5 e_4.h5 e_7.h5 ||
+  fail "re-runs under the sweep's policies against the cube"
+# The same sweep under the integrators' defaults: the cells with impacts move with either policy.
+sed '/^\[event_policy\]/,$d' policy.toml > defaults.toml
+"$exe" sweep defaults.toml --out defaults.h5 --quiet 2> defaults.err || { cat defaults.err; fail "sweep defaults"; }
+/usr/bin/python3 - <<'PY' || fail "the policies stored"
+import h5py
+g = h5py.File("policy.h5", "r")["sweeps/policy"]
+d = h5py.File("defaults.h5", "r")["sweeps/policy"]
+moved = (g["responses/x_m"][()] != d["responses/x_m"][()]).ravel()
+impacts = g["responses/impacts"][()].ravel()
+assert moved[0] and moved[1] and impacts[0] > 0 and impacts[1] > 0, (moved, impacts)
+assert "event_policy.steps_per_period = 7.5" in g.attrs["spec_canonical"]
+assert g.attrs["spec_hash"] != d.attrs["spec_hash"]
+assert g["event_policy"].attrs["steps_per_period"] == 7.5
+assert g["event_policy"].attrs["jam"] == 0
+assert g["time_stepping_policy"].attrs["active_set_lookahead"] == 1.0
+assert h5py.File("e_0.h5", "r")["event_policy"].attrs["steps_per_period"] == 7.5
+assert h5py.File("e_1.h5", "r")["time_stepping_policy"].attrs["normal_compliance"] == 1e-6
+PY
 
 # The multi-span family is refused by name.
 cat > spans.toml <<'TOML'

@@ -67,7 +67,7 @@ TEST(EventPolicyAttrs, EachMethodStoresItsOwnPolicy) {
   const auto groups = [&](const std::vector<model::Method>& methods) {
     {
       Id file = CreateFile(path);
-      WriteMethodPolicies(file.get(), methods);
+      WriteMethodPolicies(file.get(), methods, {});
     }
     Id file = OpenFile(path, false);
     std::vector<std::string> out;

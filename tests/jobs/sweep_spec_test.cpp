@@ -113,7 +113,8 @@ TEST(SweepSpec, UnknownNamesGetTheNearestAllowedOne) {
   EXPECT_THAT(ErrorOf(Replace(kGood, "xi =", "zeta =")), ::testing::Not(HasSubstr("did you")));
   EXPECT_THAT(ErrorOf(Replace(kGood, "[axes]", "[axis]")),
               HasSubstr("spec.toml:6: axis: unknown table; allowed: [sweep], [axes], [fixed], "
-                        "[records], [study], [limit_states], [ida]; did you mean `axes`?"));
+                        "[records], [study], [limit_states], [ida], [event_policy], "
+                        "[time_stepping_policy]; did you mean `axes`?"));
   EXPECT_THAT(ErrorOf(Replace(kGood, "family =", "famly =")),
               HasSubstr("sweep.famly: unknown key; allowed: name, family, model, responses, "
                         "description; did you mean `family`?"));
