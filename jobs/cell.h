@@ -15,6 +15,7 @@ using spectra::kStatusException;
 using spectra::kStatusNotDone;
 using spectra::kStatusOk;
 using spectra::kStatusResponseCount;
+using spectra::RecordScaling;
 using spectra::ResponseInfo;
 
 }  // namespace skewbridge::jobs

@@ -120,7 +120,8 @@ std::string FactorText(double factor, bool too_far) {
 std::string ScaleFactorReport(const SweepSpec& spec, const CellEvaluator& evaluator,
                               bool full_table) {
   const std::uint64_t cells = spec.CellCount();
-  if (cells == 0 || !evaluator.Scaling(spec.AxisIndex(0))) return {};
+  const spectra::RecordScaling* scaling = evaluator.record_scaling();
+  if (cells == 0 || scaling == nullptr || !scaling->Scaling(spec.AxisIndex(0))) return {};
   const spectra::IntensityMeasureSpec& im = spec.im;
   const std::string im_key = im.AxisKey();
   const std::string unit = spectra::IntensityUnit(im);
@@ -160,7 +161,7 @@ std::string ScaleFactorReport(const SweepSpec& spec, const CellEvaluator& evalua
   double largest = 0.0;
   for (std::uint64_t cell = 0; cell < cells; ++cell) {
     const std::vector<std::size_t> index = spec.AxisIndex(cell);
-    const std::optional<spectra::CellScaling> s = evaluator.Scaling(index);
+    const std::optional<spectra::CellScaling> s = scaling->Scaling(index);
     if (!s) return {};
     std::uint64_t combo = 0;
     std::string text;

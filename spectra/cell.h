@@ -5,10 +5,8 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <limits>
 #include <optional>
 #include <span>
-#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -80,6 +78,35 @@ struct CellScaling {
   bool too_far = false;   ///< factor > [records] max_scale (false without max_scale)
 };
 
+/// How the cells of a family that scales its records to an intensity ([records] scale_to or im)
+/// scale them: an optional capability of an evaluator, which it exposes through
+/// CellEvaluator::record_scaling (nullptr for a family without records to scale) and a decorator
+/// exposes unchanged, so no decorator forwards these functions one by one.
+class RecordScaling {
+ public:
+  virtual ~RecordScaling() = default;
+
+  /// How the cell's record is scaled to its stripe, decided at construction (no run); empty
+  /// unless the sweep scales its records to an intensity axis (an [ida] sweep has none).
+  virtual std::optional<CellScaling> Scaling(std::span<const std::size_t> axis_index) const = 0;
+
+  /// The record's own intensity measure in the cell ([records] scale_to or im: g, or m/s for
+  /// PGV, at the cell's T1).
+  virtual double UnscaledIntensity(std::span<const std::size_t> axis_index) const = 0;
+
+  /// Evaluates the cell with its record's accelerations multiplied by `factor` in place of the
+  /// cell's own factor (incremental dynamic analysis runs one cell at many factors). The
+  /// responses are those of the family's evaluator that exposes this capability (its
+  /// Responses()), not a decorator's: a decorator adds its own (LimitStateEvaluator).
+  virtual CellOutcome EvaluateScaled(std::span<const std::size_t> axis_index,
+                                     double factor) const = 0;
+
+ protected:
+  RecordScaling() = default;
+  RecordScaling(const RecordScaling&) = default;
+  RecordScaling& operator=(const RecordScaling&) = default;
+};
+
 /// Computes cells of a sweep. Implementations must be pure: the outcome depends only on the
 /// axis indices (no state carried between cells), so that a cube is bit-identical whatever the
 /// number of ranks and the order of execution. Evaluate is called from one thread per process.
@@ -105,26 +132,9 @@ class CellEvaluator {
   /// solver/model/plausibility.h), decided at construction, one line each; none by default.
   virtual std::vector<std::string> Warnings() const { return {}; }
 
-  /// How the cell's record is scaled to its stripe, decided at construction (no run); empty
-  /// unless the sweep scales its records to an intensity axis.
-  virtual std::optional<CellScaling> Scaling(std::span<const std::size_t> /*axis_index*/) const {
-    return std::nullopt;
-  }
-
-  /// The record's own intensity measure in the cell ([records] scale_to: g, or m/s for PGV, at
-  /// the cell's T1), NaN when the evaluator scales no record to an intensity.
-  virtual double UnscaledIntensity(std::span<const std::size_t> /*axis_index*/) const {
-    return std::numeric_limits<double>::quiet_NaN();
-  }
-
-  /// Evaluates the cell with its record's accelerations multiplied by `factor` in place of the
-  /// cell's own factor (incremental dynamic analysis runs one cell at many factors); the
-  /// responses are those of Evaluate. @throws std::logic_error for an evaluator that scales no
-  /// record (UnscaledIntensity NaN).
-  virtual CellOutcome EvaluateScaled(std::span<const std::size_t> /*axis_index*/,
-                                     double /*factor*/) const {
-    throw std::logic_error("this sweep family does not scale records to an intensity");
-  }
+  /// How this evaluator's family scales its records to an intensity (RecordScaling), or nullptr
+  /// when it scales none; a decorator returns its inner evaluator's.
+  virtual const RecordScaling* record_scaling() const { return nullptr; }
 
   /// Evaluates one cell; axis_index[k] indexes axis k of the CellGrid (its canonical order).
   /// A failed cell returns a non-zero status and, like every cell, one value per response.

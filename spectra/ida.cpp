@@ -258,13 +258,15 @@ CapacityFit FitCapacities(std::span<const double> capacities, std::span<const do
   return f;
 }
 
-IdaEvaluator::IdaEvaluator(std::unique_ptr<CellEvaluator> inner, const CellGrid& grid)
+IdaEvaluator::IdaEvaluator(std::unique_ptr<LimitStateEvaluator> inner, const CellGrid& grid)
     : CellEvaluator(inner->policies()),
       inner_(std::move(inner)),
       ida_(grid.ida),
       limit_states_(grid.limit_states),
       im_unit_(IntensityUnit(grid.im)),
       max_scale_(grid.im.max_scale) {
+  SB_DEMAND(inner_->record_scaling() != nullptr,
+            "an [ida] sweep scales its records to an intensity ([records] scale_to)");
   const std::vector<ResponseInfo> responses = inner_->Responses();
   auto column = [&](const std::string& name, const LimitState& ls) {
     for (std::size_t c = 0; c < responses.size(); ++c) {
@@ -328,7 +330,7 @@ IdaEvaluator::IdaEvaluator(std::unique_ptr<CellEvaluator> inner, const CellGrid&
 }
 
 CellOutcome IdaEvaluator::Evaluate(std::span<const std::size_t> axis_index) const {
-  const double own = inner_->UnscaledIntensity(axis_index);
+  const double own = inner_->record_scaling()->UnscaledIntensity(axis_index);
   SB_DEMAND(own > 0.0 && std::isfinite(own), "an IDA cell's record has no intensity to scale");
   CellOutcome out;
   auto run = [&](double im) {

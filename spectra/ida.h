@@ -18,6 +18,7 @@
 
 #include "spectra/cell.h"
 #include "spectra/grid.h"
+#include "spectra/limit_states.h"
 #include "spectra/response_table.h"
 
 namespace skewbridge::spectra {
@@ -99,7 +100,8 @@ CapacityFit FitCapacities(std::span<const double> capacities,
 class IdaEvaluator final : public CellEvaluator {
  public:
   /// @throws InputError when the inner evaluator lacks a limit state's responses.
-  IdaEvaluator(std::unique_ptr<CellEvaluator> inner, const CellGrid& grid);
+  /// @pre inner->record_scaling() != nullptr (the sweep scales its records to an intensity)
+  IdaEvaluator(std::unique_ptr<LimitStateEvaluator> inner, const CellGrid& grid);
 
   std::vector<ResponseInfo> Responses() const override { return table_.Infos(); }
   std::vector<std::pair<std::int32_t, std::string>> StatusNames() const override {
@@ -108,13 +110,11 @@ class IdaEvaluator final : public CellEvaluator {
   const std::vector<SweepRecord>* Records() const override { return inner_->Records(); }
   std::vector<std::string> Notes() const override { return inner_->Notes(); }
   std::vector<std::string> Warnings() const override { return inner_->Warnings(); }
-  double UnscaledIntensity(std::span<const std::size_t> axis_index) const override {
-    return inner_->UnscaledIntensity(axis_index);
-  }
+  const RecordScaling* record_scaling() const override { return inner_->record_scaling(); }
   CellOutcome Evaluate(std::span<const std::size_t> axis_index) const override;
 
  private:
-  std::unique_ptr<CellEvaluator> inner_;
+  std::unique_ptr<LimitStateEvaluator> inner_;
   IdaSpec ida_;
   std::vector<LimitState> limit_states_;
   std::string im_unit_;

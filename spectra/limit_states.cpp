@@ -220,7 +220,9 @@ CellOutcome LimitStateEvaluator::Evaluate(std::span<const std::size_t> axis_inde
 
 CellOutcome LimitStateEvaluator::EvaluateScaled(std::span<const std::size_t> axis_index,
                                                 double factor) const {
-  return WithLimitStates(inner_->EvaluateScaled(axis_index, factor));
+  const RecordScaling* scaling = inner_->record_scaling();
+  SB_DEMAND(scaling != nullptr, "the sweep scales no record to an intensity");
+  return WithLimitStates(scaling->EvaluateScaled(axis_index, factor));
 }
 
 std::pair<double, double> LimitStateEvaluator::Assess(const Plan& p, const std::vector<double>& v) {

@@ -58,14 +58,12 @@ class LimitStateEvaluator final : public CellEvaluator {
   const std::vector<SweepRecord>* Records() const override { return inner_->Records(); }
   std::vector<std::string> Notes() const override { return inner_->Notes(); }
   std::vector<std::string> Warnings() const override { return inner_->Warnings(); }
-  std::optional<CellScaling> Scaling(std::span<const std::size_t> axis_index) const override {
-    return inner_->Scaling(axis_index);
-  }
+  const RecordScaling* record_scaling() const override { return inner_->record_scaling(); }
   CellOutcome Evaluate(std::span<const std::size_t> axis_index) const override;
-  double UnscaledIntensity(std::span<const std::size_t> axis_index) const override {
-    return inner_->UnscaledIntensity(axis_index);
-  }
-  CellOutcome EvaluateScaled(std::span<const std::size_t> axis_index, double factor) const override;
+  /// The cell with its record scaled by `factor` (RecordScaling::EvaluateScaled of the family),
+  /// with the limit states appended: the responses of Evaluate.
+  /// @pre record_scaling() != nullptr
+  CellOutcome EvaluateScaled(std::span<const std::size_t> axis_index, double factor) const;
 
  private:
   // The columns of the inner responses one limit state reads.

@@ -644,7 +644,7 @@ std::vector<std::pair<std::int32_t, std::string>> ModelFileEvaluator::StatusName
 }
 
 double ModelFileEvaluator::UnscaledIntensity(std::span<const std::size_t> axis_index) const {
-  if (record_im_.empty()) return kNaN;
+  SB_DEMAND(!record_im_.empty(), "the sweep scales no record to an intensity");
   const std::size_t t = t1_of_cell_[CellIndex(axis_index)];
   return record_im_[RecordIndex(axis_index) * t1_values_s_.size() + t];
 }
@@ -655,7 +655,7 @@ CellOutcome ModelFileEvaluator::Evaluate(std::span<const std::size_t> axis_index
 
 CellOutcome ModelFileEvaluator::EvaluateScaled(std::span<const std::size_t> axis_index,
                                                double factor) const {
-  if (record_im_.empty()) return CellEvaluator::EvaluateScaled(axis_index, factor);
+  SB_DEMAND(!record_im_.empty(), "the sweep scales no record to an intensity");
   return EvaluateAt(axis_index, factor);
 }
 

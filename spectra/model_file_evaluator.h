@@ -63,8 +63,9 @@ records::SampledExcitation ScaledPairExcitation(const records::GroundMotion& h1,
 /// Evaluates the cells of a model-file sweep. Evaluate is a pure function of the cell index:
 /// cells that differ only along an axis of the limit states alone (seat_over_L, seat_m: a seat
 /// width moves no deck) share one dynamic run, the last ones kept, so a cell's responses are the
-/// bits its own run would give whatever the order of evaluation.
-class ModelFileEvaluator final : public CellEvaluator {
+/// bits its own run would give whatever the order of evaluation. Scales its records to an
+/// intensity when the sweep says so (RecordScaling, exposed by record_scaling).
+class ModelFileEvaluator final : public CellEvaluator, public RecordScaling {
  public:
   /// Reads the model file and the records (LoadSweepRecords, if any), then builds every cell's
   /// model before any work.
@@ -95,10 +96,17 @@ class ModelFileEvaluator final : public CellEvaluator {
   /// the sweep's gap_m) and the seats of [limit_states] against the spans, and the fundamental
   /// period of every cell's model.
   std::vector<std::string> Warnings() const override { return warnings_; }
+  /// This evaluator when the sweep scales its records to an intensity ([records] scale_to or
+  /// im), else nullptr.
+  const RecordScaling* record_scaling() const override {
+    return record_im_.empty() ? nullptr : this;
+  }
   /// The cell's stripe, its record's own measure at the cell's T1 and the factor between them.
   std::optional<CellScaling> Scaling(std::span<const std::size_t> axis_index) const override;
-  /// The record's own measure at the cell's T1 ([records] scale_to or im), else NaN.
+  /// The record's own measure at the cell's T1 ([records] scale_to or im).
+  /// @pre record_scaling() != nullptr
   double UnscaledIntensity(std::span<const std::size_t> axis_index) const override;
+  /// @pre record_scaling() != nullptr
   CellOutcome EvaluateScaled(std::span<const std::size_t> axis_index, double factor) const override;
 
  private:

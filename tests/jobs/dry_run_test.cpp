@@ -105,11 +105,16 @@ TEST(DryRun, ReportCountsTheCellsTimesTheSampleAndWritesNothing) {
 
 // Records scaled to stripes as ModelFileEvaluator scales them: record r (0-based) has its own
 // measure r + 1 g, so the factor of stripe s is s / (r + 1); no cell is run.
-class StripeEvaluator final : public CellEvaluator {
+class StripeEvaluator final : public CellEvaluator, public RecordScaling {
  public:
   explicit StripeEvaluator(const SweepSpec& spec) : spec_(spec) {}
   std::vector<ResponseInfo> Responses() const override { return {{"x", "1", "unused"}}; }
   CellOutcome Evaluate(std::span<const std::size_t>) const override { return {}; }
+  const RecordScaling* record_scaling() const override { return this; }
+  double UnscaledIntensity(std::span<const std::size_t> index) const override {
+    return static_cast<double>(index[0] + 1);
+  }
+  CellOutcome EvaluateScaled(std::span<const std::size_t>, double) const override { return {}; }
   std::optional<spectra::CellScaling> Scaling(std::span<const std::size_t> index) const override {
     spectra::CellScaling s;
     s.t1_s = 0.5;
