@@ -4,10 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <optional>
 #include <string_view>
 
+#include "solver/common/error.h"
 #include "spectra/ida.h"
 #include "spectra/limit_states.h"
 #include "spectra/round_off.h"
@@ -41,7 +43,7 @@ std::vector<double> DemandOverCapacity(const spectra::LimitState& ls,
 }
 
 std::vector<FragilityStudy> MakeFragility(const SweepSpec& spec, const CubeLayout& layout,
-                                          const CubeData& data) {
+                                          const CubeData& data, int rank, int ranks) {
   std::vector<FragilityStudy> out;
   if (spec.limit_states.empty()) return out;
   // The IM of every cell: a stripe axis (im_g, or im_mps for PGV), else the cell's stored
@@ -103,6 +105,7 @@ std::vector<FragilityStudy> MakeFragility(const SweepSpec& spec, const CubeLayou
       excluded[cell] = data.responses[*far][cell] == 1.0 ? 1 : 0;
     }
   }
+  std::size_t jobs = 0;  // the bootstraps of the limit states before this one
   for (const spectra::LimitState& ls : spec.limit_states) {
     const auto [demand_name, exceeded_name] = spectra::LimitStateResponseNames(ls);
     const std::optional<std::size_t> demand = ResponseColumn(layout, demand_name);
@@ -127,8 +130,11 @@ std::vector<FragilityStudy> MakeFragility(const SweepSpec& spec, const CubeLayou
     }
     std::string no_cloud;
     const std::vector<double> dc = DemandOverCapacity(ls, demand_read, &no_cloud);
-    f.table = spectra::FitFragilityOverCells(spec, stripe_axis,
-                                             {im, exceeded_read, dc, usable, excluded}, no_cloud);
+    spectra::BootstrapShare share{rank, ranks, jobs};
+    f.table = spectra::FitFragilityOverCells(
+        spec, stripe_axis, {im, exceeded_read, dc, usable, excluded}, no_cloud,
+        spectra::kBootstrapResamples, spectra::kBootstrapSeed, share);
+    jobs += f.table.theta.size();
     out.push_back(std::move(f));
   }
   return out;
@@ -221,8 +227,139 @@ std::vector<IdaFragilityStudy> MakeIdaFragility(const SweepSpec& spec, const Cub
   return out;
 }
 
+std::vector<FragilityStudy> MakeFragilityStudies(const SweepSpec& spec, const CubeLayout& layout,
+                                                 const CubeData& data, int rank, int ranks) {
+  return MakeFragility(spec, layout, data, rank, ranks);
+}
+
+namespace {
+
+template <typename T>
+void Put(std::string& out, const T& v) {
+  out.append(reinterpret_cast<const char*>(&v), sizeof(T));
+}
+
+template <typename T>
+void PutArray(std::string& out, const std::vector<T>& v) {
+  Put(out, static_cast<std::uint64_t>(v.size()));
+  out.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+}
+
+// Reads what Put and PutArray wrote, in order.
+class Reader {
+ public:
+  explicit Reader(std::string_view bytes) : bytes_(bytes) {}
+  template <typename T>
+  T Get() {
+    SB_DEMAND(at_ + sizeof(T) <= bytes_.size(), "a packed fragility message is too short");
+    T v;
+    std::memcpy(&v, bytes_.data() + at_, sizeof(T));
+    at_ += sizeof(T);
+    return v;
+  }
+  template <typename T>
+  std::vector<T> GetArray() {
+    const auto n = Get<std::uint64_t>();
+    SB_DEMAND(at_ + n * sizeof(T) <= bytes_.size(), "a packed fragility message is too short");
+    std::vector<T> v(n);
+    std::memcpy(v.data(), bytes_.data() + at_, n * sizeof(T));
+    at_ += n * sizeof(T);
+    return v;
+  }
+  bool Done() const { return at_ == bytes_.size(); }
+
+ private:
+  std::string_view bytes_;
+  std::size_t at_ = 0;
+};
+
+// The response columns MakeFragility reads.
+std::vector<std::size_t> FragilityColumns(const SweepSpec& spec, const CubeLayout& layout) {
+  std::vector<std::size_t> cols;
+  const auto add = [&](std::string_view name) {
+    if (const std::optional<std::size_t> c = ResponseColumn(layout, name)) cols.push_back(*c);
+  };
+  add("im");
+  add("a_g");
+  add("scaled_too_far");
+  for (const spectra::LimitState& ls : spec.limit_states) {
+    const auto [demand_name, exceeded_name] = spectra::LimitStateResponseNames(ls);
+    add(demand_name);
+    add(exceeded_name);
+  }
+  std::sort(cols.begin(), cols.end());
+  cols.erase(std::unique(cols.begin(), cols.end()), cols.end());
+  return cols;
+}
+
+}  // namespace
+
+std::string PackFragilityInputs(const SweepSpec& spec, const CubeLayout& layout,
+                                const CubeData& data) {
+  std::string out;
+  PutArray(out, data.done);
+  PutArray(out, data.status);
+  for (std::size_t c : FragilityColumns(spec, layout)) {
+    Put(out, static_cast<std::uint64_t>(c));
+    PutArray(out, data.responses[c]);
+  }
+  return out;
+}
+
+CubeData UnpackFragilityInputs(const CubeLayout& layout, std::string_view bytes) {
+  Reader in(bytes);
+  CubeData data;
+  data.done = in.GetArray<std::uint8_t>();
+  data.status = in.GetArray<std::int32_t>();
+  data.responses.resize(layout.responses.size());
+  while (!in.Done()) {
+    const auto c = in.Get<std::uint64_t>();
+    SB_DEMAND(c < data.responses.size(), "a packed fragility column outside the layout");
+    data.responses[c] = in.GetArray<double>();
+  }
+  return data;
+}
+
+std::string PackBootstraps(const std::vector<FragilityStudy>& studies, int rank, int ranks) {
+  std::string out;
+  std::size_t first_job = 0;
+  for (std::size_t k = 0; k < studies.size(); ++k) {
+    const FragilityTable& t = studies[k].table;
+    const spectra::BootstrapShare share{rank, ranks, first_job};
+    for (std::size_t combo = 0; combo < t.theta.size(); ++combo) {
+      if (!share.Mine(combo)) continue;
+      Put(out, static_cast<std::uint64_t>(k));
+      Put(out, static_cast<std::uint64_t>(combo));
+      Put(out, t.boot_used[combo]);
+      for (double v : {t.boot_theta_lo[combo], t.boot_theta_hi[combo], t.boot_beta_lo[combo],
+                       t.boot_beta_hi[combo]}) {
+        Put(out, v);
+      }
+    }
+    first_job += t.theta.size();
+  }
+  return out;
+}
+
+void MergeBootstraps(std::vector<FragilityStudy>& studies, std::string_view bytes) {
+  Reader in(bytes);
+  while (!in.Done()) {
+    const auto k = in.Get<std::uint64_t>();
+    const auto combo = in.Get<std::uint64_t>();
+    SB_DEMAND(k < studies.size() && combo < studies[k].table.theta.size(),
+              "a bootstrap of a combination the fragility does not have");
+    FragilityTable& t = studies[k].table;
+    t.boot_used[combo] = in.Get<std::int64_t>();
+    t.boot_theta_lo[combo] = in.Get<double>();
+    t.boot_theta_hi[combo] = in.Get<double>();
+    t.boot_beta_lo[combo] = in.Get<double>();
+    t.boot_beta_hi[combo] = in.Get<double>();
+  }
+}
+
 StudyTables MakeStudyTables(const SweepSpec& spec, const CubeLayout& layout, const CubeData& data,
-                            const std::vector<SweepRecord>* records) {
+                            const std::vector<SweepRecord>* records,
+                            std::vector<FragilityStudy>* fragility) {
   StudyTables tables;
   const std::optional<std::size_t> band_col = ResponseColumn(layout, "band");
   if (band_col) tables.band_edges = BandEdges(spec);
@@ -248,7 +385,8 @@ StudyTables MakeStudyTables(const SweepSpec& spec, const CubeLayout& layout, con
     }
   }
 
-  tables.fragility = MakeFragility(spec, layout, data);
+  tables.fragility =
+      fragility != nullptr ? std::move(*fragility) : MakeFragility(spec, layout, data, 0, 1);
   tables.ida_fragility = MakeIdaFragility(spec, layout, data);
 
   // A model-file sweep names its responses per deck: with one deck, its rotation is the one.

@@ -6,6 +6,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "jobs/cube.h"
@@ -78,7 +79,28 @@ struct StudyTables {
 /// its excitation amplitude a_g / g (a record's PGA times `scale`, with the `scale` axis as
 /// stripes when there is one).
 /// @throws InputError as LoadSweepRecords.
+/// `fragility`: the studies MakeFragilityStudies made (the ranks' shared bootstraps merged), so
+/// that they are not fitted again; nullptr to fit them here.
 StudyTables MakeStudyTables(const SweepSpec& spec, const CubeLayout& layout, const CubeData& data,
-                            const std::vector<SweepRecord>* records = nullptr);
+                            const std::vector<SweepRecord>* records = nullptr,
+                            std::vector<FragilityStudy>* fragility = nullptr);
+
+/// The fragility of each limit state over the cube, as MakeStudyTables stores it; with `ranks`
+/// > 1 only the bootstraps of this rank's share are drawn (spectra::BootstrapShare, the jobs
+/// numbered over the limit states in order), the others wait for MergeBootstraps.
+std::vector<FragilityStudy> MakeFragilityStudies(const SweepSpec& spec, const CubeLayout& layout,
+                                                 const CubeData& data, int rank = 0, int ranks = 1);
+
+/// The columns of `data` that MakeFragilityStudies reads (done, status, the IM, a_g,
+/// scaled_too_far and every limit state's demand and outcome), as bytes for the other ranks.
+std::string PackFragilityInputs(const SweepSpec& spec, const CubeLayout& layout,
+                                const CubeData& data);
+/// A cube image holding only those columns (the others empty), from PackFragilityInputs.
+CubeData UnpackFragilityInputs(const CubeLayout& layout, std::string_view bytes);
+
+/// The bootstraps this rank drew (its share of MakeFragilityStudies), as bytes for rank 0.
+std::string PackBootstraps(const std::vector<FragilityStudy>& studies, int rank, int ranks);
+/// Puts another rank's bootstraps (PackBootstraps) into `studies`.
+void MergeBootstraps(std::vector<FragilityStudy>& studies, std::string_view bytes);
 
 }  // namespace skewbridge::jobs

@@ -62,6 +62,9 @@ class FinishWatch final : public Transport {
   }
   ReceiveStats Received() const override { return inner_->Received(); }
   bool AllTrue(bool mine) override { return inner_->AllTrue(mine); }
+  std::vector<std::string> GatherText(const std::string& mine) override {
+    return inner_->GatherText(mine);
+  }
   void Farm(std::size_t count, const std::function<std::vector<char>(std::size_t)>& job,
             const std::function<std::vector<char>(std::span<const char>)>& work,
             const std::function<void(std::size_t, std::span<const char>)>& done) override {

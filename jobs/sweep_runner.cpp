@@ -263,9 +263,9 @@ class Writer {
   // they can be most of the cube): only when the final write fails does the checkpoint catch
   // up, so that --resume finds every cell and just writes the cube.
   void Finalize(const std::vector<SweepRecord>* records, const h5::ChunkFarm* farm,
-                const PendingCells& pending) {
+                const PendingCells& pending, std::vector<FragilityStudy>* fragility) {
     try {
-      WriteFinal(records, farm, false);
+      WriteFinal(records, farm, false, fragility);
     } catch (...) {
       CatchUp(pending);
       throw;
@@ -276,9 +276,9 @@ class Writer {
   // The final file: everything, or (cells_collectively) everything but the per-cell data and
   // complete = 1, which WriteFinalCellsCollective and CompleteFinalCube add.
   void WriteFinal(const std::vector<SweepRecord>* records, const h5::ChunkFarm* farm,
-                  bool cells_collectively) {
+                  bool cells_collectively, std::vector<FragilityStudy>* fragility) {
     // From the whole cube, so a resumed sweep's statistics cover the cells of every run.
-    const StudyTables study = MakeStudyTables(spec_, layout_, data_, records);
+    const StudyTables study = MakeStudyTables(spec_, layout_, data_, records, fragility);
     h5::WriteFinalCube(options_.out, spec_, layout_, data_, run_, file_->CreatedUtc(), examples_,
                        &study, farm, cells_collectively);
   }
@@ -334,6 +334,7 @@ class Writer {
   }
 
   std::int32_t run() const { return run_; }
+  const CubeData& data() const { return data_; }
 
   void FillReport(SweepReport& report) const {
     report.run = run_;
@@ -441,12 +442,13 @@ std::exception_ptr WriteFinalCollectively(
     const SweepSpec& spec, const CubeLayout& layout, const CellEvaluator& evaluator,
     Transport& transport, std::optional<Writer>& writer, const PendingCells& pending,
     const std::filesystem::path& out, std::vector<ResultBatch>& kept,
-    const std::vector<std::pair<std::uint64_t, std::uint64_t>>& own) {
+    const std::vector<std::pair<std::uint64_t, std::uint64_t>>& own,
+    std::vector<FragilityStudy>* fragility) {
   const bool root = transport.Rank() == 0;
   std::exception_ptr failure;
   if (root) {
     try {
-      writer->WriteFinal(evaluator.Records(), nullptr, true);
+      writer->WriteFinal(evaluator.Records(), nullptr, true, fragility);
     } catch (...) {
       failure = std::current_exception();
     }
@@ -477,6 +479,33 @@ std::exception_ptr WriteFinalCollectively(
     std::filesystem::remove(out.string() + ".tmp", ec);
   }
   return failure;
+}
+
+// The fragility fits of the final cube, collective: rank 0's columns go to every rank, each
+// draws its share of the bootstraps (spectra::BootstrapShare; the bits of a bootstrap do not
+// depend on the rank that draws it) and rank 0 gathers them. One rank draws them all when the
+// columns would not fit one MPI message.
+std::vector<FragilityStudy> ShareFragility(const SweepSpec& spec, const CubeLayout& layout,
+                                           const std::optional<Writer>& writer,
+                                           Transport& transport) {
+  const bool root = transport.Rank() == 0;
+  const double bytes = static_cast<double>(spec.CellCount()) *
+                       (5.0 + 8.0 * (3.0 + 2.0 * static_cast<double>(spec.limit_states.size())));
+  if (transport.Size() == 1 || bytes > 1e9) {
+    return root ? MakeFragilityStudies(spec, layout, writer->data())
+                : std::vector<FragilityStudy>{};
+  }
+  const std::string columns =
+      transport.BroadcastText(root ? PackFragilityInputs(spec, layout, writer->data()) : "");
+  const CubeData theirs = root ? CubeData{} : UnpackFragilityInputs(layout, columns);
+  std::vector<FragilityStudy> studies = MakeFragilityStudies(
+      spec, layout, root ? writer->data() : theirs, transport.Rank(), transport.Size());
+  const std::vector<std::string> drawn = transport.GatherText(
+      root ? std::string() : PackBootstraps(studies, transport.Rank(), transport.Size()));
+  if (root) {
+    for (std::size_t r = 1; r < drawn.size(); ++r) MergeBootstraps(studies, drawn[r]);
+  }
+  return studies;
 }
 
 }  // namespace
@@ -677,12 +706,18 @@ SweepReport RunSweep(const SweepSpec& spec, const CellEvaluator& evaluator, Tran
   const bool finalize =
       transport.BroadcastText(root && !report.interrupted && writer->AllDone() ? "final" : "") ==
       "final";
+  // The fragility fits, their bootstraps spread over the ranks, before the final write.
+  std::optional<std::vector<FragilityStudy>> fragility;
+  if (finalize && !spec.limit_states.empty()) {
+    fragility = ShareFragility(spec, layout, writer, transport);
+  }
+  std::vector<FragilityStudy>* fits = root && fragility ? &*fragility : nullptr;
   std::exception_ptr failure;
   if (finalize && collective) {
     const Clock::time_point final_start = Clock::now();
     const double final_cpu_start = ThreadCpuSeconds();
     failure = WriteFinalCollectively(spec, layout, evaluator, transport, writer, pending,
-                                     options.out, kept, own);
+                                     options.out, kept, own, fits);
     report.final_s = Seconds(final_start);  // on every rank: each does its share
     report.final_cpu_s = ThreadCpuSeconds() - final_cpu_start;
     if (root) {
@@ -702,7 +737,7 @@ SweepReport RunSweep(const SweepSpec& spec, const CellEvaluator& evaluator, Tran
         transport.Farm(count, job, h5::RunChunkJob, done);
       };
       try {
-        writer->Finalize(evaluator.Records(), farm ? &chunk_farm : nullptr, pending);
+        writer->Finalize(evaluator.Records(), farm ? &chunk_farm : nullptr, pending, fits);
         report.complete = true;
       } catch (...) {
         failure = std::current_exception();

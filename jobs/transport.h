@@ -135,6 +135,9 @@ class Transport {
   /// Collective: whether every rank passed true (the ranks of a collective write stop together).
   /// This base version, for a single process, returns `mine`.
   virtual bool AllTrue(bool mine) { return mine; }
+  /// Collective: rank 0 gets every rank's `mine`, in rank order; the other ranks get nothing.
+  /// This base version, for a single process, returns {mine}.
+  virtual std::vector<std::string> GatherText(const std::string& mine) { return {mine}; }
   /// Collective, after every stream has ended: rank 0 hands jobs 0 .. count - 1 (job(i) makes
   /// the bytes of job i when it is sent) to the other ranks, which apply `work` and return its
   /// bytes; rank 0 gets each result through done(i, bytes), in any order. The other ranks pass

@@ -29,7 +29,8 @@ double Quantile(const std::vector<double>& sorted, double p) {
 
 FragilityTable FitFragilityOverCells(const CellGrid& grid, const std::string& stripe_axis,
                                      const FragilityCells& cells, const std::string& no_cloud,
-                                     int bootstrap_resamples, std::uint64_t bootstrap_seed) {
+                                     int bootstrap_resamples, std::uint64_t bootstrap_seed,
+                                     const BootstrapShare& share) {
   const std::uint64_t n_cells = grid.CellCount();
   SB_DEMAND(
       cells.im.size() == n_cells && cells.exceeded.size() == n_cells &&
@@ -138,7 +139,7 @@ FragilityTable FitFragilityOverCells(const CellGrid& grid, const std::string& st
     // The bootstrap over records: whole records (all their stripes) drawn with replacement.
     t.boot_theta_lo[combo] = t.boot_theta_hi[combo] = kNaN;
     t.boot_beta_lo[combo] = t.boot_beta_hi[combo] = kNaN;
-    if (fit.reason.empty() && records > 1 && bootstrap_resamples > 0) {
+    if (fit.reason.empty() && records > 1 && bootstrap_resamples > 0 && share.Mine(combo)) {
       std::vector<std::vector<std::size_t>> by_record(records);
       for (std::size_t i = 0; i < m.size(); ++i) by_record[m[i].record].push_back(i);
       std::seed_seq seq{bootstrap_seed, static_cast<std::uint64_t>(combo)};

@@ -157,6 +157,33 @@ class MpiTransport final : public Transport {
     return all != 0;
   }
 
+  std::vector<std::string> GatherText(const std::string& mine) override {
+    SB_DEMAND(mine.size() <= static_cast<std::size_t>(std::numeric_limits<int>::max()),
+              "a gathered text exceeds MPI's int count");
+    int n = static_cast<int>(mine.size());
+    std::vector<int> sizes(rank_ == 0 ? static_cast<std::size_t>(size_) : 0);
+    CheckMpi(MPI_Gather(&n, 1, MPI_INT, sizes.data(), 1, MPI_INT, 0, comm_), "MPI_Gather");
+    std::vector<int> offsets(sizes.size(), 0);
+    std::size_t total = 0;
+    for (std::size_t r = 0; r < sizes.size(); ++r) {
+      SB_DEMAND(total + static_cast<std::size_t>(sizes[r]) <=
+                    static_cast<std::size_t>(std::numeric_limits<int>::max()),
+                "gathered texts exceed MPI's int count");
+      offsets[r] = static_cast<int>(total);
+      total += static_cast<std::size_t>(sizes[r]);
+    }
+    std::string all(total, '\0');
+    CheckMpi(MPI_Gatherv(mine.data(), n, MPI_CHAR, all.data(), sizes.data(), offsets.data(),
+                         MPI_CHAR, 0, comm_),
+             "MPI_Gatherv");
+    std::vector<std::string> out;
+    for (std::size_t r = 0; r < sizes.size(); ++r) {
+      out.push_back(
+          all.substr(static_cast<std::size_t>(offsets[r]), static_cast<std::size_t>(sizes[r])));
+    }
+    return out;
+  }
+
   // Rank 0 keeps kJobsInFlight jobs at every other rank and hands the next job to whichever
   // returns a result (dynamic, as the cells); then a zero-byte job tells each rank to stop.
   // MPI keeps the order of messages between two ranks, so a rank's results come back in the

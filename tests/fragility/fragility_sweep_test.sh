@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Limit states and fragility end to end, through `skewbridge sweep` into real HDF5 files:
 #  1. the pilot bridge's model file under a 12-record synthetic suite scaled in 8 stripes, on 2
-#     ranks: check_fragility_cube.py refits every stored fragility with scipy.optimize;
+#     ranks: check_fragility_cube.py refits every stored fragility with scipy.optimize; the
+#     cube of 1 rank is the same byte for byte (the bootstraps drawn in shares on 2 ranks);
 #  2. real records (tests/data/records) with gaps and seats larger than any response: no cell
 #     closes a joint or unseats, P = 0 at every stripe and the fit says why it gives no number;
 #  3. the same records with zero gaps and zero seats: every cell impacts and unseats (P = 1);
@@ -41,6 +42,10 @@ on_ranks 2 "$exe" sweep stripes.toml --out stripes.h5 --quiet \
   || fail "the stripes sweep failed"
 /usr/bin/python3 "$src/tests/fragility/check_fragility_cube.py" stripes.h5 stripes 3 \
   || fail "stripes.h5: the stored fits differ from scipy's"
+# The two ranks draw the bootstraps in shares: the same bits as one rank drawing them all.
+"$exe" sweep stripes.toml --out stripes-one.h5 --quiet || fail "the 1-rank stripes sweep failed"
+/usr/bin/python3 "$src/scripts/bench/same_cube.py" stripes-one.h5 stripes.h5 \
+  || fail "stripes.h5: 2 ranks and 1 rank differ"
 
 # The report draws the curves and the cloud and tabulates the stored fits.
 /usr/bin/python3 "$src/scripts/report" stripes.h5 --out report > report.txt \
