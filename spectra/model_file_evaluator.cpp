@@ -98,7 +98,7 @@ std::size_t ModelFileEvaluator::RecordIndex(std::span<const std::size_t> index) 
 }
 
 ModelFileEvaluator::ModelFileEvaluator(const CellGrid& spec)
-    : CellEvaluator(spec.policies), spec_(spec), file_(CheckedModelFile(spec)) {
+    : CellEvaluator(spec.policies), spec_(spec), file_(CheckedModelFile(spec)), shared_(spec) {
   const std::string& src = spec.source;
   const bool by_record = Mentions(spec, "record");
   written_ = model::DecksAsWritten(spec.model_path);
@@ -167,13 +167,6 @@ ModelFileEvaluator::ModelFileEvaluator(const CellGrid& spec)
   }
   seats_ = MentionsSeat(spec) || (file_.decks && file_.decks->seat_width_m);
   travel_ = !spec.limit_states.empty();
-  for (std::size_t k = 0; k < spec.axes.size(); ++k) {
-    if (spec.axes[k].key == "seat_over_L" || spec.axes[k].key == "seat_m") {
-      limit_only_axes_.push_back(k);
-    } else if (!limit_only_axes_.empty()) {
-      shared_capacity_ *= spec.axes[k].Size();
-    }
-  }
   MakeResponseTable();
   if (by_record) records_ = LoadSweepRecords(spec);
   // Every cell's model is built and its run counted now, so a bad combination or a run that
@@ -659,45 +652,23 @@ CellOutcome ModelFileEvaluator::EvaluateScaled(std::span<const std::size_t> axis
   return EvaluateAt(axis_index, factor);
 }
 
-std::uint64_t ModelFileEvaluator::RunKey(std::span<const std::size_t> index) const {
-  std::uint64_t cell = 0;
-  std::size_t next = 0;
-  for (std::size_t k = 0; k < spec_.axes.size(); ++k) {
-    const bool limit_only = next < limit_only_axes_.size() && limit_only_axes_[next] == k;
-    if (limit_only) ++next;
-    cell = cell * spec_.axes[k].Size() + (limit_only ? 0 : index[k]);
-  }
-  return cell;
-}
-
 CellOutcome ModelFileEvaluator::EvaluateAt(std::span<const std::size_t> axis_index,
                                            std::optional<double> factor) const {
   const auto start = std::chrono::steady_clock::now();
   CellOutcome out;
-  if (!factor && !limit_only_axes_.empty()) {
+  if (!factor && shared_.Active()) {
     // A seat width moves no deck: the run of a cell that differs only in it is this cell's.
-    const std::uint64_t key = RunKey(axis_index);
-    const auto hit = std::find_if(shared_.begin(), shared_.end(),
-                                  [key](const SharedRun& s) { return s.key == key; });
-    if (hit != shared_.end()) {
-      ModelFileCell& c = *hit->cell;
-      for (std::size_t d = 0; d < c.seat_width_m.size(); ++d) {
-        c.seat_width_m[d] =
-            SeatWidthOf(spec_, axis_index, c.model->body(static_cast<int>(d)).geometry.length_m);
-      }
-      out = Outcome(axis_index, c, hit->run);
-    } else {
-      if (shared_.size() < shared_capacity_) shared_.emplace_back();
-      SharedRun& s = shared_[next_shared_];
-      next_shared_ = (next_shared_ + 1) % shared_capacity_;
-      s.key = std::numeric_limits<std::uint64_t>::max();  // no cell's key until it has run
-      s.cell.reset();
-      s.cell.emplace(MakeCell(axis_index, true, factor));
+    SeatRun& s = shared_.Get(axis_index, [&] {
+      ModelFileCell c = MakeCell(axis_index, true, factor);
       // As `skewbridge run`: run.method picks the integrator, the file's [run] its controls.
-      s.run = dynamics::Run(*s.cell->model, *s.cell->excitation, s.cell->control, policies());
-      s.key = key;
-      out = Outcome(axis_index, *s.cell, s.run);
+      dynamics::RunResult run = dynamics::Run(*c.model, *c.excitation, c.control, policies());
+      return SeatRun{std::move(c), std::move(run)};
+    });
+    for (std::size_t d = 0; d < s.cell.seat_width_m.size(); ++d) {
+      s.cell.seat_width_m[d] =
+          SeatWidthOf(spec_, axis_index, s.cell.model->body(static_cast<int>(d)).geometry.length_m);
     }
+    out = Outcome(axis_index, s.cell, s.run);
   } else {
     const ModelFileCell c = MakeCell(axis_index, true, factor);
     out = Outcome(axis_index, c, dynamics::Run(*c.model, *c.excitation, c.control, policies()));

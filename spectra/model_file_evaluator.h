@@ -24,6 +24,7 @@
 #include "spectra/cell.h"
 #include "spectra/grid.h"
 #include "spectra/response_table.h"
+#include "spectra/shared_runs.h"
 #include "spectra/solver_status.h"
 #include "spectra/study.h"
 
@@ -138,23 +139,12 @@ class ModelFileEvaluator final : public CellEvaluator, public RecordScaling {
   CellOutcome EvaluateAt(std::span<const std::size_t> axis_index,
                          std::optional<double> factor) const;
   std::size_t RecordIndex(std::span<const std::size_t> axis_index) const;
-  /// The axes that enter the limit states alone (seat_over_L, seat_m), by position.
-  std::vector<std::size_t> limit_only_axes_;
-  /// A dynamic run of Evaluate, for the cells that differ from it only along limit_only_axes_:
-  /// the cell with those axes at index 0 (row-major), its cell and run.
-  struct SharedRun {
-    std::uint64_t key = 0;
-    std::optional<ModelFileCell> cell;
+  /// A dynamic run with its cell, for the cells that differ from it only in the seat widths.
+  struct SeatRun {
+    ModelFileCell cell;
     dynamics::RunResult run;
   };
-  /// The last runs, as many as there are cells between two seat widths of one run (the sizes
-  /// of the axes after the first limit-only axis that are not limit-only: `method`), replaced
-  /// in turn.
-  mutable std::vector<SharedRun> shared_;
-  std::size_t shared_capacity_ = 1;
-  mutable std::size_t next_shared_ = 0;
-  /// The row-major index of the cell with its limit-only axes at 0.
-  std::uint64_t RunKey(std::span<const std::size_t> axis_index) const;
+  mutable SharedRuns<SeatRun> shared_;  ///< the last runs (spectra/shared_runs.h)
   /// The outcome of a cell from its cell and run (the cell's seat widths are its own).
   CellOutcome Outcome(std::span<const std::size_t> axis_index, const ModelFileCell& c,
                       const dynamics::RunResult& run) const;

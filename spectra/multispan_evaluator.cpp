@@ -127,7 +127,7 @@ struct MultiSpanEvaluator::CellValues {
 };
 
 MultiSpanEvaluator::MultiSpanEvaluator(const CellGrid& spec)
-    : CellEvaluator(spec.policies), spec_(spec) {
+    : CellEvaluator(spec.policies), spec_(spec), shared_(spec) {
   for (std::string_view key : {"record"}) {
     if (Mentions(spec, key)) {
       throw InputError::AtField(spec.source, key,
@@ -226,10 +226,12 @@ std::vector<std::pair<std::int32_t, std::string>> MultiSpanEvaluator::StatusName
   return SolverStatusNames();
 }
 
-CellOutcome MultiSpanEvaluator::Evaluate(std::span<const std::size_t> axis_index) const {
-  const auto start = std::chrono::steady_clock::now();
+MultiSpanEvaluator::SeatRun MultiSpanEvaluator::RunOf(
+    std::span<const std::size_t> axis_index) const {
   const Cell c = MakeCell(spec_, axis_index);
-  const model::Model model = model::BuildMultiSpanBridge(c.bridge, spec_.source);
+  SeatRun out;
+  const model::Model& model =
+      out.model.emplace(model::BuildMultiSpanBridge(c.bridge, spec_.source));
   const records::PulseExcitation pulse(c.shape, c.a_g_mps2, c.w_g_radps, c.direction);
   const double excitation_period_s = 2.0 * std::numbers::pi / c.w_g_radps;
   const double w_min = std::min({c.bridge.w0x_radps, c.bridge.W0_radps});
@@ -243,7 +245,19 @@ CellOutcome MultiSpanEvaluator::Evaluate(std::span<const std::size_t> axis_index
   control.end_time_s = pulse.Duration() + 2.0 * std::max(excitation_period_s, natural_period_s);
   control.method = c.method;
   if (c.method == model::Method::kTimeStepping) control.time_step_s = 1e-4 * excitation_period_s;
-  const dynamics::RunResult run = dynamics::Run(model, pulse, control, policies());
+  out.run = dynamics::Run(model, pulse, control, policies());
+  return out;
+}
+
+CellOutcome MultiSpanEvaluator::Evaluate(std::span<const std::size_t> axis_index) const {
+  const auto start = std::chrono::steady_clock::now();
+  const Cell c = MakeCell(spec_, axis_index);
+  // A seat width moves no deck: the run of a cell that differs only in it is this cell's.
+  std::optional<SeatRun> own;
+  const SeatRun& s = shared_.Active() ? shared_.Get(axis_index, [&] { return RunOf(axis_index); })
+                                      : own.emplace(RunOf(axis_index));
+  const model::Model& model = *s.model;
+  const dynamics::RunResult& run = s.run;
 
   CellOutcome out;
   out.status = CellStatusOf(run.status);

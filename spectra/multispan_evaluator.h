@@ -12,19 +12,24 @@
 /// which spectra::LimitStateEvaluator reads.
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "solver/dynamics/run_result.h"
+#include "solver/model/model.h"
 #include "spectra/cell.h"
 #include "spectra/grid.h"
 #include "spectra/response_table.h"
+#include "spectra/shared_runs.h"
 #include "spectra/solver_status.h"
 
 namespace skewbridge::spectra {
 
-/// Evaluates the cells of a multi-span sweep. Immutable after construction: Evaluate is a pure
-/// function of the cell index.
+/// Evaluates the cells of a multi-span sweep. Evaluate is a pure function of the cell index:
+/// cells that differ only in the seat width share one dynamic run (SharedRuns), so a cell's
+/// responses are the bits its own run would give whatever the order of evaluation.
 class MultiSpanEvaluator final : public CellEvaluator {
  public:
   /// Checks every cell's parameters before any work.
@@ -46,6 +51,14 @@ class MultiSpanEvaluator final : public CellEvaluator {
   struct CellValues;
   ResponseTable<CellValues> table_;  ///< the stored responses, each with how it is read
   void MakeResponseTable();
+  /// A cell's model and run, for the cells that differ from it only in the seat width.
+  struct SeatRun {
+    std::optional<model::Model> model;
+    dynamics::RunResult run;
+  };
+  mutable SharedRuns<SeatRun> shared_;  ///< the last runs (spectra/shared_runs.h)
+  /// The model and run of the cell at `axis_index` (its seat width enters neither).
+  SeatRun RunOf(std::span<const std::size_t> axis_index) const;
 };
 
 }  // namespace skewbridge::spectra

@@ -21,7 +21,7 @@ struct SpectraEvaluator::CellValues {
 };
 
 SpectraEvaluator::SpectraEvaluator(const CellGrid& spec)
-    : CellEvaluator(spec.policies), spec_(spec) {
+    : CellEvaluator(spec.policies), spec_(spec), shared_(spec) {
   if (spec.family == "subsystem") {
     family_ = spectra::Family::kSubsystem;
   } else if (spec.family == "pilot-bridge") {
@@ -232,19 +232,28 @@ std::unique_ptr<Excitation> SpectraEvaluator::MakeExcitation(
                                                     direction);
 }
 
-CellOutcome SpectraEvaluator::Evaluate(std::span<const std::size_t> axis_index) const {
-  const auto start = std::chrono::steady_clock::now();
+SpectraEvaluator::SeatRun SpectraEvaluator::RunOf(std::span<const std::size_t> axis_index) const {
   const SweepRecord* record = nullptr;
   const spectra::PointParameters p = Parameters(axis_index, &record);
-
-  spectra::PointResult r;
-  spectra::DimensionalPoint point;
   const spectra::ExcitationScales scales =
       record != nullptr
           ? spectra::ExcitationScales{record->measures.pga_mps2, record->measures.omega_g_radps}
           : spectra::PulseScales(p);
-  point = spectra::ToDimensional(p, scales);
-  r = spectra::EvaluatePoint(point, *MakeExcitation(axis_index, p, record, scales), policies());
+  SeatRun out;
+  out.point = spectra::ToDimensional(p, scales);
+  out.result =
+      spectra::EvaluatePoint(out.point, *MakeExcitation(axis_index, p, record, scales), policies());
+  return out;
+}
+
+CellOutcome SpectraEvaluator::Evaluate(std::span<const std::size_t> axis_index) const {
+  const auto start = std::chrono::steady_clock::now();
+  // A seat width moves no deck: the run of a cell that differs only in it is this cell's.
+  std::optional<SeatRun> own;
+  const SeatRun& s = shared_.Active() ? shared_.Get(axis_index, [&] { return RunOf(axis_index); })
+                                      : own.emplace(RunOf(axis_index));
+  const spectra::PointResult& r = s.result;
+  const spectra::DimensionalPoint& point = s.point;
 
   CellOutcome out;
   out.status = CellStatusOf(r.status);

@@ -17,13 +17,15 @@
 #include "spectra/grid.h"
 #include "spectra/point.h"
 #include "spectra/response_table.h"
+#include "spectra/shared_runs.h"
 #include "spectra/solver_status.h"
 #include "spectra/study.h"
 
 namespace skewbridge::spectra {
 
-/// Evaluates the cells of a subsystem or pilot-bridge sweep. Immutable after construction, so
-/// Evaluate is a pure function of the cell index.
+/// Evaluates the cells of a subsystem or pilot-bridge sweep. Evaluate is a pure function of the
+/// cell index: cells that differ only in the seat width share one dynamic run (SharedRuns), so a
+/// cell's responses are the bits its own run would give whatever the order of evaluation.
 class SpectraEvaluator final : public CellEvaluator {
  public:
   /// Reads or synthesises the records (LoadSweepRecords, if any), then checks every cell's
@@ -71,6 +73,14 @@ class SpectraEvaluator final : public CellEvaluator {
   /// What one cell computed, as its responses read it (spectra_evaluator.cpp).
   struct CellValues;
   ResponseTable<CellValues> table_;  ///< the stored responses, each with how it is read
+  /// A cell's dimensional point and run, for the cells that differ from it only in the seat width.
+  struct SeatRun {
+    spectra::DimensionalPoint point;
+    spectra::PointResult result;
+  };
+  mutable SharedRuns<SeatRun> shared_;  ///< the last runs (spectra/shared_runs.h)
+  /// The point and run of a cell, without its seat width.
+  SeatRun RunOf(std::span<const std::size_t> axis_index) const;
 };
 
 }  // namespace skewbridge::spectra

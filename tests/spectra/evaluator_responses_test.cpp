@@ -1,12 +1,16 @@
 // The responses of the subsystem and multi-span evaluators by name: a subsystem cell's against
 // the run of its point (spectra::EvaluatePoint) and the definitions of docs/sweep-format.md, a
 // multi-span cell's against the relations its responses must satisfy (NaN for the decks a cell
-// does not have).
+// does not have). Cells that differ only in the seat width share one run: the subsystem,
+// pilot-bridge and multi-span cubes are, bit for bit, the cells evaluated on their own.
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <functional>
+#include <memory>
 #include <numbers>
 #include <span>
 #include <string>
@@ -34,6 +38,89 @@ double ValueOf(const CellEvaluator& evaluator, const CellOutcome& out, const std
   }
   ADD_FAILURE() << "no response " << name;
   return 0.0;
+}
+
+// Every cell of `grid` evaluated in cube order by one evaluator (the cells of one run but their
+// seat widths follow each other, so they share it) against each cell evaluated by an evaluator
+// of its own: every response's bits, the status and the counts. The margin `margin` must differ
+// between the seat widths of one run (index `seat_axis`), so that a stale seat width fails.
+template <typename Evaluator>
+void ExpectSharedRunsAreTheCellsOwn(const CellGrid& grid, std::size_t seat_axis,
+                                    const std::string& margin) {
+  const Evaluator shared(grid);
+  const std::vector<ResponseInfo> names = shared.Responses();
+  std::vector<CellOutcome> in_order;
+  for (std::uint64_t c = 0; c < grid.CellCount(); ++c) {
+    in_order.push_back(shared.Evaluate(grid.AxisIndex(c)));
+  }
+  std::size_t differ = 0;
+  for (std::uint64_t c = 0; c < grid.CellCount(); ++c) {
+    SCOPED_TRACE("cell " + std::to_string(c));
+    const std::vector<std::size_t> index = grid.AxisIndex(c);
+    const Evaluator alone(grid);
+    const CellOutcome own = alone.Evaluate(index);
+    const CellOutcome& got = in_order[c];
+    ASSERT_EQ(got.status, kStatusOk) << got.status_text;
+    ASSERT_EQ(got.status, own.status);
+    ASSERT_EQ(got.responses.size(), own.responses.size());
+    for (std::size_t r = 0; r < own.responses.size(); ++r) {
+      EXPECT_EQ(std::memcmp(&got.responses[r], &own.responses[r], sizeof(double)), 0)
+          << names[r].name << ": " << got.responses[r] << " against " << own.responses[r];
+    }
+    EXPECT_EQ(got.stats.events, own.stats.events);
+    EXPECT_EQ(got.stats.steps, own.stats.steps);
+    if (index[seat_axis] > 0) {
+      std::uint64_t stride = 1;  // cells between two seat widths (row-major)
+      for (std::size_t k = seat_axis + 1; k < grid.axes.size(); ++k) stride *= grid.axes[k].Size();
+      const CellOutcome& prior = in_order[c - stride];
+      EXPECT_EQ(ValueOf(shared, got, "impacts"), ValueOf(shared, prior, "impacts"));
+      if (ValueOf(shared, got, margin) != ValueOf(shared, prior, margin)) ++differ;
+    }
+  }
+  EXPECT_GT(differ, 0u) << "no two seat widths of one run gave different margins";
+}
+
+TEST(SeatWidthsShareARun, SubsystemAndPilotBridgeCellsAreTheirOwn) {
+  LimitState unseating;
+  unseating.name = "unseating";
+  unseating.kind = LimitStateKind::kUnseating;
+  for (const char* family : {"subsystem", "pilot-bridge"}) {
+    SCOPED_TRACE(family);
+    CellGrid grid;
+    grid.source = "spec.toml";
+    grid.family = family;
+    // The method axis after the seat widths: two runs kept at a time.
+    grid.axes = {
+        Axis{"Pi_delta", ParameterKind::kNumber, {0.3, 2.0}, {}, "list"},
+        Axis{"seat_over_L", ParameterKind::kNumber, {0.0005, 0.002, 0.01}, {}, "list"},
+        Axis{"method", ParameterKind::kLabel, {}, {"event-driven", "time-stepping"}, "list"}};
+    grid.fixed = {{"a_deg", ParameterKind::kNumber, 30.0, ""},
+                  {"w0_over_wg", ParameterKind::kNumber, 0.9, ""}};
+    if (std::string(family) == "subsystem") {
+      grid.fixed.push_back({"eta0", ParameterKind::kNumber, 1.2, ""});
+      grid.fixed.push_back({"mu", ParameterKind::kNumber, 0.2, ""});
+    }
+    grid.limit_states = {unseating};
+    ExpectSharedRunsAreTheCellsOwn<SpectraEvaluator>(grid, 1, "margin_m");
+  }
+}
+
+TEST(SeatWidthsShareARun, MultiSpanCellsAreTheirOwn) {
+  CellGrid grid;
+  grid.source = "spec.toml";
+  grid.family = "multi-span";
+  grid.axes = {Axis{"spans", ParameterKind::kNumber, {1.0, 3.0}, {}, "list"},
+               Axis{"seat_m", ParameterKind::kNumber, {0.05, 0.2, 1.0}, {}, "list"}};
+  grid.fixed = {{"a_deg", ParameterKind::kNumber, 30.0, ""},
+                {"W_over_L", ParameterKind::kNumber, 0.3, ""},
+                {"Pi_delta", ParameterKind::kNumber, 1.0, ""},
+                {"delta_over_L", ParameterKind::kNumber, 0.002, ""},
+                {"mu", ParameterKind::kNumber, 0.1, ""}};
+  LimitState unseating;
+  unseating.name = "unseating";
+  unseating.kind = LimitStateKind::kUnseating;
+  grid.limit_states = {unseating};
+  ExpectSharedRunsAreTheCellsOwn<MultiSpanEvaluator>(grid, 1, "margin_m_d0");
 }
 
 TEST(SubsystemResponses, EachNameHoldsWhatThePointsRunGives) {
