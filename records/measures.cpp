@@ -146,6 +146,21 @@ struct OscillatorStep {
           1.0 / (w * w * h);
     b22 = -e * (k1 * (c - r * s) - k2 * (wd * s + xi * w * c)) - 1.0 / (w * w * h);
   }
+
+  /// Runs the recurrence from rest over the record and hands visit(k + 1, u_{k+1}) each step's
+  /// displacement [m].
+  template <class Visit>
+  void Displacements(std::span<const double> acc, Visit&& visit) const {
+    double u = 0.0;
+    double v = 0.0;
+    for (std::size_t k = 0; k + 1 < acc.size(); ++k) {
+      const double u_next = a11 * u + a12 * v + b11 * acc[k] + b12 * acc[k + 1];
+      const double v_next = a21 * u + a22 * v + b21 * acc[k] + b22 * acc[k + 1];
+      u = u_next;
+      v = v_next;
+      visit(k + 1, u);
+    }
+  }
 };
 
 void RequireDampingAndPeriod(double xi, double period, std::string_view what) {
@@ -172,17 +187,10 @@ ResponseSpectrum ElasticResponseSpectrum(std::span<const double> acc, double dt_
   for (const double period : periods_s) {
     RequireDampingAndPeriod(xi, period, "response spectrum");
     const double w = 2.0 * std::numbers::pi / period;
-    const OscillatorStep step(period, xi, dt_s);
-    double u = 0.0;
-    double v = 0.0;
     double peak = 0.0;
-    for (std::size_t k = 0; k + 1 < acc.size(); ++k) {
-      const double u_next = step.a11 * u + step.a12 * v + step.b11 * acc[k] + step.b12 * acc[k + 1];
-      const double v_next = step.a21 * u + step.a22 * v + step.b21 * acc[k] + step.b22 * acc[k + 1];
-      u = u_next;
-      v = v_next;
+    OscillatorStep(period, xi, dt_s).Displacements(acc, [&peak](std::size_t, double u) {
       peak = std::max(peak, std::abs(u));
-    }
+    });
     out.sd_m.push_back(peak);
     out.psv_mps.push_back(w * peak);
     out.psa_mps2.push_back(w * w * peak);
@@ -194,17 +202,10 @@ std::vector<double> OscillatorDisplacement(std::span<const double> acc, double d
                                            double period_s, double xi) {
   RequireRecord(acc, dt_s, "oscillator response");
   RequireDampingAndPeriod(xi, period_s, "oscillator response");
-  const OscillatorStep step(period_s, xi, dt_s);
   std::vector<double> out(acc.size(), 0.0);
-  double u = 0.0;
-  double v = 0.0;
-  for (std::size_t k = 0; k + 1 < acc.size(); ++k) {
-    const double u_next = step.a11 * u + step.a12 * v + step.b11 * acc[k] + step.b12 * acc[k + 1];
-    const double v_next = step.a21 * u + step.a22 * v + step.b21 * acc[k] + step.b22 * acc[k + 1];
-    u = u_next;
-    v = v_next;
-    out[k + 1] = u;
-  }
+  OscillatorStep(period_s, xi, dt_s).Displacements(acc, [&out](std::size_t k, double u) {
+    out[k] = u;
+  });
   return out;
 }
 
