@@ -375,6 +375,20 @@ def run(args):
                    f"![{name}]({os.path.basename(path)})", "",
                    _table(["set", "ξ", "records", "peak of the median S_a [g]", "at T [s]",
                            "16 % there [g]", "84 % there [g]"], rows), ""]
+        for set_name, members in response_spectra.pair_groups(sp):
+            name = f"pair_spectra_{stem}_{_safe(set_name)}"
+            while name in used:
+                name += "_"
+            used.add(name)
+            path, rows = response_spectra.pair_figure(sp, set_name, members, args.out, name,
+                                                      args.pdf)
+            written.append(path)
+            md += [f"## Spectra of the record pairs of {set_name} "
+                   f"({os.path.basename(sp['path'])})", "",
+                   f"![{name}]({os.path.basename(path)})", "",
+                   _table(["set", "ξ", "pairs", "measure", "median [g] at T*", "T* [s]",
+                           "median of measure / RotD50 at T*"], rows), "",
+                   "T*: the period where the median RotD50 of the pairs peaks.", ""]
     md += SYMBOLS_MD
     if skipped_all:
         md += ["## Figures not made", "",

@@ -112,7 +112,7 @@ def caption_text(fig, text):
     room for it (its rect), so that it never overlaps an axis label. Returns the height of its
     band in inches."""
     width_px = fig.get_figwidth() * DPI
-    lines = textwrap.wrap(text, int(width_px / 5.6))  # 8 pt DejaVu Sans: about 5.3 px a glyph
+    lines = textwrap.wrap(text, int(width_px / 6.2))  # 8 pt DejaVu Sans: up to 5.9 px a glyph
     fig.text(0.005, 0.004, "\n".join(lines), fontsize=8, va="bottom", ha="left", color="0.2")
     band_in = (len(lines) * 8 * 1.25 + 6) / 72.0
     if fig.get_layout_engine() is not None:
@@ -375,11 +375,11 @@ def limit_state_text(name, group):
 
 def im_name(sweep):
     """The intensity measure by the name the cube stores (im_measure, and the period and damping
-    of im_description): "Sa(T1, 5 %)", "AvgSa(0.5 s, 5 %)", "PGA", "PGV"; "" when the sweep
-    stores none."""
+    of im_description): "Sa(T1, 5 %)", "AvgSa(0.5 s, 5 %)", "RotD50(T1, 5 %)", "PGA", "PGV"; ""
+    when the sweep stores none."""
     measure = sweep.im_attrs.get("im_measure", "")
     m = re.match(r"\w+\((.+?), xi = ([0-9.eE+-]+)\)", sweep.im_attrs.get("im_description", ""))
-    if measure in ("Sa", "AvgSa") and m:
+    if measure not in ("", "PGA", "PGV") and m:
         return f"{measure}({m.group(1)}, {100.0 * float(m.group(2)):g} %)"
     return measure
 

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The pair measures of `skewbridge records spectrum` against an independent solution.
 
-usage: rotd_check.py SKEWBRIDGE PAIRS_DIR WORK_DIR
+usage: rotd_check.py SKEWBRIDGE PAIRS_DIR WORK_DIR [REPORT]
 
 The oracle shares no code with records/measures.cpp: the two real PEER pairs of PAIRS_DIR (one of
 them of two lengths, padded here with zeros at the end of the shorter) are read from their text,
@@ -15,7 +15,9 @@ numpy's median (mean of the two middle of 180) and maximum over the angles. Chec
 - RotD100 >= RotD50 >= RotD00 at every period and damping;
 - the pair rotated by beta (H1' = H1 cos beta + H2 sin beta, H2' = -H1 sin beta + H2 cos beta,
   written here as new .AT2 files) has the same RotD values (1e-6) and its RotD100 angle shifted
-  by beta: theta' = theta - beta (mod 180).
+  by beta: theta' = theta - beta (mod 180);
+- with REPORT (scripts/report): `--spectra` of the file draws the pairs' figure, and its table
+  gives each measure's median over the pairs at the peak of the median RotD50 as numpy does.
 """
 import csv
 import io
@@ -184,6 +186,23 @@ def main():
                         (theta_rotated + beta) % 180, theta, peaks), (beta, label, theta,
                                                                        theta_rotated)
                     shifted += theta_rotated == expected
+    if len(sys.argv) > 4:
+        report = os.path.join(work, "report")
+        subprocess.run(["/usr/bin/python3", sys.argv[4], "--spectra", out, "--out", report],
+                       check=True, stdout=subprocess.DEVNULL)
+        assert os.path.getsize(os.path.join(report, "pair_spectra_pairs_pairs.png")) > 0
+        with open(os.path.join(report, "summary.md"), encoding="utf-8") as f:
+            summary = f.read()
+        rotd50 = np.array([table[label]["RotD50_mps2"] for label in PAIRS]) / 9.80665
+        for x, xi in enumerate(XI):
+            peak = int(np.argmax(np.median(rotd50[:, x, :], axis=0)))
+            for measure in ("Sa_H1", "Sa_H2", "GM", "RotD50", "RotD100"):
+                v = np.array([table[label][measure + "_mps2"][x, peak] for label in PAIRS])
+                median = np.median(v / 9.80665)
+                ratio = np.median(v / 9.80665 / rotd50[:, x, peak])
+                row = (f"| pairs | {xi:g} | {len(PAIRS)} | {measure} | {median:.4g} | "
+                       f"{PERIODS[peak]:.4g} | {ratio:.4g} |")
+                assert row in summary, (row, summary)
     print(f"{len(PAIRS)} pairs x {len(XI)} damping ratios x {len(PERIODS)} periods: largest "
           f"relative difference {worst:.2e} (tolerance {TOLERANCE:g}); RotD100 angles shifted "
           f"by beta in {shifted} of {len(BETAS) * len(PAIRS) * len(XI) * len(PERIODS)} cases "
