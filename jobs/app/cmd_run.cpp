@@ -1,11 +1,12 @@
 // `skewbridge run MODEL.toml [--record FILE | --record-set SET --label L] [--scale S |
-// --target-sa-g X | --target-pga-g X] [--csv run.csv] [--out run.h5]`: one run of a model file by
-// the method of run.method (event-driven or time-stepping), under its own excitation or a record
-// of any format the readers know; and `skewbridge run --from-cube CUBE.h5 --cell AXIS=VALUE,...`
-// (or --cell-index N): one cell of a model-file, subsystem or pilot-bridge sweep run again as
-// the sweep ran it, with histories. Prints a summary, writes the time histories as CSV and the
-// whole run as HDF5 (docs/run-output.md), each to a temporary name renamed on success. A run
-// that stops with a status other than ok exits with status 3.
+// --target-sa-g X | --target-pga-g X | --target-rotd50-g X] [--incidence-deg A] [--csv run.csv]
+// [--out run.h5]`: one run of a model file by the method of run.method (event-driven or
+// time-stepping), under its own excitation, a record of any format the readers know or a record
+// pair of a set (H1 along the direction, H2 at +90 deg); and `skewbridge run --from-cube CUBE.h5
+// --cell AXIS=VALUE,...` (or --cell-index N): one cell of a model-file, subsystem or pilot-bridge
+// sweep run again as the sweep ran it, with histories. Prints a summary, writes the time histories
+// as CSV and the whole run as HDF5 (docs/run-output.md), each to a temporary name renamed on
+// success. A run that stops with a status other than ok exits with status 3.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -25,6 +26,7 @@
 #include "jobs/h5/h5_error.h"
 #include "jobs/run_output.h"
 #include "records/excitations.h"
+#include "records/incidence.h"
 #include "records/measures.h"
 #include "records/record_set.h"
 #include "solver/common/error.h"
@@ -152,7 +154,8 @@ struct RunOptions {
   std::string csv, out;
   double output_interval_s = 0.0;
   std::string record, format, units, record_set, label;
-  std::optional<double> dt_s, scale, target_sa_g, target_pga_g;  // each when given
+  std::optional<double> dt_s, scale, target_sa_g, target_pga_g, target_rotd50_g;  // when given
+  std::optional<double> incidence_deg;  // the ground motion's angle from x (deg), when given
   std::string from_cube, sweep, cell;
   long long cell_index = -1;
 };
@@ -195,8 +198,9 @@ void KeepGround(const Excitation& excitation, jobs::RunOrigin& origin) {
   origin.ground_dt_s = sampled->dt_s();
 }
 
-// The record of --record (any format the readers know) or of --record-set and --label.
-records::GroundMotion LoadRunRecord(const RunOptions& o, jobs::RunOrigin& origin) {
+// The record of --record (any format the readers know) or of --record-set and --label: one
+// component, or both of a pair of the set (one dt and one length, as a sweep reads them).
+records::RecordComponents LoadRunRecord(const RunOptions& o, jobs::RunOrigin& origin) {
   if (!o.record.empty()) {
     records::ReadOptions read;
     if (!o.format.empty()) {
@@ -220,23 +224,31 @@ records::GroundMotion LoadRunRecord(const RunOptions& o, jobs::RunOrigin& origin
       }
       read.dt_s = *o.dt_s;
     }
-    records::GroundMotion motion = records::ReadRecord(o.record, read);
+    records::RecordComponents one;
+    one.motions.push_back(records::ReadRecord(o.record, read));
     origin.text.push_back({"record_file", o.record});
-    origin.text.push_back({"record_format", motion.format});
-    return motion;
+    origin.text.push_back({"record_format", one.motions[0].format});
+    return one;
   }
   const records::RecordSet set = records::LoadRecordSet(o.record_set);
   std::string labels;
   for (const records::RecordEntry& entry : set.records) {
     const std::string label = records::RecordLabel(entry);
     if (label == o.label) {
-      records::GroundMotion motion = records::LoadRecord(entry);
+      records::RecordComponents components = records::LoadComponents(entry);
       origin.text.push_back({"record_set", o.record_set});
       origin.text.push_back({"record_label", label});
       origin.text.push_back({"record_file", entry.file.string()});
-      origin.text.push_back({"record_format", motion.format});
+      origin.text.push_back({"record_format", components.motions[0].format});
+      if (components.IsPair()) {
+        origin.text.push_back({"record_file_h2", entry.file_h2.string()});
+        origin.numbers.push_back(
+            {"padded_samples_h1", static_cast<double>(components.padded_samples[0])});
+        origin.numbers.push_back(
+            {"padded_samples_h2", static_cast<double>(components.padded_samples[1])});
+      }
       origin.numbers.push_back({"record_set_scale", entry.scale});
-      return motion;
+      return components;
     }
     labels += (labels.empty() ? "" : ", ") + label;
   }
@@ -244,20 +256,37 @@ records::GroundMotion LoadRunRecord(const RunOptions& o, jobs::RunOrigin& origin
                             "not a record of " + o.record_set + "; its labels: " + labels);
 }
 
-// The factor on the record's accelerations: --scale, or a target intensity over the record's own
-// (Sa(T1, 5 %) at the model's fundamental period T1, or PGA), computed as a sweep's stripes are.
+// The factor on the record's accelerations (both components of a pair alike): --scale, or a
+// target intensity over the record's own (Sa(T1, 5 %) at the model's fundamental period T1, or
+// PGA, of one component; RotD50(T1, 5 %) of a pair), computed as a sweep's stripes are.
 double RecordFactor(const RunOptions& o, const model::Model& model,
-                    const records::GroundMotion& motion, jobs::RunOrigin& origin) {
-  const int given = o.scale.has_value() + o.target_sa_g.has_value() + o.target_pga_g.has_value();
+                    const records::RecordComponents& components, jobs::RunOrigin& origin) {
+  const int given = o.scale.has_value() + o.target_sa_g.has_value() + o.target_pga_g.has_value() +
+                    o.target_rotd50_g.has_value();
   if (given > 1) {
-    throw InputError("--scale: give one of --scale, --target-sa-g, --target-pga-g");
+    throw InputError(
+        "--scale: give one of --scale, --target-sa-g, --target-pga-g, --target-rotd50-g");
   }
+  if (components.IsPair() && (o.target_sa_g || o.target_pga_g)) {
+    throw InputError::AtField(
+        o.target_sa_g ? "--target-sa-g" : "--target-pga-g", o.label,
+        "is a measure of one component and '" + o.label +
+            "' is a pair of horizontal components; allowed for a pair: --scale, "
+            "--target-rotd50-g");
+  }
+  if (!components.IsPair() && o.target_rotd50_g) {
+    throw InputError::AtField("--target-rotd50-g", fmt::format("{}", *o.target_rotd50_g),
+                              "RotD50 is a measure of a pair of horizontal components (h1, h2 "
+                              "of a record set); allowed for one record: --scale, "
+                              "--target-sa-g, --target-pga-g");
+  }
+  const records::GroundMotion& motion = components.motions[0];
   auto positive = [](const char* option, double v) {
     if (!(v > 0.0) || !std::isfinite(v)) {
       throw InputError::AtField(option, fmt::format("{}", v), "must be a number > 0");
     }
   };
-  if (!o.target_sa_g && !o.target_pga_g) {
+  if (!o.target_sa_g && !o.target_pga_g && !o.target_rotd50_g) {
     const double factor = o.scale.value_or(1.0);
     positive("--scale", factor);
     origin.numbers.push_back({"scale_factor", factor});
@@ -267,18 +296,22 @@ double RecordFactor(const RunOptions& o, const model::Model& model,
   record.motion = motion;
   spectra::IntensityMeasureSpec im;
   double target = 0.0, t1_s = std::numeric_limits<double>::quiet_NaN();
-  if (o.target_sa_g) {
-    positive("--target-sa-g", *o.target_sa_g);
+  const char* option = o.target_sa_g       ? "--target-sa-g"
+                       : o.target_rotd50_g ? "--target-rotd50-g"
+                                           : "--target-pga-g";
+  if (o.target_sa_g || o.target_rotd50_g) {
+    target = o.target_sa_g ? *o.target_sa_g : *o.target_rotd50_g;
+    positive(option, target);
     t1_s = model::FundamentalPeriod(model);
     if (!(t1_s > 0.0) || !std::isfinite(t1_s)) {
-      throw InputError::AtField("--target-sa-g", fmt::format("{}", *o.target_sa_g),
+      throw InputError::AtField(option, fmt::format("{}", target),
                                 "needs a model with stiffness in every direction: its lowest "
                                 "natural frequency is 0 (see `skewbridge modes`)");
     }
-    im.measure = "Sa";
+    im.measure = o.target_sa_g ? "Sa" : "RotD50";
     im.at_t1 = true;
     im.xi = 0.05;
-    target = *o.target_sa_g;
+    if (components.IsPair()) record.motion_h2 = components.motions[1];
   } else {
     positive("--target-pga-g", *o.target_pga_g);
     record.measures = records::ComputeMeasures(motion);
@@ -287,8 +320,7 @@ double RecordFactor(const RunOptions& o, const model::Model& model,
   }
   const double own = spectra::RecordIntensity(record, im, t1_s);
   if (!(own > 0.0) || !std::isfinite(own)) {
-    throw InputError::AtField(im.measure == "Sa" ? "--target-sa-g" : "--target-pga-g",
-                              fmt::format("{}", target),
+    throw InputError::AtField(option, fmt::format("{}", target),
                               fmt::format("the record's own {} is {} g: it cannot be scaled to "
                                           "a value",
                                           im.measure, own));
@@ -376,24 +408,45 @@ void RunModelFile(const RunOptions& o) {
   in.control = file.run;
   in.print_modes = !file.decks && file.deck.stiffness == model::DeckSpec::StiffnessKind::kElements;
   std::unique_ptr<Excitation> excitation;
+  // The ground motion's direction: the file's, or --incidence-deg from the bridge's x axis (as a
+  // sweep's incidence_deg, the same bits).
+  model::ExcitationSpec excitation_spec = file.excitation;
+  if (o.incidence_deg) {
+    if (!std::isfinite(*o.incidence_deg) || std::abs(*o.incidence_deg) > 360.0) {
+      throw InputError::AtField("--incidence-deg", fmt::format("{}", *o.incidence_deg),
+                                "must be an angle in [-360, 360] deg from the bridge's x axis");
+    }
+    excitation_spec.direction = records::DirectionAt(*o.incidence_deg);
+    in.origin.numbers.push_back({"incidence_deg", *o.incidence_deg});
+  }
   const bool by_record = !o.record.empty() || !o.record_set.empty();
   if (by_record) {
-    const records::GroundMotion motion = LoadRunRecord(o, in.origin);
-    const double factor = RecordFactor(o, file.model, motion, in.origin);
-    in.origin.text.insert(in.origin.text.begin(), {"kind", "record"});
+    const records::RecordComponents components = LoadRunRecord(o, in.origin);
+    const double factor = RecordFactor(o, file.model, components, in.origin);
+    in.origin.text.insert(in.origin.text.begin(),
+                          {"kind", components.IsPair() ? "record-pair" : "record"});
     excitation = std::make_unique<records::SampledExcitation>(
-        spectra::ScaledRecordExcitation(motion, factor, file.excitation.direction));
-    in.title = fmt::format("model {}, record {} x {:.6g}", o.model,
-                           o.record.empty() ? o.label : o.record, factor);
+        components.IsPair() ? records::PairExcitation(components.motions[0], components.motions[1],
+                                                      excitation_spec.direction, factor)
+                            : spectra::ScaledRecordExcitation(components.motions[0], factor,
+                                                              excitation_spec.direction));
+    in.title = fmt::format(
+        "model {}, record {}{} x {:.6g}", o.model, o.record.empty() ? o.label : o.record,
+        components.IsPair() ? " (pair: H1 along the direction, H2 at +90 deg)" : "", factor);
   } else {
-    if (o.scale || o.target_sa_g || o.target_pga_g) {
-      const char* option = o.scale ? "--scale" : o.target_sa_g ? "--target-sa-g" : "--target-pga-g";
+    if (o.scale || o.target_sa_g || o.target_pga_g || o.target_rotd50_g) {
+      const char* option = o.scale          ? "--scale"
+                           : o.target_sa_g  ? "--target-sa-g"
+                           : o.target_pga_g ? "--target-pga-g"
+                                            : "--target-rotd50-g";
       throw InputError(std::string(option) +
                        ": scales a record: give --record FILE or --record-set SET --label L");
     }
-    excitation = MakeExcitation(file.excitation, o.model);
+    excitation = MakeExcitation(excitation_spec, o.model);
     in.title = "model " + o.model;
+    if (o.incidence_deg) in.origin.text.insert(in.origin.text.begin(), {"kind", "excitation"});
   }
+  if (o.incidence_deg) in.title += fmt::format(", incidence {:g} deg", *o.incidence_deg);
   // The run counted again with what is known now: the samples of an excitation file or record
   // and the history interval of the command line.
   model::RunControl counted = in.control;
@@ -405,7 +458,7 @@ void RunModelFile(const RunOptions& o) {
                       by_record                      ? "record"
                       : file.excitation.file.empty() ? "excitation"
                                                      : "excitation.file");
-  if (by_record) KeepGround(*excitation, in.origin);
+  if (by_record || o.incidence_deg) KeepGround(*excitation, in.origin);
   in.excitation = excitation.get();
   Execute(in, o);
 }
@@ -413,10 +466,11 @@ void RunModelFile(const RunOptions& o) {
 // `run --from-cube CUBE --cell ...`: the cell as its sweep ran it, with histories.
 void RunCubeCell(const RunOptions& o) {
   if (!o.model.empty() || !o.record.empty() || !o.record_set.empty() || o.scale || o.target_sa_g ||
-      o.target_pga_g) {
+      o.target_pga_g || o.target_rotd50_g || o.incidence_deg) {
     throw InputError::AtField("--from-cube", o.from_cube,
-                              "takes the model, record and scale from the cube: give no MODEL, "
-                              "--record, --record-set, --scale or --target-*");
+                              "takes the model, record, scale and incidence from the cube: give "
+                              "no MODEL, --record, --record-set, --scale, --target-* or "
+                              "--incidence-deg");
   }
   jobs::CellChoice choice;
   choice.sweep = o.sweep;
@@ -483,6 +537,11 @@ void AddRunCommand(CLI::App& app) {
   cmd->add_option("--target-sa-g", o->target_sa_g,
                   "Scale the record to Sa(T1, 5 %) = X g at the model's fundamental period T1");
   cmd->add_option("--target-pga-g", o->target_pga_g, "Scale the record to PGA = X g");
+  cmd->add_option("--target-rotd50-g", o->target_rotd50_g,
+                  "Scale a record pair to RotD50(T1, 5 %) = X g at the model's fundamental period");
+  cmd->add_option("--incidence-deg", o->incidence_deg,
+                  "The ground motion's angle from the bridge's x axis in deg (a pair: H1 along "
+                  "it, H2 at +90 deg), in place of the model file's direction");
   cmd->add_option("--from-cube", o->from_cube,
                   "Re-run one cell of a sweep's cube (model-file, subsystem, pilot-bridge) as the "
                   "sweep ran it");

@@ -36,7 +36,7 @@ expect "unknown sub-command 'frobnicate'; allowed: $commands" frobnicate
 expect "unknown option --bogus; allowed: --help, -h, --version, -V" --bogus
 expect "version: unexpected argument 'x' (see skewbridge version --help)" version x
 expect "run: MODEL is required (Model file (TOML, docs/model-format.md)), or --from-cube CUBE.h5 with --cell AXIS=VALUE,... or --cell-index N" run
-expect "run: unknown option --cvs; allowed: --help, -h, --csv, --out, --output-interval, --record, --format, --units, --dt, --record-set, --label, --scale, --target-sa-g, --target-pga-g, --from-cube, --sweep, --cell, --cell-index; did you mean \`--csv\`?" \
+expect "run: unknown option --cvs; allowed: --help, -h, --csv, --out, --output-interval, --record, --format, --units, --dt, --record-set, --label, --scale, --target-sa-g, --target-pga-g, --target-rotd50-g, --incidence-deg, --from-cube, --sweep, --cell, --cell-index; did you mean \`--csv\`?" \
   run model.toml --cvs run.csv
 expect "run: --output-interval: 'abc' is not a number" run model.toml --output-interval abc
 expect "run: --output-interval needs a number" run model.toml --output-interval
