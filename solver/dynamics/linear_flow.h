@@ -99,6 +99,10 @@ class LinearFlow {
              Eigen::Ref<Eigen::VectorXd> z_next, double* input_J = nullptr,
              double* damping_J = nullptr);
 
+  /// The modal coordinates (n x 6, rows y_k as ModalFlow::ToModal) of the state the last Apply
+  /// started from. @pre modal(), and Apply was called.
+  const Eigen::MatrixXd& modal_coordinates() const { return Y_; }
+
   /// The step's work of the ground -int u^T M r a_g dt and of damping int u^T C u dt (J) from the
   /// step's initial state z. @pre p.has_energy.
   void StepEnergy(const FreePropagator& p, const Eigen::Ref<const Eigen::VectorXd>& z,

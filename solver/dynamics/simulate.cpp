@@ -112,6 +112,10 @@ class Integrator final : private ConstrainedForces {
   // Contact-free phase: one exact step of the flow, up to its end or its first impact; there
   // the decision.
   void FreeStep();
+  // Whether every gap provably stays above twice the touch band over the full free step of
+  // length tau_s just applied (ModalGapBound, [docs/theory.md §3.18]); if so, their lower bounds
+  // at the step's end replace gap_floor_.
+  bool GapsStayOpen(double tau_s);
   // Constrained phase: one Runge-Kutta step, up to its end or its first event (an impact of an
   // open contact or an event function of a closed one); there the decision, else the
   // projection.
@@ -220,8 +224,13 @@ class Integrator final : private ConstrainedForces {
   // The constrained phase's Runge-Kutta state y = (q, u, work integrals), its rate, its dense
   // output at a trial time, and its absolute tolerances.
   Vec y_, dy_, y_eval_, atol_;
-  Vec cu_, du_;                    // C u; du/dt of the last force evaluation
-  StepEnds ends_;                  // the open contacts' gaps and rates at the step's ends
+  Vec cu_, du_;    // C u; du/dt of the last force evaluation
+  StepEnds ends_;  // the open contacts' gaps and rates at the step's ends
+  // ends_.gap0 and gN0 hold the gaps and rates at t_; when false, free steps skipped them and
+  // gap_floor_ holds lower bounds of the gaps at t_ (m) instead.
+  bool gaps_exact_ = true;
+  Vec gap_floor_, gap_floor_next_;
+  Vec drift_;  // per mode, the bound on its coordinate's change over the step (ModalDrift)
   contact::GapRateScratch rates_;  // scratch of the gaps and normal rates
   ClosedEvents events_;            // the closed contacts' event functions
   ContactModes modes_;             // every contact's mode and the closed set
@@ -243,6 +252,7 @@ SimulationWorkspace::SimulationWorkspace(const model::Model& model)
       forces_(model, EventPolicy{}.rank_threshold),
       decision_(model, EventPolicy{}.rank_threshold) {
   if (flow_.modal()) {
+    gap_bound_ = ModalGapBound(model, flow_.modal_flow());
     // The modal flow's w_k^2 are the eigenvalues below, clamped at 0: one solve, same bits.
     const Eigen::VectorXd& w2 = flow_.modal_flow().w2();
     omega_max_radps_ = std::sqrt(w2.maxCoeff());
@@ -299,6 +309,8 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   atol_ = Vec::Constant(2 * n_ + 3, kInf);
   du_ = cu_ = Vec::Zero(n_);
   ends_.gap0 = ends_.gN0 = ends_.gap1 = ends_.gN1 = Vec::Zero(nc_);
+  gap_floor_ = gap_floor_next_ = Vec::Zero(nc_);
+  drift_ = Vec::Zero(n_);
   events_.f0 = events_.f1 = events_.f_eval = Vec::Zero(2 * nc_);
   forced_.reserve(static_cast<std::size_t>(nc_));
   rates_.Resize(model);
@@ -462,9 +474,18 @@ void Integrator::FreeStep() {
   };
 
   // Locate the first event: the first impact of an open contact, and the contacts that strike
-  // with it [§3.12]; the step ends there.
-  GapsAndRates(z_new_.head(n_), z_new_.segment(n_, n_), ends_.gap1, ends_.gN1);
-  const double t_event = FirstImpact(t_, step.t_next_s, policy_.dip_margin, positions_at, state_at);
+  // with it [§3.12]; the step ends there. A full step whose gaps provably stay open (§3.18)
+  // needs neither its end's gaps nor the search.
+  const bool open = step.full && GapsStayOpen(std::max(tau, step.h_s));
+  double t_event = kInf;
+  if (!open) {
+    if (!gaps_exact_) {
+      // The bound carried the gaps over the steps before: the step's start has none of its own.
+      GapsAndRates(q(), u(), ends_.gap0, ends_.gN0);
+    }
+    GapsAndRates(z_new_.head(n_), z_new_.segment(n_, n_), ends_.gap1, ends_.gN1);
+    t_event = FirstImpact(t_, step.t_next_s, policy_.dip_margin, positions_at, state_at);
+  }
   forced_.clear();
   if (t_event < kInf) {
     SimultaneousContacts(
@@ -500,10 +521,48 @@ void Integrator::FreeStep() {
   // Decide: the mode decision at an impact; otherwise the step's end starts the next step.
   if (t_event < kInf) {
     ResolveContacts(forced_);
+  } else if (open) {
+    gaps_exact_ = false;
   } else {
     ends_.gap0 = ends_.gap1;
     ends_.gN0 = ends_.gN1;
+    gaps_exact_ = true;
   }
+}
+
+bool Integrator::GapsStayOpen(double tau_s) {
+  const ModalGapBound& bound = ws_.gap_bound_;
+  if (!bound.applies()) {
+    return false;
+  }
+  // Each gap's lower bound at the step's end; none is kept unless every one stays clear of the
+  // touch band with the rounding of the gaps' evaluation to spare.
+  const double margin = 2.0 * scales_.gap_tol_m;
+  const double* start = gaps_exact_ ? ends_.gap0.data() : gap_floor_.data();
+  double* end = gap_floor_next_.data();
+  const double* Y = ws_.flow_.modal_coordinates().data();
+  if (bound.n_modes == 3) {
+    // A deck's three modes: the same sums, unrolled.
+    double drift[3];
+    ModalDrift3(bound, Y, tau_s, drift);
+    const double* W = bound.weights.data();
+    for (int c = 0; c < nc_; ++c, W += 3) {
+      end[c] = start[c] - (W[0] * drift[0] + W[1] * drift[1] + W[2] * drift[2]) * (1.0 + 1e-12);
+      if (!(end[c] > margin)) {
+        return false;
+      }
+    }
+  } else {
+    ModalDrift(bound, Y, tau_s, drift_.data());
+    for (int c = 0; c < nc_; ++c) {
+      end[c] = start[c] - GapClosureBound(bound, c, drift_.data());
+      if (!(end[c] > margin)) {
+        return false;
+      }
+    }
+  }
+  gap_floor_.swap(gap_floor_next_);
+  return true;
 }
 
 template <class ComponentAt, class StateAt>
@@ -654,6 +713,7 @@ void Integrator::ConstrainedStep() {
   ClosedEventValues(events_.f0);
   ends_.gap0 = ws_.forces_.kin.gap_m;
   ends_.gN0 = ws_.forces_.kin.gamma_N;
+  gaps_exact_ = true;
   DormandPrince45& rk = ws_.rk_;
   rk.Step(rhs, t_, y_, dy_, h);
   const double err = rk.ErrorNorm(atol_, control_.relative_tolerance);
@@ -745,6 +805,7 @@ void Integrator::ResolveContacts(const std::vector<int>& forced) {
   // step's start need no further evaluation.
   ends_.gap0 = ws_.decision_.projection.kin.gap_m;
   ends_.gN0 = ws_.decision_.projection.kin.gamma_N;
+  gaps_exact_ = true;
 }
 
 void Integrator::Forces(const ContactModes& modes, double t, const Eigen::Ref<const Vec>& qq,

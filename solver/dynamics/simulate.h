@@ -35,6 +35,7 @@
 #include "solver/contact/kinematics.h"
 #include "solver/dynamics/active_forces.h"
 #include "solver/dynamics/event_policy.h"
+#include "solver/dynamics/gap_bound.h"
 #include "solver/dynamics/linear_flow.h"
 #include "solver/dynamics/mode_decision.h"
 #include "solver/dynamics/run_result.h"
@@ -75,6 +76,9 @@ class SimulationWorkspace {
   // The mode decision's storage, with kinematics of its own; the projection after a
   // constrained step works in it too.
   DecisionWorkspace decision_;
+  // The free step's bound on the gaps' closure over a step (applies() false: every step
+  // computes its gaps).
+  ModalGapBound gap_bound_;
   double omega_min_radps_ = 0.0;  // lowest natural frequency (0 for a free body)
   double omega_max_radps_ = 0.0;  // highest natural frequency
   double length_scale_m_ = 1.0;   // largest deck dimension or distance from the origin

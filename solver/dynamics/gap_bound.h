@@ -1,0 +1,83 @@
+#pragma once
+/// @file
+/// A conservative bound on how far the gaps of a classically damped model's open contacts can
+/// close over one free step, from the modal state at the step's start and the step's input alone
+/// [docs/theory.md §3.18]. A step whose gaps all stay above the bound cannot strike: the free
+/// step then skips the gaps at its end and the impact search, and carries a lower bound of each
+/// gap to the next step instead.
+///
+/// Per mode, E_k = eta'^2 + w_k^2 eta^2 obeys dE/ds = 2 eta' f - 2 c_k eta'^2 <= 2 sqrt(E) |f| for
+/// c_k >= 0, so sqrt(E_k(s)) <= sqrt(E_k(0)) + s F_k with F_k >= |f_k| over the step, and
+///
+///     |eta_k(s) - eta_k(0)| <= D_k = tau sqrt(E_k(0)) + tau^2 F_k / 2   for 0 <= s <= tau.
+///
+/// A corner p on body b against a ground face of normal n moves the gap by
+/// n . dx_b + n . (R(theta) - R(theta_0)) p, at most sum_k W_ck D_k with
+/// W_ck = |n_x Phi_xk + n_y Phi_yk| + |p| |Phi_theta,k| (|R(a) - R(b)| <= |a - b|).
+
+#include <Eigen/Core>
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+#include "solver/dynamics/modal_flow.h"
+#include "solver/model/model.h"
+
+namespace skewbridge::dynamics {
+
+/// What the bound needs of a model: the weights and the modes' natural frequencies.
+struct ModalGapBound {
+  /// W row-major (n_contacts x n_modes, m per unit of modal coordinate): the largest change of
+  /// contact c's gap per unit change of eta_k. Empty when the bound does not apply: a contact
+  /// against a face on a body (a joint between decks), or a negative modal damping.
+  std::vector<double> weights;
+  std::vector<double> w_radps;  ///< sqrt(w_k^2) per mode (rad/s)
+  int n_modes = 0;
+  int n_contacts = 0;
+
+  /// The bound of `model` with its modal flow.
+  ModalGapBound(const model::Model& model, const ModalFlow& modal);
+  ModalGapBound() = default;
+  /// True when the bound applies to the model.
+  bool applies() const { return !weights.empty(); }
+};
+
+/// D_k (per mode, into `drift`) of the step [0, tau_s] from the modal coordinates Y (n x 6,
+/// column-major, rows y_k = (eta, eta', alpha, beta, gamma, delta) as ModalFlow::ToModal gives
+/// them): the forcing f_k(s) = alpha + beta s + gamma cos(Omega s) + delta sin(Omega s) is bounded
+/// by max(|alpha|, |alpha + beta tau|) + |gamma| + |delta|, and sqrt(E_k) by |eta'| + w_k |eta|.
+inline void ModalDrift(const ModalGapBound& bound, const double* Y, double tau_s, double* drift) {
+  const int n = bound.n_modes;
+  const double* w = bound.w_radps.data();
+  for (int k = 0; k < n; ++k) {
+    const double amplitude = std::abs(Y[n + k]) + w[k] * std::abs(Y[k]);
+    const double a0 = std::abs(Y[2 * n + k]), a1 = std::abs(Y[2 * n + k] + Y[3 * n + k] * tau_s);
+    const double force = (a0 > a1 ? a0 : a1) + std::abs(Y[4 * n + k]) + std::abs(Y[5 * n + k]);
+    drift[k] = tau_s * (amplitude + 0.5 * tau_s * force);
+  }
+}
+
+/// ModalDrift of a deck's three modes (bound.n_modes == 3), unrolled: the same operations.
+inline void ModalDrift3(const ModalGapBound& bound, const double* Y, double tau_s,
+                        double drift[3]) {
+  const double* w = bound.w_radps.data();
+  const double half_tau = 0.5 * tau_s;
+  for (int k = 0; k < 3; ++k) {
+    const double amplitude = std::abs(Y[3 + k]) + w[k] * std::abs(Y[k]);
+    const double a0 = std::abs(Y[6 + k]), a1 = std::abs(Y[6 + k] + Y[9 + k] * tau_s);
+    const double force = (a0 > a1 ? a0 : a1) + std::abs(Y[12 + k]) + std::abs(Y[15 + k]);
+    drift[k] = tau_s * (amplitude + half_tau * force);
+  }
+}
+
+/// The largest closure of contact c's gap over the step (m): sum_k W_ck D_k, rounded up by a
+/// relative 1e-12 so that the rounding of the sum never makes it smaller than the exact bound.
+inline double GapClosureBound(const ModalGapBound& bound, int c, const double* drift) {
+  const int n = bound.n_modes;
+  const double* W = bound.weights.data() + static_cast<std::ptrdiff_t>(c) * n;
+  double s = 0.0;
+  for (int k = 0; k < n; ++k) s += W[k] * drift[k];
+  return s * (1.0 + 1e-12);
+}
+
+}  // namespace skewbridge::dynamics

@@ -1,0 +1,198 @@
+/// The free step's gap bound (solver/dynamics/gap_bound.h) [docs/theory.md §3.18] against a dense
+/// evaluation of every corner's gap along the exact flow, propagated on the augmented path (the
+/// matrix exponential, no modal code): random states and inputs, forcing alone, resonant
+/// harmonics, an undamped deck, long steps, and grazing steps whose smallest gap is a hair above
+/// zero, which the bound must never call open.
+
+#include "solver/dynamics/gap_bound.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "solver/contact/kinematics.h"
+#include "solver/dynamics/linear_flow.h"
+#include "solver/model/builders.h"
+#include "solver/model/multispan.h"
+
+namespace skewbridge::dynamics {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// A skew deck on a principal-axes substructure with its centre of rigidity off the centre of
+// mass, so that every mode moves x, y and theta together; both abutments (four corners).
+model::Model Deck(double xi) {
+  model::DeckSpec spec;
+  spec.mass_kg = 1.5e6;
+  spec.geometry = {30.0, 12.0, 40.0 * kPi / 180.0};
+  spec.stiffness = model::DeckSpec::StiffnessKind::kPrincipal;
+  spec.w1_radps = 18.0;
+  spec.w2_radps = 26.0;
+  spec.w_theta_radps = 31.0;
+  spec.axis_rad = 0.4;
+  spec.centre_of_rigidity_m = {2.5, -1.5};
+  spec.xi = xi;
+  spec.abutments = model::AbutmentSet::kBoth;
+  spec.gap_plus_m = spec.gap_minus_m = 0.05;
+  return model::BuildDeckModel(spec);
+}
+
+struct Step {
+  Eigen::VectorXd z;  // (q, u, a, slope, p, k) at the step's start
+  double tau_s = 0.01;
+  double omega_radps = 0.0;
+};
+
+// Per contact, the smallest g(s) - g(0) over 256 points of the step along the augmented flow.
+Eigen::VectorXd DenseDrop(const model::Model& model, LinearFlow& augmented, const Step& step) {
+  constexpr int kPoints = 256;
+  const int n = model.n_dof();
+  const FreePropagator& p = augmented.Propagator(step.tau_s / kPoints, step.omega_radps, false);
+  Eigen::VectorXd z = step.z, z_next = z;
+  Eigen::VectorXd g0(model.n_contacts()), worst = Eigen::VectorXd::Zero(model.n_contacts());
+  for (int c = 0; c < model.n_contacts(); ++c) g0[c] = contact::Gap(model, c, z.head(n));
+  for (int i = 1; i <= kPoints; ++i) {
+    augmented.Apply(p, z, z_next);
+    z.swap(z_next);
+    for (int c = 0; c < model.n_contacts(); ++c) {
+      worst[c] = std::min(worst[c], contact::Gap(model, c, z.head(n)) - g0[c]);
+    }
+  }
+  return worst;
+}
+
+// Per contact, the bound's closure sum_k W_ck D_k of the step, from the modal path's coordinates.
+Eigen::VectorXd BoundDrop(const model::Model& model, LinearFlow& modal, const Step& step) {
+  const ModalGapBound bound(model, modal.modal_flow());
+  EXPECT_TRUE(bound.applies());
+  const FreePropagator& p = modal.Propagator(step.tau_s, step.omega_radps, false);
+  Eigen::VectorXd z_next = step.z;
+  modal.Apply(p, step.z, z_next);
+  Eigen::VectorXd drift(model.n_dof()), out(model.n_contacts());
+  ModalDrift(bound, modal.modal_coordinates().data(), step.tau_s, drift.data());
+  for (int c = 0; c < model.n_contacts(); ++c) out[c] = GapClosureBound(bound, c, drift.data());
+  return out;
+}
+
+// Random steps of one kind; each contact's dense drop must lie within the bound.
+void CheckSteps(double xi, int count, unsigned seed, double q_scale, double u_scale, double a_scale,
+                double tau_s, bool resonant) {
+  const model::Model model = Deck(xi);
+  LinearFlow modal(model.M(), model.K(), model.C(), model.r());
+  LinearFlow augmented(model.M(), model.K(), model.C(), model.r(), FlowPath::kAugmented);
+  ASSERT_TRUE(modal.modal());
+  const int n = model.n_dof();
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  double tightest = 0.0;  // the largest dense drop / bound seen
+  for (int s = 0; s < count; ++s) {
+    Step step;
+    step.tau_s = tau_s;
+    step.z = Eigen::VectorXd::Zero(modal.augmented_size());
+    for (int i = 0; i < n; ++i) {
+      const double length = i % 3 == 2 ? 1.0 / 15.0 : 1.0;  // theta in rad, x and y in m
+      step.z[i] = q_scale * length * unit(rng);
+      step.z[n + i] = u_scale * length * unit(rng);
+    }
+    for (int j = 0; j < 8; ++j) step.z[2 * n + j] = a_scale * unit(rng);
+    step.z[2 * n + 2] *= 50.0;  // slopes of a record: the acceleration changes by 0.5 a per 0.01 s
+    step.z[2 * n + 3] *= 50.0;
+    if (resonant) {
+      const int k = s % n;
+      step.omega_radps = std::sqrt(modal.modal_flow().w2()[k]);
+    } else {
+      step.omega_radps = s % 2 == 0 ? 0.0 : 40.0 * std::abs(unit(rng));
+    }
+    const Eigen::VectorXd dense = DenseDrop(model, augmented, step);
+    const Eigen::VectorXd bound = BoundDrop(model, modal, step);
+    for (int c = 0; c < model.n_contacts(); ++c) {
+      // The bound is exact arithmetic of the flow; the dense gaps carry the rounding of the
+      // deck's world coordinates (about 1e-15 m) on top.
+      ASSERT_GE(dense[c], -bound[c] - 1e-13) << "step " << s << " contact " << c;
+      if (bound[c] > 0.0) tightest = std::max(tightest, -dense[c] / bound[c]);
+    }
+  }
+  // A bound of no use (orders of magnitude above the motion) would pass the check above too.
+  EXPECT_GT(tightest, 0.05);
+}
+
+TEST(GapBound, HoldsOnRandomStepsOfADampedDeck) {
+  CheckSteps(0.05, 300, 1, 0.05, 0.5, 5.0, 0.01, false);
+}
+
+TEST(GapBound, HoldsOnAnUndampedDeckAndLongSteps) {
+  CheckSteps(0.0, 150, 2, 0.05, 0.5, 5.0, 0.05, false);
+}
+
+TEST(GapBound, HoldsUnderForcingAloneFromRest) {
+  // Zero state: the whole closure is the input's tau^2 F / 2 term.
+  CheckSteps(0.05, 150, 3, 0.0, 0.0, 5.0, 0.02, false);
+}
+
+TEST(GapBound, HoldsAtResonance) { CheckSteps(0.02, 150, 4, 0.01, 0.1, 5.0, 0.04, true); }
+
+TEST(GapBound, HoldsOnFreeVibrationOfLargeRotation) {
+  // No input, rotation dominant: the arm's term carries the closure.
+  CheckSteps(0.05, 150, 5, 0.3, 3.0, 0.0, 0.01, false);
+}
+
+TEST(GapBound, NeverCallsAGrazingStepOpen) {
+  // Each step's faces moved so that the smallest gap inside it is 1e-9 m: the start's gap minus
+  // the bound must not stay above zero (the rule then searches the step).
+  const model::Model model = Deck(0.05);
+  LinearFlow modal(model.M(), model.K(), model.C(), model.r());
+  LinearFlow augmented(model.M(), model.K(), model.C(), model.r(), FlowPath::kAugmented);
+  const int n = model.n_dof();
+  std::mt19937 rng(6);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int grazes = 0;
+  for (int s = 0; s < 200; ++s) {
+    Step step;
+    step.z = Eigen::VectorXd::Zero(modal.augmented_size());
+    for (int i = 0; i < n; ++i) {
+      step.z[i] = 0.02 * unit(rng);
+      step.z[n + i] = 0.3 * unit(rng) / (i % 3 == 2 ? 15.0 : 1.0);
+    }
+    step.z[2 * n] = 3.0 * unit(rng);
+    step.z[2 * n + 1] = 3.0 * unit(rng);
+    const Eigen::VectorXd dense = DenseDrop(model, augmented, step);
+    const Eigen::VectorXd bound = BoundDrop(model, modal, step);
+    for (int c = 0; c < model.n_contacts(); ++c) {
+      // A face shifted so that min g = 1e-9 m has g(0) = 1e-9 - dense[c] at the start.
+      const double g0 = 1e-9 - dense[c];
+      EXPECT_LE(g0 - bound[c], 1e-9) << "step " << s << " contact " << c;
+      ++grazes;
+    }
+  }
+  EXPECT_EQ(grazes, 800);
+}
+
+TEST(GapBound, DoesNotApplyToAJointBetweenBodiesOrNegativeDamping) {
+  model::Model deck = Deck(0.05);
+  LinearFlow modal(deck.M(), deck.K(), deck.C(), deck.r());
+  EXPECT_TRUE(ModalGapBound(deck, modal.modal_flow()).applies());
+  // A model whose C is the negative of a classical damping (an energy source).
+  LinearFlow source(deck.M(), deck.K(), -deck.C(), deck.r());
+  ASSERT_TRUE(source.modal());
+  EXPECT_FALSE(ModalGapBound(deck, source.modal_flow()).applies());
+  // Two spans: the corners of one deck against a face on the other.
+  model::MultiSpanSpec spec;
+  spec.n_spans = 2;
+  spec.span_lengths_m = {30.0};
+  spec.width_m = 12.0;
+  spec.skew_rad = 0.5;
+  spec.mass_per_length_kgpm = 5e4;
+  spec.w0x_radps = spec.w0y_radps = spec.W0_radps = 20.0;
+  spec.abutment_gap_m = spec.joint_gap_m = 0.05;
+  const model::Model spans = model::BuildMultiSpanBridge(spec);
+  LinearFlow spans_flow(spans.M(), spans.K(), spans.C(), spans.r());
+  ASSERT_TRUE(spans_flow.modal());
+  EXPECT_FALSE(ModalGapBound(spans, spans_flow.modal_flow()).applies());
+}
+
+}  // namespace
+}  // namespace skewbridge::dynamics
