@@ -8,6 +8,7 @@
 #include <cstdlib>
 
 #include "records/incidence.h"
+#include "solver/dynamics/compliant_run.h"
 #include "solver/dynamics/run.h"
 #include "solver/dynamics/simulate.h"
 #include "tests/dynamics/benchmark_cases.h"
@@ -161,6 +162,45 @@ BENCHMARK(BM_PilotBridgeCellComponents)
     ->Arg(2)
     ->Arg(3)
     ->ArgName("components")
+    ->Unit(benchmark::kMillisecond);
+
+// One record cell of the pilot bridge at the study's gap under each joint law, as a sweep cell
+// runs it (the model copied, no ledger): 0 the rigid law (eps_N = 0.5, mu = 0.3, dynamics::Run),
+// 1 the compliant law (Wilson and Elgamal's backfill, K_max = K_ur = 20 300 kN/m/m, R_f = 0.7,
+// F_ult = 326 kN/m over the backwall W / cos a, 5 springs per wall; SimulateCompliant).
+void BM_PilotBridgeCellLaw(benchmark::State& state) {
+  const model::Model rigid = bench::PilotBridge(true, bench::kPilotStudyGap_m);
+  const model::DeckGeometry& g = rigid.body(0).geometry;
+  const double wall_m = g.width_m / std::cos(g.skew_rad);
+  const joint::HyperbolicGap wall{20.3e6 * wall_m, 20.3e6 * wall_m, 0.7, 326e3 * wall_m, 0.0};
+  std::vector<CompliantSpring> springs = WallSprings(rigid, 0, 1, wall, 5, "+x");
+  const std::vector<CompliantSpring> minus = WallSprings(rigid, 2, 3, wall, 5, "-x");
+  springs.insert(springs.end(), minus.begin(), minus.end());
+  const model::Model linear = WithoutContacts(rigid);
+  const records::SampledExcitation ex(0.01, bench::RecordLikeSignal());
+  model::RunControl control;
+  control.end_time_s = 40.0;
+  control.energy_ledger = false;
+  RunResult r;
+  for (auto _ : state) {
+    if (state.range(0) == 0) {
+      const model::Model cell = rigid;
+      r = dynamics::Run(cell, ex, control);
+    } else {
+      const model::Model cell = linear;
+      r = SimulateCompliant(cell, springs, ex, control).run;
+    }
+    benchmark::DoNotOptimize(r.max_abs_q.data());
+  }
+  state.counters["steps_per_run"] = static_cast<double>(r.free_steps + r.rk_steps + r.rk_rejected);
+  state.counters["rk_steps"] = static_cast<double>(r.rk_steps);
+  state.counters["impacts"] = static_cast<double>(r.impacts);
+  state.counters["ok"] = r.status == RunStatus::kOk ? 1.0 : 0.0;
+}
+BENCHMARK(BM_PilotBridgeCellLaw)
+    ->Arg(0)
+    ->Arg(1)
+    ->ArgName("compliant")
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace

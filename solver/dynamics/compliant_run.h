@@ -1,0 +1,94 @@
+#pragma once
+/// @file
+/// The event-driven integrator of a deck whose abutments are compliant [docs/compliant.md §4]:
+/// springs normal to the skewed backwalls (CompliantSpring) in place of the rigid unilateral
+/// contacts.
+/// - while every spring is open and away from its closing point, the exact transition of the
+///   linear flow (solver/dynamics/linear_flow.h) on the excitation piece's grid, as Simulate;
+///   a spring's closing (its deformation reaching the permanent set of its memory) located by
+///   FirstGapRoot on the flow's dense output;
+/// - while a spring is engaged (or open but not yet away from its closing point), the nonlinear
+///   flow M du/dt = -C u - K q - M r a_g + sum_j F_j w_j with Dormand-Prince 5(4) and its dense
+///   output; on each step every spring keeps one smooth piece of its law (the line continued past
+///   its ends, the envelope, the spring-dashpot without its cut at zero), and the events where the
+///   law changes piece are located by Brent's method on the dense output: the deformation reaching
+///   the closing point, the envelope (the largest deformation before) or the permanent set, the
+///   turn from loading to unloading (where the memory d_max is committed), a spring-dashpot's force
+///   reaching zero;
+/// - the energy ledger integrates the work of the springs beside the motion: of it, the energy a
+///   spring would give back by unloading, F^2 / (2 K_ur) (1/2 k d^2 for a spring-dashpot), is
+///   stored, the rest dissipated by the hysteresis (CompliantRunResult::joint_stored_J,
+///   joint_dissipated_J).
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "solver/common/excitation.h"
+#include "solver/dynamics/event_policy.h"
+#include "solver/dynamics/run_result.h"
+#include "solver/dynamics/simulate.h"
+#include "solver/joint/backfill.h"
+#include "solver/model/model.h"
+#include "solver/model/run_control.h"
+
+namespace skewbridge::dynamics {
+
+/// The force law of one compliant spring.
+enum class SpringLaw {
+  kBackfill,       ///< the hyperbolic backfill law (joint::HyperbolicGap), with memory
+  kSpringDashpot,  ///< F = max(0, k d + c d') while engaged: linear, pulls on nothing, no memory
+};
+
+/// A compliant spring between a body-fixed point p of `body` and a ground face: its deformation
+/// is d = -g(q) = -n . ((x, y) + R(theta) p - A), the penetration beyond the face (whose point A
+/// carries the joint's gap, as a rigid contact's), and its force F >= 0 pushes the point along the
+/// face's normal n [docs/compliant.md §4].
+struct CompliantSpring {
+  std::string name;                                   ///< "+x.1".."+x.n", "-x.1".."-x.n"
+  int body = 0;                                       ///< body carrying the point p
+  Eigen::Vector2d point_m = Eigen::Vector2d::Zero();  ///< p in the body frame (m)
+  model::Face face;                                   ///< the ground face it pushes on
+  SpringLaw law = SpringLaw::kBackfill;               ///< which force law
+  joint::HyperbolicGap backfill;  ///< kBackfill: the spring's share (gap_m = 0: the face has it)
+  double k_N_per_m = 0.0;         ///< kSpringDashpot: stiffness, > 0
+  double c_Ns_per_m = 0.0;        ///< kSpringDashpot: dashpot, >= 0
+};
+
+/// The springs of deck `body` of `model` against the face of its rigid contacts `first` and `last`
+/// (a wall's two corners, e.g. P1 and P2): n >= 2 springs at evenly spaced points from corner to
+/// corner, each with an n-th of the wall's K_max, K_ur and F_ult (`wall`; its R_f; its gap ignored,
+/// the face carries it) [docs/compliant.md §4]. Named `prefix`.1 .. `prefix`.n.
+/// @pre both contacts on `body` against one ground face; n >= 2; wall valid.
+std::vector<CompliantSpring> WallSprings(const model::Model& model, int first, int last,
+                                         const joint::HyperbolicGap& wall, int n,
+                                         const std::string& prefix);
+
+/// The model without its rigid contacts (the same bodies, K, C, r and modes): the linear system a
+/// compliant run's springs act on.
+model::Model WithoutContacts(const model::Model& model);
+
+/// What a compliant run returns besides the RunResult of a rigid one.
+struct CompliantRunResult {
+  /// The run: status, maxima, corner travels, counts, the ledger (its balance_error_J includes the
+  /// springs' terms below; impact_J and friction_J are 0). `impacts` counts strikes: instants at
+  /// which a spring closes while none is engaged.
+  RunResult run;
+  Eigen::VectorXd max_spring_force_N;        ///< per spring, largest force (N), at step ends
+  Eigen::VectorXd max_spring_deformation_m;  ///< per spring, largest deformation beyond its face
+  double joint_stored_J = 0.0;      ///< energy the springs would give back by unloading, at the end
+  double joint_dissipated_J = 0.0;  ///< the springs' work less what they store
+};
+
+/// One run of the linear model `model` (no rigid contact) with the compliant `springs` under
+/// `excitation` from `initial`, the event-driven method; the ledger closes as
+/// kinetic + strain + joint_stored = initial + input - damping - joint_dissipated.
+/// @throws InputError when the model has rigid contacts, a spring is invalid (law constants, body
+/// index, a face not on the ground), or the initial state has the wrong size.
+CompliantRunResult SimulateCompliant(const model::Model& model,
+                                     const std::vector<CompliantSpring>& springs,
+                                     const Excitation& excitation, const model::RunControl& control,
+                                     const InitialState& initial = {},
+                                     const EventPolicy& policy = {});
+
+}  // namespace skewbridge::dynamics
