@@ -42,8 +42,80 @@ std::vector<double> DemandOverCapacity(const spectra::LimitState& ls,
   return out;
 }
 
+// The position of the incidence_deg axis, or -1.
+std::ptrdiff_t IncidenceAxis(const SweepSpec& spec) {
+  for (std::size_t k = 0; k < spec.axes.size(); ++k) {
+    if (spec.axes[k].key == "incidence_deg") return static_cast<std::ptrdiff_t>(k);
+  }
+  return -1;
+}
+
+// One limit state's cells at the worst incidence angle, over the grid without the angle axis:
+// a cell exceeds when it exceeds at some angle, its D / C is the largest over the angles, and it
+// is used only when every angle's cell is (done, status ok, a finite outcome). Its IM is the
+// first angle's (the record and stripe set it; the angle does not).
+spectra::FragilityTable FitWorstIncidence(const SweepSpec& spec, std::size_t k,
+                                          const std::string& stripe_axis,
+                                          const spectra::FragilityCells& cells,
+                                          const std::string& no_cloud) {
+  const spectra::AxisSplit split = spectra::SplitAlong(spec, k);
+  const spectra::AxisStatistics z = spectra::ReduceOverAxis(spec, k, cells.exceeded, cells.usable);
+  std::vector<double> dc;
+  if (!cells.demand_over_capacity.empty()) {
+    dc = spectra::ReduceOverAxis(spec, k, cells.demand_over_capacity, cells.usable).max;
+  }
+  std::vector<double> im(split.Reduced());
+  std::vector<std::uint8_t> excluded;
+  if (!cells.excluded.empty()) excluded.assign(split.Reduced(), 0);
+  for (std::size_t r = 0; r < split.Reduced(); ++r) {
+    im[r] = cells.im[split.Cell(r, 0)];
+    for (std::size_t i = 0; i < split.size && !excluded.empty(); ++i) {
+      excluded[r] = excluded[r] != 0 || cells.excluded[split.Cell(r, i)] != 0 ? 1 : 0;
+    }
+  }
+  return spectra::FitFragilityOverCells(spectra::GridWithout(spec, k), stripe_axis,
+                                        {im, z.max, dc, z.complete, excluded}, no_cloud);
+}
+
+// The per-cell values that describe the excitation, the model or the scaling rather than the
+// bridge's response: the same at every incidence angle, not reduced over it.
+bool DescribesTheInput(std::string_view name) {
+  static constexpr std::string_view kInputs[] = {
+      "a_g",         "w_g", "L_e",         "delta",        "pga",
+      "pgv",         "pgd", "T_m",         "arias",        "D5_95",
+      "T1",          "im",  "im_unscaled", "scale_factor", "scaled_too_far",
+      "w0x_over_wg", "band"};
+  return std::find(std::begin(kInputs), std::end(kInputs), name) != std::end(kInputs);
+}
+
+// The responses of the bridge over the incidence angle axis (cells done with status ok).
+std::optional<OverIncidence> MakeOverIncidence(const SweepSpec& spec, const CubeLayout& layout,
+                                               const CubeData& data) {
+  const std::ptrdiff_t at = IncidenceAxis(spec);
+  if (at < 0) return std::nullopt;
+  const auto k = static_cast<std::size_t>(at);
+  OverIncidence out;
+  out.angles_deg = spec.axes[k].values;
+  for (std::size_t a = 0; a < spec.axes.size(); ++a) {
+    if (a == k) continue;
+    out.axis_order.push_back(spec.axes[a].key);
+    out.shape.push_back(spec.axes[a].Size());
+  }
+  std::vector<std::uint8_t> usable(data.Cells());
+  for (std::uint64_t cell = 0; cell < data.Cells(); ++cell) {
+    usable[cell] = data.done[cell] != 0 && data.status[cell] == kStatusOk ? 1 : 0;
+  }
+  for (std::size_t r = 0; r < layout.responses.size(); ++r) {
+    if (DescribesTheInput(layout.responses[r].name)) continue;
+    out.responses.push_back(layout.responses[r]);
+    out.statistics.push_back(spectra::ReduceOverAxis(spec, k, data.responses[r], usable));
+  }
+  return out;
+}
+
 std::vector<FragilityStudy> MakeFragility(const SweepSpec& spec, const CubeLayout& layout,
-                                          const CubeData& data, int rank, int ranks) {
+                                          const CubeData& data, int rank, int ranks,
+                                          std::vector<FragilityStudy>* worst_incidence = nullptr) {
   std::vector<FragilityStudy> out;
   if (spec.limit_states.empty()) return out;
   // The IM of every cell: a stripe axis (im_g, or im_mps for PGV), else the cell's stored
@@ -130,10 +202,20 @@ std::vector<FragilityStudy> MakeFragility(const SweepSpec& spec, const CubeLayou
     }
     std::string no_cloud;
     const std::vector<double> dc = DemandOverCapacity(ls, demand_read, &no_cloud);
+    const spectra::FragilityCells cells{im, exceeded_read, dc, usable, excluded};
+    if (worst_incidence != nullptr) {
+      // The worst angle only, every bootstrap on this rank (its combinations are few).
+      if (const std::ptrdiff_t k = IncidenceAxis(spec); k >= 0) {
+        f.table =
+            FitWorstIncidence(spec, static_cast<std::size_t>(k), stripe_axis, cells, no_cloud);
+        worst_incidence->push_back(std::move(f));
+      }
+      continue;
+    }
     spectra::BootstrapShare share{rank, ranks, jobs};
-    f.table = spectra::FitFragilityOverCells(
-        spec, stripe_axis, {im, exceeded_read, dc, usable, excluded}, no_cloud,
-        spectra::kBootstrapResamples, spectra::kBootstrapSeed, share);
+    f.table = spectra::FitFragilityOverCells(spec, stripe_axis, cells, no_cloud,
+                                             spectra::kBootstrapResamples, spectra::kBootstrapSeed,
+                                             share);
     jobs += f.table.theta.size();
     out.push_back(std::move(f));
   }
@@ -387,6 +469,10 @@ StudyTables MakeStudyTables(const SweepSpec& spec, const CubeLayout& layout, con
 
   tables.fragility =
       fragility != nullptr ? std::move(*fragility) : MakeFragility(spec, layout, data, 0, 1);
+  if (IncidenceAxis(spec) >= 0) {
+    MakeFragility(spec, layout, data, 0, 1, &tables.fragility_worst_incidence);
+  }
+  tables.over_incidence = MakeOverIncidence(spec, layout, data);
   tables.ida_fragility = MakeIdaFragility(spec, layout, data);
 
   // A model-file sweep names its responses per deck: with one deck, its rotation is the one.

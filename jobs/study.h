@@ -12,6 +12,7 @@
 #include "jobs/cube.h"
 #include "jobs/sweep_spec.h"
 #include "spectra/fragility_table.h"
+#include "spectra/over_axis.h"
 #include "spectra/study.h"
 
 namespace skewbridge::jobs {
@@ -53,14 +54,29 @@ struct IdaFragilityStudy {
   std::vector<std::int64_t> too_far;
 };
 
+/// The responses of the bridge over the incidence angle (an `incidence_deg` axis): per response,
+/// its largest value over the angles, its median and the angle of the largest, over the grid
+/// without the angle axis (docs/hdf5-layout.md, over_incidence/).
+struct OverIncidence {
+  std::vector<double> angles_deg;                   ///< the axis' coordinates [deg]
+  std::vector<std::string> axis_order;              ///< the remaining axes, in cube order
+  std::vector<std::size_t> shape;                   ///< their sizes ({} when none remain)
+  std::vector<ResponseInfo> responses;              ///< the responses reduced, in layout order
+  std::vector<spectra::AxisStatistics> statistics;  ///< one per response
+};
+
 /// What the final cube stores besides the cells for a record-driven or banded sweep.
 struct StudyTables {
   std::vector<double> band_edges;    ///< set when the layout holds the response "band"
   std::string records_source;        ///< "set" or "synthetic"; "" without records
   std::string records_set;           ///< the manifest as written, or "synthetic count=N seed=S"
   std::vector<SweepRecord> records;  ///< LoadSweepRecords(spec)
-  std::optional<CorrelationTable> correlation;   ///< with a record axis and a Pi_delta axis
-  std::vector<FragilityStudy> fragility;         ///< one per limit state, with an IM
+  std::optional<CorrelationTable> correlation;  ///< with a record axis and a Pi_delta axis
+  std::vector<FragilityStudy> fragility;        ///< one per limit state, with an IM
+  /// With an incidence_deg axis, one per limit state of `fragility`: the fit over the grid
+  /// without the angle axis, a cell exceeding when it exceeds at some angle (the worst angle).
+  std::vector<FragilityStudy> fragility_worst_incidence;
+  std::optional<OverIncidence> over_incidence;   ///< with an incidence_deg axis
   std::vector<IdaFragilityStudy> ida_fragility;  ///< one per limit state of an IDA sweep
   spectra::IntensityMeasureSpec im;              ///< [records] scale_to / im of the spec
   /// Cells done with scaled_too_far = 1 (the response), -1 when the layout has no such response.
@@ -77,7 +93,8 @@ struct StudyTables {
 /// is the coordinate of an `im_g` or `im_mps` axis (records scaled to stripes of it) when the
 /// sweep has one, else its response `im` ([records] im: the records' own measure, a cloud), else
 /// its excitation amplitude a_g / g (a record's PGA times `scale`, with the `scale` axis as
-/// stripes when there is one).
+/// stripes when there is one). With an `incidence_deg` axis the responses of the bridge are
+/// reduced over it (OverIncidence) and each limit state is fitted again at the worst angle.
 /// @throws InputError as LoadSweepRecords.
 /// `fragility`: the studies MakeFragilityStudies made (the ranks' shared bootstraps merged), so
 /// that they are not fitted again; nullptr to fit them here.

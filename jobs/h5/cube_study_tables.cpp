@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <string_view>
 #include <type_traits>
 
 #include "spectra/limit_states.h"
@@ -207,9 +208,24 @@ void WriteCorrelation(hid_t sweep_group, const CorrelationTable& table,
                     "log-log R^2" + per_band));
 }
 
-void WriteFragility(hid_t sweep_group, const std::vector<FragilityStudy>& studies) {
-  Id g = CreateGroup(sweep_group, "fragility");
+// The fragility/ group, or with `angles` the fragility_worst_incidence/ group: the same fits over
+// the grid without the incidence_deg axis, at the worst of those angles.
+void WriteFragility(hid_t sweep_group, const std::vector<FragilityStudy>& studies,
+                    const std::vector<double>* angles = nullptr) {
+  Id g = CreateGroup(sweep_group, angles == nullptr ? "fragility" : "fragility_worst_incidence");
   const FragilityStudy& first = studies.front();
+  if (angles != nullptr) {
+    SetAttr(g.get(), "reduces", std::string("incidence_deg"));
+    SetDoublesAttr(g.get(), "incidence_deg", *angles);
+    SetAttr(g.get(), "reduction",
+            std::string("worst incidence angle: a cell of the grid without incidence_deg (a "
+                        "record at a stripe and the other axes) exceeds when its cell exceeds "
+                        "at some angle (the largest ls_<name> over incidence_deg); its D / C is "
+                        "the largest over the angles; it is used when the cells of every angle "
+                        "are done with status ok; its IM is the record's at the stripe (the "
+                        "same at every angle). The fits, bootstrap and cloud are those of "
+                        "fragility/, over these cells; fragility/ holds the fits per angle"));
+  }
   std::vector<std::string> names;
   for (const FragilityStudy& f : studies) names.push_back(f.ls.name);
   SetAttr(g.get(), "limit_states", names);
@@ -297,7 +313,8 @@ void WriteFragility(hid_t sweep_group, const std::vector<FragilityStudy>& studie
           "(records.beyond_max_scale = \"exclude\")");
     }
     if (t.stripes == 0) continue;
-    std::vector<hsize_t> stripe_shape(t.shape.begin(), t.shape.end());
+    // [1, S] without combination axes, as the per-combination datasets are [1].
+    std::vector<hsize_t> stripe_shape = shape;
     stripe_shape.push_back(t.stripes);
     Id stripe_scale = OpenDataset(sweep_group, "axes/" + t.stripe_axis);
     auto put_stripes = [&](const std::string& name, const auto& values, std::string units,
@@ -305,8 +322,7 @@ void WriteFragility(hid_t sweep_group, const std::vector<FragilityStudy>& studie
       if (units == "g") units = f.im_units;
       Id ds = WriteArray(ls.get(), name, stripe_shape, values, units, description);
       attach(ds);
-      AttachScale(ds.get(), stripe_scale.get(), static_cast<unsigned>(t.shape.size()),
-                  t.stripe_axis);
+      AttachScale(ds.get(), stripe_scale.get(), static_cast<unsigned>(shape.size()), t.stripe_axis);
     };
     put_stripes("stripe_im", t.stripe_im, "g", "geometric mean IM of the stripe's cells");
     put_stripes("stripe_n", t.stripe_n, "1", "cells of the stripe used");
@@ -314,6 +330,67 @@ void WriteFragility(hid_t sweep_group, const std::vector<FragilityStudy>& studie
     if (!t.stripe_excluded.empty()) {
       put_stripes("stripe_excluded", t.stripe_excluded, "1",
                   "cells of the stripe left out: scaled beyond records.max_scale");
+    }
+  }
+}
+
+// over_incidence/max, median and angle_of_max_deg: one dataset per response of the bridge over
+// the grid without the incidence_deg axis, its remaining axis scales attached.
+void WriteOverIncidence(hid_t sweep_group, const OverIncidence& over) {
+  Id g = CreateGroup(sweep_group, "over_incidence");
+  SetAttr(g.get(), "reduces", std::string("incidence_deg"));
+  SetDoublesAttr(g.get(), "incidence_deg", over.angles_deg);
+  SetAttr(g.get(), "axis_order", over.axis_order);
+  std::vector<std::string> names;
+  for (const ResponseInfo& r : over.responses) names.push_back(r.name);
+  SetAttr(g.get(), "responses", names);
+  SetAttr(g.get(), "statistics",
+          std::string("max: the largest value over the incidence angles; median: numpy's "
+                      "median over them (the mean of the two middle values for an even "
+                      "count); angle_of_max_deg: the angle of the largest (the first in axis "
+                      "order on ties); NaN where the cell of some angle is not done with "
+                      "status ok or holds NaN"));
+  const std::vector<hsize_t> shape =
+      over.shape.empty() ? std::vector<hsize_t>{1}
+                         : std::vector<hsize_t>(over.shape.begin(), over.shape.end());
+  std::vector<Id> scales;
+  for (const std::string& key : over.axis_order) {
+    scales.push_back(OpenDataset(sweep_group, "axes/" + key));
+  }
+  struct Statistic {
+    const char* group;
+    const char* what;
+    std::vector<double> spectra::AxisStatistics::*values;
+  };
+  const Statistic statistics[] = {
+      {"max", "largest over the incidence angles of ", &spectra::AxisStatistics::max},
+      {"median", "median over the incidence angles of ", &spectra::AxisStatistics::median},
+      {"angle_of_max_deg", "incidence angle [deg] of the largest ",
+       &spectra::AxisStatistics::coordinate_of_max}};
+  for (const Statistic& st : statistics) {
+    Id sg = CreateGroup(g.get(), st.group);
+    SetAttr(sg.get(), "reduces", std::string("incidence_deg"));
+    SetAttr(sg.get(), "statistic", std::string(st.group));
+    // The remaining axes linked into the group, as in the sweep group: a netCDF reader (xarray)
+    // opening the group alone then has their coordinates.
+    for (const std::string& key : over.axis_order) {
+      if (std::find(names.begin(), names.end(), key) != names.end()) continue;
+      Check(H5Lcreate_hard(sweep_group, ("axes/" + key).c_str(), sg.get(), key.c_str(), H5P_DEFAULT,
+                           H5P_DEFAULT),
+            "link axes/" + key + " into over_incidence/" + st.group);
+    }
+    for (std::size_t r = 0; r < over.responses.size(); ++r) {
+      const ResponseInfo& info = over.responses[r];
+      const bool angle = std::string_view(st.group) == "angle_of_max_deg";
+      Id ds = WriteArray(sg.get(), info.name, shape, over.statistics[r].*st.values,
+                         angle ? std::string("deg") : info.unit,
+                         st.what + info.name + ": " + info.description);
+      SetAttr(ds.get(), "reduces", std::string("incidence_deg"));
+      SetAttr(ds.get(), "statistic", std::string(st.group));
+      SetAttr(ds.get(), "response", info.name);
+      for (std::size_t k = 0; k < scales.size(); ++k) {
+        AttachScale(ds.get(), scales[k].get(), static_cast<unsigned>(k), over.axis_order[k]);
+      }
     }
   }
 }
@@ -418,6 +495,11 @@ void WriteStudyTables(const Datasets& d, const CubeLayout& layout, const StudyTa
   }
   if (study.correlation) WriteCorrelation(d.group.get(), *study.correlation, study.band_edges);
   if (!study.fragility.empty()) WriteFragility(d.group.get(), study.fragility);
+  if (!study.fragility_worst_incidence.empty() && study.over_incidence) {
+    WriteFragility(d.group.get(), study.fragility_worst_incidence,
+                   &study.over_incidence->angles_deg);
+  }
+  if (study.over_incidence) WriteOverIncidence(d.group.get(), *study.over_incidence);
   if (!study.ida_fragility.empty())
     WriteIdaFragility(d.group.get(), study.ida_fragility, study.im.exclude_beyond_max_scale);
 }

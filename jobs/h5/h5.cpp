@@ -504,6 +504,8 @@ void SetAttr(hid_t obj, const std::string& name, const std::vector<std::string>&
   for (const std::string& s : values) {
     ptrs.push_back(s.c_str());
   }
+  // An empty list (a fit over no other axis) is an attribute of no element: nothing to write.
+  if (n == 0) return;
   Check(H5Awrite(attr.get(), type.get(), ptrs.data()), "write attribute " + name);
 }
 

@@ -6,7 +6,12 @@ counts per stripe against the exceedance columns. With records.beyond_max_scale 
 cells whose scale_factor exceeds max_scale are removed before the refit, and the stored counts of
 left-out cells (per fit and per stripe) are checked against them.
 
-usage: check_fragility_cube.py FILE.h5 SWEEP [MIN_FITTED]
+With --worst-incidence the group checked is fragility_worst_incidence/ of a sweep with an
+incidence_deg axis, against cells reduced here with numpy: a record at a stripe exceeds when it
+exceeds at some angle (np.max of ls_<name> over the axis), its demand is the largest over the
+angles, and it is used only when the cells of every angle are done with status ok.
+
+usage: check_fragility_cube.py FILE.h5 SWEEP [MIN_FITTED] [--worst-incidence]
 MIN_FITTED: fail unless at least this many (limit state, combination) pairs have a fit.
 """
 import itertools
@@ -31,11 +36,13 @@ def close(a, b, rtol, what):
 
 
 def main():
-    path, sweep = sys.argv[1], sys.argv[2]
-    min_fitted = int(sys.argv[3]) if len(sys.argv) > 3 else 1
+    args = [a for a in sys.argv[1:] if a != "--worst-incidence"]
+    worst = len(args) < len(sys.argv) - 1
+    path, sweep = args[0], args[1]
+    min_fitted = int(args[2]) if len(args) > 2 else 1
     g = h5py.File(path, "r")["sweeps/" + sweep]
     axes = [a.decode() if isinstance(a, bytes) else a for a in g.attrs["axis_order"]]
-    f = g["fragility"]
+    f = g["fragility_worst_incidence" if worst else "fragility"]
     combo_axes = list(f.attrs["axis_order"])
     stripe_axis = f.attrs["stripe_axis"]
     ok = (g["done"][()] == 1) & (g["status"][()] == 0)
@@ -51,11 +58,24 @@ def main():
             [-1 if a == "im_g" else 1 for a in axes]), ok.shape)
     else:
         im = g["responses/a_g"][()] / G
+    columns = {}
+    for name in f.attrs["limit_states"]:
+        columns[name] = (g["responses/ls_" + name][()], g["responses/ls_" + name + "_demand"][()])
+    if worst:
+        # The worst angle, reduced here: every angle's cell used, the largest exceedance and
+        # demand over the axis, the first angle's IM and flags.
+        k = axes.index("incidence_deg")
+        for name, (z, d) in columns.items():
+            z = np.where(ok, z, np.nan)
+            columns[name] = (np.max(z, axis=k), np.max(np.where(ok, d, np.nan), axis=k))
+        im, far = np.take(im, 0, axis=k), np.any(far, axis=k)
+        ok = np.all(ok, axis=k)
+        in_fit = ok & ~far
+        axes.pop(k)
     fitted = 0
     for name in f.attrs["limit_states"]:
         h = f[name]
-        z_all = g["responses/ls_" + name][()]
-        d_all = g["responses/ls_" + name + "_demand"][()]
+        z_all, d_all = columns[name]
         kind = h.attrs["kind"]
         cap = 1.0 if kind == "unseating" else float(h.attrs["threshold"])
         reasons = [r.decode() for r in h["reason"][()]]
@@ -130,7 +150,7 @@ def main():
                     close(float(h["cloud_theta"][at]), math.exp(-a / b), 1e-9, "cloud theta")
                     close(float(h["cloud_beta"][at]), s / b, 1e-9, "cloud beta")
     assert fitted >= min_fitted, "only %d fits, expected at least %d" % (fitted, min_fitted)
-    print("fragility of %s: %d fits agree with scipy and numpy" % (sweep, fitted))
+    print("%s of %s: %d fits agree with scipy and numpy" % (f.name.split("/")[-1], sweep, fitted))
 
 
 if __name__ == "__main__":

@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# Responses and fragility over the incidence angle, through `skewbridge sweep` into a real HDF5
+# file: the pilot bridge's model file under the two record pairs of tests/data/records/pairs,
+# scaled to stripes of RotD50 Sa(T1) at four incidence angles, on 2 ranks.
+#  - check_incidence_cube.py: over_incidence/ (max, median, angle of the max of every response)
+#    against numpy on the cells, read by h5py and by xarray; per stripe the worst angle's
+#    fraction of exceedance >= every angle's;
+#  - check_fragility_cube.py: the fits per angle (fragility/) and at the worst angle
+#    (fragility_worst_incidence/, its cells reduced with numpy) against scipy.optimize;
+#  - scripts/report draws the responses against the angle and both fragilities.
+# usage: incidence_test.sh SKEWBRIDGE MPIEXEC SOURCE_DIR WORK_DIR
+source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
+args exe mpiexec src work -- "$@"
+fresh_dir "$work"
+cp "$src/docs/examples/pilot-bridge.toml" "$src/docs/examples/pilot-signal.txt" .
+
+cat > angles.toml <<TOML
+[sweep]
+name = "angles"
+family = "model-file"
+model = "pilot-bridge.toml"
+[records]
+set = "$test_data/records/pairs/pairs.toml"
+scale_to = { measure = "RotD50", period = "T1", xi = 0.05 }
+[axes]
+record = ["RSN107", "RSN430_SMART1.25_25M01"]
+im_g = {logspace = [0.5, 5.0, 8]}
+incidence_deg = [0, 45, 90, 135]
+[fixed]
+seat_over_L = 0.0005
+[limit_states]
+unseating = true
+rotation = {above_rad = 0.0005}
+TOML
+on_ranks 2 "$exe" sweep angles.toml --out angles.h5 --quiet || fail "the sweep failed"
+/usr/bin/python3 "$src/tests/fragility/check_incidence_cube.py" angles.h5 angles \
+  || fail "over_incidence/ or the worst-angle counts differ from numpy"
+/usr/bin/python3 "$src/tests/fragility/check_fragility_cube.py" angles.h5 angles 1 \
+  || fail "the per-angle fits differ from scipy's"
+/usr/bin/python3 "$src/tests/fragility/check_fragility_cube.py" angles.h5 angles 1 --worst-incidence \
+  || fail "the worst-angle fits differ from scipy's"
+echo "incidence_test: ok"
