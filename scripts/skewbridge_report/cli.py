@@ -8,7 +8,8 @@ import sys
 
 import numpy as np
 
-from . import common, figures, fragility, generic, ida, planning, response_spectra, risk
+from . import (common, figures, fragility, generic, ida, incidence, planning, response_spectra,
+               risk)
 from . import plan as plan_view
 from .data import ReportError, as_text, load_cube, load_run
 
@@ -243,6 +244,28 @@ def fragility_sections(sweep, args, used, written):
     return md
 
 
+def incidence_sections(sweep, args, used, written):
+    """The demand against the incidence angle and the fragility per angle and at the worst
+    angle of a sweep with an incidence_deg axis (over_incidence/, fragility_worst_incidence/)."""
+    if not incidence.has_incidence(sweep) or not incidence._demand_names(sweep):
+        return []
+    name = _unique(f"incidence_{sweep.name}", used)
+    path, rows = incidence.response_figure(sweep, args.out, name, args.pdf)
+    written.append(path)
+    md = [f"## {sweep.name}: demand against the incidence angle", "",
+          f"![{name}]({os.path.basename(path)})", "",
+          _table(["combination", "limit state", "stripe", "angle of the largest median [°]",
+                  "largest median D/C", "median of the records' worst D/C"], rows), ""]
+    if "fragility_worst_incidence" not in sweep.extra:
+        return md
+    name = _unique(f"fragility_incidence_{sweep.name}", used)
+    path, rows = incidence.fragility_figure(sweep, args.out, name, args.pdf)
+    written.append(path)
+    return md + [f"## {sweep.name}: fragility per incidence angle and at the worst angle", "",
+                 f"![{name}]({os.path.basename(path)})", "",
+                 _table(incidence.table_header(sweep), rows), ""]
+
+
 def risk_sections(sweep, args, used, written):
     """The annual rates of a sweep with risk/ (skewbridge risk): per limit state with a rate
     the hazard, fragility and integrand on shared IM axes, then the table of rates."""
@@ -333,6 +356,7 @@ def run(args):
         if planning.draws_generic(sweep, todo, args.generic):
             md += generic_sections(sweep, args, used, written, skipped_all)
         md += fragility_sections(sweep, args, used, written)
+        md += incidence_sections(sweep, args, used, written)
         md += risk_sections(sweep, args, used, written)
     for r in runs:
         name = "history_" + _safe(os.path.splitext(os.path.basename(r.path))[0])

@@ -103,7 +103,8 @@ def load_cube(path, allow_partial=False):
                     v = g["fixed"].attrs[k]
                     fixed[k] = as_text(v) if isinstance(v, (str, bytes)) else float(v)
             extra = {key: _read_group_tree(g[key])
-                     for key in ("records", "correlation", "fragility", "risk") if key in g}
+                     for key in ("records", "correlation", "fragility", "risk", "over_incidence",
+                                 "fragility_worst_incidence") if key in g}
             for key in g["responses"]:
                 if key not in responses:
                     responses[key] = np.asarray(g["responses"][key][()], dtype=float)

@@ -7,7 +7,8 @@
 #    fraction of exceedance >= every angle's;
 #  - check_fragility_cube.py: the fits per angle (fragility/) and at the worst angle
 #    (fragility_worst_incidence/, its cells reduced with numpy) against scipy.optimize;
-#  - scripts/report draws the responses against the angle and both fragilities.
+#  - scripts/report draws the demand against the angle and both fragilities, and its table of
+#    the worst-angle fits holds the stored ones.
 # usage: incidence_test.sh SKEWBRIDGE MPIEXEC SOURCE_DIR WORK_DIR
 source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
 args exe mpiexec src work -- "$@"
@@ -39,4 +40,24 @@ on_ranks 2 "$exe" sweep angles.toml --out angles.h5 --quiet || fail "the sweep f
   || fail "the per-angle fits differ from scipy's"
 /usr/bin/python3 "$src/tests/fragility/check_fragility_cube.py" angles.h5 angles 1 --worst-incidence \
   || fail "the worst-angle fits differ from scipy's"
+# The report draws the demand against the angle and both fragilities, and tabulates the
+# worst-angle fits as the cube stores them.
+/usr/bin/python3 "$src/scripts/report" angles.h5 --out report > report.txt \
+  || fail "scripts/report angles.h5 failed"
+[ -s report/incidence_angles.png ] && [ -s report/fragility_incidence_angles.png ] \
+  || fail "no figure of the demand against the angle or of the fragility per angle"
+/usr/bin/python3 - angles.h5 report/summary.md <<'PY' || fail "the report's worst-angle table differs from the cube"
+import sys, h5py
+w = h5py.File(sys.argv[1], "r")["sweeps/angles/fragility_worst_incidence"]
+text = open(sys.argv[2], encoding="utf-8").read()
+assert "## angles: fragility per incidence angle and at the worst angle" in text
+for name in ("unseating", "rotation"):
+    rows = [l for l in text.splitlines() if l.startswith(f"| {name} | all cells | ")]
+    assert len(rows) == 1, rows
+    cells = [c.strip() for c in rows[0].strip("|").split("|")]
+    assert int(cells[2]) == w[name]["n_cells"][0] and int(cells[3]) == w[name]["n_exceeded"][0]
+    theta = float(w[name]["theta"][0])
+    assert abs(float(cells[4]) - theta) <= 5e-3 * theta, (cells, theta)
+print("report: the worst-angle table holds the stored fits")
+PY
 echo "incidence_test: ok"
