@@ -4,7 +4,8 @@
 // compliant_strike.h) and reported as exit over approach speed, contact duration, permanent set,
 // largest deformation and force, and the energy the backfill absorbed (docs/compliant.md §3). The
 // law is given by its OpenSees constants, by Shamsabadi's K50 form, or by the Caltrans SDC 2.0
-// rules of the backwall.
+// rules of the backwall; a linear spring-dashpot that pulls on nothing (the Kelvin-Voigt pounding
+// element) is the fourth form, for comparison.
 #include <fmt/core.h>
 
 #include <charconv>
@@ -39,6 +40,8 @@ struct RestitutionArgs {
   double width_m = 0.0;
   double skew_deg = 0.0;
   bool no_skew_reduction = false;
+  double spring_Npm = 0.0;     ///< linear spring-dashpot form: stiffness k (N/m)
+  double damping_ratio = 0.0;  ///< its dashpot as zeta = c / (2 sqrt(k m)), in [0, 1)
   std::vector<double> velocities_mps;
   std::string range;  ///< --velocities-mps A:B:N
   bool csv = false;
@@ -79,13 +82,15 @@ std::vector<double> ParseRange(const std::string& token) {
 
 // The law from exactly one of the three forms; its description for the header.
 joint::HyperbolicGap LawOf(const RestitutionArgs& a, std::string& description) {
-  const int forms = (a.k_max_Npm > 0.0) + (a.k50_Npm > 0.0) + (a.caltrans ? 1 : 0);
+  const int forms =
+      (a.k_max_Npm > 0.0) + (a.k50_Npm > 0.0) + (a.caltrans ? 1 : 0) + (a.spring_Npm > 0.0);
   if (forms != 1) {
     throw InputError::AtField(
         kCommand, "law",
         "give exactly one of --k-max-Npm (OpenSees constants with --r-f "
         "and --f-ult-N), --k50-Npm (Shamsabadi, with --f-ult-N and "
-        "--height-m or --y-max-m), --caltrans (with --width-m and --height-m)");
+        "--height-m or --y-max-m), --caltrans (with --width-m and --height-m), "
+        "--spring-Npm (linear spring-dashpot, with --damping-ratio)");
   }
   auto y_max = [&]() {
     if (a.y_max_m > 0.0) return a.y_max_m;
@@ -99,6 +104,15 @@ joint::HyperbolicGap LawOf(const RestitutionArgs& a, std::string& description) {
     law.k_ur_N_per_m = a.k_ur_Npm > 0.0 ? a.k_ur_Npm : a.k_max_Npm;
     law.r_f = a.r_f;
     law.f_ult_N = a.f_ult_N;
+    // The options by their own names; the law's check below names its constants.
+    if (!(a.r_f > 0.0 && a.r_f <= 1.0)) {
+      throw InputError::AtField(kCommand, "--r-f",
+                                fmt::format("needed, in (0, 1] (got {})", a.r_f));
+    }
+    if (!(a.f_ult_N > 0.0)) {
+      throw InputError::AtField(kCommand, "--f-ult-N",
+                                fmt::format("needed, > 0 N (got {})", a.f_ult_N));
+    }
     joint::ValidateHyperbolicGap(law, kCommand);
     description = "OpenSees HyperbolicGap constants";
   } else if (a.k50_Npm > 0.0) {
@@ -133,8 +147,27 @@ void Run(const RestitutionArgs& a) {
   if (!(std::isfinite(a.mass_kg) && a.mass_kg > 0.0)) {
     throw InputError::AtField(kCommand, "--mass-kg", "needed: the striking mass (> 0, kg)");
   }
+  const bool linear = a.spring_Npm > 0.0 && a.k_max_Npm <= 0.0 && a.k50_Npm <= 0.0 && !a.caltrans;
+  if (linear &&
+      !(std::isfinite(a.damping_ratio) && a.damping_ratio >= 0.0 && a.damping_ratio < 1.0)) {
+    throw InputError::AtField(kCommand, "--damping-ratio",
+                              fmt::format("must be in [0, 1) (got {})", a.damping_ratio));
+  }
   std::string description;
-  const joint::HyperbolicGap law = LawOf(a, description);
+  joint::HyperbolicGap law;
+  double dashpot_Nspm = 0.0;
+  if (linear) {
+    dashpot_Nspm = 2.0 * a.damping_ratio * std::sqrt(a.spring_Npm * a.mass_kg);
+    description = fmt::format(
+        "linear spring-dashpot that pulls on nothing, k = {:.6g} N/m, c = {:.6g} N s/m "
+        "(zeta = {:.6g})",
+        a.spring_Npm, dashpot_Nspm, a.damping_ratio);
+  } else {
+    law = LawOf(a, description);
+    if (a.damping_ratio != 0.0) {
+      throw InputError::AtField(kCommand, "--damping-ratio", "only with --spring-Npm");
+    }
+  }
   std::vector<double> speeds = a.velocities_mps;
   if (!a.range.empty()) {
     const std::vector<double> more = ParseRange(a.range);
@@ -153,9 +186,15 @@ void Run(const RestitutionArgs& a) {
   // Strike every speed before printing anything: a failure leaves no half table.
   std::vector<dynamics::StrikeResult> results;
   for (const double v : speeds) {
-    results.push_back(dynamics::StrikeBackfill(law, joint::BackfillState{}, a.mass_kg, v));
+    results.push_back(linear
+                          ? dynamics::StrikeSpringDashpot(a.spring_Npm, dashpot_Nspm, a.mass_kg, v)
+                          : dynamics::StrikeBackfill(law, joint::BackfillState{}, a.mass_kg, v));
   }
-  if (!a.csv) {
+  if (!a.csv && linear) {
+    std::printf("joint: %s\n", description.c_str());
+    std::printf("  mass %.6g kg (T = 2 pi sqrt(m / k) = %.6g s)\n", a.mass_kg,
+                2.0 * std::numbers::pi * std::sqrt(a.mass_kg / a.spring_Npm));
+  } else if (!a.csv) {
     std::printf("backfill: %s\n", description.c_str());
     std::printf(
         "  K_max = %.6g N/m, K_ur = %.6g N/m, R_f = %.6g, F_ult = %.6g N; mass %.6g kg "
@@ -212,6 +251,10 @@ void AddRestitutionCommand(CLI::App& app) {
   cmd->add_option("--skew-deg", a->skew_deg,
                   "Skew angle (deg): R_sk = exp(-theta / 45 deg), for --caltrans");
   cmd->add_flag("--no-skew-reduction", a->no_skew_reduction, "R_sk = 1 with --caltrans");
+  cmd->add_option("--spring-Npm", a->spring_Npm,
+                  "Linear spring-dashpot form: spring stiffness k (N/m); it pulls on nothing");
+  cmd->add_option("--damping-ratio", a->damping_ratio,
+                  "Its dashpot c = 2 zeta sqrt(k m) as zeta in [0, 1) (0)");
   cmd->add_flag("--csv", a->csv, "Print CSV rows (with a header) instead of the table");
   cmd->callback([a] { Run(*a); });
 }

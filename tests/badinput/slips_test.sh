@@ -54,7 +54,7 @@ expect "sweep: unknown option --resmue; allowed: --help, -h, --out, -o, --resume
   sweep "$spec" --out out.h5 --resmue
 expect "restitution: --velocity-mps: speeds must be > 0 m/s (got -1)" \
   restitution --mass-kg 1e3 --k-max-Npm 1e8 --r-f 0.7 --f-ult-N 1e6 --velocity-mps -1
-expect "restitution: law: give exactly one of --k-max-Npm (OpenSees constants with --r-f and --f-ult-N), --k50-Npm (Shamsabadi, with --f-ult-N and --height-m or --y-max-m), --caltrans (with --width-m and --height-m)" \
+expect "restitution: law: give exactly one of --k-max-Npm (OpenSees constants with --r-f and --f-ult-N), --k50-Npm (Shamsabadi, with --f-ult-N and --height-m or --y-max-m), --caltrans (with --width-m and --height-m), --spring-Npm (linear spring-dashpot, with --damping-ratio)" \
   restitution --mass-kg 1e3 --velocity-mps 1
 expect "inspect: file is required (Cube FILE.h5 (or FILE.h5.partial))" inspect
 expect "records: a sub-command is required; allowed: info, spectrum, synth" records
