@@ -174,7 +174,9 @@ CheckpointFile CheckpointFile::Create(const std::filesystem::path& path, const S
   impl->created_utc = UtcNow();
   {
     const Datasets image = CreateLayout(path.string(), spec, layout, false, 1, impl->created_utc);
-    SaveFileImage(image.file.get(), path.string());
+    // No fsync: the new file holds no cell yet, and the first checkpoint's FlushToDisk syncs
+    // the whole file (its layout with its cells) before any cell counts as saved.
+    SaveFileImage(image.file.get(), path.string(), Durability::kWritten);
   }
   impl->d = OpenLayout(path.string(), spec.name, true, nullptr);
   return CheckpointFile(std::move(impl));

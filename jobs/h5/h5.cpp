@@ -643,7 +643,7 @@ void RepairSuperblockChecksum(std::vector<char>& image) {
 
 }  // namespace
 
-void SaveFileImage(hid_t file, const std::string& path) {
+void SaveFileImage(hid_t file, const std::string& path, Durability durability) {
   Check(H5Fflush(file, H5F_SCOPE_LOCAL), "H5Fflush (memory) " + path);
   const ssize_t size = H5Fget_file_image(file, nullptr, 0);
   Check(size < 0 ? -1 : 0, "H5Fget_file_image " + path);
@@ -673,7 +673,7 @@ void SaveFileImage(hid_t file, const std::string& path) {
     }
     at += static_cast<std::size_t>(n);
   }
-  if (::fsync(fd) != 0) {
+  if (durability == Durability::kOnDisk && ::fsync(fd) != 0) {
     fail("fsync", fd);
   }
   if (::close(fd) != 0) {

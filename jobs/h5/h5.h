@@ -144,12 +144,19 @@ void SetScale(hid_t scale, const std::string& name);
 /// @throws H5Error naming the failure.
 void ReadAllMetadata(hid_t file);
 
+/// Whether SaveFileImage waits for the bytes to reach the disk (fsync) before it returns.
+enum class Durability {
+  kOnDisk,   ///< fsync: the file survives a crash of the machine
+  kWritten,  ///< handed to the system only: a later fsync of the file makes it durable
+};
+
 /// Writes the bytes of a file built in memory (CreateMemoryFile) to `path` with plain writes,
-/// then fsync. A failure (a full disk) removes what was written and throws H5Error naming the
-/// system call and the system's reason (the caller adds the path); HDF5 itself never meets the
-/// failing write, since a failed flush leaves its metadata cache unable to close the file (and its
-/// shutdown then crashes).
-void SaveFileImage(hid_t file, const std::string& path);
+/// then fsync unless `durability` is kWritten. A failure (a full disk) removes what was written
+/// and throws H5Error naming the system call and the system's reason (the caller adds the path);
+/// HDF5 itself never meets the failing write, since a failed flush leaves its metadata cache
+/// unable to close the file (and its shutdown then crashes).
+void SaveFileImage(hid_t file, const std::string& path,
+                   Durability durability = Durability::kOnDisk);
 
 /// H5Fflush, then fsync of the file descriptor, so the bytes survive a crash of the process
 /// and of the machine.
