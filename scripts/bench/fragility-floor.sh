@@ -6,12 +6,14 @@
 # jobs/specs/real/pilot-fragility.toml (unseating, rotation above 0.5 mrad, joint closing).
 #
 #   bash scripts/bench/fragility-floor.sh [BUILD_DIR] [--repeat N] [--baseline COMMIT]
-#                                         [--no-baseline] [--keep DIR] [--clean]
+#                                         [--baseline-exe PROGRAM] [--no-baseline] [--keep DIR]
+#                                         [--clean]
 #
 # BUILD_DIR (default build/release) holds this tree's skewbridge. The baseline (default
 # 350c79e) is built in a git worktree under /tmp (release preset, ccache, the skewbridge target
 # only; the same path every time, so that ccache finds its objects and a second run builds
-# nothing); --clean removes that worktree at the end. The two programs alternate, so that both
+# nothing); --clean removes that worktree at the end. --baseline-exe takes a skewbridge already
+# built at the baseline instead (its `version` must name the baseline commit). The two programs alternate, so that both
 # see the same load; each runs the study N times (default 3) and the best is printed: the cells' time (the sweep's own
 # "computed ... in S s", from the first claimed cell to the last cell gathered) and the wall
 # time of the whole mpiexec command (start, input checksums, cells, fits and bootstraps, final
@@ -23,16 +25,18 @@ here=$(cd "$(dirname "$0")/../.." && pwd)
 build=build/release
 repeat=3
 baseline=350c79e
+base_exe=""
 keep=""
 clean=0
 while [ $# -gt 0 ]; do
   case "$1" in
     --repeat) repeat=$2; shift 2 ;;
     --baseline) baseline=$2; shift 2 ;;
+    --baseline-exe) base_exe=$(cd "$(dirname "$2")" && pwd)/$(basename "$2"); shift 2 ;;
     --no-baseline) baseline=""; shift ;;
     --keep) keep=$2; shift 2 ;;
     --clean) clean=1; shift ;;
-    -h|--help) sed -n '2,22p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,24p' "$0"; exit 0 ;;
     *) build=$1; shift ;;
   esac
 done
@@ -48,7 +52,11 @@ cleanup() {
 trap cleanup EXIT
 load() { cut -d' ' -f1-3 /proc/loadavg; }
 
-if [ -n "$baseline" ]; then
+if [ -n "$baseline" ] && [ -n "$base_exe" ]; then
+  sha=$(git -C "$here" rev-parse --short=7 "$baseline^{commit}")
+  "$base_exe" version | grep -q "($sha" ||
+    { echo "$base_exe is not built at $sha: $("$base_exe" version | head -1)" >&2; exit 1; }
+elif [ -n "$baseline" ]; then
   sha=$(git -C "$here" rev-parse --short=7 "$baseline^{commit}")
   base_tree=/tmp/skewbridge-fragility-floor-$sha
   if [ "$(git -C "$base_tree" rev-parse --short=7 HEAD 2> /dev/null)" != "$sha" ]; then
