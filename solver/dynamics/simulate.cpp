@@ -29,47 +29,6 @@
 
 namespace skewbridge::dynamics {
 
-const char* ToString(RunStatus status) {
-  switch (status) {
-    case RunStatus::kOk:
-      return "ok";
-    case RunStatus::kPainleve:
-      return "painleve";
-    case RunStatus::kLcpFailure:
-      return "lcp-failure";
-    case RunStatus::kStepLimit:
-      return "step-limit";
-    case RunStatus::kNonFinite:
-      return "non-finite";
-    case RunStatus::kEventCascade:
-      return "event-cascade";
-  }
-  return "unknown";
-}
-
-std::string NonFiniteMessage(double t_before_s, double t_s) {
-  return fmt::format(
-      "the state (q, u) stopped being finite (or its square overflowed) between t = {:g} s and "
-      "t = {:g} s (a load or a stiffness beyond any bridge)",
-      t_before_s, t_s);
-}
-
-const char* ToString(EventKind kind) {
-  switch (kind) {
-    case EventKind::kImpact:
-      return "impact";
-    case EventKind::kPlasticClosure:
-      return "plastic-closure";
-    case EventKind::kDetachment:
-      return "detachment";
-    case EventKind::kStick:
-      return "stick";
-    case EventKind::kSlip:
-      return "slip";
-  }
-  return "unknown";
-}
-
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -243,32 +202,6 @@ class Integrator final : private ConstrainedForces {
   // it was, so a run takes the same decisions whether it records histories or not.
   std::unique_ptr<ActiveForcesStorage> sample_forces_;
 };
-
-SimulationWorkspace::SimulationWorkspace(const model::Model& model)
-    : model_(model),
-      flow_(model.M(), model.K(), model.C(), model.r(), FlowPath::kAuto, model.modes()),
-      free_dense_(flow_.augmented_size()),
-      rk_(2 * model.n_dof() + 3),
-      forces_(model, EventPolicy{}.rank_threshold),
-      decision_(model, EventPolicy{}.rank_threshold) {
-  if (flow_.modal()) {
-    gap_bound_ = ModalGapBound(model, flow_.modal_flow());
-    // The modal flow's w_k^2 are the eigenvalues below, clamped at 0: one solve, same bits.
-    const Eigen::VectorXd& w2 = flow_.modal_flow().w2();
-    omega_max_radps_ = std::sqrt(w2.maxCoeff());
-    omega_min_radps_ = std::sqrt(w2.minCoeff());
-  } else {
-    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(model.K(), model.M(),
-                                                                        Eigen::EigenvaluesOnly);
-    const Eigen::VectorXd w2 = eig.eigenvalues();
-    omega_max_radps_ = std::sqrt(std::max(w2.maxCoeff(), 0.0));
-    omega_min_radps_ = std::sqrt(std::max(w2.minCoeff(), 0.0));
-  }
-  for (const model::Body& body : model.bodies()) {
-    length_scale_m_ = std::max({length_scale_m_, body.geometry.length_m, body.geometry.width_m,
-                                body.rest_position_m.norm() + body.geometry.length_m});
-  }
-}
 
 Integrator::Integrator(const model::Model& model, const Excitation& excitation,
                        const model::RunControl& control, SimulationWorkspace& ws,
