@@ -19,6 +19,7 @@
 #include "solver/dynamics/contact_modes.h"
 #include "solver/dynamics/corner_travel.h"
 #include "solver/dynamics/event_location.h"
+#include "solver/dynamics/gauss_legendre.h"
 #include "solver/dynamics/indeterminate_split.h"
 #include "solver/dynamics/mode_decision.h"
 #include "solver/dynamics/projection.h"
@@ -32,13 +33,6 @@ namespace skewbridge::dynamics {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-// Gauss-Legendre nodes and weights on [0, 1] (8 points: exact to degree 15).
-constexpr double kGaussNode[8] = {0.019855071751231856, 0.10166676129318664, 0.2372337950418355,
-                                  0.4082826787521751,   0.5917173212478249,  0.7627662049581645,
-                                  0.8983332387068134,   0.9801449282487681};
-constexpr double kGaussWeight[8] = {0.05061426814518813, 0.11119051722668724, 0.15685332293894363,
-                                    0.18134189168918100, 0.18134189168918100, 0.15685332293894363,
-                                    0.11119051722668724, 0.05061426814518813};
 
 }  // namespace
 
