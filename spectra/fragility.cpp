@@ -120,6 +120,19 @@ LognormalFit FitLognormalMle(std::span<const double> im, std::span<const double>
     min_x = std::min(min_x, im[i]);
     max_x = std::max(max_x, im[i]);
   }
+  // Observations at one IM are one binomial point, their trials and exceedances summed: the
+  // likelihood is the same function, and a stripe of R records costs one term in place of R.
+  std::sort(pts.begin(), pts.end(), [](const Point& a, const Point& b) { return a.ln_x < b.ln_x; });
+  std::size_t distinct = 0;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    if (distinct > 0 && pts[distinct - 1].ln_x == pts[i].ln_x) {
+      pts[distinct - 1].n += pts[i].n;
+      pts[distinct - 1].z += pts[i].z;
+    } else {
+      pts[distinct++] = pts[i];
+    }
+  }
+  pts.resize(distinct);
   const auto n_all = static_cast<std::int64_t>(n_total);
   const auto z_all = static_cast<std::int64_t>(z_total);
   if (pts.empty()) return Refused("no cell with a positive, finite IM", 0, 0);

@@ -36,7 +36,9 @@ struct LognormalFit {
 /// [Baker 2015, eq. 11] by Newton's method with step halving on the concave probit form
 /// u_j = a + b ln x_j (b = 1 / beta, a = -ln theta / beta); the covariance is the inverse of the
 /// observed information, carried to (ln theta, beta) by the delta method. A stripe may be one
-/// cell (n_j = 1), so records of different intensity (cloud data) fit too.
+/// cell (n_j = 1), so records of different intensity (cloud data) fit too. Observations of
+/// equal im are pooled into one (their n_j and z_j summed), which leaves l unchanged: a stripe
+/// of R cells costs one term of the sums, not R.
 /// Observations with a non-finite or non-positive im, or n_j = 0, are skipped.
 /// Refused with a reason, never a number: no trials; fewer than two distinct im; no exceedance;
 /// exceedance in every trial; stripes that separate (every exceedance at an im at least as
