@@ -57,7 +57,8 @@ std::ptrdiff_t IncidenceAxis(const SweepSpec& spec) {
 spectra::FragilityTable FitWorstIncidence(const SweepSpec& spec, std::size_t k,
                                           const std::string& stripe_axis,
                                           const spectra::FragilityCells& cells,
-                                          const std::string& no_cloud) {
+                                          const std::string& no_cloud,
+                                          const spectra::BootstrapShare& share) {
   const spectra::AxisSplit split = spectra::SplitAlong(spec, k);
   const spectra::AxisStatistics z = spectra::ReduceOverAxis(spec, k, cells.exceeded, cells.usable);
   std::vector<double> dc;
@@ -73,8 +74,9 @@ spectra::FragilityTable FitWorstIncidence(const SweepSpec& spec, std::size_t k,
       excluded[r] = excluded[r] != 0 || cells.excluded[split.Cell(r, i)] != 0 ? 1 : 0;
     }
   }
-  return spectra::FitFragilityOverCells(spectra::GridWithout(spec, k), stripe_axis,
-                                        {im, z.max, dc, z.complete, excluded}, no_cloud);
+  return spectra::FitFragilityOverCells(
+      spectra::GridWithout(spec, k), stripe_axis, {im, z.max, dc, z.complete, excluded}, no_cloud,
+      spectra::kBootstrapResamples, spectra::kBootstrapSeed, share);
 }
 
 // The per-cell values that describe the excitation, the model or the scaling rather than the
@@ -113,9 +115,11 @@ std::optional<OverIncidence> MakeOverIncidence(const SweepSpec& spec, const Cube
   return out;
 }
 
+// The fits per combination of every limit state, then, with an incidence_deg axis, every limit
+// state's fit at the worst angle (worst_incidence set). The bootstraps are numbered in that
+// order over all the fits, combination by combination, and drawn by the ranks in turn.
 std::vector<FragilityStudy> MakeFragility(const SweepSpec& spec, const CubeLayout& layout,
-                                          const CubeData& data, int rank, int ranks,
-                                          std::vector<FragilityStudy>* worst_incidence = nullptr) {
+                                          const CubeData& data, int rank, int ranks) {
   std::vector<FragilityStudy> out;
   if (spec.limit_states.empty()) return out;
   // The IM of every cell: a stripe axis (im_g, or im_mps for PGV), else the cell's stored
@@ -177,47 +181,45 @@ std::vector<FragilityStudy> MakeFragility(const SweepSpec& spec, const CubeLayou
       excluded[cell] = data.responses[*far][cell] == 1.0 ? 1 : 0;
     }
   }
-  std::size_t jobs = 0;  // the bootstraps of the limit states before this one
-  for (const spectra::LimitState& ls : spec.limit_states) {
-    const auto [demand_name, exceeded_name] = spectra::LimitStateResponseNames(ls);
-    const std::optional<std::size_t> demand = ResponseColumn(layout, demand_name);
-    const std::optional<std::size_t> exceeded = ResponseColumn(layout, exceeded_name);
-    if (!demand || !exceeded) continue;
-    FragilityStudy f;
-    f.ls = ls;
-    f.demand_unit = layout.responses[*demand].unit;
-    f.im = im_name;
-    f.im_units = im_units;
-    f.im_description = im_description;
-    // A demand in rad below the round-off floor is zero (spectra::kRotationRoundOffFloor_rad):
-    // no point of the cloud, and not above a threshold of 0.
-    const double floor = spectra::RoundOffFloor(f.demand_unit);
-    std::vector<double> demand_read = data.responses[*demand];
-    std::vector<double> exceeded_read = data.responses[*exceeded];
-    for (std::uint64_t c = 0; c < data.Cells(); ++c) {
-      if (std::abs(demand_read[c]) < floor) {
-        demand_read[c] = 0.0;
-        if (std::isfinite(exceeded_read[c])) exceeded_read[c] = 0.0 > ls.threshold ? 1.0 : 0.0;
+  std::size_t jobs = 0;  // the bootstraps of the fits before this one
+  const std::ptrdiff_t incidence = IncidenceAxis(spec);
+  for (const bool at_worst : {false, true}) {
+    if (at_worst && incidence < 0) break;
+    for (const spectra::LimitState& ls : spec.limit_states) {
+      const auto [demand_name, exceeded_name] = spectra::LimitStateResponseNames(ls);
+      const std::optional<std::size_t> demand = ResponseColumn(layout, demand_name);
+      const std::optional<std::size_t> exceeded = ResponseColumn(layout, exceeded_name);
+      if (!demand || !exceeded) continue;
+      FragilityStudy f;
+      f.ls = ls;
+      f.worst_incidence = at_worst;
+      f.demand_unit = layout.responses[*demand].unit;
+      f.im = im_name;
+      f.im_units = im_units;
+      f.im_description = im_description;
+      // A demand in rad below the round-off floor is zero (spectra::kRotationRoundOffFloor_rad):
+      // no point of the cloud, and not above a threshold of 0.
+      const double floor = spectra::RoundOffFloor(f.demand_unit);
+      std::vector<double> demand_read = data.responses[*demand];
+      std::vector<double> exceeded_read = data.responses[*exceeded];
+      for (std::uint64_t c = 0; c < data.Cells(); ++c) {
+        if (std::abs(demand_read[c]) < floor) {
+          demand_read[c] = 0.0;
+          if (std::isfinite(exceeded_read[c])) exceeded_read[c] = 0.0 > ls.threshold ? 1.0 : 0.0;
+        }
       }
+      std::string no_cloud;
+      const std::vector<double> dc = DemandOverCapacity(ls, demand_read, &no_cloud);
+      const spectra::FragilityCells cells{im, exceeded_read, dc, usable, excluded};
+      const spectra::BootstrapShare share{rank, ranks, jobs};
+      f.table = at_worst ? FitWorstIncidence(spec, static_cast<std::size_t>(incidence), stripe_axis,
+                                             cells, no_cloud, share)
+                         : spectra::FitFragilityOverCells(spec, stripe_axis, cells, no_cloud,
+                                                          spectra::kBootstrapResamples,
+                                                          spectra::kBootstrapSeed, share);
+      jobs += f.table.theta.size();
+      out.push_back(std::move(f));
     }
-    std::string no_cloud;
-    const std::vector<double> dc = DemandOverCapacity(ls, demand_read, &no_cloud);
-    const spectra::FragilityCells cells{im, exceeded_read, dc, usable, excluded};
-    if (worst_incidence != nullptr) {
-      // The worst angle only, every bootstrap on this rank (its combinations are few).
-      if (const std::ptrdiff_t k = IncidenceAxis(spec); k >= 0) {
-        f.table =
-            FitWorstIncidence(spec, static_cast<std::size_t>(k), stripe_axis, cells, no_cloud);
-        worst_incidence->push_back(std::move(f));
-      }
-      continue;
-    }
-    spectra::BootstrapShare share{rank, ranks, jobs};
-    f.table = spectra::FitFragilityOverCells(spec, stripe_axis, cells, no_cloud,
-                                             spectra::kBootstrapResamples, spectra::kBootstrapSeed,
-                                             share);
-    jobs += f.table.theta.size();
-    out.push_back(std::move(f));
   }
   return out;
 }
@@ -467,10 +469,11 @@ StudyTables MakeStudyTables(const SweepSpec& spec, const CubeLayout& layout, con
     }
   }
 
-  tables.fragility =
+  std::vector<FragilityStudy> fits =
       fragility != nullptr ? std::move(*fragility) : MakeFragility(spec, layout, data, 0, 1);
-  if (IncidenceAxis(spec) >= 0) {
-    MakeFragility(spec, layout, data, 0, 1, &tables.fragility_worst_incidence);
+  for (FragilityStudy& f : fits) {
+    (f.worst_incidence ? tables.fragility_worst_incidence : tables.fragility)
+        .push_back(std::move(f));
   }
   tables.over_incidence = MakeOverIncidence(spec, layout, data);
   tables.ida_fragility = MakeIdaFragility(spec, layout, data);

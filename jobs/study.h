@@ -34,6 +34,9 @@ struct FragilityStudy {
   std::string im;  ///< "im_g" / "im_mps" (the stripe axis), "im" (the cell's measure) or "a_g"
   std::string im_units;        ///< "g", or "m/s" for PGV
   std::string im_description;  ///< how the IM of a cell is obtained
+  /// A fit at the worst incidence angle (fragility_worst_incidence/) rather than per
+  /// combination of the axes (fragility/).
+  bool worst_incidence = false;
   spectra::FragilityTable table;
 };
 
@@ -102,9 +105,11 @@ StudyTables MakeStudyTables(const SweepSpec& spec, const CubeLayout& layout, con
                             const std::vector<SweepRecord>* records = nullptr,
                             std::vector<FragilityStudy>* fragility = nullptr);
 
-/// The fragility of each limit state over the cube, as MakeStudyTables stores it; with `ranks`
-/// > 1 only the bootstraps of this rank's share are drawn (spectra::BootstrapShare, the jobs
-/// numbered over the limit states in order), the others wait for MergeBootstraps.
+/// The fragility of each limit state over the cube, as MakeStudyTables stores it: the fits per
+/// combination, then, with an incidence_deg axis, the fits at the worst angle (worst_incidence
+/// set); with `ranks` > 1 only the bootstraps of this rank's share are drawn
+/// (spectra::BootstrapShare, the jobs numbered over those fits in order), the others wait for
+/// MergeBootstraps.
 std::vector<FragilityStudy> MakeFragilityStudies(const SweepSpec& spec, const CubeLayout& layout,
                                                  const CubeData& data, int rank = 0, int ranks = 1);
 

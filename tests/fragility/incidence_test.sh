@@ -7,6 +7,8 @@
 #    fraction of exceedance >= every angle's;
 #  - check_fragility_cube.py: the fits per angle (fragility/) and at the worst angle
 #    (fragility_worst_incidence/, its cells reduced with numpy) against scipy.optimize;
+#  - the same sweep on 1 rank gives the same cube (same_cube.py: every dataset byte for byte,
+#    the bootstraps per angle and at the worst angle that the 2 ranks drew in shares included);
 #  - scripts/report draws the demand against the angle and both fragilities, and its table of
 #    the worst-angle fits holds the stored ones.
 # usage: incidence_test.sh SKEWBRIDGE MPIEXEC SOURCE_DIR WORK_DIR
@@ -40,6 +42,10 @@ on_ranks 2 "$exe" sweep angles.toml --out angles.h5 --quiet || fail "the sweep f
   || fail "the per-angle fits differ from scipy's"
 /usr/bin/python3 "$src/tests/fragility/check_fragility_cube.py" angles.h5 angles 1 --worst-incidence \
   || fail "the worst-angle fits differ from scipy's"
+# The two ranks draw the bootstraps of both groups in shares: the same bits as one rank alone.
+"$exe" sweep angles.toml --out angles-one.h5 --quiet || fail "the 1-rank sweep failed"
+/usr/bin/python3 "$src/scripts/bench/same_cube.py" angles-one.h5 angles.h5 \
+  || fail "angles.h5: 2 ranks and 1 rank differ"
 # The report draws the demand against the angle and both fragilities, and tabulates the
 # worst-angle fits as the cube stores them.
 /usr/bin/python3 "$src/scripts/report" angles.h5 --out report > report.txt \
