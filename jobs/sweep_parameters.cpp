@@ -28,7 +28,7 @@ constexpr std::array<ParameterInfo, 26> kParameters{{
    ParameterKind::kNumber, 0, false, kInf, false, false, ""},
   {"scale", "scale", "1", "factor on the excitation's accelerations (family model-file)",
    ParameterKind::kNumber, 0, false, 1e6, true, false, ""},
-  {"im_g", "IM", "g", "intensity the records are scaled to: Sa, AvgSa, PGA, RotD50, RotD100 or GM in g ([records] scale_to)",
+  {"im_g", "IM", "g", "intensity the records are scaled to: Sa, AvgSa, PGA, RotD50, RotD100, GM or AvgSa_RotD50 in g ([records] scale_to)",
    ParameterKind::kNumber, 0, false, kInf, false, false, ""},
   {"im_mps", "IM_v", "m/s", "intensity the records are scaled to: PGV in m/s ([records] scale_to)",
    ParameterKind::kNumber, 0, false, kInf, false, false, ""},

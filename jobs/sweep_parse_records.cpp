@@ -114,29 +114,30 @@ void SpecParser::ParseIntensityMeasure(const toml::table& records, SweepSpec& sp
   if (!m) {
     throw Error(measure ? measure->source() : node->source(), name + ".measure",
                 "must be one of \"Sa\", \"AvgSa\", \"PGA\", \"PGV\" (single records) or "
-                "\"RotD50\", \"RotD100\", \"GM\" (record pairs)");
+                "\"RotD50\", \"RotD100\", \"GM\", \"AvgSa_RotD50\" (record pairs)");
   }
   spec.im.measure = *m;
   if (!spec.im.Spectral() && *m != "PGA" && *m != "PGV") {
     throw Error(measure->source(), name + ".measure",
                 "unknown measure '" + *m +
-                    "'; allowed: Sa, AvgSa, PGA, PGV (single records), RotD50, RotD100, GM "
-                    "(record pairs)" +
-                    DidYouMean(*m, {"Sa", "AvgSa", "PGA", "PGV", "RotD50", "RotD100", "GM"}));
+                    "'; allowed: Sa, AvgSa, PGA, PGV (single records), RotD50, RotD100, GM, "
+                    "AvgSa_RotD50 (record pairs)" +
+                    DidYouMean(*m, {"Sa", "AvgSa", "PGA", "PGV", "RotD50", "RotD100", "GM",
+                                    "AvgSa_RotD50"}));
   }
   const bool spectral = spec.im.Spectral();
   const toml::node* period = table->get("period");
   const toml::node* xi = table->get("xi");
   if (!spectral) {
     if (period != nullptr || xi != nullptr) {
-      throw Error(
-          (period ? period : xi)->source(), name + (period ? ".period" : ".xi"),
-          "only for Sa, AvgSa, RotD50, RotD100 and GM (" + *m + " has no period or damping)");
+      throw Error((period ? period : xi)->source(), name + (period ? ".period" : ".xi"),
+                  "only for Sa, AvgSa, RotD50, RotD100, GM and AvgSa_RotD50 (" + *m +
+                      " has no period or damping)");
     }
     return;
   }
   if (period == nullptr) {
-    if (*m != "AvgSa") {
+    if (*m != "AvgSa" && *m != "AvgSa_RotD50") {
       throw Error(
           node->source(), name + ".period",
           "missing: " + *m + " needs a period in s or \"T1\" (the model's fundamental period)");

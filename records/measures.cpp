@@ -298,6 +298,18 @@ double AverageSpectralAcceleration(std::span<const double> acc, double dt_s,
   return std::exp(log_sum / static_cast<double>(spectrum.psa_mps2.size()));
 }
 
+double AverageRotD50(std::span<const double> h1, std::span<const double> h2, double dt_s,
+                     std::span<const double> periods_s, double xi) {
+  if (periods_s.empty()) throw InputError::AtField("AvgSa", "periods", "must not be empty");
+  const PairSpectrum spectrum = PairResponseSpectrum(h1, h2, dt_s, periods_s, xi);
+  double log_sum = 0.0;
+  for (const double sa : spectrum.rotd50_mps2) {
+    if (!(sa > 0.0)) return 0.0;
+    log_sum += std::log(sa);
+  }
+  return std::exp(log_sum / static_cast<double>(spectrum.rotd50_mps2.size()));
+}
+
 double CumulativeAbsoluteVelocity(std::span<const double> acc, double dt_s) {
   RequireRecord(acc, dt_s, "cumulative absolute velocity");
   double cav = 0.0;

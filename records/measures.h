@@ -150,6 +150,12 @@ std::vector<double> AvgSaPeriods(double t1_s, double from_t1 = kAvgSaFromT1,
 double AverageSpectralAcceleration(std::span<const double> acc_mps2, double dt_s,
                                    std::span<const double> periods_s, double xi = 0.05);
 
+/// AvgSa of a pair's RotD50: the geometric mean of RotD50(T_i) over the periods T_i (m/s^2)
+/// [Eads et al. 2015; Boore 2010]; 0 when one ordinate is 0. @throws InputError as
+/// PairResponseSpectrum, or for no period.
+double AverageRotD50(std::span<const double> h1_mps2, std::span<const double> h2_mps2, double dt_s,
+                     std::span<const double> periods_s, double xi = 0.05);
+
 /// Cumulative absolute velocity CAV = int_0^{t_end} |a(t)| dt (m/s), the plain integral of
 /// EPRI NP-5930 (1988), not the standardized CAV of EPRI TR-100082 (1991, which counts only
 /// the 1-s windows whose peak exceeds 0.025 g); exact for piecewise-linear a (a sign change

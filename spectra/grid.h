@@ -69,10 +69,11 @@ struct LimitState {
 /// of the record as the cell applies it; for record pairs RotD50, RotD100 [Boore 2010] or the
 /// geometric mean GM of the two components' Sa(T, xi).
 struct IntensityMeasureSpec {
-  /// "Sa", "AvgSa", "PGA", "PGV", or of a pair "RotD50", "RotD100", "GM"; empty: none given.
+  /// "Sa", "AvgSa", "PGA", "PGV", or of a pair "RotD50", "RotD100", "GM", "AvgSa_RotD50" (the
+  /// geometric mean of RotD50 over the periods of AvgSa); empty: none given.
   std::string measure;
   bool at_t1 = false;     ///< period = "T1": the fundamental period of each cell's model
-  double period_s = 0.0;  ///< the period (Sa) or conditioning period (AvgSa) when !at_t1 (s)
+  double period_s = 0.0;  ///< the period (Sa) or conditioning period (AvgSa*) when !at_t1 (s)
   double xi = 0.05;       ///< damping ratio of the spectrum (Sa, AvgSa)
   /// true: [records] scale_to, every record scaled so that its measure equals the cell's im_g
   /// (or im_mps) coordinate (stripes); false: [records] im, records unscaled (cloud).
@@ -85,8 +86,12 @@ struct IntensityMeasureSpec {
   bool exclude_beyond_max_scale = false;
   /// The axis (or fixed) key that carries the target: "im_g" (Sa, AvgSa, PGA) or "im_mps" (PGV).
   std::string AxisKey() const { return measure == "PGV" ? "im_mps" : "im_g"; }
-  /// Whether the measure is of a pair of horizontal components (RotD50, RotD100, GM).
-  bool OfPair() const { return measure == "RotD50" || measure == "RotD100" || measure == "GM"; }
+  /// Whether the measure is of a pair of horizontal components (RotD50, RotD100, GM,
+  /// AvgSa_RotD50).
+  bool OfPair() const {
+    return measure == "RotD50" || measure == "RotD100" || measure == "GM" ||
+           measure == "AvgSa_RotD50";
+  }
   /// Whether the measure is a spectral ordinate with a period and a damping ratio (Sa, AvgSa
   /// and the pair measures).
   bool Spectral() const { return measure == "Sa" || measure == "AvgSa" || OfPair(); }

@@ -176,7 +176,7 @@ void CheckMeasureOfRecords(const CellGrid& spec, const std::vector<SweepRecord>&
           spec.source, field,
           "record '" + r.label + "' is a pair of horizontal components and " + im.measure +
               " is a measure of one component (it would depend on which is H1); allowed for "
-              "pairs: RotD50, RotD100, GM [Boore 2010]");
+              "pairs: RotD50, RotD100, GM, AvgSa_RotD50 [Boore 2010]");
     }
   }
 }
@@ -188,6 +188,11 @@ double RecordIntensity(const SweepRecord& record, const IntensityMeasureSpec& im
   const bool stored = period == record.t1_s && im.xi == record.spectral_xi;
   if (im.OfPair()) {
     SB_DEMAND(record.IsPair(), "a pair measure of a single record (CheckMeasureOfRecords)");
+    if (im.measure == "AvgSa_RotD50") {
+      return records::AverageRotD50(record.motion.acc_mps2, record.motion_h2->acc_mps2,
+                                    record.motion.dt_s, records::AvgSaPeriods(period), im.xi) /
+             g;
+    }
     if (stored) {
       return (im.measure == "RotD50"    ? record.rotd50_t1_mps2
               : im.measure == "RotD100" ? record.rotd100_t1_mps2
@@ -234,6 +239,12 @@ std::string IntensityDescription(const IntensityMeasureSpec& im) {
     return fmt::format(
         "AvgSa({}, xi = {}): geometric mean of Sa in g over {} periods equally "
         "spaced from {} to {} times {} [Eads et al. 2015]",
+        at, im.xi, records::kAvgSaPeriodCount, records::kAvgSaFromT1, records::kAvgSaToT1, at);
+  }
+  if (im.measure == "AvgSa_RotD50") {
+    return fmt::format(
+        "AvgSa_RotD50({}, xi = {}): geometric mean of the pair's RotD50 in g over {} periods "
+        "equally spaced from {} to {} times {} [Eads et al. 2015; Boore 2010]",
         at, im.xi, records::kAvgSaPeriodCount, records::kAvgSaFromT1, records::kAvgSaToT1, at);
   }
   if (im.OfPair()) {

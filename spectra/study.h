@@ -57,11 +57,12 @@ struct SweepRecord {
 
 /// The measure `im` names of a record as given (unscaled), at period t1_s where the measure
 /// takes "T1": Sa and AvgSa (0.2-3 T1, records::kAvgSaPeriodCount periods) in g, PGA in g,
-/// PGV in m/s, and of a pair RotD50, RotD100 and GM in g (records::PairResponseSpectrum): the
-/// unit of the intensity axis (im_g, im_mps). The values SetSpectralMeasuresAtT1 stored for
+/// PGV in m/s, and of a pair RotD50, RotD100 and GM in g (records::PairResponseSpectrum) or
+/// AvgSa_RotD50 in g (records::AverageRotD50, 0.2-3 T1): the unit of the intensity axis (im_g,
+/// im_mps). The values SetSpectralMeasuresAtT1 stored for
 /// this very period and damping are taken as they are (one computation per record and period).
-/// @pre im.measure is one of Sa, AvgSa, PGA, PGV (single records) or RotD50, RotD100, GM (pairs,
-/// CheckMeasureOfRecords); t1_s > 0 when im.at_t1.
+/// @pre im.measure is one of Sa, AvgSa, PGA, PGV (single records) or RotD50, RotD100, GM,
+/// AvgSa_RotD50 (pairs, CheckMeasureOfRecords); t1_s > 0 when im.at_t1.
 double RecordIntensity(const SweepRecord& record, const IntensityMeasureSpec& im, double t1_s);
 
 /// Sets the record's spectral measures at the sweep's one fundamental period t1_s and damping xi

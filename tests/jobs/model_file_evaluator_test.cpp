@@ -595,12 +595,13 @@ TEST(Stripes, SpecErrorsNameTheKey) {
   EXPECT_THAT(SpecErrorOf(with("scale_to = {measure = \"Sa\"}\n")),
               HasSubstr("records.scale_to.period: missing: Sa needs a period"));
   EXPECT_THAT(SpecErrorOf(with("scale_to = {measure = \"PGA\", period = 1}\n")),
-              HasSubstr("records.scale_to.period: only for Sa, AvgSa, RotD50, RotD100 and GM"));
+              HasSubstr("records.scale_to.period: only for Sa, AvgSa, RotD50, RotD100, GM and "
+                        "AvgSa_RotD50"));
   EXPECT_THAT(SpecErrorOf(with("scale_to = {measure = \"RotD50\"}\n")),
               HasSubstr("records.scale_to.period: missing: RotD50 needs a period"));
   EXPECT_THAT(SpecErrorOf(with("scale_to = {measure = \"RotD5\", period = 1}\n")),
               HasSubstr("unknown measure 'RotD5'; allowed: Sa, AvgSa, PGA, PGV (single records), "
-                        "RotD50, RotD100, GM (record pairs); did you mean `RotD50`"));
+                        "RotD50, RotD100, GM, AvgSa_RotD50 (record pairs); did you mean `RotD50`"));
   EXPECT_THAT(SpecErrorOf(with("scale_to = {measure = \"Sa\", period = 1, xi = 1}\n")),
               HasSubstr("records.scale_to.xi: must be a damping ratio in [0, 1)"));
   EXPECT_THAT(SpecErrorOf(with("scale_to = {measure = \"Sa\", period = 1, T = 1}\n")),

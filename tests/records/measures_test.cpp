@@ -288,6 +288,24 @@ TEST(AvgSa, IsTheGeometricMeanOfTheSpectrumAndOfOnePeriodItsSa) {
                    PseudoAccelerationSpectrum(m.acc_mps2, m.dt_s, one)[0]);
 }
 
+// AvgSa of RotD50 of a pair (a, 0) is AvgSa(a) cos 45 deg (each RotD50 is Sa cos 45 deg); of a
+// pair (a, b) it does not depend on which component is H1; one period gives its RotD50.
+TEST(AverageRotD50, OneComponentAloneSwappedComponentsAndOnePeriod) {
+  const GroundMotion a = ReadRecord(kData / "NIS090.AT2");
+  const std::vector<double> zero(a.npts(), 0.0);
+  std::vector<double> b(a.npts());
+  for (std::size_t k = 0; k < b.size(); ++k) b[k] = a.acc_mps2[b.size() - 1 - k];  // reversed
+  const std::vector<double> periods = AvgSaPeriods(0.8);
+  const double alone = AverageRotD50(a.acc_mps2, zero, a.dt_s, periods);
+  const double avgsa = AverageSpectralAcceleration(a.acc_mps2, a.dt_s, periods);
+  EXPECT_NEAR(alone, avgsa * std::cos(std::numbers::pi / 4.0), 1e-13 * avgsa);
+  const double ab = AverageRotD50(a.acc_mps2, b, a.dt_s, periods);
+  EXPECT_NEAR(AverageRotD50(b, a.acc_mps2, a.dt_s, periods), ab, 1e-13 * ab);
+  const std::vector<double> one = {0.8};
+  EXPECT_DOUBLE_EQ(AverageRotD50(a.acc_mps2, b, a.dt_s, one),
+                   PairResponseSpectrum(a.acc_mps2, b, a.dt_s, one, 0.05).rotd50_mps2[0]);
+  EXPECT_THROW(AverageRotD50(a.acc_mps2, b, a.dt_s, {}), InputError);
+}
 TEST(CumulativeAbsoluteVelocity, TriangleWaveHasTheSumOfItsTriangles) {
   // Vertices at the samples: +A, -A, +A, ... with dt: each step crosses zero at its middle and
   // holds two triangles of area A dt / 4, so CAV = (n - 1) A dt / 2.
