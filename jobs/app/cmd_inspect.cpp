@@ -159,6 +159,180 @@ std::string MaxScaleText(const jobs::h5::SweepSummary& s) {
   return s.spec_canonical.substr(at, end == std::string::npos ? std::string::npos : end - at);
 }
 
+// Whether the sweep group holds member `name`.
+bool Has(const jobs::h5::SweepSummary& s, const std::string& name) {
+  return std::find(s.children.begin(), s.children.end(), name) != s.children.end();
+}
+
+// The responses over the incidence angle (over_incidence/: max, median and angle_of_max_deg of
+// each response over the incidence_deg axis, on the grid without it): the angles and, per limit
+// state of `names`, the cells exceeding it at some angle and at every angle, the largest demand
+// and the angle that most often gives it.
+void PrintOverIncidence(const std::string& path, const jobs::h5::SweepSummary& s,
+                        const std::vector<std::string>& names) {
+  if (!Has(s, "over_incidence")) return;
+  std::string angles, rest_label;
+  for (const jobs::h5::AxisSummary& a : s.axes) {
+    if (a.name == "incidence_deg") {
+      angles = fmt::format("{} angles, {}", a.size, AxisRange(a));
+    } else {
+      rest_label += (rest_label.empty() ? "" : ",") + a.name;
+    }
+  }
+  std::printf(
+      "  over the incidence angle (over_incidence/: max, median, angle_of_max_deg of each "
+      "response over incidence_deg, %s deg), per %s\n",
+      angles.c_str(), rest_label.empty() ? "sweep" : rest_label.c_str());
+  for (const std::string& name : names) {
+    const std::string ls = "ls_" + name;
+    const auto some = ReadIfPresent(path, s.name, "over_incidence/max/" + ls);
+    const auto median = ReadIfPresent(path, s.name, "over_incidence/median/" + ls);
+    const auto demand = ReadIfPresent(path, s.name, "over_incidence/max/" + ls + "_demand");
+    const auto at =
+        ReadIfPresent(path, s.name, "over_incidence/angle_of_max_deg/" + ls + "_demand");
+    if (!some || !median || !demand || !at) {
+      std::printf("    %-18s (not reduced)\n", name.c_str());
+      continue;
+    }
+    std::size_t with_value = 0, at_some = 0, at_half = 0;
+    for (std::size_t c = 0; c < some->size(); ++c) {
+      if (!std::isfinite((*some)[c])) continue;
+      ++with_value;
+      at_some += (*some)[c] == 1.0 ? 1 : 0;
+      at_half += (*median)[c] >= 0.5 ? 1 : 0;
+    }
+    double largest = -std::numeric_limits<double>::infinity();
+    std::map<double, std::size_t> governs;  // angle of the largest demand -> cells
+    for (std::size_t c = 0; c < demand->size(); ++c) {
+      if (std::isnan((*demand)[c]) || std::isnan((*at)[c])) continue;
+      largest = std::max(largest, (*demand)[c]);
+      // A zero demand at every angle has no governing angle.
+      if ((*demand)[c] > 0.0) ++governs[(*at)[c]];
+    }
+    std::string mode = "-";
+    std::size_t mode_count = 0, positive = 0;
+    for (const auto& [angle, count] : governs) {
+      positive += count;
+      if (count > mode_count) {
+        mode_count = count;
+        mode = fmt::format("{:g}", angle);
+      }
+    }
+    std::printf(
+        "    %-18s exceeded at some angle in %zu of %zu cells, at half the angles or more in "
+        "%zu; largest demand %s; its angle most often %s deg (%zu of %zu cells with a "
+        "demand)\n",
+        name.c_str(), at_some, with_value, at_half,
+        largest > -std::numeric_limits<double>::infinity() ? fmt::format("{:.6g}", largest).c_str()
+                                                           : "-",
+        mode.c_str(), mode_count, positive);
+  }
+}
+
+// The IDA fits of group `group` (fragility/ or fragility_worst_incidence/), one row per limit
+// state and combination of `others` (row-major, the last one fastest).
+void PrintIdaFits(const std::string& path, const jobs::h5::SweepSummary& s,
+                  const std::vector<std::string>& names, const std::string& group,
+                  const std::vector<const jobs::h5::AxisSummary*>& others) {
+  std::string row_label;
+  for (const jobs::h5::AxisSummary* a : others) {
+    row_label += (row_label.empty() ? "" : ",") + a->name;
+  }
+  std::printf("    %-18s %-22s %8s %9s %9s %12s %10s\n", "limit state",
+              row_label.empty() ? "-" : row_label.c_str(), "records", "censored", "too_far",
+              "theta", "beta");
+  for (const std::string& name : names) {
+    const std::string g = group + "/" + name + "/";
+    const auto theta = ReadIfPresent(path, s.name, g + "theta");
+    const auto beta = ReadIfPresent(path, s.name, g + "beta");
+    const auto n = ReadIfPresent(path, s.name, g + "n_records");
+    const auto censored = ReadIfPresent(path, s.name, g + "n_censored");
+    // Capacities beyond records.max_scale (absent from cubes written before it was stored).
+    const auto too_far = ReadIfPresent(path, s.name, g + "n_scaled_too_far");
+    if (!theta || !beta || !n || !censored) {
+      std::printf("    %-18s (not fitted)\n", name.c_str());
+      continue;
+    }
+    const std::vector<std::string> reasons = ReadStringsIfPresent(path, s.name, g + "reason");
+    for (std::size_t row = 0; row < theta->size(); ++row) {
+      std::string label;
+      std::size_t rest = row;
+      for (std::size_t j = others.size(); j-- > 0;) {
+        const std::size_t size = others[j]->size;
+        label = Coordinate(*others[j], rest % size) + (label.empty() ? "" : "," + label);
+        rest /= size;
+      }
+      if (label.empty()) label = "-";
+      if (!std::isfinite((*theta)[row])) {
+        std::printf("    %-18s %-22s %8.0f %9.0f %9.0f  no fit: %s\n", name.c_str(), label.c_str(),
+                    (*n)[row], (*censored)[row], too_far ? (*too_far)[row] : 0.0,
+                    NoFitReason(reasons, row).c_str());
+        continue;
+      }
+      std::printf("    %-18s %-22s %8.0f %9.0f %9.0f %12.6g %10.6g\n", name.c_str(), label.c_str(),
+                  (*n)[row], (*censored)[row], too_far ? (*too_far)[row] : 0.0, (*theta)[row],
+                  (*beta)[row]);
+    }
+  }
+}
+
+// The stripe fits of group `group` (fragility/ or fragility_worst_incidence/), one row per
+// limit state and combination of `others` (row-major, the last one fastest); `excluding`: a
+// column of the cells left out beyond records.max_scale.
+void PrintStripeFits(const std::string& path, const jobs::h5::SweepSummary& s,
+                     const std::vector<std::string>& names, const std::string& group,
+                     const std::vector<const jobs::h5::AxisSummary*>& others, bool excluding) {
+  std::string row_label;
+  for (const jobs::h5::AxisSummary* a : others) {
+    row_label += (row_label.empty() ? "" : ",") + a->name;
+  }
+  std::printf("    %-18s %-22s %8s %9s %12s %10s %12s %12s%s\n", "limit state",
+              row_label.empty() ? "-" : row_label.c_str(), "cells", "exceeded", "theta", "beta",
+              "theta_lo", "theta_hi", excluding ? "     excluded" : "");
+  for (const std::string& name : names) {
+    const std::string g = group + "/" + name + "/";
+    const std::optional<std::vector<double>> theta = ReadIfPresent(path, s.name, g + "theta");
+    const std::optional<std::vector<double>> beta = ReadIfPresent(path, s.name, g + "beta");
+    const std::optional<std::vector<double>> n = ReadIfPresent(path, s.name, g + "n_cells");
+    const std::optional<std::vector<double>> k = ReadIfPresent(path, s.name, g + "n_exceeded");
+    const std::optional<std::vector<double>> lo = ReadIfPresent(path, s.name, g + "theta_lo");
+    const std::optional<std::vector<double>> hi = ReadIfPresent(path, s.name, g + "theta_hi");
+    if (!theta || !beta || !n || !k || !lo || !hi) {
+      std::printf("    %-18s (not fitted)\n", name.c_str());
+      continue;
+    }
+    const std::vector<std::string> reasons = ReadStringsIfPresent(path, s.name, g + "reason");
+    const std::optional<std::vector<double>> excluded =
+        ReadIfPresent(path, s.name, g + "n_excluded_beyond_max_scale");
+    std::size_t combinations = 1;
+    for (const jobs::h5::AxisSummary* a : others) combinations *= a->size;
+    for (std::size_t row = 0; row < theta->size(); ++row) {
+      std::string label = "-";
+      if (!others.empty() && theta->size() == combinations) {
+        label.clear();
+        std::size_t rest = row;
+        for (std::size_t j = others.size(); j-- > 0;) {
+          const std::size_t size = others[j]->size;
+          label = Coordinate(*others[j], rest % size) + (label.empty() ? "" : "," + label);
+          rest /= size;
+        }
+      }
+      const std::string left_out =
+          excluded ? fmt::format("{:13.0f}", (*excluded)[row]) : std::string();
+      if (!std::isfinite((*theta)[row])) {
+        std::printf("    %-18s %-22s %8.0f %9.0f  no fit%s: %s\n", name.c_str(), label.c_str(),
+                    (*n)[row], (*k)[row],
+                    excluded ? fmt::format(" ({:.0f} excluded)", (*excluded)[row]).c_str() : "",
+                    NoFitReason(reasons, row).c_str());
+        continue;
+      }
+      std::printf("    %-18s %-22s %8.0f %9.0f %12.6g %10.6g %12.6g %12.6g%s\n", name.c_str(),
+                  label.c_str(), (*n)[row], (*k)[row], (*theta)[row], (*beta)[row], (*lo)[row],
+                  (*hi)[row], left_out.c_str());
+    }
+  }
+}
+
 // The limit states of an IDA sweep ([ida], docs/sweep-format.md): per limit state the records
 // whose search reached it and the range of their capacities, then, in a final cube, the
 // lognormal fit of the capacities (fragility/<name>/: theta, beta, records, censored) per
@@ -213,42 +387,22 @@ bool PrintIdaLimitStates(const std::string& path, const jobs::h5::SweepSummary& 
         "(records.beyond_max_scale = \"exclude\"); column too_far counts them\n",
         MaxScaleText(s).c_str());
   }
-  std::printf("    %-18s %-22s %8s %9s %9s %12s %10s\n", "limit state",
-              row_label.empty() ? "-" : row_label.c_str(), "records", "censored", "too_far",
-              "theta", "beta");
-  for (const std::string& name : names) {
-    const std::string g = "fragility/" + name + "/";
-    const auto theta = ReadIfPresent(path, s.name, g + "theta");
-    const auto beta = ReadIfPresent(path, s.name, g + "beta");
-    const auto n = ReadIfPresent(path, s.name, g + "n_records");
-    const auto censored = ReadIfPresent(path, s.name, g + "n_censored");
-    // Capacities beyond records.max_scale (absent from cubes written before it was stored).
-    const auto too_far = ReadIfPresent(path, s.name, g + "n_scaled_too_far");
-    if (!theta || !beta || !n || !censored) {
-      std::printf("    %-18s (not fitted)\n", name.c_str());
-      continue;
+  PrintIdaFits(path, s, names, "fragility", others);
+  if (Has(s, "fragility_worst_incidence")) {
+    std::vector<const jobs::h5::AxisSummary*> rest;
+    std::string rest_label;
+    for (const jobs::h5::AxisSummary* a : others) {
+      if (a->name == "incidence_deg") continue;
+      rest.push_back(a);
+      rest_label += (rest_label.empty() ? "" : ",") + a->name;
     }
-    const std::vector<std::string> reasons = ReadStringsIfPresent(path, s.name, g + "reason");
-    for (std::size_t row = 0; row < theta->size(); ++row) {
-      std::string label;
-      std::size_t rest = row;
-      for (std::size_t j = others.size(); j-- > 0;) {
-        const std::size_t size = others[j]->size;
-        label = Coordinate(*others[j], rest % size) + (label.empty() ? "" : "," + label);
-        rest /= size;
-      }
-      if (label.empty()) label = "-";
-      if (!std::isfinite((*theta)[row])) {
-        std::printf("    %-18s %-22s %8.0f %9.0f %9.0f  no fit: %s\n", name.c_str(), label.c_str(),
-                    (*n)[row], (*censored)[row], too_far ? (*too_far)[row] : 0.0,
-                    NoFitReason(reasons, row).c_str());
-        continue;
-      }
-      std::printf("    %-18s %-22s %8.0f %9.0f %9.0f %12.6g %10.6g\n", name.c_str(), label.c_str(),
-                  (*n)[row], (*censored)[row], too_far ? (*too_far)[row] : 0.0, (*theta)[row],
-                  (*beta)[row]);
-    }
+    std::printf(
+        "  fragility at the worst incidence angle (fragility_worst_incidence/, method ida): a "
+        "record's capacity is the lowest over the angles, per %s\n",
+        rest_label.empty() ? "sweep" : rest_label.c_str());
+    PrintIdaFits(path, s, names, "fragility_worst_incidence", rest);
   }
+  PrintOverIncidence(path, s, {});
   return true;
 }
 
@@ -333,51 +487,22 @@ void PrintLimitStates(const std::string& path, const jobs::h5::SweepSummary& s) 
         "\"exclude\"); column excluded counts them\n",
         MaxScaleText(s).c_str());
   }
-  std::printf("    %-18s %-22s %8s %9s %12s %10s %12s %12s%s\n", "limit state",
-              row_label.empty() ? "-" : row_label.c_str(), "cells", "exceeded", "theta", "beta",
-              "theta_lo", "theta_hi", excluding ? "     excluded" : "");
-  for (const std::string& name : names) {
-    const std::string g = "fragility/" + name + "/";
-    const std::optional<std::vector<double>> theta = ReadIfPresent(path, s.name, g + "theta");
-    const std::optional<std::vector<double>> beta = ReadIfPresent(path, s.name, g + "beta");
-    const std::optional<std::vector<double>> n = ReadIfPresent(path, s.name, g + "n_cells");
-    const std::optional<std::vector<double>> k = ReadIfPresent(path, s.name, g + "n_exceeded");
-    const std::optional<std::vector<double>> lo = ReadIfPresent(path, s.name, g + "theta_lo");
-    const std::optional<std::vector<double>> hi = ReadIfPresent(path, s.name, g + "theta_hi");
-    if (!theta || !beta || !n || !k || !lo || !hi) {
-      std::printf("    %-18s (not fitted)\n", name.c_str());
-      continue;
+  PrintStripeFits(path, s, names, "fragility", others, excluding);
+  if (Has(s, "fragility_worst_incidence")) {
+    std::vector<const jobs::h5::AxisSummary*> rest;
+    std::string rest_label;
+    for (const jobs::h5::AxisSummary* a : others) {
+      if (a->name == "incidence_deg") continue;
+      rest.push_back(a);
+      rest_label += (rest_label.empty() ? "" : ",") + a->name;
     }
-    const std::vector<std::string> reasons = ReadStringsIfPresent(path, s.name, g + "reason");
-    const std::optional<std::vector<double>> excluded =
-        ReadIfPresent(path, s.name, g + "n_excluded_beyond_max_scale");
-    std::size_t combinations = 1;
-    for (const jobs::h5::AxisSummary* a : others) combinations *= a->size;
-    for (std::size_t row = 0; row < theta->size(); ++row) {
-      std::string label = "-";
-      if (!others.empty() && theta->size() == combinations) {
-        label.clear();
-        std::size_t rest = row;
-        for (std::size_t j = others.size(); j-- > 0;) {
-          const std::size_t size = others[j]->size;
-          label = Coordinate(*others[j], rest % size) + (label.empty() ? "" : "," + label);
-          rest /= size;
-        }
-      }
-      const std::string left_out =
-          excluded ? fmt::format("{:13.0f}", (*excluded)[row]) : std::string();
-      if (!std::isfinite((*theta)[row])) {
-        std::printf("    %-18s %-22s %8.0f %9.0f  no fit%s: %s\n", name.c_str(), label.c_str(),
-                    (*n)[row], (*k)[row],
-                    excluded ? fmt::format(" ({:.0f} excluded)", (*excluded)[row]).c_str() : "",
-                    NoFitReason(reasons, row).c_str());
-        continue;
-      }
-      std::printf("    %-18s %-22s %8.0f %9.0f %12.6g %10.6g %12.6g %12.6g%s\n", name.c_str(),
-                  label.c_str(), (*n)[row], (*k)[row], (*theta)[row], (*beta)[row], (*lo)[row],
-                  (*hi)[row], left_out.c_str());
-    }
+    std::printf(
+        "  fragility at the worst incidence angle (fragility_worst_incidence/): a record at a "
+        "stripe exceeds when it exceeds at some angle, theta [g], per %s\n",
+        rest_label.empty() ? "sweep" : rest_label.c_str());
+    PrintStripeFits(path, s, names, "fragility_worst_incidence", rest, excluding);
   }
+  PrintOverIncidence(path, s, names);
 }
 
 // The files the cells were computed from (inputs/), as the sweep read them when it was begun:

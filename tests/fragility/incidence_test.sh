@@ -9,6 +9,8 @@
 #    (fragility_worst_incidence/, its cells reduced with numpy) against scipy.optimize;
 #  - the same sweep on 1 rank gives the same cube (same_cube.py: every dataset byte for byte,
 #    the bootstraps per angle and at the worst angle that the 2 ranks drew in shares included);
+#  - `skewbridge inspect` lists fragility/, fragility_worst_incidence/ and over_incidence/ with
+#    the stored fits and the counts numpy finds in the cube;
 #  - scripts/report draws the demand against the angle and both fragilities, and its table of
 #    the worst-angle fits holds the stored ones.
 # usage: incidence_test.sh SKEWBRIDGE MPIEXEC SOURCE_DIR WORK_DIR
@@ -46,6 +48,11 @@ on_ranks 2 "$exe" sweep angles.toml --out angles.h5 --quiet || fail "the sweep f
 "$exe" sweep angles.toml --out angles-one.h5 --quiet || fail "the 1-rank sweep failed"
 /usr/bin/python3 "$src/scripts/bench/same_cube.py" angles-one.h5 angles.h5 \
   || fail "angles.h5: 2 ranks and 1 rank differ"
+
+# inspect lists every group of the fits and of the responses over the angle, with their numbers.
+"$exe" inspect angles.h5 > inspect.txt || fail "inspect angles.h5"
+/usr/bin/python3 "$src/tests/fragility/check_inspect_incidence.py" angles.h5 angles inspect.txt \
+  || { cat inspect.txt; fail "inspect: the fits or the responses over the angle"; }
 # The report draws the demand against the angle and both fragilities, and tabulates the
 # worst-angle fits as the cube stores them.
 /usr/bin/python3 "$src/scripts/report" angles.h5 --out report > report.txt \
