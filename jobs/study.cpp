@@ -226,57 +226,134 @@ std::vector<FragilityStudy> MakeFragility(const SweepSpec& spec, const CubeLayou
 
 }  // namespace
 
+namespace {
+
+// One cell's capacity of a limit state as the IDA fit takes it: records.max_scale applied.
+struct IdaCell {
+  double capacity = 0.0;  // g or m/s; +inf: censored at `at`
+  double at = 0.0;        // the censoring intensity of a +inf capacity
+  bool too_far = false;   // reached only beyond records.max_scale
+};
+
+// The cell's capacity of the limit state in column `col` (below_col: the highest run below it;
+// own_col: the record's own measure for records.max_scale).
+IdaCell ReadIdaCell(const SweepSpec& spec, const CubeData& data, std::uint64_t c, std::size_t col,
+                    const std::optional<std::size_t>& below_col,
+                    const std::optional<std::size_t>& own_col) {
+  IdaCell cell;
+  cell.capacity = data.responses[col][c];
+  // A record that never exceeds the limit state is censored at its highest run (max_im
+  // unless the run budget ended the hunt first).
+  cell.at = below_col ? data.responses[*below_col][c] : std::numeric_limits<double>::quiet_NaN();
+  const double max_scale = spec.im.max_scale;
+  if (max_scale > 0.0 && own_col) {
+    // Runs scaled beyond max_scale are not trusted: a capacity reached there is flagged
+    // and censored at the highest trusted intensity, as is a record never exceeding it.
+    const double trusted = max_scale * data.responses[*own_col][c];
+    if (std::isfinite(cell.capacity) && cell.capacity > trusted) {
+      cell.too_far = true;
+      cell.capacity = std::numeric_limits<double>::infinity();
+    }
+    if (std::isinf(cell.capacity)) cell.at = std::min(cell.at, trusted);
+  }
+  return cell;
+}
+
+// The worst incidence angle of one record: it exceeds the limit state at the lowest capacity
+// over the angles (the lowest intensity at which it exceeds it at some angle); a record
+// exceeding it at no angle is censored at the lowest of its angles' censoring intensities (up
+// to there no angle exceeds it), and flagged too far when some angle reaches it beyond
+// records.max_scale.
+IdaCell WorstOverAngles(const std::vector<IdaCell>& angles) {
+  IdaCell worst;
+  worst.capacity = std::numeric_limits<double>::infinity();
+  worst.at = std::numeric_limits<double>::infinity();
+  for (const IdaCell& a : angles) {
+    worst.capacity = std::min(worst.capacity, a.capacity);
+    worst.at = std::min(worst.at, a.at);
+    worst.too_far = worst.too_far || a.too_far;
+  }
+  if (std::isfinite(worst.capacity)) {
+    worst.too_far = false;
+    worst.at = std::numeric_limits<double>::quiet_NaN();
+  }
+  return worst;
+}
+
+}  // namespace
+
 // The lognormal fit of each limit state's capacities over the records, per combination of the
-// other axes (cells done with status ok only).
+// other axes (cells done with status ok only); with `at_worst_incidence`, per combination of
+// the axes other than record and incidence_deg, of each record's capacity at its worst angle
+// (WorstOverAngles; a record enters only when its cells of every angle are done with status
+// ok). Without an incidence_deg axis nothing is fitted at the worst angle.
 std::vector<IdaFragilityStudy> MakeIdaFragility(const SweepSpec& spec, const CubeLayout& layout,
-                                                const CubeData& data) {
+                                                const CubeData& data,
+                                                bool at_worst_incidence = false) {
   std::vector<IdaFragilityStudy> out;
   if (!spec.ida.enabled) return out;
+  const std::ptrdiff_t incidence = IncidenceAxis(spec);
+  if (at_worst_incidence && incidence < 0) return out;
   std::vector<std::size_t> combo_axes;
   IdaFragilityStudy base;
   base.im_units = spectra::IntensityUnit(spec.im);
   for (std::size_t k = 0; k < spec.axes.size(); ++k) {
     if (spec.axes[k].key == "record") continue;
+    if (at_worst_incidence && static_cast<std::ptrdiff_t>(k) == incidence) continue;
     combo_axes.push_back(k);
     base.axis_order.push_back(spec.axes[k].key);
     base.shape.push_back(spec.axes[k].Size());
   }
   std::size_t combos = 1;
   for (std::size_t n : base.shape) combos *= n;
+  const std::optional<std::size_t> own_col = ResponseColumn(layout, "im_unscaled");
+  const double max_scale = spec.im.max_scale;
+  const bool exclude = spec.im.exclude_beyond_max_scale;
+  const auto usable = [&data](std::uint64_t c) {
+    return data.done[c] != 0 && data.status[c] == kStatusOk;
+  };
   for (const spectra::LimitState& ls : spec.limit_states) {
     const std::optional<std::size_t> col = ResponseColumn(layout, "ida_capacity_" + ls.name);
     if (!col) continue;
     const std::optional<std::size_t> below_col =
         ResponseColumn(layout, "ida_capacity_below_" + ls.name);
-    const std::optional<std::size_t> own_col = ResponseColumn(layout, "im_unscaled");
-    const double max_scale = spec.im.max_scale;
-    const bool exclude = spec.im.exclude_beyond_max_scale;
     std::vector<std::vector<double>> capacities(combos), censor_at(combos);
     std::vector<std::int64_t> too_far(combos, 0);
-    for (std::uint64_t c = 0; c < data.Cells(); ++c) {
-      if (data.done[c] == 0 || data.status[c] != kStatusOk) continue;
-      const std::vector<std::size_t> index = spec.AxisIndex(c);
+    const auto add = [&](std::size_t combo, const IdaCell& cell) {
+      if (cell.too_far) {
+        ++too_far[combo];
+        // beyond_max_scale = "exclude": the record enters no fit.
+        if (exclude) return;
+      }
+      capacities[combo].push_back(cell.capacity);
+      censor_at[combo].push_back(cell.at);
+    };
+    const auto combo_of = [&](const std::vector<std::size_t>& index) {
       std::size_t combo = 0;
       for (std::size_t k : combo_axes) combo = combo * spec.axes[k].Size() + index[k];
-      double capacity = data.responses[*col][c];
-      // A record that never exceeds the limit state is censored at its highest run (max_im
-      // unless the run budget ended the hunt first).
-      double at =
-          below_col ? data.responses[*below_col][c] : std::numeric_limits<double>::quiet_NaN();
-      if (max_scale > 0.0 && own_col) {
-        // Runs scaled beyond max_scale are not trusted: a capacity reached there is flagged
-        // and censored at the highest trusted intensity, as is a record never exceeding it.
-        const double trusted = max_scale * data.responses[*own_col][c];
-        if (std::isfinite(capacity) && capacity > trusted) {
-          ++too_far[combo];
-          // beyond_max_scale = "exclude": the record enters no fit.
-          if (exclude) continue;
-          capacity = std::numeric_limits<double>::infinity();
-        }
-        if (std::isinf(capacity)) at = std::min(at, trusted);
+      return combo;
+    };
+    if (!at_worst_incidence) {
+      for (std::uint64_t c = 0; c < data.Cells(); ++c) {
+        if (!usable(c)) continue;
+        add(combo_of(spec.AxisIndex(c)), ReadIdaCell(spec, data, c, *col, below_col, own_col));
       }
-      capacities[combo].push_back(capacity);
-      censor_at[combo].push_back(at);
+    } else {
+      // Every cell at the first angle stands for its record and combination; the other
+      // angles' cells are reached along the angle axis.
+      const spectra::AxisSplit split =
+          spectra::SplitAlong(spec, static_cast<std::size_t>(incidence));
+      for (std::size_t r = 0; r < split.Reduced(); ++r) {
+        std::vector<IdaCell> angles;
+        bool complete = true;
+        for (std::size_t i = 0; i < split.size && complete; ++i) {
+          const std::uint64_t c = split.Cell(r, i);
+          complete = usable(c);
+          if (complete) angles.push_back(ReadIdaCell(spec, data, c, *col, below_col, own_col));
+        }
+        if (!complete) continue;
+        add(combo_of(spec.AxisIndex(split.Cell(r, 0))), WorstOverAngles(angles));
+      }
     }
     IdaFragilityStudy f = base;
     f.ls = ls;
@@ -477,6 +554,7 @@ StudyTables MakeStudyTables(const SweepSpec& spec, const CubeLayout& layout, con
   }
   tables.over_incidence = MakeOverIncidence(spec, layout, data);
   tables.ida_fragility = MakeIdaFragility(spec, layout, data);
+  tables.ida_fragility_worst_incidence = MakeIdaFragility(spec, layout, data, true);
 
   // A model-file sweep names its responses per deck: with one deck, its rotation is the one.
   std::optional<std::size_t> theta_col = ResponseColumn(layout, "theta_m");

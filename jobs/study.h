@@ -81,7 +81,11 @@ struct StudyTables {
   std::vector<FragilityStudy> fragility_worst_incidence;
   std::optional<OverIncidence> over_incidence;   ///< with an incidence_deg axis
   std::vector<IdaFragilityStudy> ida_fragility;  ///< one per limit state of an IDA sweep
-  spectra::IntensityMeasureSpec im;              ///< [records] scale_to / im of the spec
+  /// With an incidence_deg axis, one per limit state of `ida_fragility`: the fit over the
+  /// combinations without the angle axis of each record's capacity at its worst angle (the
+  /// lowest of its capacities over the angles).
+  std::vector<IdaFragilityStudy> ida_fragility_worst_incidence;
+  spectra::IntensityMeasureSpec im;  ///< [records] scale_to / im of the spec
   /// Cells done with scaled_too_far = 1 (the response), -1 when the layout has no such response.
   std::int64_t scaled_too_far = -1;
 };

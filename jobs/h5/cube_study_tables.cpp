@@ -395,11 +395,25 @@ void WriteOverIncidence(hid_t sweep_group, const OverIncidence& over) {
   }
 }
 
-// `exclude`: records.beyond_max_scale = "exclude" (capacities beyond max_scale left out).
+// `exclude`: records.beyond_max_scale = "exclude" (capacities beyond max_scale left out). With
+// `angles`, the fragility_worst_incidence/ group: the fits of each record's capacity at its
+// worst angle of those, over the combinations without the incidence_deg axis.
 void WriteIdaFragility(hid_t sweep_group, const std::vector<IdaFragilityStudy>& studies,
-                       bool exclude) {
-  Id g = CreateGroup(sweep_group, "fragility");
+                       bool exclude, const std::vector<double>* angles = nullptr) {
+  Id g = CreateGroup(sweep_group, angles == nullptr ? "fragility" : "fragility_worst_incidence");
   const IdaFragilityStudy& first = studies.front();
+  if (angles != nullptr) {
+    SetAttr(g.get(), "reduces", std::string("incidence_deg"));
+    SetDoublesAttr(g.get(), "incidence_deg", *angles);
+    SetAttr(g.get(), "reduction",
+            std::string("worst incidence angle: a record's capacity is the lowest of its "
+                        "capacities over incidence_deg (the lowest intensity at which it "
+                        "exceeds the limit state at some angle); a record exceeding it at no "
+                        "angle is censored at the lowest of its angles' censoring intensities; "
+                        "a capacity beyond records.max_scale is treated at each angle as in "
+                        "fragility/ first; a record enters when its cells of every angle are "
+                        "done with status ok. fragility/ holds the fits per angle"));
+  }
   std::vector<std::string> names;
   for (const IdaFragilityStudy& f : studies) names.push_back(f.ls.name);
   SetAttr(g.get(), "limit_states", names);
@@ -502,6 +516,10 @@ void WriteStudyTables(const Datasets& d, const CubeLayout& layout, const StudyTa
   if (study.over_incidence) WriteOverIncidence(d.group.get(), *study.over_incidence);
   if (!study.ida_fragility.empty())
     WriteIdaFragility(d.group.get(), study.ida_fragility, study.im.exclude_beyond_max_scale);
+  if (!study.ida_fragility_worst_incidence.empty() && study.over_incidence) {
+    WriteIdaFragility(d.group.get(), study.ida_fragility_worst_incidence,
+                      study.im.exclude_beyond_max_scale, &study.over_incidence->angles_deg);
+  }
 }
 
 }  // namespace skewbridge::jobs::h5

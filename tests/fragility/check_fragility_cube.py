@@ -11,6 +11,14 @@ incidence_deg axis, against cells reduced here with numpy: a record at a stripe 
 exceeds at some angle (np.max of ls_<name> over the axis), its demand is the largest over the
 angles, and it is used only when the cells of every angle are done with status ok.
 
+An IDA sweep's fits (method "ida") are checked against its capacities (ida_capacity_<name>,
+and ida_capacity_below_<name> where a record is censored): every capacity finite, theta and
+beta are the geometric mean and the standard deviation (n - 1) of their logarithms; some
+censored, scipy.optimize maximises the right-censored lognormal likelihood written out here
+(Baker 2015). At the worst angle a record's capacity is np.min of its capacities over the
+incidence_deg axis, censored at the lowest of its censoring intensities when it is infinite at
+every angle.
+
 usage: check_fragility_cube.py FILE.h5 SWEEP [MIN_FITTED] [--worst-incidence]
 MIN_FITTED: fail unless at least this many (limit state, combination) pairs have a fit.
 """
@@ -35,6 +43,57 @@ def close(a, b, rtol, what):
     assert abs(a - b) <= rtol * abs(b), "%s: cube %r, independent %r" % (what, a, b)
 
 
+def check_ida(g, f, axes, ok, worst):
+    """The IDA fits of group f against the capacities of the cells; returns the fits checked."""
+    assert not np.isfinite(float(g.attrs.get("max_scale", np.inf))), "max_scale not checked here"
+    combo_axes = [a.decode() if isinstance(a, bytes) else a for a in f.attrs["axis_order"]]
+    fitted = 0
+    for name in f.attrs["limit_states"]:
+        name = name.decode() if isinstance(name, bytes) else name
+        h = f[name]
+        cap = np.where(ok, g["responses/ida_capacity_" + name][()], np.nan)
+        below = np.where(ok, g["responses/ida_capacity_below_" + name][()], np.nan)
+        use = ok.copy()
+        ax = list(axes)
+        if worst:
+            k = ax.index("incidence_deg")
+            cap, below = np.min(cap, axis=k), np.min(below, axis=k)
+            use = np.all(ok, axis=k)
+            ax.pop(k)
+        shape = [len(g["axes/" + a]) for a in combo_axes]
+        reasons = [r.decode() for r in h["reason"][()]]
+        for flat, idx in enumerate(itertools.product(*[range(s) for s in shape])):
+            sel = [slice(None)] * len(ax)
+            for a, i in zip(combo_axes, idx):
+                sel[ax.index(a)] = i
+            sel = tuple(sel)
+            c, b = cap[sel][use[sel]], below[sel][use[sel]]
+            finite = np.isfinite(c)
+            at = idx if idx else 0
+            assert int(h["n_records"][at]) == int(finite.sum()), "%s %s: n_records" % (name, idx)
+            assert int(h["n_censored"][at]) == int((~finite).sum()), "%s %s: n_censored" % (name, idx)
+            theta, beta = float(h["theta"][at]), float(h["beta"][at])
+            if reasons[flat]:
+                assert math.isnan(theta) and math.isnan(beta), "a reason and a number"
+                continue
+            fitted += 1
+            y = np.log(c[finite])
+            if finite.all():
+                close(theta, math.exp(y.mean()), 1e-12, "%s %s theta" % (name, idx))
+                close(beta, y.std(ddof=1), 1e-12, "%s %s beta" % (name, idx))
+                continue
+            yc = np.log(b[~finite])
+
+            def nll(p):
+                return -(stats.norm.logpdf(y, p[0], p[1]).sum()
+                         + stats.norm.logsf(yc, p[0], p[1]).sum())
+            res = optimize.minimize(nll, [y.mean(), max(y.std(), 0.1)], method="Nelder-Mead",
+                                    options={"xatol": 1e-11, "fatol": 1e-13, "maxiter": 40000})
+            close(theta, math.exp(res.x[0]), 1e-6, "%s %s censored theta" % (name, idx))
+            close(beta, res.x[1], 1e-6, "%s %s censored beta" % (name, idx))
+    return fitted
+
+
 def main():
     args = [a for a in sys.argv[1:] if a != "--worst-incidence"]
     worst = len(args) < len(sys.argv) - 1
@@ -43,6 +102,13 @@ def main():
     g = h5py.File(path, "r")["sweeps/" + sweep]
     axes = [a.decode() if isinstance(a, bytes) else a for a in g.attrs["axis_order"]]
     f = g["fragility_worst_incidence" if worst else "fragility"]
+    if f.attrs["method"] == "ida":
+        ok = (g["done"][()] == 1) & (g["status"][()] == 0)
+        fitted = check_ida(g, f, axes, ok, worst)
+        assert fitted >= min_fitted, "only %d fits, expected at least %d" % (fitted, min_fitted)
+        print("%s of %s: %d IDA fits agree with numpy and scipy" % (f.name.split("/")[-1], sweep,
+                                                                     fitted))
+        return
     combo_axes = list(f.attrs["axis_order"])
     stripe_axis = f.attrs["stripe_axis"]
     ok = (g["done"][()] == 1) & (g["status"][()] == 0)

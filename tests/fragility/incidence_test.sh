@@ -12,7 +12,11 @@
 #  - `skewbridge inspect` lists fragility/, fragility_worst_incidence/ and over_incidence/ with
 #    the stored fits and the counts numpy finds in the cube;
 #  - scripts/report draws the demand against the angle and both fragilities, and its table of
-#    the worst-angle fits holds the stored ones.
+#    the worst-angle fits holds the stored ones;
+#  - an IDA sweep of the same two pairs and the two with H1 and H2 exchanged at three angles,
+#    its search stopped at 2.6 g so that some records never unseat at some or all angles: its
+#    fits per angle and at the worst angle (each record's lowest capacity over the angles,
+#    censored where it is infinite at every angle) against numpy and scipy, on 2 ranks and 1.
 # usage: incidence_test.sh SKEWBRIDGE MPIEXEC SOURCE_DIR WORK_DIR
 source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
 args exe mpiexec src work -- "$@"
@@ -73,4 +77,62 @@ for name in ("unseating", "rotation"):
     assert abs(float(cells[4]) - theta) <= 5e-3 * theta, (cells, theta)
 print("report: the worst-angle table holds the stored fits")
 PY
+
+# IDA at three angles: each record's capacity per angle and at its worst angle.
+pairs="$test_data/records/pairs"
+cat > four.toml <<TOML
+name = "four"
+[[record]]
+label = "RSN107"
+h1 = "$pairs/RSN107_OROVILLE_B-OAP180.AT2"
+h2 = "$pairs/RSN107_OROVILLE_B-OAP270.AT2"
+[[record]]
+label = "RSN107-H2H1"
+h1 = "$pairs/RSN107_OROVILLE_B-OAP270.AT2"
+h2 = "$pairs/RSN107_OROVILLE_B-OAP180.AT2"
+[[record]]
+label = "RSN430"
+h1 = "$pairs/RSN430_SMART1.25_25M01EW.AT2"
+h2 = "$pairs/RSN430_SMART1.25_25M01NS.AT2"
+[[record]]
+label = "RSN430-H2H1"
+h1 = "$pairs/RSN430_SMART1.25_25M01NS.AT2"
+h2 = "$pairs/RSN430_SMART1.25_25M01EW.AT2"
+TOML
+cat > ida.toml <<TOML
+[sweep]
+name = "ida"
+family = "model-file"
+model = "pilot-bridge.toml"
+[records]
+set = "four.toml"
+scale_to = { measure = "RotD50", period = "T1", xi = 0.05 }
+[axes]
+record = "*"
+incidence_deg = [0, 60, 120]
+[fixed]
+seat_over_L = 0.0005
+[limit_states]
+unseating = true
+rotation = {above_rad = 0.0005}
+joint_closing = true
+[ida]
+start = 0.25
+step = 0.5
+step_increase = 0.25
+tolerance = 0.1
+max_im = 2.6
+max_runs = 20
+TOML
+on_ranks 2 "$exe" sweep ida.toml --out ida.h5 --quiet || fail "the IDA sweep failed"
+/usr/bin/python3 "$src/tests/fragility/check_fragility_cube.py" ida.h5 ida 7 \
+  || fail "the IDA fits per angle differ from numpy's and scipy's"
+/usr/bin/python3 "$src/tests/fragility/check_fragility_cube.py" ida.h5 ida 3 --worst-incidence \
+  || fail "the IDA fits at the worst angle differ from numpy's and scipy's"
+"$exe" sweep ida.toml --out ida-one.h5 --quiet || fail "the 1-rank IDA sweep failed"
+/usr/bin/python3 "$src/scripts/bench/same_cube.py" ida-one.h5 ida.h5 \
+  || fail "ida.h5: 2 ranks and 1 rank differ"
+"$exe" inspect ida.h5 > inspect-ida.txt || fail "inspect ida.h5"
+/usr/bin/python3 "$src/tests/fragility/check_inspect_incidence.py" ida.h5 ida inspect-ida.txt \
+  || { cat inspect-ida.txt; fail "inspect: the IDA fits or the responses over the angle"; }
 echo "incidence_test: ok"
