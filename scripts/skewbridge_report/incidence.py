@@ -4,6 +4,7 @@ one curve per stripe (the median over the records), with the median of the recor
 over the angles beside it; and the fragility per angle beside the fragility at the worst
 angle."""
 import math
+import textwrap
 
 import matplotlib.pyplot as plt
 import numpy as np
@@ -208,8 +209,12 @@ def fragility_figure(sweep, out_dir, name, pdf):
             else:
                 notes.append("worst: " + as_text(h["reason"][wflat]).split(" (")[0])
             if notes:
-                ax.text(0.02, 0.62, "no fit: " + "; ".join(notes), transform=ax.transAxes,
-                        va="top", fontsize=8, color="0.3", wrap=True)
+                # Wrapped to the panel, so that a long reason does not widen the layout.
+                angle_notes = [n for n in notes if not n.startswith("worst: ")]
+                if len(angle_notes) == len(angles) > 1:
+                    notes = ["every angle"] + notes[len(angles):]
+                ax.text(0.02, 0.62, textwrap.fill("no fit: " + "; ".join(notes), 42),
+                        transform=ax.transAxes, va="top", fontsize=8, color="0.3")
             common.log_axis(ax, "x")
             ax.set_ylim(-0.05, 1.05)
             ax.set_xlabel(im_label(sweep, fa))
