@@ -234,6 +234,7 @@ CellRerun PrepareCellRerun(const std::filesystem::path& cube, const CellChoice& 
     auto evaluator = std::make_unique<spectra::ModelFileEvaluator>(out.spec);
     spectra::ModelFileCell c = evaluator->MakeCell(axis_index, true);
     out.model = std::move(c.model);
+    out.compliant = c.compliant;
     out.excitation = std::move(c.excitation);
     out.control = c.control;
     out.record = c.record;

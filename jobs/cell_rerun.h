@@ -20,6 +20,7 @@
 #include "solver/common/excitation.h"
 #include "spectra/cell.h"
 #include "spectra/grid.h"
+#include "spectra/model_file_evaluator.h"
 #include "spectra/point.h"
 #include "spectra/study.h"
 
@@ -49,7 +50,9 @@ struct CellRerun {
   SweepSpec spec;  ///< the sweep's specification, parsed from the cube's stored text
   /// The sweep's evaluator (owns the records the cell's excitation was made from).
   std::unique_ptr<spectra::CellEvaluator> evaluator;
-  std::optional<model::Model> model;       ///< the cell's model
+  std::optional<model::Model> model;  ///< the cell's model
+  /// Its compliant abutments (a model file's law = "compliant"), else empty: the joint law.
+  std::optional<model::CompliantAbutments> compliant;
   std::unique_ptr<Excitation> excitation;  ///< its ground motion, scaled as the cell scales it
   model::RunControl control;               ///< its run control (method, end time, tolerances)
   const spectra::SweepRecord* record = nullptr;  ///< its record, or nullptr for a pulse

@@ -59,7 +59,19 @@ model::ModelFile CheckedModelFile(const CellGrid& spec) {
       }
     }
   }
-  return model::ParseModelFile(spec.model_path);
+  model::ModelFile file = model::ParseModelFile(spec.model_path);
+  if (file.compliant) {
+    // The compliant springs have no restitution nor friction to change.
+    for (std::string_view key : {"eps_N", "mu"}) {
+      if (Mentions(spec, key)) {
+        throw InputError::AtField(src, key,
+                                  "the model file's abutments are compliant (law = "
+                                  "\"compliant\"): they have no " +
+                                      std::string(key) + " to change; remove " + std::string(key));
+      }
+    }
+  }
+  return file;
 }
 
 }  // namespace
@@ -67,9 +79,10 @@ model::ModelFile CheckedModelFile(const CellGrid& spec) {
 struct ModelFileEvaluator::CellValues {
   const ModelFileCell& cell;
   const dynamics::RunResult& run;
-  double to_norm = 0.0;  ///< 1 / L_e (1/m)
-  double t1_s = 0.0;     ///< the cell's fundamental period (with an intensity measure)
-  double own_im = 0.0;   ///< the record's own intensity at it (axis unit)
+  const std::vector<dynamics::WallMaxima>& walls;  ///< compliant: per wall, +x then -x
+  double to_norm = 0.0;                            ///< 1 / L_e (1/m)
+  double t1_s = 0.0;    ///< the cell's fundamental period (with an intensity measure)
+  double own_im = 0.0;  ///< the record's own intensity at it (axis unit)
 
   /// max |q| of deck d (m, m, rad).
   Eigen::Vector3d MaxOf(int d) const { return run.max_abs_q.segment<3>(3 * d); }
@@ -181,6 +194,12 @@ ModelFileEvaluator::ModelFileEvaluator(const CellGrid& spec)
   for (std::uint64_t cell = 0; cell < spec.CellCount(); ++cell) {
     const std::vector<std::size_t> index = spec.AxisIndex(cell);
     const ModelFileCell c = MakeCell(index, false);
+    if (c.compliant && c.control.method != model::Method::kEventDriven) {
+      throw InputError::AtField(src, "method",
+                                "the model file's abutments are compliant (law = \"compliant\"), "
+                                "which runs with the event-driven method only (cell " +
+                                    CellText(spec, index) + ")");
+    }
     try {
       model::CheckRunSize(
           c.control, c.excitation_duration_s, c.excitation_samples, spec.model_path.string(),
@@ -358,6 +377,7 @@ ModelFileCell ModelFileEvaluator::MakeCell(std::span<const std::size_t> index, b
   const std::string model_source = spec_.model_path.string();
   const model::ExcitationSpec& ex = file_.excitation;
   ModelFileCell c;
+  c.compliant = file_.compliant;
   c.control = file_.run;
   // A cell stores maxima, not histories nor the energy ledger (the maxima are the same bits).
   c.control.energy_ledger = false;
@@ -585,6 +605,20 @@ void ModelFileEvaluator::MakeResponseTable() {
   t.Add({"min_impact_separation", "s",
          "smallest time between distinct impact instants (inf with fewer than two)"},
         [](V v) { return v.run.min_impact_separation_s; });
+  if (file_.compliant) {
+    // Per compliant wall, in the order of dynamics::AbutmentSprings.
+    const bool both = file_.deck.abutments == model::AbutmentSet::kBoth;
+    for (std::size_t w = 0; w < (both ? 2u : 1u); ++w) {
+      const std::string side = w == 0 ? "px" : "mx", wall = w == 0 ? "+x" : "-x";
+      t.Add({"spring_force_" + side, "N",
+             "largest force of one backfill spring of the " + wall + " wall"},
+            [w](V v) { return v.walls[w].spring_force_N; });
+      t.Add({"backwall_def_" + side, "m",
+             "largest deformation of the " + wall +
+                 " backfill beyond the gap (the largest of its springs)"},
+            [w](V v) { return v.walls[w].deformation_m; });
+    }
+  }
   t.AddAlways({"a_g", "m/s^2", "excitation amplitude: pulse a_g, or the record's PGA, x scale"},
               [](V v) { return v.cell.a_g_mps2; });
   t.AddAlways({"w_g", "rad/s", "excitation frequency: pulse w_g, or 2 pi / T_m of the record"},
@@ -661,7 +695,8 @@ CellOutcome ModelFileEvaluator::EvaluateAt(std::span<const std::size_t> axis_ind
     SeatRun& s = shared_.Get(axis_index, [&] {
       ModelFileCell c = MakeCell(axis_index, true, factor);
       // As `skewbridge run`: run.method picks the integrator, the file's [run] its controls.
-      dynamics::RunResult run = dynamics::Run(*c.model, *c.excitation, c.control, policies());
+      dynamics::LawRun run =
+          dynamics::RunUnderLaw(*c.model, c.compliant, *c.excitation, c.control, policies());
       return SeatRun{std::move(c), std::move(run)};
     });
     for (std::size_t d = 0; d < s.cell.seat_width_m.size(); ++d) {
@@ -671,7 +706,9 @@ CellOutcome ModelFileEvaluator::EvaluateAt(std::span<const std::size_t> axis_ind
     out = Outcome(axis_index, s.cell, s.run);
   } else {
     const ModelFileCell c = MakeCell(axis_index, true, factor);
-    out = Outcome(axis_index, c, dynamics::Run(*c.model, *c.excitation, c.control, policies()));
+    out =
+        Outcome(axis_index, c,
+                dynamics::RunUnderLaw(*c.model, c.compliant, *c.excitation, c.control, policies()));
   }
   out.stats.wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -680,11 +717,12 @@ CellOutcome ModelFileEvaluator::EvaluateAt(std::span<const std::size_t> axis_ind
 
 CellOutcome ModelFileEvaluator::Outcome(std::span<const std::size_t> axis_index,
                                         const ModelFileCell& c,
-                                        const dynamics::RunResult& run) const {
+                                        const dynamics::LawRun& law_run) const {
+  const dynamics::RunResult& run = law_run.run;
   CellOutcome out;
   out.status = CellStatusOf(run.status);
   out.status_text = run.message;
-  CellValues values{c, run, 1.0 / c.persistency_m};
+  CellValues values{c, run, law_run.walls, 1.0 / c.persistency_m};
   if (!spec_.im.measure.empty()) {
     const std::size_t t = t1_of_cell_[CellIndex(axis_index)];
     values.t1_s = t1_values_s_[t];

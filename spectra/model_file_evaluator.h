@@ -19,6 +19,7 @@
 #include "records/incidence.h"
 #include "records/measures.h"
 #include "solver/common/excitation.h"
+#include "solver/dynamics/abutment_springs.h"
 #include "solver/dynamics/run_result.h"
 #include "solver/model/model_file.h"
 #include "spectra/cell.h"
@@ -32,7 +33,9 @@ namespace skewbridge::spectra {
 
 /// One cell of a model-file sweep made concrete: what `skewbridge run` would be given.
 struct ModelFileCell {
-  std::optional<model::Model> model;       ///< the file's model with the cell's values
+  std::optional<model::Model> model;  ///< the file's model with the cell's values
+  /// The file's compliant abutments (law = "compliant"), else empty (dynamics::RunUnderLaw).
+  std::optional<model::CompliantAbutments> compliant;
   std::unique_ptr<Excitation> excitation;  ///< the cell's ground motion
   model::RunControl control;               ///< the file's [run], with the cell's method
   double a_g_mps2 = 0.0;                   ///< amplitude: pulse a_g, or the record's PGA x scale
@@ -142,12 +145,12 @@ class ModelFileEvaluator final : public CellEvaluator, public RecordScaling {
   /// A dynamic run with its cell, for the cells that differ from it only in the seat widths.
   struct SeatRun {
     ModelFileCell cell;
-    dynamics::RunResult run;
+    dynamics::LawRun run;
   };
   mutable SharedRuns<SeatRun> shared_;  ///< the last runs (spectra/shared_runs.h)
   /// The outcome of a cell from its cell and run (the cell's seat widths are its own).
   CellOutcome Outcome(std::span<const std::size_t> axis_index, const ModelFileCell& c,
-                      const dynamics::RunResult& run) const;
+                      const dynamics::LawRun& run) const;
   // The warnings of the bridge that do not need the cells' models (masses, gaps, seats).
   std::vector<std::string> BridgeWarnings() const;
 };

@@ -30,6 +30,7 @@
 #include "records/measures.h"
 #include "records/record_set.h"
 #include "solver/common/error.h"
+#include "solver/dynamics/abutment_springs.h"
 #include "solver/dynamics/run.h"
 #include "solver/dynamics/simulate.h"
 #include "solver/model/model_file.h"
@@ -165,6 +166,8 @@ struct RunInput {
   std::string title;       // the summary's first words ("model M.toml", "cube C.h5 ...")
   std::string model_text;  // stored in the run file
   const model::Model* model = nullptr;
+  /// The model file's compliant abutments ([abutments] law = "compliant"), else empty.
+  std::optional<model::CompliantAbutments> compliant;
   const Excitation* excitation = nullptr;
   model::RunControl control;
   dynamics::RunPolicies policies;  // the integrators' defaults, or a cube cell's sweep's
@@ -347,9 +350,15 @@ void Execute(const RunInput& in, const RunOptions& o) {
   if (!o.csv.empty() && control.output_interval_s <= 0.0) {
     control.output_interval_s = 0.01;
   }
-  const model::Model& model = *in.model;
   const bool time_stepping = control.method == model::Method::kTimeStepping;
-  const dynamics::RunResult r = dynamics::Run(model, *in.excitation, control, in.policies);
+  const dynamics::LawRun law_run =
+      dynamics::RunUnderLaw(*in.model, in.compliant, *in.excitation, control, in.policies);
+  const dynamics::RunResult& r = law_run.run;
+  // A compliant run's histories and files describe the deck without its rigid contacts.
+  const std::optional<model::Model> contactless =
+      in.compliant ? std::optional<model::Model>(dynamics::WithoutContacts(*in.model))
+                   : std::nullopt;
+  const model::Model& model = contactless ? *contactless : *in.model;
   std::printf("%s: method %s", in.title.c_str(), model::ToString(control.method));
   if (time_stepping) {
     std::printf(" (h = %.6g s)", control.time_step_s);
@@ -374,14 +383,27 @@ void Execute(const RunInput& in, const RunOptions& o) {
   std::printf(
       "  steps: exact %ld, Runge-Kutta %ld (+%ld rejected); smallest impact separation %s\n",
       r.free_steps, r.rk_steps, r.rk_rejected,
-      r.impacts < 2 ? "none (fewer than two impacts)"
-                    : (Number("%.3e", r.min_impact_separation_s) + " s").c_str());
+      in.compliant    ? "not tracked (compliant springs)"
+      : r.impacts < 2 ? "none (fewer than two impacts)"
+                      : (Number("%.3e", r.min_impact_separation_s) + " s").c_str());
   const dynamics::EnergyLedger& e = r.energy;
   std::printf(
       "  energy (J): input %s, damping %s, impacts %s, friction %s, now %s, balance error %s\n",
       Number("%.6e", e.input_J).c_str(), Number("%.6e", e.damping_J).c_str(),
       Number("%.6e", e.impact_J).c_str(), Number("%.6e", e.friction_J).c_str(),
       Number("%.6e", e.kinetic_J + e.strain_J).c_str(), Number("%.3e", e.balance_error_J).c_str());
+  if (in.compliant) {
+    std::printf(
+        "  compliant abutments, %d springs per wall; backfill energy (J): stored %s, "
+        "dissipated %s\n",
+        in.compliant->springs, Number("%.6e", law_run.joint_stored_J).c_str(),
+        Number("%.6e", law_run.joint_dissipated_J).c_str());
+    for (const dynamics::WallMaxima& w : law_run.walls) {
+      std::printf("  %s wall: largest spring force %s N, largest deformation %s m\n",
+                  w.wall.c_str(), Number("%.6e", w.spring_force_N).c_str(),
+                  Number("%.6e", w.deformation_m).c_str());
+    }
+  }
   if (!o.csv.empty()) {
     WriteCsv(o.csv, model, r.histories);
   }
@@ -405,6 +427,7 @@ void RunModelFile(const RunOptions& o) {
   RunInput in;
   in.model_text = ReadText(file.path);
   in.model = &file.model;
+  in.compliant = file.compliant;
   in.control = file.run;
   in.print_modes = !file.decks && file.deck.stiffness == model::DeckSpec::StiffnessKind::kElements;
   std::unique_ptr<Excitation> excitation;
@@ -481,6 +504,7 @@ void RunCubeCell(const RunOptions& o) {
   RunInput in;
   in.model_text = rerun.model_text;
   in.model = &*rerun.model;
+  in.compliant = rerun.compliant;
   in.excitation = rerun.excitation.get();
   in.control = rerun.control;
   // The cell's runs used its sweep's policies ([event_policy], [time_stepping_policy]).

@@ -45,6 +45,25 @@ void RejectOtherKindOfFile(const toml::table& root, std::string_view source) {
   }
 }
 
+// The compliant abutments against what the rest of the file says: the event-driven method (the
+// only integrator of compliant springs) and a wall law that the deck's geometry gives.
+void CheckCompliant(const toml::table& root, const CompliantAbutments& c, const DeckSpec& deck,
+                    const RunControl& run, std::string_view source) {
+  const toml::node* abutments = root.get("abutments");
+  if (run.method != Method::kEventDriven) {
+    const toml::node* method = root.at_path("run.method").node();
+    Fail(Where{source, method != nullptr ? detail::LineOf(*method) : 0}, "run.method",
+         "the compliant abutments (abutments.law = \"compliant\") run with the event-driven "
+         "method only (allowed: \"event-driven\")");
+  }
+  const toml::node* backfill = root.at_path("abutments.backfill").node();
+  const long line = backfill != nullptr    ? detail::LineOf(*backfill)
+                    : abutments != nullptr ? detail::LineOf(*abutments)
+                                           : 0;
+  (void)WallBackfill(c.backfill, deck.geometry,
+                     std::string(source) + ":" + std::to_string(line) + ": abutments.backfill");
+}
+
 ModelFile Parse(const toml::table& root, std::string_view source,
                 const std::filesystem::path& base_dir, const std::filesystem::path& path) {
   RejectOtherKindOfFile(root, source);
@@ -77,7 +96,7 @@ ModelFile Parse(const toml::table& root, std::string_view source,
     top.Finish("sections [[deck]], [[joint]], abutments, [[support]], excitation, run");
     CheckRunLength(excitation, run, source);
     Model model = BuildMultiDeckModel(decks, std::string(source));
-    return ModelFile{path, deck, std::move(model), excitation, run, std::move(decks)};
+    return ModelFile{path, deck, std::move(model), excitation, run, std::move(decks), std::nullopt};
   }
   {
     Section s(required("deck"), "deck", source);
@@ -87,9 +106,11 @@ ModelFile Parse(const toml::table& root, std::string_view source,
     Section s(required("substructure"), "substructure", source);
     ReadSubstructure(s, deck);
   }
+  std::optional<CompliantAbutments> compliant;
   {
     Section s(required("abutments"), "abutments", source);
     const AbutmentParameters a = ReadAbutments(s, false);
+    compliant = a.compliant;
     deck.abutments = a.set;
     deck.gap_plus_m = a.gap_plus_m;
     deck.gap_minus_m = a.gap_minus_m;
@@ -108,7 +129,8 @@ ModelFile Parse(const toml::table& root, std::string_view source,
   top.Finish("sections deck, substructure, abutments, excitation, run");
   CheckRunLength(excitation, run, source);
   Model model = BuildDeckModel(deck, std::string(source));
-  return ModelFile{path, deck, std::move(model), excitation, run, std::nullopt};
+  if (compliant) CheckCompliant(root, *compliant, deck, run, source);
+  return ModelFile{path, deck, std::move(model), excitation, run, std::nullopt, compliant};
 }
 
 }  // namespace

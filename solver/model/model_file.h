@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "solver/common/units.h"
+#include "solver/model/abutment_law.h"
 #include "solver/model/builders.h"
 #include "solver/model/model.h"
 #include "solver/model/multispan.h"
@@ -67,6 +68,10 @@ struct ModelFile {
   ExcitationSpec excitation;
   RunControl run;
   std::optional<MultiDeckSpec> decks;  ///< the [[deck]] form's description (then `deck` unused)
+  /// [abutments] law = "compliant": the springs that replace the abutments' contacts (`model`
+  /// keeps the contacts, whose faces carry the gaps; its eps_N and mu are unused). Empty for
+  /// law = "impact", the default: `model` is then the whole joint law.
+  std::optional<CompliantAbutments> compliant;
 };
 
 /// Reads and validates a model file.

@@ -1,13 +1,157 @@
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "solver/model/model_file_tables.h"
 
 namespace skewbridge::model::detail {
+namespace {
+
+// The keys of [abutments] with each law, and of [abutments.backfill] in each of its forms.
+constexpr std::string_view kImpactKeys = "set, gap_m, law, eps_N, mu, contacts";
+constexpr std::string_view kCompliantKeys = "set, gap_m, law, springs, backfill";
+constexpr std::array<std::pair<std::string_view, std::string_view>, 3> kBackfillForms = {{
+    {"hyperbolic-gap",
+     "form, k_max_Npm, k_ur_Npm, r_f, f_ult_N, k_max_Npm_per_m, k_ur_Npm_per_m, f_ult_N_per_m"},
+    {"shamsabadi", "form, k50_Npm, f_ult_N, height_m, y_max_m"},
+    {"caltrans", "form, width_m, width_ft, height_m, height_ft, skew_reduction, y_max_m"},
+}};
+
+// A positive length given in metres (`metres`) or feet (`feet`), exactly one of them; in m.
+double LengthMOrFt(Section& b, std::string_view metres, std::string_view feet,
+                   std::string_view what) {
+  const std::optional<double> m = b.Number(metres);
+  const std::optional<double> ft = b.Number(feet);
+  if (m && ft) {
+    Fail(b.At(feet), b.Field(feet),
+         "give " + std::string(metres) + " or " + std::string(feet) + ", not both");
+  }
+  if (!m && !ft) {
+    b.Missing(metres, std::string(what) + ", m (or " + std::string(feet) + " in ft)");
+  }
+  const std::string_view key = m ? metres : feet;
+  CheckPositive(m ? *m : *ft, b.Field(key), b.At(key));
+  return m ? *m : *ft * 0.3048;
+}
+
+// A positive number that is required.
+double Positive(Section& b, std::string_view key, std::string_view what) {
+  const double value = b.RequiredNumber(key, what);
+  CheckPositive(value, b.Field(key), b.At(key));
+  return value;
+}
+
+// [abutments.backfill]: the law of each wall in one of its three forms [docs/compliant.md §1].
+BackfillSpec ReadBackfill(Section& b) {
+  BackfillSpec f;
+  const std::optional<std::string> form =
+      b.String("form", {"hyperbolic-gap", "shamsabadi", "caltrans"});
+  if (!form) {
+    b.Missing("form", "\"hyperbolic-gap\", \"shamsabadi\" or \"caltrans\"");
+  }
+  // The keys of this form; a key of another form is named with the form that takes it.
+  std::string_view keys;
+  std::vector<std::pair<std::string, std::string>> elsewhere;
+  for (const auto& [name, names] : kBackfillForms) {
+    if (name == *form) {
+      keys = names;
+    } else {
+      elsewhere.emplace_back("form = \"" + std::string(name) + "\"", std::string(names));
+    }
+  }
+  b.Expect(keys, std::move(elsewhere));
+  b.Reject("gap_m",
+           "the joint's gap is abutments.gap_m (along x), the same for both laws; remove it here");
+  if (*form == "hyperbolic-gap") {
+    f.form = BackfillForm::kHyperbolicGap;
+    f.per_metre = b.Has("k_max_Npm_per_m") || b.Has("f_ult_N_per_m");
+    const std::string_view k_max = f.per_metre ? "k_max_Npm_per_m" : "k_max_Npm";
+    const std::string_view k_ur = f.per_metre ? "k_ur_Npm_per_m" : "k_ur_Npm";
+    const std::string_view f_ult = f.per_metre ? "f_ult_N_per_m" : "f_ult_N";
+    // The other kind's keys are refused by name: a law is per wall or per metre, not both.
+    for (std::string_view other :
+         f.per_metre ? std::array<std::string_view, 3>{"k_max_Npm", "k_ur_Npm", "f_ult_N"}
+                     : std::array<std::string_view, 3>{"k_max_Npm_per_m", "k_ur_Npm_per_m",
+                                                       "f_ult_N_per_m"}) {
+      b.Reject(other,
+               "give the constants per wall (k_max_Npm, k_ur_Npm, f_ult_N) or per metre of wall "
+               "(k_max_Npm_per_m, k_ur_Npm_per_m, f_ult_N_per_m), not both");
+    }
+    f.k_max = Positive(b, k_max,
+                       f.per_metre ? "initial stiffness per metre of wall, N/m per m"
+                                   : "initial stiffness of the wall, N/m");
+    f.k_ur = b.Number(k_ur).value_or(f.k_max);
+    CheckPositive(f.k_ur, b.Field(k_ur), b.At(k_ur));
+    f.r_f = b.RequiredNumber("r_f", "failure ratio, in (0, 1]");
+    CheckRange(f.r_f, 0.0, 1.0, false, b.Field("r_f"), b.At("r_f"));
+    if (f.r_f == 0.0) {
+      Fail(b.At("r_f"), b.Field("r_f"), "must be in (0, 1] (got 0)");
+    }
+    f.f_ult = Positive(b, f_ult,
+                       f.per_metre ? "ultimate passive force per metre of wall, N/m"
+                                   : "ultimate passive force of the wall, N");
+  } else if (*form == "shamsabadi") {
+    f.form = BackfillForm::kShamsabadi;
+    f.k50_Npm = Positive(b, "k50_Npm", "secant stiffness of the wall at F_ult / 2, N/m");
+    f.f_ult = Positive(b, "f_ult_N", "ultimate passive force of the wall, N");
+    if (b.Has("y_max_m")) {
+      b.Reject("height_m", "give height_m (y_max = 0.05 H) or y_max_m, not both");
+      f.y_max_m = Positive(b, "y_max_m", "");
+    } else {
+      f.y_max_m = joint::ShamsabadiYMax_m(
+          Positive(b, "height_m", "backwall height H, m (y_max = 0.05 H), or y_max_m"));
+    }
+    if (!(f.k50_Npm * f.y_max_m > f.f_ult)) {
+      Fail(b.At("k50_Npm"), b.Field("k50_Npm"),
+           "K50 y_max must exceed F_ult for a softening hyperbola (K50 y_max = " +
+               Show(f.k50_Npm * f.y_max_m) + " N, f_ult_N = " + Show(f.f_ult) + " N)");
+    }
+  } else {
+    f.form = BackfillForm::kCaltrans;
+    f.width_m = LengthMOrFt(b, "width_m", "width_ft", "backwall width w");
+    f.height_m = LengthMOrFt(b, "height_m", "height_ft", "backwall height h");
+    f.skew_reduction = b.String("skew_reduction", {"exp", "none"}).value_or("exp") == "exp";
+    f.y_max_m = joint::ShamsabadiYMax_m(f.height_m);
+    if (b.Has("y_max_m")) f.y_max_m = Positive(b, "y_max_m", "");
+  }
+  b.Finish(keys);
+  return f;
+}
+
+// law = "compliant": the springs per wall and the backfill of each wall.
+CompliantAbutments ReadCompliant(Section& s) {
+  for (std::string_view key : {"eps_N", "mu", "contacts"}) {
+    s.Reject(key,
+             "belongs to law = \"impact\" (the compliant springs have no restitution, friction "
+             "or contacts)");
+  }
+  CompliantAbutments c;
+  if (const std::optional<double> n = s.Number("springs")) {
+    if (*n != std::floor(*n) || *n < 2.0 || *n > 1000.0) {
+      Fail(s.At("springs"), s.Field("springs"),
+           "must be a whole number of springs per wall from 2 to 1000 (got " + Show(*n) + ")");
+    }
+    c.springs = static_cast<int>(*n);
+  }
+  const toml::table* backfill = s.Table("backfill");
+  if (backfill == nullptr) {
+    s.Missing("backfill",
+              "the backfill of each wall with law = \"compliant\": a table "
+              "[abutments.backfill]");
+  }
+  Section b(*backfill, s.Field("backfill"), s.source());
+  c.backfill = ReadBackfill(b);
+  return c;
+}
+
+}  // namespace
 
 AbutmentParameters ReadAbutments(Section& s, bool multi_deck) {
   AbutmentParameters a;
-  s.Expect(multi_deck ? "set, gap_m, eps_N, mu (with [[deck]] tables)"
-                      : "set, gap_m, eps_N, mu, contacts");
+  s.Expect(multi_deck ? "set, gap_m, law, eps_N, mu (with [[deck]] tables)" : kImpactKeys,
+           multi_deck ? std::vector<std::pair<std::string, std::string>>{}
+                      : std::vector<std::pair<std::string, std::string>>{
+                            {"law = \"compliant\"", "springs, backfill"}});
   const std::optional<std::string> set =
       multi_deck ? s.String("set", {"both"}) : s.String("set", {"+x", "both"});
   if (!set && !multi_deck) {
@@ -35,12 +179,27 @@ AbutmentParameters ReadAbutments(Section& s, bool multi_deck) {
     a.gap_plus_m = gap;
     a.gap_minus_m = gap;
   }
+  const bool compliant = s.String("law", {"impact", "compliant"}).value_or("impact") == "compliant";
+  if (compliant && multi_deck) {
+    Fail(s.At("law"), s.Field("law"),
+         "law = \"compliant\" is not supported with [[deck]] tables (the deck-deck joints have "
+         "the impact law only; allowed: \"impact\")");
+  }
+  if (compliant) {
+    s.Expect(kCompliantKeys, {{"law = \"impact\"", "eps_N, mu, contacts"}});
+    a.compliant = ReadCompliant(s);
+    s.Finish(kCompliantKeys);
+    return a;
+  }
+  for (std::string_view key : {"springs", "backfill"}) {
+    s.Reject(key, "belongs to law = \"compliant\" (the law here is \"impact\")");
+  }
   a.restitution = s.Number("eps_N").value_or(0.5);
   CheckRange(a.restitution, 0.0, 1.0, false, s.Field("eps_N"), s.At("eps_N"));
   a.friction = s.Number("mu").value_or(0.0);
   CheckNonNegative(a.friction, s.Field("mu"), s.At("mu"));
   if (multi_deck) {
-    s.Finish("set, gap_m, eps_N, mu (with [[deck]] tables)");
+    s.Finish("set, gap_m, law, eps_N, mu (with [[deck]] tables)");
     return a;
   }
   if (const toml::table* contacts = s.Table("contacts")) {
@@ -68,7 +227,7 @@ AbutmentParameters ReadAbutments(Section& s, bool multi_deck) {
     }
     cs.Finish(both ? "P1, P2, P3, P4" : "P1, P2 (with set = \"+x\")");
   }
-  s.Finish("set, gap_m, eps_N, mu, contacts");
+  s.Finish(kImpactKeys);
   return a;
 }
 

@@ -104,7 +104,13 @@ MultiDeckSpec ReadMultiDeck(Section& top, std::string_view source) {
   }
   for (std::size_t i = 0; i < joints.size(); ++i) {
     Section s(*joints[i], Indexed("joint", i), source);
-    s.Expect("gap_m, eps_N, mu");
+    s.Expect("gap_m, eps_N, mu, law");
+    // A deck-deck joint strikes a body, not the ground: the compliant springs push on ground
+    // faces only (solver/dynamics/compliant_run.h).
+    if (s.String("law", {"impact", "compliant"}).value_or("impact") == "compliant") {
+      Fail(s.At("law"), s.Field("law"),
+           "law = \"compliant\" is not supported on a deck-deck joint (allowed: \"impact\")");
+    }
     JointSpec j;
     j.gap_m = s.RequiredNumber("gap_m", "joint gap along x, m");
     CheckNonNegative(j.gap_m, s.Field("gap_m"), s.At("gap_m"));
@@ -117,7 +123,7 @@ MultiDeckSpec ReadMultiDeck(Section& top, std::string_view source) {
            "decks " + std::to_string(i) + " and " + std::to_string(i + 1) +
                " must have the same skew_deg (their end faces are parallel)");
     }
-    s.Finish("gap_m, eps_N, mu");
+    s.Finish("gap_m, eps_N, mu, law");
     spec.joints.push_back(j);
   }
   const toml::table* abutments = top.Table("abutments");

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -32,11 +33,16 @@ struct AbutmentParameters {
   double restitution = 0.5;
   double friction = 0.0;
   std::vector<ContactOverride> overrides;
+  /// law = "compliant": the springs that replace the contacts (then restitution, friction and
+  /// overrides are unused); empty for law = "impact".
+  std::optional<CompliantAbutments> compliant;
 };
 
 /// The one [abutments] reader. A single deck names its set ("+x" or "both") and may override
 /// contacts P1..P4; a row of [[deck]] tables always has both abutments (set may say "both") and
-/// no per-contact table (its contacts are named by deck and corner).
+/// no per-contact table (its contacts are named by deck and corner), and the impact law only.
+/// law = "compliant" (a single deck) reads [abutments.backfill] and `springs` instead of eps_N,
+/// mu and the contacts (ReadCompliant).
 AbutmentParameters ReadAbutments(Section& s, bool multi_deck);
 
 // [[deck]], [[joint]] and [[support]] (model_file_multi_deck.cpp).

@@ -232,7 +232,7 @@ TEST(MultiSpanModel, BadInputsNameTheirFieldInOneLine) {
       {TwoDeckFile("W = 8\n", "gap_m = -0.01\n", "deck = 1\n"),
        "bridge.toml:12: joint[0].gap_m: must be >= 0 (got -0.01)"},
       {TwoDeckFile("W = 8\n", "gap = 0.01\n", "deck = 1\n"),
-       "bridge.toml:12: joint[0].gap: unknown key (allowed: gap_m, eps_N, mu); did you mean "
+       "bridge.toml:12: joint[0].gap: unknown key (allowed: gap_m, eps_N, mu, law); did you mean "
        "`gap_m`?"},
       {TwoDeckFile("W = 8\n", "eps_N = 0.5\n", "deck = 1\n"),
        "joint[0].gap_m: missing required key"},
@@ -280,7 +280,8 @@ TEST(MultiSpanModel, AbutmentsFollowTheSingleDeckRulesWithBothEndsAlways) {
       {"gap_m = 0.02\neps_N = 1.5\n", "abutments.eps_N: must be in [0, 1]"},
       {"set = \"+x\"\ngap_m = 0.02\n", "abutments.set: must be one of both"},
       {"gap_m = 0.02\n[abutments.contacts.P1]\nmu = 0.1\n",
-       "abutments.contacts: unknown key (allowed: set, gap_m, eps_N, mu (with [[deck]] tables))"},
+       "abutments.contacts: unknown key (allowed: set, gap_m, law, eps_N, mu (with [[deck]] "
+       "tables))"},
       {"eps_N = 0.5\n", "abutments.gap_m: missing required key"},
   };
   for (const auto& c : cases) {

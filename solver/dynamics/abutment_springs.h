@@ -1,0 +1,55 @@
+#pragma once
+/// @file
+/// A model file's compliant abutments (model::CompliantAbutments, [abutments] law = "compliant")
+/// made into the springs of SimulateCompliant, and the one run of a model under either law that
+/// `skewbridge run` and the model-file sweeps share [docs/compliant.md §4,
+/// docs/model-format.md].
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "solver/common/excitation.h"
+#include "solver/dynamics/compliant_run.h"
+#include "solver/dynamics/run_policies.h"
+#include "solver/dynamics/run_result.h"
+#include "solver/model/abutment_law.h"
+#include "solver/model/model.h"
+#include "solver/model/run_control.h"
+
+namespace skewbridge::dynamics {
+
+/// The springs of `spec` on the single deck of `rigid` (built with its corner contacts P1, P2
+/// against the +x wall and, with both abutments, P3, P4 against -x): per wall
+/// WallSprings(rigid, first, last, WallBackfill(spec.backfill, deck), spec.springs, "+x" / "-x"),
+/// the wall's law from the deck's geometry (its length and skew angle).
+/// @throws InputError naming the model's source when the wall's law is invalid.
+std::vector<CompliantSpring> AbutmentSprings(const model::Model& rigid,
+                                             const model::CompliantAbutments& spec);
+
+/// The largest response of the springs of one wall over a compliant run.
+struct WallMaxima {
+  std::string wall;             ///< "+x" or "-x"
+  double spring_force_N = 0.0;  ///< the largest force of one of its springs (N)
+  double deformation_m = 0.0;   ///< the largest deformation of one of its springs (m)
+};
+
+/// A run of a model under the joint law its model file gives.
+struct LawRun {
+  RunResult run;                    ///< the run (for a compliant one, CompliantRunResult::run)
+  std::vector<WallMaxima> walls;    ///< per compliant wall, in the springs' order; empty if rigid
+  double joint_stored_J = 0.0;      ///< compliant: CompliantRunResult::joint_stored_J
+  double joint_dissipated_J = 0.0;  ///< compliant: CompliantRunResult::joint_dissipated_J
+};
+
+/// One run of `model` (built with its contacts) under `excitation`: without `compliant`, the
+/// rigid law, Run(model, excitation, control, policies) unchanged; with it,
+/// SimulateCompliant(WithoutContacts(model), AbutmentSprings(model, *compliant), excitation,
+/// control, {}, policies.event), the maxima of each wall's springs beside it.
+/// @throws InputError as Run and SimulateCompliant (a compliant run needs the event-driven method).
+LawRun RunUnderLaw(const model::Model& model,
+                   const std::optional<model::CompliantAbutments>& compliant,
+                   const Excitation& excitation, const model::RunControl& control,
+                   const RunPolicies& policies = {});
+
+}  // namespace skewbridge::dynamics

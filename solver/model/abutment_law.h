@@ -1,0 +1,62 @@
+#pragma once
+/// @file
+/// The joint law of a model file's abutments ([abutments] law, docs/model-format.md): the rigid
+/// impact law lives in the Model's contacts; the compliant law is described here, beside the
+/// Model, as the file gives it: the backfill behind each backwall in one of three forms and the
+/// number of springs along the wall [docs/compliant.md §1, §4]. solver/dynamics turns it into
+/// springs (abutment_springs.h). SI: N, m.
+
+#include <string_view>
+
+#include "solver/joint/backfill.h"
+#include "solver/model/deck.h"
+
+namespace skewbridge::model {
+
+/// The law of the deck-abutment joints of a model file.
+enum class JointLaw {
+  kImpact,     ///< rigid unilateral contacts with restitution and friction (the Model's contacts)
+  kCompliant,  ///< springs with the hyperbolic backfill law normal to the backwall
+};
+
+/// How [abutments.backfill] gives the backfill law of one wall.
+enum class BackfillForm {
+  kHyperbolicGap,  ///< OpenSees HyperbolicGap constants, per wall or per metre of wall
+  kShamsabadi,     ///< K50, F_ult and y_max (or the wall's height H, y_max = 0.05 H)
+  kCaltrans,       ///< Caltrans SDC 2.0 from the backwall's width and height
+};
+
+/// The backfill of every compliant wall of a model file, as written (one law for both walls).
+struct BackfillSpec {
+  BackfillForm form = BackfillForm::kHyperbolicGap;
+  /// kHyperbolicGap: the constants are per metre of wall (N/m/m, N/m), multiplied by the wall's
+  /// length corner to corner, W / cos a; else per wall (N/m, N).
+  bool per_metre = false;
+  double k_max = 0.0;          ///< kHyperbolicGap: K_max (N/m, or N/m per m)
+  double k_ur = 0.0;           ///< kHyperbolicGap: K_ur (N/m, or N/m per m)
+  double r_f = 0.0;            ///< kHyperbolicGap: failure ratio R_f, in (0, 1]
+  double f_ult = 0.0;          ///< kHyperbolicGap, kShamsabadi: F_ult (N, or N per m)
+  double k50_Npm = 0.0;        ///< kShamsabadi: secant stiffness at F_ult / 2 (N/m)
+  double y_max_m = 0.0;        ///< kShamsabadi, kCaltrans: deformation at capacity (m)
+  double width_m = 0.0;        ///< kCaltrans: backwall width w (m)
+  double height_m = 0.0;       ///< kCaltrans: backwall height h (m)
+  bool skew_reduction = true;  ///< kCaltrans: R_sk = exp(-a / 45 deg), else R_sk = 1
+};
+
+/// The compliant abutments of a single-deck model file ([abutments] law = "compliant"):
+/// `springs` springs per wall from corner to corner, each with an n-th of the wall's law.
+struct CompliantAbutments {
+  BackfillSpec backfill;  ///< the law of each wall
+  int springs = 5;        ///< springs per wall, >= 2
+};
+
+/// The length of a wall of `deck` from corner to corner along its skewed end line, W / cos a (m).
+double WallLength_m(const DeckGeometry& deck);
+
+/// The backfill law of one wall of `deck` (its length and skew angle) from `spec`, gap 0 (the
+/// joint's gap is the Model's, on the contacts' faces).
+/// @throws InputError naming `source` when the constants give no softening hyperbola.
+joint::HyperbolicGap WallBackfill(const BackfillSpec& spec, const DeckGeometry& deck,
+                                  std::string_view source);
+
+}  // namespace skewbridge::model

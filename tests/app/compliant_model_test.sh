@@ -1,0 +1,90 @@
+#!/usr/bin/env bash
+# A model file's compliant abutments ([abutments] law = "compliant",
+# docs/examples/pilot-bridge-compliant.toml) through `skewbridge run --out` and through a model-file
+# sweep on 2 ranks (axis scale = [1, 1.5]) give the same numbers, bit for bit, as the C++ API
+# called directly with springs built by hand (compliant_direct: SimulateCompliant, WallSprings):
+# the deck's maxima and residuals, the strikes, the corner travel, each wall's largest spring
+# force and deformation (the cube's spring_force_px, backwall_def_px, ..._mx). The cube's
+# responses of a rigid file hold none of the compliant ones. A sweep's eps_N is refused with one
+# line and no cube.
+# usage: compliant_model_test.sh SKEWBRIDGE MPIEXEC COMPLIANT_DIRECT SOURCE_DIR
+source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
+args exe mpiexec direct src -- "$@"
+temp_dir
+
+cp "$src/docs/examples/pilot-bridge-compliant.toml" "$src/docs/examples/pilot-signal.txt" "$work/"
+"$direct" "$work/pilot-signal.txt" 1 >"$work/direct1" || fail "direct run: exit $?"
+"$direct" "$work/pilot-signal.txt" 1.5 >"$work/direct15" || fail "direct run x 1.5: exit $?"
+grep -q "status ok" "$work/direct1" || fail "direct run: $(cat "$work/direct1")"
+
+"$exe" run "$work/pilot-bridge-compliant.toml" --out "$work/run.h5" >"$work/run.out" 2>&1 ||
+  fail "run: exit $? ($(cat "$work/run.out"))"
+grep -q "compliant abutments, 5 springs per wall; backfill energy" "$work/run.out" ||
+  fail "no compliant line in the summary: $(cat "$work/run.out")"
+
+cat >"$work/spec.toml" <<'TOML'
+[sweep]
+name = "compliant"
+family = "model-file"
+model = "pilot-bridge-compliant.toml"
+[limit_states]
+joint_closing = true
+[axes]
+scale = [1.0, 1.5]
+TOML
+on_ranks 2 "$exe" sweep "$work/spec.toml" --out "$work/cube.h5" --quiet >"$work/sweep.out" 2>&1 ||
+  fail "sweep: exit $? ($(cat "$work/sweep.out"))"
+
+/usr/bin/python3 - "$work" <<'PY' || fail "run and cube against the direct call (above)"
+import sys, re, h5py
+work = sys.argv[1]
+def direct(name):
+    return {k: float(v) for k, v in (l.split() for l in open(f"{work}/{name}") if l.split()[0] != "status")}
+d1, d15 = direct("direct1"), direct("direct15")
+assert d1["impacts"] > 0 and d1["spring_force_px"] > 0 and d1["spring_force_mx"] > 0, d1
+assert d15["spring_force_px"] > d1["spring_force_px"], (d1, d15)
+run = h5py.File(f"{work}/run.h5", "r")["summary"]
+for i, n in enumerate(("x", "y", "theta")):
+    assert run["max_abs_q"][i] == d1[n + "_m"], (n, run["max_abs_q"][i], d1[n + "_m"])
+    assert run["q_end"][i] == d1[n + "_end"], (n, run["q_end"][i], d1[n + "_end"])
+assert run.attrs["impacts"] == d1["impacts"], (run.attrs["impacts"], d1["impacts"])
+text = open(f"{work}/run.out").read()
+for wall, side in (("+x", "px"), ("-x", "mx")):
+    m = re.search(re.escape(wall) + r" wall: largest spring force (\S+) N, largest deformation (\S+) m$", text, re.M)
+    assert m, text
+    assert abs(float(m.group(1)) - d1["spring_force_" + side]) <= 1e-6 * d1["spring_force_" + side], m.group(1)
+    assert abs(float(m.group(2)) - d1["backwall_def_" + side]) <= 1e-6 * d1["backwall_def_" + side], m.group(2)
+g = h5py.File(f"{work}/cube.h5", "r")["sweeps/compliant"]
+assert list(g["status"][()]) == [0, 0], g["status"][()]
+r = g["responses"]
+for cell, d in ((0, d1), (1, d15)):
+    for n in ("x", "y", "theta"):
+        assert r[n + "_m_d0"][cell] == d[n + "_m"], (cell, n, r[n + "_m_d0"][cell], d[n + "_m"])
+        assert r[n + "_end_d0"][cell] == d[n + "_end"], (cell, n)
+    assert r["impacts"][cell] == d["impacts"], (cell, r["impacts"][cell], d["impacts"])
+    assert r["travel_m_d0"][cell] == d["travel_m"], (cell, r["travel_m_d0"][cell], d["travel_m"])
+    for k in ("spring_force_px", "backwall_def_px", "spring_force_mx", "backwall_def_mx"):
+        assert r[k][cell] == d[k], (cell, k, r[k][cell], d[k])
+        assert r[k].attrs.get("units", b"") in (b"N", b"m", "N", "m"), dict(r[k].attrs)
+PY
+
+# A rigid file's cube holds no compliant response.
+cp "$src/docs/examples/pilot-bridge.toml" "$work/"
+sed 's/pilot-bridge-compliant.toml/pilot-bridge.toml/' "$work/spec.toml" >"$work/rigid.toml"
+on_ranks 2 "$exe" sweep "$work/rigid.toml" --out "$work/rigid.h5" --quiet >"$work/sweep.out" 2>&1 ||
+  fail "rigid sweep: exit $? ($(cat "$work/sweep.out"))"
+/usr/bin/python3 -c "
+import h5py, sys
+r = h5py.File('$work/rigid.h5', 'r')['sweeps/compliant/responses']
+assert not any(k.startswith(('spring_force', 'backwall_def')) for k in r), list(r)
+" || fail "a rigid cube stores compliant responses"
+
+# eps_N means nothing to the springs: one line, status 2, no cube.
+printf 'eps_N = [0.3, 0.6]\n' >>"$work/spec.toml"
+status=0
+on_ranks 1 "$exe" sweep "$work/spec.toml" --out "$work/bad.h5" --quiet >"$work/bad.out" 2>&1 || status=$?
+[ "$status" -eq 2 ] || fail "a sweep of eps_N on compliant abutments: exit $status, expected 2"
+grep -q "eps_N: the model file's abutments are compliant" "$work/bad.out" ||
+  fail "no eps_N refusal: $(cat "$work/bad.out")"
+[ ! -e "$work/bad.h5" ] || fail "a refused sweep left a cube"
+echo "ok"

@@ -1,0 +1,300 @@
+// A model file's compliant abutments ([abutments] law = "compliant"): the run the file asks for
+// (dynamics::RunUnderLaw on the parsed file) against SimulateCompliant called directly with
+// springs built by hand, the three forms of the backfill against their formulas (Caltrans SDC 2.0
+// for PyPBEE's Bridge_A worked by hand), and the one-line refusals of bad keys.
+#include "solver/dynamics/abutment_springs.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "records/excitations.h"
+#include "solver/common/error.h"
+#include "solver/dynamics/run.h"
+#include "solver/model/builders.h"
+#include "solver/model/model_file.h"
+
+namespace skewbridge::dynamics {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kKip_N = 4448.2216152605;
+constexpr double kInch_m = 0.0254;
+constexpr double kFoot_m = 0.3048;
+
+std::string Examples() { return std::string(SKEWBRIDGE_TEST_DATA_DIR) + "/../../docs/examples"; }
+
+std::string ReadText(const std::string& path) {
+  std::ifstream in(path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// `text` with its [abutments] section (up to the next section) replaced by `abutments`.
+std::string WithAbutments(const std::string& text, const std::string& abutments) {
+  const std::size_t begin = text.find("[abutments]");
+  const std::size_t end = text.find("\n[excitation]");
+  EXPECT_NE(begin, std::string::npos);
+  EXPECT_NE(end, std::string::npos);
+  return text.substr(0, begin) + abutments + text.substr(end);
+}
+
+// The pilot bridge's file with `abutments`, parsed as if it stood beside the examples.
+model::ModelFile Pilot(const std::string& abutments, const std::string& name = "m.toml") {
+  return model::ParseModelString(
+      WithAbutments(ReadText(Examples() + "/pilot-bridge.toml"), abutments), name, Examples());
+}
+
+// The message of the InputError that parsing `abutments` into the pilot bridge throws.
+std::string Refusal(const std::string& abutments) {
+  try {
+    Pilot(abutments);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
+TEST(AbutmentSprings, TheModelFilesRunIsSimulateCompliantWithSpringsBuiltByHand) {
+  // The example file: Wilson and Elgamal's per-metre law over W / cos a, five springs per wall.
+  const model::ModelFile file = model::ParseModelFile(Examples() + "/pilot-bridge-compliant.toml");
+  ASSERT_TRUE(file.compliant.has_value());
+  EXPECT_EQ(file.compliant->springs, 5);
+  // The pulse: one sine cycle of 1.2 g and 1 s along x (a pulse keeps the test independent of
+  // the signal's reader; the law is what is compared).
+  const records::PulseExcitation ex(records::PulseShape::kSine, 1.2 * 9.80665, 2.0 * kPi / 1.0,
+                                    Eigen::Vector2d::UnitX());
+  model::RunControl control = file.run;
+  control.end_time_s = 3.0;
+  control.output_interval_s = 0.0;
+  const LawRun via_file = RunUnderLaw(file.model, file.compliant, ex, control);
+
+  // By hand: the rigid model of the same deck with gaps 8 mm, its contacts P1 P2 and P3 P4 in
+  // the builder's order, the wall's constants times W / cos a.
+  model::DeckSpec deck = file.deck;
+  deck.restitution = 0.5;
+  deck.friction = 0.0;
+  const model::Model rigid = model::BuildDeckModel(deck);
+  const double wall_m = 19.36 / std::cos(20.0 * kPi / 180.0);
+  const joint::HyperbolicGap wall{20.3e6 * wall_m, 20.3e6 * wall_m, 0.7, 326e3 * wall_m, 0.0};
+  std::vector<CompliantSpring> springs = WallSprings(rigid, 0, 1, wall, 5, "+x");
+  const std::vector<CompliantSpring> minus = WallSprings(rigid, 2, 3, wall, 5, "-x");
+  springs.insert(springs.end(), minus.begin(), minus.end());
+  const CompliantRunResult direct = SimulateCompliant(WithoutContacts(rigid), springs, ex, control);
+
+  ASSERT_EQ(direct.run.status, RunStatus::kOk) << direct.run.message;
+  ASSERT_EQ(via_file.run.status, RunStatus::kOk) << via_file.run.message;
+  EXPECT_GT(direct.run.impacts, 0) << "the pulse must close a wall's springs";
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_EQ(via_file.run.max_abs_q(i), direct.run.max_abs_q(i)) << "dof " << i;
+    EXPECT_EQ(via_file.run.q_end(i), direct.run.q_end(i)) << "dof " << i;
+  }
+  EXPECT_EQ(via_file.run.impacts, direct.run.impacts);
+  EXPECT_EQ(via_file.run.max_travel_m(0), direct.run.max_travel_m(0));
+  // The walls' maxima are the largest of their five springs'.
+  ASSERT_EQ(via_file.walls.size(), 2u);
+  EXPECT_EQ(via_file.walls[0].wall, "+x");
+  EXPECT_EQ(via_file.walls[1].wall, "-x");
+  for (int w = 0; w < 2; ++w) {
+    double force = 0.0, deformation = 0.0;
+    for (int j = 5 * w; j < 5 * w + 5; ++j) {
+      force = std::max(force, direct.max_spring_force_N(j));
+      deformation = std::max(deformation, direct.max_spring_deformation_m(j));
+    }
+    EXPECT_EQ(via_file.walls[w].spring_force_N, force);
+    EXPECT_EQ(via_file.walls[w].deformation_m, deformation);
+  }
+  EXPECT_GT(via_file.walls[0].spring_force_N + via_file.walls[1].spring_force_N, 0.0);
+  EXPECT_EQ(via_file.joint_dissipated_J, direct.joint_dissipated_J);
+
+  // The rigid law of the same file without `law` is Run itself, bit for bit.
+  const model::ModelFile rigid_file = model::ParseModelFile(Examples() + "/pilot-bridge.toml");
+  ASSERT_FALSE(rigid_file.compliant.has_value());
+  const LawRun rigid_run = RunUnderLaw(rigid_file.model, rigid_file.compliant, ex, control);
+  const RunResult run = dynamics::Run(rigid_file.model, ex, control);
+  EXPECT_TRUE(rigid_run.walls.empty());
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(rigid_run.run.max_abs_q(i), run.max_abs_q(i));
+  EXPECT_EQ(rigid_run.run.impacts, run.impacts);
+}
+
+TEST(AbutmentSprings, CaltransFormOfBridgeAMeetsTheFormulasByHand) {
+  // PyPBEE's Bridge_A: backwall w = 27.13 ft, h = 4.64 ft, skew 33 deg. By hand (kip, in, ft):
+  //   R_sk = exp(-33 / 45) = 0.480305,
+  //   K = w (5.5 h + 20) R_sk = 27.13 x 45.52 x 0.480305 = 593.157 kip/in,
+  //   P = w 5.5 h^2.5 / (1 + 2.37 h) R_sk = 27.13 x 255.07 / 11.9968 x 0.480305 = 277.051 kip,
+  //   y_max = 0.05 h = 2.784 in, R_f = 1 - P / (K y_max) = 0.832228.
+  const double w = 27.13, h = 4.64, r_sk = std::exp(-33.0 / 45.0);
+  const double k_kip_per_in = w * (5.5 * h + 20.0) * r_sk;
+  const double p_kip = w * 5.5 * std::pow(h, 2.5) / (1.0 + 2.37 * h) * r_sk;
+  EXPECT_NEAR(k_kip_per_in, 593.157, 1e-3);
+  EXPECT_NEAR(p_kip, 277.051, 1e-3);
+  const std::string text = ReadText(Examples() + "/bridge-a.toml");
+  const auto parse = [&](const std::string& reduction) {
+    return model::ParseModelString(
+        WithAbutments(text,
+                      "[abutments]\nset = \"both\"\ngap_m = 0.030286\nlaw = \"compliant\"\n"
+                      "springs = 4\n[abutments.backfill]\nform = \"caltrans\"\n"
+                      "width_ft = 27.13\nheight_ft = 4.64\n" +
+                          reduction + "\n"),
+        "bridge-a.toml", Examples());
+  };
+  for (const bool reduced : {true, false}) {
+    const model::ModelFile file = parse(reduced ? "" : "skew_reduction = \"none\"");
+    ASSERT_TRUE(file.compliant);
+    const std::vector<CompliantSpring> springs = AbutmentSprings(file.model, *file.compliant);
+    ASSERT_EQ(springs.size(), 8u);
+    const double r = reduced ? 1.0 : 1.0 / r_sk;
+    for (int wall = 0; wall < 2; ++wall) {
+      double k = 0.0, f = 0.0;
+      for (int j = 4 * wall; j < 4 * wall + 4; ++j) {
+        k += springs[j].backfill.k_max_N_per_m;
+        f += springs[j].backfill.f_ult_N;
+        EXPECT_NEAR(springs[j].backfill.r_f, 0.832228, 1e-6);
+        EXPECT_EQ(springs[j].backfill.k_ur_N_per_m, springs[j].backfill.k_max_N_per_m);
+      }
+      EXPECT_NEAR(k, k_kip_per_in * r * kKip_N / kInch_m, 1e-9 * k);
+      EXPECT_NEAR(f, p_kip * r * kKip_N, 1e-9 * f);
+      // The envelope reaches the capacity at y_max = 0.05 h.
+      joint::HyperbolicGap whole = springs[4 * wall].backfill;
+      whole.k_max_N_per_m = k;
+      whole.k_ur_N_per_m = k;
+      whole.f_ult_N = f;
+      EXPECT_NEAR(joint::EnvelopeForce_N(whole, 0.05 * h * kFoot_m), f, 1e-9 * f);
+    }
+    // The springs stand on the end lines from corner to corner, at the contacts' faces.
+    EXPECT_EQ(springs[0].point_m, file.model.contact(0).point_m);
+    EXPECT_EQ(springs[3].point_m, file.model.contact(1).point_m);
+    EXPECT_EQ(springs[4].face.normal, file.model.contact(2).face.normal);
+  }
+}
+
+TEST(AbutmentSprings, ShamsabadiAndPerWallFormsGiveTheirConstants) {
+  // Shamsabadi with H: y_max = 0.05 H; K_max = 2 K50 - F_ult / y_max, R_f = 1 - F_ult /
+  // (2 K50 y_max - F_ult). K50 = 170 MN/m, F_ult = 2 MN, H = 1.6 m: y_max = 0.08 m, K_max =
+  // 315 MN/m, R_f = 1 - 2 / 25.2.
+  const model::ModelFile file = Pilot(
+      "[abutments]\nset = \"+x\"\ngap_m = 0.02\nlaw = \"compliant\"\nsprings = 2\n"
+      "[abutments.backfill]\nform = \"shamsabadi\"\nk50_Npm = 170e6\nf_ult_N = 2e6\n"
+      "height_m = 1.6\n");
+  const std::vector<CompliantSpring> s = AbutmentSprings(file.model, *file.compliant);
+  ASSERT_EQ(s.size(), 2u);
+  EXPECT_NEAR(2.0 * s[0].backfill.k_max_N_per_m, 315e6, 1e-3);
+  EXPECT_NEAR(s[0].backfill.r_f, 1.0 - 2.0 / 25.2, 1e-14);
+  EXPECT_NEAR(2.0 * s[1].backfill.f_ult_N, 2e6, 1e-6);
+  // Per wall: the constants as written, halved over two springs; K_ur given.
+  const model::ModelFile per_wall = Pilot(
+      "[abutments]\nset = \"+x\"\ngap_m = 0.02\nlaw = \"compliant\"\nsprings = 2\n"
+      "[abutments.backfill]\nform = \"hyperbolic-gap\"\nk_max_Npm = 4e8\nk_ur_Npm = 6e8\n"
+      "r_f = 0.7\nf_ult_N = 6e6\n");
+  const std::vector<CompliantSpring> p = AbutmentSprings(per_wall.model, *per_wall.compliant);
+  ASSERT_EQ(p.size(), 2u);
+  EXPECT_EQ(p[1].backfill.k_max_N_per_m, 2e8);
+  EXPECT_EQ(p[1].backfill.k_ur_N_per_m, 3e8);
+  EXPECT_EQ(p[1].backfill.f_ult_N, 3e6);
+  EXPECT_EQ(p[1].backfill.r_f, 0.7);
+}
+
+TEST(AbutmentSprings, BadKeysAreRefusedInOneLineNamingFileLineAndKey) {
+  const std::string head = "[abutments]\nset = \"both\"\ngap_m = 0.03\nlaw = \"compliant\"\n";
+  const auto refused = [&](const std::string& abutments, const std::string& expected) {
+    const std::string message = Refusal(abutments);
+    EXPECT_NE(message.find(expected), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  };
+  refused("[abutments]\nset = \"both\"\ngap_m = 0.03\nlaw = \"springy\"\n",
+          "abutments.law: must be one of impact, compliant");
+  refused(head, "abutments.backfill: missing required key");
+  refused(head + "eps_N = 0.5\n[abutments.backfill]\nform = \"caltrans\"\n",
+          "abutments.eps_N: belongs to law = \"impact\"");
+  refused("[abutments]\nset = \"both\"\ngap_m = 0.03\nsprings = 5\n",
+          "abutments.springs: belongs to law = \"compliant\"");
+  refused(head + "springs = 1\n[abutments.backfill]\nform = \"caltrans\"\n",
+          "m.toml:28: abutments.springs: must be a whole number of springs per wall from 2 to "
+          "1000 (got 1)");
+  refused(head + "[abutments.backfill]\nk_max_Npm = 1e8\n",
+          "abutments.backfill.form: missing required key");
+  refused(head + "[abutments.backfill]\nform = \"caltrans\"\nheight_m = 1.5\n",
+          "abutments.backfill.width_m: missing required key (backwall width w, m (or width_ft");
+  refused(head +
+              "[abutments.backfill]\nform = \"caltrans\"\nwidth_m = 8\nwidth_ft = 27\n"
+              "height_m = 1.5\n",
+          "abutments.backfill.width_ft: give width_m or width_ft, not both");
+  refused(head +
+              "[abutments.backfill]\nform = \"caltrans\"\nwidth_m = 8\nheight_m = 1.5\n"
+              "k50_Npm = 1e8\n",
+          "abutments.backfill.k50_Npm: unknown key (allowed: form, width_m");
+  refused(head +
+              "[abutments.backfill]\nform = \"caltrans\"\nwidth_m = 8\nheight_m = 1.5\n"
+              "skew_reduction = \"cos\"\n",
+          "abutments.backfill.skew_reduction: must be one of exp, none");
+  refused(head +
+              "[abutments.backfill]\nform = \"hyperbolic-gap\"\nk_max_Npm = 1e8\n"
+              "r_f = 0.7\nf_ult_N_per_m = 3e5\n",
+          "abutments.backfill.k_max_Npm: give the constants per wall");
+  refused(head +
+              "[abutments.backfill]\nform = \"hyperbolic-gap\"\nk_max_Npm = 1e8\n"
+              "r_f = 0\nf_ult_N = 3e5\n",
+          "abutments.backfill.r_f: must be in (0, 1] (got 0)");
+  refused(head +
+              "[abutments.backfill]\nform = \"hyperbolic-gap\"\nk_max_Npm = 1e8\n"
+              "r_f = 0.7\nf_ult_N = 3e5\ngap_m = 0.02\n",
+          "m.toml:33: abutments.backfill.gap_m: the joint's gap is abutments.gap_m");
+  refused(head +
+              "[abutments.backfill]\nform = \"shamsabadi\"\nk50_Npm = 1e7\nf_ult_N = 2e6\n"
+              "height_m = 1.6\n",
+          "abutments.backfill.k50_Npm: K50 y_max must exceed F_ult");
+  // A compliant model runs with the event-driven method only.
+  const std::string text = WithAbutments(
+      ReadText(Examples() + "/pilot-bridge.toml"),
+      head + "[abutments.backfill]\nform = \"caltrans\"\nwidth_m = 8\nheight_m = 1.5\n");
+  try {
+    model::ParseModelString(text + "method = \"time-stepping\"\ntime_step_s = 1e-3\n", "m.toml",
+                            Examples());
+    ADD_FAILURE() << "time-stepping accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(
+                  "m.toml:42: run.method: the compliant abutments (abutments.law = "
+                  "\"compliant\") run with the event-driven method only"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(AbutmentSprings, DeckDeckJointsAndMultiDeckAbutmentsRefuseTheCompliantLaw) {
+  // The springs push on ground faces only: a deck-deck joint, and so a row of decks, keeps the
+  // impact law, and says so in one line.
+  const std::string text = ReadText(Examples() + "/three-span.toml");
+  const auto refusal = [&](const std::string& after, const std::string& expected) {
+    std::string changed = text;
+    const std::size_t at = changed.find(after);
+    ASSERT_NE(at, std::string::npos);
+    changed.insert(at + after.size(), "law = \"compliant\"\n");
+    try {
+      model::ParseModelString(changed, "three-span.toml", Examples());
+      ADD_FAILURE() << "accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+    }
+  };
+  refusal("between deck[0] and deck[1]\n",
+          "three-span.toml:26: joint[0].law: law = \"compliant\" is not supported on a deck-deck "
+          "joint (allowed: \"impact\")");
+  refusal("deck[2]'s +x end\n",
+          "three-span.toml:36: abutments.law: law = \"compliant\" is not supported with [[deck]] "
+          "tables");
+  // law = "impact" is the default, accepted where written.
+  std::string impact = text;
+  impact.insert(impact.find("deck[2]'s +x end\n") + 17, "law = \"impact\"\n");
+  EXPECT_FALSE(model::ParseModelString(impact, "three-span.toml", Examples()).compliant);
+}
+
+}  // namespace
+}  // namespace skewbridge::dynamics
