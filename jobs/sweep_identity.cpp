@@ -48,6 +48,9 @@ std::string SweepSpec::CanonicalText() const {
   if (!record_folder.empty()) {
     out << "records.folder = " << str(record_folder) << "\n";
     out << "records.pattern = " << str(record_pattern) << "\n";
+    // Written only when given, so that a folder of single records keeps its identity.
+    if (record_pairs_by_name) out << "records.pairs = true\n";
+    if (!record_pairs_table.empty()) out << "records.pairs = " << str(record_pairs_table) << "\n";
     if (!record_units.empty()) out << "records.units = " << str(record_units) << "\n";
     if (record_dt_s > 0.0) out << "records.dt = " << Fmt(record_dt_s) << "\n";
   }

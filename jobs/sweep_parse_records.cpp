@@ -11,14 +11,15 @@ void SpecParser::ParseRecordsTable(const toml::table& records, SweepSpec& spec) 
   const bool folder_form = records.contains("folder") || records.contains("pattern");
   for (auto&& [key, node] : records) {
     const std::string_view k = key.str();
-    const bool folder_key = k == "folder" || k == "pattern" || k == "units" || k == "dt";
+    const bool folder_key =
+        k == "folder" || k == "pattern" || k == "units" || k == "dt" || k == "pairs";
     const bool im_key = k == "scale_to" || k == "im" || k == "max_scale" || k == "beyond_max_scale";
     if (k != "set" && k != "synthetic" && !im_key && !(folder_form && folder_key)) {
       throw Error(key.source(), "records." + std::string(k),
                   "unknown key; allowed: set, synthetic, or folder and pattern (with units, "
-                  "dt); scale_to or im, max_scale, beyond_max_scale" +
+                  "dt, pairs); scale_to or im, max_scale, beyond_max_scale" +
                       DidYouMean(k, {"set", "synthetic", "folder", "pattern", "units", "dt",
-                                     "scale_to", "im", "max_scale", "beyond_max_scale"}));
+                                     "pairs", "scale_to", "im", "max_scale", "beyond_max_scale"}));
     }
   }
   ParseIntensityMeasure(records, spec);
@@ -195,6 +196,19 @@ void SpecParser::ParseRecordFolder(const toml::table& records, SweepSpec& spec) 
                   "must be a number > 0 (s; the step of files that state none)");
     }
     spec.record_dt_s = *dt;
+  }
+  if (const toml::node* node = records.get("pairs")) {
+    spec.record_pairs_at = Where(source_, node->source());
+    if (const std::optional<bool> flag = node->value_exact<bool>()) {
+      spec.record_pairs_by_name = *flag;
+    } else if (const std::optional<std::string> table = node->value_exact<std::string>();
+               table && !table->empty()) {
+      spec.record_pairs_table = *table;
+    } else {
+      throw Error(node->source(), "records.pairs",
+                  "must be true (pairs by file name) or the name of a CSV table of the folder "
+                  "(h1_file, h2_file, pair)");
+    }
   }
   spectra::LoadSpecRecordSet(spec);
 }

@@ -4,8 +4,13 @@
 #include <toml++/toml.h>
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <map>
+#include <optional>
 #include <set>
+#include <sstream>
 
+#include "records/readers/text.h"
 #include "solver/common/error.h"
 #include "solver/common/nearest.h"
 
@@ -149,10 +154,215 @@ void ReadFolderSet(const toml::table& root, const std::filesystem::path& manifes
   RecordEntry defaults;
   ReadEntryOptions(root, manifest, defaults);
   defaults.line = LineOf(*root.get("folder"));
-  const RecordSet folder_set =
-      MakeFolderSet(manifest.parent_path() / folder, pattern, defaults,
-                    {folder_at, Where(manifest, LineOf(*pattern_node)), ""});
-  set.records = folder_set.records;
+  FolderSetSource source{folder_at, Where(manifest, LineOf(*pattern_node)), "", ""};
+  FolderPairs pairs;
+  if (const toml::node* node = root.get("pairs")) {
+    source.pairs_at = Where(manifest, LineOf(*node));
+    if (const std::optional<bool> flag = node->value_exact<bool>()) {
+      pairs.by_name = *flag;
+    } else if (const std::optional<std::string> table = node->value_exact<std::string>();
+               table && !table->empty()) {
+      pairs.table = manifest.parent_path() / folder / *table;
+    } else {
+      throw InputError::AtField(source.pairs_at, "pairs",
+                                "must be true (pairs by file name) or the name of a CSV table of "
+                                "the folder (h1_file, h2_file, pair)");
+    }
+  }
+  RecordSet folder_set =
+      MakeFolderSet(manifest.parent_path() / folder, pattern, defaults, source, pairs);
+  set.records = std::move(folder_set.records);
+  set.pairs_table = std::move(folder_set.pairs_table);
+}
+
+// The fields of one CSV line (RFC 4180 within a line: commas separate, a field in double quotes
+// may hold commas and "" for a quote), each trimmed of blanks; nullopt for an unclosed quote.
+std::optional<std::vector<std::string>> CsvFields(std::string_view line) {
+  std::vector<std::string> out(1);
+  bool quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+        out.back() += '"';
+        ++i;
+      } else if (c == '"') {
+        quoted = false;
+      } else {
+        out.back() += c;
+      }
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      out.emplace_back();
+    } else {
+      out.back() += c;
+    }
+  }
+  if (quoted) return std::nullopt;
+  for (std::string& field : out) field = std::string(detail::Trim(field));
+  return out;
+}
+
+// One pair of a folder set: its files and the label its table gives ("" for the default).
+struct FolderPair {
+  std::filesystem::path h1, h2;
+  std::string label;
+};
+
+// The pairs of `files` (sorted by name) by PairsByName: each file must pair with exactly one
+// other; H1 is the first of the two in byte order.
+std::vector<FolderPair> PairFilesByName(const std::vector<std::filesystem::path>& files,
+                                        std::string_view pattern, const FolderSetSource& source) {
+  const std::string key = source.key_prefix + "pairs";
+  std::vector<std::vector<std::size_t>> partners(files.size());
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    for (std::size_t j = i + 1; j < files.size(); ++j) {
+      if (PairsByName(files[i].filename().string(), files[j].filename().string())) {
+        partners[i].push_back(j);
+        partners[j].push_back(i);
+      }
+    }
+  }
+  std::vector<FolderPair> out;
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    const std::string name = files[i].filename().string();
+    if (partners[i].empty()) {
+      throw InputError::AtField(
+          source.pairs_at, key,
+          "unpaired file " + name + " of " + files[i].parent_path().string() +
+              ": no other file matching '" + std::string(pattern) +
+              "' differs from its name only in the component (one run without '_', '-', '.' or "
+              "blank, as 180 and 270, EW and NS); allowed: two files per station, or pairs = "
+              "\"TABLE.csv\" naming them");
+    }
+    if (partners[i].size() > 1) {
+      throw InputError::AtField(
+          source.pairs_at, key,
+          "file " + name + " pairs by name with both " + files[partners[i][0]].filename().string() +
+              " and " + files[partners[i][1]].filename().string() +
+              " (a third component, e.g. the vertical?); allowed: a pattern that leaves one "
+              "out, or pairs = \"TABLE.csv\" naming the pairs");
+    }
+    if (partners[i][0] > i) out.push_back({files[i], files[partners[i][0]], ""});
+  }
+  return out;
+}
+
+// The pairs a CSV table names (columns h1_file and h2_file, optionally pair for the label;
+// others ignored), in row order: the rows whose two files match the pattern. Every matching
+// file must be in one such row.
+std::vector<FolderPair> PairFilesByTable(const std::filesystem::path& folder,
+                                         const std::vector<std::filesystem::path>& files,
+                                         std::string_view pattern, const FolderPairs& pairs,
+                                         const FolderSetSource& source) {
+  const std::string key = source.key_prefix + "pairs";
+  const std::string table = pairs.table.string();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(pairs.table, ec)) {
+    throw InputError::AtField(source.pairs_at, key, "not a file: " + table);
+  }
+  std::ifstream in(pairs.table, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in && !in.eof()) throw InputError::AtField(source.pairs_at, key, "cannot read " + table);
+  std::string contents = text.str();
+  if (contents.rfind("\xEF\xBB\xBF", 0) == 0) contents.erase(0, 3);  // a UTF-8 byte-order mark
+  const std::vector<detail::Line> lines = detail::SplitLines(contents);
+  std::size_t k = 0;
+  while (k < lines.size() && detail::IsBlank(lines[k].text)) ++k;
+  if (k == lines.size()) {
+    throw InputError::AtLine(table, 0,
+                             "empty; allowed: a header row naming h1_file and h2_file "
+                             "(and pair for the label), then one row per pair");
+  }
+  const long header_line = lines[k].number;
+  const std::optional<std::vector<std::string>> header = CsvFields(lines[k++].text);
+  std::map<std::string, std::size_t> column;
+  for (std::size_t c = 0; header && c < header->size(); ++c) column.emplace((*header)[c], c);
+  for (const char* name : {"h1_file", "h2_file"}) {
+    if (!column.contains(name)) {
+      throw InputError::AtLine(table, header_line,
+                               std::string("no column ") + name +
+                                   " in the header; allowed: a header row naming h1_file and "
+                                   "h2_file (and pair for the label), then one row per pair");
+    }
+  }
+  const std::set<std::string> matching = [&files] {
+    std::set<std::string> names;
+    for (const std::filesystem::path& f : files) names.insert(f.filename().string());
+    return names;
+  }();
+  std::map<std::string, long> row_of;  // each file's row, to refuse a file in two pairs
+  std::vector<FolderPair> out;
+  for (; k < lines.size(); ++k) {
+    const detail::Line& line = lines[k];
+    if (detail::IsBlank(line.text)) continue;
+    const std::optional<std::vector<std::string>> fields = CsvFields(line.text);
+    if (!fields || fields->size() != header->size()) {
+      throw InputError::AtLine(
+          table, line.number,
+          fields ? fmt::format("{} fields, the header has {}", fields->size(), header->size())
+                 : std::string("an unclosed '\"'"));
+    }
+    FolderPair pair;
+    std::array<std::string, 2> names;
+    for (int c = 0; c < 2; ++c) {
+      const char* name = c == 0 ? "h1_file" : "h2_file";
+      names[c] = (*fields)[column.at(name)];
+      if (names[c].empty() || names[c].find('/') != std::string::npos ||
+          names[c].find('\\') != std::string::npos) {
+        throw InputError::AtLine(table, line.number,
+                                 std::string(name) + ": '" + names[c] +
+                                     "' is not a file name (allowed: the name of a file of " +
+                                     folder.string() + ", no folder)");
+      }
+    }
+    const bool m1 = GlobMatch(pattern, names[0]);
+    const bool m2 = GlobMatch(pattern, names[1]);
+    if (!m1 && !m2) continue;  // a pair the pattern leaves out
+    if (m1 != m2) {
+      throw InputError::AtLine(
+          table, line.number,
+          fmt::format("{} '{}' matches pattern '{}' and {} '{}' does not; allowed: a pattern that "
+                      "takes both files of a pair or neither",
+                      m1 ? "h1_file" : "h2_file", m1 ? names[0] : names[1], pattern,
+                      m1 ? "h2_file" : "h1_file", m1 ? names[1] : names[0]));
+    }
+    if (names[0] == names[1]) {
+      throw InputError::AtLine(table, line.number,
+                               "h2_file is the file of h1_file; a pair has two files, one per "
+                               "component");
+    }
+    for (const std::string& name : names) {
+      if (!matching.contains(name)) {
+        throw InputError::AtLine(
+            table, line.number,
+            "no file " + name + " in " + folder.string() + " (allowed: files of the folder)");
+      }
+      if (const auto [it, fresh] = row_of.emplace(name, line.number); !fresh) {
+        throw InputError::AtLine(table, line.number,
+                                 name + " is also a component of the pair of line " +
+                                     std::to_string(it->second) + "; a file is in one pair");
+      }
+    }
+    pair.h1 = folder / names[0];
+    pair.h2 = folder / names[1];
+    if (const auto it = column.find("pair"); it != column.end()) pair.label = (*fields)[it->second];
+    out.push_back(std::move(pair));
+  }
+  for (const std::filesystem::path& f : files) {
+    const std::string name = f.filename().string();
+    if (!row_of.contains(name)) {
+      throw InputError::AtField(source.pairs_at, key,
+                                "unpaired file " + name + " of " + folder.string() +
+                                    ": it matches pattern '" + std::string(pattern) +
+                                    "' and no row of " + table +
+                                    " names it; allowed: every matching file in one row, or a "
+                                    "pattern that leaves it out");
+    }
+  }
+  return out;
 }
 
 }  // namespace
@@ -238,7 +448,8 @@ bool GlobMatch(std::string_view pattern, std::string_view name) {
 }
 
 RecordSet MakeFolderSet(const std::filesystem::path& folder, std::string_view pattern,
-                        const RecordEntry& defaults, const FolderSetSource& source) {
+                        const RecordEntry& defaults, const FolderSetSource& source,
+                        const FolderPairs& pairs) {
   const std::string folder_key = source.key_prefix + "folder";
   const std::string pattern_key = source.key_prefix + "pattern";
   if (const std::string problem = GlobProblem(pattern); !problem.empty()) {
@@ -272,12 +483,60 @@ RecordSet MakeFolderSet(const std::filesystem::path& folder, std::string_view pa
   // The folder itself stands for the manifest: record paths are relative to its parent.
   set.manifest = folder.filename().empty() ? folder.parent_path() : folder;
   set.name = set.manifest.filename().string();
-  for (const std::filesystem::path& file : files) {
+  if (!pairs.Any()) {
+    for (const std::filesystem::path& file : files) {
+      RecordEntry entry = defaults;
+      entry.file = file;
+      set.records.push_back(std::move(entry));
+    }
+    return set;
+  }
+  if (!pairs.table.empty()) {
+    // The table is never a record, whatever the pattern.
+    std::error_code same;
+    std::erase_if(files, [&pairs, &same](const std::filesystem::path& f) {
+      return std::filesystem::equivalent(f, pairs.table, same);
+    });
+    set.pairs_table = pairs.table;
+  }
+  const std::vector<FolderPair> found =
+      pairs.table.empty() ? PairFilesByName(files, pattern, source)
+                          : PairFilesByTable(folder, files, pattern, pairs, source);
+  if (found.empty()) {
+    throw InputError::AtField(
+        source.pattern_at, pattern_key,
+        "no pair of files matching '" + std::string(pattern) + "' in " + folder.string());
+  }
+  std::map<std::string, std::filesystem::path> seen;  // label -> H1, for duplicates
+  for (const FolderPair& pair : found) {
     RecordEntry entry = defaults;
-    entry.file = file;
+    entry.file = pair.h1;
+    entry.file_h2 = pair.h2;
+    entry.label = pair.label;
+    const std::string label = RecordLabel(entry);
+    if (const auto [it, fresh] = seen.emplace(label, pair.h1); !fresh) {
+      throw InputError::AtField(source.pairs_at, source.key_prefix + "pairs",
+                                "two pairs of one label '" + label + "' (H1 " +
+                                    it->second.filename().string() + " and " +
+                                    pair.h1.filename().string() +
+                                    "); give each pair its own label (the pair column of a table)");
+    }
     set.records.push_back(std::move(entry));
   }
   return set;
+}
+
+bool PairsByName(std::string_view a, std::string_view b) {
+  std::size_t p = 0;
+  while (p < a.size() && p < b.size() && a[p] == b[p]) ++p;
+  std::size_t s = 0;
+  while (s < a.size() - p && s < b.size() - p && a[a.size() - 1 - s] == b[b.size() - 1 - s]) ++s;
+  const std::string_view ma = a.substr(p, a.size() - p - s);
+  const std::string_view mb = b.substr(p, b.size() - p - s);
+  const auto plain = [](std::string_view run) {
+    return !run.empty() && run.find_first_of("_-. \t") == std::string_view::npos;
+  };
+  return plain(ma) && plain(mb);
 }
 
 RecordSet LoadRecordSet(const std::filesystem::path& manifest) {
@@ -297,7 +556,8 @@ RecordSet LoadRecordSet(const std::filesystem::path& manifest) {
   set.name = manifest.stem().string();
   const bool folder_form = root.contains("folder") || root.contains("pattern");
   static const std::set<std::string_view> kFolderKeys = {
-      "name", "folder", "pattern", "scale", "units", "dt", "format", "channel", "max_pga_g"};
+      "name", "folder", "pattern", "scale",     "units",
+      "dt",   "format", "channel", "max_pga_g", "pairs"};
   // A sweep specification or a model file is named as what it is, not by its first table.
   if (!root.contains("record") && !folder_form) {
     if (root.contains("sweep")) {
@@ -321,8 +581,8 @@ RecordSet LoadRecordSet(const std::filesystem::path& manifest) {
       throw InputError::AtField(
           Where(manifest, LineOf(node)), key.str(),
           (folder_form ? "unknown key of a folder set (allowed: name, folder, pattern, scale, "
-                         "units, dt, format, channel, max_pga_g; [[record]] tables are the "
-                         "other form)"
+                         "units, dt, format, channel, max_pga_g, pairs; [[record]] tables are "
+                         "the other form)"
                        : "unknown key (allowed: name, [[record]], or folder and pattern)") +
               DidYouMean(key.str(), allowed));
     }

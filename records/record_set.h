@@ -32,6 +32,9 @@
 ///     pattern = "*.AT2"         # *, ? and [...] classes; file names only
 ///     units = "g"               # optional, as above (a file's header must agree)
 ///     dt = 0.01                 # optional, as above
+///     pairs = "PAIRS.csv"       # optional: the matching files are pairs, named by a CSV table
+///                               # of the folder (h1_file, h2_file, pair), or true: paired by
+///                               # name (PairsByName), H1 the first in byte order
 
 #include <array>
 #include <filesystem>
@@ -75,6 +78,9 @@ struct RecordSet {
   std::string name;                  ///< `name` key, default the manifest's stem
   std::filesystem::path manifest;    ///< where it was read from
   std::vector<RecordEntry> records;  ///< in manifest order, at least one
+  /// The CSV table that named a folder set's pairs (an input of what the set drives, as the
+  /// manifest is); empty otherwise.
+  std::filesystem::path pairs_table;
 };
 
 /// Reads a record-set manifest (TOML).
@@ -87,18 +93,37 @@ RecordSet LoadRecordSet(const std::filesystem::path& manifest);
 /// Where a folder set's folder and pattern were given, for messages: "FILE:LINE" of each and
 /// the prefix of the key names ("" in a manifest, "records." in a sweep specification).
 struct FolderSetSource {
-  std::string folder_at;
-  std::string pattern_at;
-  std::string key_prefix;
+  std::string folder_at;   ///< "FILE:LINE" of folder
+  std::string pattern_at;  ///< "FILE:LINE" of pattern
+  std::string key_prefix;  ///< "" or "records."
+  std::string pairs_at;    ///< "FILE:LINE" of pairs, when given
+};
+
+/// How the files of a folder set make record pairs (two horizontal components of one station).
+struct FolderPairs {
+  bool by_name = false;         ///< pairs = true: PairsByName, H1 the first in byte order
+  std::filesystem::path table;  ///< pairs = "FILE.csv": the table, resolved; empty: none
+  bool Any() const { return by_name || !table.empty(); }  ///< whether the files are pairs
 };
 
 /// The folder form of a set: every regular file of `folder` whose name matches `pattern`, in
 /// byte order of the names, each a copy of `defaults` (options, scale) with its file; labels are
-/// the file names. RecordSet::manifest is the folder.
+/// the file names. With `pairs`, the matching files are taken two by two as record pairs
+/// (docs/records.md): by name (in byte order of the H1 names, labelled by PairLabel), or as the
+/// rows of the table name them (in row order, labelled by its `pair` column when it has one);
+/// the table itself is never a record. RecordSet::manifest is the folder.
 /// @throws InputError "<folder_at>: <prefix>folder: not a folder ...", or at pattern_at for a bad
-/// pattern or one that matches no file.
+/// pattern or one that matches no file; at pairs_at for a file that pairs with none or with more
+/// than one, a missing or unreadable table; "TABLE:LINE: ..." for a row naming a missing file,
+/// a file of another row, or one file that matches the pattern and one that does not.
 RecordSet MakeFolderSet(const std::filesystem::path& folder, std::string_view pattern,
-                        const RecordEntry& defaults, const FolderSetSource& source);
+                        const RecordEntry& defaults, const FolderSetSource& source,
+                        const FolderPairs& pairs = {});
+
+/// Whether two file names are the two horizontal components of one station by name: they
+/// differ in one run of characters, not empty in either, that holds no '_', '-', '.' or blank
+/// ("RSN107_OROVILLE_B-OAP180.AT2" and "...OAP270.AT2", "...CHY027-E.AT2" and "...CHY027-N.AT2").
+bool PairsByName(std::string_view a, std::string_view b);
 
 /// Why `pattern` is not a file-name glob ("" when it is one): empty, a '/' in it, or an
 /// unclosed '[' class.

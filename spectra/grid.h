@@ -129,6 +129,12 @@ struct CellGrid {
   double record_dt_s = 0.0;                  ///< [records] dt for files stating none, or 0.
   std::string record_folder_at;              ///< "spec.toml:LINE" of folder, for messages.
   std::string record_pattern_at;             ///< "spec.toml:LINE" of pattern, for messages.
+  /// [records] pairs = true: the folder's files are record pairs, paired by name
+  /// (records::PairsByName).
+  bool record_pairs_by_name = false;
+  /// [records] pairs = "FILE.csv": the table of the folder that names the pairs; empty: none.
+  std::string record_pairs_table;
+  std::string record_pairs_at;  ///< "spec.toml:LINE" of pairs, for messages.
   /// [records] synthetic = {count, seed}: a suite made in memory (records::SynthesizeSuite)
   /// instead of a manifest; count 0 when not given.
   int synthetic_count = 0;

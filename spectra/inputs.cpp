@@ -48,6 +48,8 @@ std::vector<GridInput> GridInputFiles(const CellGrid& grid) {
   } catch (const InputError&) {
     return out;  // reported by the evaluator, which needs the set
   }
+  // The table that pairs a folder's files decides what each record is, as a manifest does.
+  if (!set->pairs_table.empty()) add("record-pairs", set->pairs_table);
   for (const std::string& label : wanted) {
     for (const records::RecordEntry& entry : set->records) {
       // An unknown label adds no file: the evaluator names it with the set's labels.

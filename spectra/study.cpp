@@ -301,8 +301,14 @@ records::RecordSet LoadSpecRecordSet(const CellGrid& spec) {
     records::RecordEntry defaults;
     if (!spec.record_units.empty()) defaults.options.units = records::ParseUnits(spec.record_units);
     if (spec.record_dt_s > 0.0) defaults.options.dt_s = spec.record_dt_s;
-    return records::MakeFolderSet(spec.record_folder_path, spec.record_pattern, defaults,
-                                  {spec.record_folder_at, spec.record_pattern_at, "records."});
+    records::FolderPairs pairs;
+    pairs.by_name = spec.record_pairs_by_name;
+    if (!spec.record_pairs_table.empty()) {
+      pairs.table = spec.record_folder_path / spec.record_pairs_table;
+    }
+    return records::MakeFolderSet(
+        spec.record_folder_path, spec.record_pattern, defaults,
+        {spec.record_folder_at, spec.record_pattern_at, "records.", spec.record_pairs_at}, pairs);
   }
   return records::LoadRecordSet(spec.record_set_path);
 }

@@ -143,6 +143,15 @@ expect "set_spec.toml: record: label 'LOMA' is not in the record set labels.toml
 printf 'name = "s"\n[[record]]\nfile = "recs/NIS090.AT2"\n[[record]]\nfile = "recs/GONE.AT2"\nlabel = "GONE"\n' > gone.toml
 printf '[sweep]\nname = "r"\nfamily = "pilot-bridge"\n[records]\nset = "gone.toml"\n[axes]\nrecord = ["GONE"]\nPi_delta = [1.0]\n' > gone_spec.toml
 expect "gone.toml:4: record 'GONE': no such file: recs/GONE.AT2" sweep gone_spec.toml --out out.h5
+# A folder of record pairs: a file without its other component, then a pair of two time steps.
+mkdir pf
+cp "$root"/tests/data/records/pairs/RSN107_* "$root/tests/data/records/pairs/RSN430_SMART1.25_25M01EW.AT2" pf/
+printf '[sweep]\nname = "r"\nfamily = "pilot-bridge"\n[records]\nfolder = "pf"\npattern = "*.AT2"\npairs = true\n[axes]\nrecord = "*"\nPi_delta = [1.0]\n' > pairs_spec.toml
+expect "pairs_spec.toml:7: records.pairs: unpaired file RSN430_SMART1.25_25M01EW.AT2 of pf: no other file matching '*.AT2' differs from its name only in the component (one run without '_', '-', '.' or blank, as 180 and 270, EW and NS); allowed: two files per station, or pairs = \"TABLE.csv\" naming them" \
+  sweep pairs_spec.toml --out out.h5
+sed 's/DT=   .0100/DT=   .0050/' "$root/tests/data/records/pairs/RSN430_SMART1.25_25M01NS.AT2" > pf/RSN430_SMART1.25_25M01NS.AT2
+expect "pf/RSN430_SMART1.25_25M01EW.AT2, pf/RSN430_SMART1.25_25M01NS.AT2: the two components of a pair have different time steps (0.01 s and 0.005 s); allowed: two components sampled at one dt (resample one of them outside skewbridge)" \
+  sweep pairs_spec.toml --out out.h5
 
 # Under mpiexec the command line fails on every rank: one line, exit 2.
 status=0

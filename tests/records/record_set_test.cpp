@@ -237,6 +237,135 @@ TEST(LoadRecordSet, PairErrorsNameTheManifestLineAndKey) {
               HasSubstr("duplicate record label 'a'"));
 }
 
+// Two file names of one station pair by name when they differ in one run without a separator.
+TEST(PairsByName, TheComponentIsOneRunWithoutASeparator) {
+  EXPECT_TRUE(PairsByName("RSN107_OROVILLE_B-OAP180.AT2", "RSN107_OROVILLE_B-OAP270.AT2"));
+  EXPECT_TRUE(PairsByName("RSN430_SMART1.25_25M01EW.AT2", "RSN430_SMART1.25_25M01NS.AT2"));
+  EXPECT_TRUE(PairsByName("RSN1196_CHICHI_CHY027-E.AT2", "RSN1196_CHICHI_CHY027-N.AT2"));
+  EXPECT_TRUE(PairsByName("IT.AQK..HNE.D.ASC", "IT.AQK..HNN.D.ASC"));
+  EXPECT_FALSE(PairsByName("RSN107_A180.AT2", "RSN149_B090.AT2"));  // two stations
+  EXPECT_FALSE(PairsByName("RSN107_A180.AT2", "RSN107_A180.AT2"));  // one file
+  EXPECT_FALSE(PairsByName("A.AT2", "A1.AT2"));                     // one side empty
+  EXPECT_FALSE(PairsByName("X_E.AT2", "Y-N.AT2"));
+}
+
+// A folder set of pairs, by name or through a table, is the set of [[record]] pairs: the same
+// files as H1 and H2, the same components read, the table's labels; a pattern that leaves a
+// pair out leaves it out of the table's set too.
+TEST(LoadRecordSet, FolderPairsAreTheRecordFormsPairs) {
+  const std::filesystem::path pairs = kData / "pairs";
+  const std::string folder = pairs.string();
+  const RecordSet tables = LoadRecordSet(WriteManifest(
+      "fp1.toml", "[[record]]\nh1 = \"" + folder + "/RSN107_OROVILLE_B-OAP180.AT2\"\nh2 = \"" +
+                      folder + "/RSN107_OROVILLE_B-OAP270.AT2\"\n[[record]]\nh1 = \"" + folder +
+                      "/RSN430_SMART1.25_25M01EW.AT2\"\nh2 = \"" + folder +
+                      "/RSN430_SMART1.25_25M01NS.AT2\"\n"));
+  const RecordSet by_name = LoadRecordSet(WriteManifest(
+      "fp2.toml", "folder = \"" + folder + "\"\npattern = \"RSN*.AT2\"\npairs = true\n"));
+  const RecordSet by_table = LoadRecordSet(WriteManifest(
+      "fp3.toml", "folder = \"" + folder + "\"\npattern = \"*.AT2\"\npairs = \"PAIRS.csv\"\n"));
+  EXPECT_TRUE(by_name.pairs_table.empty());
+  EXPECT_EQ(by_table.pairs_table, pairs / "PAIRS.csv");
+  for (const RecordSet* set : {&by_name, &by_table}) {
+    ASSERT_EQ(set->records.size(), 2u);
+    for (std::size_t r = 0; r < 2; ++r) {
+      const RecordEntry& want = tables.records[r];
+      const RecordEntry& got = set->records[r];
+      EXPECT_TRUE(std::filesystem::equivalent(got.file, want.file)) << got.file;
+      EXPECT_TRUE(std::filesystem::equivalent(got.file_h2, want.file_h2)) << got.file_h2;
+      const RecordComponents a = LoadComponents(want);
+      const RecordComponents b = LoadComponents(got);
+      ASSERT_TRUE(b.IsPair());
+      EXPECT_EQ(b.motions[0].acc_mps2, a.motions[0].acc_mps2);
+      EXPECT_EQ(b.motions[1].acc_mps2, a.motions[1].acc_mps2);
+      EXPECT_EQ(b.padded_samples, a.padded_samples);
+    }
+  }
+  EXPECT_EQ(RecordLabel(by_name.records[0]), RecordLabel(tables.records[0]));
+  EXPECT_EQ(RecordLabel(by_name.records[1]), "RSN430_SMART1.25_25M01");
+  EXPECT_EQ(RecordLabel(by_table.records[0]), "RSN107");  // the table's pair column
+  EXPECT_EQ(RecordLabel(by_table.records[1]), "RSN430");
+  const RecordSet one = LoadRecordSet(WriteManifest(
+      "fp4.toml", "folder = \"" + folder + "\"\npattern = \"RSN4*\"\npairs = \"PAIRS.csv\"\n"));
+  ASSERT_EQ(one.records.size(), 1u);
+  EXPECT_EQ(RecordLabel(one.records[0]), "RSN430");
+}
+
+// Each way a folder's files fail to make pairs is refused with one line naming the file, the
+// table's line or the key.
+TEST(LoadRecordSet, FolderPairErrorsNameTheFileAndTheLine) {
+  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "folder-pairs";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir / "f");
+  const std::filesystem::path pairs = kData / "pairs";
+  for (const char* name : {"RSN107_OROVILLE_B-OAP180.AT2", "RSN107_OROVILLE_B-OAP270.AT2",
+                           "RSN430_SMART1.25_25M01EW.AT2"}) {
+    std::filesystem::copy_file(pairs / name, dir / "f" / name);
+  }
+  auto error_of = [&dir](const std::string& name, const std::string& text) {
+    std::ofstream(dir / name) << text;
+    try {
+      for (const RecordEntry& e : LoadRecordSet(dir / name).records) LoadComponents(e);
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  const std::string by_name = "folder = \"f\"\npattern = \"*.AT2\"\npairs = true\n";
+  EXPECT_THAT(error_of("n1.toml", by_name),
+              HasSubstr("n1.toml:3: pairs: unpaired file RSN430_SMART1.25_25M01EW.AT2 of "));
+  // A third component of RSN107: ambiguous by name.
+  std::filesystem::copy_file(pairs / "RSN107_OROVILLE_B-OAP180.AT2",
+                             dir / "f" / "RSN107_OROVILLE_B-OAPUP.AT2");
+  EXPECT_THAT(error_of("n2.toml", by_name),
+              HasSubstr("n2.toml:3: pairs: file RSN107_OROVILLE_B-OAP180.AT2 pairs by name with "
+                        "both RSN107_OROVILLE_B-OAP270.AT2 and RSN107_OROVILLE_B-OAPUP.AT2"));
+  std::filesystem::remove(dir / "f" / "RSN107_OROVILLE_B-OAPUP.AT2");
+  // RSN430's H2 with another time step: refused when the pair is read, both files named.
+  std::ifstream in(pairs / "RSN430_SMART1.25_25M01NS.AT2");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  text.replace(text.find("DT=   .0100"), 11, "DT=   .0050");
+  std::ofstream(dir / "f" / "RSN430_SMART1.25_25M01NS.AT2") << text;
+  EXPECT_THAT(error_of("n3.toml", by_name),
+              HasSubstr("RSN430_SMART1.25_25M01NS.AT2: the two components of a pair have "
+                        "different time steps (0.01 s and 0.005 s)"));
+  std::filesystem::remove(dir / "f" / "RSN430_SMART1.25_25M01NS.AT2");
+
+  const std::string header = "pair,station,h1_file,h2_file\n";
+  const std::string rsn107 =
+      "RSN107,Oroville,RSN107_OROVILLE_B-OAP180.AT2,"
+      "RSN107_OROVILLE_B-OAP270.AT2\n";
+  auto with_table = [&](const std::string& name, const std::string& table) {
+    std::ofstream(dir / "f" / "P.csv") << table;
+    return error_of(name, "folder = \"f\"\npattern = \"*\"\npairs = \"P.csv\"\n");
+  };
+  EXPECT_THAT(with_table("t1.toml", header + rsn107),
+              HasSubstr("t1.toml:3: pairs: unpaired file RSN430_SMART1.25_25M01EW.AT2 of "));
+  EXPECT_THAT(with_table("t2.toml", header + rsn107 +
+                                        "RSN430,\"SMART1, M01\",RSN430_SMART1.25_"
+                                        "25M01EW.AT2,RSN430_SMART1.25_25M01NS.AT2\n"),
+              HasSubstr("P.csv:3: no file RSN430_SMART1.25_25M01NS.AT2 in "));
+  EXPECT_THAT(with_table("t3.toml", "pair,h1_file\n"),
+              HasSubstr("P.csv:1: no column h2_file in the header"));
+  EXPECT_THAT(with_table("t4.toml", header + rsn107 +
+                                        "X,x,RSN107_OROVILLE_B-OAP270.AT2,"
+                                        "RSN430_SMART1.25_25M01EW.AT2\n"),
+              HasSubstr("P.csv:3: RSN107_OROVILLE_B-OAP270.AT2 is also a component of the pair "
+                        "of line 2"));
+  EXPECT_THAT(with_table("t5.toml", header + "A,a,b\n"),
+              HasSubstr("P.csv:2: 3 fields, the header has 4"));
+  std::ofstream(dir / "f" / "P.csv") << header + rsn107;
+  EXPECT_THAT(error_of("t6.toml", "folder = \"f\"\npattern = \"*180.AT2\"\npairs = \"P.csv\"\n"),
+              HasSubstr("P.csv:2: h1_file 'RSN107_OROVILLE_B-OAP180.AT2' matches pattern "
+                        "'*180.AT2' and h2_file 'RSN107_OROVILLE_B-OAP270.AT2' does not"));
+  EXPECT_THAT(error_of("t7.toml", "folder = \"f\"\npattern = \"*\"\npairs = \"Q.csv\"\n"),
+              HasSubstr("t7.toml:3: pairs: not a file: "));
+  EXPECT_THAT(error_of("t8.toml", "folder = \"f\"\npattern = \"*\"\npairs = 2\n"),
+              HasSubstr("t8.toml:3: pairs: must be true (pairs by file name) or the name of a "
+                        "CSV table"));
+}
+
 TEST(GlobMatch, StarQuestionMarkAndClasses) {
   EXPECT_TRUE(GlobMatch("*.AT2", "RSN6_IMPVALL.AT2"));
   EXPECT_FALSE(GlobMatch("*.AT2", "RSN6_IMPVALL.at2"));
