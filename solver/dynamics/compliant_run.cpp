@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,6 +18,7 @@
 #include "solver/dynamics/run_scales.h"
 #include "solver/dynamics/step_grid.h"
 #include "solver/joint/backfill.h"
+#include "solver/joint/shear_key.h"
 
 namespace skewbridge::dynamics {
 namespace {
@@ -44,10 +44,13 @@ class CompliantIntegrator {
 
   // The piece of its law a spring is on.
   enum class Branch {
-    kOpen,      // no force
-    kLine,      // backfill: the unloading-reloading line below d_max, F(d_max) - K_ur (d_max - d)
-    kEnvelope,  // backfill: the envelope, loading (d' > 0)
-    kDashpot,   // spring-dashpot: k d + c d'
+    kOpen,         // no force
+    kLine,         // backfill or key: the line below d_max, F(d_max) - K (d_max - d), K = K_ur, K_0
+    kEnvelope,     // backfill: the envelope, loading (d' > 0)
+    kDashpot,      // spring-dashpot: k d + c d'
+    kKeyRise,      // key: the backbone's rise K_0 d to V_n at D3, loading
+    kKeySoften,    // key: the backbone's fall from V_n at D3 to V_res at D_res, loading
+    kKeyResidual,  // key: the backbone's fall from V_res at D_res to 0 at DD, loading
   };
   // One spring's kinematics and its law's memory.
   struct SpringState {
@@ -55,6 +58,7 @@ class CompliantIntegrator {
     double d_max_m = 0.0;   // backfill: the largest deformation reached
     double f_peak_N = 0.0;  // backfill: F(d_max)
     double d_set_m = 0.0;   // backfill: the permanent set, d_max - F(d_max) / K_ur (>= 0)
+    bool broken = false;    // key: d_max reached DD; the key carries nothing ever again
   };
 
   bool Failed() const { return result_.status != RunStatus::kOk; }
@@ -64,6 +68,12 @@ class CompliantIntegrator {
                   double& rate, Eigen::Vector3d& w) const;
   // The force of spring j on its current branch, continued past the branch's ends (N).
   double BranchForce(int j, double d, double rate) const;
+  // The slope of spring j's unloading-reloading line (N/m): K_ur of a backfill, K_0 of a key.
+  double LineStiffness(int j) const;
+  // The backbone piece a key loading past d (m) is on, or kOpen after breaking it.
+  Branch KeyPieceAbove(int j, double d) const;
+  // The turn of spring j from loading to unloading at d (m): the memory takes d, the line follows.
+  void CommitTurn(int j, double d);
   // The event functions of spring j (positive while its branch holds): two per spring.
   void EventValues(int j, double d, double rate, double& e1, double& e2) const;
   // All springs' event functions at the state y (2 per spring) into `out`.
@@ -153,6 +163,8 @@ CompliantIntegrator::CompliantIntegrator(const model::Model& model,
     }
     if (s.law == SpringLaw::kBackfill) {
       joint::ValidateHyperbolicGap(s.backfill, where);
+    } else if (s.law == SpringLaw::kShearKey) {
+      joint::ValidateShearKey(s.key, where);
     } else if (!(s.k_N_per_m > 0.0 && std::isfinite(s.k_N_per_m) && s.c_Ns_per_m >= 0.0 &&
                  std::isfinite(s.c_Ns_per_m))) {
       throw InputError::AtField(where, "k, c", "must be k > 0, c >= 0, finite");
@@ -200,9 +212,17 @@ CompliantIntegrator::CompliantIntegrator(const model::Model& model,
   // The springs' own frequency joins the step control's velocity scale.
   double k_sum = 0.0;
   for (const CompliantSpring& s : springs) {
-    k_sum += s.law == SpringLaw::kBackfill
-                 ? std::max(s.backfill.k_max_N_per_m, s.backfill.k_ur_N_per_m)
-                 : s.k_N_per_m;
+    switch (s.law) {
+      case SpringLaw::kBackfill:
+        k_sum += std::max(s.backfill.k_max_N_per_m, s.backfill.k_ur_N_per_m);
+        break;
+      case SpringLaw::kSpringDashpot:
+        k_sum += s.k_N_per_m;
+        break;
+      case SpringLaw::kShearKey:
+        k_sum += s.key.v_n_N / s.key.d3_m;
+        break;
+    }
   }
   const double omega_spring = std::sqrt(k_sum / MaxTranslationalMass(model));
   const double omega_top = std::max(scales_.omega_top_radps, omega_spring);
@@ -215,6 +235,7 @@ CompliantIntegrator::CompliantIntegrator(const model::Model& model,
   result_.time_of_max_s = Vec::Zero(n_);
   out_.max_spring_force_N = Vec::Zero(ns_);
   out_.max_spring_deformation_m = Vec::Zero(ns_);
+  out_.key_break_time_s = Vec::Constant(ns_, std::numeric_limits<double>::quiet_NaN());
   travel_.Start(y_.head(n_), result_.max_travel_m);
   if (control.output_interval_s > 0.0) {
     result_.histories.n_dof = n_;
@@ -246,13 +267,50 @@ double CompliantIntegrator::BranchForce(int j, double d, double rate) const {
     case Branch::kOpen:
       return 0.0;
     case Branch::kLine:
-      return m.f_peak_N - s.backfill.k_ur_N_per_m * (m.d_max_m - d);
+      return m.f_peak_N - LineStiffness(j) * (m.d_max_m - d);
     case Branch::kEnvelope:
       return d / (1.0 / s.backfill.k_max_N_per_m + s.backfill.r_f * d / s.backfill.f_ult_N);
     case Branch::kDashpot:
       return s.k_N_per_m * d + s.c_Ns_per_m * rate;
+    case Branch::kKeyRise:
+      return s.key.v_n_N * d / s.key.d3_m;
+    case Branch::kKeySoften:
+      return s.key.v_n_N +
+             (s.key.v_res_N - s.key.v_n_N) * (d - s.key.d3_m) / (s.key.d_res_m - s.key.d3_m);
+    case Branch::kKeyResidual:
+      return s.key.v_res_N * (s.key.dd_m - d) / (s.key.dd_m - s.key.d_res_m);
   }
   return 0.0;
+}
+
+double CompliantIntegrator::LineStiffness(int j) const {
+  const CompliantSpring& s = springs_[static_cast<std::size_t>(j)];
+  return s.law == SpringLaw::kShearKey ? s.key.v_n_N / s.key.d3_m : s.backfill.k_ur_N_per_m;
+}
+
+CompliantIntegrator::Branch CompliantIntegrator::KeyPieceAbove(int j, double d) const {
+  const joint::ShearKey& key = springs_[static_cast<std::size_t>(j)].key;
+  if (d < key.d3_m) return Branch::kKeyRise;
+  if (d < key.d_res_m) return Branch::kKeySoften;
+  if (d < key.dd_m) return Branch::kKeyResidual;
+  return Branch::kOpen;
+}
+
+void CompliantIntegrator::CommitTurn(int j, double d) {
+  const CompliantSpring& s = springs_[static_cast<std::size_t>(j)];
+  SpringState& m = state_[static_cast<std::size_t>(j)];
+  if (s.law == SpringLaw::kShearKey) {
+    m.d_max_m = joint::ShearKeyCommit(s.key, joint::ShearKeyState{m.d_max_m}, d).d_max_m;
+    m.f_peak_N = joint::ShearKeyBackbone_N(s.key, m.d_max_m);
+    m.d_set_m = std::max(0.0, m.d_max_m - m.f_peak_N / LineStiffness(j));
+  } else {
+    const joint::BackfillState memory =
+        joint::BackfillCommit(s.backfill, joint::BackfillState{m.d_max_m}, d);
+    m.d_max_m = memory.d_max_m;
+    m.f_peak_N = joint::EnvelopeForce_N(s.backfill, m.d_max_m);
+    m.d_set_m = joint::PermanentSet_m(s.backfill, memory);
+  }
+  m.branch = Branch::kLine;
 }
 
 void CompliantIntegrator::EventValues(int j, double d, double rate, double& e1, double& e2) const {
@@ -261,7 +319,8 @@ void CompliantIntegrator::EventValues(int j, double d, double rate, double& e1, 
   e1 = e2 = kInf;
   switch (m.branch) {
     case Branch::kOpen:
-      if (s.law == SpringLaw::kBackfill) {
+      if (m.broken) return;  // a broken key never closes again
+      if (s.law != SpringLaw::kSpringDashpot) {
         e1 = m.d_set_m - d;  // closes at the permanent set
       } else {
         // A spring-dashpot left with d > 0 re-engages when k d + c d' turns positive.
@@ -278,6 +337,18 @@ void CompliantIntegrator::EventValues(int j, double d, double rate, double& e1, 
     case Branch::kDashpot:
       e1 = s.k_N_per_m * d + s.c_Ns_per_m * rate;  // its force reaches zero
       return;
+    case Branch::kKeyRise:
+      e1 = s.key.d3_m - d;  // reaches the capacity V_n
+      e2 = rate;            // turns from loading to unloading
+      return;
+    case Branch::kKeySoften:
+      e1 = s.key.d_res_m - d;  // reaches the residual
+      e2 = rate;
+      return;
+    case Branch::kKeyResidual:
+      e1 = s.key.dd_m - d;  // breaks
+      e2 = rate;
+      return;
   }
 }
 
@@ -293,7 +364,8 @@ void CompliantIntegrator::AllEventValues(const Eigen::Ref<const Vec>& y, Vec& ou
 bool CompliantIntegrator::Settle(int j, double d, double rate) {
   const CompliantSpring& s = springs_[static_cast<std::size_t>(j)];
   SpringState& m = state_[static_cast<std::size_t>(j)];
-  const bool backfill = s.law == SpringLaw::kBackfill;
+  const bool dashpot = s.law == SpringLaw::kSpringDashpot;
+  const bool key = s.law == SpringLaw::kShearKey;
   bool closed = false;
   for (int k = 0; k < kSettleLimit; ++k) {
     double e1, e2;
@@ -303,9 +375,14 @@ bool CompliantIntegrator::Settle(int j, double d, double rate) {
     }
     switch (m.branch) {
       case Branch::kOpen:
-        if (backfill) {
+        if (m.broken) return closed;
+        if (!dashpot) {
           if (!(rate > 0.0)) return closed;  // on the closing point, moving out: stays open
-          m.branch = m.d_max_m > 0.0 ? Branch::kLine : Branch::kEnvelope;
+          if (m.d_max_m > 0.0) {
+            m.branch = Branch::kLine;
+          } else {
+            m.branch = key ? Branch::kKeyRise : Branch::kEnvelope;
+          }
         } else {
           if (!(d > 0.0 && s.k_N_per_m * d + s.c_Ns_per_m * rate > 0.0)) return closed;
           m.branch = Branch::kDashpot;
@@ -314,27 +391,42 @@ bool CompliantIntegrator::Settle(int j, double d, double rate) {
         break;
       case Branch::kLine:
         if (e1 <= 0.0 && rate > 0.0) {
-          m.branch = Branch::kEnvelope;
+          m.branch = key ? KeyPieceAbove(j, m.d_max_m) : Branch::kEnvelope;
         } else if (e2 <= 0.0 && rate < 0.0) {
           m.branch = Branch::kOpen;
         } else {
           return closed;
         }
         break;
-      case Branch::kEnvelope: {
+      case Branch::kEnvelope:
         if (rate > 0.0) return closed;
-        // The turn: the memory takes the deformation reached.
-        const joint::BackfillState memory =
-            joint::BackfillCommit(s.backfill, joint::BackfillState{m.d_max_m}, d);
-        m.d_max_m = memory.d_max_m;
-        m.f_peak_N = joint::EnvelopeForce_N(s.backfill, m.d_max_m);
-        m.d_set_m = joint::PermanentSet_m(s.backfill, memory);
-        m.branch = Branch::kLine;
+        CommitTurn(j, d);  // the turn: the memory takes the deformation reached
         break;
-      }
       case Branch::kDashpot:
         m.branch = Branch::kOpen;
         break;
+      case Branch::kKeyRise:
+      case Branch::kKeySoften:
+      case Branch::kKeyResidual: {
+        if (!(rate > 0.0)) {
+          CommitTurn(j, d);
+          break;
+        }
+        if (!(e1 <= 0.0)) return closed;
+        // The piece's end passed while loading: the next piece, or the break at DD, where the
+        // memory takes DD and the key's force, zero there, stays zero.
+        const double end = m.branch == Branch::kKeyRise     ? s.key.d3_m
+                           : m.branch == Branch::kKeySoften ? s.key.d_res_m
+                                                            : s.key.dd_m;
+        m.branch = KeyPieceAbove(j, end);
+        if (m.branch == Branch::kOpen) {
+          m.d_max_m = m.d_set_m = s.key.dd_m;
+          m.f_peak_N = 0.0;
+          m.broken = true;
+          out_.key_break_time_s[j] = t_;
+        }
+        break;
+      }
     }
   }
   return closed;
@@ -364,6 +456,7 @@ bool CompliantIntegrator::AllFree(const Eigen::Ref<const Vec>& y) const {
   for (int j = 0; j < ns_; ++j) {
     const SpringState& m = state_[static_cast<std::size_t>(j)];
     if (m.branch != Branch::kOpen) return false;
+    if (m.broken) continue;
     double d, rate;
     Kinematics(j, y.head(n_), y.segment(n_, n_), d, rate, w);
     if (!(d < m.d_set_m)) return false;
@@ -468,6 +561,7 @@ void CompliantIntegrator::FreeStep() {
   double t_event = kInf;
   Eigen::Vector3d w;
   for (int j = 0; j < ns_; ++j) {
+    if (state_[static_cast<std::size_t>(j)].broken) continue;
     const double d_set = state_[static_cast<std::size_t>(j)].d_set_m;
     double d0, r0, d1, r1;
     Kinematics(j, z_.head(n_), z_.segment(n_, n_), d0, r0, w);
@@ -531,6 +625,9 @@ void CompliantIntegrator::CompliantStep() {
     Rhs(piece, t, y, dy);
   };
   if (!fresh_start_) {
+    // A spring may sit on the end of its piece at the step's start without an event having been
+    // located there (a free step or a piece ending exactly at it): its transition first.
+    SettleAll(y_);
     Rhs(piece, t_, y_, dy_);
     AllEventValues(y_, e0_);
   }
@@ -670,9 +767,9 @@ CompliantRunResult CompliantIntegrator::Finish(double t_finite_s) {
     if (m.branch == Branch::kOpen) continue;
     double d, rate;
     Kinematics(j, y_.head(n_), y_.segment(n_, n_), d, rate, w);
-    if (s.law == SpringLaw::kBackfill) {
+    if (s.law != SpringLaw::kSpringDashpot) {
       const double f = std::max(0.0, BranchForce(j, d, rate));
-      stored += f * f / (2.0 * s.backfill.k_ur_N_per_m);
+      stored += f * f / (2.0 * LineStiffness(j));
     } else {
       stored += 0.5 * s.k_N_per_m * d * d;
     }
@@ -688,39 +785,6 @@ CompliantRunResult CompliantIntegrator::Finish(double t_finite_s) {
     e.input_J = e.damping_J = e.balance_error_J = std::numeric_limits<double>::quiet_NaN();
   }
   return std::move(out_);
-}
-
-std::vector<CompliantSpring> WallSprings(const model::Model& model, int first, int last,
-                                         const joint::HyperbolicGap& wall, int n,
-                                         const std::string& prefix) {
-  const model::Contact& a = model.contact(first);
-  const model::Contact& b = model.contact(last);
-  SB_DEMAND(n >= 2 && a.body == b.body && a.face.body == model::kGround,
-            "WallSprings: two corners of one deck against one ground face, n >= 2");
-  joint::HyperbolicGap share = wall;
-  share.k_max_N_per_m /= n;
-  share.k_ur_N_per_m /= n;
-  share.f_ult_N /= n;
-  share.gap_m = 0.0;
-  std::vector<CompliantSpring> springs;
-  for (int i = 0; i < n; ++i) {
-    CompliantSpring s;
-    s.name = prefix + "." + std::to_string(i + 1);
-    s.body = a.body;
-    s.point_m = a.point_m + (b.point_m - a.point_m) * (static_cast<double>(i) / (n - 1));
-    s.face = a.face;
-    s.law = SpringLaw::kBackfill;
-    s.backfill = share;
-    springs.push_back(s);
-  }
-  return springs;
-}
-
-model::Model WithoutContacts(const model::Model& model) {
-  std::optional<model::Modes> modes;
-  if (model.modes() != nullptr) modes = *model.modes();
-  return model::Model(model.bodies(), model.K(), model.C(), model.r(), {}, model.source(),
-                      std::move(modes));
 }
 
 CompliantRunResult SimulateCompliant(const model::Model& model,

@@ -17,8 +17,8 @@
 ///   reaching zero;
 /// - the energy ledger integrates the work of the springs beside the motion: of it, the energy a
 ///   spring would give back by unloading, F^2 / (2 K_ur) (1/2 k d^2 for a spring-dashpot), is
-///   stored, the rest dissipated by the hysteresis (CompliantRunResult::joint_stored_J,
-///   joint_dissipated_J).
+///   stored (F^2 / (2 K_0) for a shear key), the rest dissipated by the hysteresis
+///   (CompliantRunResult::joint_stored_J, joint_dissipated_J).
 
 #include <Eigen/Core>
 #include <string>
@@ -29,6 +29,7 @@
 #include "solver/dynamics/run_result.h"
 #include "solver/dynamics/simulate.h"
 #include "solver/joint/backfill.h"
+#include "solver/joint/shear_key.h"
 #include "solver/model/model.h"
 #include "solver/model/run_control.h"
 
@@ -38,6 +39,7 @@ namespace skewbridge::dynamics {
 enum class SpringLaw {
   kBackfill,       ///< the hyperbolic backfill law (joint::HyperbolicGap), with memory
   kSpringDashpot,  ///< F = max(0, k d + c d') while engaged: linear, pulls on nothing, no memory
+  kShearKey,       ///< the shear key's backbone (joint::ShearKey), with memory; breaks at DD
 };
 
 /// A compliant spring between a body-fixed point p of `body` and a ground face: its deformation
@@ -53,6 +55,7 @@ struct CompliantSpring {
   joint::HyperbolicGap backfill;  ///< kBackfill: the spring's share (gap_m = 0: the face has it)
   double k_N_per_m = 0.0;         ///< kSpringDashpot: stiffness, > 0
   double c_Ns_per_m = 0.0;        ///< kSpringDashpot: dashpot, >= 0
+  joint::ShearKey key;            ///< kShearKey: the key's backbone (gap_m = 0: the face has it)
 };
 
 /// The springs of deck `body` of `model` against the face of its rigid contacts `first` and `last`
@@ -63,6 +66,17 @@ struct CompliantSpring {
 std::vector<CompliantSpring> WallSprings(const model::Model& model, int first, int last,
                                          const joint::HyperbolicGap& wall, int n,
                                          const std::string& prefix);
+
+/// The two exterior shear keys of the abutment of deck `body` whose rigid contacts are `first` and
+/// `last` (the two corners of one end, e.g. P1 and P2): one key beside each of the deck's sides
+/// (the body-frame lines y = +-W/2), acting on the corner on that side, against a ground face
+/// parallel to the deck's axis at `key.gap_m` beyond the side, its normal facing the deck (the two
+/// keys face each other) [docs/compliant.md §4]. Each with the backbone of `key` (its gap moved to
+/// the face). Named `prefix`.key+y and `prefix`.key-y, the +y key first.
+/// @pre both contacts on one deck, on opposite sides (body-frame y of opposite signs); key valid.
+std::vector<CompliantSpring> AbutmentShearKeys(const model::Model& model, int first, int last,
+                                               const joint::ShearKey& key,
+                                               const std::string& prefix);
 
 /// The model without its rigid contacts (the same bodies, K, C, r and modes): the linear system a
 /// compliant run's springs act on.
@@ -78,6 +92,9 @@ struct CompliantRunResult {
   Eigen::VectorXd max_spring_deformation_m;  ///< per spring, largest deformation beyond its face
   double joint_stored_J = 0.0;      ///< energy the springs would give back by unloading, at the end
   double joint_dissipated_J = 0.0;  ///< the springs' work less what they store
+  /// Per spring, the time a shear key broke (its deformation reaching DD, s); NaN for a key left
+  /// intact and for a spring of another law.
+  Eigen::VectorXd key_break_time_s;
 };
 
 /// One run of the linear model `model` (no rigid contact) with the compliant `springs` under
