@@ -203,5 +203,132 @@ TEST(CompliantRun, StaticForceOfTheBackfillMeetsTheClosedForm) {
   EXPECT_LT(std::abs(r.energy.balance_error_J), 1e-6 * std::abs(r.energy.input_J));
 }
 
+// The full edge of the +x end of deck `rigid` (P1 to P2) as n linear spring-dashpots sharing the
+// stiffness k_N_per_m, each with the damping ratio zeta against an n-th of the deck's mass.
+std::vector<CompliantSpring> FullEdgeSpringDashpots(const model::Model& rigid, double k_N_per_m,
+                                                    double zeta, int n) {
+  const joint::HyperbolicGap unused{1.0, 1.0, 1.0, 1.0, 0.0};
+  std::vector<CompliantSpring> springs = WallSprings(rigid, 0, 1, unused, n, "+x");
+  const double m = rigid.body(0).mass_kg / n;
+  for (CompliantSpring& s : springs) {
+    s.law = SpringLaw::kSpringDashpot;
+    s.k_N_per_m = k_N_per_m / n;
+    s.c_Ns_per_m = 2.0 * zeta * std::sqrt(s.k_N_per_m * m);
+  }
+  return springs;
+}
+
+// A skew deck (a = 30 deg, L = 30 m, 1e6 kg) of skew ratio eta0 on an uncoupled substructure
+// (w0 = W0 = 2 pi rad/s, dampers at the critical), with the rigid frictionless +x abutment of
+// eps_N = 0 at 20 mm.
+model::Model PressedDeck(double eta0) {
+  model::DeckSpec spec;
+  spec.mass_kg = 1.0e6;
+  const double a = 30.0 * kPi / 180.0;
+  spec.geometry = {30.0, model::WidthFromEta0(eta0, a, 30.0), a};
+  spec.w0x_radps = spec.w0y_radps = spec.W0_radps = 2.0 * kPi;
+  const double k = spec.mass_kg * 4.0 * kPi * kPi;
+  const double inertia = model::UniformDeckInertia(spec.mass_kg, spec.geometry);
+  spec.C = Eigen::Vector3d(2.0 * std::sqrt(k * spec.mass_kg), 2.0 * std::sqrt(k * spec.mass_kg),
+                           2.0 * std::sqrt(4.0 * kPi * kPi * inertia * inertia))
+               .asDiagonal();
+  spec.abutments = model::AbutmentSet::kPlusX;
+  spec.gap_plus_m = 0.02;
+  spec.restitution = 0.0;
+  spec.friction = 0.0;
+  return model::BuildDeckModel(spec);
+}
+
+TEST(CompliantRun, PressedWithItsWholeEdgeTheDeckTurnsOnlyForEta0AboveOne) {
+  // docs/theory.md §4, fact 1, as the moment balance of a persistent frictionless full-edge
+  // contact: a deck pressed into the face along the face's normal (the ground accelerating along
+  // n, ramped over 1 s to 3 m/s^2 and held; equal translational stiffnesses, so it translates
+  // without turning until its whole edge meets the face) can be held without turning only if the
+  // corners' lever arms r_1 > 0 and r_2 have opposite signs, eta0 <= 1. The rigid law at rest:
+  // eta0 = 0.8 rests on both corners at theta = 0; eta0 = 1.25 rests on P2 alone, turned. Stiff
+  // spring-dashpots on the full edge (5, the total k = 1e10 and 1.6e11 N/m): below one the turn is
+  // the springs' unequal shortening across the edge, falling as 1/k; above one it converges to the
+  // rigid law's turn, its error falling as 1/k.
+  const double a = 30.0 * kPi / 180.0, A = 3.0;
+  const Eigen::Vector2d n(-std::cos(a), std::sin(a));
+  std::vector<double> ax(21, A * n.x()), ay(21, A * n.y());
+  ax[0] = ay[0] = 0.0;
+  records::SampledExcitation push(1.0, ax, ay);
+  model::RunControl control;
+  control.end_time_s = 20.0;
+  for (const double eta0 : {0.8, 1.25}) {
+    const model::Model rigid = PressedDeck(eta0);
+    SimulationWorkspace ws(rigid);
+    const RunResult r_rigid = Simulate(rigid, push, control, ws);
+    ASSERT_EQ(r_rigid.status, RunStatus::kOk) << r_rigid.message;
+    ASSERT_GE(r_rigid.impacts, 1);
+    std::vector<double> theta;
+    for (const double k : {1e10, 16e10}) {
+      const CompliantRunResult out = SimulateCompliant(
+          WithoutContacts(rigid), FullEdgeSpringDashpots(rigid, k, 0.5, 5), push, control);
+      ASSERT_EQ(out.run.status, RunStatus::kOk) << out.run.message;
+      EXPECT_LT(std::abs(out.run.energy.balance_error_J), 1e-6 * out.run.energy.input_J);
+      EXPECT_LT(out.run.u_end.norm(), 1e-6);  // at rest
+      theta.push_back(out.run.q_end[2]);
+    }
+    std::printf("eta0 %.2f: rigid theta %.4e rad; compliant %.4e, %.4e rad\n", eta0,
+                r_rigid.q_end[2], theta[0], theta[1]);
+    if (eta0 < 1.0) {
+      EXPECT_LT(std::abs(r_rigid.q_end[2]), 1e-12);
+      EXPECT_NEAR(theta[0] / theta[1], 16.0, 1.6);
+      EXPECT_LT(std::abs(theta[1]), 1e-5);
+    } else {
+      EXPECT_GT(r_rigid.q_end[2], 1e-4);
+      const double e0 = theta[0] - r_rigid.q_end[2], e1 = theta[1] - r_rigid.q_end[2];
+      EXPECT_NEAR(e0 / e1, 16.0, 1.6);
+      EXPECT_LT(std::abs(e1), 1e-2 * r_rigid.q_end[2]);
+    }
+  }
+}
+
+TEST(CompliantRun, AFullEdgeStrikeOfStiffSpringsTurnsTheDeckBelowEta0OfOneToo) {
+  // The impact form of fact 1 is the rigid law's own: Newton's law at both corners at once leaves
+  // a deck of eta0 <= 1 unturned. Springs on the full edge share the load by their shortening,
+  // which starts equal along the edge: their resultant at the edge's mid-point has the lever arm
+  // (r_1 + r_2) / 2 = (L / 2) sin a > 0 whatever eta0, and turns the deck during the contact. The
+  // contact's outcome does not depend on the stiffness (time scales as sqrt(m / k), all else is
+  // fixed), so stiffening does not bring the rigid answer back: a free deck (eta0 = 0.8) at
+  // 0.5 m/s into 5 undamped springs on the full edge leaves spinning, with the same spin at
+  // k = 1e10 and 1.6e11 N/m, where the rigid law (eps_N = 1) leaves it unturned.
+  model::DeckSpec spec;
+  spec.mass_kg = 1.0e6;
+  const double a = 30.0 * kPi / 180.0, v0 = 0.5;
+  spec.geometry = {30.0, model::WidthFromEta0(0.8, a, 30.0), a};
+  spec.C = Eigen::Matrix3d::Zero();
+  spec.abutments = model::AbutmentSet::kPlusX;
+  spec.gap_plus_m = 0.02;
+  spec.restitution = 1.0;
+  spec.friction = 0.0;
+  const model::Model rigid = model::BuildDeckModel(spec);
+  InitialState initial;
+  initial.q = Eigen::Vector3d::Zero();
+  initial.u = v0 * Eigen::Vector3d(std::cos(a), -std::sin(a), 0.0);  // along -n
+  records::PulseExcitation still(records::PulseShape::kSine, 0.0, 2.0 * kPi);
+  model::RunControl control;
+  control.end_time_s = 0.1;  // the contact ends by 0.07 s; no second strike yet
+  SimulationWorkspace ws(rigid);
+  const RunResult r_rigid = Simulate(rigid, still, control, ws, initial);
+  ASSERT_EQ(r_rigid.status, RunStatus::kOk);
+  ASSERT_EQ(r_rigid.impacts, 1);
+  EXPECT_LT(std::abs(r_rigid.u_end[2]), 1e-12);
+  std::vector<double> spin;
+  for (const double k : {1e10, 16e10}) {
+    const CompliantRunResult out = SimulateCompliant(
+        WithoutContacts(rigid), FullEdgeSpringDashpots(rigid, k, 0.0, 5), still, control, initial);
+    ASSERT_EQ(out.run.status, RunStatus::kOk) << out.run.message;
+    EXPECT_LT(std::abs(out.run.energy.balance_error_J), 1e-6 * out.run.energy.initial_J);
+    spin.push_back(out.run.u_end[2] * spec.geometry.length_m / v0);
+  }
+  std::printf("full-edge strike, eta0 0.8: omega L / v0 = %.4f (k), %.4f (16 k); rigid %.1e\n",
+              spin[0], spin[1], r_rigid.u_end[2] * spec.geometry.length_m / v0);
+  EXPECT_GT(std::abs(spin[0]), 0.1);
+  EXPECT_NEAR(spin[1], spin[0], 1e-3 * std::abs(spin[0]));
+}
+
 }  // namespace
 }  // namespace skewbridge::dynamics
