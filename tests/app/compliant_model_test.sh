@@ -5,7 +5,8 @@
 # called directly with springs built by hand (compliant_direct: SimulateCompliant, WallSprings):
 # the deck's maxima and residuals, the strikes, the corner travel, each wall's largest spring
 # force and deformation (the cube's spring_force_px, backwall_def_px, ..._mx). The cube's
-# responses of a rigid file hold none of the compliant ones. A sweep's eps_N is refused with one
+# responses of a rigid file hold none of the compliant ones; `run --from-cube` re-runs a compliant
+# cell with its springs. A sweep's eps_N is refused with one
 # line and no cube.
 # usage: compliant_model_test.sh SKEWBRIDGE MPIEXEC COMPLIANT_DIRECT SOURCE_DIR
 source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
@@ -66,6 +67,21 @@ for cell, d in ((0, d1), (1, d15)):
     for k in ("spring_force_px", "backwall_def_px", "spring_force_mx", "backwall_def_mx"):
         assert r[k][cell] == d[k], (cell, k, r[k][cell], d[k])
         assert r[k].attrs.get("units", b"") in (b"N", b"m", "N", "m"), dict(r[k].attrs)
+PY
+
+# The cube's cell at scale 1.5 run again (`run --from-cube`) runs the springs again: the same bits.
+"$exe" run --from-cube "$work/cube.h5" --cell-index 1 --out "$work/rerun.h5" >"$work/rerun.out" 2>&1 ||
+  fail "run --from-cube: exit $? ($(cat "$work/rerun.out"))"
+grep -q "compliant abutments, 5 springs per wall" "$work/rerun.out" ||
+  fail "run --from-cube ran no springs: $(cat "$work/rerun.out")"
+/usr/bin/python3 - "$work" <<'PY' || fail "run --from-cube against the direct call (above)"
+import sys, h5py
+work = sys.argv[1]
+d = {k: float(v) for k, v in (l.split() for l in open(f"{work}/direct15") if l.split()[0] != "status")}
+s = h5py.File(f"{work}/rerun.h5", "r")["summary"]
+for i, n in enumerate(("x", "y", "theta")):
+    assert s["max_abs_q"][i] == d[n + "_m"], (n, s["max_abs_q"][i], d[n + "_m"])
+assert s.attrs["impacts"] == d["impacts"], (s.attrs["impacts"], d["impacts"])
 PY
 
 # A rigid file's cube holds no compliant response.
