@@ -21,7 +21,8 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // The fragility's measure, from the cube's description of it and the fragility's IM: a
 // [records] scale_to / im measure (im_g, im, ida_capacity) as im_description names it, else
-// the excitation's peak a_g / g, the PGA of the applied motion.
+// the excitation's peak a_g / g, the PGA of the applied motion. A single record's Sa is of an
+// arbitrary component; a pair's RotD50, RotD100 and GM are SA of those components.
 spectra::IntensityMeasureId FragilityMeasure(const h5::RiskSource& s, const std::string& cube,
                                              bool* at_t1) {
   spectra::IntensityMeasureId id;
@@ -39,7 +40,16 @@ spectra::IntensityMeasureId FragilityMeasure(const h5::RiskSource& s, const std:
                                          "measure a hazard curve can match",
                                          s.sweep, s.im_measure, s.im_description));
   }
-  id.measure = spec->measure == "Sa" ? "SA" : spec->measure;
+  // A pair's measures are spectral accelerations of a stated component [Boore 2010]; AvgSa of
+  // RotD50 keeps its own name, which no hazard curve's measure matches.
+  if (spec->measure == "RotD50" || spec->measure == "RotD100" || spec->measure == "GM") {
+    id.measure = "SA";
+    id.component = spec->measure == "RotD50"    ? spectra::HorizontalComponent::kRotD50
+                   : spec->measure == "RotD100" ? spectra::HorizontalComponent::kRotD100
+                                                : spectra::HorizontalComponent::kGeometricMean;
+  } else {
+    id.measure = spec->measure == "Sa" ? "SA" : spec->measure;
+  }
   id.damping = spec->xi;
   id.period_s = spec->period_s;
   *at_t1 = spec->at_t1;

@@ -8,6 +8,7 @@
 #     scripts/report draws the hazard, fragility and integrand (checked to integrate to the
 #     stored rate) and tabulates the rates;
 #  3. a RotD50 hazard is refused without --convert and accepted with it, the conversion named;
+#     on a sweep of record pairs scaled to RotD50(T1) it matches with no conversion;
 #  4. every refusal (another period, another measure, a malformed line, a bad option) is one
 #     line naming what differs, exit status 2, and leaves the cube's bytes as they were.
 # usage: risk_cli_test.sh SKEWBRIDGE SOURCE_DIR WORK_DIR
@@ -150,4 +151,37 @@ refuse "unknown conversion" --hazard hazard.txt --convert rotd100
 refuse "missing.txt: cannot open the hazard file" --hazard missing.txt
 refuse "tail" --hazard hazard.txt --tail sideways
 refuse "holds no sweep named 'other'" --hazard hazard.txt --sweep other
+
+# Record pairs scaled to RotD50(T1): the fragility is in SA of the RotD50 component, so the
+# RotD50 hazard matches with no conversion (rates against scipy's) and the arbitrary one does not.
+cat > pairs.toml <<TOML
+[sweep]
+name = "pairs"
+family = "model-file"
+model = "pilot-bridge.toml"
+[records]
+set = "$src/tests/data/records/pairs/pairs.toml"
+scale_to = {measure = "RotD50", period = "T1", xi = 0.05}
+[axes]
+record = ["RSN107", "RSN430_SMART1.25_25M01"]
+im_g = {logspace = [0.4, 3.0, 16]}
+incidence_deg = [0, 90]
+[fixed]
+seat_over_L = 0.0005
+[limit_states]
+rotation = {above_rad = 0.0002}
+TOML
+"$exe" sweep pairs.toml --out pairs.h5 --quiet || fail "the pair sweep failed"
+"$exe" risk pairs.h5 --hazard rotd50.txt > risk_pairs.txt || fail "the RotD50 hazard was refused"
+grep -q "; fragility SA(.*RotD50 component)" risk_pairs.txt \
+  || fail "the pair fragility's component is not stated"
+/usr/bin/python3 "$src/tests/risk/check_risk_cube.py" pairs.h5 pairs rotd50.txt \
+  || fail "the pair cube's rates differ from scipy's"
+before=$(sha256sum pairs.h5)
+status=0
+"$exe" risk pairs.h5 --hazard hazard.txt > out.txt 2> err.txt || status=$?
+[ "$status" -eq 2 ] || fail "an arbitrary-component hazard on a RotD50 fragility: status $status"
+grep -q "hazard SA(.*arbitrary component) and fragility SA(.*RotD50 component): different horizontal components" err.txt \
+  || fail "the component refusal says '$(cat err.txt)'"
+[ "$before" = "$(sha256sum pairs.h5)" ] || fail "the refused run changed the pair cube"
 echo "risk_cli_test: ok"
