@@ -239,6 +239,7 @@ CellRerun PrepareCellRerun(const std::filesystem::path& cube, const CellChoice& 
     out.control = c.control;
     out.record = c.record;
     out.scale = c.scale;
+    out.trace_excitation = evaluator->StripeTraceExcitation(axis_index);
     out.model_text = ReadFileText(out.spec.model_path);
     out.evaluator = std::move(evaluator);
   } else {

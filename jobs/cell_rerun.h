@@ -57,13 +57,16 @@ struct CellRerun {
   model::RunControl control;               ///< its run control (method, end time, tolerances)
   const spectra::SweepRecord* record = nullptr;  ///< its record, or nullptr for a pulse
   double scale = 1.0;                            ///< the factor on the record's accelerations
-  std::uint64_t index = 0;                       ///< the cell's row-major index
-  std::string coordinates;                       ///< CellCoordinates of the cell
-  bool done = false;                             ///< the cube holds the cell's results
-  std::int32_t status = 0;                       ///< the cube's status code of the cell
-  std::string status_name;                       ///< its name in the cube's status table
-  std::vector<std::string> response_names;       ///< the cube's responses, in stored order
-  std::vector<double> responses;                 ///< the cell's stored values, in that order
+  /// The record at dynamics::kStripeTraceFactor when the sweep ran the cell as a stripe of its
+  /// record (dynamics::RunScaledRecord at `scale`), else nullptr (dynamics::Run).
+  std::unique_ptr<Excitation> trace_excitation;
+  std::uint64_t index = 0;                  ///< the cell's row-major index
+  std::string coordinates;                  ///< CellCoordinates of the cell
+  bool done = false;                        ///< the cube holds the cell's results
+  std::int32_t status = 0;                  ///< the cube's status code of the cell
+  std::string status_name;                  ///< its name in the cube's status table
+  std::vector<std::string> response_names;  ///< the cube's responses, in stored order
+  std::vector<double> responses;            ///< the cell's stored values, in that order
   /// The model file's text (model-file family; the cell changes values), else "".
   std::string model_text;
 };

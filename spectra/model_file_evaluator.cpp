@@ -180,6 +180,21 @@ ModelFileEvaluator::ModelFileEvaluator(const CellGrid& spec)
   }
   seats_ = MentionsSeat(spec) || (file_.decks && file_.decks->seat_width_m);
   travel_ = !spec.limit_states.empty();
+  // An event-driven cell under a record runs as a stripe of it (dynamics::RunScaledRecord, as
+  // `skewbridge run` of a record) when no gap follows the factor (Pi_delta gaps are L_e times
+  // it); the stripes of a record share its contact-free response when a cell's factor is its
+  // stripe's alone (records scaled to an intensity axis).
+  stripes_ = by_record && !Mentions(spec, "Pi_delta");
+  if (stripes_ && spec.im.scale) {
+    for (std::size_t k = 0; k < spec.axes.size(); ++k) {
+      if (spec.axes[k].key == spec.im.AxisKey() && spec.axes[k].Size() > 1) stripe_axis_ = k;
+    }
+  }
+  if (stripe_axis_) {
+    for (std::size_t k = *stripe_axis_ + 1; k < spec.axes.size(); ++k) {
+      if (!LimitOnlyAxis(spec.axes[k].key)) stripe_capacity_ *= spec.axes[k].Size();
+    }
+  }
   MakeResponseTable();
   if (by_record) records_ = LoadSweepRecords(spec);
   // Every cell's model is built and its run counted now, so a bad combination or a run that
@@ -695,8 +710,7 @@ CellOutcome ModelFileEvaluator::EvaluateAt(std::span<const std::size_t> axis_ind
     SeatRun& s = shared_.Get(axis_index, [&] {
       ModelFileCell c = MakeCell(axis_index, true, factor);
       // As `skewbridge run`: run.method picks the integrator, the file's [run] its controls.
-      dynamics::LawRun run =
-          dynamics::RunUnderLaw(*c.model, c.compliant, *c.excitation, c.control, policies());
+      dynamics::LawRun run = CellRun(axis_index, c);
       return SeatRun{std::move(c), std::move(run)};
     });
     for (std::size_t d = 0; d < s.cell.seat_width_m.size(); ++d) {
@@ -706,13 +720,72 @@ CellOutcome ModelFileEvaluator::EvaluateAt(std::span<const std::size_t> axis_ind
     out = Outcome(axis_index, s.cell, s.run);
   } else {
     const ModelFileCell c = MakeCell(axis_index, true, factor);
-    out =
-        Outcome(axis_index, c,
-                dynamics::RunUnderLaw(*c.model, c.compliant, *c.excitation, c.control, policies()));
+    out = Outcome(
+        axis_index, c,
+        factor ? dynamics::RunUnderLaw(*c.model, c.compliant, *c.excitation, c.control, policies())
+               : CellRun(axis_index, c));
   }
   out.stats.wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
+}
+
+std::uint64_t ModelFileEvaluator::StripeKey(std::span<const std::size_t> index) const {
+  std::uint64_t cell = 0;
+  for (std::size_t k = 0; k < spec_.axes.size(); ++k) {
+    const bool shared = k == *stripe_axis_ || LimitOnlyAxis(spec_.axes[k].key);
+    cell = cell * spec_.axes[k].Size() + (shared ? 0 : index[k]);
+  }
+  return cell;
+}
+
+std::unique_ptr<Excitation> ModelFileEvaluator::StripeTraceExcitation(
+    std::span<const std::size_t> axis_index) const {
+  ModelFileCell trace = MakeCell(axis_index, true, dynamics::kStripeTraceFactor);
+  if (!stripes_ || trace.compliant || trace.control.method != model::Method::kEventDriven) {
+    return nullptr;
+  }
+  return std::move(trace.excitation);
+}
+
+dynamics::LawRun ModelFileEvaluator::CellRun(std::span<const std::size_t> axis_index,
+                                             const ModelFileCell& c) const {
+  if (!stripes_ || c.compliant || c.control.method != model::Method::kEventDriven) {
+    // As `skewbridge run`: run.method picks the integrator, the file's [run] its controls and
+    // [abutments] law the joint law.
+    return dynamics::RunUnderLaw(*c.model, c.compliant, *c.excitation, c.control, policies());
+  }
+  if (!stripe_axis_) {
+    // A stripe of its own.
+    const ModelFileCell trace = MakeCell(axis_index, true, dynamics::kStripeTraceFactor);
+    return dynamics::LawRun{dynamics::RunScaledRecord(*c.model, *c.excitation, *trace.excitation,
+                                                      c.scale, c.control, policies())};
+  }
+  const std::uint64_t key = StripeKey(axis_index);
+  auto group = std::find_if(stripe_groups_.begin(), stripe_groups_.end(),
+                            [key](const StripeGroup& g) { return g.key == key; });
+  if (group == stripe_groups_.end()) {
+    // Every stripe's factor, then the record's contact-free response at the trace's factor.
+    std::vector<std::size_t> index(axis_index.begin(), axis_index.end());
+    std::vector<double> factors(spec_.axes[*stripe_axis_].Size());
+    for (std::size_t v = 0; v < factors.size(); ++v) {
+      index[*stripe_axis_] = v;
+      factors[v] = scale_of_cell_[CellIndex(index)];
+    }
+    const ModelFileCell trace = MakeCell(axis_index, true, dynamics::kStripeTraceFactor);
+    if (stripe_groups_.size() < stripe_capacity_) stripe_groups_.emplace_back();
+    group = stripe_groups_.begin() + static_cast<std::ptrdiff_t>(next_stripe_group_);
+    next_stripe_group_ = (next_stripe_group_ + 1) % stripe_capacity_;
+    group->key = std::numeric_limits<std::uint64_t>::max();  // no group's key until traced
+    group->starts =
+        dynamics::TraceStripes(*trace.model, *trace.excitation, dynamics::kStripeTraceFactor,
+                               trace.control, policies(), factors);
+    group->key = key;
+  }
+  const dynamics::StripeStart& start = group->starts[axis_index[*stripe_axis_]];
+  SB_DEMAND(start.factor == c.scale, "a stripe's factor is not its cell's");
+  return dynamics::LawRun{
+      dynamics::RunStripe(*c.model, *c.excitation, c.control, policies(), start)};
 }
 
 CellOutcome ModelFileEvaluator::Outcome(std::span<const std::size_t> axis_index,

@@ -21,6 +21,7 @@
 #include "solver/common/excitation.h"
 #include "solver/dynamics/abutment_springs.h"
 #include "solver/dynamics/run_result.h"
+#include "solver/dynamics/stripes.h"
 #include "solver/model/model_file.h"
 #include "spectra/cell.h"
 #include "spectra/grid.h"
@@ -112,6 +113,10 @@ class ModelFileEvaluator final : public CellEvaluator, public RecordScaling {
   double UnscaledIntensity(std::span<const std::size_t> axis_index) const override;
   /// @pre record_scaling() != nullptr
   CellOutcome EvaluateScaled(std::span<const std::size_t> axis_index, double factor) const override;
+  /// The cell's record at dynamics::kStripeTraceFactor, built as the cell's excitation is, when
+  /// Evaluate runs the cell as a stripe of its record (dynamics::RunScaledRecord with the cell's
+  /// scale gives its run bit for bit), else nullptr (dynamics::Run gives it).
+  std::unique_ptr<Excitation> StripeTraceExcitation(std::span<const std::size_t> axis_index) const;
 
  private:
   CellGrid spec_;
@@ -148,6 +153,29 @@ class ModelFileEvaluator final : public CellEvaluator, public RecordScaling {
     dynamics::LawRun run;
   };
   mutable SharedRuns<SeatRun> shared_;  ///< the last runs (spectra/shared_runs.h)
+  /// The cells under a record run as stripes of it (dynamics/stripes.h): records, no gap that
+  /// follows the factor (no Pi_delta); the event-driven cells among them.
+  bool stripes_ = false;
+  /// The stripe axis (the intensity axis of [records] scale_to), when the stripes of a record
+  /// share its contact-free response: the cells' factors are their own.
+  std::optional<std::size_t> stripe_axis_;
+  /// The stripes of one record and the cell's other axes (the cell with its stripe and
+  /// limit-only axes at index 0, row-major): where each stripe's run stands after the shared
+  /// contact-free response.
+  struct StripeGroup {
+    std::uint64_t key = 0;
+    std::vector<dynamics::StripeStart> starts;  ///< per index of the stripe axis
+  };
+  /// The last groups, as many as there are cells between two stripes of one record that are
+  /// not limit-only (the axes after the stripe axis), replaced in turn.
+  mutable std::vector<StripeGroup> stripe_groups_;
+  std::size_t stripe_capacity_ = 1;
+  mutable std::size_t next_stripe_group_ = 0;
+  /// The row-major index of the cell with its stripe and limit-only axes at 0.
+  std::uint64_t StripeKey(std::span<const std::size_t> axis_index) const;
+  /// The dynamic run of cell `c` (its own factor): as a stripe of its record when the cells run
+  /// so, the method is event-driven and the law rigid, else its own run under its law.
+  dynamics::LawRun CellRun(std::span<const std::size_t> axis_index, const ModelFileCell& c) const;
   /// The outcome of a cell from its cell and run (the cell's seat widths are its own).
   CellOutcome Outcome(std::span<const std::size_t> axis_index, const ModelFileCell& c,
                       const dynamics::LawRun& run) const;

@@ -33,6 +33,7 @@
 #include "solver/dynamics/abutment_springs.h"
 #include "solver/dynamics/run.h"
 #include "solver/dynamics/simulate.h"
+#include "solver/dynamics/stripes.h"
 #include "solver/model/model_file.h"
 #include "solver/model/plausibility.h"
 #include "spectra/model_file_evaluator.h"
@@ -169,6 +170,10 @@ struct RunInput {
   /// The model file's compliant abutments ([abutments] law = "compliant"), else empty.
   std::optional<model::CompliantAbutments> compliant;
   const Excitation* excitation = nullptr;
+  // The record at dynamics::kStripeTraceFactor when the run is a record's at `factor` taken as a
+  // stripe of it (dynamics::RunScaledRecord, as a sweep's cell), else nullptr.
+  const Excitation* trace_excitation = nullptr;
+  double factor = 1.0;
   model::RunControl control;
   dynamics::RunPolicies policies;  // the integrators' defaults, or a cube cell's sweep's
   bool print_modes = false;
@@ -351,8 +356,13 @@ void Execute(const RunInput& in, const RunOptions& o) {
     control.output_interval_s = 0.01;
   }
   const bool time_stepping = control.method == model::Method::kTimeStepping;
+  // A record's event-driven run under the rigid law goes as a sweep's cell of it goes.
   const dynamics::LawRun law_run =
-      dynamics::RunUnderLaw(*in.model, in.compliant, *in.excitation, control, in.policies);
+      in.trace_excitation != nullptr && !in.compliant &&
+              control.method == model::Method::kEventDriven
+          ? dynamics::LawRun{dynamics::RunScaledRecord(
+                *in.model, *in.excitation, *in.trace_excitation, in.factor, control, in.policies)}
+          : dynamics::RunUnderLaw(*in.model, in.compliant, *in.excitation, control, in.policies);
   const dynamics::RunResult& r = law_run.run;
   // A compliant run's histories and files describe the deck without its rigid contacts.
   const std::optional<model::Model> contactless =
@@ -430,7 +440,7 @@ void RunModelFile(const RunOptions& o) {
   in.compliant = file.compliant;
   in.control = file.run;
   in.print_modes = !file.decks && file.deck.stiffness == model::DeckSpec::StiffnessKind::kElements;
-  std::unique_ptr<Excitation> excitation;
+  std::unique_ptr<Excitation> excitation, trace_excitation;
   // The ground motion's direction: the file's, or --incidence-deg from the bridge's x axis (as a
   // sweep's incidence_deg, the same bits).
   model::ExcitationSpec excitation_spec = file.excitation;
@@ -453,6 +463,16 @@ void RunModelFile(const RunOptions& o) {
                                                       excitation_spec.direction, factor)
                             : spectra::ScaledRecordExcitation(components.motions[0], factor,
                                                               excitation_spec.direction));
+    // The record at the stripes' trace factor, built alike: the run goes as a sweep's cell of
+    // the record at this factor goes (spectra::ModelFileEvaluator), and gives its bits.
+    trace_excitation = std::make_unique<records::SampledExcitation>(
+        components.IsPair()
+            ? records::PairExcitation(components.motions[0], components.motions[1],
+                                      excitation_spec.direction, dynamics::kStripeTraceFactor)
+            : spectra::ScaledRecordExcitation(components.motions[0], dynamics::kStripeTraceFactor,
+                                              excitation_spec.direction));
+    in.trace_excitation = trace_excitation.get();
+    in.factor = factor;
     in.title = fmt::format(
         "model {}, record {}{} x {:.6g}", o.model, o.record.empty() ? o.label : o.record,
         components.IsPair() ? " (pair: H1 along the direction, H2 at +90 deg)" : "", factor);
@@ -507,6 +527,8 @@ void RunCubeCell(const RunOptions& o) {
   in.compliant = rerun.compliant;
   in.excitation = rerun.excitation.get();
   in.control = rerun.control;
+  in.trace_excitation = rerun.trace_excitation.get();
+  in.factor = rerun.scale;
   // The cell's runs used its sweep's policies ([event_policy], [time_stepping_policy]).
   in.policies = rerun.evaluator->policies();
   // Histories and the energy ledger are what a re-run is for; the sweep leaves both out because

@@ -42,7 +42,7 @@ class Integrator final : private ConstrainedForces {
  public:
   Integrator(const model::Model& model, const Excitation& excitation,
              const model::RunControl& control, SimulationWorkspace& ws, const InitialState& initial,
-             const EventPolicy& policy);
+             const EventPolicy& policy, FreeStepObserver* observer);
 
   RunResult Run();
 
@@ -171,6 +171,9 @@ class Integrator final : private ConstrainedForces {
   double h_rk_ = 0.0;             // the next Runge-Kutta step the error control proposes (s)
   double h_free_ = 0.0;           // the last nominal free step (s)
   double next_output_t_ = kInf;   // the next history sample (s)
+  // Samples of the output grid before this run's first (the run from rest recorded them up to
+  // the start time InitialState::t_s).
+  std::size_t output_offset_ = 0;
   // The state (q, u and the excitation's states of the free flow), a step's end, and the free
   // step's dense output at a trial time.
   Vec z_, z_new_, z_eval_;
@@ -195,11 +198,17 @@ class Integrator final : private ConstrainedForces {
   // A history sample's force evaluation (with histories only): recording leaves ws_.forces_ as
   // it was, so a run takes the same decisions whether it records histories or not.
   std::unique_ptr<ActiveForcesStorage> sample_forces_;
+  // Sees the free steps until the first event (Simulate's observer), and the state at the
+  // start of the step it is shown.
+  FreeStepObserver* observer_ = nullptr;
+  Vec observed_z0_;
+  long initial_steps_ = 0;  // free steps before the run's start (InitialState::free_steps)
 };
 
 Integrator::Integrator(const model::Model& model, const Excitation& excitation,
                        const model::RunControl& control, SimulationWorkspace& ws,
-                       const InitialState& initial, const EventPolicy& policy)
+                       const InitialState& initial, const EventPolicy& policy,
+                       FreeStepObserver* observer)
     : model_(model),
       excitation_(excitation),
       control_(control),
@@ -209,7 +218,8 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
       nc_(model.n_contacts()),
       modes_(model.n_contacts()),
       travel_(model),
-      memory_(model.n_contacts()) {
+      memory_(model.n_contacts()),
+      observer_(observer) {
   SB_DEMAND(&ws.model() == &model, "Simulate: workspace built for another model");
   ValidatePolicy(policy);
   // The contact layer's thresholds of this run [docs/theory.md §3.15]: the workspace's problems
@@ -231,6 +241,16 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
     }
     z_.segment(n_, n_) = initial.u;
   }
+  if (initial.t_s != 0.0) {
+    if (!(initial.t_s > 0.0) || !std::isfinite(initial.t_s) || initial.free_steps < 0 ||
+        !(initial.h_free_s >= 0.0)) {
+      throw InputError::AtField("initial state", "t_s",
+                                "must be finite and > 0, with free_steps >= 0 and h_free_s >= 0");
+    }
+    t_ = initial.t_s;
+    h_free_ = initial.h_free_s;
+    initial_steps_ = initial.free_steps;
+  }
   y_ = Vec::Zero(2 * n_ + 3);
   dy_ = y_eval_ = y_;
   atol_ = Vec::Constant(2 * n_ + 3, kInf);
@@ -247,7 +267,8 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   t_end_ = control.EndTime(excitation.Duration());
   // The scales of the response, and the tolerances relative to them [docs/theory.md §3.2].
   const RunScales scales = ComputeRunScales(
-      ExcitationPeak(excitation, policy_.ramp_horizon_s), z_.segment(n_, n_).cwiseAbs().maxCoeff(),
+      ExcitationPeak(excitation, policy_.ramp_horizon_s),
+      t_ > 0.0 ? 0.0 : z_.segment(n_, n_).cwiseAbs().maxCoeff(),
       {ws.omega_min_radps_, ws.omega_max_radps_, ws.length_scale_m_, MaxTranslationalMass(model)},
       control.accumulation_threshold, policy_);
   scales_ = {.v_tol_mps = scales.v_tol_mps,
@@ -264,7 +285,8 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   h_rk_ = scales.first_rk_step_s;
 
   result_.max_abs_q = z_.head(n_).cwiseAbs();
-  result_.time_of_max_s = Vec::Zero(n_);
+  result_.time_of_max_s = Vec::Constant(n_, t_);
+  result_.free_steps = initial_steps_;
   travel_.Start(z_.head(n_), result_.max_travel_m);
   log_.events.reserve(1024);
   if (control.output_interval_s > 0.0) {
@@ -281,6 +303,14 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
     hist.state.reserve(samples * nc_);
     sample_forces_ = std::make_unique<ActiveForcesStorage>(model, policy.rank_threshold);
     next_output_t_ = 0.0;
+    if (t_ > 0.0) {
+      // The grid's samples the run from rest recorded with the step ending at t_ (RecordOutputs).
+      const double reach = t_ + policy_.output_time_band * std::max(1.0, t_);
+      const double dt = control.output_interval_s;
+      output_offset_ = static_cast<std::size_t>(std::max(0.0, std::floor(t_ / dt) - 1.0));
+      while (dt * static_cast<double>(output_offset_) <= reach) ++output_offset_;
+      next_output_t_ = dt * static_cast<double>(output_offset_);
+    }
   }
 }
 
@@ -288,13 +318,13 @@ RunResult Integrator::Run() {
   // The step loop [docs/theory.md §3.1]: the mode decision at t = 0, then one free step (no
   // contact closed) or one constrained step at a time, each ending at its end or at its first
   // event, where the step calls the decision (ResolveContacts) again.
-  ws_.flow_.SetGenerator(excitation_.PieceAt(0.0), 0.0, z_);
+  ws_.flow_.SetGenerator(excitation_.PieceAt(t_), t_, z_);
   result_.energy.initial_J = ws_.flow_.MechanicalEnergy(z_);
   RecordOutputs(0.0, 0.0, [&](double) -> const Vec& { return z_; });
   forced_.clear();
   ResolveContacts(forced_);
-  long steps = 0;
-  double t_finite = 0.0;  // the last time the state was checked finite (s)
+  long steps = initial_steps_;
+  double t_finite = t_;  // the last time the state was checked finite (s)
   while (!Failed() && t_ < t_end_) {
     if (++steps > control_.max_steps) {
       Fail(RunStatus::kStepLimit,
@@ -303,6 +333,14 @@ RunResult Integrator::Run() {
     }
     if (AnyClosed()) {
       ConstrainedStep();
+    } else if (observer_ != nullptr && log_.events.empty()) {
+      const double t0 = t_, h0 = h_free_;
+      observed_z0_ = z_.head(2 * n_);
+      FreeStep();
+      if (!Failed() && log_.events.empty() && !AnyClosed() &&
+          !observer_->Step(t0, observed_z0_, h0, t_, z_.head(2 * n_), result_)) {
+        break;
+      }
     } else {
       FreeStep();
     }
@@ -565,7 +603,8 @@ void Integrator::RecordOutputs(double t0, double t1, StateAt&& state_at) {
          next_output_t_ <= t_end_ + policy_.output_time_band) {
     const Vec& s = state_at(std::max(t0, std::min(next_output_t_, t1)));
     RecordSample(next_output_t_, s.head(n_), s.segment(n_, n_));
-    next_output_t_ = control_.output_interval_s * static_cast<double>(result_.histories.t_s.size());
+    next_output_t_ = control_.output_interval_s *
+                     static_cast<double>(output_offset_ + result_.histories.t_s.size());
   }
 }
 
@@ -745,8 +784,9 @@ void Integrator::Forces(const ContactModes& modes, double t, const Eigen::Ref<co
 
 RunResult Simulate(const model::Model& model, const Excitation& excitation,
                    const model::RunControl& control, SimulationWorkspace& workspace,
-                   const InitialState& initial, const EventPolicy& policy) {
-  Integrator integrator(model, excitation, control, workspace, initial, policy);
+                   const InitialState& initial, const EventPolicy& policy,
+                   FreeStepObserver* observer) {
+  Integrator integrator(model, excitation, control, workspace, initial, policy, observer);
   return integrator.Run();
 }
 

@@ -45,10 +45,39 @@
 
 namespace skewbridge::dynamics {
 
-/// The state at t = 0 (relative to the ground); the default is rest.
+/// The state at the run's start (relative to the ground); the default is rest at t = 0.
 struct InitialState {
   Eigen::VectorXd q;  ///< n_dof, empty = zero
   Eigen::VectorXd u;  ///< n_dof, empty = zero
+  /// The time of the state (s). A start at t_s > 0 continues a run that began at rest at t = 0
+  /// and reached (q, u) at t_s by free steps alone, no contact event among them (a stripe's
+  /// contact-free response, solver/dynamics/stripes.h): the tolerances are that run's (its
+  /// velocity scale from the excitation, none from u), its step grid goes on with the last
+  /// nominal free step h_free_s, and its step count and step limit with free_steps. Only the
+  /// event-driven method takes it; its history samples go on with the grid of the run from rest
+  /// after the samples that run recorded up to t_s.
+  double t_s = 0.0;
+  long free_steps = 0;    ///< free steps taken before t_s (t_s > 0)
+  double h_free_s = 0.0;  ///< the last nominal free step before t_s (s; 0: none)
+};
+
+/// Sees the free steps of a run while no contact has closed and no event has happened, to follow
+/// the contact-free response beside the run (solver/dynamics/stripes.h).
+class FreeStepObserver {
+ public:
+  virtual ~FreeStepObserver() = default;
+  /// The free step from t0_s to t1_s: z0 and z1 hold (q, u) at its ends (n_dof each), h0_s is
+  /// the nominal free step before it, `run` the run over [0, t1_s] (its free step count, maxima
+  /// of |q_i| and their times, work of the ledger, history samples). Returns false when it needs
+  /// no further step: the run ends there.
+  virtual bool Step(double t0_s, const Eigen::Ref<const Eigen::VectorXd>& z0, double h0_s,
+                    double t1_s, const Eigen::Ref<const Eigen::VectorXd>& z1,
+                    const RunResult& run) = 0;
+
+ protected:
+  FreeStepObserver() = default;
+  FreeStepObserver(const FreeStepObserver&) = default;
+  FreeStepObserver& operator=(const FreeStepObserver&) = default;
 };
 
 /// Scratch memory and caches of one model: build once, reuse for every run of that model (a
@@ -85,11 +114,13 @@ class SimulationWorkspace {
 };
 
 /// Integrates one run of `model` under `excitation` with `control` from `initial`, its events
-/// decided by `policy` (the defaults unless a study of the rules asks otherwise).
+/// decided by `policy` (the defaults unless a study of the rules asks otherwise); `observer`, when
+/// given, sees every free step until the first event.
 /// @pre workspace built for `model`; excitation duration finite.
-/// @throws InputError when the initial state has the wrong size.
+/// @throws InputError when the initial state has the wrong size or a bad start time.
 RunResult Simulate(const model::Model& model, const Excitation& excitation,
                    const model::RunControl& control, SimulationWorkspace& workspace,
-                   const InitialState& initial = {}, const EventPolicy& policy = {});
+                   const InitialState& initial = {}, const EventPolicy& policy = {},
+                   FreeStepObserver* observer = nullptr);
 
 }  // namespace skewbridge::dynamics

@@ -12,6 +12,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
+#include <map>
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
@@ -408,6 +410,95 @@ TEST(ModelFileEvaluator, CellsOfOneRunAndSeveralSeatsAreTheCellsOwn) {
       }
     }
   }
+}
+
+// The stripes of a record share its contact-free response: the pilot bridge under the two real
+// records of tests/data/records scaled to eight Sa(T1) stripes (0.3-4 g: the joints close from
+// about 1 g), two skews and two seat widths, evaluated in cube order, against each cell's own run
+// (EvaluateScaled at the cell's factor: no trace, no sharing). Statuses and event counts are the
+// same in every cell. A stripe without impacts has the steps of its own run and every response
+// within 1e-12 (a residual relative to the peak of its degree of freedom, a margin to the seat
+// width). With impacts the run goes on from the scaled state, which differs from the own run's in
+// its last bits; the impact sequence carries that difference (as it carries a change of the
+// factor by one ulp, measured beside it), so those cells are held to 1e-8.
+TEST(ModelFileEvaluator, StripesOfARecordAreEachStripesOwnRun) {
+  const std::filesystem::path root = std::filesystem::path(SKEWBRIDGE_TEST_DATA_DIR) / ".." / "..";
+  const std::string body =
+      "[records]\nset = \"" + (root / "tests" / "data" / "records" / "two-records.toml").string() +
+      "\"\nscale_to = { measure = \"Sa\", period = \"T1\", xi = 0.05 }\n"
+      "[axes]\nrecord = \"*\"\nim_g = {logspace = [0.3, 4.0, 8]}\na_deg = [20, 45]\n"
+      "seat_over_L = [0.0005, 0.002]\n"
+      "[limit_states]\nunseating = true\nrotation = {above_rad = 0.0005}\njoint_closing = true\n";
+  const std::string model = (root / "docs" / "examples" / "pilot-bridge.toml").string();
+  const ModelFileEvaluator shared(Spec(body, model));
+  const ModelFileEvaluator alone(Spec(body, model));
+  const std::vector<spectra::ResponseInfo> names = shared.Responses();
+  std::map<std::string, std::size_t> at;
+  for (std::size_t r = 0; r < names.size(); ++r) at[names[r].name] = r;
+  // The scale of response r: its peak for a residual, the seat width for a margin.
+  const auto scale_of = [&](const CellOutcome& o, std::size_t r) {
+    const std::string& name = names[r].name;
+    const std::size_t end = name.find("_end");
+    if (name.starts_with("margin_")) {
+      const double seat = o.responses[at["margin_m_d0"]] + o.responses[at["travel_m_d0"]];
+      return name.starts_with("margin_norm")
+                 ? seat * std::abs(o.responses[r] / o.responses[at["margin_m_d0"]])
+                 : seat;
+    }
+    if (end != std::string::npos) {
+      std::string peak =
+          name.substr(0, end) + (name.starts_with("travel") ? "" : "_m") + name.substr(end + 4);
+      if (name.starts_with("theta_end_norm")) peak = "theta_norm_d0";
+      if (name.starts_with("travel_end")) peak = "travel_m_d0";
+      return std::abs(o.responses[at.at(peak)]);
+    }
+    return std::abs(o.responses[r]);
+  };
+  const auto difference = [&](const CellOutcome& a, const CellOutcome& b) {
+    double largest = 0.0;
+    for (std::size_t r = 0; r < b.responses.size(); ++r) {
+      const double x = a.responses[r], y = b.responses[r];
+      if (std::isinf(x) || std::isinf(y)) {
+        largest = std::max(largest, x == y ? 0.0 : 1.0);
+        continue;
+      }
+      const double scale = std::max(scale_of(a, r), scale_of(b, r));
+      largest = std::max(largest, std::abs(x - y) / (scale > 0.0 ? scale : 1.0));
+    }
+    return largest;
+  };
+  int with_impacts = 0, without = 0;
+  double largest_free = 0.0, largest_impacts = 0.0, one_ulp = 0.0;
+  for (std::size_t cell = 0; cell < 2 * 8 * 2 * 2; ++cell) {
+    const std::vector<std::size_t> index{cell / 32, cell / 4 % 8, cell / 2 % 2, cell % 2};
+    SCOPED_TRACE("cell " + std::to_string(cell));
+    const CellOutcome got = shared.Evaluate(index);
+    const double factor = alone.Scaling(index)->factor;
+    const CellOutcome own = alone.EvaluateScaled(index, factor);
+    ASSERT_EQ(got.status, own.status);
+    ASSERT_EQ(got.stats.events, own.stats.events);
+    ASSERT_EQ(got.responses.size(), own.responses.size());
+    const double diff = difference(got, own);
+    if (own.stats.events == 0) {
+      ++without;
+      EXPECT_EQ(got.stats.steps, own.stats.steps);
+      EXPECT_LE(diff, 1e-12);
+      largest_free = std::max(largest_free, diff);
+    } else {
+      ++with_impacts;
+      EXPECT_LE(diff, 1e-8);
+      largest_impacts = std::max(largest_impacts, diff);
+      if (cell % 2 == 0) {
+        const CellOutcome next = alone.EvaluateScaled(index, std::nextafter(factor, 2 * factor));
+        one_ulp = std::max(one_ulp, difference(next, own));
+      }
+    }
+  }
+  EXPECT_GE(with_impacts, 8);
+  EXPECT_GE(without, 8);
+  std::cout << without << " cells without impacts, largest difference " << largest_free << "; "
+            << with_impacts << " with impacts, largest " << largest_impacts
+            << " (own runs at factors one ulp apart: " << one_ulp << ")\n";
 }
 
 TEST(ModelFileEvaluator, CellModelFollowsTheDefinitions) {

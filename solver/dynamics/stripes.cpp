@@ -1,0 +1,293 @@
+#include "solver/dynamics/stripes.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "solver/common/error.h"
+#include "solver/contact/kinematics.h"
+#include "solver/dynamics/corner_travel.h"
+#include "solver/dynamics/linear_flow.h"
+#include "solver/dynamics/run.h"
+
+namespace skewbridge::dynamics {
+namespace {
+
+using Vec = Eigen::VectorXd;
+
+// Follows the trace run's free steps and, for every stripe still clear of the gaps, the scaled
+// state's gaps and corner travels; a stripe whose gaps come within reach in a step stops there.
+class StripeTracer final : public FreeStepObserver {
+ public:
+  StripeTracer(const model::Model& model, const Excitation& excitation, double trace_factor,
+               const EventPolicy& policy, std::span<const double> factors)
+      : model_(model),
+        excitation_(excitation),
+        policy_(policy),
+        flow_(model.M(), model.K(), model.C(), model.r(), FlowPath::kAuto, model.modes()),
+        dense_(flow_.augmented_size()),
+        n_(model.n_dof()),
+        nc_(model.n_contacts()) {
+    // The length scale of the integrator's workspace (SimulationWorkspace).
+    double length_m = 1.0;
+    for (const model::Body& body : model.bodies()) {
+      length_m = std::max({length_m, body.geometry.length_m, body.geometry.width_m,
+                           body.rest_position_m.norm() + body.geometry.length_m});
+    }
+    margin_m_ = 1e-9 * length_m;
+    rates_.Resize(model);
+    z_aug_ = Vec::Zero(flow_.augmented_size());
+    q0_ = u0_ = q1_ = u1_ = Vec::Zero(n_);
+    prev_max_ = prev_time_ = Vec::Zero(n_);
+    Vec rest_gap = Vec::Zero(nc_), rest_rate = Vec::Zero(nc_);
+    contact::GapsAndRates(model, q0_, u0_, rest_gap, rest_rate, rates_);
+    starts_.resize(factors.size());
+    samples_.assign(factors.size(), 0);
+    stripes_.reserve(factors.size());
+    for (std::size_t s = 0; s < factors.size(); ++s) {
+      starts_[s].factor = factors[s];
+      Stripe& st = stripes_.emplace_back(model);
+      st.scale = factors[s] / trace_factor;
+      st.travel.Start(q0_, st.max_travel_m);
+      st.g0 = rest_gap;
+      st.gN0 = rest_rate;
+      st.g1 = st.gN1 = Vec::Zero(nc_);
+    }
+  }
+
+  bool Step(double t0, const Eigen::Ref<const Vec>& z0, double h0, double t1,
+            const Eigen::Ref<const Vec>& z1, const RunResult& run) override {
+    const long free_steps = run.free_steps;
+    const double tau = t1 - t0;
+    const double tolerance =
+        policy_.maximum_time_tolerance * std::max(1.0, std::abs(t1)) + policy_.event_time_floor_s;
+    bool dense_built = false;
+    bool any_live = false;
+    for (std::size_t s = 0; s < stripes_.size(); ++s) {
+      Stripe& st = stripes_[s];
+      if (!st.live) continue;
+      const double c = st.scale;
+      q1_ = c * z1.head(n_);
+      u1_ = c * z1.segment(n_, n_);
+      contact::GapsAndRates(model_, q1_, u1_, st.g1, st.gN1, rates_);
+      bool reach = false;
+      for (int k = 0; k < nc_; ++k) {
+        const double gap = std::min(st.g0[k], st.g1[k]) - margin_m_;
+        const double dip =
+            policy_.dip_margin * 0.5 * std::max(std::abs(st.gN0[k]), std::abs(st.gN1[k])) * tau;
+        if (!(gap > dip)) reach = true;
+      }
+      if (reach) {
+        // The stripe's event-driven run goes on from this step's start.
+        StripeStart& out = starts_[s];
+        out.reaches_gap = true;
+        out.state.q = c * z0.head(n_);
+        out.state.u = c * z0.segment(n_, n_);
+        out.state.t_s = t0;
+        out.state.free_steps = free_steps - 1;
+        out.state.h_free_s = h0;
+        out.linear.end_time_s = t0;
+        out.linear.max_abs_q = c * prev_max_;
+        out.linear.time_of_max_s = prev_time_;
+        out.linear.max_travel_m = st.max_travel_m;
+        out.linear.free_steps = free_steps - 1;
+        out.linear.energy.input_J = c * c * prev_input_J_;
+        out.linear.energy.damping_J = c * c * prev_damping_J_;
+        samples_[s] = prev_samples_;
+        st.live = false;
+        continue;
+      }
+      q0_ = c * z0.head(n_);
+      u0_ = c * z0.segment(n_, n_);
+      // The scaled dense output of the trace's step, built as the integrator builds it.
+      const auto component_at = [&](double t, int i) {
+        if (!dense_built) {
+          z_aug_.head(2 * n_) = z0;
+          const ExcitationPiece piece = excitation_.PieceAt(t0);
+          flow_.SetGenerator(piece, t0, z_aug_);
+          dense_.Build(flow_, piece.omega, z_aug_, tau);
+          dense_built = true;
+        }
+        return c * dense_.EvaluateComponent(t - t0, i);
+      };
+      st.travel.Scan(t0, q0_, u0_, t1, q1_, u1_, tolerance, component_at, st.max_travel_m);
+      std::swap(st.g0, st.g1);
+      std::swap(st.gN0, st.gN1);
+      any_live = true;
+    }
+    prev_max_ = run.max_abs_q;
+    prev_time_ = run.time_of_max_s;
+    prev_input_J_ = run.energy.input_J;
+    prev_damping_J_ = run.energy.damping_J;
+    prev_samples_ = run.histories.t_s.size();
+    last_t_s_ = t1;
+    return any_live;
+  }
+
+  // The stripes after the trace run `trace`: those still clear of the gaps are whole runs when
+  // the trace reached its end without an event, else they run from rest.
+  std::vector<StripeStart> Finish(const RunResult& trace) {
+    const bool whole = trace.status == RunStatus::kOk && trace.events.empty() &&
+                       trace.rk_steps == 0 && last_t_s_ == trace.end_time_s;
+    for (std::size_t s = 0; s < stripes_.size(); ++s) {
+      Stripe& st = stripes_[s];
+      if (!st.live) continue;
+      StripeStart& out = starts_[s];
+      if (!whole) {
+        out.reaches_gap = true;
+        out.state = InitialState{};
+        out.linear = RunResult{};
+        continue;
+      }
+      samples_[s] = trace.histories.t_s.size();
+      const double c = st.scale;
+      RunResult& r = out.linear;
+      r.status = RunStatus::kOk;
+      r.end_time_s = trace.end_time_s;
+      r.max_abs_q = c * trace.max_abs_q;
+      r.time_of_max_s = trace.time_of_max_s;
+      r.max_travel_m = st.max_travel_m;
+      r.q_end = c * trace.q_end;
+      r.u_end = c * trace.u_end;
+      r.free_steps = trace.free_steps;
+      // The work is quadratic in the factor; without the ledger the trace's is NaN.
+      r.energy.input_J = c * c * trace.energy.input_J;
+      r.energy.damping_J = c * c * trace.energy.damping_J;
+      r.energy.kinetic_J = 0.5 * r.u_end.dot(model_.mass_diagonal().cwiseProduct(r.u_end));
+      r.energy.strain_J = 0.5 * r.q_end.dot(model_.K() * r.q_end);
+      r.energy.balance_error_J =
+          (r.energy.kinetic_J + r.energy.strain_J) - (r.energy.input_J - r.energy.damping_J);
+    }
+    // The history samples of each stripe's contact-free part: the trace's, scaled.
+    for (std::size_t s = 0; s < stripes_.size(); ++s) {
+      if (starts_[s].reaches_gap && starts_[s].state.t_s == 0.0) continue;
+      ScaledHistories(trace.histories, stripes_[s].scale, samples_[s], starts_[s].linear.histories);
+    }
+    return std::move(starts_);
+  }
+
+ private:
+  struct Stripe {
+    explicit Stripe(const model::Model& model) : travel(model) {}
+    double scale = 1.0;  // the stripe's factor over the trace's
+    bool live = true;    // no gap within reach so far
+    CornerTravelTracker travel;
+    Vec max_travel_m;
+    Vec g0, gN0, g1, gN1;  // the scaled gaps and normal rates at the step's ends
+  };
+
+  const model::Model& model_;
+  const Excitation& excitation_;
+  const EventPolicy& policy_;
+  LinearFlow flow_;
+  FreeDenseOutput dense_;
+  int n_, nc_;
+  double margin_m_ = 0.0;  // a gap closer than this to the step's reach may close
+  contact::GapRateScratch rates_;
+  Vec z_aug_, q0_, u0_, q1_, u1_;
+  Vec prev_max_, prev_time_;  // the trace's maxima and their times at the step's start
+  double last_t_s_ = 0.0;     // the end of the last step seen
+  // The trace's work of the ledger and history samples at the step's start.
+  double prev_input_J_ = 0.0, prev_damping_J_ = 0.0;
+  std::size_t prev_samples_ = 0;
+  std::vector<std::size_t> samples_;  // per stripe: the trace's samples that are its own
+
+  // The first `count` samples of `trace` (a contact-free run) at `scale`: the states scaled, the
+  // gaps of the scaled state, every contact open.
+  void ScaledHistories(const Histories& trace, double scale, std::size_t count,
+                       Histories& out) const {
+    out.n_dof = trace.n_dof;
+    out.n_contacts = trace.n_contacts;
+    count = std::min(count, trace.t_s.size());
+    if (count == 0) return;
+    const std::size_t n = static_cast<std::size_t>(n_), nc = static_cast<std::size_t>(nc_);
+    out.t_s.assign(trace.t_s.begin(), trace.t_s.begin() + static_cast<std::ptrdiff_t>(count));
+    out.q.resize(count * n);
+    out.u.resize(count * n);
+    for (std::size_t i = 0; i < count * n; ++i) {
+      out.q[i] = scale * trace.q[i];
+      out.u[i] = scale * trace.u[i];
+    }
+    out.gap_m.resize(count * nc);
+    out.lambda_N.assign(count * nc, 0.0);
+    out.lambda_T.assign(count * nc, 0.0);
+    out.state.assign(count * nc, static_cast<int>(ContactState::kOpen));
+    Vec q(n_);
+    for (std::size_t k = 0; k < count; ++k) {
+      for (std::size_t i = 0; i < n; ++i) q[static_cast<Eigen::Index>(i)] = out.q[k * n + i];
+      for (int c = 0; c < nc_; ++c) {
+        out.gap_m[k * nc + static_cast<std::size_t>(c)] = contact::Gap(model_, c, q);
+      }
+    }
+  }
+  std::vector<Stripe> stripes_;
+  std::vector<StripeStart> starts_;
+};
+
+}  // namespace
+
+std::vector<StripeStart> TraceStripes(const model::Model& model, const Excitation& trace_excitation,
+                                      double trace_factor, const model::RunControl& control,
+                                      const RunPolicies& policies,
+                                      std::span<const double> factors) {
+  SB_DEMAND(control.method == model::Method::kEventDriven, "TraceStripes: an event-driven run");
+  StripeTracer tracer(model, trace_excitation, trace_factor, policies.event, factors);
+  SimulationWorkspace workspace(model);
+  const RunResult trace =
+      Simulate(model, trace_excitation, control, workspace, {}, policies.event, &tracer);
+  return tracer.Finish(trace);
+}
+
+RunResult RunStripe(const model::Model& model, const Excitation& excitation,
+                    const model::RunControl& control, const RunPolicies& policies,
+                    const StripeStart& start) {
+  if (!start.reaches_gap) return start.linear;
+  if (start.state.t_s == 0.0) return Run(model, excitation, control, policies);
+  RunResult run = Run(model, excitation, control, policies, start.state);
+  const RunResult& before = start.linear;
+  for (Eigen::Index i = 0; i < run.max_abs_q.size(); ++i) {
+    if (before.max_abs_q[i] > run.max_abs_q[i]) {
+      run.max_abs_q[i] = before.max_abs_q[i];
+      run.time_of_max_s[i] = before.time_of_max_s[i];
+    }
+  }
+  run.max_travel_m = run.max_travel_m.cwiseMax(before.max_travel_m);
+  // The work over [0, t_s] (quadratic in the factor) before the run's own, from rest.
+  EnergyLedger& e = run.energy;
+  e.initial_J = 0.0;
+  e.input_J += before.energy.input_J;
+  e.damping_J += before.energy.damping_J;
+  e.balance_error_J = (e.kinetic_J + e.strain_J) -
+                      (e.initial_J + e.input_J - e.damping_J - e.impact_J - e.friction_J);
+  if (control.output_interval_s > 0.0) {
+    // The samples before t_s, then the run's own (one grid: the times compare exactly).
+    const Histories& first = before.histories;
+    Histories& h = run.histories;
+    std::size_t count = first.t_s.size();
+    while (count > 0 && !h.t_s.empty() && first.t_s[count - 1] >= h.t_s.front()) --count;
+    const auto prepend = [](auto& to, const auto& from, std::size_t n) {
+      to.insert(to.begin(), from.begin(), from.begin() + static_cast<std::ptrdiff_t>(n));
+    };
+    const std::size_t n = static_cast<std::size_t>(h.n_dof);
+    const std::size_t nc = static_cast<std::size_t>(h.n_contacts);
+    prepend(h.t_s, first.t_s, count);
+    prepend(h.q, first.q, count * n);
+    prepend(h.u, first.u, count * n);
+    prepend(h.gap_m, first.gap_m, count * nc);
+    prepend(h.lambda_N, first.lambda_N, count * nc);
+    prepend(h.lambda_T, first.lambda_T, count * nc);
+    prepend(h.state, first.state, count * nc);
+  }
+  return run;
+}
+
+RunResult RunScaledRecord(const model::Model& model, const Excitation& excitation,
+                          const Excitation& trace_excitation, double factor,
+                          const model::RunControl& control, const RunPolicies& policies) {
+  const double factors[] = {factor};
+  const std::vector<StripeStart> starts =
+      TraceStripes(model, trace_excitation, kStripeTraceFactor, control, policies, factors);
+  return RunStripe(model, excitation, control, policies, starts.front());
+}
+
+}  // namespace skewbridge::dynamics
