@@ -180,10 +180,8 @@ ModelFileEvaluator::ModelFileEvaluator(const CellGrid& spec)
   }
   seats_ = MentionsSeat(spec) || (file_.decks && file_.decks->seat_width_m);
   travel_ = !spec.limit_states.empty();
-  // An event-driven cell under a record runs as a stripe of it (dynamics::RunScaledRecord, as
-  // `skewbridge run` of a record) when no gap follows the factor (Pi_delta gaps are L_e times
-  // it); the stripes of a record share its contact-free response when a cell's factor is its
-  // stripe's alone (records scaled to an intensity axis).
+  // Cells under a record run as stripes of it (dynamics::RunScaledRecord) unless a gap follows
+  // the factor (Pi_delta); they share one trace when the factor is the stripe's (scale_to).
   stripes_ = by_record && !Mentions(spec, "Pi_delta");
   if (stripes_ && spec.im.scale) {
     for (std::size_t k = 0; k < spec.axes.size(); ++k) {
@@ -730,42 +728,33 @@ CellOutcome ModelFileEvaluator::EvaluateAt(std::span<const std::size_t> axis_ind
   return out;
 }
 
-std::uint64_t ModelFileEvaluator::StripeKey(std::span<const std::size_t> index) const {
-  std::uint64_t cell = 0;
-  for (std::size_t k = 0; k < spec_.axes.size(); ++k) {
-    const bool shared = k == *stripe_axis_ || LimitOnlyAxis(spec_.axes[k].key);
-    cell = cell * spec_.axes[k].Size() + (shared ? 0 : index[k]);
-  }
-  return cell;
-}
-
 std::unique_ptr<Excitation> ModelFileEvaluator::StripeTraceExcitation(
     std::span<const std::size_t> axis_index) const {
   ModelFileCell trace = MakeCell(axis_index, true, dynamics::kStripeTraceFactor);
-  if (!stripes_ || trace.compliant || trace.control.method != model::Method::kEventDriven) {
-    return nullptr;
-  }
-  return std::move(trace.excitation);
+  const bool striped =
+      stripes_ && !trace.compliant && trace.control.method == model::Method::kEventDriven;
+  return striped ? std::move(trace.excitation) : nullptr;
 }
 
 dynamics::LawRun ModelFileEvaluator::CellRun(std::span<const std::size_t> axis_index,
                                              const ModelFileCell& c) const {
   if (!stripes_ || c.compliant || c.control.method != model::Method::kEventDriven) {
-    // As `skewbridge run`: run.method picks the integrator, the file's [run] its controls and
-    // [abutments] law the joint law.
+    // As `skewbridge run`: run.method, the file's [run] and [abutments] law decide.
     return dynamics::RunUnderLaw(*c.model, c.compliant, *c.excitation, c.control, policies());
   }
-  if (!stripe_axis_) {
-    // A stripe of its own.
+  if (!stripe_axis_) {  // a stripe of its own
     const ModelFileCell trace = MakeCell(axis_index, true, dynamics::kStripeTraceFactor);
     return dynamics::LawRun{dynamics::RunScaledRecord(*c.model, *c.excitation, *trace.excitation,
                                                       c.scale, c.control, policies())};
   }
-  const std::uint64_t key = StripeKey(axis_index);
+  std::uint64_t key = 0;  // the cell with its stripe and limit-only axes at 0, row-major
+  for (std::size_t k = 0; k < spec_.axes.size(); ++k) {
+    const bool shared = k == *stripe_axis_ || LimitOnlyAxis(spec_.axes[k].key);
+    key = key * spec_.axes[k].Size() + (shared ? 0 : axis_index[k]);
+  }
   auto group = std::find_if(stripe_groups_.begin(), stripe_groups_.end(),
                             [key](const StripeGroup& g) { return g.key == key; });
   if (group == stripe_groups_.end()) {
-    // Every stripe's factor, then the record's contact-free response at the trace's factor.
     std::vector<std::size_t> index(axis_index.begin(), axis_index.end());
     std::vector<double> factors(spec_.axes[*stripe_axis_].Size());
     for (std::size_t v = 0; v < factors.size(); ++v) {

@@ -171,8 +171,6 @@ class ModelFileEvaluator final : public CellEvaluator, public RecordScaling {
   mutable std::vector<StripeGroup> stripe_groups_;
   std::size_t stripe_capacity_ = 1;
   mutable std::size_t next_stripe_group_ = 0;
-  /// The row-major index of the cell with its stripe and limit-only axes at 0.
-  std::uint64_t StripeKey(std::span<const std::size_t> axis_index) const;
   /// The dynamic run of cell `c` (its own factor): as a stripe of its record when the cells run
   /// so, the method is event-driven and the law rigid, else its own run under its law.
   dynamics::LawRun CellRun(std::span<const std::size_t> axis_index, const ModelFileCell& c) const;
