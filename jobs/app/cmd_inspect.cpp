@@ -182,7 +182,7 @@ void PrintOverIncidence(const std::string& path, const jobs::h5::SweepSummary& s
   std::printf(
       "  over the incidence angle (over_incidence/: max, median, angle_of_max_deg of each "
       "response over incidence_deg, %s deg), per %s\n",
-      angles.c_str(), rest_label.empty() ? "sweep" : rest_label.c_str());
+      angles.c_str(), rest_label.c_str());
   for (const std::string& name : names) {
     const std::string ls = "ls_" + name;
     const auto some = ReadIfPresent(path, s.name, "over_incidence/max/" + ls);
@@ -227,6 +227,23 @@ void PrintOverIncidence(const std::string& path, const jobs::h5::SweepSummary& s
                                                            : "-",
         mode.c_str(), mode_count, positive);
   }
+}
+
+// The fit axes less the incidence angle: the axes of the worst-angle fits.
+std::vector<const jobs::h5::AxisSummary*> WithoutIncidence(
+    const std::vector<const jobs::h5::AxisSummary*>& axes) {
+  std::vector<const jobs::h5::AxisSummary*> rest;
+  for (const jobs::h5::AxisSummary* a : axes) {
+    if (a->name != "incidence_deg") rest.push_back(a);
+  }
+  return rest;
+}
+
+// The axes' names joined by commas, "sweep" when there is none (one fit for the sweep).
+std::string AxisNames(const std::vector<const jobs::h5::AxisSummary*>& axes) {
+  std::string names;
+  for (const jobs::h5::AxisSummary* a : axes) names += (names.empty() ? "" : ",") + a->name;
+  return names.empty() ? "sweep" : names;
 }
 
 // The IDA fits of group `group` (fragility/ or fragility_worst_incidence/), one row per limit
@@ -389,17 +406,12 @@ bool PrintIdaLimitStates(const std::string& path, const jobs::h5::SweepSummary& 
   }
   PrintIdaFits(path, s, names, "fragility", others);
   if (Has(s, "fragility_worst_incidence")) {
-    std::vector<const jobs::h5::AxisSummary*> rest;
-    std::string rest_label;
-    for (const jobs::h5::AxisSummary* a : others) {
-      if (a->name == "incidence_deg") continue;
-      rest.push_back(a);
-      rest_label += (rest_label.empty() ? "" : ",") + a->name;
-    }
+    const std::vector<const jobs::h5::AxisSummary*> rest = WithoutIncidence(others);
+    const std::string rest_label = AxisNames(rest);
     std::printf(
         "  fragility at the worst incidence angle (fragility_worst_incidence/, method ida): a "
         "record's capacity is the lowest over the angles, per %s\n",
-        rest_label.empty() ? "sweep" : rest_label.c_str());
+        rest_label.c_str());
     PrintIdaFits(path, s, names, "fragility_worst_incidence", rest);
   }
   PrintOverIncidence(path, s, {});
@@ -489,17 +501,12 @@ void PrintLimitStates(const std::string& path, const jobs::h5::SweepSummary& s) 
   }
   PrintStripeFits(path, s, names, "fragility", others, excluding);
   if (Has(s, "fragility_worst_incidence")) {
-    std::vector<const jobs::h5::AxisSummary*> rest;
-    std::string rest_label;
-    for (const jobs::h5::AxisSummary* a : others) {
-      if (a->name == "incidence_deg") continue;
-      rest.push_back(a);
-      rest_label += (rest_label.empty() ? "" : ",") + a->name;
-    }
+    const std::vector<const jobs::h5::AxisSummary*> rest = WithoutIncidence(others);
+    const std::string rest_label = AxisNames(rest);
     std::printf(
         "  fragility at the worst incidence angle (fragility_worst_incidence/): a record at a "
         "stripe exceeds when it exceeds at some angle, theta [g], per %s\n",
-        rest_label.empty() ? "sweep" : rest_label.c_str());
+        rest_label.c_str());
     PrintStripeFits(path, s, names, "fragility_worst_incidence", rest, excluding);
   }
   PrintOverIncidence(path, s, names);
