@@ -1,7 +1,10 @@
 # Helpers that make a new test a one-liner.
 #
-#   sb_add_gtest(NAME SOURCES a.cpp b.cpp LIBS lib1 lib2 [LABELS l])
-#       a GoogleTest executable run by ctest (one ctest entry per executable).
+#   sb_add_gtest(NAME SOURCES a.cpp b.cpp LIBS lib1 lib2 [LABELS l] [SHARDS n])
+#       a GoogleTest executable run by ctest (one ctest entry per executable). With SHARDS n,
+#       the ctest tests NAME_1ofn ... NAME_nofn each run every n-th GoogleTest test of it
+#       (GoogleTest's own sharding, GTEST_TOTAL_SHARDS and GTEST_SHARD_INDEX), so a long
+#       program's tests run on both cores; they are scheduled first (COST).
 #   sb_add_mpi_gtest(NAME NPROCS n [n2 ...] SOURCES ... LIBS ... [LABELS l])
 #       the same, launched as `mpiexec -n n` with the flags a root CI machine needs;
 #       the tests get MPI initialised by tests/support/mpi_gtest_main.cpp. With several
@@ -25,7 +28,7 @@ function(sb_mpi_environment)
 endfunction()
 
 function(sb_add_gtest name)
-  cmake_parse_arguments(ARG "" "" "SOURCES;LIBS;LABELS" ${ARGN})
+  cmake_parse_arguments(ARG "" "SHARDS" "SOURCES;LIBS;LABELS" ${ARGN})
   if(NOT SKEWBRIDGE_BUILD_TESTS)
     return()
   endif()
@@ -35,8 +38,19 @@ function(sb_add_gtest name)
   target_compile_definitions(${name} PRIVATE
     SKEWBRIDGE_TEST_DATA_DIR="${SKEWBRIDGE_TEST_DATA_DIR}"
     SKEWBRIDGE_SHARED_DIR="${SKEWBRIDGE_SHARED_DIR}")
-  add_test(NAME ${name} COMMAND ${name})
-  set_tests_properties(${name} PROPERTIES LABELS "unit;${ARG_LABELS}")
+  if(NOT ARG_SHARDS OR ARG_SHARDS LESS 2)
+    add_test(NAME ${name} COMMAND ${name})
+    set_tests_properties(${name} PROPERTIES LABELS "unit;${ARG_LABELS}")
+    return()
+  endif()
+  math(EXPR last "${ARG_SHARDS} - 1")
+  foreach(i RANGE ${last})
+    math(EXPR k "${i} + 1")
+    set(test ${name}_${k}of${ARG_SHARDS})
+    add_test(NAME ${test} COMMAND ${name})
+    set_tests_properties(${test} PROPERTIES LABELS "unit;${ARG_LABELS}" COST 1000
+      ENVIRONMENT "GTEST_TOTAL_SHARDS=${ARG_SHARDS};GTEST_SHARD_INDEX=${i}")
+  endforeach()
 endfunction()
 
 function(sb_add_mpi_gtest name)
