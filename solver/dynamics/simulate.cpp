@@ -69,6 +69,28 @@ class Integrator final : private ConstrainedForces {
   // length tau_s just applied (ModalGapBound, [docs/theory.md §3.18]); if so, their lower bounds
   // at the step's end replace gap_floor_.
   bool GapsStayOpen(double tau_s);
+  // FreeStepSize of `piece`, computed again only when its length or rate differ from the last
+  // piece's (a record's ramps share them): the same value without its divisions.
+  double NominalFreeStep(const ExcitationPiece& piece) {
+    const double length = piece.t_end - piece.t_begin;
+    if (!(length == nominal_length_s_ && piece.omega == nominal_omega_radps_)) {
+      nominal_h_s_ = FreeStepSize(piece, ws_.omega_max_radps_, policy_);
+      nominal_length_s_ = length;
+      nominal_omega_radps_ = piece.omega;
+    }
+    return nominal_h_s_;
+  }
+  // The flow's propagator of a full step h_s at omega_radps (with its energy forms if `energy`):
+  // the last step's when the key is the same, else LinearFlow::Propagator. Nothing but the free
+  // steps asks the workspace's flow for a propagator during a run, so the last one stays valid,
+  // and it is the cache's most recently used entry: not asking again keeps its eviction order.
+  const FreePropagator& StepPropagator(double h_s, double omega_radps, bool energy) {
+    if (propagator_ == nullptr || h_s != propagator_->tau_s ||
+        omega_radps != propagator_->omega_radps || (energy && !propagator_->has_energy)) {
+      propagator_ = &ws_.flow_.Propagator(h_s, omega_radps, energy);
+    }
+    return *propagator_;
+  }
   // Constrained phase: one Runge-Kutta step, up to its end or its first event (an impact of an
   // open contact or an event function of a closed one); there the decision, else the
   // projection.
@@ -187,10 +209,15 @@ class Integrator final : private ConstrainedForces {
   bool gaps_exact_ = true;
   Vec gap_floor_, gap_floor_next_;
   Vec drift_;  // per mode, the bound on its coordinate's change over the step (ModalDrift)
-  contact::GapRateScratch rates_;  // scratch of the gaps and normal rates
-  ClosedEvents events_;            // the closed contacts' event functions
-  ContactModes modes_;             // every contact's mode and the closed set
-  std::vector<int> forced_;        // contacts striking together at the located impact
+  // The key of NominalFreeStep's last value (NaN: none yet) and the value (s).
+  double nominal_length_s_ = std::numeric_limits<double>::quiet_NaN();
+  double nominal_omega_radps_ = std::numeric_limits<double>::quiet_NaN();
+  double nominal_h_s_ = 0.0;
+  const FreePropagator* propagator_ = nullptr;  // the last full step's (StepPropagator)
+  contact::GapRateScratch rates_;               // scratch of the gaps and normal rates
+  ClosedEvents events_;                         // the closed contacts' event functions
+  ContactModes modes_;                          // every contact's mode and the closed set
+  std::vector<int> forced_;                     // contacts striking together at the located impact
   RunResult result_;
   CornerTravelTracker travel_;  // the decks' corner travels (result_.max_travel_m)
   DecisionMemory memory_;       // what the mode decision remembers between instants
@@ -402,9 +429,8 @@ void Integrator::FreeStep() {
   // The Excitation contract: the piece at t extends beyond t. A piece ending at t would make
   // zero-length steps until the step budget runs out, so stop at once instead.
   SB_DEMAND(piece.t_end > t_, "Excitation::PieceAt(t) returned a piece that ends at or before t");
-  const FreeStepPlan step =
-      PlanFreeStep(t_, piece.t_begin, std::min(piece.t_end, t_end_),
-                   FreeStepSize(piece, ws_.omega_max_radps_, policy_), h_free_, policy_);
+  const FreeStepPlan step = PlanFreeStep(t_, piece.t_begin, std::min(piece.t_end, t_end_),
+                                         NominalFreeStep(piece), h_free_, policy_);
   h_free_ = step.h_s;
   const double tau = step.t_next_s - t_;
   flow.SetGenerator(piece, t_, z_);
@@ -418,7 +444,7 @@ void Integrator::FreeStep() {
   double input = 0.0, damping = 0.0;
   const bool ledger = control_.energy_ledger;
   if (step.full) {
-    const FreePropagator& p = flow.Propagator(step.h_s, piece.omega, ledger);
+    const FreePropagator& p = StepPropagator(step.h_s, piece.omega, ledger);
     flow.Apply(p, z_, z_new_, ledger ? &input : nullptr, ledger ? &damping : nullptr);
   } else {
     ensure_dense();

@@ -52,7 +52,11 @@ inline FreeStepPlan PlanFreeStep(double t_s, double piece_begin_s, double t_stop
   FreeStepPlan plan;
   plan.h_s = std::abs(h_s - h_last_s) <= policy.step_reuse_band * h_s ? h_last_s : h_s;
   const double h = plan.h_s;
-  const double k = std::floor((t_s - piece_begin_s) / h + policy.step_snap_band);
+  // At the piece's start (a record's steps, one per sample) the quotient is 0 exactly: the same
+  // k without the division.
+  const double k = t_s == piece_begin_s
+                       ? std::floor(policy.step_snap_band)
+                       : std::floor((t_s - piece_begin_s) / h + policy.step_snap_band);
   plan.t_next_s = piece_begin_s + (k + 1.0) * h;
   if (plan.t_next_s > t_stop_s - policy.step_snap_band * h) {
     plan.t_next_s = t_stop_s;
