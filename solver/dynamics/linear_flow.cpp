@@ -18,14 +18,20 @@ constexpr std::size_t kCacheCapacity = 8;
 // 0.0 as the mode loop and ModalProduct (row-wise or by columns), so the result is the same bits;
 // with the mode count kN known at compile time (a deck's 3) the loops unroll and no Eigen
 // expression is built per step. kN = 0: the count `n_runtime`.
-template <int kN>
+//
+// kHarmonic false: the harmonic columns of Y (gamma, delta) are zeros (a record's piece), and
+// their terms are left out. That is the same bits: each term is then a signed zero, a sum that
+// starts from +0.0 is never -0.0 (x + (-x) rounds to +0.0), and s + (+-0) = s for every s other
+// than -0.0.
+template <int kN, bool kHarmonic>
 void ModalStep(const double* Phi, int n_runtime, const double* T, const double* Y, double* eta,
                double* deta, double* q_next, double* u_next) {
   const int n = kN > 0 ? kN : n_runtime;
+  constexpr int kColumns = kHarmonic ? 6 : 4;
   for (int k = 0; k < n; ++k) {
     const double* Tk = T + 12 * k;
     double e = 0.0, de = 0.0;
-    for (int j = 0; j < 6; ++j) {
+    for (int j = 0; j < kColumns; ++j) {
       e += Tk[j] * Y[j * n + k];
       de += Tk[6 + j] * Y[j * n + k];
     }
@@ -200,12 +206,19 @@ void LinearFlow::Apply(const FreePropagator& p, const Eigen::Ref<const Eigen::Ve
   modal_->ToModal(z, Y_);
   // z and z_next are distinct (the precondition): the (q, u) written here is read by nothing after.
   const double* Phi = modal_->Phi().data();
-  if (n_ == 3) {
-    ModalStep<3>(Phi, n_, p.modal_rows.data(), Y_.data(), eta_.data(), deta_.data(), z_next.data(),
-                 z_next.data() + n_);
+  // The harmonic generator (p, k) zero, as on every piece of a record: its columns of Y are
+  // signed zeros.
+  const int ih = 2 * n_ + 4;
+  const bool harmonic = z[ih] != 0.0 || z[ih + 1] != 0.0 || z[ih + 2] != 0.0 || z[ih + 3] != 0.0;
+  if (n_ == 3 && !harmonic) {
+    ModalStep<3, false>(Phi, n_, p.modal_rows.data(), Y_.data(), eta_.data(), deta_.data(),
+                        z_next.data(), z_next.data() + n_);
+  } else if (n_ == 3) {
+    ModalStep<3, true>(Phi, n_, p.modal_rows.data(), Y_.data(), eta_.data(), deta_.data(),
+                       z_next.data(), z_next.data() + n_);
   } else {
-    ModalStep<0>(Phi, n_, p.modal_rows.data(), Y_.data(), eta_.data(), deta_.data(), z_next.data(),
-                 z_next.data() + n_);
+    ModalStep<0, true>(Phi, n_, p.modal_rows.data(), Y_.data(), eta_.data(), deta_.data(),
+                       z_next.data(), z_next.data() + n_);
   }
   if (energy) {
     SB_DEMAND(p.has_energy, "LinearFlow: the propagator was built without its energy forms");

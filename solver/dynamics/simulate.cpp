@@ -598,11 +598,12 @@ bool Integrator::GapsStayOpen(double tau_s) {
 
 template <class ComponentAt, class StateAt>
 void Integrator::RecordStep(double t1, ComponentAt&& component_at, StateAt&& state_at) {
-  const auto q1 = z_new_.head(n_);
-  const auto u1 = z_new_.segment(n_, n_);
-  ScanMaxima(t_, q(), u(), t1, q1, u1, component_at);
+  // One view of each end's positions and velocities for both scans.
+  const Eigen::Ref<const Vec> q0 = q(), u0 = u();
+  const Eigen::Ref<const Vec> q1 = z_new_.head(n_), u1 = z_new_.segment(n_, n_);
+  ScanMaxima(t_, q0, u0, t1, q1, u1, component_at);
   // The corner travels, at the same exactness: step ends and the roots of each corner's rate.
-  travel_.Scan(t_, q(), u(), t1, q1, u1, MaximumTimeTolerance(t1), component_at,
+  travel_.Scan(t_, q0, u0, t1, q1, u1, MaximumTimeTolerance(t1), component_at,
                result_.max_travel_m);
   RecordOutputs(t_, t1, state_at);
   z_.head(2 * n_) = z_new_.head(2 * n_);
