@@ -19,6 +19,7 @@
 #include "solver/dynamics/contact_modes.h"
 #include "solver/dynamics/corner_travel.h"
 #include "solver/dynamics/event_location.h"
+#include "solver/dynamics/gap_floors.h"
 #include "solver/dynamics/gauss_legendre.h"
 #include "solver/dynamics/indeterminate_split.h"
 #include "solver/dynamics/mode_decision.h"
@@ -66,8 +67,7 @@ class Integrator final : private ConstrainedForces {
   // the decision.
   void FreeStep();
   // Whether every gap provably stays above twice the touch band over the full free step of
-  // length tau_s just applied (ModalGapBound, [docs/theory.md §3.18]); if so, the step's drifts
-  // join drift_sum_.
+  // length tau_s just applied (GapFloors, [docs/theory.md §3.18]).
   bool GapsStayOpen(double tau_s);
   // FreeStepSize of `piece`, computed again only when its length or rate differ from the last
   // piece's (a record's ramps share them): the same value without its divisions.
@@ -204,20 +204,10 @@ class Integrator final : private ConstrainedForces {
   Vec y_, dy_, y_eval_, atol_;
   Vec cu_, du_;    // C u; du/dt of the last force evaluation
   StepEnds ends_;  // the open contacts' gaps and rates at the step's ends
-  // ends_.gap0 and gN0 hold the gaps and rates at t_; when false, free steps skipped them, and
-  // the gap of contact c at t_ is at least gap_floor_[c] - sum_k W_ck drift_sum_[k] (m) instead
-  // (GapsStayOpen).
+  // ends_.gap0 and gN0 hold the gaps and rates at t_; when false, free steps skipped them and
+  // gap_floors_ bounds the gaps at t_ from below instead.
   bool gaps_exact_ = true;
-  Vec gap_floor_;               // per contact, the gap bounds' base (m)
-  double gap_floor_min_ = 0.0;  // the smallest of gap_floor_ (m)
-  // Per mode, the drifts D_k (ModalDrift) of the steps since the base summed, and the same sum
-  // with the step being checked.
-  Vec drift_sum_, drift_;
-  int drifted_steps_ = 0;  // the terms of drift_sum_
-  // At most this many drifts are summed before they go into the bases: the sum's rounding (a
-  // relative kGapFoldSteps ulps) stays far below the bound's relative 1e-12.
-  static constexpr int kGapFoldSteps = 256;
-  Vec gap_weight_max_;  // per mode, max_c W_ck of the gap bound (m per unit of eta_k)
+  GapFloors gap_floors_;
   // The key of NominalFreeStep's last value (NaN: none yet) and the value (s).
   double nominal_length_s_ = std::numeric_limits<double>::quiet_NaN();
   double nominal_omega_radps_ = std::numeric_limits<double>::quiet_NaN();
@@ -252,6 +242,7 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
       ws_(ws),
       n_(model.n_dof()),
       nc_(model.n_contacts()),
+      gap_floors_(ws.gap_bound_),
       modes_(model.n_contacts()),
       travel_(model),
       memory_(model.n_contacts()),
@@ -292,16 +283,6 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   atol_ = Vec::Constant(2 * n_ + 3, kInf);
   du_ = cu_ = Vec::Zero(n_);
   ends_.gap0 = ends_.gN0 = ends_.gap1 = ends_.gN1 = Vec::Zero(nc_);
-  gap_floor_ = Vec::Zero(nc_);
-  drift_sum_ = drift_ = Vec::Zero(n_);
-  gap_weight_max_ = Vec::Zero(ws.gap_bound_.n_modes);
-  for (int c = 0; c < ws.gap_bound_.n_contacts; ++c) {
-    for (int k = 0; k < ws.gap_bound_.n_modes; ++k) {
-      gap_weight_max_[k] =
-          std::max(gap_weight_max_[k],
-                   ws.gap_bound_.weights[static_cast<std::size_t>(c * ws.gap_bound_.n_modes + k)]);
-    }
-  }
   events_.f0 = events_.f1 = events_.f_eval = Vec::Zero(2 * nc_);
   forced_.reserve(static_cast<std::size_t>(nc_));
   rates_.Resize(model);
@@ -539,61 +520,15 @@ void Integrator::FreeStep() {
 }
 
 bool Integrator::GapsStayOpen(double tau_s) {
-  const ModalGapBound& bound = ws_.gap_bound_;
-  if (!bound.applies()) {
+  if (!ws_.gap_bound_.applies()) {
     return false;
   }
   if (gaps_exact_) {
-    // A new base: the exact gaps at the step's start, no drift since.
-    gap_floor_ = ends_.gap0;
-    gap_floor_min_ = gap_floor_.minCoeff();
-    drift_sum_.setZero();
-    drifted_steps_ = 0;
+    gap_floors_.Restart(ends_.gap0);
   }
-  // Each gap's lower bound at the step's end is its base less sum_k W_ck S_k, S_k the drifts
-  // D_k summed since the base: the steps' closures sum_k W_ck D_k, summed by mode. None is kept
-  // unless every one stays clear of the touch band with the rounding of the gaps' evaluation to
-  // spare. The smallest base less sum_k max_c W_ck S_k answers for every contact at once.
-  const double margin = 2.0 * scales_.gap_tol_m;
-  const int n = bound.n_modes;
-  const double* Y = ws_.flow_.modal_coordinates().data();
-  double* sum = drift_.data();  // S_k with this step's drift; kept if the step stays open
-  const double* sum0 = drift_sum_.data();
-  const double* W_max = gap_weight_max_.data();
-  double closure_max = 0.0;
-  if (n == 3) {
-    // A deck's three modes, unrolled.
-    double drift[3];
-    ModalDrift3(bound, Y, tau_s, drift);
-    sum[0] = sum0[0] + drift[0];
-    sum[1] = sum0[1] + drift[1];
-    sum[2] = sum0[2] + drift[2];
-    closure_max = W_max[0] * sum[0] + W_max[1] * sum[1] + W_max[2] * sum[2];
-  } else {
-    ModalDrift(bound, Y, tau_s, sum);
-    for (int k = 0; k < n; ++k) {
-      sum[k] += sum0[k];
-      closure_max += W_max[k] * sum[k];
-    }
-  }
-  if (!(gap_floor_min_ - closure_max * (1.0 + 1e-12) > margin)) {
-    for (int c = 0; c < nc_; ++c) {
-      if (!(gap_floor_[c] - GapClosureBound(bound, c, sum) > margin)) {
-        return false;
-      }
-    }
-  }
-  drift_sum_.swap(drift_);
-  if (++drifted_steps_ == kGapFoldSteps) {
-    // Into the bases, so that no sum S_k has more than kGapFoldSteps terms.
-    for (int c = 0; c < nc_; ++c) {
-      gap_floor_[c] -= GapClosureBound(bound, c, drift_sum_.data());
-    }
-    gap_floor_min_ = gap_floor_.minCoeff();
-    drift_sum_.setZero();
-    drifted_steps_ = 0;
-  }
-  return true;
+  // Clear of the touch band with the rounding of the gaps' evaluation to spare.
+  return gap_floors_.StaysOpen(ws_.flow_.modal_coordinates().data(), tau_s,
+                               2.0 * scales_.gap_tol_m);
 }
 
 template <class ComponentAt, class StateAt>

@@ -1,0 +1,99 @@
+#pragma once
+/// @file
+/// The free steps' lower bounds of the open contacts' gaps between exact evaluations
+/// [docs/theory.md §3.18, the sum by mode]: each contact's base g_c (its exact gap, or the last
+/// fold's bound) less sum_k W_ck S_k, S_k the drifts D_k of mode k summed over the steps since.
+
+#include <Eigen/Core>
+#include <algorithm>
+
+#include "solver/dynamics/gap_bound.h"
+
+namespace skewbridge::dynamics {
+
+/// The gap bounds a free step carries over the steps that skipped their gaps (ModalGapBound).
+/// Sized once per run; Restart and StaysOpen allocate nothing.
+class GapFloors {
+ public:
+  /// Storage for `bound`'s contacts and modes, and its largest weight per mode.
+  explicit GapFloors(const ModalGapBound& bound)
+      : bound_(bound),
+        base_(Eigen::VectorXd::Zero(bound.n_contacts)),
+        sum_(Eigen::VectorXd::Zero(bound.n_modes)),
+        trial_(Eigen::VectorXd::Zero(bound.n_modes)),
+        weight_max_(Eigen::VectorXd::Zero(bound.n_modes)) {
+    const int n = bound.n_modes;
+    for (int c = 0; c < bound.n_contacts; ++c) {
+      for (int k = 0; k < n; ++k) {
+        weight_max_[k] =
+            std::max(weight_max_[k], bound.weights[static_cast<std::size_t>(c * n + k)]);
+      }
+    }
+  }
+
+  /// New bases: the exact gaps `gaps` (m) at the next step's start, no drift since.
+  void Restart(const Eigen::VectorXd& gaps) {
+    base_ = gaps;
+    base_min_ = base_.minCoeff();
+    sum_.setZero();
+    steps_ = 0;
+  }
+
+  /// Whether every gap stays above `margin_m` over a step of tau_s from the modal coordinates Y
+  /// (ModalDrift's layout): its drifts join the sums if so. The smallest base less
+  /// sum_k max_c W_ck S_k answers for every contact at once; each contact's own sum only when
+  /// that fails. Every kFoldSteps steps the sums go into the bases.
+  bool StaysOpen(const double* Y, double tau_s, double margin_m) {
+    const int n = bound_.n_modes;
+    double* sum = trial_.data();  // S_k with this step's drift; kept if the step stays open
+    const double* sum0 = sum_.data();
+    const double* w_max = weight_max_.data();
+    double closure_max = 0.0;
+    if (n == 3) {
+      // A deck's three modes, unrolled.
+      double drift[3];
+      ModalDrift3(bound_, Y, tau_s, drift);
+      sum[0] = sum0[0] + drift[0];
+      sum[1] = sum0[1] + drift[1];
+      sum[2] = sum0[2] + drift[2];
+      closure_max = w_max[0] * sum[0] + w_max[1] * sum[1] + w_max[2] * sum[2];
+    } else {
+      ModalDrift(bound_, Y, tau_s, sum);
+      for (int k = 0; k < n; ++k) {
+        sum[k] += sum0[k];
+        closure_max += w_max[k] * sum[k];
+      }
+    }
+    if (!(base_min_ - closure_max * (1.0 + 1e-12) > margin_m)) {
+      for (int c = 0; c < bound_.n_contacts; ++c) {
+        if (!(base_[c] - GapClosureBound(bound_, c, sum) > margin_m)) {
+          return false;
+        }
+      }
+    }
+    sum_.swap(trial_);
+    if (++steps_ == kFoldSteps) {
+      for (int c = 0; c < bound_.n_contacts; ++c) {
+        base_[c] -= GapClosureBound(bound_, c, sum_.data());
+      }
+      base_min_ = base_.minCoeff();
+      sum_.setZero();
+      steps_ = 0;
+    }
+    return true;
+  }
+
+ private:
+  // At most this many drifts are summed before they go into the bases: the sum's rounding (a
+  // relative kFoldSteps ulps) stays far below the bound's relative 1e-12.
+  static constexpr int kFoldSteps = 256;
+  const ModalGapBound& bound_;
+  Eigen::VectorXd base_;        // per contact, the base g_c (m)
+  double base_min_ = 0.0;       // the smallest base (m)
+  Eigen::VectorXd sum_;         // per mode, S_k
+  Eigen::VectorXd trial_;       // per mode, S_k with the step being checked
+  Eigen::VectorXd weight_max_;  // per mode, max_c W_ck (m per unit of eta_k)
+  int steps_ = 0;               // the terms of sum_
+};
+
+}  // namespace skewbridge::dynamics
