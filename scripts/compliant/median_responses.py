@@ -30,8 +30,9 @@ def main():
     p.add_argument("--response", action="append", required=True)
     a = p.parse_args()
     fixed = dict(f.split("=", 1) for f in a.fix)
-    print("| cube | " + " | ".join(fixed) + " | IM | " + " | ".join(a.response) + " |")
-    print("|" + "---|" * (2 + len(fixed) + len(a.response)))
+    head = ["cube"] + list(fixed) + ["IM"] + a.response
+    print("| " + " | ".join(head) + " |")
+    print("|" + "---|" * len(head))
     for spec in a.cubes:
         label, path = spec.rsplit("=", 1)
         f = h5py.File(path, "r")
@@ -53,8 +54,8 @@ def main():
                     idx.append(0)
             cells = [fixed[x] if x in order else "–" for x in fixed]
             values = [f"{np.median(s[r][tuple(idx)]):.3g}" if r in s else "–" for r in a.response]
-            print(f"| {label} | " + " | ".join(cells) + f" | {s['axes']['im_g'][k]:.3g} | "
-                  + " | ".join(values) + " |")
+            row = [label] + cells + [f"{s['axes']['im_g'][k]:.3g}"] + values
+            print("| " + " | ".join(row) + " |")
 
 
 if __name__ == "__main__":
