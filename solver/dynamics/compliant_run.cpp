@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "solver/common/error.h"
+#include "solver/dynamics/compliant_integrator.h"
 #include "solver/dynamics/corner_travel.h"
 #include "solver/dynamics/event_location.h"
 #include "solver/dynamics/gauss_legendre.h"
@@ -23,111 +24,15 @@
 namespace skewbridge::dynamics {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-// Transitions of one spring at one instant before its branch is left as it is (a spring grazing
-// its closing point with no velocity would otherwise flip without end).
-constexpr int kSettleLimit = 4;
+// The size of the integrated state: (q, u, input work, damping work, springs' work), and the
+// friction's work when a spring has wall friction.
+int StateSize(int n_dof, const std::vector<CompliantSpring>& springs) {
+  const bool friction = std::any_of(springs.begin(), springs.end(),
+                                    [](const CompliantSpring& s) { return s.mu > 0.0; });
+  return 2 * n_dof + 3 + (friction ? 1 : 0);
+}
 
 }  // namespace
-
-/// The state machine of one compliant run (compliant_run.h); lives for one SimulateCompliant call.
-class CompliantIntegrator {
- public:
-  CompliantIntegrator(const model::Model& model, const std::vector<CompliantSpring>& springs,
-                      const Excitation& excitation, const model::RunControl& control,
-                      const InitialState& initial, const EventPolicy& policy);
-
-  CompliantRunResult Run();
-
- private:
-  using Vec = Eigen::VectorXd;
-
-  // The piece of its law a spring is on.
-  enum class Branch {
-    kOpen,         // no force
-    kLine,         // backfill or key: the line below d_max, F(d_max) - K (d_max - d), K = K_ur, K_0
-    kEnvelope,     // backfill: the envelope, loading (d' > 0)
-    kDashpot,      // spring-dashpot: k d + c d'
-    kKeyRise,      // key: the backbone's rise K_0 d to V_n at D3, loading
-    kKeySoften,    // key: the backbone's fall from V_n at D3 to V_res at D_res, loading
-    kKeyResidual,  // key: the backbone's fall from V_res at D_res to 0 at DD, loading
-  };
-  // One spring's kinematics and its law's memory.
-  struct SpringState {
-    Branch branch = Branch::kOpen;
-    double d_max_m = 0.0;   // backfill: the largest deformation reached
-    double f_peak_N = 0.0;  // backfill: F(d_max)
-    double d_set_m = 0.0;   // backfill: the permanent set, d_max - F(d_max) / K_ur (>= 0)
-    bool broken = false;    // key: d_max reached DD; the key carries nothing ever again
-  };
-
-  bool Failed() const { return result_.status != RunStatus::kOk; }
-  // Deformation d = -g (m), its rate d' (m/s) and the gap's gradient w (on the body's 3 DOFs)
-  // of spring j at (q, u).
-  void Kinematics(int j, const Eigen::Ref<const Vec>& q, const Eigen::Ref<const Vec>& u, double& d,
-                  double& rate, Eigen::Vector3d& w) const;
-  // The force of spring j on its current branch, continued past the branch's ends (N).
-  double BranchForce(int j, double d, double rate) const;
-  // The slope of spring j's unloading-reloading line (N/m): K_ur of a backfill, K_0 of a key.
-  double LineStiffness(int j) const;
-  // The backbone piece a key loading past d (m) is on, or kOpen after breaking it.
-  Branch KeyPieceAbove(int j, double d) const;
-  // The turn of spring j from loading to unloading at d (m): the memory takes d, the line follows.
-  void CommitTurn(int j, double d);
-  // The event functions of spring j (positive while its branch holds): two per spring.
-  void EventValues(int j, double d, double rate, double& e1, double& e2) const;
-  // All springs' event functions at the state y (2 per spring) into `out`.
-  void AllEventValues(const Eigen::Ref<const Vec>& y, Vec& out) const;
-  // The transitions of spring j at (d, d') until its event functions are positive or it cannot
-  // leave its branch; returns true when it closed from open (a strike's start).
-  bool Settle(int j, double d, double rate);
-  // Settles every spring at the state y; counts a strike when one closes with none engaged.
-  void SettleAll(const Eigen::Ref<const Vec>& y);
-  // Whether every spring is open and off its closing point (the free flow applies).
-  bool AllFree(const Eigen::Ref<const Vec>& y) const;
-  bool AnyEngaged() const;
-  // dy/dt of y = (q, u, input work, damping work, springs' work) on the piece `piece`.
-  void Rhs(const ExcitationPiece& piece, double t, const Eigen::Ref<const Vec>& y,
-           Eigen::Ref<Vec> dy) const;
-  void FreeStep();
-  void CompliantStep();
-  // The step [t_, t1] done, its end state in y_new: maxima, corner travels and samples.
-  template <class ComponentAt, class StateAt>
-  void RecordStep(double t1, const Eigen::Ref<const Vec>& y_new, ComponentAt&& component_at,
-                  StateAt&& state_at);
-  void SpringMaxima(const Eigen::Ref<const Vec>& y);
-  template <class StateAt>
-  void RecordOutputs(double t0, double t1, StateAt&& state_at);
-  CompliantRunResult Finish(double t_finite_s);
-
-  const model::Model& model_;
-  const std::vector<CompliantSpring>& springs_;
-  const Excitation& excitation_;
-  const model::RunControl& control_;
-  const EventPolicy policy_;
-  LinearFlow flow_;
-  FreeDenseOutput dense_;
-  double omega_min_radps_ = 0.0, omega_max_radps_ = 0.0;
-  int n_, ns_;
-  RunScales scales_;
-  double t_ = 0.0, t_end_ = 0.0;
-  double h_rk_ = 0.0, h_free_ = 0.0;
-  double next_output_t_ = kInf;
-  double rtol_ = 0.0;
-  // The next compliant step may take dy_ and e0_ as they are (the last step ended without an
-  // event inside its piece, and no free step came between).
-  bool fresh_start_ = false;
-  // y = (q, u, input work, damping work, springs' work): the state and the running integrals.
-  Vec y_, dy_, y_new_, y_eval_, atol_;
-  Vec z_, z_new_, z_eval_;  // the free flow's augmented state
-  Vec e0_, e1_, e_eval_;    // the springs' event functions at a step's start, end, trial time
-  mutable Vec h_, cu_;      // applied forces and C u scratch
-  std::vector<SpringState> state_;
-  DormandPrince45 rk_;
-  CompliantRunResult out_;
-  RunResult& result_;
-  CornerTravelTracker travel_;
-};
 
 CompliantIntegrator::CompliantIntegrator(const model::Model& model,
                                          const std::vector<CompliantSpring>& springs,
@@ -144,7 +49,8 @@ CompliantIntegrator::CompliantIntegrator(const model::Model& model,
       n_(model.n_dof()),
       ns_(static_cast<int>(springs.size())),
       state_(springs.size()),
-      rk_(2 * model.n_dof() + 3),
+      ny_(StateSize(model.n_dof(), springs)),
+      rk_(ny_),
       result_(out_.run),
       travel_(model) {
   if (model.n_contacts() > 0) {
@@ -169,6 +75,27 @@ CompliantIntegrator::CompliantIntegrator(const model::Model& model,
                  std::isfinite(s.c_Ns_per_m))) {
       throw InputError::AtField(where, "k, c", "must be k > 0, c >= 0, finite");
     }
+    if (!(s.mu >= 0.0 && std::isfinite(s.mu))) {
+      throw InputError::AtField(where, "mu", "wall friction must be a finite number >= 0");
+    }
+    if (!(s.k_t_N_per_m >= 0.0 && std::isfinite(s.k_t_N_per_m))) {
+      throw InputError::AtField(where, "k_t", "stick stiffness must be finite, >= 0 (0: K_max)");
+    }
+    if (s.mu > 0.0 && s.law != SpringLaw::kBackfill) {
+      throw InputError::AtField(where, "mu", "wall friction acts on backfill springs only");
+    }
+    if (s.mu > 0.0 && !(std::abs(s.face.tangent.norm() - 1.0) <= 1e-12 &&
+                        std::abs(s.face.tangent.dot(s.face.normal)) <= 1e-12)) {
+      throw InputError::AtField(where, "geometry",
+                                "wall friction needs the face's unit tangent, normal to n");
+    }
+    if (s.mu > 0.0) {
+      FrictionState f;
+      f.spring = static_cast<int>(&s - springs.data());
+      f.mu = s.mu;
+      f.k_t_N_per_m = s.k_t_N_per_m > 0.0 ? s.k_t_N_per_m : s.backfill.k_max_N_per_m;
+      friction_.push_back(f);
+    }
   }
   if (flow_.modal()) {
     const Eigen::VectorXd& w2 = flow_.modal_flow().w2();
@@ -186,7 +113,7 @@ CompliantIntegrator::CompliantIntegrator(const model::Model& model,
                              body.rest_position_m.norm() + body.geometry.length_m});
   }
   ValidatePolicy(policy);
-  y_ = Vec::Zero(2 * n_ + 3);
+  y_ = Vec::Zero(ny_);
   if (initial.q.size() != 0) {
     if (initial.q.size() != n_) {
       throw InputError::AtField("initial state", "q", "must have n_dof entries");
@@ -202,7 +129,7 @@ CompliantIntegrator::CompliantIntegrator(const model::Model& model,
   dy_ = y_new_ = y_eval_ = y_;
   z_ = Vec::Zero(flow_.augmented_size());
   z_new_ = z_eval_ = z_;
-  e0_ = e1_ = e_eval_ = Vec::Zero(2 * ns_);
+  e0_ = e1_ = e_eval_ = Vec::Zero(2 * ns_ + 2 * static_cast<int>(friction_.size()));
   h_ = cu_ = Vec::Zero(n_);
   t_end_ = control.EndTime(excitation.Duration());
   scales_ = ComputeRunScales(
@@ -224,10 +151,11 @@ CompliantIntegrator::CompliantIntegrator(const model::Model& model,
         break;
     }
   }
+  for (const FrictionState& f : friction_) k_sum += f.k_t_N_per_m;
   const double omega_spring = std::sqrt(k_sum / MaxTranslationalMass(model));
   const double omega_top = std::max(scales_.omega_top_radps, omega_spring);
   rtol_ = control.relative_tolerance;
-  atol_ = Vec::Constant(2 * n_ + 3, kInf);
+  atol_ = Vec::Constant(ny_, kInf);
   atol_.head(n_).setConstant(control.absolute_tolerance);
   atol_.segment(n_, n_).setConstant(control.absolute_tolerance * omega_top);
   h_rk_ = std::min(scales_.first_rk_step_s, 0.01 / omega_top);
@@ -236,232 +164,14 @@ CompliantIntegrator::CompliantIntegrator(const model::Model& model,
   out_.max_spring_force_N = Vec::Zero(ns_);
   out_.max_spring_deformation_m = Vec::Zero(ns_);
   out_.key_break_time_s = Vec::Constant(ns_, std::numeric_limits<double>::quiet_NaN());
+  out_.wall_slip_m = Vec::Zero(ns_);
+  out_.first_slip_time_s = Vec::Constant(ns_, std::numeric_limits<double>::quiet_NaN());
   travel_.Start(y_.head(n_), result_.max_travel_m);
   if (control.output_interval_s > 0.0) {
     result_.histories.n_dof = n_;
     result_.histories.n_contacts = 0;
     next_output_t_ = 0.0;
   }
-}
-
-void CompliantIntegrator::Kinematics(int j, const Eigen::Ref<const Vec>& q,
-                                     const Eigen::Ref<const Vec>& u, double& d, double& rate,
-                                     Eigen::Vector3d& w) const {
-  const CompliantSpring& s = springs_[static_cast<std::size_t>(j)];
-  const int b = 3 * s.body;
-  const double c = std::cos(q[b + 2]), sn = std::sin(q[b + 2]);
-  const Eigen::Vector2d rp(c * s.point_m.x() - sn * s.point_m.y(),
-                           sn * s.point_m.x() + c * s.point_m.y());
-  const Eigen::Vector2d& rest = model_.body(s.body).rest_position_m;
-  const Eigen::Vector2d& n = s.face.normal;
-  const double gap = n.dot(rest + Eigen::Vector2d(q[b], q[b + 1]) + rp - s.face.point_m);
-  w << n.x(), n.y(), n.x() * -rp.y() + n.y() * rp.x();
-  d = -gap;
-  rate = -(w[0] * u[b] + w[1] * u[b + 1] + w[2] * u[b + 2]);
-}
-
-double CompliantIntegrator::BranchForce(int j, double d, double rate) const {
-  const CompliantSpring& s = springs_[static_cast<std::size_t>(j)];
-  const SpringState& m = state_[static_cast<std::size_t>(j)];
-  switch (m.branch) {
-    case Branch::kOpen:
-      return 0.0;
-    case Branch::kLine:
-      return m.f_peak_N - LineStiffness(j) * (m.d_max_m - d);
-    case Branch::kEnvelope:
-      return d / (1.0 / s.backfill.k_max_N_per_m + s.backfill.r_f * d / s.backfill.f_ult_N);
-    case Branch::kDashpot:
-      return s.k_N_per_m * d + s.c_Ns_per_m * rate;
-    case Branch::kKeyRise:
-      return s.key.v_n_N * d / s.key.d3_m;
-    case Branch::kKeySoften:
-      return s.key.v_n_N +
-             (s.key.v_res_N - s.key.v_n_N) * (d - s.key.d3_m) / (s.key.d_res_m - s.key.d3_m);
-    case Branch::kKeyResidual:
-      return s.key.v_res_N * (s.key.dd_m - d) / (s.key.dd_m - s.key.d_res_m);
-  }
-  return 0.0;
-}
-
-double CompliantIntegrator::LineStiffness(int j) const {
-  const CompliantSpring& s = springs_[static_cast<std::size_t>(j)];
-  return s.law == SpringLaw::kShearKey ? s.key.v_n_N / s.key.d3_m : s.backfill.k_ur_N_per_m;
-}
-
-CompliantIntegrator::Branch CompliantIntegrator::KeyPieceAbove(int j, double d) const {
-  const joint::ShearKey& key = springs_[static_cast<std::size_t>(j)].key;
-  if (d < key.d3_m) return Branch::kKeyRise;
-  if (d < key.d_res_m) return Branch::kKeySoften;
-  if (d < key.dd_m) return Branch::kKeyResidual;
-  return Branch::kOpen;
-}
-
-void CompliantIntegrator::CommitTurn(int j, double d) {
-  const CompliantSpring& s = springs_[static_cast<std::size_t>(j)];
-  SpringState& m = state_[static_cast<std::size_t>(j)];
-  if (s.law == SpringLaw::kShearKey) {
-    m.d_max_m = joint::ShearKeyCommit(s.key, joint::ShearKeyState{m.d_max_m}, d).d_max_m;
-    m.f_peak_N = joint::ShearKeyBackbone_N(s.key, m.d_max_m);
-    m.d_set_m = std::max(0.0, m.d_max_m - m.f_peak_N / LineStiffness(j));
-  } else {
-    const joint::BackfillState memory =
-        joint::BackfillCommit(s.backfill, joint::BackfillState{m.d_max_m}, d);
-    m.d_max_m = memory.d_max_m;
-    m.f_peak_N = joint::EnvelopeForce_N(s.backfill, m.d_max_m);
-    m.d_set_m = joint::PermanentSet_m(s.backfill, memory);
-  }
-  m.branch = Branch::kLine;
-}
-
-void CompliantIntegrator::EventValues(int j, double d, double rate, double& e1, double& e2) const {
-  const CompliantSpring& s = springs_[static_cast<std::size_t>(j)];
-  const SpringState& m = state_[static_cast<std::size_t>(j)];
-  e1 = e2 = kInf;
-  switch (m.branch) {
-    case Branch::kOpen:
-      if (m.broken) return;  // a broken key never closes again
-      if (s.law != SpringLaw::kSpringDashpot) {
-        e1 = m.d_set_m - d;  // closes at the permanent set
-      } else {
-        // A spring-dashpot left with d > 0 re-engages when k d + c d' turns positive.
-        e1 = -std::min(s.k_N_per_m * d, s.k_N_per_m * d + s.c_Ns_per_m * rate);
-      }
-      return;
-    case Branch::kLine:
-      e1 = m.d_max_m - d;  // reaches the envelope
-      e2 = d - m.d_set_m;  // opens at the permanent set
-      return;
-    case Branch::kEnvelope:
-      e1 = rate;  // turns from loading to unloading
-      return;
-    case Branch::kDashpot:
-      e1 = s.k_N_per_m * d + s.c_Ns_per_m * rate;  // its force reaches zero
-      return;
-    case Branch::kKeyRise:
-      e1 = s.key.d3_m - d;  // reaches the capacity V_n
-      e2 = rate;            // turns from loading to unloading
-      return;
-    case Branch::kKeySoften:
-      e1 = s.key.d_res_m - d;  // reaches the residual
-      e2 = rate;
-      return;
-    case Branch::kKeyResidual:
-      e1 = s.key.dd_m - d;  // breaks
-      e2 = rate;
-      return;
-  }
-}
-
-void CompliantIntegrator::AllEventValues(const Eigen::Ref<const Vec>& y, Vec& out) const {
-  Eigen::Vector3d w;
-  for (int j = 0; j < ns_; ++j) {
-    double d, rate;
-    Kinematics(j, y.head(n_), y.segment(n_, n_), d, rate, w);
-    EventValues(j, d, rate, out[2 * j], out[2 * j + 1]);
-  }
-}
-
-bool CompliantIntegrator::Settle(int j, double d, double rate) {
-  const CompliantSpring& s = springs_[static_cast<std::size_t>(j)];
-  SpringState& m = state_[static_cast<std::size_t>(j)];
-  const bool dashpot = s.law == SpringLaw::kSpringDashpot;
-  const bool key = s.law == SpringLaw::kShearKey;
-  bool closed = false;
-  for (int k = 0; k < kSettleLimit; ++k) {
-    double e1, e2;
-    EventValues(j, d, rate, e1, e2);
-    if (e1 > 0.0 && e2 > 0.0) {
-      break;
-    }
-    switch (m.branch) {
-      case Branch::kOpen:
-        if (m.broken) return closed;
-        if (!dashpot) {
-          if (!(rate > 0.0)) return closed;  // on the closing point, moving out: stays open
-          if (m.d_max_m > 0.0) {
-            m.branch = Branch::kLine;
-          } else {
-            m.branch = key ? Branch::kKeyRise : Branch::kEnvelope;
-          }
-        } else {
-          if (!(d > 0.0 && s.k_N_per_m * d + s.c_Ns_per_m * rate > 0.0)) return closed;
-          m.branch = Branch::kDashpot;
-        }
-        closed = true;
-        break;
-      case Branch::kLine:
-        if (e1 <= 0.0 && rate > 0.0) {
-          m.branch = key ? KeyPieceAbove(j, m.d_max_m) : Branch::kEnvelope;
-        } else if (e2 <= 0.0 && rate < 0.0) {
-          m.branch = Branch::kOpen;
-        } else {
-          return closed;
-        }
-        break;
-      case Branch::kEnvelope:
-        if (rate > 0.0) return closed;
-        CommitTurn(j, d);  // the turn: the memory takes the deformation reached
-        break;
-      case Branch::kDashpot:
-        m.branch = Branch::kOpen;
-        break;
-      case Branch::kKeyRise:
-      case Branch::kKeySoften:
-      case Branch::kKeyResidual: {
-        if (!(rate > 0.0)) {
-          CommitTurn(j, d);
-          break;
-        }
-        if (!(e1 <= 0.0)) return closed;
-        // The piece's end passed while loading: the next piece, or the break at DD, where the
-        // memory takes DD and the key's force, zero there, stays zero.
-        const double end = m.branch == Branch::kKeyRise     ? s.key.d3_m
-                           : m.branch == Branch::kKeySoften ? s.key.d_res_m
-                                                            : s.key.dd_m;
-        m.branch = KeyPieceAbove(j, end);
-        if (m.branch == Branch::kOpen) {
-          m.d_max_m = m.d_set_m = s.key.dd_m;
-          m.f_peak_N = 0.0;
-          m.broken = true;
-          out_.key_break_time_s[j] = t_;
-        }
-        break;
-      }
-    }
-  }
-  return closed;
-}
-
-bool CompliantIntegrator::AnyEngaged() const {
-  for (const SpringState& m : state_) {
-    if (m.branch != Branch::kOpen) return true;
-  }
-  return false;
-}
-
-void CompliantIntegrator::SettleAll(const Eigen::Ref<const Vec>& y) {
-  const bool engaged = AnyEngaged();
-  bool strike = false;
-  Eigen::Vector3d w;
-  for (int j = 0; j < ns_; ++j) {
-    double d, rate;
-    Kinematics(j, y.head(n_), y.segment(n_, n_), d, rate, w);
-    strike = Settle(j, d, rate) || strike;
-  }
-  if (strike && !engaged) ++result_.impacts;
-}
-
-bool CompliantIntegrator::AllFree(const Eigen::Ref<const Vec>& y) const {
-  Eigen::Vector3d w;
-  for (int j = 0; j < ns_; ++j) {
-    const SpringState& m = state_[static_cast<std::size_t>(j)];
-    if (m.branch != Branch::kOpen) return false;
-    if (m.broken) continue;
-    double d, rate;
-    Kinematics(j, y.head(n_), y.segment(n_, n_), d, rate, w);
-    if (!(d < m.d_set_m)) return false;
-  }
-  return true;
 }
 
 void CompliantIntegrator::Rhs(const ExcitationPiece& piece, double t,
@@ -489,11 +199,23 @@ void CompliantIntegrator::Rhs(const ExcitationPiece& piece, double t,
     h_.segment<3>(b) += f * w;
     joint_W += f * rate;
   }
+  double friction_W = 0.0;
+  for (const FrictionState& fr : friction_) {
+    if (fr.mode == Friction::kFree) continue;
+    double d, rate, s, s_rate;
+    Kinematics(fr.spring, q, u, d, rate, w);
+    const double normal = BranchForce(fr.spring, d, rate);
+    Tangential(fr.spring, q, u, s, s_rate, w);
+    const double f_t = FrictionForce(fr, s, normal);
+    h_.segment<3>(3 * springs_[static_cast<std::size_t>(fr.spring)].body) += f_t * w;
+    friction_W -= f_t * s_rate;
+  }
   dy.head(n_) = u;
   dy.segment(n_, n_) = model_.inverse_mass_diagonal().cwiseProduct(h_);
   dy[2 * n_] = input_W;
   dy[2 * n_ + 1] = damping_W;
   dy[2 * n_ + 2] = joint_W;
+  if (ny_ > 2 * n_ + 3) dy[2 * n_ + 3] = friction_W;
 }
 
 CompliantRunResult CompliantIntegrator::Run() {
@@ -606,6 +328,7 @@ void CompliantIntegrator::FreeStep() {
   y_new_[2 * n_] = y_[2 * n_] + input;
   y_new_[2 * n_ + 1] = y_[2 * n_ + 1] + damping;
   y_new_[2 * n_ + 2] = y_[2 * n_ + 2];
+  if (ny_ > 2 * n_ + 3) y_new_[2 * n_ + 3] = y_[2 * n_ + 3];
   const auto component_at = [&](double t, int i) {
     ensure_dense();
     return dense.EvaluateComponent(t - t_, i);
@@ -648,7 +371,7 @@ void CompliantIntegrator::CompliantStep() {
   // far side so that the transition sees it crossed.
   double t_event = kInf;
   const double x_tol = EventTimeBracket(t_full, policy_);
-  for (int e = 0; e < 2 * ns_; ++e) {
+  for (int e = 0; e < e0_.size(); ++e) {
     if (!(e0_[e] > 0.0 && e1_[e] <= 0.0)) continue;
     const auto value = [&](double t) {
       rk_.DenseHeadAt(t, 2 * n_, y_eval_);
@@ -776,13 +499,39 @@ CompliantRunResult CompliantIntegrator::Finish(double t_finite_s) {
   }
   out_.joint_stored_J = stored;
   out_.joint_dissipated_J = work - stored;
+  if (!friction_.empty()) {
+    // The stick springs' energy F_t^2 / (2 k_t) is stored; the rest of the friction's work is
+    // dissipated. A slip going on at the end adds its travel so far.
+    double friction_stored = 0.0;
+    for (FrictionState& fr : friction_) {
+      if (fr.mode == Friction::kFree) continue;
+      double d, rate, s, s_rate;
+      Kinematics(fr.spring, y_.head(n_), y_.segment(n_, n_), d, rate, w);
+      const double normal = BranchForce(fr.spring, d, rate);
+      Tangential(fr.spring, y_.head(n_), y_.segment(n_, n_), s, s_rate, w);
+      const double f_t = FrictionForce(fr, s, normal);
+      friction_stored += f_t * f_t / (2.0 * fr.k_t_N_per_m);
+      if (fr.mode == Friction::kSlip) {
+        out_.wall_slip_m[fr.spring] +=
+            std::abs(s - fr.sigma * fr.mu * normal / fr.k_t_N_per_m - fr.slip_begin_m);
+      }
+    }
+    out_.joint_stored_J += friction_stored;
+    e.friction_J = y_[2 * n_ + 3] - friction_stored;
+  }
   e.kinetic_J =
       0.5 * y_.segment(n_, n_).dot(model_.mass_diagonal().cwiseProduct(y_.segment(n_, n_)));
   e.strain_J = 0.5 * y_.head(n_).dot(model_.K() * y_.head(n_));
   e.balance_error_J = (e.kinetic_J + e.strain_J + out_.joint_stored_J) -
                       (e.initial_J + e.input_J - e.damping_J - out_.joint_dissipated_J);
+  if (!friction_.empty()) {
+    e.balance_error_J =
+        (e.kinetic_J + e.strain_J + out_.joint_stored_J) -
+        (e.initial_J + e.input_J - e.damping_J - out_.joint_dissipated_J - e.friction_J);
+  }
   if (!control_.energy_ledger) {
     e.input_J = e.damping_J = e.balance_error_J = std::numeric_limits<double>::quiet_NaN();
+    if (!friction_.empty()) e.friction_J = std::numeric_limits<double>::quiet_NaN();
   }
   return std::move(out_);
 }

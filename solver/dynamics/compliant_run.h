@@ -18,7 +18,13 @@
 /// - the energy ledger integrates the work of the springs beside the motion: of it, the energy a
 ///   spring would give back by unloading, F^2 / (2 K_ur) (1/2 k d^2 for a spring-dashpot), is
 ///   stored (F^2 / (2 K_0) for a shear key), the rest dissipated by the hysteresis
-///   (CompliantRunResult::joint_stored_J, joint_dissipated_J).
+///   (CompliantRunResult::joint_stored_J, joint_dissipated_J);
+/// - a backfill spring with wall friction (CompliantSpring::mu > 0) carries beside its normal force
+///   N a tangential elastic-perfectly-plastic element along the wall: a stick spring of stiffness
+///   k_t whose force slips at |F_t| = mu N, as OpenSees' zeroLengthContact elements (Kn, Kt, mu)
+///   do; the stick -> slip (|F_t| reaching mu N) and slip -> stick (the plastic slip rate reaching
+///   zero) transitions are events located on the dense output like the others, and the friction's
+///   dissipation is the ledger's friction_J.
 
 #include <Eigen/Core>
 #include <string>
@@ -56,6 +62,12 @@ struct CompliantSpring {
   double k_N_per_m = 0.0;         ///< kSpringDashpot: stiffness, > 0
   double c_Ns_per_m = 0.0;        ///< kSpringDashpot: dashpot, >= 0
   joint::ShearKey key;            ///< kShearKey: the key's backbone (gap_m = 0: the face has it)
+  /// kBackfill: Coulomb friction coefficient on the wall, >= 0, acting along the face's tangent at
+  /// p with the spring's force as the normal force; 0: a frictionless wall.
+  double mu = 0.0;
+  /// kBackfill with mu > 0: the stick stiffness k_t along the wall (N/m); 0 takes the spring's
+  /// K_max [docs/compliant.md §4, Wall friction].
+  double k_t_N_per_m = 0.0;
 };
 
 /// The springs of deck `body` of `model` against the face of its rigid contacts `first` and `last`
@@ -85,8 +97,8 @@ model::Model WithoutContacts(const model::Model& model);
 /// What a compliant run returns besides the RunResult of a rigid one.
 struct CompliantRunResult {
   /// The run: status, maxima, corner travels, counts, the ledger (its balance_error_J includes the
-  /// springs' terms below; impact_J and friction_J are 0). `impacts` counts strikes: instants at
-  /// which a spring closes while none is engaged.
+  /// springs' terms below; impact_J is 0, friction_J the wall friction's dissipation). `impacts`
+  /// counts strikes: instants at which a spring closes while none is engaged.
   RunResult run;
   Eigen::VectorXd max_spring_force_N;        ///< per spring, largest force (N), at step ends
   Eigen::VectorXd max_spring_deformation_m;  ///< per spring, largest deformation beyond its face
@@ -95,11 +107,18 @@ struct CompliantRunResult {
   /// Per spring, the time a shear key broke (its deformation reaching DD, s); NaN for a key left
   /// intact and for a spring of another law.
   Eigen::VectorXd key_break_time_s;
+  /// Per spring, the plastic slip along the wall accumulated over the run (m): the travel of the
+  /// friction element's anchor; 0 without friction.
+  Eigen::VectorXd wall_slip_m;
+  /// Per spring, the time of its first stick -> slip transition (s); NaN if it never slipped.
+  Eigen::VectorXd first_slip_time_s;
 };
 
 /// One run of the linear model `model` (no rigid contact) with the compliant `springs` under
 /// `excitation` from `initial`, the event-driven method; the ledger closes as
-/// kinetic + strain + joint_stored = initial + input - damping - joint_dissipated.
+/// kinetic + strain + joint_stored = initial + input - damping - joint_dissipated - friction
+/// (joint_stored includes the stick springs' F_t^2 / (2 k_t); friction is RunResult's
+/// energy.friction_J).
 /// @throws InputError when the model has rigid contacts, a spring is invalid (law constants, body
 /// index, a face not on the ground), or the initial state has the wrong size.
 CompliantRunResult SimulateCompliant(const model::Model& model,

@@ -1,0 +1,349 @@
+// The laws of a compliant run's springs in CompliantIntegrator (compliant_integrator.h): the
+// kinematics of a spring along and across its face, the force of each piece of its law, the event
+// functions that say where it leaves the piece and the transitions there, and the friction element
+// of a spring with wall friction [docs/compliant.md §4].
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "solver/dynamics/compliant_integrator.h"
+#include "solver/joint/backfill.h"
+#include "solver/joint/shear_key.h"
+
+namespace skewbridge::dynamics {
+
+void CompliantIntegrator::Kinematics(int j, const Eigen::Ref<const Vec>& q,
+                                     const Eigen::Ref<const Vec>& u, double& d, double& rate,
+                                     Eigen::Vector3d& w) const {
+  const CompliantSpring& s = springs_[static_cast<std::size_t>(j)];
+  const int b = 3 * s.body;
+  const double c = std::cos(q[b + 2]), sn = std::sin(q[b + 2]);
+  const Eigen::Vector2d rp(c * s.point_m.x() - sn * s.point_m.y(),
+                           sn * s.point_m.x() + c * s.point_m.y());
+  const Eigen::Vector2d& rest = model_.body(s.body).rest_position_m;
+  const Eigen::Vector2d& n = s.face.normal;
+  const double gap = n.dot(rest + Eigen::Vector2d(q[b], q[b + 1]) + rp - s.face.point_m);
+  w << n.x(), n.y(), n.x() * -rp.y() + n.y() * rp.x();
+  d = -gap;
+  rate = -(w[0] * u[b] + w[1] * u[b + 1] + w[2] * u[b + 2]);
+}
+
+void CompliantIntegrator::Tangential(int j, const Eigen::Ref<const Vec>& q,
+                                     const Eigen::Ref<const Vec>& u, double& s, double& rate,
+                                     Eigen::Vector3d& w_t) const {
+  const CompliantSpring& sp = springs_[static_cast<std::size_t>(j)];
+  const int b = 3 * sp.body;
+  const double c = std::cos(q[b + 2]), sn = std::sin(q[b + 2]);
+  const Eigen::Vector2d rp(c * sp.point_m.x() - sn * sp.point_m.y(),
+                           sn * sp.point_m.x() + c * sp.point_m.y());
+  const Eigen::Vector2d& rest = model_.body(sp.body).rest_position_m;
+  const Eigen::Vector2d& t = sp.face.tangent;
+  s = t.dot(rest + Eigen::Vector2d(q[b], q[b + 1]) + rp - sp.face.point_m);
+  w_t << t.x(), t.y(), t.x() * -rp.y() + t.y() * rp.x();
+  rate = w_t[0] * u[b] + w_t[1] * u[b + 1] + w_t[2] * u[b + 2];
+}
+
+double CompliantIntegrator::BranchSlope(int j, double d) const {
+  const CompliantSpring& s = springs_[static_cast<std::size_t>(j)];
+  switch (state_[static_cast<std::size_t>(j)].branch) {
+    case Branch::kLine:
+      return LineStiffness(j);
+    case Branch::kEnvelope: {
+      // F = d / (a + b d): dF/dd = a / (a + b d)^2.
+      const double a = 1.0 / s.backfill.k_max_N_per_m;
+      const double den = a + s.backfill.r_f * d / s.backfill.f_ult_N;
+      return a / (den * den);
+    }
+    default:
+      return 0.0;
+  }
+}
+
+double CompliantIntegrator::FrictionForce(const FrictionState& f, double s, double normal_N) const {
+  switch (f.mode) {
+    case Friction::kStick:
+      return -f.k_t_N_per_m * (s - f.anchor_m);
+    case Friction::kSlip:
+      return -f.sigma * f.mu * normal_N;
+    case Friction::kFree:
+      break;
+  }
+  return 0.0;
+}
+
+void CompliantIntegrator::FrictionEventValues(int f, const Eigen::Ref<const Vec>& y, double& e1,
+                                              double& e2) const {
+  const FrictionState& fr = friction_[static_cast<std::size_t>(f)];
+  e1 = e2 = kInf;
+  if (fr.mode == Friction::kFree) return;
+  const int j = fr.spring;
+  double d, d_rate, s, s_rate;
+  Eigen::Vector3d w;
+  Kinematics(j, y.head(n_), y.segment(n_, n_), d, d_rate, w);
+  Tangential(j, y.head(n_), y.segment(n_, n_), s, s_rate, w);
+  const double normal = BranchForce(j, d, d_rate);
+  if (fr.mode == Friction::kStick) {
+    const double f_t = FrictionForce(fr, s, normal);
+    e1 = fr.mu * normal - f_t;  // the stick force reaches the cone along +t
+    e2 = fr.mu * normal + f_t;  // along -t
+  } else {
+    // The anchor follows s - sigma mu N / k_t: its rate along sigma, the plastic slip rate.
+    e1 = fr.sigma * s_rate - fr.mu * BranchSlope(j, d) * d_rate / fr.k_t_N_per_m;
+  }
+}
+
+void CompliantIntegrator::SettleFriction(int f, const Eigen::Ref<const Vec>& y) {
+  FrictionState& fr = friction_[static_cast<std::size_t>(f)];
+  const int j = fr.spring;
+  double d, d_rate, s, s_rate;
+  Eigen::Vector3d w;
+  Kinematics(j, y.head(n_), y.segment(n_, n_), d, d_rate, w);
+  Tangential(j, y.head(n_), y.segment(n_, n_), s, s_rate, w);
+  const double normal = BranchForce(j, d, d_rate);
+  const auto end_slip = [&]() {
+    // The slip ends: the anchor where the slipping element has it.
+    const double anchor = s - fr.sigma * fr.mu * normal / fr.k_t_N_per_m;
+    out_.wall_slip_m[j] += std::abs(anchor - fr.slip_begin_m);
+    return anchor;
+  };
+  if (state_[static_cast<std::size_t>(j)].branch == Branch::kOpen) {
+    if (fr.mode == Friction::kSlip) end_slip();
+    fr.mode = Friction::kFree;
+    return;
+  }
+  if (fr.mode == Friction::kFree) {
+    fr.mode = Friction::kStick;  // a closing spring grips the wall where it touches it
+    fr.anchor_m = s;
+  }
+  const auto rate_along = [&](double sigma) {
+    return sigma * s_rate - fr.mu * BranchSlope(j, d) * d_rate / fr.k_t_N_per_m;
+  };
+  for (int k = 0; k < kSettleLimit; ++k) {
+    if (fr.mode == Friction::kStick) {
+      const double f_t = FrictionForce(fr, s, normal);
+      if (fr.mu * normal - std::abs(f_t) > 0.0) return;
+      // On the cone: it slips the way the stick spring is stretched if the motion goes on
+      // outwards (F_t = +mu N holds a point moving along -t).
+      const double sigma = f_t > 0.0 ? -1.0 : 1.0;
+      if (!(rate_along(sigma) > 0.0)) return;
+      fr.mode = Friction::kSlip;
+      fr.sigma = sigma;
+      fr.slip_begin_m = fr.anchor_m;
+      if (std::isnan(out_.first_slip_time_s[j])) out_.first_slip_time_s[j] = t_;
+    } else {
+      if (rate_along(fr.sigma) > 0.0) return;
+      fr.anchor_m = end_slip();
+      fr.mode = Friction::kStick;
+    }
+  }
+}
+
+double CompliantIntegrator::BranchForce(int j, double d, double rate) const {
+  const CompliantSpring& s = springs_[static_cast<std::size_t>(j)];
+  const SpringState& m = state_[static_cast<std::size_t>(j)];
+  switch (m.branch) {
+    case Branch::kOpen:
+      return 0.0;
+    case Branch::kLine:
+      return m.f_peak_N - LineStiffness(j) * (m.d_max_m - d);
+    case Branch::kEnvelope:
+      return d / (1.0 / s.backfill.k_max_N_per_m + s.backfill.r_f * d / s.backfill.f_ult_N);
+    case Branch::kDashpot:
+      return s.k_N_per_m * d + s.c_Ns_per_m * rate;
+    case Branch::kKeyRise:
+      return s.key.v_n_N * d / s.key.d3_m;
+    case Branch::kKeySoften:
+      return s.key.v_n_N +
+             (s.key.v_res_N - s.key.v_n_N) * (d - s.key.d3_m) / (s.key.d_res_m - s.key.d3_m);
+    case Branch::kKeyResidual:
+      return s.key.v_res_N * (s.key.dd_m - d) / (s.key.dd_m - s.key.d_res_m);
+  }
+  return 0.0;
+}
+
+double CompliantIntegrator::LineStiffness(int j) const {
+  const CompliantSpring& s = springs_[static_cast<std::size_t>(j)];
+  return s.law == SpringLaw::kShearKey ? s.key.v_n_N / s.key.d3_m : s.backfill.k_ur_N_per_m;
+}
+
+CompliantIntegrator::Branch CompliantIntegrator::KeyPieceAbove(int j, double d) const {
+  const joint::ShearKey& key = springs_[static_cast<std::size_t>(j)].key;
+  if (d < key.d3_m) return Branch::kKeyRise;
+  if (d < key.d_res_m) return Branch::kKeySoften;
+  if (d < key.dd_m) return Branch::kKeyResidual;
+  return Branch::kOpen;
+}
+
+void CompliantIntegrator::CommitTurn(int j, double d) {
+  const CompliantSpring& s = springs_[static_cast<std::size_t>(j)];
+  SpringState& m = state_[static_cast<std::size_t>(j)];
+  if (s.law == SpringLaw::kShearKey) {
+    m.d_max_m = joint::ShearKeyCommit(s.key, joint::ShearKeyState{m.d_max_m}, d).d_max_m;
+    m.f_peak_N = joint::ShearKeyBackbone_N(s.key, m.d_max_m);
+    m.d_set_m = std::max(0.0, m.d_max_m - m.f_peak_N / LineStiffness(j));
+  } else {
+    const joint::BackfillState memory =
+        joint::BackfillCommit(s.backfill, joint::BackfillState{m.d_max_m}, d);
+    m.d_max_m = memory.d_max_m;
+    m.f_peak_N = joint::EnvelopeForce_N(s.backfill, m.d_max_m);
+    m.d_set_m = joint::PermanentSet_m(s.backfill, memory);
+  }
+  m.branch = Branch::kLine;
+}
+
+void CompliantIntegrator::EventValues(int j, double d, double rate, double& e1, double& e2) const {
+  const CompliantSpring& s = springs_[static_cast<std::size_t>(j)];
+  const SpringState& m = state_[static_cast<std::size_t>(j)];
+  e1 = e2 = kInf;
+  switch (m.branch) {
+    case Branch::kOpen:
+      if (m.broken) return;  // a broken key never closes again
+      if (s.law != SpringLaw::kSpringDashpot) {
+        e1 = m.d_set_m - d;  // closes at the permanent set
+      } else {
+        // A spring-dashpot left with d > 0 re-engages when k d + c d' turns positive.
+        e1 = -std::min(s.k_N_per_m * d, s.k_N_per_m * d + s.c_Ns_per_m * rate);
+      }
+      return;
+    case Branch::kLine:
+      e1 = m.d_max_m - d;  // reaches the envelope
+      e2 = d - m.d_set_m;  // opens at the permanent set
+      return;
+    case Branch::kEnvelope:
+      e1 = rate;  // turns from loading to unloading
+      return;
+    case Branch::kDashpot:
+      e1 = s.k_N_per_m * d + s.c_Ns_per_m * rate;  // its force reaches zero
+      return;
+    case Branch::kKeyRise:
+      e1 = s.key.d3_m - d;  // reaches the capacity V_n
+      e2 = rate;            // turns from loading to unloading
+      return;
+    case Branch::kKeySoften:
+      e1 = s.key.d_res_m - d;  // reaches the residual
+      e2 = rate;
+      return;
+    case Branch::kKeyResidual:
+      e1 = s.key.dd_m - d;  // breaks
+      e2 = rate;
+      return;
+  }
+}
+
+void CompliantIntegrator::AllEventValues(const Eigen::Ref<const Vec>& y, Vec& out) const {
+  Eigen::Vector3d w;
+  for (int j = 0; j < ns_; ++j) {
+    double d, rate;
+    Kinematics(j, y.head(n_), y.segment(n_, n_), d, rate, w);
+    EventValues(j, d, rate, out[2 * j], out[2 * j + 1]);
+  }
+  for (int f = 0; f < static_cast<int>(friction_.size()); ++f) {
+    FrictionEventValues(f, y, out[2 * ns_ + 2 * f], out[2 * ns_ + 2 * f + 1]);
+  }
+}
+
+bool CompliantIntegrator::Settle(int j, double d, double rate) {
+  const CompliantSpring& s = springs_[static_cast<std::size_t>(j)];
+  SpringState& m = state_[static_cast<std::size_t>(j)];
+  const bool dashpot = s.law == SpringLaw::kSpringDashpot;
+  const bool key = s.law == SpringLaw::kShearKey;
+  bool closed = false;
+  for (int k = 0; k < kSettleLimit; ++k) {
+    double e1, e2;
+    EventValues(j, d, rate, e1, e2);
+    if (e1 > 0.0 && e2 > 0.0) {
+      break;
+    }
+    switch (m.branch) {
+      case Branch::kOpen:
+        if (m.broken) return closed;
+        if (!dashpot) {
+          if (!(rate > 0.0)) return closed;  // on the closing point, moving out: stays open
+          if (m.d_max_m > 0.0) {
+            m.branch = Branch::kLine;
+          } else {
+            m.branch = key ? Branch::kKeyRise : Branch::kEnvelope;
+          }
+        } else {
+          if (!(d > 0.0 && s.k_N_per_m * d + s.c_Ns_per_m * rate > 0.0)) return closed;
+          m.branch = Branch::kDashpot;
+        }
+        closed = true;
+        break;
+      case Branch::kLine:
+        if (e1 <= 0.0 && rate > 0.0) {
+          m.branch = key ? KeyPieceAbove(j, m.d_max_m) : Branch::kEnvelope;
+        } else if (e2 <= 0.0 && rate < 0.0) {
+          m.branch = Branch::kOpen;
+        } else {
+          return closed;
+        }
+        break;
+      case Branch::kEnvelope:
+        if (rate > 0.0) return closed;
+        CommitTurn(j, d);  // the turn: the memory takes the deformation reached
+        break;
+      case Branch::kDashpot:
+        m.branch = Branch::kOpen;
+        break;
+      case Branch::kKeyRise:
+      case Branch::kKeySoften:
+      case Branch::kKeyResidual: {
+        if (!(rate > 0.0)) {
+          CommitTurn(j, d);
+          break;
+        }
+        if (!(e1 <= 0.0)) return closed;
+        // The piece's end passed while loading: the next piece, or the break at DD, where the
+        // memory takes DD and the key's force, zero there, stays zero.
+        const double end = m.branch == Branch::kKeyRise     ? s.key.d3_m
+                           : m.branch == Branch::kKeySoften ? s.key.d_res_m
+                                                            : s.key.dd_m;
+        m.branch = KeyPieceAbove(j, end);
+        if (m.branch == Branch::kOpen) {
+          m.d_max_m = m.d_set_m = s.key.dd_m;
+          m.f_peak_N = 0.0;
+          m.broken = true;
+          out_.key_break_time_s[j] = t_;
+        }
+        break;
+      }
+    }
+  }
+  return closed;
+}
+
+bool CompliantIntegrator::AnyEngaged() const {
+  for (const SpringState& m : state_) {
+    if (m.branch != Branch::kOpen) return true;
+  }
+  return false;
+}
+
+void CompliantIntegrator::SettleAll(const Eigen::Ref<const Vec>& y) {
+  const bool engaged = AnyEngaged();
+  bool strike = false;
+  Eigen::Vector3d w;
+  for (int j = 0; j < ns_; ++j) {
+    double d, rate;
+    Kinematics(j, y.head(n_), y.segment(n_, n_), d, rate, w);
+    strike = Settle(j, d, rate) || strike;
+  }
+  for (int f = 0; f < static_cast<int>(friction_.size()); ++f) SettleFriction(f, y);
+  if (strike && !engaged) ++result_.impacts;
+}
+
+bool CompliantIntegrator::AllFree(const Eigen::Ref<const Vec>& y) const {
+  Eigen::Vector3d w;
+  for (int j = 0; j < ns_; ++j) {
+    const SpringState& m = state_[static_cast<std::size_t>(j)];
+    if (m.branch != Branch::kOpen) return false;
+    if (m.broken) continue;
+    double d, rate;
+    Kinematics(j, y.head(n_), y.segment(n_, n_), d, rate, w);
+    if (!(d < m.d_set_m)) return false;
+  }
+  return true;
+}
+
+}  // namespace skewbridge::dynamics
