@@ -34,8 +34,12 @@ std::vector<CompliantSpring> AbutmentSprings(const model::Model& rigid,
     const int first = ContactIndex(rigid, w.first);
     const int last = ContactIndex(rigid, w.last);
     if (first < 0 || last < 0) continue;  // set = "+x": no -x wall
-    const std::vector<CompliantSpring> these =
+    std::vector<CompliantSpring> these =
         WallSprings(rigid, first, last, wall, spec.springs, w.prefix);
+    for (CompliantSpring& s : these) {
+      s.mu = spec.wall_friction;
+      s.k_t_N_per_m = spec.stick_stiffness_Npm / spec.springs;  // 0: the spring's K_max
+    }
     springs.insert(springs.end(), these.begin(), these.end());
   }
   return springs;

@@ -22,7 +22,8 @@ namespace skewbridge::dynamics {
 /// The springs of `spec` on the single deck of `rigid` (built with its corner contacts P1, P2
 /// against the +x wall and, with both abutments, P3, P4 against -x): per wall
 /// WallSprings(rigid, first, last, WallBackfill(spec.backfill, deck), spec.springs, "+x" / "-x"),
-/// the wall's law from the deck's geometry (its length and skew angle).
+/// the wall's law from the deck's geometry (its length and skew angle); every spring with the
+/// wall's friction spec.wall_friction and an n-th of its stick stiffness (0: the spring's K_max).
 /// @throws InputError naming the model's source when the wall's law is invalid.
 std::vector<CompliantSpring> AbutmentSprings(const model::Model& rigid,
                                              const model::CompliantAbutments& spec);

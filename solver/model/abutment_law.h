@@ -2,9 +2,9 @@
 /// @file
 /// The joint law of a model file's abutments ([abutments] law, docs/model-format.md): the rigid
 /// impact law lives in the Model's contacts; the compliant law is described here, beside the
-/// Model, as the file gives it: the backfill behind each backwall in one of three forms and the
-/// number of springs along the wall [docs/compliant.md §1, §4]. solver/dynamics turns it into
-/// springs (abutment_springs.h). SI: N, m.
+/// Model, as the file gives it: the backfill behind each backwall in one of three forms, the
+/// number of springs along the wall and the wall's friction [docs/compliant.md §1, §4].
+/// solver/dynamics turns it into springs (abutment_springs.h). SI: N, m.
 
 #include <string_view>
 
@@ -48,6 +48,10 @@ struct BackfillSpec {
 struct CompliantAbutments {
   BackfillSpec backfill;  ///< the law of each wall
   int springs = 5;        ///< springs per wall, >= 2
+  /// Coulomb friction coefficient on each wall, >= 0, on the springs' normal forces; 0: none.
+  double wall_friction = 0.0;
+  /// The wall's stick stiffness along it (N/m), shared by its springs; 0: the wall's K_max.
+  double stick_stiffness_Npm = 0.0;
 };
 
 /// The length of a wall of `deck` from corner to corner along its skewed end line, W / cos a (m).

@@ -9,7 +9,8 @@ namespace {
 
 // The keys of [abutments] with each law, and of [abutments.backfill] in each of its forms.
 constexpr std::string_view kImpactKeys = "set, gap_m, law, eps_N, mu, contacts";
-constexpr std::string_view kCompliantKeys = "set, gap_m, law, springs, backfill";
+constexpr std::string_view kCompliantKeys =
+    "set, gap_m, law, springs, backfill, mu, stick_stiffness_Npm";
 constexpr std::array<std::pair<std::string_view, std::string_view>, 3> kBackfillForms = {{
     {"hyperbolic-gap",
      "form, k_max_Npm, k_ur_Npm, r_f, f_ult_N, k_max_Npm_per_m, k_ur_Npm_per_m, f_ult_N_per_m"},
@@ -120,12 +121,27 @@ BackfillSpec ReadBackfill(Section& b) {
 
 // law = "compliant": the springs per wall and the backfill of each wall.
 CompliantAbutments ReadCompliant(Section& s) {
-  for (std::string_view key : {"eps_N", "mu", "contacts"}) {
+  for (std::string_view key : {"eps_N", "contacts"}) {
     s.Reject(key,
-             "belongs to law = \"impact\" (the compliant springs have no restitution, friction "
-             "or contacts)");
+             "belongs to law = \"impact\" (the compliant springs have no restitution or "
+             "contacts)");
   }
   CompliantAbutments c;
+  c.wall_friction = s.Number("mu").value_or(0.0);
+  CheckNonNegative(c.wall_friction, s.Field("mu"), s.At("mu"));
+  if (const std::optional<double> k_t = s.Number("stick_stiffness_Npm")) {
+    if (!(*k_t > 0.0 && std::isfinite(*k_t))) {
+      Fail(s.At("stick_stiffness_Npm"), s.Field("stick_stiffness_Npm"),
+           "must be a stiffness > 0 N/m (the wall's, shared by its springs; omit it for the "
+           "wall's K_max) (got " +
+               Show(*k_t) + ")");
+    }
+    if (!(c.wall_friction > 0.0)) {
+      Fail(s.At("stick_stiffness_Npm"), s.Field("stick_stiffness_Npm"),
+           "belongs to a wall with friction (mu > 0)");
+    }
+    c.stick_stiffness_Npm = *k_t;
+  }
   if (const std::optional<double> n = s.Number("springs")) {
     if (*n != std::floor(*n) || *n < 2.0 || *n > 1000.0) {
       Fail(s.At("springs"), s.Field("springs"),
@@ -151,7 +167,7 @@ AbutmentParameters ReadAbutments(Section& s, bool multi_deck) {
   s.Expect(multi_deck ? "set, gap_m, law, eps_N, mu (with [[deck]] tables)" : kImpactKeys,
            multi_deck ? std::vector<std::pair<std::string, std::string>>{}
                       : std::vector<std::pair<std::string, std::string>>{
-                            {"law = \"compliant\"", "springs, backfill"}});
+                            {"law = \"compliant\"", "springs, backfill, stick_stiffness_Npm"}});
   const std::optional<std::string> set =
       multi_deck ? s.String("set", {"both"}) : s.String("set", {"+x", "both"});
   if (!set && !multi_deck) {
@@ -186,12 +202,12 @@ AbutmentParameters ReadAbutments(Section& s, bool multi_deck) {
          "the impact law only; allowed: \"impact\")");
   }
   if (compliant) {
-    s.Expect(kCompliantKeys, {{"law = \"impact\"", "eps_N, mu, contacts"}});
+    s.Expect(kCompliantKeys, {{"law = \"impact\"", "eps_N, contacts"}});
     a.compliant = ReadCompliant(s);
     s.Finish(kCompliantKeys);
     return a;
   }
-  for (std::string_view key : {"springs", "backfill"}) {
+  for (std::string_view key : {"springs", "backfill", "stick_stiffness_Npm"}) {
     s.Reject(key, "belongs to law = \"compliant\" (the law here is \"impact\")");
   }
   a.restitution = s.Number("eps_N").value_or(0.5);

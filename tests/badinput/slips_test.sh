@@ -70,6 +70,17 @@ ok --help
 ok --version
 ok sweep --help
 ok records info --help
+# --- the wall friction of compliant abutments: a coefficient >= 0, a number ---
+cp "$root/docs/examples/pilot-bridge-compliant.toml" "$root/docs/examples/pilot-signal.txt" .
+sed 's/^law = "compliant"$/&\nmu = -0.2/' pilot-bridge-compliant.toml > wall_mu.toml
+expect "wall_mu.toml:31: abutments.mu: must be >= 0 (got -0.2)" run wall_mu.toml --out run.h5
+sed 's/^law = "compliant"$/&\nmu = "rough"/' pilot-bridge-compliant.toml > wall_mu_text.toml
+expect "wall_mu_text.toml:31: abutments.mu: must be a number" run wall_mu_text.toml --out run.h5
+sed 's/^law = "compliant"$/&\nmu = nan/' pilot-bridge-compliant.toml > wall_mu_nan.toml
+expect "wall_mu_nan.toml:31: abutments.mu: must be a finite number (got nan)" modes wall_mu_nan.toml
+sed 's/^law = "compliant"$/&\nstick_stiffness_Npm = 1e9/' pilot-bridge-compliant.toml > wall_kt.toml
+expect "wall_kt.toml:31: abutments.stick_stiffness_Npm: belongs to a wall with friction (mu > 0)" \
+  run wall_kt.toml --out run.h5
 # --- misspelt keys of model files and sweep specifications: unknown, with the nearest ---
 sed 's/^skew_deg = /skew = /' model.toml > skew.toml
 expect "skew.toml:12: deck.skew: unknown key (allowed: m, I_m, L, W, eta0, skew_deg); did you mean \`skew_deg\`?" \

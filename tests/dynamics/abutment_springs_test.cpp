@@ -124,6 +124,58 @@ TEST(AbutmentSprings, TheModelFilesRunIsSimulateCompliantWithSpringsBuiltByHand)
   EXPECT_EQ(rigid_run.run.impacts, run.impacts);
 }
 
+TEST(AbutmentSprings, TheFilesWallFrictionIsTheSpringsCoulombLaw) {
+  // abutments.mu and stick_stiffness_Npm: every spring of both walls with the wall's mu and an
+  // n-th of its stick stiffness; the run is SimulateCompliant with those springs, bit for bit.
+  const std::string abutments =
+      "[abutments]\nset = \"both\"\ngap_m = 0.008\nlaw = \"compliant\"\nmu = 0.25\n"
+      "stick_stiffness_Npm = 2e9\n[abutments.backfill]\nform = \"hyperbolic-gap\"\n"
+      "k_max_Npm_per_m = 20.3e6\nr_f = 0.7\nf_ult_N_per_m = 326e3\n";
+  const model::ModelFile file = Pilot(abutments);
+  ASSERT_TRUE(file.compliant.has_value());
+  EXPECT_EQ(file.compliant->wall_friction, 0.25);
+  EXPECT_EQ(file.compliant->stick_stiffness_Npm, 2e9);
+  const std::vector<CompliantSpring> from_file = AbutmentSprings(file.model, *file.compliant);
+  ASSERT_EQ(from_file.size(), 10u);
+  for (const CompliantSpring& s : from_file) {
+    EXPECT_EQ(s.mu, 0.25);
+    EXPECT_EQ(s.k_t_N_per_m, 2e9 / 5);
+  }
+  const records::PulseExcitation ex(records::PulseShape::kSine, 1.2 * 9.80665, 2.0 * kPi / 1.0,
+                                    Eigen::Vector2d(0.8, 0.6));
+  model::RunControl control = file.run;
+  control.end_time_s = 3.0;
+  control.output_interval_s = 0.0;
+  const LawRun via_file = RunUnderLaw(file.model, file.compliant, ex, control);
+  model::DeckSpec deck = file.deck;
+  deck.restitution = 0.5;
+  deck.friction = 0.0;
+  const model::Model rigid = model::BuildDeckModel(deck);
+  const double wall_m = 19.36 / std::cos(20.0 * kPi / 180.0);
+  const joint::HyperbolicGap wall{20.3e6 * wall_m, 20.3e6 * wall_m, 0.7, 326e3 * wall_m, 0.0};
+  std::vector<CompliantSpring> springs = WallSprings(rigid, 0, 1, wall, 5, "+x");
+  const std::vector<CompliantSpring> minus = WallSprings(rigid, 2, 3, wall, 5, "-x");
+  springs.insert(springs.end(), minus.begin(), minus.end());
+  for (CompliantSpring& s : springs) {
+    s.mu = 0.25;
+    s.k_t_N_per_m = 4e8;
+  }
+  const CompliantRunResult direct = SimulateCompliant(WithoutContacts(rigid), springs, ex, control);
+  ASSERT_EQ(direct.run.status, RunStatus::kOk) << direct.run.message;
+  EXPECT_GT(direct.run.energy.friction_J, 0.0) << "the pulse must slip a spring on its wall";
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_EQ(via_file.run.max_abs_q(i), direct.run.max_abs_q(i)) << "dof " << i;
+    EXPECT_EQ(via_file.run.q_end(i), direct.run.q_end(i)) << "dof " << i;
+  }
+  EXPECT_EQ(via_file.run.energy.friction_J, direct.run.energy.friction_J);
+  // Without mu the file's springs are frictionless.
+  const model::ModelFile plain = model::ParseModelFile(Examples() + "/pilot-bridge-compliant.toml");
+  for (const CompliantSpring& s : AbutmentSprings(plain.model, *plain.compliant)) {
+    EXPECT_EQ(s.mu, 0.0);
+    EXPECT_EQ(s.k_t_N_per_m, 0.0);
+  }
+}
+
 TEST(AbutmentSprings, CaltransFormOfBridgeAMeetsTheFormulasByHand) {
   // PyPBEE's Bridge_A: backwall w = 27.13 ft, h = 4.64 ft, skew 33 deg. By hand (kip, in, ft):
   //   R_sk = exp(-33 / 45) = 0.480305,
@@ -250,6 +302,16 @@ TEST(AbutmentSprings, BadKeysAreRefusedInOneLineNamingFileLineAndKey) {
               "[abutments.backfill]\nform = \"shamsabadi\"\nk50_Npm = 1e7\nf_ult_N = 2e6\n"
               "height_m = 1.6\n",
           "abutments.backfill.k50_Npm: K50 y_max must exceed F_ult");
+  refused(head + "mu = -0.1\n[abutments.backfill]\nform = \"caltrans\"\n",
+          "m.toml:28: abutments.mu: must be >= 0 (got -0.1)");
+  refused(head + "mu = \"rough\"\n[abutments.backfill]\nform = \"caltrans\"\n",
+          "m.toml:28: abutments.mu: must be a number");
+  refused(head + "stick_stiffness_Npm = 1e9\n[abutments.backfill]\nform = \"caltrans\"\n",
+          "m.toml:28: abutments.stick_stiffness_Npm: belongs to a wall with friction (mu > 0)");
+  refused(head + "mu = 0.2\nstick_stiffness_Npm = 0\n[abutments.backfill]\nform = \"caltrans\"\n",
+          "m.toml:29: abutments.stick_stiffness_Npm: must be a stiffness > 0 N/m");
+  refused("[abutments]\nset = \"both\"\ngap_m = 0.03\nstick_stiffness_Npm = 1e9\n",
+          "abutments.stick_stiffness_Npm: belongs to law = \"compliant\"");
   // A compliant model runs with the event-driven method only.
   const std::string text = WithAbutments(
       ReadText(Examples() + "/pilot-bridge.toml"),
