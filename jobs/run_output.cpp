@@ -241,12 +241,35 @@ void WriteOrigin(hid_t file, const RunOrigin& origin) {
   h5::SetAttr(d.get(), "dt_s", origin.ground_dt_s);
 }
 
+void WriteJoints(hid_t file, const RunJoints& joints) {
+  Id g = h5::CreateGroup(file, "joints");
+  std::vector<std::string> names, units;
+  for (const RunJoints::Response& r : joints.responses) {
+    h5::SetAttr(g.get(), r.name, r.value);
+    names.push_back(r.name);
+    units.push_back(r.unit);
+  }
+  h5::SetAttr(g.get(), "response_names", names);
+  h5::SetAttr(g.get(), "response_units", units);
+  h5::SetAttr(g.get(), "joint_stored_J", joints.stored_J);
+  h5::SetAttr(g.get(), "joint_dissipated_J", joints.dissipated_J);
+  if (joints.key_names.empty()) return;
+  const hsize_t n = joints.key_names.size();
+  h5::SetAttr(g.get(), "key_names", joints.key_names);
+  WriteDoubles(g.get(), "key_force_N", {n}, joints.key_force_N.data(), "N",
+               "largest force of each shear key (key_names)");
+  WriteDoubles(g.get(), "key_deformation_m", {n}, joints.key_deformation_m.data(), "m",
+               "largest deformation of each shear key beyond its transverse gap");
+  WriteDoubles(g.get(), "key_break_time_s", {n}, joints.key_break_time_s.data(), "s",
+               "time each shear key broke (deformation DD); inf for a key left intact");
+}
+
 }  // namespace
 
 void WriteRunHdf5(const std::filesystem::path& path, const model::Model& model,
                   const dynamics::RunResult& result, std::string_view model_text,
                   std::string_view method, double time_step_s, const RunOrigin& origin,
-                  const dynamics::RunPolicies& policies) {
+                  const dynamics::RunPolicies& policies, const RunJoints& joints) {
   h5::SilenceErrorStack();
   Id file = h5::CreateFile(path.string());
   const hid_t f = file.get();
@@ -276,6 +299,7 @@ void WriteRunHdf5(const std::filesystem::path& path, const model::Model& model,
     WriteHistories(f, model, result.histories, labels);
   }
   if (!origin.Empty()) WriteOrigin(f, origin);
+  if (!joints.Empty()) WriteJoints(f, joints);
   h5::FlushToDisk(f);
 }
 

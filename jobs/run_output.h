@@ -37,6 +37,27 @@ struct RunOrigin {
   bool Empty() const { return text.empty() && numbers.empty() && ground_ax_mps2.empty(); }
 };
 
+/// What the compliant joints of a run gave (docs/run-output.md, group `joints`); empty for a run
+/// under the rigid law.
+struct RunJoints {
+  /// The joints' responses, as a model-file sweep stores them (dynamics::JointResponses): name,
+  /// unit, value.
+  struct Response {
+    std::string name;    ///< e.g. "spring_force_px"
+    std::string unit;    ///< "N", "m", "s" or "1"
+    double value = 0.0;  ///< its value for the run
+  };
+  std::vector<Response> responses;     ///< in the order of dynamics::JointResponses
+  double stored_J = 0.0;               ///< energy the springs and keys would give back by unloading
+  double dissipated_J = 0.0;           ///< the springs' and keys' work less what they store
+  std::vector<std::string> key_names;  ///< per shear key, "+x.key+y", ...
+  std::vector<double> key_force_N;     ///< per key, its largest force (N)
+  std::vector<double> key_deformation_m;  ///< per key, its largest deformation beyond its gap (m)
+  std::vector<double> key_break_time_s;   ///< per key, when it broke (s); inf if intact
+  /// Whether there is anything to store.
+  bool Empty() const { return responses.empty(); }
+};
+
 /// Writes (truncating) the run file at `path` in the layout of docs/run-output.md; the group
 /// "histories" only when result.histories holds samples. `model_text` is stored verbatim;
 /// `method` (run.method: "event-driven" | "time-stepping") and `time_step_s` (the Moreau-Jean
@@ -44,11 +65,11 @@ struct RunOrigin {
 /// @pre result comes from dynamics::Simulate or dynamics::SimulateTimeStepping on `model`
 /// (sizes match n_dof and contacts). `origin`, when not empty, becomes the group `origin`.
 /// The policy of `method` in `policies`, the one the run used, becomes the group
-/// `event_policy` or `time_stepping_policy`.
+/// `event_policy` or `time_stepping_policy`. `joints`, when not empty, becomes the group `joints`.
 /// @throws h5::H5Error on I/O failure (the caller removes the partial file).
 void WriteRunHdf5(const std::filesystem::path& path, const model::Model& model,
                   const dynamics::RunResult& result, std::string_view model_text,
                   std::string_view method, double time_step_s, const RunOrigin& origin = {},
-                  const dynamics::RunPolicies& policies = {});
+                  const dynamics::RunPolicies& policies = {}, const RunJoints& joints = {});
 
 }  // namespace skewbridge::jobs

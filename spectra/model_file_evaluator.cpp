@@ -79,10 +79,10 @@ model::ModelFile CheckedModelFile(const CellGrid& spec) {
 struct ModelFileEvaluator::CellValues {
   const ModelFileCell& cell;
   const dynamics::RunResult& run;
-  const std::vector<dynamics::WallMaxima>& walls;  ///< compliant: per wall, +x then -x
-  double to_norm = 0.0;                            ///< 1 / L_e (1/m)
-  double t1_s = 0.0;    ///< the cell's fundamental period (with an intensity measure)
-  double own_im = 0.0;  ///< the record's own intensity at it (axis unit)
+  const dynamics::LawRun& law;  ///< the run with, if compliant, its joints' maxima
+  double to_norm = 0.0;         ///< 1 / L_e (1/m)
+  double t1_s = 0.0;            ///< the cell's fundamental period (with an intensity measure)
+  double own_im = 0.0;          ///< the record's own intensity at it (axis unit)
 
   /// max |q| of deck d (m, m, rad).
   Eigen::Vector3d MaxOf(int d) const { return run.max_abs_q.segment<3>(3 * d); }
@@ -619,17 +619,10 @@ void ModelFileEvaluator::MakeResponseTable() {
          "smallest time between distinct impact instants (inf with fewer than two)"},
         [](V v) { return v.run.min_impact_separation_s; });
   if (file_.compliant) {
-    // Per compliant wall, in the order of dynamics::AbutmentSprings.
+    // Per compliant wall, then per abutment's shear keys (dynamics::JointResponses).
     const bool both = file_.deck.abutments == model::AbutmentSet::kBoth;
-    for (std::size_t w = 0; w < (both ? 2u : 1u); ++w) {
-      const std::string side = w == 0 ? "px" : "mx", wall = w == 0 ? "+x" : "-x";
-      t.Add({"spring_force_" + side, "N",
-             "largest force of one backfill spring of the " + wall + " wall"},
-            [w](V v) { return v.walls[w].spring_force_N; });
-      t.Add({"backwall_def_" + side, "m",
-             "largest deformation of the " + wall +
-                 " backfill beyond the gap (the largest of its springs)"},
-            [w](V v) { return v.walls[w].deformation_m; });
+    for (dynamics::JointResponse& r : dynamics::JointResponses(*file_.compliant, both)) {
+      t.Add({r.name, r.unit, r.meaning}, [f = std::move(r.value)](V v) { return f(v.law); });
     }
   }
   t.AddAlways({"a_g", "m/s^2", "excitation amplitude: pulse a_g, or the record's PGA, x scale"},
@@ -784,7 +777,7 @@ CellOutcome ModelFileEvaluator::Outcome(std::span<const std::size_t> axis_index,
   CellOutcome out;
   out.status = CellStatusOf(run.status);
   out.status_text = run.message;
-  CellValues values{c, run, law_run.walls, 1.0 / c.persistency_m};
+  CellValues values{c, run, law_run, 1.0 / c.persistency_m};
   if (!spec_.im.measure.empty()) {
     const std::size_t t = t1_of_cell_[CellIndex(axis_index)];
     values.t1_s = t1_values_s_[t];

@@ -115,7 +115,7 @@ void WriteCsv(const std::filesystem::path& path, const model::Model& model,
 void WriteHdf5(const std::filesystem::path& path, const std::string& model_text,
                const model::Model& model, const model::RunControl& control,
                const dynamics::RunResult& r, const jobs::RunOrigin& origin,
-               const dynamics::RunPolicies& policies) {
+               const dynamics::RunPolicies& policies, const jobs::RunJoints& joints) {
   const std::filesystem::path temporary = path.string() + ".partial";
   try {
     // The step h means nothing to the event-driven integrator: NaN says so in the file.
@@ -123,13 +123,32 @@ void WriteHdf5(const std::filesystem::path& path, const std::string& model_text,
                                    ? control.time_step_s
                                    : std::numeric_limits<double>::quiet_NaN();
     jobs::WriteRunHdf5(temporary, model, r, model_text, model::ToString(control.method),
-                       time_step_s, origin, policies);
+                       time_step_s, origin, policies, joints);
   } catch (const jobs::h5::H5Error& e) {
     std::error_code ignored;
     std::filesystem::remove(temporary, ignored);
     throw InputError::AtField("--out", path.string(), std::string("cannot write: ") + e.what());
   }
   std::filesystem::rename(temporary, path);
+}
+
+// The compliant joints' responses of a run for its file, as a sweep's cell stores them.
+jobs::RunJoints Joints(const model::CompliantAbutments& compliant, const dynamics::LawRun& run) {
+  jobs::RunJoints j;
+  // The -x wall exists when the model has its contacts (P3, P4): the walls' maxima say so.
+  for (const dynamics::JointResponse& r :
+       dynamics::JointResponses(compliant, run.walls.size() == 2)) {
+    j.responses.push_back({r.name, r.unit, r.value(run)});
+  }
+  j.stored_J = run.joint_stored_J;
+  j.dissipated_J = run.joint_dissipated_J;
+  for (const dynamics::KeyMaxima& k : run.keys) {
+    j.key_names.push_back(k.name);
+    j.key_force_N.push_back(k.force_N);
+    j.key_deformation_m.push_back(k.deformation_m);
+    j.key_break_time_s.push_back(k.break_time_s);
+  }
+  return j;
 }
 
 std::string ReadText(const std::filesystem::path& path) {
@@ -404,21 +423,32 @@ void Execute(const RunInput& in, const RunOptions& o) {
       Number("%.6e", e.kinetic_J + e.strain_J).c_str(), Number("%.3e", e.balance_error_J).c_str());
   if (in.compliant) {
     std::printf(
-        "  compliant abutments, %d springs per wall; backfill energy (J): stored %s, "
+        "  compliant abutments, %d springs per wall%s; %s energy (J): stored %s, "
         "dissipated %s\n",
-        in.compliant->springs, Number("%.6e", law_run.joint_stored_J).c_str(),
+        in.compliant->springs, in.compliant->shear_keys ? " and two shear keys per abutment" : "",
+        in.compliant->shear_keys ? "backfill and keys'" : "backfill",
+        Number("%.6e", law_run.joint_stored_J).c_str(),
         Number("%.6e", law_run.joint_dissipated_J).c_str());
     for (const dynamics::WallMaxima& w : law_run.walls) {
       std::printf("  %s wall: largest spring force %s N, largest deformation %s m\n",
                   w.wall.c_str(), Number("%.6e", w.spring_force_N).c_str(),
                   Number("%.6e", w.deformation_m).c_str());
     }
+    for (const dynamics::KeyMaxima& k : law_run.keys) {
+      std::printf("  shear key %s: largest force %s N, largest deformation %s m, %s\n",
+                  k.name.c_str(), Number("%.6e", k.force_N).c_str(),
+                  Number("%.6e", k.deformation_m).c_str(),
+                  std::isinf(k.break_time_s)
+                      ? "intact"
+                      : ("broke at " + Number("%.6f", k.break_time_s) + " s").c_str());
+    }
   }
   if (!o.csv.empty()) {
     WriteCsv(o.csv, model, r.histories);
   }
   if (!o.out.empty()) {
-    WriteHdf5(o.out, in.model_text, model, control, r, in.origin, in.policies);
+    WriteHdf5(o.out, in.model_text, model, control, r, in.origin, in.policies,
+              in.compliant ? Joints(*in.compliant, law_run) : jobs::RunJoints{});
   }
   if (r.status != dynamics::RunStatus::kOk) {
     // An expected numerical outcome (Painleve, LCP failure, step limit, a state no longer

@@ -5,6 +5,7 @@
 /// `skewbridge run` and the model-file sweeps share [docs/compliant.md §4,
 /// docs/model-format.md].
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -24,7 +25,9 @@ namespace skewbridge::dynamics {
 /// WallSprings(rigid, first, last, WallBackfill(spec.backfill, deck), spec.springs, "+x" / "-x"),
 /// the wall's law from the deck's geometry (its length and skew angle); every spring with the
 /// wall's friction spec.wall_friction and an n-th of its stick stiffness (0: the spring's K_max).
-/// @throws InputError naming the model's source when the wall's law is invalid.
+/// Then, with spec.shear_keys, per abutment AbutmentShearKeys(rigid, first, last, key, "+x" /
+/// "-x"). The order: the +x wall's springs, the -x wall's, the +x keys (+y, -y), the -x keys.
+/// @throws InputError naming the model's source when the wall's law or the key is invalid.
 std::vector<CompliantSpring> AbutmentSprings(const model::Model& rigid,
                                              const model::CompliantAbutments& spec);
 
@@ -35,18 +38,44 @@ struct WallMaxima {
   double deformation_m = 0.0;   ///< the largest deformation of one of its springs (m)
 };
 
+/// The response of one exterior shear key over a compliant run.
+struct KeyMaxima {
+  std::string name;            ///< the spring's name, "+x.key+y", "+x.key-y", "-x.key+y", ...
+  std::string wall;            ///< the abutment: "+x" or "-x"
+  double force_N = 0.0;        ///< its largest force (N, at most V_n)
+  double deformation_m = 0.0;  ///< its largest deformation beyond the transverse gap (m)
+  double break_time_s = 0.0;   ///< when it broke (deformation DD reached, s); +inf if intact
+};
+
 /// A run of a model under the joint law its model file gives.
 struct LawRun {
   RunResult run;                    ///< the run (for a compliant one, CompliantRunResult::run)
-  std::vector<WallMaxima> walls;    ///< per compliant wall, in the springs' order; empty if rigid
+  std::vector<WallMaxima> walls;    ///< per compliant wall (backfill springs only), +x then -x
+  std::vector<KeyMaxima> keys;      ///< per shear key, in the springs' order; empty without keys
   double joint_stored_J = 0.0;      ///< compliant: CompliantRunResult::joint_stored_J
   double joint_dissipated_J = 0.0;  ///< compliant: CompliantRunResult::joint_dissipated_J
 };
 
+/// One stored response of a compliant run's joints: a cube's response of a model-file sweep and an
+/// attribute of a run file's group `joints` (docs/sweep-format.md, docs/run-output.md).
+struct JointResponse {
+  std::string name;                            ///< e.g. "spring_force_px"
+  std::string unit;                            ///< "N", "m", "s" or "1"
+  std::string meaning;                         ///< one line
+  std::function<double(const LawRun&)> value;  ///< how it is read from the run
+};
+
+/// The responses of the joints of `compliant` (`both`: with the -x abutment), in order: per wall
+/// (+x "_px", then -x "_mx") spring_force and backwall_def; with shear keys, per abutment
+/// key_force, key_def and key_break_time (the earliest break of its two keys, +inf when neither
+/// broke), then keys_broken (the keys broken over the run).
+std::vector<JointResponse> JointResponses(const model::CompliantAbutments& compliant, bool both);
+
 /// One run of `model` (built with its contacts) under `excitation`: without `compliant`, the
 /// rigid law, Run(model, excitation, control, policies) unchanged; with it,
 /// SimulateCompliant(WithoutContacts(model), AbutmentSprings(model, *compliant), excitation,
-/// control, {}, policies.event), the maxima of each wall's springs beside it.
+/// control, {}, policies.event), the maxima of each wall's backfill springs and of each shear key
+/// beside it.
 /// @throws InputError as Run and SimulateCompliant (a compliant run needs the event-driven method).
 LawRun RunUnderLaw(const model::Model& model,
                    const std::optional<model::CompliantAbutments>& compliant,

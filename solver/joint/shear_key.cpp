@@ -64,9 +64,10 @@ double ShearKeyConcrete_N(const ShearKeyDetails& key) {
 
 double ShearKeySteel_N(const ShearKeyDetails& key) {
   const double h = key.stem_height_m, d = key.key_length_m, s = key.side_spacing_m;
+  const double s_v = key.side_spacing_v_m > 0.0 ? key.side_spacing_v_m : s;
   const double moment = key.tie1_N * h + key.tie2_N * d +
                         key.side_faces_h * key.side_bar_h_N * h * h / (2.0 * s) +
-                        key.side_faces_v * key.side_bar_v_N * d * d / (2.0 * s);
+                        key.side_faces_v * key.side_bar_v_N * d * d / (2.0 * s_v);
   return moment / (h + key.load_height_m);
 }
 
@@ -77,6 +78,8 @@ double ShearKeyCapacity_N(const ShearKeyDetails& key, std::string_view source) {
   Require(key.key_length_m > 0.0, source, "key_length_m", "> 0", key.key_length_m);
   Require(key.load_height_m >= 0.0, source, "load_height_m", ">= 0", key.load_height_m);
   Require(key.side_spacing_m > 0.0, source, "side_spacing_m", "> 0", key.side_spacing_m);
+  Require(key.side_spacing_v_m >= 0.0, source, "side_spacing_v_m", ">= 0 (0: side_spacing_m)",
+          key.side_spacing_v_m);
   Require(
       key.tie1_N >= 0.0 && key.tie2_N >= 0.0 && key.side_bar_h_N >= 0.0 && key.side_bar_v_N >= 0.0,
       source, "tie forces", ">= 0",

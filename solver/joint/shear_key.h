@@ -63,7 +63,9 @@ struct ShearKeyDetails {
   double side_bar_v_N = 0.0;    ///< T_v = A_v f_y: one vertical side bar
   int side_faces_h = 2;         ///< n_h: faces carrying horizontal side bars
   int side_faces_v = 2;         ///< n_v: faces carrying vertical side bars
-  double side_spacing_m = 0.0;  ///< s: spacing of the side bars, > 0
+  double side_spacing_m = 0.0;  ///< s: spacing of the side bars (the horizontal ones), > 0
+  /// s_v: spacing of the vertical side bars when it differs from s (m); 0: s
+  double side_spacing_v_m = 0.0;
 };
 
 /// The concrete's share V_c = 0.2 sqrt(f'c / 1 MPa) MPa x b h (N), the SI form of Megally's
@@ -72,7 +74,8 @@ double ShearKeyConcrete_N(const ShearKeyDetails& key);
 
 /// The steel's share from the moment balance of the failure wedge about its toe
 /// [Megally et al. 2001, strut-and-tie model]:
-///   V_s = [T1 h + T2 d + n_h T_h h^2 / (2 s) + n_v T_v d^2 / (2 s)] / (h + a)   (N).
+///   V_s = [T1 h + T2 d + n_h T_h h^2 / (2 s) + n_v T_v d^2 / (2 s_v)] / (h + a)   (N),
+/// s_v = s unless side_spacing_v_m is given.
 double ShearKeySteel_N(const ShearKeyDetails& key);
 
 /// V_n = V_c + V_s (N).

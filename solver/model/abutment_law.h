@@ -3,12 +3,15 @@
 /// The joint law of a model file's abutments ([abutments] law, docs/model-format.md): the rigid
 /// impact law lives in the Model's contacts; the compliant law is described here, beside the
 /// Model, as the file gives it: the backfill behind each backwall in one of three forms, the
-/// number of springs along the wall and the wall's friction [docs/compliant.md §1, §4].
-/// solver/dynamics turns it into springs (abutment_springs.h). SI: N, m.
+/// number of springs along the wall, the wall's friction, and the exterior shear keys of each
+/// abutment [docs/compliant.md §1, §2, §4]. solver/dynamics turns it into springs
+/// (abutment_springs.h). SI: N, m.
 
+#include <optional>
 #include <string_view>
 
 #include "solver/joint/backfill.h"
+#include "solver/joint/shear_key.h"
 #include "solver/model/deck.h"
 
 namespace skewbridge::model {
@@ -43,8 +46,19 @@ struct BackfillSpec {
   bool skew_reduction = true;  ///< kCaltrans: R_sk = exp(-a / 45 deg), else R_sk = 1
 };
 
+/// The exterior shear keys of every abutment of a model file ([abutments.shear_keys]): two per
+/// abutment, one beside each side of the deck, each with this backbone [docs/compliant.md §2].
+struct ShearKeysSpec {
+  /// Each key's backbone; gap_m is the transverse gap between the deck's side and the key.
+  joint::ShearKey key;
+  /// The key's concrete and steel when V_n is theirs (key.v_n_N = V_c + V_s, Megally et al.
+  /// 2001); empty when the file gives V_n.
+  std::optional<joint::ShearKeyDetails> details;
+};
+
 /// The compliant abutments of a single-deck model file ([abutments] law = "compliant"):
-/// `springs` springs per wall from corner to corner, each with an n-th of the wall's law.
+/// `springs` springs per wall from corner to corner, each with an n-th of the wall's law, and
+/// optionally the two exterior shear keys of each abutment.
 struct CompliantAbutments {
   BackfillSpec backfill;  ///< the law of each wall
   int springs = 5;        ///< springs per wall, >= 2
@@ -52,6 +66,7 @@ struct CompliantAbutments {
   double wall_friction = 0.0;
   /// The wall's stick stiffness along it (N/m), shared by its springs; 0: the wall's K_max.
   double stick_stiffness_Npm = 0.0;
+  std::optional<ShearKeysSpec> shear_keys;  ///< the keys of each abutment; none when empty
 };
 
 /// The length of a wall of `deck` from corner to corner along its skewed end line, W / cos a (m).

@@ -10,7 +10,11 @@ namespace {
 // The keys of [abutments] with each law, and of [abutments.backfill] in each of its forms.
 constexpr std::string_view kImpactKeys = "set, gap_m, law, eps_N, mu, contacts";
 constexpr std::string_view kCompliantKeys =
-    "set, gap_m, law, springs, backfill, mu, stick_stiffness_Npm";
+    "set, gap_m, law, springs, backfill, mu, stick_stiffness_Npm, shear_keys";
+constexpr std::string_view kShearKeyKeys = "gap_m, v_n_N, details, d3_m, v_res_N, d_res_m, dd_m";
+constexpr std::string_view kShearKeyDetailKeys =
+    "f_c_MPa, stem_width_m, stem_height_m, key_length_m, load_height_m, tie1_N, tie2_N, "
+    "side_bar_h_N, side_bar_v_N, side_faces_h, side_faces_v, side_spacing_m, side_spacing_v_m";
 constexpr std::array<std::pair<std::string_view, std::string_view>, 3> kBackfillForms = {{
     {"hyperbolic-gap",
      "form, k_max_Npm, k_ur_Npm, r_f, f_ult_N, k_max_Npm_per_m, k_ur_Npm_per_m, f_ult_N_per_m"},
@@ -119,7 +123,102 @@ BackfillSpec ReadBackfill(Section& b) {
   return f;
 }
 
-// law = "compliant": the springs per wall and the backfill of each wall.
+// A number >= 0 that is optional (`fallback` when absent).
+double NonNegative(Section& b, std::string_view key, double fallback) {
+  const double value = b.Number(key).value_or(fallback);
+  CheckNonNegative(value, b.Field(key), b.At(key));
+  return value;
+}
+
+// [abutments.shear_keys.details]: the key's concrete and steel, whose V_c + V_s is its capacity
+// [Megally et al. 2001; docs/compliant.md §2].
+joint::ShearKeyDetails ReadShearKeyDetails(Section& d) {
+  d.Expect(kShearKeyDetailKeys);
+  joint::ShearKeyDetails k;
+  k.f_c_Pa = 1e6 * Positive(d, "f_c_MPa", "concrete compressive strength f'c, MPa");
+  k.stem_width_m = Positive(d, "stem_width_m", "width b of the abutment stem wall, m");
+  k.stem_height_m = Positive(d, "stem_height_m", "height h of the stem wall under the key, m");
+  k.key_length_m = Positive(d, "key_length_m", "length d of the key's base along the stem, m");
+  k.load_height_m = NonNegative(d, "load_height_m", 0.0);
+  k.tie1_N = NonNegative(d, "tie1_N", 0.0);
+  k.tie2_N = NonNegative(d, "tie2_N", 0.0);
+  k.side_bar_h_N = NonNegative(d, "side_bar_h_N", 0.0);
+  k.side_bar_v_N = NonNegative(d, "side_bar_v_N", 0.0);
+  for (std::string_view faces : {"side_faces_h", "side_faces_v"}) {
+    const double n = d.Number(faces).value_or(2.0);
+    if (n != std::floor(n) || n < 0.0 || n > 2.0) {
+      Fail(d.At(faces), d.Field(faces), "must be 0, 1 or 2 faces (got " + Show(n) + ")");
+    }
+    (faces == "side_faces_h" ? k.side_faces_h : k.side_faces_v) = static_cast<int>(n);
+  }
+  // The spacing matters only with side bars; without them any positive value gives V_s alike.
+  k.side_spacing_m = k.side_bar_h_N > 0.0 || k.side_bar_v_N > 0.0
+                         ? Positive(d, "side_spacing_m", "spacing s of the side bars, m")
+                         : d.Number("side_spacing_m").value_or(1.0);
+  CheckPositive(k.side_spacing_m, d.Field("side_spacing_m"), d.At("side_spacing_m"));
+  if (d.Has("side_spacing_v_m")) {
+    k.side_spacing_v_m = Positive(d, "side_spacing_v_m", "");
+  }
+  d.Finish(kShearKeyDetailKeys);
+  return k;
+}
+
+// [abutments.shear_keys]: the backbone of each exterior key, its capacity given (v_n_N) or from
+// its concrete and steel ([abutments.shear_keys.details]) [docs/compliant.md §2].
+ShearKeysSpec ReadShearKeys(Section& k) {
+  k.Expect(kShearKeyKeys);
+  ShearKeysSpec spec;
+  joint::ShearKey& key = spec.key;
+  key.gap_m = k.RequiredNumber("gap_m", "transverse gap between the deck's side and the key, m");
+  CheckNonNegative(key.gap_m, k.Field("gap_m"), k.At("gap_m"));
+  const toml::table* details = k.Table("details");
+  if (details != nullptr) {
+    k.Reject("v_n_N",
+             "give the capacity v_n_N or the key's concrete and steel "
+             "[abutments.shear_keys.details] (V_n = V_c + V_s), not both");
+    Section d(*details, k.Field("details"), k.source());
+    spec.details = ReadShearKeyDetails(d);
+    key.v_n_N = joint::ShearKeyCapacity_N(*spec.details, std::string(k.source()) + ":" +
+                                                             std::to_string(d.TableLine()) +
+                                                             ": abutments.shear_keys.details");
+  } else {
+    key.v_n_N = Positive(k, "v_n_N",
+                         "the key's capacity V_n, N, or its concrete and steel in a table "
+                         "[abutments.shear_keys.details]");
+  }
+  key.d3_m = Positive(k, "d3_m", "deformation beyond the gap at the capacity, m");
+  key.dd_m = Positive(k, "dd_m", "deformation beyond the gap at which the key has broken, m");
+  if (!(key.dd_m > key.d3_m)) {
+    Fail(k.At("dd_m"), k.Field("dd_m"),
+         "must be > d3_m = " + Show(key.d3_m) + " m (got " + Show(key.dd_m) + ")");
+  }
+  key.v_res_N = NonNegative(k, "v_res_N", 0.0);
+  if (key.v_res_N > key.v_n_N) {
+    Fail(k.At("v_res_N"), k.Field("v_res_N"),
+         "must be in [0, V_n = " + Show(key.v_n_N) + " N] (got " + Show(key.v_res_N) + ")");
+  }
+  if (key.v_res_N > 0.0) {
+    key.d_res_m = k.RequiredNumber("d_res_m", "deformation at the end of the softening, m");
+    if (!(key.d_res_m >= key.d3_m && key.d_res_m < key.dd_m)) {
+      Fail(k.At("d_res_m"), k.Field("d_res_m"),
+           "must be in [d3_m, dd_m) = [" + Show(key.d3_m) + ", " + Show(key.dd_m) +
+               ") m with v_res_N > 0 (got " + Show(key.d_res_m) + ")");
+    }
+  } else {
+    // No residual: the backbone falls from V_n at D3 straight to zero at DD.
+    k.Reject("d_res_m",
+             "belongs to a residual force v_res_N > 0 (without it the key falls "
+             "from V_n at d3_m straight to zero at dd_m)");
+    key.d_res_m = key.dd_m;
+  }
+  // Every range is checked above with its line; the backbone's own check stays the last word.
+  joint::ValidateShearKey(key, std::string(k.source()) + ":" + std::to_string(k.TableLine()) +
+                                   ": abutments.shear_keys");
+  k.Finish(kShearKeyKeys);
+  return spec;
+}
+
+// law = "compliant": the springs per wall, the backfill of each wall and the shear keys.
 CompliantAbutments ReadCompliant(Section& s) {
   for (std::string_view key : {"eps_N", "contacts"}) {
     s.Reject(key,
@@ -157,6 +256,10 @@ CompliantAbutments ReadCompliant(Section& s) {
   }
   Section b(*backfill, s.Field("backfill"), s.source());
   c.backfill = ReadBackfill(b);
+  if (const toml::table* keys = s.Table("shear_keys")) {
+    Section k(*keys, s.Field("shear_keys"), s.source());
+    c.shear_keys = ReadShearKeys(k);
+  }
   return c;
 }
 
@@ -167,7 +270,8 @@ AbutmentParameters ReadAbutments(Section& s, bool multi_deck) {
   s.Expect(multi_deck ? "set, gap_m, law, eps_N, mu (with [[deck]] tables)" : kImpactKeys,
            multi_deck ? std::vector<std::pair<std::string, std::string>>{}
                       : std::vector<std::pair<std::string, std::string>>{
-                            {"law = \"compliant\"", "springs, backfill, stick_stiffness_Npm"}});
+                            {"law = \"compliant\"",
+                             "springs, backfill, stick_stiffness_Npm, shear_keys"}});
   const std::optional<std::string> set =
       multi_deck ? s.String("set", {"both"}) : s.String("set", {"+x", "both"});
   if (!set && !multi_deck) {
@@ -207,7 +311,7 @@ AbutmentParameters ReadAbutments(Section& s, bool multi_deck) {
     s.Finish(kCompliantKeys);
     return a;
   }
-  for (std::string_view key : {"springs", "backfill", "stick_stiffness_Npm"}) {
+  for (std::string_view key : {"springs", "backfill", "stick_stiffness_Npm", "shear_keys"}) {
     s.Reject(key, "belongs to law = \"compliant\" (the law here is \"impact\")");
   }
   a.restitution = s.Number("eps_N").value_or(0.5);

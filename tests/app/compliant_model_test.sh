@@ -6,8 +6,9 @@
 # the deck's maxima and residuals, the strikes, the corner travel, each wall's largest spring
 # force and deformation (the cube's spring_force_px, backwall_def_px, ..._mx). The cube's
 # responses of a rigid file hold none of the compliant ones; `run --from-cube` re-runs a compliant
-# cell with its springs. A sweep's eps_N is refused with one
-# line and no cube.
+# cell with its springs. With shear keys (pilot-bridge-compliant-keys.toml) the run file's group
+# `joints`, the cube and a cell run again from it hold the same joint responses, the keys' break
+# times among them. A sweep's eps_N is refused with one line and no cube.
 # usage: compliant_model_test.sh SKEWBRIDGE MPIEXEC COMPLIANT_DIRECT SOURCE_DIR
 source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
 args exe mpiexec direct src -- "$@"
@@ -84,6 +85,57 @@ for i, n in enumerate(("x", "y", "theta")):
 assert s.attrs["impacts"] == d["impacts"], (s.attrs["impacts"], d["impacts"])
 PY
 
+# Shear keys (docs/examples/pilot-bridge-compliant-keys.toml with weaker keys the signal breaks:
+# gap 5 mm, V_n = 0.5 MN at D3 = 2 mm, DD = 8 mm; the signal at 60 deg from x): `run --out` and a
+# 2-rank sweep (scale 1 and 3) store the same joint responses, bit for bit, in the run file's
+# group `joints` and the cube; the cell whose keys broke, run again from the cube, has the cube's
+# break times; the summary prints each key as the run file holds it.
+awk '/^\[abutments.shear_keys.details\]/ { skip = 1 } /^\[excitation\]/ { skip = 0 } !skip' \
+  "$src/docs/examples/pilot-bridge-compliant-keys.toml" |
+  sed -e 's/^gap_m = 0.0254.*/gap_m = 0.005\nv_n_N = 0.5e6/' -e 's/^d3_m = .*/d3_m = 0.002/' \
+    -e 's/^dd_m = .*/dd_m = 0.008/' -e 's/^direction = "x"/angle_deg = 60.0/' >"$work/keys.toml"
+grep -q "^v_n_N = 0.5e6" "$work/keys.toml" || fail "keys.toml: $(cat "$work/keys.toml")"
+"$exe" run "$work/keys.toml" --out "$work/keys-run.h5" >"$work/keys-run.out" 2>&1 ||
+  fail "run with keys: exit $? ($(cat "$work/keys-run.out"))"
+sed -e 's/pilot-bridge-compliant.toml/keys.toml/' -e 's/^scale = .*/scale = [1.0, 3.0]/' \
+  "$work/spec.toml" >"$work/keys-spec.toml"
+on_ranks 2 "$exe" sweep "$work/keys-spec.toml" --out "$work/keys.h5" --quiet >"$work/sweep.out" 2>&1 ||
+  fail "sweep with keys: exit $? ($(cat "$work/sweep.out"))"
+"$exe" run --from-cube "$work/keys.h5" --cell-index 1 --out "$work/keys-rerun.h5" \
+  >"$work/keys-rerun.out" 2>&1 || fail "run --from-cube with keys: exit $? ($(cat "$work/keys-rerun.out"))"
+/usr/bin/python3 - "$work" <<'PY' || fail "the keys' responses of the run, the cube and the rerun (above)"
+import sys, re, math, h5py
+work = sys.argv[1]
+r = h5py.File(f"{work}/keys.h5", "r")["sweeps/compliant/responses"]
+names = ["spring_force_px", "backwall_def_px", "spring_force_mx", "backwall_def_mx",
+         "key_force_px", "key_def_px", "key_break_time_px", "key_force_mx", "key_def_mx",
+         "key_break_time_mx", "keys_broken"]
+for cell, run in ((0, "keys-run"), (1, "keys-rerun")):
+    j = h5py.File(f"{work}/{run}.h5", "r")["joints"]
+    assert [n.decode() if isinstance(n, bytes) else n for n in j.attrs["response_names"]] == names, j.attrs["response_names"]
+    for n in names:
+        assert r[n][cell] == j.attrs[n], (cell, n, r[n][cell], j.attrs[n])
+    # Per abutment: the largest and the earliest over its two keys, the count over all four.
+    keys = [k.decode() if isinstance(k, bytes) else k for k in j.attrs["key_names"]]
+    assert keys == ["+x.key+y", "+x.key-y", "-x.key+y", "-x.key-y"], keys
+    t, f = j["key_break_time_s"][()], j["key_force_N"][()]
+    for a, side in ((0, "px"), (2, "mx")):
+        assert r["key_break_time_" + side][cell] == min(t[a], t[a + 1]), (cell, side, t)
+        assert r["key_force_" + side][cell] == max(f[a], f[a + 1]), (cell, side, f)
+    assert r["keys_broken"][cell] == sum(math.isfinite(x) for x in t), (cell, t)
+    text = open(f"{work}/{run}.out").read()
+    for k, name in enumerate(keys):
+        m = re.search(r"shear key " + re.escape(name) + r": largest force (\S+) N, largest deformation (\S+) m, (intact|broke at (\S+) s)$", text, re.M)
+        assert m, text
+        assert abs(float(m.group(1)) - f[k]) <= 1e-6 * f[k], (name, m.group(1), f[k])
+        assert (m.group(3) == "intact") == math.isinf(t[k]), (name, m.group(3), t[k])
+        if m.group(4):
+            assert abs(float(m.group(4)) - t[k]) <= 1e-6, (name, m.group(4), t[k])
+# At scale 3 a key breaks: a finite break time; at scale 1 the keys hold (inf, stored as such).
+assert r["keys_broken"][1] > 0 and math.isfinite(min(r["key_break_time_px"][1], r["key_break_time_mx"][1])), r["keys_broken"][()]
+assert r["key_break_time_px"].attrs["units"] in (b"s", "s"), dict(r["key_break_time_px"].attrs)
+PY
+
 # A rigid file's cube holds no compliant response.
 cp "$src/docs/examples/pilot-bridge.toml" "$work/"
 sed 's/pilot-bridge-compliant.toml/pilot-bridge.toml/' "$work/spec.toml" >"$work/rigid.toml"
@@ -92,7 +144,7 @@ on_ranks 2 "$exe" sweep "$work/rigid.toml" --out "$work/rigid.h5" --quiet >"$wor
 /usr/bin/python3 -c "
 import h5py, sys
 r = h5py.File('$work/rigid.h5', 'r')['sweeps/compliant/responses']
-assert not any(k.startswith(('spring_force', 'backwall_def')) for k in r), list(r)
+assert not any(k.startswith(('spring_force', 'backwall_def', 'key')) for k in r), list(r)
 " || fail "a rigid cube stores compliant responses"
 
 # eps_N means nothing to the springs: one line, status 2, no cube.

@@ -94,6 +94,15 @@ expect "section.toml:26: excitaton: unknown section (allowed: deck, substructure
 sed 's/^a_deg = /skew = /' "$spec" > skew_spec.toml
 expect "skew_spec.toml:10: axes.skew: unknown parameter; allowed: record, pulse, incidence_deg, spans, a_g_g, w_g, T_g, scale, im_g, im_mps, a_deg, eta0, W_over_L, delta_over_L, L_over_Le, W0_over_w0, xi, eps_N, mu, Pi_delta, gap_m, k_factor, seat_over_L, seat_m, w0_over_wg, method; did you mean \`a_deg\` (skew angle a)?" \
   sweep skew_spec.toml --out out.h5
+# --- compliant abutments' shear keys: a broken backbone, a key table under the rigid law ---
+cp "$root/docs/examples/pilot-bridge-compliant-keys.toml" "$root/docs/examples/pilot-signal.txt" .
+sed 's/^dd_m = .*/dd_m = 0.01/' pilot-bridge-compliant-keys.toml > keys_dd.toml
+expect "keys_dd.toml:43: abutments.shear_keys.dd_m: must be > d3_m = 0.0313436 m (got 0.01)" \
+  run keys_dd.toml --out run.h5
+sed 's/^\[excitation\]/[abutments.shear_keys]\ngap_m = 0.01\n\n&/' "$root/docs/examples/pilot-bridge.toml" \
+  > keys_rigid.toml
+expect "keys_rigid.toml:30: abutments.shear_keys: belongs to law = \"compliant\" (the law here is \"impact\")" \
+  run keys_rigid.toml --out run.h5
 # --- the wrong kind of file, named as what it is ---
 cp "$spec" spec.toml
 for command in run modes; do

@@ -1,14 +1,19 @@
 // A model file's compliant abutments ([abutments] law = "compliant"): the run the file asks for
 // (dynamics::RunUnderLaw on the parsed file) against SimulateCompliant called directly with
 // springs built by hand, the three forms of the backfill against their formulas (Caltrans SDC 2.0
-// for PyPBEE's Bridge_A worked by hand), and the one-line refusals of bad keys.
+// for PyPBEE's Bridge_A worked by hand), the shear keys of [abutments.shear_keys] (the run with
+// keys against SimulateCompliant with keys built by hand, Bridge_A's key capacity from its concrete
+// and steel against Megally's formula in US units), and the one-line refusals of bad keys.
 #include "solver/dynamics/abutment_springs.h"
 
 #include <gtest/gtest.h>
 
+#include <fmt/core.h>
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <numbers>
 #include <sstream>
 #include <string>
@@ -27,6 +32,7 @@ constexpr double kPi = std::numbers::pi;
 constexpr double kKip_N = 4448.2216152605;
 constexpr double kInch_m = 0.0254;
 constexpr double kFoot_m = 0.3048;
+constexpr double kKsi_Pa = 6.894757293168e6;
 
 std::string Examples() { return std::string(SKEWBRIDGE_TEST_DATA_DIR) + "/../../docs/examples"; }
 
@@ -327,6 +333,193 @@ TEST(AbutmentSprings, BadKeysAreRefusedInOneLineNamingFileLineAndKey) {
               std::string::npos)
         << e.what();
   }
+}
+
+// [abutments] of the compliant example (Wilson and Elgamal's backfill, gaps 8 mm) with `keys`.
+std::string CompliantWith(const std::string& keys) {
+  return "[abutments]\nset = \"both\"\ngap_m = 0.008\nlaw = \"compliant\"\nsprings = 5\n"
+         "[abutments.backfill]\nform = \"hyperbolic-gap\"\nk_max_Npm_per_m = 20.3e6\n"
+         "r_f = 0.7\nf_ult_N_per_m = 326e3\n" +
+         keys;
+}
+
+TEST(AbutmentSprings, TheModelFilesKeysRunAsSimulateCompliantWithKeysBuiltByHand) {
+  // Keys that engage, soften and break under the pulse: gap 5 mm, V_n = 0.5 MN at D3 = 2 mm,
+  // V_res = 0.1 MN at 4 mm, broken at DD = 8 mm.
+  const model::ModelFile file = Pilot(CompliantWith(
+      "[abutments.shear_keys]\ngap_m = 0.005\nv_n_N = 0.5e6\nd3_m = 0.002\nv_res_N = 0.1e6\n"
+      "d_res_m = 0.004\ndd_m = 0.008\n"));
+  ASSERT_TRUE(file.compliant && file.compliant->shear_keys);
+  EXPECT_FALSE(file.compliant->shear_keys->details);
+  // One sine cycle of 1.2 g and 1 s at 60 deg from x: the walls and the keys both engage.
+  const double angle = 60.0 * kPi / 180.0;
+  const records::PulseExcitation ex(records::PulseShape::kSine, 1.2 * 9.80665, 2.0 * kPi / 1.0,
+                                    Eigen::Vector2d(std::cos(angle), std::sin(angle)));
+  model::RunControl control = file.run;
+  control.end_time_s = 3.0;
+  control.output_interval_s = 0.0;
+  const LawRun via_file = RunUnderLaw(file.model, file.compliant, ex, control);
+
+  // By hand: the walls' springs as in the test above, then the two keys of each abutment.
+  model::DeckSpec deck = file.deck;
+  const model::Model rigid = model::BuildDeckModel(deck);
+  const double wall_m = 19.36 / std::cos(20.0 * kPi / 180.0);
+  const joint::HyperbolicGap wall{20.3e6 * wall_m, 20.3e6 * wall_m, 0.7, 326e3 * wall_m, 0.0};
+  const joint::ShearKey key{0.005, 0.5e6, 0.002, 0.1e6, 0.004, 0.008};
+  std::vector<CompliantSpring> springs = WallSprings(rigid, 0, 1, wall, 5, "+x");
+  for (const auto& more :
+       {WallSprings(rigid, 2, 3, wall, 5, "-x"), AbutmentShearKeys(rigid, 0, 1, key, "+x"),
+        AbutmentShearKeys(rigid, 2, 3, key, "-x")}) {
+    springs.insert(springs.end(), more.begin(), more.end());
+  }
+  ASSERT_EQ(springs.size(), 14u);
+  const CompliantRunResult direct = SimulateCompliant(WithoutContacts(rigid), springs, ex, control);
+  ASSERT_EQ(direct.run.status, RunStatus::kOk) << direct.run.message;
+  ASSERT_EQ(via_file.run.status, RunStatus::kOk) << via_file.run.message;
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_EQ(via_file.run.max_abs_q(i), direct.run.max_abs_q(i)) << "dof " << i;
+    EXPECT_EQ(via_file.run.q_end(i), direct.run.q_end(i)) << "dof " << i;
+  }
+  EXPECT_EQ(via_file.run.impacts, direct.run.impacts);
+  EXPECT_EQ(via_file.joint_dissipated_J, direct.joint_dissipated_J);
+  // The walls' maxima are their backfill springs' alone; the keys are reported one by one.
+  ASSERT_EQ(via_file.walls.size(), 2u);
+  for (int w = 0; w < 2; ++w) {
+    double force = 0.0, deformation = 0.0;
+    for (int j = 5 * w; j < 5 * w + 5; ++j) {
+      force = std::max(force, direct.max_spring_force_N(j));
+      deformation = std::max(deformation, direct.max_spring_deformation_m(j));
+    }
+    EXPECT_EQ(via_file.walls[w].spring_force_N, force);
+    EXPECT_EQ(via_file.walls[w].deformation_m, deformation);
+  }
+  ASSERT_EQ(via_file.keys.size(), 4u);
+  int broken = 0;
+  for (int k = 0; k < 4; ++k) {
+    const KeyMaxima& m = via_file.keys[static_cast<std::size_t>(k)];
+    EXPECT_EQ(m.name, springs[static_cast<std::size_t>(10 + k)].name);
+    EXPECT_EQ(m.wall, k < 2 ? "+x" : "-x");
+    EXPECT_EQ(m.force_N, direct.max_spring_force_N(10 + k));
+    EXPECT_EQ(m.deformation_m, direct.max_spring_deformation_m(10 + k));
+    if (std::isnan(direct.key_break_time_s(10 + k))) {
+      EXPECT_EQ(m.break_time_s, std::numeric_limits<double>::infinity());
+    } else {
+      EXPECT_EQ(m.break_time_s, direct.key_break_time_s(10 + k));
+      EXPECT_GE(m.deformation_m, key.dd_m);
+      ++broken;
+    }
+    EXPECT_LE(m.force_N, key.v_n_N * (1.0 + 1e-6));
+  }
+  EXPECT_GT(broken, 0) << "the pulse must break a key";
+  // A key that broke dissipated its backbone's whole area, 0.5 MN x 2 mm / 2 + (0.5 + 0.1) MN x
+  // 2 mm / 2 + 0.1 MN x 4 mm / 2 = 1.3 kJ; the walls dissipate the rest.
+  EXPECT_GT(via_file.joint_dissipated_J, broken * 1300.0);
+
+  // The same file without the keys is the backfill alone: the keys change the run.
+  const model::ModelFile bare = Pilot(CompliantWith(""));
+  const LawRun without = RunUnderLaw(bare.model, bare.compliant, ex, control);
+  EXPECT_TRUE(without.keys.empty());
+  EXPECT_NE(without.run.max_abs_q(1), via_file.run.max_abs_q(1));
+}
+
+TEST(AbutmentSprings, BridgeAsKeyCapacityFromConcreteAndSteelMeetsMegallysFormulaByHand) {
+  // PyPBEE's Bridge_A (examples/Bridge_A, nltha_params.tcl and generateAbutment.tcl at commit
+  // 8b35e30): stem b = 43.2824 in, h = 74.7891 in, key base d = 46.2188 in, load height
+  // a = 8.865 in; 12 #8 (0.9929 in) first horizontal ties, 4 22.225 mm first vertical ties,
+  // 15.875 mm horizontal side bars at 17.73 in and 19.05 mm vertical side bars at 11.82 in on both
+  // faces; f'c = 6.5 ksi, f_y = 69.144 ksi (osb_info_Bridge_A.py). Megally's sum in US units as
+  // PyPBEE evaluates it, by hand (kip, in):
+  //   V_c = 2.4 sqrt(6500) x 43.2824 x 74.7891 / 1000 = 626.351 kip,
+  //   V_s = [T1 h + T2 d + 2 T_h h^2 / (2 s_h) + 2 T_v d^2 / (2 s_v)] / (h + a) = 812.244 kip,
+  //   V_n = 1438.594 kip (docs/compliant.md §5: 1 438.6 kip).
+  const double in = kInch_m, fy = 69.144 * kKsi_Pa;
+  const auto bar = [&](double diameter_m) { return kPi / 4.0 * diameter_m * diameter_m * fy; };
+  const double t1 = 12.0 * bar(0.9929 * in), t2 = 4.0 * bar(22.225e-3);
+  const double th = bar(15.875e-3), tv = bar(19.05e-3);
+  const double b_in = 43.2824, h_in = 74.7891, d_in = 46.2188, a_in = 8.865;
+  const double sh_in = 17.73, sv_in = 11.82;
+  const double vs_kip = (t1 * h_in + t2 * d_in + 2.0 * th * h_in * h_in / (2.0 * sh_in) +
+                         2.0 * tv * d_in * d_in / (2.0 * sv_in)) /
+                        (h_in + a_in) / kKip_N;
+  const double vc_kip = 2.4 * std::sqrt(6500.0) * b_in * h_in / 1000.0;
+  EXPECT_NEAR(vc_kip, 626.351, 1e-3);
+  EXPECT_NEAR(vs_kip, 812.244, 1e-3);
+  EXPECT_NEAR(vc_kip + vs_kip, 1438.594, 1e-3);
+
+  const std::string details = fmt::format(
+      "[abutments.shear_keys]\ngap_m = 0.0\nd3_m = {:.17g}\ndd_m = {:.17g}\n"
+      "[abutments.shear_keys.details]\nf_c_MPa = {:.17g}\nstem_width_m = {:.17g}\n"
+      "stem_height_m = {:.17g}\nkey_length_m = {:.17g}\nload_height_m = {:.17g}\n"
+      "tie1_N = {:.17g}\ntie2_N = {:.17g}\nside_bar_h_N = {:.17g}\nside_bar_v_N = {:.17g}\n"
+      "side_spacing_m = {:.17g}\nside_spacing_v_m = {:.17g}\n",
+      1.234 * in, 5.428 * in, 6.5 * kKsi_Pa / 1e6, b_in * in, h_in * in, d_in * in, a_in * in, t1,
+      t2, th, tv, sh_in * in, sv_in * in);
+  const model::ModelFile file = Pilot(CompliantWith(details));
+  ASSERT_TRUE(file.compliant && file.compliant->shear_keys && file.compliant->shear_keys->details);
+  const joint::ShearKeyDetails& k = *file.compliant->shear_keys->details;
+  // The steel's share is Megally's moment balance exactly; the concrete's is its SI form
+  // 0.2 sqrt(f'c / MPa) MPa b h, 0.4 % above 2.4 sqrt(psi) psi (0.1993 MPa).
+  EXPECT_NEAR(joint::ShearKeySteel_N(k) / kKip_N, vs_kip, 1e-9 * vs_kip);
+  EXPECT_NEAR(joint::ShearKeyConcrete_N(k) / kKip_N / vc_kip, 1.0, 0.004);
+  const double v_n_kip = file.compliant->shear_keys->key.v_n_N / kKip_N;
+  EXPECT_NEAR(v_n_kip / 1438.594, 1.0, 0.002) << v_n_kip;
+  // The keys placed on the deck carry that capacity, two per abutment, after the walls' springs.
+  const std::vector<CompliantSpring> springs = AbutmentSprings(file.model, *file.compliant);
+  ASSERT_EQ(springs.size(), 14u);
+  for (int j = 10; j < 14; ++j) {
+    EXPECT_EQ(springs[static_cast<std::size_t>(j)].law, SpringLaw::kShearKey);
+    EXPECT_EQ(springs[static_cast<std::size_t>(j)].key.v_n_N, v_n_kip * kKip_N);
+    EXPECT_EQ(springs[static_cast<std::size_t>(j)].key.d_res_m, 5.428 * in);
+  }
+  EXPECT_EQ(springs[10].name, "+x.key+y");
+  EXPECT_EQ(springs[13].name, "-x.key-y");
+}
+
+TEST(AbutmentSprings, BadShearKeysAreRefusedInOneLineNamingFileLineAndKey) {
+  const auto refused = [&](const std::string& abutments, const std::string& expected) {
+    const std::string message = Refusal(abutments);
+    EXPECT_NE(message.find(expected), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  };
+  const std::string keys = "[abutments.shear_keys]\n";  // line 34 of the pilot's file
+  refused(CompliantWith(keys + "gap_m = 0.01\nv_n_N = -2e6\nd3_m = 0.02\ndd_m = 0.1\n"),
+          "m.toml:36: abutments.shear_keys.v_n_N: must be > 0 (got -2e+06)");
+  refused(CompliantWith(keys + "gap_m = 0.01\nv_n_N = 2e6\nd3_m = 0.02\ndd_m = 0.02\n"),
+          "m.toml:38: abutments.shear_keys.dd_m: must be > d3_m = 0.02 m (got 0.02)");
+  refused(CompliantWith(keys + "gap_m = -0.01\nv_n_N = 2e6\nd3_m = 0.02\ndd_m = 0.1\n"),
+          "m.toml:35: abutments.shear_keys.gap_m: must be >= 0 (got -0.01)");
+  refused(CompliantWith(keys + "gap_m = 0.01\nv_n_N = 2e6\nd3_m = 0.02\ndd_m = 0.1\n"
+                               "v_res_N = 3e6\nd_res_m = 0.05\n"),
+          "m.toml:39: abutments.shear_keys.v_res_N: must be in [0, V_n = 2e+06 N] (got 3e+06)");
+  refused(CompliantWith(keys + "gap_m = 0.01\nv_n_N = 2e6\nd3_m = 0.02\ndd_m = 0.1\n"
+                               "v_res_N = 0.5e6\nd_res_m = 0.1\n"),
+          "m.toml:40: abutments.shear_keys.d_res_m: must be in [d3_m, dd_m) = [0.02, 0.1) m");
+  refused(CompliantWith(keys + "gap_m = 0.01\nv_n_N = 2e6\nd3_m = 0.02\ndd_m = 0.1\n"
+                               "d_res_m = 0.05\n"),
+          "m.toml:39: abutments.shear_keys.d_res_m: belongs to a residual force v_res_N > 0");
+  refused(CompliantWith(keys + "gap_m = 0.01\nv_n = 2e6\nd3_m = 0.02\ndd_m = 0.1\n"),
+          "m.toml:36: abutments.shear_keys.v_n: unknown key (allowed: gap_m, v_n_N, details, "
+          "d3_m, v_res_N, d_res_m, dd_m); did you mean `v_n_N`?");
+  refused(CompliantWith(keys + "gap_m = 0.01\nd3_m = 0.02\ndd_m = 0.1\n"),
+          "m.toml:34: abutments.shear_keys.v_n_N: missing required key (the key's capacity V_n");
+  refused(CompliantWith(keys + "gap_m = 0.01\nv_n_N = 2e6\nd3_m = 0.02\ndd_m = 0.1\n"
+                               "[abutments.shear_keys.details]\nf_c_MPa = 30\n"),
+          "m.toml:36: abutments.shear_keys.v_n_N: give the capacity v_n_N or the key's concrete "
+          "and steel");
+  refused(CompliantWith(keys + "gap_m = 0.01\nd3_m = 0.02\ndd_m = 0.1\n"
+                               "[abutments.shear_keys.details]\nf_c_MPa = 30\n"
+                               "stem_width_m = 1\nstem_height_m = 1.8\nkey_length_m = 1.2\n"
+                               "tie1_N = -4e5\n"),
+          "m.toml:43: abutments.shear_keys.details.tie1_N: must be >= 0 (got -4e+05)");
+  refused(CompliantWith(keys + "gap_m = 0.01\nd3_m = 0.02\ndd_m = 0.1\n"
+                               "[abutments.shear_keys.details]\nf_c_MPa = 30\n"
+                               "stem_width_m = 1\nstem_height_m = 1.8\nkey_length_m = 1.2\n"
+                               "side_bar_h_N = 1e5\n"),
+          "m.toml:38: abutments.shear_keys.details.side_spacing_m: missing required key");
+  // Keys belong to the compliant law.
+  refused("[abutments]\nset = \"both\"\ngap_m = 0.03\n[abutments.shear_keys]\ngap_m = 0.01\n",
+          "m.toml:27: abutments.shear_keys: belongs to law = \"compliant\" (the law here is "
+          "\"impact\")");
 }
 
 TEST(AbutmentSprings, DeckDeckJointsAndMultiDeckAbutmentsRefuseTheCompliantLaw) {
