@@ -20,21 +20,31 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // Phi(u) = erfc(-u / sqrt 2) / 2.
 double NormalCdf(double u) { return 0.5 * std::erfc(-u / std::numbers::sqrt2); }
 
-// ln Phi(u); for u below -30 the asymptotic ln phi(u) - ln(-u) - ln(1 - 1/u^2 + 3/u^4), where
-// erfc underflows [Abramowitz and Stegun 26.2.12].
-double LogNormalCdf(double u) {
-  if (u > -30.0) return std::log(NormalCdf(u));
+// ln Phi(u) and the inverse Mills ratio phi(u) / Phi(u) share Phi(u) and phi(u) = phi(-u):
+// the probit terms of a point compute each once. Below u = -30, where erfc underflows, both
+// take their asymptotic forms [Abramowitz and Stegun 26.2.12].
+struct ProbitTail {
+  double cdf;  // Phi(u), for u > -30
+  double pdf;  // phi(u), when asked for
+};
+
+ProbitTail TailAt(double u, bool with_pdf) {
+  ProbitTail t{u > -30.0 ? NormalCdf(u) : 0.0, 0.0};
+  if (with_pdf) t.pdf = std::exp(-0.5 * u * u) / std::sqrt(2.0 * std::numbers::pi);
+  return t;
+}
+
+// ln Phi(u) from TailAt(u); for u below -30 ln phi(u) - ln(-u) - ln(1 - 1/u^2 + 3/u^4).
+double LogNormalCdf(double u, const ProbitTail& t) {
+  if (u > -30.0) return std::log(t.cdf);
   const double u2 = u * u;
   return -0.5 * u2 - 0.5 * std::log(2.0 * std::numbers::pi) - std::log(-u) +
          std::log1p(-1.0 / u2 + 3.0 / (u2 * u2));
 }
 
-// The inverse Mills ratio phi(u) / Phi(u), stable for u far below 0.
-double MillsLambda(double u) {
-  if (u > -30.0) {
-    const double phi = std::exp(-0.5 * u * u) / std::sqrt(2.0 * std::numbers::pi);
-    return phi / NormalCdf(u);
-  }
+// phi(u) / Phi(u) from TailAt(u, true), stable for u far below 0.
+double MillsLambda(double u, const ProbitTail& t) {
+  if (u > -30.0) return t.pdf / t.cdf;
   const double u2 = u * u;
   return -u / (1.0 - 1.0 / u2 + 3.0 / (u2 * u2));
 }
@@ -58,9 +68,10 @@ double Evaluate(const std::vector<Point>& pts, const Eigen::Vector2d& p, Eigen::
     // which leave every sum below with the same bits; they are not computed.
     if (pt.n == 1.0 && (pt.z == 0.0 || pt.z == 1.0) && std::abs(u) < 1e150) {
       const double s = pt.z == 1.0 ? u : -u;  // the outcome's argument: Phi(u) or Phi(-u)
-      l += LogNormalCdf(s);
+      const ProbitTail ts = TailAt(s, g != nullptr);
+      l += LogNormalCdf(s, ts);
       if (g == nullptr) continue;
-      const double lam = MillsLambda(s);
+      const double lam = MillsLambda(s, ts);
       // z = 1: du = lambda(u), d2u = -lambda(u) (u + lambda(u)); z = 0: du = -lambda(-u),
       // d2u = -lambda(-u) (lambda(-u) - u): the expressions of the general case below.
       const double du = pt.z == 1.0 ? lam : -lam;
@@ -70,12 +81,16 @@ double Evaluate(const std::vector<Point>& pts, const Eigen::Vector2d& p, Eigen::
       *h += d2u * j * j.transpose();
       continue;
     }
-    l += pt.z * LogNormalCdf(u) + (pt.n - pt.z) * LogNormalCdf(-u);
+    // phi(-u) = phi(u): (-0.5 (-u)) (-u) rounds to the bits of (-0.5 u) u.
+    const ProbitTail tp = TailAt(u, g != nullptr);
+    ProbitTail tm = TailAt(-u, false);
+    tm.pdf = tp.pdf;
+    l += pt.z * LogNormalCdf(u, tp) + (pt.n - pt.z) * LogNormalCdf(-u, tm);
     if (g == nullptr) continue;
     // d ln Phi(u)/du = lambda(u); d ln Phi(-u)/du = -lambda(-u); second derivatives
     // -lambda(u) (u + lambda(u)) and -lambda(-u) (lambda(-u) - u).
-    const double lp = MillsLambda(u);
-    const double lm = MillsLambda(-u);
+    const double lp = MillsLambda(u, tp);
+    const double lm = MillsLambda(-u, tm);
     const double du = pt.z * lp - (pt.n - pt.z) * lm;
     const double d2u = -pt.z * lp * (u + lp) - (pt.n - pt.z) * lm * (lm - u);
     const Eigen::Vector2d j(1.0, pt.ln_x);
