@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <unordered_map>
 
 #include "records/excitations.h"
 #include "solver/common/error.h"
@@ -204,8 +205,27 @@ ModelFileEvaluator::ModelFileEvaluator(const CellGrid& spec)
   // The fundamental periods outside the plausible range: how many cells, and the first.
   std::uint64_t implausible_t1 = 0;
   std::string first_implausible_t1;
+  // Cells that differ only along the stripe axis (it sets the factor alone) or a limit-only
+  // axis have one model, one run control and one record: the first of them, in cube order,
+  // is checked and its T1 holds for the others.
+  std::vector<std::uint8_t> same_model(spec.axes.size(), 0);
+  for (std::size_t k = 0; k < spec.axes.size(); ++k) {
+    same_model[k] = (stripe_axis_ && k == *stripe_axis_) || LimitOnlyAxis(spec.axes[k].key);
+  }
+  // Key: the cell with those axes at 0; value: its T1 and the index of T1 in t1_values_s_.
+  std::unordered_map<std::uint64_t, std::pair<double, std::uint32_t>> checked_t1;
   for (std::uint64_t cell = 0; cell < spec.CellCount(); ++cell) {
     const std::vector<std::size_t> index = spec.AxisIndex(cell);
+    std::uint64_t key = 0;
+    for (std::size_t k = 0; k < spec.axes.size(); ++k) {
+      key = key * spec.axes[k].Size() + (same_model[k] ? 0 : index[k]);
+    }
+    if (const auto seen = checked_t1.find(key); seen != checked_t1.end()) {
+      const auto [t1, t1_index] = seen->second;
+      if (t1 < model::kMinPeriod_s || t1 > model::kMaxPeriod_s) ++implausible_t1;
+      if (with_t1) t1_of_cell_[cell] = t1_index;
+      continue;
+    }
     const ModelFileCell c = MakeCell(index, false);
     if (c.compliant && c.control.method != model::Method::kEventDriven) {
       throw InputError::AtField(src, "method",
@@ -231,10 +251,14 @@ ModelFileEvaluator::ModelFileEvaluator(const CellGrid& spec)
                 .value_or("");
       }
     }
-    if (!with_t1) continue;
+    if (!with_t1) {
+      checked_t1.emplace(key, std::pair<double, std::uint32_t>(t1, 0));
+      continue;
+    }
     auto it = std::find(t1_values_s_.begin(), t1_values_s_.end(), t1);
     if (it == t1_values_s_.end()) it = t1_values_s_.insert(t1_values_s_.end(), t1);
     t1_of_cell_[cell] = static_cast<std::uint32_t>(it - t1_values_s_.begin());
+    checked_t1.emplace(key, std::pair<double, std::uint32_t>(t1, t1_of_cell_[cell]));
   }
   warnings_ = BridgeWarnings();
   if (implausible_t1 > 0) {
