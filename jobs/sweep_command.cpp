@@ -51,8 +51,8 @@ class FinishWatch final : public Transport {
     return inner_->BroadcastText(text);
   }
   void BroadcastPending(PendingCells& pending) override { inner_->BroadcastPending(pending); }
-  std::pair<std::uint64_t, std::uint64_t> Claim(std::uint64_t count) override {
-    return inner_->Claim(count);
+  std::pair<std::uint64_t, std::uint64_t> Claim(std::uint64_t count, std::uint64_t block) override {
+    return inner_->Claim(count, block);
   }
   void StopClaims() override { inner_->StopClaims(); }
   void Send(std::vector<char> message) override { inner_->Send(std::move(message)); }

@@ -614,6 +614,7 @@ SweepReport RunSweep(const SweepSpec& spec, const CellEvaluator& evaluator, Tran
   bool stopping = false;
   std::uint64_t seen = 0;
   double cell_s = 0.0;  // this rank's mean cell time in its last chunk [s]
+  const std::uint64_t work_block = evaluator.WorkBlock();
   const bool computes =
       !root || transport.Size() <= options.root_computes_up_to_ranks || transport.Size() == 1;
   while (computes && !stopping) {
@@ -621,8 +622,12 @@ SweepReport RunSweep(const SweepSpec& spec, const CellEvaluator& evaluator, Tran
       stopping = true;
       break;
     }
-    const auto [begin, end] =
-        transport.Claim(ChunkSize(total, seen, transport.Size(), options, cell_s));
+    const bool whole_blocks =  // once a cell's time is known: the first chunk is one cell
+        work_block > 1 && cell_s > 0.0 &&
+        static_cast<double>(work_block) * cell_s <= options.block_seconds &&
+        work_block * 4 * static_cast<std::uint64_t>(transport.Size()) <= total;
+    const auto [begin, end] = transport.Claim(
+        ChunkSize(total, seen, transport.Size(), options, cell_s), whole_blocks ? work_block : 1);
     seen = end;
     if (begin >= end) {
       break;

@@ -53,6 +53,12 @@ struct SweepOptions {
   /// delay of results and progress and, with the guided share (what is left / 2 ranks), the
   /// idle time at the end of the sweep.
   double chunk_seconds = 0.05;
+  /// A chunk runs on to the end of the evaluator's block of shared work
+  /// (CellEvaluator::WorkBlock: a record's stripes and seat widths) when a block takes at most
+  /// this long at the rank's last mean cell time and the sweep holds at least 4 blocks per
+  /// rank, so that no two ranks repeat a shared run or trace [s]. It bounds what a chunk in
+  /// flight holds; a stop request still ends a chunk after the cell being computed.
+  double block_seconds = 2.0;
   /// Rank 0 computes cells too when there are at most this many ranks; above, it only
   /// gathers and writes, so that results and progress never wait for one of its own cells.
   int root_computes_up_to_ranks = 64;

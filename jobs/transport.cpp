@@ -57,9 +57,9 @@ class InProcessTransport final : public Transport {
     size_ = pending.size();
     next_ = 0;
   }
-  std::pair<std::uint64_t, std::uint64_t> Claim(std::uint64_t count) override {
+  std::pair<std::uint64_t, std::uint64_t> Claim(std::uint64_t count, std::uint64_t block) override {
     const std::uint64_t begin = std::min(next_, size_);
-    next_ = std::min(size_, begin + count);
+    next_ = std::min(size_, BlockEnd(begin + count, block));
     return {begin, next_};
   }
   void StopClaims() override { next_ = size_; }

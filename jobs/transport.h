@@ -90,6 +90,12 @@ struct BatchView {
 /// Serialises a batch into one message (host byte order; all ranks run the same build):
 /// a fixed header, the five columns back to back, then the failure notes.
 std::vector<char> PackBatch(const ResultBatch& batch);
+
+/// The first multiple of `block` at or after `position` (`position` itself when block <= 1).
+inline std::uint64_t BlockEnd(std::uint64_t position, std::uint64_t block) {
+  return block <= 1 ? position : (position + block - 1) / block * block;
+}
+
 /// Reads a message of PackBatch without copying the columns. @throws std::runtime_error when
 /// the bytes are truncated or not a batch (a bug or a foreign message).
 BatchView UnpackBatch(std::span<const char> bytes);
@@ -116,9 +122,12 @@ class Transport {
   virtual std::string BroadcastText(const std::string& text) = 0;
   /// Collective: every rank gets rank 0's list of pending cells; resets the claim counter to 0.
   virtual void BroadcastPending(PendingCells& pending) = 0;
-  /// Atomically claims `count` positions of the pending list: returns [begin, end), empty once
-  /// every position has been handed out (or after StopClaims).
-  virtual std::pair<std::uint64_t, std::uint64_t> Claim(std::uint64_t count) = 0;
+  /// Atomically claims `count` positions of the pending list, or more: the claim ends at the
+  /// first multiple of `block` (>= 1) at or after begin + count, so that claims of whole blocks
+  /// stay aligned to them. Returns [begin, end), cut at the list's end; empty once every
+  /// position has been handed out (or after StopClaims).
+  virtual std::pair<std::uint64_t, std::uint64_t> Claim(std::uint64_t count,
+                                                        std::uint64_t block) = 0;
   /// Hands out no more positions to anyone (called on a stop request).
   virtual void StopClaims() = 0;
   /// Ranks other than 0: sends one message (a packed batch) to rank 0. Does not wait for

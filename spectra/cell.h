@@ -140,6 +140,12 @@ class CellEvaluator {
   /// A failed cell returns a non-zero status and, like every cell, one value per response.
   virtual CellOutcome Evaluate(std::span<const std::size_t> axis_index) const = 0;
 
+  /// The cells among which this evaluator shares work (one dynamic run for several seat widths,
+  /// one contact-free trace for the stripes of a record) lie in blocks of this many consecutive
+  /// cells of the cube (row-major), each block starting at a multiple of it: a rank that
+  /// evaluates whole blocks does each shared piece of work once. 1 (the default): no sharing.
+  virtual std::uint64_t WorkBlock() const { return 1; }
+
   /// The integrators' policies every run of this evaluator uses (the sweep's [event_policy] and
   /// [time_stepping_policy] over the defaults); the cube stores the one of each method its
   /// cells ran. A decorator holds its inner evaluator's.

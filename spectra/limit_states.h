@@ -60,6 +60,7 @@ class LimitStateEvaluator final : public CellEvaluator {
   std::vector<std::string> Warnings() const override { return inner_->Warnings(); }
   const RecordScaling* record_scaling() const override { return inner_->record_scaling(); }
   CellOutcome Evaluate(std::span<const std::size_t> axis_index) const override;
+  std::uint64_t WorkBlock() const override { return inner_->WorkBlock(); }
   /// The cell with its record scaled by `factor` (RecordScaling::EvaluateScaled of the family),
   /// with the limit states appended: the responses of Evaluate.
   /// @pre record_scaling() != nullptr

@@ -194,6 +194,15 @@ ModelFileEvaluator::ModelFileEvaluator(const CellGrid& spec)
       if (!LimitOnlyAxis(spec.axes[k].key)) stripe_capacity_ *= spec.axes[k].Size();
     }
   }
+  // A run's seat widths, or a record's stripes, differ only along the axes from the first
+  // shared one on: a block of the cube from there to the last axis holds every cell of theirs.
+  std::uint64_t block = 1;
+  for (std::size_t k = spec.axes.size(); k-- > 0;) {
+    block *= spec.axes[k].Size();
+    if ((stripe_axis_ && k == *stripe_axis_) || LimitOnlyAxis(spec.axes[k].key)) {
+      work_block_ = block;
+    }
+  }
   MakeResponseTable();
   if (by_record) records_ = LoadSweepRecords(spec);
   // Every cell's model is built and its run counted now, so a bad combination or a run that

@@ -84,6 +84,9 @@ class ModelFileEvaluator final : public CellEvaluator, public RecordScaling {
   std::vector<ResponseInfo> Responses() const override { return table_.Infos(); }
   std::vector<std::pair<std::int32_t, std::string>> StatusNames() const override;
   CellOutcome Evaluate(std::span<const std::size_t> axis_index) const override;
+  /// The cells from the first axis whose cells share a run or a trace (the stripe axis, a
+  /// limit-only axis) to the last axis: the product of their sizes.
+  std::uint64_t WorkBlock() const override { return work_block_; }
   const std::vector<SweepRecord>* Records() const override {
     return records_.empty() ? nullptr : &records_;
   }
@@ -170,6 +173,7 @@ class ModelFileEvaluator final : public CellEvaluator, public RecordScaling {
   /// not limit-only (the axes after the stripe axis), replaced in turn.
   mutable std::vector<StripeGroup> stripe_groups_;
   std::size_t stripe_capacity_ = 1;
+  std::uint64_t work_block_ = 1;  ///< WorkBlock()
   mutable std::size_t next_stripe_group_ = 0;
   /// The dynamic run of cell `c` (its own factor): as a stripe of its record when the cells run
   /// so, the method is event-driven and the law rigid, else its own run under its law.

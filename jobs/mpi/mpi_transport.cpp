@@ -90,10 +90,26 @@ class MpiTransport final : public Transport {
     CheckMpi(MPI_Barrier(comm_), "MPI_Barrier");
   }
 
-  std::pair<std::uint64_t, std::uint64_t> Claim(std::uint64_t count) override {
-    const std::uint64_t old = FetchAdd(count);
-    const std::uint64_t begin = std::min(old, total_);
-    return {begin, std::min(total_, begin + count)};
+  std::pair<std::uint64_t, std::uint64_t> Claim(std::uint64_t count, std::uint64_t block) override {
+    if (block <= 1) {
+      const std::uint64_t old = FetchAdd(count);
+      const std::uint64_t begin = std::min(old, total_);
+      return {begin, std::min(total_, begin + count)};
+    }
+    // The end depends on the counter's value: read and written under an exclusive lock, which
+    // no other claim (a shared lock's fetch-and-add) can enter. Past the end (every position
+    // handed out, or StopClaims): an empty claim, the counter left as it is.
+    std::uint64_t begin = 0;
+    CheckMpi(MPI_Win_lock(MPI_LOCK_EXCLUSIVE, 0, 0, window_), "MPI_Win_lock");
+    CheckMpi(MPI_Get(&begin, 1, MPI_UINT64_T, 0, 0, 1, MPI_UINT64_T, window_), "MPI_Get");
+    CheckMpi(MPI_Win_flush(0, window_), "MPI_Win_flush");
+    const std::uint64_t end = begin < total_ ? std::min(total_, BlockEnd(begin + count, block)) : 0;
+    if (begin < total_) {
+      CheckMpi(MPI_Put(&end, 1, MPI_UINT64_T, 0, 0, 1, MPI_UINT64_T, window_), "MPI_Put");
+    }
+    CheckMpi(MPI_Win_unlock(0, window_), "MPI_Win_unlock");
+    if (begin >= total_) return {total_, total_};
+    return {begin, end};
   }
 
   void StopClaims() override { FetchAdd(total_ + 1); }

@@ -80,7 +80,7 @@ double ClaimLatency(std::uint64_t claims_per_rank, int ranks) {
   transport->BroadcastPending(pending);
   std::uint64_t mine = 0;
   const auto start = std::chrono::steady_clock::now();
-  while (transport->Claim(1).first < pending.size()) {
+  while (transport->Claim(1, 1).first < pending.size()) {
     ++mine;
   }
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -4,8 +4,10 @@
 #include <gtest/gtest.h>
 #include <mpi.h>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
+#include <vector>
 
 #include "jobs/h5/cube_file.h"
 #include "jobs/mpi/mpi_transport.h"
@@ -78,6 +80,50 @@ TEST(MpiSweep, EveryCellComputedOnceAndCubeEqualsSerialEvaluation) {
     }
   }
   std::filesystem::remove(options.out);
+}
+
+// Claims that run on to a block's end, racing on every rank: together they hand out every
+// position once, in order, and each ends at a multiple of the block or at the list's end.
+TEST(MpiClaims, ClaimsToBlockEndsPartitionThePendingListAtBlockBoundaries) {
+  auto transport = MakeMpiTransport();
+  PendingCells pending;
+  constexpr std::uint64_t kCells = 10007, kBlock = 60;
+  for (std::uint64_t c = 0; c < kCells; ++c) pending.Append(c);
+  transport->BroadcastPending(pending);
+  std::vector<std::uint64_t> mine;  // begin, end pairs
+  const std::uint64_t counts[] = {1, 7, 59, 60, 61, 130};
+  for (std::size_t k = 0;; ++k) {
+    const auto [begin, end] = transport->Claim(counts[k % 6], kBlock);
+    if (begin >= end) break;
+    mine.push_back(begin);
+    mine.push_back(end);
+  }
+  int size = WorldSize(), rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  const int n = static_cast<int>(mine.size());
+  std::vector<int> counts_of(static_cast<std::size_t>(size)), at(static_cast<std::size_t>(size));
+  MPI_Gather(&n, 1, MPI_INT, counts_of.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+  int total = 0;
+  for (int r = 0; r < size; ++r) {
+    at[static_cast<std::size_t>(r)] = total;
+    total += counts_of[static_cast<std::size_t>(r)];
+  }
+  std::vector<std::uint64_t> all(static_cast<std::size_t>(total));
+  MPI_Gatherv(mine.data(), n, MPI_UINT64_T, all.data(), counts_of.data(), at.data(), MPI_UINT64_T,
+              0, MPI_COMM_WORLD);
+  if (rank != 0) return;
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> claims;
+  for (std::size_t i = 0; i + 1 < all.size(); i += 2) claims.emplace_back(all[i], all[i + 1]);
+  std::sort(claims.begin(), claims.end());
+  std::uint64_t next = 0;
+  for (const auto& [begin, end] : claims) {
+    EXPECT_EQ(begin, next) << "a gap or an overlap before " << begin;
+    EXPECT_TRUE(end % kBlock == 0 || end == kCells) << "a claim ends at " << end;
+    EXPECT_GE(end - begin, 1u);
+    next = end;
+  }
+  EXPECT_EQ(next, kCells);
+  EXPECT_GE(claims.size(), kCells / (2 * kBlock));  // more than a few large claims
 }
 
 TEST(MpiSweep, RankZeroOnlyGathersAboveTheThresholdAndTheCubeIsUnchanged) {

@@ -498,6 +498,23 @@ w0_over_wg = {linspace = [0.2, 4.0, 1000]}
   std::filesystem::remove_all(dir);
 }
 
+// A claim runs on to the first multiple of the block at or after begin + count, cut at the end.
+TEST(InProcessClaims, ClaimsRunOnToTheBlockEnd) {
+  auto transport = MakeInProcessTransport();
+  PendingCells pending;
+  for (std::uint64_t c = 0; c < 1000; ++c) pending.Append(c);
+  transport->BroadcastPending(pending);
+  using Range = std::pair<std::uint64_t, std::uint64_t>;
+  EXPECT_EQ(transport->Claim(1, 1), Range(0, 1));
+  EXPECT_EQ(transport->Claim(5, 300), Range(1, 300));
+  EXPECT_EQ(transport->Claim(300, 300), Range(300, 600));
+  EXPECT_EQ(transport->Claim(301, 300), Range(600, 1000));
+  EXPECT_EQ(transport->Claim(1, 300), Range(1000, 1000));
+  EXPECT_EQ(BlockEnd(0, 300), 0u);
+  EXPECT_EQ(BlockEnd(301, 300), 600u);
+  EXPECT_EQ(BlockEnd(7, 1), 7u);
+}
+
 // The pending list as runs answers every position like the plain list of cells it replaces,
 // and travels as (first cell, length) pairs.
 TEST(PendingCells, RunsGiveTheCellOfEveryPositionAndSurviveTheirFlatForm) {
