@@ -5,7 +5,9 @@
 /// compliant_laws.cpp (each spring's law and wall friction: forces, event functions, transitions).
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "solver/common/excitation.h"
@@ -85,6 +87,9 @@ class CompliantIntegrator {
   // rate s' (m/s) and gradient w_T.
   void Tangential(int j, const Eigen::Ref<const Vec>& q, const Eigen::Ref<const Vec>& u, double& s,
                   double& rate, Eigen::Vector3d& w_t) const;
+  // (cos theta, sin theta) of body b's angle theta = q[3 b + 2] (rad): computed once per angle,
+  // since every spring of a body asks for it at the same state.
+  std::pair<double, double> Turn(int b, double theta_rad) const;
   // The slope dF/dd of spring j's current branch at d (N/m); 0 when open.
   double BranchSlope(int j, double d) const;
   // The friction force F_t along the tangent of friction element f (N) at (s, N).
@@ -140,6 +145,12 @@ class CompliantIntegrator {
   Vec z_, z_new_, z_eval_;  // the free flow's augmented state
   Vec e0_, e1_, e_eval_;    // the springs' event functions at a step's start, end, trial time
   mutable Vec h_, cu_;      // applied forces and C u scratch
+  // Per body: the bits of the last angle Turn was asked for, and its cosine and sine.
+  struct TurnMemo {
+    std::uint64_t theta_bits = 0;
+    double c = 1.0, s = 0.0;  // cos and sin of +0.0
+  };
+  mutable std::vector<TurnMemo> turn_;
   std::vector<SpringState> state_;
   std::vector<FrictionState> friction_;  // one per spring with wall friction
   int ny_;                               // size of y

@@ -3,7 +3,10 @@
 // functions that say where it leaves the piece and the transitions there, and the friction element
 // of a spring with wall friction [docs/compliant.md §4].
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "solver/dynamics/compliant_integrator.h"
@@ -12,12 +15,21 @@
 
 namespace skewbridge::dynamics {
 
+std::pair<double, double> CompliantIntegrator::Turn(int b, double theta_rad) const {
+  TurnMemo& m = turn_[static_cast<std::size_t>(b)];
+  const auto bits = std::bit_cast<std::uint64_t>(theta_rad);
+  if (bits != m.theta_bits) {
+    m = {bits, std::cos(theta_rad), std::sin(theta_rad)};
+  }
+  return {m.c, m.s};
+}
+
 void CompliantIntegrator::Kinematics(int j, const Eigen::Ref<const Vec>& q,
                                      const Eigen::Ref<const Vec>& u, double& d, double& rate,
                                      Eigen::Vector3d& w) const {
   const CompliantSpring& s = springs_[static_cast<std::size_t>(j)];
   const int b = 3 * s.body;
-  const double c = std::cos(q[b + 2]), sn = std::sin(q[b + 2]);
+  const auto [c, sn] = Turn(s.body, q[b + 2]);
   const Eigen::Vector2d rp(c * s.point_m.x() - sn * s.point_m.y(),
                            sn * s.point_m.x() + c * s.point_m.y());
   const Eigen::Vector2d& rest = model_.body(s.body).rest_position_m;
@@ -33,7 +45,7 @@ void CompliantIntegrator::Tangential(int j, const Eigen::Ref<const Vec>& q,
                                      Eigen::Vector3d& w_t) const {
   const CompliantSpring& sp = springs_[static_cast<std::size_t>(j)];
   const int b = 3 * sp.body;
-  const double c = std::cos(q[b + 2]), sn = std::sin(q[b + 2]);
+  const auto [c, sn] = Turn(sp.body, q[b + 2]);
   const Eigen::Vector2d rp(c * sp.point_m.x() - sn * sp.point_m.y(),
                            sn * sp.point_m.x() + c * sp.point_m.y());
   const Eigen::Vector2d& rest = model_.body(sp.body).rest_position_m;
