@@ -83,6 +83,11 @@ class CompliantIntegrator {
   void CommitTurn(int j, double d);
   // The event functions of spring j (positive while its branch holds): two per spring.
   void EventValues(int j, double d, double rate, double& e1, double& e2) const;
+  // The coordinate dir . ((x, y) + R(theta) p - A) (m) of spring j's point along a unit
+  // direction of its face, its rate (m/s) and gradient w on the body's 3 DOFs: the normal gives
+  // the gap, the tangent the position along the wall.
+  void Along(int j, const Eigen::Vector2d& dir, const Eigen::Ref<const Vec>& q,
+             const Eigen::Ref<const Vec>& u, double& coord, double& rate, Eigen::Vector3d& w) const;
   // Tangential coordinate s = t . ((x, y) + R(theta) p - A) (m) of spring j along its face, its
   // rate s' (m/s) and gradient w_T.
   void Tangential(int j, const Eigen::Ref<const Vec>& q, const Eigen::Ref<const Vec>& u, double& s,

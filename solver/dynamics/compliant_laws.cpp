@@ -24,35 +24,33 @@ std::pair<double, double> CompliantIntegrator::Turn(int b, double theta_rad) con
   return {m.c, m.s};
 }
 
-void CompliantIntegrator::Kinematics(int j, const Eigen::Ref<const Vec>& q,
-                                     const Eigen::Ref<const Vec>& u, double& d, double& rate,
-                                     Eigen::Vector3d& w) const {
-  const CompliantSpring& s = springs_[static_cast<std::size_t>(j)];
-  const int b = 3 * s.body;
-  const auto [c, sn] = Turn(s.body, q[b + 2]);
-  const Eigen::Vector2d rp(c * s.point_m.x() - sn * s.point_m.y(),
-                           sn * s.point_m.x() + c * s.point_m.y());
-  const Eigen::Vector2d& rest = model_.body(s.body).rest_position_m;
-  const Eigen::Vector2d& n = s.face.normal;
-  const double gap = n.dot(rest + Eigen::Vector2d(q[b], q[b + 1]) + rp - s.face.point_m);
-  w << n.x(), n.y(), n.x() * -rp.y() + n.y() * rp.x();
-  d = -gap;
-  rate = -(w[0] * u[b] + w[1] * u[b + 1] + w[2] * u[b + 2]);
-}
-
-void CompliantIntegrator::Tangential(int j, const Eigen::Ref<const Vec>& q,
-                                     const Eigen::Ref<const Vec>& u, double& s, double& rate,
-                                     Eigen::Vector3d& w_t) const {
+void CompliantIntegrator::Along(int j, const Eigen::Vector2d& dir, const Eigen::Ref<const Vec>& q,
+                                const Eigen::Ref<const Vec>& u, double& coord, double& rate,
+                                Eigen::Vector3d& w) const {
   const CompliantSpring& sp = springs_[static_cast<std::size_t>(j)];
   const int b = 3 * sp.body;
   const auto [c, sn] = Turn(sp.body, q[b + 2]);
   const Eigen::Vector2d rp(c * sp.point_m.x() - sn * sp.point_m.y(),
                            sn * sp.point_m.x() + c * sp.point_m.y());
   const Eigen::Vector2d& rest = model_.body(sp.body).rest_position_m;
-  const Eigen::Vector2d& t = sp.face.tangent;
-  s = t.dot(rest + Eigen::Vector2d(q[b], q[b + 1]) + rp - sp.face.point_m);
-  w_t << t.x(), t.y(), t.x() * -rp.y() + t.y() * rp.x();
-  rate = w_t[0] * u[b] + w_t[1] * u[b + 1] + w_t[2] * u[b + 2];
+  coord = dir.dot(rest + Eigen::Vector2d(q[b], q[b + 1]) + rp - sp.face.point_m);
+  w << dir.x(), dir.y(), dir.x() * -rp.y() + dir.y() * rp.x();
+  rate = w[0] * u[b] + w[1] * u[b + 1] + w[2] * u[b + 2];
+}
+
+void CompliantIntegrator::Kinematics(int j, const Eigen::Ref<const Vec>& q,
+                                     const Eigen::Ref<const Vec>& u, double& d, double& rate,
+                                     Eigen::Vector3d& w) const {
+  double gap, gap_rate;
+  Along(j, springs_[static_cast<std::size_t>(j)].face.normal, q, u, gap, gap_rate, w);
+  d = -gap;
+  rate = -gap_rate;
+}
+
+void CompliantIntegrator::Tangential(int j, const Eigen::Ref<const Vec>& q,
+                                     const Eigen::Ref<const Vec>& u, double& s, double& rate,
+                                     Eigen::Vector3d& w_t) const {
+  Along(j, springs_[static_cast<std::size_t>(j)].face.tangent, q, u, s, rate, w_t);
 }
 
 double CompliantIntegrator::BranchSlope(int j, double d) const {
