@@ -9,6 +9,7 @@
 #include "solver/dynamics/corner_travel.h"
 #include "solver/dynamics/linear_flow.h"
 #include "solver/dynamics/run.h"
+#include "solver/model/deck.h"
 
 namespace skewbridge::dynamics {
 namespace {
@@ -41,6 +42,8 @@ class StripeTracer final : public FreeStepObserver {
     prev_max_ = prev_time_ = Vec::Zero(n_);
     Vec rest_gap = Vec::Zero(nc_), rest_rate = Vec::Zero(nc_);
     contact::GapsAndRates(model, q0_, u0_, rest_gap, rest_rate, rates_);
+    prev_z1_ = Vec::Zero(2 * n_);
+    BoundGeometry(rest_gap);
     starts_.resize(factors.size());
     samples_.assign(factors.size(), 0);
     stripes_.reserve(factors.size());
@@ -53,6 +56,15 @@ class StripeTracer final : public FreeStepObserver {
       st.gN0 = rest_rate;
       st.g1 = st.gN1 = Vec::Zero(nc_);
     }
+    for (const model::Body& body : model.bodies()) {
+      // CornerTravelTracker's end-line normal and corner radius, by the same operations.
+      const double a = body.geometry.skew_rad;
+      DeckReach d{std::abs(std::cos(a)), std::abs(std::sin(a)), 0.0};
+      for (int k = 1; k <= 2; ++k)
+        d.radius = std::max(d.radius, model::Corner(body.geometry, k).norm());
+      decks_.push_back(d);
+    }
+    reach_bound_ = Vec::Zero(static_cast<Eigen::Index>(decks_.size()));
   }
 
   bool Step(double t0, const Eigen::Ref<const Vec>& z0, double h0, double t1,
@@ -61,21 +73,40 @@ class StripeTracer final : public FreeStepObserver {
     const double tau = t1 - t0;
     const double tolerance =
         policy_.maximum_time_tolerance * std::max(1.0, std::abs(t1)) + policy_.event_time_floor_s;
+    const double clear_below = ClearScale(z1, tau);
+    for (std::size_t d = 0; d < decks_.size(); ++d) {
+      reach_bound_[static_cast<Eigen::Index>(d)] =
+          ReachBound(decks_[d], 3 * static_cast<int>(d), z0, z1, tau);
+    }
     bool dense_built = false;
     bool any_live = false;
     for (std::size_t s = 0; s < stripes_.size(); ++s) {
       Stripe& st = stripes_[s];
       if (!st.live) continue;
       const double c = st.scale;
-      q1_ = c * z1.head(n_);
-      u1_ = c * z1.segment(n_, n_);
-      contact::GapsAndRates(model_, q1_, u1_, st.g1, st.gN1, rates_);
+      // A stripe whose gaps the bound keeps open skips their values at the step's end; the next
+      // step that needs its start's values takes them from the trace's state there.
       bool reach = false;
-      for (int k = 0; k < nc_; ++k) {
-        const double gap = std::min(st.g0[k], st.g1[k]) - margin_m_;
-        const double dip =
-            policy_.dip_margin * 0.5 * std::max(std::abs(st.gN0[k]), std::abs(st.gN1[k])) * tau;
-        if (!(gap > dip)) reach = true;
+      if (c * (1.0 + 1e-9) < clear_below) {
+        st.ends_known = false;
+      } else {
+        if (!st.ends_known) {
+          q0_ = c * prev_z1_.head(n_);
+          u0_ = c * prev_z1_.segment(n_, n_);
+          contact::GapsAndRates(model_, q0_, u0_, st.g0, st.gN0, rates_);
+        }
+        q1_ = c * z1.head(n_);
+        u1_ = c * z1.segment(n_, n_);
+        contact::GapsAndRates(model_, q1_, u1_, st.g1, st.gN1, rates_);
+        for (int k = 0; k < nc_; ++k) {
+          const double gap = std::min(st.g0[k], st.g1[k]) - margin_m_;
+          const double dip =
+              policy_.dip_margin * 0.5 * std::max(std::abs(st.gN0[k]), std::abs(st.gN1[k])) * tau;
+          if (!(gap > dip)) reach = true;
+        }
+        std::swap(st.g0, st.g1);
+        std::swap(st.gN0, st.gN1);
+        st.ends_known = true;
       }
       if (reach) {
         // The stripe's event-driven run goes on from this step's start.
@@ -97,8 +128,17 @@ class StripeTracer final : public FreeStepObserver {
         st.live = false;
         continue;
       }
+      any_live = true;
+      // Scan evaluates no corner when every deck's reach stays below its running maximum.
+      bool below = true;
+      for (Eigen::Index d = 0; d < reach_bound_.size(); ++d) {
+        if (!(c * reach_bound_[d] * (1.0 + 1e-9) < st.max_travel_m[d])) below = false;
+      }
+      if (below) continue;
       q0_ = c * z0.head(n_);
       u0_ = c * z0.segment(n_, n_);
+      q1_ = c * z1.head(n_);
+      u1_ = c * z1.segment(n_, n_);
       // The scaled dense output of the trace's step, built as the integrator builds it.
       const auto component_at = [&](double t, int i) {
         if (!dense_built) {
@@ -111,10 +151,8 @@ class StripeTracer final : public FreeStepObserver {
         return c * dense_.EvaluateComponent(t - t0, i);
       };
       st.travel.Scan(t0, q0_, u0_, t1, q1_, u1_, tolerance, component_at, st.max_travel_m);
-      std::swap(st.g0, st.g1);
-      std::swap(st.gN0, st.gN1);
-      any_live = true;
     }
+    prev_z1_ = z1;
     prev_max_ = run.max_abs_q;
     prev_time_ = run.time_of_max_s;
     prev_input_J_ = run.energy.input_J;
@@ -169,12 +207,88 @@ class StripeTracer final : public FreeStepObserver {
  private:
   struct Stripe {
     explicit Stripe(const model::Model& model) : travel(model) {}
-    double scale = 1.0;  // the stripe's factor over the trace's
-    bool live = true;    // no gap within reach so far
+    double scale = 1.0;      // the stripe's factor over the trace's
+    bool live = true;        // no gap within reach so far
+    bool ends_known = true;  // g0, gN0 hold the scaled gaps and rates at the last step's end
     CornerTravelTracker travel;
     Vec max_travel_m;
     Vec g0, gN0, g1, gN1;  // the scaled gaps and normal rates at the step's ends
   };
+
+  // A deck's |n_e| components and corner radius (m), as CornerTravelTracker holds them.
+  struct DeckReach {
+    double nx = 0.0, ny = 0.0, radius = 0.0;
+  };
+
+  // An upper bound (m) of the reach CornerTravelTracker::Scan compares with the deck's running
+  // maximum over the step between the trace's states z0 and z1 (the deck's DOFs from b): every
+  // term by its absolute value, so that the bound is homogeneous in a factor c > 0 on the state.
+  // Scan evaluates no corner of a stripe at c when c times this bound times 1 + 1e-9 is below
+  // its running maximum; the rounding of the scaled state and of Scan's sums lies far inside.
+  double ReachBound(const DeckReach& deck, int b, const Eigen::Ref<const Vec>& z0,
+                    const Eigen::Ref<const Vec>& z1, double tau) const {
+    const auto reach = [&](const Eigen::Ref<const Vec>& z, int i) {
+      return deck.nx * std::abs(z[i]) + deck.ny * std::abs(z[i + 1]) +
+             deck.radius * std::abs(z[i + 2]);
+    };
+    return std::max(reach(z0, b), reach(z1, b)) +
+           0.5 * tau * std::min(reach(z0, n_ + b), reach(z1, n_ + b));
+  }
+
+  // The gap bound's constants (docs/theory.md §3.19): per contact, the room left below the gap
+  // at rest, |p| |n| and the body's DOF; without a bound (a face on a body, a gap at rest within
+  // the margin) every stripe's gaps are evaluated at every step.
+  void BoundGeometry(const Vec& rest_gap) {
+    bound_ok_ = true;
+    room_m_.resize(static_cast<std::size_t>(nc_));
+    arm_m_.resize(static_cast<std::size_t>(nc_));
+    dof_.resize(static_cast<std::size_t>(nc_));
+    start_drop_.assign(static_cast<std::size_t>(nc_), 0.0);
+    start_rate_.assign(static_cast<std::size_t>(nc_), 0.0);
+    for (int k = 0; k < nc_; ++k) {
+      const model::Contact& contact = model_.contact(k);
+      const auto ki = static_cast<std::size_t>(k);
+      if (contact.face.body != model::kGround) bound_ok_ = false;
+      const double size = 1.0 + model_.body(contact.body).rest_position_m.norm() +
+                          contact.point_m.norm() + contact.face.point_m.norm();
+      room_m_[ki] = rest_gap[k] - 1e-12 * size - margin_m_;
+      if (!(room_m_[ki] > 0.0)) bound_ok_ = false;
+      arm_m_[ki] = contact.point_m.norm() * contact.face.normal.norm() * (1.0 + 1e-12);
+      dof_[ki] = 3 * contact.body;
+    }
+  }
+
+  // The largest factor on the trace's state below which no stripe's gap can come within reach in
+  // the step ending at z1 (0 without a bound); keeps the bound's terms at z1 for the next step.
+  // Per contact, g >= g_rest + n . (x, y) - |theta| |p| and |gamma_N| <= |n_x u_x| + |n_y u_y| +
+  // |u_theta| |p| (|(R(theta) - E) p| <= |theta| |p|), both homogeneous in the factor.
+  double ClearScale(const Eigen::Ref<const Vec>& z1, double tau) {
+    if (!bound_ok_) return 0.0;
+    double clear = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < nc_; ++k) {
+      const auto ki = static_cast<std::size_t>(k);
+      const model::Contact& contact = model_.contact(k);
+      const int i = dof_[ki];
+      const double nx = contact.face.normal.x(), ny = contact.face.normal.y();
+      const double x = z1[i], y = z1[i + 1], th = std::abs(z1[i + 2]);
+      const double turn = th * arm_m_[ki];
+      const double drop =
+          -(nx * x + ny * y) + turn + 1e-12 * (std::abs(nx * x) + std::abs(ny * y) + turn);
+      const double rate = (std::abs(nx * z1[n_ + i]) + std::abs(ny * z1[n_ + i + 1]) +
+                           std::abs(z1[n_ + i + 2]) * arm_m_[ki]) *
+                          (1.0 + 1e-12);
+      const double weight = std::max(start_drop_[ki], drop) +
+                            policy_.dip_margin * 0.5 * std::max(start_rate_[ki], rate) * tau;
+      start_drop_[ki] = drop;
+      start_rate_[ki] = rate;
+      if (weight > 0.0) {
+        clear = std::min(clear, room_m_[ki] / weight);
+      } else if (!(weight <= 0.0)) {
+        clear = 0.0;  // not finite
+      }
+    }
+    return clear;
+  }
 
   const model::Model& model_;
   const Excitation& excitation_;
@@ -185,6 +299,14 @@ class StripeTracer final : public FreeStepObserver {
   double margin_m_ = 0.0;  // a gap closer than this to the step's reach may close
   contact::GapRateScratch rates_;
   Vec z_aug_, q0_, u0_, q1_, u1_;
+  Vec prev_z1_;  // the trace's state at the last step's end
+  // The gap bound: whether it applies, per contact the room below the rest gap (m), |p| |n| (m),
+  // the body's first DOF, the gap's drop and rate bound at the last step's end (trace units).
+  bool bound_ok_ = false;
+  std::vector<double> room_m_, arm_m_, start_drop_, start_rate_;
+  std::vector<int> dof_;
+  std::vector<DeckReach> decks_;
+  Vec reach_bound_;           // per deck: ReachBound of the trace's step (m)
   Vec prev_max_, prev_time_;  // the trace's maxima and their times at the step's start
   double last_t_s_ = 0.0;     // the end of the last step seen
   // The trace's work of the ledger and history samples at the step's start.

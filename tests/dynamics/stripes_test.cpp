@@ -14,6 +14,10 @@
 // - against dynamics::Run at the same factor: the same status and impact count, the maxima
 //   within 1e-12 without impacts, and at a power of two (the record's samples and the linear
 //   flow scale exactly) the direct run's bits.
+// And TraceStripes against a brute force over every free step of the trace, at 60 factors that
+// straddle the first contact: the exact scaled gaps and normal rates at both ends of every step
+// (no bound), and the corner travel scanned at every step on the scaled dense output, give the
+// same step for each stripe's restart and the same bits of its corner travels.
 
 #include <gtest/gtest.h>
 
@@ -21,11 +25,16 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "records/excitations.h"
 #include "records/ground_motion.h"
+#include "solver/contact/kinematics.h"
+#include "solver/dynamics/corner_travel.h"
+#include "solver/dynamics/linear_flow.h"
 #include "solver/dynamics/run.h"
 #include "solver/dynamics/stripes.h"
 #include "solver/model/model_file.h"
@@ -135,6 +144,146 @@ TEST(StripeRun, HistoriesAndLedgerObserveItAndTheLedgerBalancesAcrossTheRestart)
   EXPECT_GE(with_impacts, 2);
   EXPECT_GE(without, 2);
   EXPECT_EQ(powers_of_two, 2);
+}
+
+// Keeps every free step of a run: its ends' times and states.
+class StepLog final : public FreeStepObserver {
+ public:
+  struct Kept {
+    double t0, t1;
+    Eigen::VectorXd z0, z1;
+  };
+  bool Step(double t0, const Eigen::Ref<const Eigen::VectorXd>& z0, double /*h0*/, double t1,
+            const Eigen::Ref<const Eigen::VectorXd>& z1, const RunResult& /*run*/) override {
+    steps.push_back({t0, t1, z0, z1});
+    return true;
+  }
+  std::vector<Kept> steps;
+};
+
+// TraceStripes of the model of `file` under NIS090 along x at 60 factors from 0.05 to 5, against
+// the brute force.
+void ExpectTraceIsTheBruteForce(const model::ModelFile& file) {
+  const records::GroundMotion motion = records::ReadRecord(kDataDir + "/records/NIS090.AT2");
+  const model::Model& model = file.model;
+  const records::SampledExcitation trace = Scaled(motion, kStripeTraceFactor);
+  const RunPolicies policies;
+  model::RunControl control = file.run;
+  control.method = model::Method::kEventDriven;
+  control.output_interval_s = 0.0;
+  control.energy_ledger = false;
+  std::vector<double> factors;
+  for (int i = 0; i < 60; ++i) factors.push_back(0.05 * std::pow(10.0, 2.0 * i / 59.0));
+  const std::vector<StripeStart> starts =
+      TraceStripes(model, trace, kStripeTraceFactor, control, policies, factors);
+
+  // The trace's free steps, all of them (no observer stops it).
+  ASSERT_EQ(starts.size(), factors.size());
+  StepLog log;
+  SimulationWorkspace workspace(model);
+  const RunResult run = Simulate(model, trace, control, workspace, {}, policies.event, &log);
+  ASSERT_EQ(run.status, RunStatus::kOk);
+  ASSERT_TRUE(run.events.empty());
+  ASSERT_GT(log.steps.size(), 1000u);
+
+  const int n = model.n_dof(), nc = model.n_contacts();
+  double length_m = 1.0;  // the integrator's length scale (SimulationWorkspace)
+  for (const model::Body& body : model.bodies()) {
+    length_m = std::max({length_m, body.geometry.length_m, body.geometry.width_m,
+                         body.rest_position_m.norm() + body.geometry.length_m});
+  }
+  const EventPolicy& policy = policies.event;
+  LinearFlow flow(model.M(), model.K(), model.C(), model.r(), FlowPath::kAuto, model.modes());
+  FreeDenseOutput dense(flow.augmented_size());
+  Eigen::VectorXd z_aug = Eigen::VectorXd::Zero(flow.augmented_size());
+  contact::GapRateScratch scratch;
+  scratch.Resize(model);
+  int reached = 0, clear = 0;
+  for (std::size_t s = 0; s < factors.size(); ++s) {
+    SCOPED_TRACE("factor " + std::to_string(factors[s]));
+    const double c = factors[s] / kStripeTraceFactor;
+    CornerTravelTracker travel(model);
+    Eigen::VectorXd max_travel;
+    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
+    travel.Start(zero, max_travel);
+    Eigen::VectorXd g0(nc), gN0(nc), g1(nc), gN1(nc);
+    contact::GapsAndRates(model, zero, zero, g0, gN0, scratch);
+    double restart_s = -1.0;
+    Eigen::VectorXd restart_z0;
+    for (const StepLog::Kept& step : log.steps) {
+      const Eigen::VectorXd q0 = c * step.z0.head(n), u0 = c * step.z0.segment(n, n);
+      const Eigen::VectorXd q1 = c * step.z1.head(n), u1 = c * step.z1.segment(n, n);
+      const double tau = step.t1 - step.t0;
+      contact::GapsAndRates(model, q1, u1, g1, gN1, scratch);
+      bool reach = false;
+      for (int k = 0; k < nc; ++k) {
+        const double gap = std::min(g0[k], g1[k]) - 1e-9 * length_m;
+        const double dip =
+            policy.dip_margin * 0.5 * std::max(std::abs(gN0[k]), std::abs(gN1[k])) * tau;
+        if (!(gap > dip)) reach = true;
+      }
+      if (reach) {
+        restart_s = step.t0;
+        restart_z0 = step.z0;
+        break;
+      }
+      const double tolerance = policy.maximum_time_tolerance * std::max(1.0, std::abs(step.t1)) +
+                               policy.event_time_floor_s;
+      bool built = false;
+      const auto component_at = [&](double t, int i) {
+        if (!built) {
+          z_aug.head(2 * n) = step.z0;
+          const ExcitationPiece piece = trace.PieceAt(step.t0);
+          flow.SetGenerator(piece, step.t0, z_aug);
+          dense.Build(flow, piece.omega, z_aug, tau);
+          built = true;
+        }
+        return c * dense.EvaluateComponent(t - step.t0, i);
+      };
+      travel.Scan(step.t0, q0, u0, step.t1, q1, u1, tolerance, component_at, max_travel);
+      std::swap(g0, g1);
+      std::swap(gN0, gN1);
+    }
+    const StripeStart& start = starts[s];
+    ASSERT_EQ(start.reaches_gap, restart_s >= 0.0);
+    if (start.reaches_gap) {
+      ++reached;
+      EXPECT_EQ(Bits(start.state.t_s), Bits(restart_s));
+      for (int i = 0; i < n; ++i) {
+        EXPECT_EQ(Bits(start.state.q[i]), Bits(c * restart_z0[i])) << "q " << i;
+      }
+    } else {
+      ++clear;
+    }
+    ASSERT_EQ(start.linear.max_travel_m.size(), max_travel.size());
+    for (Eigen::Index d = 0; d < max_travel.size(); ++d) {
+      EXPECT_EQ(Bits(start.linear.max_travel_m[d]), Bits(max_travel[d])) << "deck " << d;
+    }
+  }
+  // The factors straddle the first contact, and many stripes restart late in the record.
+  EXPECT_GE(reached, 10);
+  EXPECT_GE(clear, 10);
+}
+
+TEST(StripeTrace, RestartsAndTravelsAreThoseOfTheExactGapsAtEveryStep) {
+  // One deck on an uncoupled substructure (no rotation before an impact), and the pilot bridge,
+  // whose deck turns under a record along x (the gaps' bound through |theta| |p|).
+  {
+    SCOPED_TRACE("one deck, uncoupled");
+    ExpectTraceIsTheBruteForce(model::ParseModelFile(kDataDir + "/models/one-deck-records.toml"));
+  }
+  // The pilot bridge with its centre of rigidity 8 m from the mass centre: the deck turns by as
+  // much as its corners translate, so that the gaps' bound through |theta| |p| decides.
+  const std::string examples = kDataDir + "/../../docs/examples";
+  std::ifstream in(examples + "/pilot-bridge.toml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string pilot = text.str();
+  const std::size_t at = pilot.find("e_x = -0.24");
+  ASSERT_NE(at, std::string::npos);
+  pilot.replace(at, 11, "e_x = -8.00");
+  SCOPED_TRACE("pilot bridge, eccentric");
+  ExpectTraceIsTheBruteForce(model::ParseModelString(pilot, "pilot-bridge.toml", examples));
 }
 
 }  // namespace
