@@ -87,6 +87,7 @@ SweepSpec SpecParser::Parse(std::string_view text) {
                     "names the parameter " + axis.key + " a second time (a key and its " +
                         "symbol are the same parameter); give it once");
       }
+      spec.key_at["axes." + axis.key] = Where(source_, key.source());
       spec.axes.push_back(std::move(axis));
     }
   }
@@ -98,6 +99,7 @@ SweepSpec SpecParser::Parse(std::string_view text) {
                     "names the parameter " + value.key + " a second time (a key and its " +
                         "symbol are the same parameter); give it once");
       }
+      spec.key_at["fixed." + value.key] = Where(source_, key.source());
       spec.fixed.push_back(std::move(value));
     }
   }

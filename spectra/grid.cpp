@@ -120,6 +120,12 @@ bool Mentions(const CellGrid& grid, std::string_view key) {
   return grid.FindAxis(key) != nullptr || grid.FindFixed(key) != nullptr;
 }
 
+std::string KeyWhere(const CellGrid& grid, std::string_view key) {
+  const std::string field = (grid.FindAxis(key) != nullptr ? "axes." : "fixed.") + std::string(key);
+  const auto at = grid.key_at.find(field);
+  return (at != grid.key_at.end() ? at->second : grid.source) + ": " + field;
+}
+
 bool MentionsSeat(const CellGrid& grid) {
   return Mentions(grid, "seat_over_L") || Mentions(grid, "seat_m");
 }

@@ -8,6 +8,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
+#include <map>
 #include <span>
 #include <string>
 #include <string_view>
@@ -145,6 +147,9 @@ struct CellGrid {
   IntensityMeasureSpec im;  ///< [records] scale_to / im; im.measure empty when not given
   std::vector<Axis> axes;
   std::vector<FixedValue> fixed;
+  /// Where the file names each axis and fixed key: "axes.KEY" or "fixed.KEY" to
+  /// "spec.toml:LINE", for messages (empty for a grid built in code).
+  std::map<std::string, std::string, std::less<>> key_at;
   std::vector<LimitState> limit_states;  ///< [limit_states], in canonical order; may be empty
   IdaSpec ida;                           ///< [ida]; ida.enabled false when not given
   /// [event_policy] and [time_stepping_policy]: the integrators' defaults with the members the
@@ -187,6 +192,11 @@ std::vector<model::Method> MethodsOf(const CellGrid& grid, model::Method fallbac
 
 /// Whether the grid names `key` as an axis or a fixed value.
 bool Mentions(const CellGrid& grid, std::string_view key);
+
+/// Where the grid names `key`, for a message: "spec.toml:LINE: axes.KEY" (or fixed.KEY), the
+/// grid's source without a line when the key's line is not known.
+/// @pre Mentions(grid, key)
+std::string KeyWhere(const CellGrid& grid, std::string_view key);
 
 /// Whether the grid gives seat widths: seat_over_L or seat_m (axis or fixed value).
 bool MentionsSeat(const CellGrid& grid);

@@ -61,16 +61,12 @@ model::ModelFile CheckedModelFile(const CellGrid& spec) {
     }
   }
   model::ModelFile file = model::ParseModelFile(spec.model_path);
-  if (file.compliant) {
-    // The compliant springs have no restitution nor friction to change.
-    for (std::string_view key : {"eps_N", "mu"}) {
-      if (Mentions(spec, key)) {
-        throw InputError::AtField(src, key,
-                                  "the model file's abutments are compliant (law = "
-                                  "\"compliant\"): they have no " +
-                                      std::string(key) + " to change; remove " + std::string(key));
-      }
-    }
+  if (file.compliant && Mentions(spec, "eps_N")) {
+    // The compliant springs have no restitution; their backwall friction is the sweep's mu.
+    throw InputError(KeyWhere(spec, "eps_N") + ": the abutments of " + spec.model_file +
+                     " are compliant (law = \"compliant\"), whose springs have no restitution; "
+                     "remove eps_N (mu, the backwall friction, and every other key of family "
+                     "'model-file' are allowed)");
   }
   return file;
 }
@@ -488,7 +484,12 @@ ModelFileCell ModelFileEvaluator::MakeCell(std::span<const std::size_t> index, b
         if (has_mu) o.friction.reset();
       }
       if (has_eps) d.restitution = eps_N;
-      if (has_mu) d.friction = mu;
+      // Compliant abutments: mu is the backwall friction (the contacts' mu is unused).
+      if (has_mu && c.compliant) {
+        c.compliant->wall_friction = mu;
+      } else if (has_mu) {
+        d.friction = mu;
+      }
       if (has_xi) d.xi = xi;
       c.model = model::BuildDeckModel(d, model_source);
       if (k_factor != 1.0) {

@@ -147,12 +147,58 @@ r = h5py.File('$work/rigid.h5', 'r')['sweeps/compliant/responses']
 assert not any(k.startswith(('spring_force', 'backwall_def', 'key')) for k in r), list(r)
 " || fail "a rigid cube stores compliant responses"
 
+# A sweep's mu is the compliant walls' friction (abutments.mu): each cell of a 2-rank sweep over
+# mu equals `skewbridge run` of the model file with that mu written in, bit for bit (the deck's
+# maxima, residuals and strikes, the joints' responses), and mu = 0 the frictionless run, also
+# over a file whose own mu and stick stiffness the sweep replaces. The signal at 45 deg from x,
+# doubled, presses the deck into both walls and slides it along them: the friction changes the
+# response (5.6 kJ of friction at mu = 0.3).
+sed 's/^direction = "x"/angle_deg = 45.0\nscale = 2.0/' "$work/pilot-bridge-compliant.toml" >"$work/wall.toml"
+sed 's/^law = "compliant"$/&\nmu = 0.3/' "$work/wall.toml" >"$work/wall-mu.toml"
+sed 's/^law = "compliant"$/&\nmu = 0.1\nstick_stiffness_Npm = 2e8/' "$work/wall.toml" >"$work/wall-kt.toml"
+sed 's/^mu = 0.1$/mu = 0.3/' "$work/wall-kt.toml" >"$work/wall-kt-mu.toml"
+grep -q "^mu = 0.3" "$work/wall-kt-mu.toml" || fail "wall-kt-mu.toml: $(cat "$work/wall-kt-mu.toml")"
+for model in wall wall-mu wall-kt-mu; do
+  "$exe" run "$work/$model.toml" --out "$work/$model.h5" >"$work/$model.out" 2>&1 ||
+    fail "run $model.toml: exit $? ($(cat "$work/$model.out"))"
+done
+for model in wall wall-kt; do
+  printf '[sweep]\nname = "mu"\nfamily = "model-file"\nmodel = "%s.toml"\n[axes]\nmu = [0.0, 0.3]\n' \
+    "$model" >"$work/$model-spec.toml"
+  on_ranks 2 "$exe" sweep "$work/$model-spec.toml" --out "$work/$model-cube.h5" --quiet \
+    >"$work/sweep.out" 2>&1 || fail "sweep of mu over $model.toml: exit $? ($(cat "$work/sweep.out"))"
+done
+/usr/bin/python3 - "$work" <<'PY' || fail "a sweep's mu against run with mu written in (above)"
+import sys, h5py
+work = sys.argv[1]
+def run(name):
+    f = h5py.File(f"{work}/{name}.h5", "r")
+    s, j = f["summary"], f["joints"]
+    out = {"impacts": s.attrs["impacts"]}
+    for i, n in enumerate(("x", "y", "theta")):
+        out[n + "_m_d0"], out[n + "_end_d0"] = s["max_abs_q"][i], s["q_end"][i]
+    for n in j.attrs["response_names"]:
+        n = n.decode() if isinstance(n, bytes) else n
+        out[n] = j.attrs[n]
+    return out
+frictionless, runs = run("wall"), {"wall": run("wall-mu"), "wall-kt": run("wall-kt-mu")}
+changed = [n for n in frictionless if runs["wall"][n] != frictionless[n]]
+assert "y_m_d0" in changed and "x_end_d0" in changed, ("mu = 0.3 changes too little", changed)
+for model in ("wall", "wall-kt"):
+    g = h5py.File(f"{work}/{model}-cube.h5", "r")["sweeps/mu"]
+    assert list(g["mu"][()]) == [0.0, 0.3], g["mu"][()]
+    r = g["responses"]
+    for cell, want in ((0, frictionless), (1, runs[model])):
+        for n, v in want.items():
+            assert r[n][cell] == v, (model, cell, n, r[n][cell], v)
+PY
+
 # eps_N means nothing to the springs: one line, status 2, no cube.
 printf 'eps_N = [0.3, 0.6]\n' >>"$work/spec.toml"
 status=0
 on_ranks 1 "$exe" sweep "$work/spec.toml" --out "$work/bad.h5" --quiet >"$work/bad.out" 2>&1 || status=$?
 [ "$status" -eq 2 ] || fail "a sweep of eps_N on compliant abutments: exit $status, expected 2"
-grep -q "eps_N: the model file's abutments are compliant" "$work/bad.out" ||
+grep -q "spec.toml:9: axes.eps_N: the abutments of pilot-bridge-compliant.toml are compliant" "$work/bad.out" ||
   fail "no eps_N refusal: $(cat "$work/bad.out")"
 [ ! -e "$work/bad.h5" ] || fail "a refused sweep left a cube"
 echo "ok"

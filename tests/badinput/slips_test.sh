@@ -81,6 +81,11 @@ expect "wall_mu_nan.toml:31: abutments.mu: must be a finite number (got nan)" mo
 sed 's/^law = "compliant"$/&\nstick_stiffness_Npm = 1e9/' pilot-bridge-compliant.toml > wall_kt.toml
 expect "wall_kt.toml:31: abutments.stick_stiffness_Npm: belongs to a wall with friction (mu > 0)" \
   run wall_kt.toml --out run.h5
+# a sweep's eps_N over compliant abutments (their springs have no restitution; mu is allowed)
+printf '[sweep]\nname = "c"\nfamily = "model-file"\nmodel = "pilot-bridge-compliant.toml"\n[axes]\nscale = [1.0, 2.0]\n[fixed]\nmu = 0.2\neps_N = 0.4\n' \
+  > compliant_eps.toml
+expect "compliant_eps.toml:9: fixed.eps_N: the abutments of pilot-bridge-compliant.toml are compliant (law = \"compliant\"), whose springs have no restitution; remove eps_N (mu, the backwall friction, and every other key of family 'model-file' are allowed)" \
+  sweep compliant_eps.toml --out out.h5
 # --- misspelt keys of model files and sweep specifications: unknown, with the nearest ---
 sed 's/^skew_deg = /skew = /' model.toml > skew.toml
 expect "skew.toml:12: deck.skew: unknown key (allowed: m, I_m, L, W, eta0, skew_deg); did you mean \`skew_deg\`?" \
