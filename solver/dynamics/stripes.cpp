@@ -1,7 +1,9 @@
 #include "solver/dynamics/stripes.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "solver/common/error.h"
@@ -15,6 +17,10 @@ namespace skewbridge::dynamics {
 namespace {
 
 using Vec = Eigen::VectorXd;
+
+// Up to this many DOFs (two decks) a corner's rate evaluates the whole state of the dense output
+// once per instant: 2 n rows of n products against four components of n each.
+constexpr int kWholeStateDofs = 6;
 
 // Follows the trace run's free steps and, for every stripe still clear of the gaps, the scaled
 // state's gaps and corner travels; a stripe whose gaps come within reach in a step stops there.
@@ -42,7 +48,7 @@ class StripeTracer final : public FreeStepObserver {
     prev_max_ = prev_time_ = Vec::Zero(n_);
     Vec rest_gap = Vec::Zero(nc_), rest_rate = Vec::Zero(nc_);
     contact::GapsAndRates(model, q0_, u0_, rest_gap, rest_rate, rates_);
-    prev_z1_ = Vec::Zero(2 * n_);
+    prev_z1_ = state_at_ = Vec::Zero(2 * n_);
     BoundGeometry(rest_gap);
     starts_.resize(factors.size());
     samples_.assign(factors.size(), 0);
@@ -139,7 +145,10 @@ class StripeTracer final : public FreeStepObserver {
       u0_ = c * z0.segment(n_, n_);
       q1_ = c * z1.head(n_);
       u1_ = c * z1.segment(n_, n_);
-      // The scaled dense output of the trace's step, built as the integrator builds it.
+      // The scaled dense output of the trace's step, built as the integrator builds it. A
+      // corner's rate reads four components at one instant: for a model of few DOFs the whole
+      // state there is evaluated once (EvaluateHead, each entry the bits of EvaluateComponent:
+      // the same series and the same sums from 0.0 in mode order) and kept for the next reads.
       const auto component_at = [&](double t, int i) {
         if (!dense_built) {
           z_aug_.head(2 * n_) = z0;
@@ -147,8 +156,16 @@ class StripeTracer final : public FreeStepObserver {
           flow_.SetGenerator(piece, t0, z_aug_);
           dense_.Build(flow_, piece.omega, z_aug_, tau);
           dense_built = true;
+          state_known_ = false;
         }
-        return c * dense_.EvaluateComponent(t - t0, i);
+        const double tau_s = t - t0;
+        if (n_ > kWholeStateDofs || i >= 2 * n_) return c * dense_.EvaluateComponent(tau_s, i);
+        if (!state_known_ || std::bit_cast<std::uint64_t>(tau_s) != state_tau_bits_) {
+          dense_.EvaluateHead(tau_s, 2 * n_, state_at_);
+          state_tau_bits_ = std::bit_cast<std::uint64_t>(tau_s);
+          state_known_ = true;
+        }
+        return c * state_at_[i];
       };
       st.travel.Scan(t0, q0_, u0_, t1, q1_, u1_, tolerance, component_at, st.max_travel_m);
     }
@@ -300,6 +317,11 @@ class StripeTracer final : public FreeStepObserver {
   contact::GapRateScratch rates_;
   Vec z_aug_, q0_, u0_, q1_, u1_;
   Vec prev_z1_;  // the trace's state at the last step's end
+  // The trace's (q, u) on the dense output of this step at the instant of bits state_tau_bits_
+  // (s from the step's start), when state_known_.
+  Vec state_at_;
+  std::uint64_t state_tau_bits_ = 0;
+  bool state_known_ = false;
   // The gap bound: whether it applies, per contact the room below the rest gap (m), |p| |n| (m),
   // the body's first DOF, the gap's drop and rate bound at the last step's end (trace units).
   bool bound_ok_ = false;
