@@ -518,7 +518,10 @@ ModelFileCell ModelFileEvaluator::MakeCell(std::span<const std::size_t> index, b
         m.restitution = eps_N;
         for (model::JointSpec& j : m.joints) j.restitution = eps_N;
       }
-      if (has_mu) {
+      // Compliant joints: mu is the backwalls' friction (the joints' springs carry none).
+      if (has_mu && c.compliant) {
+        c.compliant->wall_friction = mu;
+      } else if (has_mu) {
         m.friction = mu;
         for (model::JointSpec& j : m.joints) j.friction = mu;
       }
@@ -602,8 +605,9 @@ void ModelFileEvaluator::MakeResponseTable() {
          "smallest time between distinct impact instants (inf with fewer than two)"},
         [](V v) { return v.run.min_impact_separation_s; });
   if (file_.compliant) {
-    // Per compliant wall, then per abutment's shear keys (dynamics::JointResponses).
-    const bool both = file_.deck.abutments == model::AbutmentSet::kBoth;
+    // Per compliant wall, per deck-deck joint, then per abutment's shear keys
+    // (dynamics::JointResponses).
+    const bool both = file_.decks || file_.deck.abutments == model::AbutmentSet::kBoth;
     for (dynamics::JointResponse& r : dynamics::JointResponses(*file_.compliant, both)) {
       t.Add({r.name, r.unit, r.meaning}, [f = std::move(r.value)](V v) { return f(v.law); });
     }

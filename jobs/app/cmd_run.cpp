@@ -434,6 +434,11 @@ void Execute(const RunInput& in, const RunOptions& o) {
                   w.wall.c_str(), Number("%.6e", w.spring_force_N).c_str(),
                   Number("%.6e", w.deformation_m).c_str());
     }
+    for (const dynamics::WallMaxima& j : law_run.joints) {
+      std::printf("  deck-deck joint %s: largest spring force %s N, largest deformation %s m\n",
+                  j.wall.c_str(), Number("%.6e", j.spring_force_N).c_str(),
+                  Number("%.6e", j.deformation_m).c_str());
+    }
     for (const dynamics::KeyMaxima& k : law_run.keys) {
       std::printf("  shear key %s: largest force %s N, largest deformation %s m, %s\n",
                   k.name.c_str(), Number("%.6e", k.force_N).c_str(),

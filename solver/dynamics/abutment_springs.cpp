@@ -23,22 +23,29 @@ int ContactIndex(const model::Model& model, std::string_view name) {
 
 std::vector<CompliantSpring> AbutmentSprings(const model::Model& rigid,
                                              const model::CompliantAbutments& spec) {
-  SB_DEMAND(rigid.n_bodies() == 1, "AbutmentSprings: a single deck");
-  const joint::HyperbolicGap wall =
-      model::WallBackfill(spec.backfill, rigid.body(0).geometry, rigid.source());
+  const int n_decks = rigid.n_bodies();
+  SB_DEMAND(spec.joints.size() + 1 == static_cast<std::size_t>(n_decks),
+            "AbutmentSprings: one compliant law per deck-deck joint");
   if (spec.shear_keys) joint::ValidateShearKey(spec.shear_keys->key, rigid.source());
-  std::vector<CompliantSpring> springs;
+  // A single deck's corners are P1..P4; a row's are D<i>.P<k>, the +x wall on the last deck.
+  const auto corner = [&](int deck, int k) {
+    // append() rather than operator+ on temporaries: g++ 12 reports a false -Wrestrict there.
+    std::string name = n_decks == 1 ? "P" : "D";
+    if (n_decks > 1) name.append(std::to_string(deck)).append(".P");
+    return name.append(std::to_string(k));
+  };
   const struct {
-    const char* first;
-    const char* last;
+    int deck;
+    int first, last;
     const char* prefix;
-  } walls[] = {{"P1", "P2", "+x"}, {"P3", "P4", "-x"}};
+  } walls[] = {{n_decks - 1, 1, 2, "+x"}, {0, 3, 4, "-x"}};
+  std::vector<CompliantSpring> springs;
   // The backfill of every wall first (with the wall's friction), then the keys of every abutment.
   for (const bool keys : {false, true}) {
     if (keys && !spec.shear_keys) break;
     for (const auto& w : walls) {
-      const int first = ContactIndex(rigid, w.first);
-      const int last = ContactIndex(rigid, w.last);
+      const int first = ContactIndex(rigid, corner(w.deck, w.first));
+      const int last = ContactIndex(rigid, corner(w.deck, w.last));
       if (first < 0 || last < 0) continue;  // set = "+x": no -x wall
       if (keys) {
         const std::vector<CompliantSpring> these =
@@ -46,6 +53,8 @@ std::vector<CompliantSpring> AbutmentSprings(const model::Model& rigid,
         springs.insert(springs.end(), these.begin(), these.end());
         continue;
       }
+      const joint::HyperbolicGap wall =
+          model::WallBackfill(spec.backfill, rigid.body(w.deck).geometry, rigid.source());
       std::vector<CompliantSpring> these =
           WallSprings(rigid, first, last, wall, spec.springs, w.prefix);
       for (CompliantSpring& s : these) {
@@ -54,6 +63,28 @@ std::vector<CompliantSpring> AbutmentSprings(const model::Model& rigid,
       }
       springs.insert(springs.end(), these.begin(), these.end());
     }
+  }
+  // Each deck-deck joint: its two contacts (the narrower deck's corners against the other's end
+  // face), in the model's order.
+  for (std::size_t i = 0; i < spec.joints.size(); ++i) {
+    const model::CompliantJoint& law = spec.joints[i];
+    std::vector<int> pair;
+    for (int c = 0; c < rigid.n_contacts(); ++c) {
+      const model::Contact& contact = rigid.contact(c);
+      const int lo = std::min(contact.body, contact.face.body);
+      if (contact.face.body != model::kGround && lo == static_cast<int>(i)) pair.push_back(c);
+    }
+    SB_DEMAND(pair.size() == 2, "AbutmentSprings: two contacts per deck-deck joint");
+    const std::string prefix = std::string("J").append(std::to_string(i));
+    const std::vector<CompliantSpring> these =
+        law.spring_dashpot
+            ? SpringDashpots(rigid, pair[0], pair[1], law.k_Npm, law.c_Nspm, law.springs, prefix)
+            : WallSprings(rigid, pair[0], pair[1],
+                          model::WallBackfill(law.backfill,
+                                              rigid.body(rigid.contact(pair[0]).body).geometry,
+                                              rigid.source()),
+                          law.springs, prefix);
+    springs.insert(springs.end(), these.begin(), these.end());
   }
   return springs;
 }
@@ -70,6 +101,16 @@ std::vector<JointResponse> JointResponses(const model::CompliantAbutments& compl
                    "largest deformation of the " + wall +
                        " backfill beyond the gap (the largest of its springs)",
                    [w](const LawRun& r) { return r.walls[w].deformation_m; }});
+  }
+  for (std::size_t i = 0; i < compliant.joints.size(); ++i) {
+    const std::string id = std::to_string(i);
+    out.push_back({"joint_force_j" + id, "N",
+                   "largest force of one spring of deck-deck joint " + id,
+                   [i](const LawRun& r) { return r.joints[i].spring_force_N; }});
+    out.push_back({"joint_def_j" + id, "m",
+                   "largest deformation of deck-deck joint " + id +
+                       " beyond its gap (the largest of its springs)",
+                   [i](const LawRun& r) { return r.joints[i].deformation_m; }});
   }
   if (!compliant.shear_keys) return out;
   // The keys of one abutment: the largest of `of` over them, or the earliest break.
@@ -132,8 +173,9 @@ LawRun RunUnderLaw(const model::Model& model,
                           std::isnan(broke) ? std::numeric_limits<double>::infinity() : broke});
       continue;
     }
-    if (out.walls.empty() || out.walls.back().wall != wall) out.walls.push_back({wall, 0.0, 0.0});
-    WallMaxima& m = out.walls.back();
+    std::vector<WallMaxima>& group = wall[0] == 'J' ? out.joints : out.walls;
+    if (group.empty() || group.back().wall != wall) group.push_back({wall, 0.0, 0.0});
+    WallMaxima& m = group.back();
     m.spring_force_N = std::max(m.spring_force_N, r.max_spring_force_N(i));
     m.deformation_m = std::max(m.deformation_m, r.max_spring_deformation_m(i));
   }

@@ -20,13 +20,17 @@
 
 namespace skewbridge::dynamics {
 
-/// The springs of `spec` on the single deck of `rigid` (built with its corner contacts P1, P2
-/// against the +x wall and, with both abutments, P3, P4 against -x): per wall
-/// WallSprings(rigid, first, last, WallBackfill(spec.backfill, deck), spec.springs, "+x" / "-x"),
-/// the wall's law from the deck's geometry (its length and skew angle); every spring with the
-/// wall's friction spec.wall_friction and an n-th of its stick stiffness (0: the spring's K_max).
-/// Then, with spec.shear_keys, per abutment AbutmentShearKeys(rigid, first, last, key, "+x" /
-/// "-x"). The order: the +x wall's springs, the -x wall's, the +x keys (+y, -y), the -x keys.
+/// The springs of `spec` on the decks of `rigid` (a single deck built with its corner contacts
+/// P1, P2 against the +x wall and, with both abutments, P3, P4 against -x; a row of decks with the
+/// last deck's D<i>.P1, D<i>.P2 and deck 0's D0.P3, D0.P4): per wall WallSprings(rigid, first,
+/// last, WallBackfill(spec.backfill, deck), spec.springs, "+x" / "-x"), the wall's law from its
+/// deck's geometry (its length and skew angle); every spring with the wall's friction
+/// spec.wall_friction and an n-th of its stick stiffness (0: the spring's K_max). Then, with
+/// spec.shear_keys, per abutment AbutmentShearKeys(rigid, first, last, key, "+x" / "-x"). Then
+/// per deck-deck joint i (spec.joints) on its two contacts, WallSprings with the joint's backfill
+/// on the striking deck's end or SpringDashpots, named "J<i>". The order: the +x wall's springs,
+/// the -x wall's, the +x keys (+y, -y), the -x keys, the joints.
+/// @pre spec.joints has one law per joint of `rigid`.
 /// @throws InputError naming the model's source when the wall's law or the key is invalid.
 std::vector<CompliantSpring> AbutmentSprings(const model::Model& rigid,
                                              const model::CompliantAbutments& spec);
@@ -49,8 +53,11 @@ struct KeyMaxima {
 
 /// A run of a model under the joint law its model file gives.
 struct LawRun {
-  RunResult run;                    ///< the run (for a compliant one, CompliantRunResult::run)
-  std::vector<WallMaxima> walls;    ///< per compliant wall (backfill springs only), +x then -x
+  RunResult run;                  ///< the run (for a compliant one, CompliantRunResult::run)
+  std::vector<WallMaxima> walls;  ///< per compliant wall (backfill springs only), +x then -x
+  /// per compliant deck-deck joint (named "J0", "J1", ...): its springs' largest force and
+  /// deformation; empty for a single deck
+  std::vector<WallMaxima> joints;
   std::vector<KeyMaxima> keys;      ///< per shear key, in the springs' order; empty without keys
   double joint_stored_J = 0.0;      ///< compliant: CompliantRunResult::joint_stored_J
   double joint_dissipated_J = 0.0;  ///< compliant: CompliantRunResult::joint_dissipated_J
@@ -66,7 +73,8 @@ struct JointResponse {
 };
 
 /// The responses of the joints of `compliant` (`both`: with the -x abutment), in order: per wall
-/// (+x "_px", then -x "_mx") spring_force and backwall_def; with shear keys, per abutment
+/// (+x "_px", then -x "_mx") spring_force and backwall_def; per deck-deck joint i joint_force_j<i>
+/// and joint_def_j<i>; with shear keys, per abutment
 /// key_force, key_def and key_break_time (the earliest break of its two keys, +inf when neither
 /// broke), then keys_broken (the keys broken over the run).
 std::vector<JointResponse> JointResponses(const model::CompliantAbutments& compliant, bool both);

@@ -70,9 +70,10 @@ class CompliantIntegrator {
 
   bool Failed() const { return result_.status != RunStatus::kOk; }
   // Deformation d = -g (m), its rate d' (m/s) and the gap's gradient w (on the body's 3 DOFs)
-  // of spring j at (q, u).
+  // of spring j at (q, u); with a face on a body, w_face (if not null) takes the gradient on the
+  // face body's 3 DOFs (zero for a ground face).
   void Kinematics(int j, const Eigen::Ref<const Vec>& q, const Eigen::Ref<const Vec>& u, double& d,
-                  double& rate, Eigen::Vector3d& w) const;
+                  double& rate, Eigen::Vector3d& w, Eigen::Vector3d* w_face = nullptr) const;
   // The force of spring j on its current branch, continued past the branch's ends (N).
   double BranchForce(int j, double d, double rate) const;
   // The slope of spring j's unloading-reloading line (N/m): K_ur of a backfill, K_0 of a key.
@@ -86,8 +87,11 @@ class CompliantIntegrator {
   // The coordinate dir . ((x, y) + R(theta) p - A) (m) of spring j's point along a unit
   // direction of its face, its rate (m/s) and gradient w on the body's 3 DOFs: the normal gives
   // the gap, the tangent the position along the wall.
+  // A face on a body turns with it: dir is then in the body's frame, and w_face (if not null)
+  // takes the gradient on the face body's DOFs.
   void Along(int j, const Eigen::Vector2d& dir, const Eigen::Ref<const Vec>& q,
-             const Eigen::Ref<const Vec>& u, double& coord, double& rate, Eigen::Vector3d& w) const;
+             const Eigen::Ref<const Vec>& u, double& coord, double& rate, Eigen::Vector3d& w,
+             Eigen::Vector3d* w_face = nullptr) const;
   // Tangential coordinate s = t . ((x, y) + R(theta) p - A) (m) of spring j along its face, its
   // rate s' (m/s) and gradient w_T.
   void Tangential(int j, const Eigen::Ref<const Vec>& q, const Eigen::Ref<const Vec>& u, double& s,

@@ -26,23 +26,45 @@ std::pair<double, double> CompliantIntegrator::Turn(int b, double theta_rad) con
 
 void CompliantIntegrator::Along(int j, const Eigen::Vector2d& dir, const Eigen::Ref<const Vec>& q,
                                 const Eigen::Ref<const Vec>& u, double& coord, double& rate,
-                                Eigen::Vector3d& w) const {
+                                Eigen::Vector3d& w, Eigen::Vector3d* w_face) const {
   const CompliantSpring& sp = springs_[static_cast<std::size_t>(j)];
   const int b = 3 * sp.body;
   const auto [c, sn] = Turn(sp.body, q[b + 2]);
   const Eigen::Vector2d rp(c * sp.point_m.x() - sn * sp.point_m.y(),
                            sn * sp.point_m.x() + c * sp.point_m.y());
   const Eigen::Vector2d& rest = model_.body(sp.body).rest_position_m;
-  coord = dir.dot(rest + Eigen::Vector2d(q[b], q[b + 1]) + rp - sp.face.point_m);
-  w << dir.x(), dir.y(), dir.x() * -rp.y() + dir.y() * rp.x();
-  rate = w[0] * u[b] + w[1] * u[b + 1] + w[2] * u[b + 2];
+  if (sp.face.body == model::kGround) {
+    coord = dir.dot(rest + Eigen::Vector2d(q[b], q[b + 1]) + rp - sp.face.point_m);
+    w << dir.x(), dir.y(), dir.x() * -rp.y() + dir.y() * rp.x();
+    rate = w[0] * u[b] + w[1] * u[b + 1] + w[2] * u[b + 2];
+    if (w_face != nullptr) w_face->setZero();
+    return;
+  }
+  // A face on body f: its direction and point turn with f, A = X_f + (x_f, y_f) + R_f a; the
+  // coordinate dir_w . (P - A) has the gradient (dir_w, dir_w . J R p) on the point's body and
+  // (-dir_w, -dir_w . J (P - X_f - (x_f, y_f))) on the face's (contact/kinematics.h).
+  const int f = 3 * sp.face.body;
+  const auto [cf, sf] = Turn(sp.face.body, q[f + 2]);
+  const Eigen::Vector2d dir_w(cf * dir.x() - sf * dir.y(), sf * dir.x() + cf * dir.y());
+  const Eigen::Vector2d origin =
+      model_.body(sp.face.body).rest_position_m + Eigen::Vector2d(q[f], q[f + 1]);
+  const Eigen::Vector2d a(cf * sp.face.point_m.x() - sf * sp.face.point_m.y(),
+                          sf * sp.face.point_m.x() + cf * sp.face.point_m.y());
+  const Eigen::Vector2d point = rest + Eigen::Vector2d(q[b], q[b + 1]) + rp;
+  const Eigen::Vector2d arm = point - origin;
+  coord = dir_w.dot(point - origin - a);
+  w << dir_w.x(), dir_w.y(), dir_w.x() * -rp.y() + dir_w.y() * rp.x();
+  Eigen::Vector3d on_face(-dir_w.x(), -dir_w.y(), -(dir_w.x() * -arm.y() + dir_w.y() * arm.x()));
+  rate = w[0] * u[b] + w[1] * u[b + 1] + w[2] * u[b + 2] + on_face[0] * u[f] +
+         on_face[1] * u[f + 1] + on_face[2] * u[f + 2];
+  if (w_face != nullptr) *w_face = on_face;
 }
 
 void CompliantIntegrator::Kinematics(int j, const Eigen::Ref<const Vec>& q,
                                      const Eigen::Ref<const Vec>& u, double& d, double& rate,
-                                     Eigen::Vector3d& w) const {
+                                     Eigen::Vector3d& w, Eigen::Vector3d* w_face) const {
   double gap, gap_rate;
-  Along(j, springs_[static_cast<std::size_t>(j)].face.normal, q, u, gap, gap_rate, w);
+  Along(j, springs_[static_cast<std::size_t>(j)].face.normal, q, u, gap, gap_rate, w, w_face);
   d = -gap;
   rate = -gap_rate;
 }
@@ -275,7 +297,8 @@ bool CompliantIntegrator::Settle(int j, double d, double rate) {
             m.branch = key ? Branch::kKeyRise : Branch::kEnvelope;
           }
         } else {
-          if (!(d > 0.0 && s.k_N_per_m * d + s.c_Ns_per_m * rate > 0.0)) return closed;
+          // At d = 0 a closing dashpot engages with c d' > 0 (the Kelvin-Voigt force jumps there).
+          if (!(d >= 0.0 && s.k_N_per_m * d + s.c_Ns_per_m * rate > 0.0)) return closed;
           m.branch = Branch::kDashpot;
         }
         closed = true;

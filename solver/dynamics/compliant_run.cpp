@@ -61,12 +61,17 @@ CompliantIntegrator::CompliantIntegrator(const model::Model& model,
   }
   for (const CompliantSpring& s : springs) {
     const std::string where = model.source() + ": spring " + s.name;
-    if (s.body < 0 || s.body >= model.n_bodies() || s.face.body != model::kGround ||
-        !s.point_m.allFinite() || !s.face.point_m.allFinite() ||
-        !(std::abs(s.face.normal.norm() - 1.0) <= 1e-12)) {
+    const bool face_ok =
+        s.face.body == model::kGround ||
+        (s.face.body >= 0 && s.face.body < model.n_bodies() && s.face.body != s.body);
+    if (s.body < 0 || s.body >= model.n_bodies() || !face_ok || !s.point_m.allFinite() ||
+        !s.face.point_m.allFinite() || !(std::abs(s.face.normal.norm() - 1.0) <= 1e-12)) {
       throw InputError::AtField(where, "geometry",
-                                "needs a body index, finite points and a unit normal of a ground "
-                                "face");
+                                "needs a body index, finite points and a unit normal of a face on "
+                                "the ground or on another body");
+    }
+    if (s.law == SpringLaw::kShearKey && s.face.body != model::kGround) {
+      throw InputError::AtField(where, "law", "a shear key stands on the ground (an abutment)");
     }
     if (s.law == SpringLaw::kBackfill) {
       joint::ValidateHyperbolicGap(s.backfill, where);
@@ -82,8 +87,9 @@ CompliantIntegrator::CompliantIntegrator(const model::Model& model,
     if (!(s.k_t_N_per_m >= 0.0 && std::isfinite(s.k_t_N_per_m))) {
       throw InputError::AtField(where, "k_t", "stick stiffness must be finite, >= 0 (0: K_max)");
     }
-    if (s.mu > 0.0 && s.law != SpringLaw::kBackfill) {
-      throw InputError::AtField(where, "mu", "wall friction acts on backfill springs only");
+    if (s.mu > 0.0 && (s.law != SpringLaw::kBackfill || s.face.body != model::kGround)) {
+      throw InputError::AtField(where, "mu",
+                                "wall friction acts on the backfill springs of abutments only");
     }
     if (s.mu > 0.0 && !(std::abs(s.face.tangent.norm() - 1.0) <= 1e-12 &&
                         std::abs(s.face.tangent.dot(s.face.normal)) <= 1e-12)) {
@@ -190,14 +196,17 @@ void CompliantIntegrator::Rhs(const ExcitationPiece& piece, double t,
   cu_.noalias() = model_.C() * u;
   const double damping_W = u.dot(cu_);
   double joint_W = 0.0;
-  Eigen::Vector3d w;
+  Eigen::Vector3d w, w_face;
   for (int j = 0; j < ns_; ++j) {
     if (state_[static_cast<std::size_t>(j)].branch == Branch::kOpen) continue;
     double d, rate;
-    Kinematics(j, q, u, d, rate, w);
+    const CompliantSpring& sp = springs_[static_cast<std::size_t>(j)];
+    const bool on_body = sp.face.body != model::kGround;
+    Kinematics(j, q, u, d, rate, w, on_body ? &w_face : nullptr);
     const double f = BranchForce(j, d, rate);
-    const int b = 3 * springs_[static_cast<std::size_t>(j)].body;
-    h_.segment<3>(b) += f * w;
+    h_.segment<3>(3 * sp.body) += f * w;
+    // A joint between bodies pushes the face's body back with the same force.
+    if (on_body) h_.segment<3>(3 * sp.face.body) += f * w_face;
     joint_W += f * rate;
   }
   double friction_W = 0.0;

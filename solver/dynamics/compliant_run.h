@@ -48,16 +48,18 @@ enum class SpringLaw {
   kShearKey,       ///< the shear key's backbone (joint::ShearKey), with memory; breaks at DD
 };
 
-/// A compliant spring between a body-fixed point p of `body` and a ground face: its deformation
-/// is d = -g(q) = -n . ((x, y) + R(theta) p - A), the penetration beyond the face (whose point A
+/// A compliant spring between a body-fixed point p of `body` and a face: its deformation is
+/// d = -g(q) = -n . ((x, y) + R(theta) p - A), the penetration beyond the face (whose point A
 /// carries the joint's gap, as a rigid contact's), and its force F >= 0 pushes the point along the
-/// face's normal n [docs/compliant.md §4].
+/// face's normal n [docs/compliant.md §4]. A face on another body (a deck-deck joint) turns and
+/// moves with it, g as a rigid contact's (contact/kinematics.h), and the spring pushes that body
+/// back with -F at the same point [docs/compliant.md §6].
 struct CompliantSpring {
   std::string name;                                   ///< "+x.1".."+x.n", "-x.1".."-x.n"
   int body = 0;                                       ///< body carrying the point p
   Eigen::Vector2d point_m = Eigen::Vector2d::Zero();  ///< p in the body frame (m)
-  model::Face face;                                   ///< the ground face it pushes on
-  SpringLaw law = SpringLaw::kBackfill;               ///< which force law
+  model::Face face;                      ///< the face it pushes on: the ground's or another body's
+  SpringLaw law = SpringLaw::kBackfill;  ///< which force law
   joint::HyperbolicGap backfill;  ///< kBackfill: the spring's share (gap_m = 0: the face has it)
   double k_N_per_m = 0.0;         ///< kSpringDashpot: stiffness, > 0
   double c_Ns_per_m = 0.0;        ///< kSpringDashpot: dashpot, >= 0
@@ -70,14 +72,21 @@ struct CompliantSpring {
   double k_t_N_per_m = 0.0;
 };
 
-/// The springs of deck `body` of `model` against the face of its rigid contacts `first` and `last`
-/// (a wall's two corners, e.g. P1 and P2): n >= 2 springs at evenly spaced points from corner to
-/// corner, each with an n-th of the wall's K_max, K_ur and F_ult (`wall`; its R_f; its gap ignored,
-/// the face carries it) [docs/compliant.md §4]. Named `prefix`.1 .. `prefix`.n.
-/// @pre both contacts on `body` against one ground face; n >= 2; wall valid.
+/// The springs of a deck of `model` against the face of its rigid contacts `first` and `last`
+/// (a wall's two corners, e.g. P1 and P2, or the two corners of a deck-deck joint against the
+/// neighbour's end face): n >= 2 springs at evenly spaced points from corner to corner, each with
+/// an n-th of the wall's K_max, K_ur and F_ult (`wall`; its R_f; its gap ignored, the face carries
+/// it) [docs/compliant.md §4, §6]. Named `prefix`.1 .. `prefix`.n.
+/// @pre both contacts on one deck against one face (the ground's or another deck's); n >= 2.
 std::vector<CompliantSpring> WallSprings(const model::Model& model, int first, int last,
                                          const joint::HyperbolicGap& wall, int n,
                                          const std::string& prefix);
+
+/// As WallSprings, n >= 2 linear spring-dashpots (SpringLaw::kSpringDashpot) at the same points,
+/// each with an n-th of the joint's stiffness k (N/m, > 0) and dashpot c (N s/m, >= 0).
+std::vector<CompliantSpring> SpringDashpots(const model::Model& model, int first, int last,
+                                            double k_N_per_m, double c_Ns_per_m, int n,
+                                            const std::string& prefix);
 
 /// The two exterior shear keys of the abutment of deck `body` whose rigid contacts are `first` and
 /// `last` (the two corners of one end, e.g. P1 and P2): one key beside each of the deck's sides

@@ -14,8 +14,8 @@ std::vector<CompliantSpring> WallSprings(const model::Model& model, int first, i
                                          const std::string& prefix) {
   const model::Contact& a = model.contact(first);
   const model::Contact& b = model.contact(last);
-  SB_DEMAND(n >= 2 && a.body == b.body && a.face.body == model::kGround,
-            "WallSprings: two corners of one deck against one ground face, n >= 2");
+  SB_DEMAND(n >= 2 && a.body == b.body && a.face.body == b.face.body && a.face.body != a.body,
+            "WallSprings: two corners of one deck against one face, n >= 2");
   joint::HyperbolicGap share = wall;
   share.k_max_N_per_m /= n;
   share.k_ur_N_per_m /= n;
@@ -31,6 +31,21 @@ std::vector<CompliantSpring> WallSprings(const model::Model& model, int first, i
     s.law = SpringLaw::kBackfill;
     s.backfill = share;
     springs.push_back(s);
+  }
+  return springs;
+}
+
+std::vector<CompliantSpring> SpringDashpots(const model::Model& model, int first, int last,
+                                            double k_N_per_m, double c_Ns_per_m, int n,
+                                            const std::string& prefix) {
+  // WallSprings' points, each with an n-th of k and c in place of the backfill.
+  std::vector<CompliantSpring> springs =
+      WallSprings(model, first, last, joint::HyperbolicGap{1.0, 1.0, 1.0, 1.0, 0.0}, n, prefix);
+  for (CompliantSpring& s : springs) {
+    s.law = SpringLaw::kSpringDashpot;
+    s.backfill = {};
+    s.k_N_per_m = k_N_per_m / n;
+    s.c_Ns_per_m = c_Ns_per_m / n;
   }
   return springs;
 }

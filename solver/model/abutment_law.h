@@ -9,6 +9,7 @@
 
 #include <optional>
 #include <string_view>
+#include <vector>
 
 #include "solver/joint/backfill.h"
 #include "solver/joint/shear_key.h"
@@ -56,9 +57,22 @@ struct ShearKeysSpec {
   std::optional<joint::ShearKeyDetails> details;
 };
 
-/// The compliant abutments of a single-deck model file ([abutments] law = "compliant"):
-/// `springs` springs per wall from corner to corner, each with an n-th of the wall's law, and
-/// optionally the two exterior shear keys of each abutment.
+/// One compliant deck-deck joint of a [[deck]] model file ([[joint]] law = "compliant"):
+/// `springs` springs from corner to corner of the narrower deck's end, on the relative
+/// displacement of the two decks' facing edges normal to the skewed joint, each with an n-th of
+/// the joint's law: the hyperbolic backfill-type law or a linear spring-dashpot
+/// [docs/compliant.md §6].
+struct CompliantJoint {
+  bool spring_dashpot = false;  ///< true: k_Npm and c_Nspm; false: `backfill`
+  BackfillSpec backfill;  ///< the joint's hyperbolic law, as a wall's (per metre: of the joint)
+  double k_Npm = 0.0;     ///< spring-dashpot: the joint's stiffness (N/m), > 0
+  double c_Nspm = 0.0;    ///< spring-dashpot: the joint's dashpot (N s/m), >= 0
+  int springs = 5;        ///< springs along the joint, >= 2
+};
+
+/// The compliant joints of a model file ([abutments] law = "compliant"): `springs` springs per
+/// wall from corner to corner, each with an n-th of the wall's law, optionally the two exterior
+/// shear keys of each abutment, and, for a [[deck]] file, each deck-deck joint's law.
 struct CompliantAbutments {
   BackfillSpec backfill;  ///< the law of each wall
   int springs = 5;        ///< springs per wall, >= 2
@@ -67,6 +81,8 @@ struct CompliantAbutments {
   /// The wall's stick stiffness along it (N/m), shared by its springs; 0: the wall's K_max.
   double stick_stiffness_Npm = 0.0;
   std::optional<ShearKeysSpec> shear_keys;  ///< the keys of each abutment; none when empty
+  /// A [[deck]] file: joint i between decks i and i + 1; empty for a single deck.
+  std::vector<CompliantJoint> joints;
 };
 
 /// The length of a wall of `deck` from corner to corner along its skewed end line, W / cos a (m).

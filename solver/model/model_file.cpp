@@ -47,8 +47,9 @@ void RejectOtherKindOfFile(const toml::table& root, std::string_view source) {
 
 // The compliant abutments against what the rest of the file says: the event-driven method (the
 // only integrator of compliant springs) and a wall law that the deck's geometry gives.
-void CheckCompliant(const toml::table& root, const CompliantAbutments& c, const DeckSpec& deck,
-                    const RunControl& run, std::string_view source) {
+void CheckCompliant(const toml::table& root, const CompliantAbutments& c,
+                    const std::vector<DeckGeometry>& walls, const RunControl& run,
+                    std::string_view source) {
   const toml::node* abutments = root.get("abutments");
   if (run.method != Method::kEventDriven) {
     const toml::node* method = root.at_path("run.method").node();
@@ -60,8 +61,32 @@ void CheckCompliant(const toml::table& root, const CompliantAbutments& c, const 
   const long line = backfill != nullptr    ? detail::LineOf(*backfill)
                     : abutments != nullptr ? detail::LineOf(*abutments)
                                            : 0;
-  (void)WallBackfill(c.backfill, deck.geometry,
-                     std::string(source) + ":" + std::to_string(line) + ": abutments.backfill");
+  for (const DeckGeometry& deck : walls) {
+    (void)WallBackfill(c.backfill, deck,
+                       std::string(source) + ":" + std::to_string(line) + ": abutments.backfill");
+  }
+}
+
+// A [[deck]] file's compliant joints: the abutments' walls on the first and the last deck, and
+// each joint's backfill on the narrower deck's end (the one whose corners carry the springs).
+void CheckCompliantDecks(const toml::table& root, const CompliantAbutments& c,
+                         const MultiDeckSpec& decks, const RunControl& run,
+                         std::string_view source) {
+  CheckCompliant(root, c, {decks.decks.front().geometry, decks.decks.back().geometry}, run, source);
+  const toml::array* joints =
+      root.get("joint") != nullptr ? root.get("joint")->as_array() : nullptr;
+  for (std::size_t i = 0; i < c.joints.size(); ++i) {
+    if (c.joints[i].spring_dashpot) continue;
+    const DeckGeometry& left = decks.decks[i].geometry;
+    const DeckGeometry& right = decks.decks[i + 1].geometry;
+    const toml::node* table = joints != nullptr ? joints->get(i) : nullptr;
+    const toml::node* backfill =
+        table != nullptr && table->is_table() ? table->as_table()->get("backfill") : nullptr;
+    const long line = backfill != nullptr ? detail::LineOf(*backfill) : 0;
+    (void)WallBackfill(c.joints[i].backfill, left.width_m <= right.width_m ? left : right,
+                       std::string(source) + ":" + std::to_string(line) + ": joint[" +
+                           std::to_string(i) + "].backfill");
+  }
 }
 
 ModelFile Parse(const toml::table& root, std::string_view source,
@@ -84,7 +109,8 @@ ModelFile Parse(const toml::table& root, std::string_view source,
   };
   if (const toml::node* deck_node = root.get("deck");
       deck_node != nullptr && deck_node->is_array()) {
-    MultiDeckSpec decks = ReadMultiDeck(top, source);
+    std::optional<CompliantAbutments> compliant;
+    MultiDeckSpec decks = ReadMultiDeck(top, source, compliant);
     {
       Section s(required("excitation"), "excitation", source);
       ReadExcitation(s, base_dir, excitation);
@@ -96,7 +122,8 @@ ModelFile Parse(const toml::table& root, std::string_view source,
     top.Finish("sections [[deck]], [[joint]], abutments, [[support]], excitation, run");
     CheckRunLength(excitation, run, source);
     Model model = BuildMultiDeckModel(decks, std::string(source));
-    return ModelFile{path, deck, std::move(model), excitation, run, std::move(decks), std::nullopt};
+    if (compliant) CheckCompliantDecks(root, *compliant, decks, run, source);
+    return ModelFile{path, deck, std::move(model), excitation, run, std::move(decks), compliant};
   }
   {
     Section s(required("deck"), "deck", source);
@@ -129,7 +156,7 @@ ModelFile Parse(const toml::table& root, std::string_view source,
   top.Finish("sections deck, substructure, abutments, excitation, run");
   CheckRunLength(excitation, run, source);
   Model model = BuildDeckModel(deck, std::string(source));
-  if (compliant) CheckCompliant(root, *compliant, deck, run, source);
+  if (compliant) CheckCompliant(root, *compliant, {deck.geometry}, run, source);
   return ModelFile{path, deck, std::move(model), excitation, run, std::nullopt, compliant};
 }
 

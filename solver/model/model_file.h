@@ -68,9 +68,10 @@ struct ModelFile {
   ExcitationSpec excitation;
   RunControl run;
   std::optional<MultiDeckSpec> decks;  ///< the [[deck]] form's description (then `deck` unused)
-  /// [abutments] law = "compliant": the springs that replace the abutments' contacts (`model`
-  /// keeps the contacts, whose faces carry the gaps; its eps_N and mu are unused). Empty for
-  /// law = "impact", the default: `model` is then the whole joint law.
+  /// [abutments] law = "compliant": the springs that replace the abutments' contacts and, in a
+  /// [[deck]] file, the deck-deck joints' (`model` keeps the contacts, whose faces carry the
+  /// gaps; its eps_N and mu are unused). Empty for law = "impact", the default: `model` is then
+  /// the whole joint law.
   std::optional<CompliantAbutments> compliant;
 };
 

@@ -265,13 +265,12 @@ CompliantAbutments ReadCompliant(Section& s) {
 
 }  // namespace
 
+BackfillSpec ReadBackfillTable(Section& b) { return ReadBackfill(b); }
+
 AbutmentParameters ReadAbutments(Section& s, bool multi_deck) {
   AbutmentParameters a;
   s.Expect(multi_deck ? "set, gap_m, law, eps_N, mu (with [[deck]] tables)" : kImpactKeys,
-           multi_deck ? std::vector<std::pair<std::string, std::string>>{}
-                      : std::vector<std::pair<std::string, std::string>>{
-                            {"law = \"compliant\"",
-                             "springs, backfill, stick_stiffness_Npm, shear_keys"}});
+           {{"law = \"compliant\"", "springs, backfill, stick_stiffness_Npm, shear_keys"}});
   const std::optional<std::string> set =
       multi_deck ? s.String("set", {"both"}) : s.String("set", {"+x", "both"});
   if (!set && !multi_deck) {
@@ -300,11 +299,6 @@ AbutmentParameters ReadAbutments(Section& s, bool multi_deck) {
     a.gap_minus_m = gap;
   }
   const bool compliant = s.String("law", {"impact", "compliant"}).value_or("impact") == "compliant";
-  if (compliant && multi_deck) {
-    Fail(s.At("law"), s.Field("law"),
-         "law = \"compliant\" is not supported with [[deck]] tables (the deck-deck joints have "
-         "the impact law only; allowed: \"impact\")");
-  }
   if (compliant) {
     s.Expect(kCompliantKeys, {{"law = \"impact\"", "eps_N, contacts"}});
     a.compliant = ReadCompliant(s);

@@ -63,6 +63,49 @@ void ReadSupport(Section& s, std::size_t n_decks, SupportSpec& support) {
   s.Finish("deck, between, k_x, k_y, k_theta, c_x, c_y, c_theta, xi");
 }
 
+// The keys of a [[joint]] under each law.
+constexpr std::string_view kImpactJointKeys = "gap_m, eps_N, mu, law";
+constexpr std::string_view kCompliantJointKeys = "gap_m, law, springs, backfill, spring_dashpot";
+
+// [[joint]] law = "compliant": the springs along the joint and their law, a backfill table or a
+// linear spring-dashpot table [docs/compliant.md §6].
+CompliantJoint ReadCompliantJoint(Section& s) {
+  CompliantJoint j;
+  if (const std::optional<double> n = s.Number("springs")) {
+    if (*n != std::floor(*n) || *n < 2.0 || *n > 1000.0) {
+      Fail(s.At("springs"), s.Field("springs"),
+           "must be a whole number of springs along the joint from 2 to 1000 (got " + Show(*n) +
+               ")");
+    }
+    j.springs = static_cast<int>(*n);
+  }
+  const toml::table* backfill = s.Table("backfill");
+  const toml::table* dashpot = s.Table("spring_dashpot");
+  if (backfill != nullptr && dashpot != nullptr) {
+    Fail(s.At("spring_dashpot"), s.Field("spring_dashpot"),
+         "give the joint's law once: a table backfill or a table spring_dashpot, not both");
+  }
+  if (backfill == nullptr && dashpot == nullptr) {
+    s.Missing("backfill",
+              "the joint's law with law = \"compliant\": a table [joint.backfill] or "
+              "[joint.spring_dashpot] with k_Npm and c_Nspm");
+  }
+  if (backfill != nullptr) {
+    Section b(*backfill, s.Field("backfill"), s.source());
+    j.backfill = ReadBackfillTable(b);
+    return j;
+  }
+  Section d(*dashpot, s.Field("spring_dashpot"), s.source());
+  d.Expect("k_Npm, c_Nspm");
+  j.spring_dashpot = true;
+  j.k_Npm = d.RequiredNumber("k_Npm", "the joint's stiffness, N/m, shared by its springs");
+  CheckPositive(j.k_Npm, d.Field("k_Npm"), d.At("k_Npm"));
+  j.c_Nspm = d.Number("c_Nspm").value_or(0.0);
+  CheckNonNegative(j.c_Nspm, d.Field("c_Nspm"), d.At("c_Nspm"));
+  d.Finish("k_Npm, c_Nspm");
+  return j;
+}
+
 // The most decks of a [[deck]] file: 600 DOFs, 402 contacts. The integrators hold dense
 // matrices of (2 x DOFs)^2 entries (a dozen of 11.5 MB here); 1000 decks already take half a
 // minute to set up and 3000 do not fit in memory. A bridge of more spans is several models.
@@ -70,7 +113,8 @@ constexpr std::size_t kMaxDecks = 200;
 
 }  // namespace
 
-MultiDeckSpec ReadMultiDeck(Section& top, std::string_view source) {
+MultiDeckSpec ReadMultiDeck(Section& top, std::string_view source,
+                            std::optional<CompliantAbutments>& compliant) {
   MultiDeckSpec spec;
   const std::vector<const toml::table*> decks = ArrayOfTables(top, "deck");
   if (decks.empty()) {
@@ -102,28 +146,35 @@ MultiDeckSpec ReadMultiDeck(Section& top, std::string_view source) {
              " [[deck]] tables, one after each deck but the last (got " +
              std::to_string(joints.size()) + ")");
   }
+  // Each joint's law: its compliant law, or empty for the impact law; the line of its law key.
+  std::vector<std::optional<CompliantJoint>> laws;
+  std::vector<Where> law_at;
   for (std::size_t i = 0; i < joints.size(); ++i) {
     Section s(*joints[i], Indexed("joint", i), source);
-    s.Expect("gap_m, eps_N, mu, law");
-    // A deck-deck joint strikes a body, not the ground: the compliant springs push on ground
-    // faces only (solver/dynamics/compliant_run.h).
-    if (s.String("law", {"impact", "compliant"}).value_or("impact") == "compliant") {
-      Fail(s.At("law"), s.Field("law"),
-           "law = \"compliant\" is not supported on a deck-deck joint (allowed: \"impact\")");
-    }
+    const bool compliant =
+        s.String("law", {"impact", "compliant"}).value_or("impact") == "compliant";
+    s.Expect(compliant ? kCompliantJointKeys : kImpactJointKeys,
+             {{compliant ? "law = \"impact\"" : "law = \"compliant\"",
+               compliant ? "eps_N, mu" : "springs, backfill, spring_dashpot"}});
     JointSpec j;
     j.gap_m = s.RequiredNumber("gap_m", "joint gap along x, m");
     CheckNonNegative(j.gap_m, s.Field("gap_m"), s.At("gap_m"));
-    j.restitution = s.Number("eps_N").value_or(0.5);
-    CheckRange(j.restitution, 0.0, 1.0, false, s.Field("eps_N"), s.At("eps_N"));
-    j.friction = s.Number("mu").value_or(0.0);
-    CheckNonNegative(j.friction, s.Field("mu"), s.At("mu"));
+    if (compliant) {
+      laws.push_back(ReadCompliantJoint(s));
+    } else {
+      j.restitution = s.Number("eps_N").value_or(0.5);
+      CheckRange(j.restitution, 0.0, 1.0, false, s.Field("eps_N"), s.At("eps_N"));
+      j.friction = s.Number("mu").value_or(0.0);
+      CheckNonNegative(j.friction, s.Field("mu"), s.At("mu"));
+      laws.emplace_back();
+    }
+    law_at.push_back(s.At("law"));
     if (spec.decks[i].geometry.skew_rad != spec.decks[i + 1].geometry.skew_rad) {
       Fail(s.At("gap_m"), s.Field("gap_m"),
            "decks " + std::to_string(i) + " and " + std::to_string(i + 1) +
                " must have the same skew_deg (their end faces are parallel)");
     }
-    s.Finish("gap_m, eps_N, mu, law");
+    s.Finish(compliant ? kCompliantJointKeys : kImpactJointKeys);
     spec.joints.push_back(j);
   }
   const toml::table* abutments = top.Table("abutments");
@@ -137,6 +188,23 @@ MultiDeckSpec ReadMultiDeck(Section& top, std::string_view source) {
     spec.gap_minus_m = a.gap_minus_m;
     spec.restitution = a.restitution;
     spec.friction = a.friction;
+    compliant = a.compliant;
+    // A compliant run has no rigid contact: the abutments and every joint share the law's kind.
+    for (std::size_t i = 0; i < laws.size(); ++i) {
+      if (compliant && !laws[i]) {
+        Fail(law_at[i], Indexed("joint", i) + ".law",
+             "must be \"compliant\" with [abutments] law = \"compliant\" (a compliant run has "
+             "no rigid contact; allowed: \"compliant\")");
+      }
+      if (!compliant && laws[i]) {
+        Fail(law_at[i], Indexed("joint", i) + ".law",
+             "law = \"compliant\" on a deck-deck joint needs [abutments] law = \"compliant\" "
+             "too (a compliant run has no rigid contact; allowed here: \"impact\")");
+      }
+    }
+    if (compliant) {
+      for (const std::optional<CompliantJoint>& law : laws) compliant->joints.push_back(*law);
+    }
   }
   const std::vector<const toml::table*> supports = ArrayOfTables(top, "support");
   for (std::size_t i = 0; i < supports.size(); ++i) {

@@ -40,15 +40,21 @@ struct AbutmentParameters {
 
 /// The one [abutments] reader. A single deck names its set ("+x" or "both") and may override
 /// contacts P1..P4; a row of [[deck]] tables always has both abutments (set may say "both") and
-/// no per-contact table (its contacts are named by deck and corner), and the impact law only.
-/// law = "compliant" (a single deck) reads [abutments.backfill] and `springs` instead of eps_N,
-/// mu and the contacts (ReadCompliant).
+/// no per-contact table (its contacts are named by deck and corner). law = "compliant" reads
+/// [abutments.backfill] and `springs` instead of eps_N, mu and the contacts (ReadCompliant).
 AbutmentParameters ReadAbutments(Section& s, bool multi_deck);
+
+/// A backfill table ([abutments.backfill] or a joint's [joint.backfill]) in one of its three
+/// forms [docs/compliant.md §1].
+BackfillSpec ReadBackfillTable(Section& b);
 
 // [[deck]], [[joint]] and [[support]] (model_file_multi_deck.cpp).
 
 /// The [[deck]] form: decks in a row along x, joints between consecutive decks, supports.
-MultiDeckSpec ReadMultiDeck(Section& top, std::string_view source);
+/// `compliant` takes the compliant law of the abutments and of every joint (law = "compliant" on
+/// both, or neither: a compliant run has no rigid contact); empty for the impact law.
+MultiDeckSpec ReadMultiDeck(Section& top, std::string_view source,
+                            std::optional<CompliantAbutments>& compliant);
 
 // [excitation] and [run] (model_file_excitation.cpp).
 

@@ -193,6 +193,43 @@ for model in ("wall", "wall-kt"):
             assert r[n][cell] == v, (model, cell, n, r[n][cell], v)
 PY
 
+# A row of decks with compliant joints (docs/examples/three-span-compliant.toml): a 2-rank sweep
+# over mu (the backwalls' friction) equals `skewbridge run` of the file with that mu written in, bit
+# for bit, the joints' responses (joint_force_j0, ...) among them.
+cp "$src/docs/examples/three-span-compliant.toml" "$work/"
+sed 's/^law = "compliant"$/&\nmu = 0.3/' "$work/three-span-compliant.toml" |
+  awk '/^\[abutments\]/ { a = 1 } a || !/^mu = 0.3$/' >"$work/span-mu.toml"
+[ "$(grep -c '^mu = 0.3' "$work/span-mu.toml")" -eq 1 ] || fail "span-mu.toml: $(cat "$work/span-mu.toml")"
+for model in three-span-compliant span-mu; do
+  "$exe" run "$work/$model.toml" --out "$work/$model.h5" >"$work/$model.out" 2>&1 ||
+    fail "run $model.toml: exit $? ($(cat "$work/$model.out"))"
+done
+grep -q "deck-deck joint J1: largest spring force" "$work/three-span-compliant.out" ||
+  fail "no joint line: $(cat "$work/three-span-compliant.out")"
+printf '[sweep]\nname = "mu"\nfamily = "model-file"\nmodel = "three-span-compliant.toml"\n[axes]\nmu = [0.0, 0.3]\n' \
+  >"$work/span-spec.toml"
+on_ranks 2 "$exe" sweep "$work/span-spec.toml" --out "$work/span-cube.h5" --quiet \
+  >"$work/sweep.out" 2>&1 || fail "sweep over three-span-compliant.toml: exit $? ($(cat "$work/sweep.out"))"
+/usr/bin/python3 - "$work" <<'PY' || fail "a row of compliant decks: the sweep against run (above)"
+import sys, h5py
+work = sys.argv[1]
+r = h5py.File(f"{work}/span-cube.h5", "r")["sweeps/mu/responses"]
+for cell, name in ((0, "three-span-compliant"), (1, "span-mu")):
+    f = h5py.File(f"{work}/{name}.h5", "r")
+    s, j = f["summary"], f["joints"]
+    names = [n.decode() if isinstance(n, bytes) else n for n in j.attrs["response_names"]]
+    assert names[4:] == ["joint_force_j0", "joint_def_j0", "joint_force_j1", "joint_def_j1"], names
+    for n in names:
+        assert r[n][cell] == j.attrs[n], (cell, n, r[n][cell], j.attrs[n])
+    assert j.attrs["joint_force_j0"] > 0 and j.attrs["joint_force_j1"] > 0, dict(j.attrs)
+    for d in range(3):
+        for i, q in enumerate(("x", "y", "theta")):
+            assert r[f"{q}_m_d{d}"][cell] == s["max_abs_q"][3 * d + i], (cell, q, d)
+            assert r[f"{q}_end_d{d}"][cell] == s["q_end"][3 * d + i], (cell, q, d)
+    assert r["impacts"][cell] == s.attrs["impacts"], cell
+assert r["x_end_d0"][0] != r["x_end_d0"][1], "mu changed nothing"
+PY
+
 # eps_N means nothing to the springs: one line, status 2, no cube.
 printf 'eps_N = [0.3, 0.6]\n' >>"$work/spec.toml"
 status=0

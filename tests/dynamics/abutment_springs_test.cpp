@@ -522,15 +522,70 @@ TEST(AbutmentSprings, BadShearKeysAreRefusedInOneLineNamingFileLineAndKey) {
           "\"impact\")");
 }
 
-TEST(AbutmentSprings, DeckDeckJointsAndMultiDeckAbutmentsRefuseTheCompliantLaw) {
-  // The springs push on ground faces only: a deck-deck joint, and so a row of decks, keeps the
-  // impact law, and says so in one line.
-  const std::string text = ReadText(Examples() + "/three-span.toml");
-  const auto refusal = [&](const std::string& after, const std::string& expected) {
+TEST(AbutmentSprings, TheRowOfDecksRunIsSimulateCompliantWithJointSpringsBuiltByHand) {
+  // docs/examples/three-span-compliant.toml: the walls on deck[2]'s +x end and deck[0]'s -x end,
+  // joint[0] a spring-dashpot and joint[1] the per-metre hyperbolic law, each on deck[i]'s P1, P2
+  // against deck[i + 1]'s end face (equal widths: the left deck's corners).
+  const model::ModelFile file = model::ParseModelFile(Examples() + "/three-span-compliant.toml");
+  ASSERT_TRUE(file.compliant.has_value());
+  ASSERT_EQ(file.compliant->joints.size(), 2u);
+  const model::Model& rigid = file.model;
+  ASSERT_EQ(rigid.contact(6).name, "D2.P1");
+  ASSERT_EQ(rigid.contact(0).name, "D0.P3");
+  ASSERT_EQ(rigid.contact(2).name, "D0.P1/D1");
+  ASSERT_EQ(rigid.contact(5).name, "D1.P2/D2");
+  const double wall_m = 12.0 / std::cos(30.0 * kPi / 180.0);
+  const joint::HyperbolicGap wall{20.3e6 * wall_m, 20.3e6 * wall_m, 0.7, 326e3 * wall_m, 0.0};
+  std::vector<CompliantSpring> springs = WallSprings(rigid, 6, 7, wall, 5, "+x");
+  for (const std::vector<CompliantSpring>& more :
+       {WallSprings(rigid, 0, 1, wall, 5, "-x"), SpringDashpots(rigid, 2, 3, 1.0e9, 7.4e6, 5, "J0"),
+        WallSprings(rigid, 4, 5, wall, 5, "J1")}) {
+    springs.insert(springs.end(), more.begin(), more.end());
+  }
+  const records::PulseExcitation ex(records::PulseShape::kCosine, 0.4 * 9.80665, 2.0 * kPi / 0.6,
+                                    Eigen::Vector2d::UnitX());
+  model::RunControl control = file.run;
+  control.output_interval_s = 0.0;
+  const LawRun via_file = RunUnderLaw(rigid, file.compliant, ex, control);
+  const CompliantRunResult direct = SimulateCompliant(WithoutContacts(rigid), springs, ex, control);
+  ASSERT_EQ(direct.run.status, RunStatus::kOk) << direct.run.message;
+  ASSERT_EQ(via_file.run.status, RunStatus::kOk) << via_file.run.message;
+  EXPECT_TRUE(via_file.run.max_abs_q == direct.run.max_abs_q);
+  EXPECT_TRUE(via_file.run.q_end == direct.run.q_end);
+  EXPECT_EQ(via_file.run.impacts, direct.run.impacts);
+  ASSERT_EQ(via_file.walls.size(), 2u);
+  ASSERT_EQ(via_file.joints.size(), 2u);
+  EXPECT_EQ(via_file.joints[0].wall, "J0");
+  for (int g = 0; g < 4; ++g) {
+    const WallMaxima& m = g < 2 ? via_file.walls[g] : via_file.joints[g - 2];
+    double force = 0.0, deformation = 0.0;
+    for (int j = 5 * g; j < 5 * g + 5; ++j) {
+      force = std::max(force, direct.max_spring_force_N(j));
+      deformation = std::max(deformation, direct.max_spring_deformation_m(j));
+    }
+    EXPECT_EQ(m.spring_force_N, force) << m.wall;
+    EXPECT_EQ(m.deformation_m, deformation) << m.wall;
+    EXPECT_GT(force, 1e5) << m.wall << ": the pulse closes every joint and wall";
+  }
+  // The responses a cube and a run file store: per joint its largest force and deformation.
+  const std::vector<JointResponse> responses = JointResponses(*file.compliant, true);
+  ASSERT_EQ(responses.size(), 8u);
+  EXPECT_EQ(responses[4].name, "joint_force_j0");
+  EXPECT_EQ(responses[7].name, "joint_def_j1");
+  EXPECT_EQ(responses[7].value(via_file), via_file.joints[1].deformation_m);
+  EXPECT_LT(std::abs(direct.run.energy.balance_error_J), 1e-6 * direct.run.energy.input_J);
+}
+
+TEST(AbutmentSprings, ARowOfDecksTakesOneKindOfLawForEveryJoint) {
+  // A compliant run has no rigid contact: compliant joints need compliant abutments and the
+  // reverse, each refused in one line naming the joint's law.
+  const std::string text = ReadText(Examples() + "/three-span-compliant.toml");
+  const auto refusal = [&](const std::string& from, const std::string& to,
+                           const std::string& expected) {
     std::string changed = text;
-    const std::size_t at = changed.find(after);
-    ASSERT_NE(at, std::string::npos);
-    changed.insert(at + after.size(), "law = \"compliant\"\n");
+    const std::size_t at = changed.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    changed.replace(at, from.size(), to);
     try {
       model::ParseModelString(changed, "three-span.toml", Examples());
       ADD_FAILURE() << "accepted";
@@ -539,16 +594,42 @@ TEST(AbutmentSprings, DeckDeckJointsAndMultiDeckAbutmentsRefuseTheCompliantLaw) 
       EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
     }
   };
-  refusal("between deck[0] and deck[1]\n",
-          "three-span.toml:26: joint[0].law: law = \"compliant\" is not supported on a deck-deck "
-          "joint (allowed: \"impact\")");
-  refusal("deck[2]'s +x end\n",
-          "three-span.toml:36: abutments.law: law = \"compliant\" is not supported with [[deck]] "
-          "tables");
-  // law = "impact" is the default, accepted where written.
-  std::string impact = text;
-  impact.insert(impact.find("deck[2]'s +x end\n") + 17, "law = \"impact\"\n");
-  EXPECT_FALSE(model::ParseModelString(impact, "three-span.toml", Examples()).compliant);
+  const std::string joint1 = "gap_m = 0.04\nlaw = \"compliant\"\n\n[joint.backfill]";
+  const std::string joint1_backfill =
+      "form = \"hyperbolic-gap\"\nk_max_Npm_per_m = 20.3e6    # N/m per m of joint\nr_f = 0.7\n"
+      "f_ult_N_per_m = 326e3       # N per m of joint\n";
+  // joint[1] back to the impact law, the abutments compliant.
+  std::string impact_joint = text;
+  impact_joint.replace(impact_joint.find(joint1), joint1.size(),
+                       "gap_m = 0.04\nlaw = \"impact\"\n");
+  impact_joint.erase(impact_joint.find(joint1_backfill), joint1_backfill.size());
+  try {
+    model::ParseModelString(impact_joint, "three-span.toml", Examples());
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(
+                  "three-span.toml:38: joint[1].law: must be \"compliant\" with [abutments] law = "
+                  "\"compliant\""),
+              std::string::npos)
+        << e.what();
+  }
+  // The abutments back to the impact law, the joints compliant.
+  const std::string abutments =
+      "gap_m = 0.05\nlaw = \"compliant\"\nsprings = 5\n\n[abutments.backfill]\nform = "
+      "\"hyperbolic-gap\"\nk_max_Npm_per_m = 20.3e6\nr_f = 0.7\nf_ult_N_per_m = 326e3\n";
+  refusal(abutments, "gap_m = 0.05\n",
+          "three-span.toml:29: joint[0].law: law = \"compliant\" on a deck-deck joint needs "
+          "[abutments] law = \"compliant\" too");
+  // A joint's law once: a backfill or a spring-dashpot; eps_N belongs to the impact law.
+  refusal("c_Nspm = 7.4e6       # N s/m\n",
+          "c_Nspm = 7.4e6\n\n[joint.backfill]\nform = \"hyperbolic-gap\"\nk_max_Npm = 1e9\nr_f = "
+          "0.7\nf_ult_N = 1e6\n",
+          "three-span.toml:32: joint[0].spring_dashpot: give the joint's law once");
+  refusal(
+      "springs = 5\n\n[joint.spring_dashpot]", "springs = 5\neps_N = 0.5\n\n[joint.spring_dashpot]",
+      "three-span.toml:31: joint[0].eps_N: unknown key (allowed: gap_m, law, springs, backfill, "
+      "spring_dashpot); it is a key of law = \"impact\"");
+  refusal("k_Npm = 1.0e9", "k_Npm = -1.0e9", "joint[0].spring_dashpot.k_Npm: must be > 0");
 }
 
 }  // namespace
