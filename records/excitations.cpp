@@ -1,5 +1,6 @@
 #include "records/excitations.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -71,6 +72,24 @@ SampledExcitation::SampledExcitation(double dt_s, std::vector<double> ax_mps2,
 }
 
 double SampledExcitation::Duration() const { return dt_s_ * static_cast<double>(ax_.size() - 1); }
+
+double SampledExcitation::Peak(double ramp_horizon_s) const {
+  const std::size_t n = ax_.size();
+  if (n < 2) return Excitation::Peak(ramp_horizon_s);
+  // Excitation::Peak visits t = k dt for k = 0 .. n - 2 (each below Duration() = dt (n - 1), so
+  // no rest piece), where PieceAt returns piece k: its operations, and the same max, here.
+  double a_peak = 0.0;
+  for (std::size_t k = 0; k + 1 < n; ++k) {
+    const double t = static_cast<double>(k) * dt_s_;
+    const double t_end = static_cast<double>(k + 1) * dt_s_;
+    const Eigen::Vector2d a_begin = Sample(k);
+    const Eigen::Vector2d slope = (Sample(k + 1) - Sample(k)) / dt_s_;
+    const double begin = a_begin.norm();
+    a_peak = std::max(
+        {a_peak, begin, (a_begin + slope * std::min(t_end - t, ramp_horizon_s)).norm(), begin});
+  }
+  return a_peak;
+}
 
 Eigen::Vector2d SampledExcitation::Sample(std::size_t k) const {
   return {ax_[k], ay_.empty() ? 0.0 : ay_[k]};

@@ -53,6 +53,9 @@ class SampledExcitation final : public Excitation {
 
   ExcitationPiece PieceAt(double t) const override;
   double Duration() const override;
+  /// Excitation::Peak from the samples in order, without PieceAt: piece k of [k dt, (k + 1) dt]
+  /// is the one PieceAt gives at t = k dt (the guard of its floor), so the same bits.
+  double Peak(double ramp_horizon_s) const override;
 
   double dt_s() const { return dt_s_; }
   const std::vector<double>& ax_mps2() const { return ax_; }

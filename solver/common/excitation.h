@@ -46,6 +46,12 @@ class Excitation {
 
   /// Time (s) after which the ground is at rest.
   virtual double Duration() const = 0;
+
+  /// The acceleration scale of a run (m/s^2): over the pieces from t = 0 to Duration(), the
+  /// largest of |a_begin|, |a_begin + slope min(t_end - t_begin, ramp_horizon_s)| and |a_begin|
+  /// plus the harmonic amplitudes' norms. This walks PieceAt; a subclass may give the same bits
+  /// without it.
+  virtual double Peak(double ramp_horizon_s) const;
 };
 
 }  // namespace skewbridge

@@ -35,7 +35,8 @@ struct RunScales {
 };
 
 /// The largest |a_g| of `excitation` over its pieces (m/s^2): each piece's start, its end (an
-/// unbounded ramp taken at most `ramp_horizon_s` far) and start plus harmonic amplitudes.
+/// unbounded ramp taken at most `ramp_horizon_s` far) and start plus harmonic amplitudes:
+/// Excitation::Peak, which a record computes from its samples.
 double ExcitationPeak(const Excitation& excitation, double ramp_horizon_s);
 
 /// The largest translational mass of `model` (kg): the x and y entries of diag(M).

@@ -1,8 +1,17 @@
 // A record as the solver's excitation: the samples are the kinks and the values between them
-// are the linear interpolation of the record read from its file.
+// are the linear interpolation of the record read from its file. Its acceleration scale (Peak,
+// read from the samples) has the bits of the walk over PieceAt that every excitation has, and
+// with an unbounded ramp it is the largest sample's magnitude.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
 #include <filesystem>
+#include <limits>
+#include <random>
+#include <vector>
 
 #include "records/excitations.h"
 #include "records/ground_motion.h"
@@ -34,6 +43,45 @@ TEST(ToExcitation, SplitsTheRecordAlongADirection) {
   EXPECT_NEAR(ex.At(0.1).x(), -1.2, 1e-15);
   EXPECT_NEAR(ex.At(0.1).y(), -1.6, 1e-15);
   EXPECT_THROW(ToExcitation(m, Eigen::Vector2d(1.0, 1.0)), InputError);
+}
+
+TEST(SampledExcitationPeak, IsTheBitsOfTheWalkOverPieceAt) {
+  const GroundMotion record =
+      ReadRecord(std::filesystem::path(SKEWBRIDGE_TEST_DATA_DIR) / "records" / "NIS090.AT2");
+  std::vector<SampledExcitation> cases;
+  cases.push_back(ToExcitation(record));
+  cases.push_back(ToExcitation(record, Eigen::Vector2d(0.6, -0.8)));
+  std::mt19937_64 random(2011);
+  std::normal_distribution<double> normal(0.0, 3.0);
+  // Steps whose multiples round (1/3, 0.1 pi), short and long signals, one and two components.
+  for (const double dt : {0.005, 0.01, 0.02, 1.0 / 3.0, 0.1 * std::acos(-1.0)}) {
+    for (const std::size_t n : {2ul, 3ul, 7ul, 5000ul}) {
+      std::vector<double> ax(n), ay(n);
+      for (std::size_t k = 0; k < n; ++k) {
+        ax[k] = normal(random);
+        ay[k] = normal(random);
+      }
+      cases.emplace_back(dt, ax);
+      cases.emplace_back(dt, ax, ay);
+    }
+  }
+  const double inf = std::numeric_limits<double>::infinity();
+  for (const SampledExcitation& ex : cases) {
+    const double dt = ex.dt_s();
+    for (const double horizon : {0.0, 0.3 * dt, dt, 2.5 * dt, inf}) {
+      const double walk = ex.Excitation::Peak(horizon);
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(ex.Peak(horizon)), std::bit_cast<std::uint64_t>(walk))
+          << "dt " << dt << ", " << ex.ax_mps2().size() << " samples, horizon " << horizon;
+    }
+    // A ramp followed to its end reaches the next sample: the largest sample's magnitude, up to
+    // the rounding of the piece's length (k + 1) dt - k dt, a few ulps of k dt (k < 5000).
+    double largest = 0.0;
+    for (std::size_t k = 0; k < ex.ax_mps2().size(); ++k) {
+      const double y = ex.ay_mps2().empty() ? 0.0 : ex.ay_mps2()[k];
+      largest = std::max(largest, std::hypot(ex.ax_mps2()[k], y));
+    }
+    EXPECT_NEAR(ex.Peak(inf), largest, 1e-11 * largest);
+  }
 }
 
 }  // namespace
