@@ -80,10 +80,17 @@ source "$(dirname "${BASH_SOURCE[0]}")/../../scripts/openmpi.env"
 set +a
 
 # on_ranks N COMMAND...: COMMAND on N MPI ranks through $mpiexec (the test's argument).
+# When a rank exits non-zero, Open MPI's mpiexec ends the others with SIGTERM and waits
+# odls_base_sigkill_timeout (1 s) before each SIGKILL round, about 2 s per refused command.
+# Every rank of a refusal has passed MPI_Finalize (which waits for all ranks) or never started
+# MPI when the first one exits, and a failure past the setup ends the job with MPI_Abort, so
+# the wait protects nothing here: it is 0. A test that signals a sweep to make it checkpoint
+# starts "$mpiexec" itself and keeps the 1 s grace.
 on_ranks() {
   local n=$1
   shift
-  "${mpiexec:?on_ranks: the test has no mpiexec argument}" -n "$n" --oversubscribe "$@"
+  OMPI_MCA_odls_base_sigkill_timeout=0 \
+    "${mpiexec:?on_ranks: the test has no mpiexec argument}" -n "$n" --oversubscribe "$@"
 }
 
 # checkpointed_cells FILE: the finished cells of every sweep in the checkpoint FILE (0 while
