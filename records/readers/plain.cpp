@@ -78,11 +78,7 @@ GroundMotion ParseTimeSeries(const std::vector<Line>& lines, std::string_view so
           fmt::format("time {} is off the uniform grid of dt = {:.6g} s", times[k], dt_in_file));
     }
   }
-  // The mean step carries rounding noise (67.74 s / 13548 = 0.005000000000000001): the time
-  // column never resolves 1e-9 s, so round to that.
-  const double dt_rounded = std::round(dt_in_file * 1e9) / 1e9;
-  const double dt_s =
-      ResolveDt(dt_rounded > 0.0 ? dt_rounded : dt_in_file, options, source, line_of.front());
+  const double dt_s = ResolveDt(RoundedTimeStep(dt_in_file), options, source, line_of.front());
   return MakeMotion(source, Format::kTimeSeries, units, dt_s, std::move(values), line_of.back());
 }
 

@@ -146,9 +146,7 @@ ExcitationSamples ParseExcitationSamples(std::string_view text, std::string_view
                                      "times increasing by one constant step");
       }
     }
-    // The mean step carries rounding noise; a printed time column never resolves 1e-9 s.
-    const double rounded = std::round(step * 1e9) / 1e9;
-    out.dt_s = rounded > 0.0 ? rounded : step;
+    out.dt_s = detail::RoundedTimeStep(step);
     if (dt_s && std::abs(*dt_s - out.dt_s) > 1e-9 * out.dt_s) {
       throw InputError::AtLine(source, second_line,
                                "the time column steps by " + Show(out.dt_s) +

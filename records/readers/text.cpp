@@ -143,6 +143,13 @@ bool IsNumericLine(std::string_view text) {
 
 std::optional<double> TryParseNumber(std::string_view token) { return TryNumber(token); }
 
+double RoundedTimeStep(double step_s) {
+  const double scaled = step_s * 1e9;
+  if (!std::isfinite(scaled)) return step_s;
+  const double rounded = std::round(scaled) / 1e9;
+  return rounded > 0.0 ? rounded : step_s;
+}
+
 double ParseNumber(std::string_view token, std::string_view source, long line) {
   if (const std::optional<double> value = TryNumber(token)) return *value;
   std::string lowered;

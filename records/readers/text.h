@@ -41,6 +41,11 @@ bool IsNumericLine(std::string_view text);
 /// their own message.
 std::optional<double> TryParseNumber(std::string_view token);
 
+/// The mean step of a time column [s] rounded to 1e-9 s, which no printed time column resolves
+/// (67.74 s / 13548 = 0.005000000000000001 -> 0.005); the step itself where it rounds to zero or
+/// is too large for the product with 1e9 to be finite.
+double RoundedTimeStep(double step_s);
+
 /// Parses one token as a finite number: optional sign, digits with optional '.', optional
 /// exponent introduced by E, e, D or d.
 /// @throws InputError "SOURCE:LINE: ..." for a non-numeric token, NaN, infinity or overflow.

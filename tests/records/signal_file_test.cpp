@@ -56,6 +56,13 @@ TEST(ExcitationSamples, AcceptsATimeColumnRoundedToItsPrintedDigits) {
   EXPECT_NEAR(s.dt_s, 1.0 / 3.0, 1e-9);
 }
 
+TEST(ExcitationSamples, KeepsAStepTooLargeToRoundToTheNanosecond) {
+  // 1e300 s times 1e9 overflows: the step is the file's own, finite, not the rounding's inf.
+  const ExcitationSamples s = ParseExcitationSamples("0.00 0.0\n0.01e302 0\n", "a", {}, 1e300);
+  EXPECT_EQ(s.dt_s, 1e300);
+  EXPECT_EQ(s.values_mps2, (std::vector<double>{0.0, 0.0}));
+}
+
 TEST(ExcitationSamples, RefusesEachMalformedLineWhereItStands) {
   EXPECT_EQ(Message("0 0\n0.01 0.1 7\n", {}),
             "sig.txt:2: 3 columns where the first data line (line 1) has 2 (time in s, "
