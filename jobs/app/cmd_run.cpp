@@ -409,12 +409,11 @@ void Execute(const RunInput& in, const RunOptions& o) {
   std::printf("  impacts %ld, plastic closures %ld, detachments %ld, stick %ld, slip %ld\n",
               r.impacts, r.plastic_closures, r.detachments, r.stick_transitions,
               r.slip_transitions);
-  std::printf(
-      "  steps: exact %ld, Runge-Kutta %ld (+%ld rejected); smallest impact separation %s\n",
-      r.free_steps, r.rk_steps, r.rk_rejected,
-      in.compliant    ? "not tracked (compliant springs)"
-      : r.impacts < 2 ? "none (fewer than two impacts)"
-                      : (Number("%.3e", r.min_impact_separation_s) + " s").c_str());
+  std::printf("  steps: exact %ld, Runge-Kutta %ld (+%ld rejected); smallest %s separation %s\n",
+              r.free_steps, r.rk_steps, r.rk_rejected, in.compliant ? "strike" : "impact",
+              r.impacts < 2 ? (in.compliant ? "none (fewer than two strikes)"
+                                            : "none (fewer than two impacts)")
+                            : (Number("%.3e", r.min_impact_separation_s) + " s").c_str());
   const dynamics::EnergyLedger& e = r.energy;
   std::printf(
       "  energy (J): input %s, damping %s, impacts %s, friction %s, now %s, balance error %s\n",

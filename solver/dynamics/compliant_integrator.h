@@ -113,7 +113,8 @@ class CompliantIntegrator {
   // The transitions of spring j at (d, d') until its event functions are positive or it cannot
   // leave its branch; returns true when it closed from open (a strike's start).
   bool Settle(int j, double d, double rate);
-  // Settles every spring at the state y; counts a strike when one closes with none engaged.
+  // Settles every spring at the state y; counts a strike when one closes with none engaged, and
+  // keeps the smallest time between the starts of two successive strikes.
   void SettleAll(const Eigen::Ref<const Vec>& y);
   // Whether every spring is open and off its closing point (the free flow applies).
   bool AllFree(const Eigen::Ref<const Vec>& y) const;
@@ -166,6 +167,7 @@ class CompliantIntegrator {
   DormandPrince45 rk_;
   CompliantRunResult out_;
   RunResult& result_;
+  double last_strike_t_s_ = -kInf;  // the start of the last strike (s); -inf before the first
   CornerTravelTracker travel_;
 };
 

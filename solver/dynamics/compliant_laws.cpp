@@ -363,7 +363,12 @@ void CompliantIntegrator::SettleAll(const Eigen::Ref<const Vec>& y) {
     strike = Settle(j, d, rate) || strike;
   }
   for (int f = 0; f < static_cast<int>(friction_.size()); ++f) SettleFriction(f, y);
-  if (strike && !engaged) ++result_.impacts;
+  if (strike && !engaged) {
+    ++result_.impacts;
+    result_.min_impact_separation_s =
+        std::min(result_.min_impact_separation_s, t_ - last_strike_t_s_);
+    last_strike_t_s_ = t_;
+  }
 }
 
 bool CompliantIntegrator::AllFree(const Eigen::Ref<const Vec>& y) const {

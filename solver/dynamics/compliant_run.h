@@ -107,7 +107,9 @@ model::Model WithoutContacts(const model::Model& model);
 struct CompliantRunResult {
   /// The run: status, maxima, corner travels, counts, the ledger (its balance_error_J includes the
   /// springs' terms below; impact_J is 0, friction_J the wall friction's dissipation). `impacts`
-  /// counts strikes: instants at which a spring closes while none is engaged.
+  /// counts strikes: instants at which a spring closes while none is engaged;
+  /// min_impact_separation_s is the smallest time between the starts of two successive strikes
+  /// (+inf with fewer than two).
   RunResult run;
   Eigen::VectorXd max_spring_force_N;        ///< per spring, largest force (N), at step ends
   Eigen::VectorXd max_spring_deformation_m;  ///< per spring, largest deformation beyond its face

@@ -3,8 +3,9 @@
 # docs/examples/pilot-bridge-compliant.toml) through `skewbridge run --out` and through a model-file
 # sweep on 2 ranks (axis scale = [1, 1.5]) give the same numbers, bit for bit, as the C++ API
 # called directly with springs built by hand (compliant_direct: SimulateCompliant, WallSprings):
-# the deck's maxima and residuals, the strikes, the corner travel, each wall's largest spring
-# force and deformation (the cube's spring_force_px, backwall_def_px, ..._mx). The cube's
+# the deck's maxima and residuals, the strikes and the smallest time between them, the corner
+# travel, each wall's largest spring force and deformation (the cube's spring_force_px,
+# backwall_def_px, ..._mx). The cube's
 # responses of a rigid file hold none of the compliant ones; `run --from-cube` re-runs a compliant
 # cell with its springs. With shear keys (pilot-bridge-compliant-keys.toml) the run file's group
 # `joints`, the cube and a cell run again from it hold the same joint responses, the keys' break
@@ -50,12 +51,17 @@ for i, n in enumerate(("x", "y", "theta")):
     assert run["max_abs_q"][i] == d1[n + "_m"], (n, run["max_abs_q"][i], d1[n + "_m"])
     assert run["q_end"][i] == d1[n + "_end"], (n, run["q_end"][i], d1[n + "_end"])
 assert run.attrs["impacts"] == d1["impacts"], (run.attrs["impacts"], d1["impacts"])
+# The smallest time between the starts of successive strikes: finite with two or more strikes.
+assert d1["impacts"] >= 2 and 0 < d1["min_impact_separation"] < float("inf"), d1
+assert run.attrs["min_impact_separation_s"] == d1["min_impact_separation"], run.attrs["min_impact_separation_s"]
 text = open(f"{work}/run.out").read()
 for wall, side in (("+x", "px"), ("-x", "mx")):
     m = re.search(re.escape(wall) + r" wall: largest spring force (\S+) N, largest deformation (\S+) m$", text, re.M)
     assert m, text
     assert abs(float(m.group(1)) - d1["spring_force_" + side]) <= 1e-6 * d1["spring_force_" + side], m.group(1)
     assert abs(float(m.group(2)) - d1["backwall_def_" + side]) <= 1e-6 * d1["backwall_def_" + side], m.group(2)
+m = re.search(r"smallest strike separation (\S+) s$", text, re.M)
+assert m and abs(float(m.group(1)) - d1["min_impact_separation"]) <= 1e-3 * d1["min_impact_separation"], text
 g = h5py.File(f"{work}/cube.h5", "r")["sweeps/compliant"]
 assert list(g["status"][()]) == [0, 0], g["status"][()]
 r = g["responses"]
@@ -64,6 +70,7 @@ for cell, d in ((0, d1), (1, d15)):
         assert r[n + "_m_d0"][cell] == d[n + "_m"], (cell, n, r[n + "_m_d0"][cell], d[n + "_m"])
         assert r[n + "_end_d0"][cell] == d[n + "_end"], (cell, n)
     assert r["impacts"][cell] == d["impacts"], (cell, r["impacts"][cell], d["impacts"])
+    assert r["min_impact_separation"][cell] == d["min_impact_separation"], (cell, r["min_impact_separation"][cell])
     assert r["travel_m_d0"][cell] == d["travel_m"], (cell, r["travel_m_d0"][cell], d["travel_m"])
     for k in ("spring_force_px", "backwall_def_px", "spring_force_mx", "backwall_def_mx"):
         assert r[k][cell] == d[k], (cell, k, r[k][cell], d[k])
@@ -83,6 +90,7 @@ s = h5py.File(f"{work}/rerun.h5", "r")["summary"]
 for i, n in enumerate(("x", "y", "theta")):
     assert s["max_abs_q"][i] == d[n + "_m"], (n, s["max_abs_q"][i], d[n + "_m"])
 assert s.attrs["impacts"] == d["impacts"], (s.attrs["impacts"], d["impacts"])
+assert s.attrs["min_impact_separation_s"] == d["min_impact_separation"], s.attrs["min_impact_separation_s"]
 PY
 
 # Shear keys (docs/examples/pilot-bridge-compliant-keys.toml with weaker keys the signal breaks:

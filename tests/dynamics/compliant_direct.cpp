@@ -50,6 +50,7 @@ int main(int argc, char** argv) {
                 r.run.q_end(i));
   }
   std::printf("impacts %ld\ntravel_m %.17g\n", r.run.impacts, r.run.max_travel_m(0));
+  std::printf("min_impact_separation %.17g\n", r.run.min_impact_separation_s);
   for (int w = 0; w < 2; ++w) {
     double force = 0.0, deformation = 0.0;
     for (int j = 5 * w; j < 5 * w + 5; ++j) {

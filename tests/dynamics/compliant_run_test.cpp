@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numbers>
 #include <vector>
 
@@ -328,6 +329,56 @@ TEST(CompliantRun, AFullEdgeStrikeOfStiffSpringsTurnsTheDeckBelowEta0OfOneToo) {
               spin[0], spin[1], r_rigid.u_end[2] * spec.geometry.length_m / v0);
   EXPECT_GT(std::abs(spin[0]), 0.1);
   EXPECT_NEAR(spin[1], spin[0], 1e-3 * std::abs(spin[0]));
+}
+
+TEST(CompliantRun, StrikeSeparationIsTheClosedFormBetweenTwoWalls) {
+  // A free deck with square ends (a = 0, no substructure, no damping) between two walls of
+  // linear spring-dashpots at the gap g, set off at v0 along x: it strikes +x at t1 = g / v0,
+  // leaves with e v0 after the closed-form contact time t_c (docs/compliant.md §3), parting at the
+  // deformation d_p = c e v0 / k beyond the face, flies 2 g + d_p to the -x wall and strikes it at
+  // t2 = t1 + t_c + (2 g + d_p) / (e v0); the third strike comes after t_c + (2 g + e d_p) /
+  // (e^2 v0), later still. min_impact_separation of a compliant run is the smallest time between
+  // the starts of successive strikes: t2 - t1. With one strike it is inf, as a rigid run's.
+  const double m = 1.0e6, k = 4.0e8, zeta = 0.2, g = 0.05, v0 = 0.5;
+  model::DeckSpec spec;
+  spec.mass_kg = m;
+  spec.geometry = {30.0, 10.0, 0.0};
+  spec.C = Eigen::Matrix3d::Zero();
+  spec.abutments = model::AbutmentSet::kBoth;
+  spec.gap_plus_m = spec.gap_minus_m = g;
+  spec.friction = 0.0;
+  const model::Model rigid = model::BuildDeckModel(spec);
+  ASSERT_EQ(rigid.contact(0).name, "P1");
+  ASSERT_EQ(rigid.contact(2).name, "P3");
+  const double c = 2.0 * zeta * std::sqrt(k * m), w0 = std::sqrt(k / m);
+  std::vector<CompliantSpring> springs = SpringDashpots(rigid, 0, 1, k, c, 5, "+x");
+  const std::vector<CompliantSpring> minus = SpringDashpots(rigid, 2, 3, k, c, 5, "-x");
+  springs.insert(springs.end(), minus.begin(), minus.end());
+  const double e = SpringDashpotRestitution(zeta), root = std::sqrt(1.0 - zeta * zeta);
+  const double t_c = (kPi - std::atan2(2.0 * zeta * root, 1.0 - 2.0 * zeta * zeta)) / (w0 * root);
+  const double d_p = c * e * v0 / k;
+  const double t1 = g / v0, t2 = t1 + t_c + (2.0 * g + d_p) / (e * v0);
+  const double t3 = t2 + t_c + (2.0 * g + e * d_p) / (e * e * v0);
+  InitialState initial;
+  initial.q = Eigen::Vector3d::Zero();
+  initial.u = Eigen::Vector3d(v0, 0.0, 0.0);
+  records::PulseExcitation still(records::PulseShape::kSine, 0.0, 2.0 * kPi);
+  model::RunControl control;
+  control.end_time_s = t3 + t_c + 0.05;  // the third strike over, the fourth far off
+  const CompliantRunResult out =
+      SimulateCompliant(WithoutContacts(rigid), springs, still, control, initial);
+  ASSERT_EQ(out.run.status, RunStatus::kOk) << out.run.message;
+  ASSERT_EQ(out.run.impacts, 3);
+  EXPECT_NEAR(out.run.min_impact_separation_s, t2 - t1, 1e-9 * (t2 - t1))
+      << "closed form " << t2 - t1 << "; t3 - t2 = " << t3 - t2;
+  // The velocity after the three strikes: e^3 v0 towards -x.
+  EXPECT_NEAR(out.run.u_end[0], -e * e * e * v0, 1e-8 * v0);
+  // One strike (the run ends before the second): no separation, as a rigid run's.
+  control.end_time_s = 0.5 * (t1 + t2);
+  const CompliantRunResult one =
+      SimulateCompliant(WithoutContacts(rigid), springs, still, control, initial);
+  ASSERT_EQ(one.run.impacts, 1);
+  EXPECT_EQ(one.run.min_impact_separation_s, std::numeric_limits<double>::infinity());
 }
 
 }  // namespace
