@@ -260,8 +260,10 @@ Model BuildDeckModel(const DeckSpec& spec, const std::string& source) {
       Fail(where, "substructure.K", "must contain finite numbers only (got NaN or Inf)");
     }
     // Damping needs a valid K: the Model checks it again, but an asymmetric K would make
-    // the modes meaningless, so report it here first.
-    Model check_k(bodies, K, Eigen::Matrix3d::Zero(), GroundInfluence(1), {}, source);
+    // the modes meaningless, so report it here first. The deck's fields are checked above but
+    // for a computed I_m, which the Model would name first.
+    detail::CheckPositive(body.inertia_kgm2, "deck.I_m", where);
+    detail::CheckSymmetricPsd(K, 3, "substructure.K", where, true);
     modes = ComputeModes(M, K);
     C = ClassicalDamping(M, *modes, spec.xi);
   }

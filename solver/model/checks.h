@@ -4,6 +4,7 @@
 /// that every path reports a bad value with the same words: "SOURCE[:LINE]: FIELD: must be ...
 /// (got VALUE)". Internal to solver/model.
 
+#include <Eigen/Core>
 #include <string>
 #include <string_view>
 
@@ -31,5 +32,9 @@ void CheckNonNegative(double value, std::string_view field, const Where& where);
 /// `unit` follows the bounds in the message ("deg" or "").
 void CheckRange(double value, double lo, double hi, bool hi_open, std::string_view field,
                 const Where& where, std::string_view unit = "");
+/// @throws InputError unless A is n x n, finite and symmetric within a relative 1e-9 of its
+/// largest entry, and (require_psd) positive semi-definite within that.
+void CheckSymmetricPsd(const Eigen::MatrixXd& A, int n, std::string_view field, const Where& where,
+                       bool require_psd);
 
 }  // namespace skewbridge::model::detail

@@ -14,6 +14,7 @@ using detail::CheckFinite;
 using detail::CheckNonNegative;
 using detail::CheckPositive;
 using detail::CheckRange;
+using detail::CheckSymmetricPsd;
 using detail::Fail;
 using detail::Show;
 using detail::Where;
@@ -40,9 +41,8 @@ Face MinusXAbutmentFace(const DeckGeometry& deck, double gap_m) {
   return face;
 }
 
-namespace {
+namespace detail {
 
-// Symmetric and positive semi-definite within a relative 1e-9 of the largest entry.
 void CheckSymmetricPsd(const Eigen::MatrixXd& A, int n, std::string_view field, const Where& where,
                        bool require_psd) {
   if (A.rows() != n || A.cols() != n) {
@@ -78,6 +78,10 @@ void CheckSymmetricPsd(const Eigen::MatrixXd& A, int n, std::string_view field, 
     }
   }
 }
+
+}  // namespace detail
+
+namespace {
 
 std::string BodyField(int n_bodies, int i, std::string_view key) {
   std::string prefix = n_bodies == 1 ? "deck" : "deck[" + std::to_string(i) + "]";
