@@ -92,8 +92,20 @@ class SimulationWorkspace {
   /// Lowest natural frequency (rad/s; 0 for a free body), from the modes the flow solved.
   double omega_min_radps() const { return omega_min_radps_; }
 
+  /// Whether the storage sized for `model()` fits `other` as it is: the same bodies, degrees of
+  /// freedom and contacts, each contact on the same body against a face of the same body.
+  bool SameShape(const model::Model& other) const;
+  /// Makes the workspace what a new one built for model() would be, after model() (the object
+  /// this workspace refers to) was given the values of another model of the same shape
+  /// (SameShape): the flow, the gap bound and the frequency and length scales computed again,
+  /// the contact kinematics zeroed, the rest of the storage kept without allocating. A run in
+  /// it gives the bits a run in a new workspace gives.
+  void Refit();
+
  private:
   friend class Integrator;
+  // The flow's scales and the gap bound of model_ (the constructor's and Refit's).
+  void ComputeScales();
 
   const model::Model& model_;
   LinearFlow flow_;

@@ -1,0 +1,144 @@
+// A workspace refitted from model to model (dynamics::RunReuse, SimulationWorkspace::Refit) gives
+// the bits of a new workspace built for each model: over single decks with two and four
+// abutment contacts (skews, frequencies, gaps, restitution and friction that differ from model to
+// model), a deck with non-classical damping (the augmented flow, no gap bound) and three- and
+// five-span bridges (joint contacts between decks), each run under a cosine pulse, in the order
+// listed and in a shuffled order with repeats, so that every shape follows every other. The
+// reference is Simulate in a workspace built for that model alone; the results compared bit for
+// bit are the maxima and their times, the end state, the corner travels, the counts of steps and
+// events and every event's time.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <bit>
+#include <cstdint>
+#include <numbers>
+#include <random>
+#include <vector>
+
+#include "records/excitations.h"
+#include "solver/dynamics/run.h"
+#include "solver/dynamics/simulate.h"
+#include "solver/model/builders.h"
+#include "solver/model/multispan.h"
+
+namespace skewbridge::dynamics {
+namespace {
+
+std::uint64_t Bits(double x) { return std::bit_cast<std::uint64_t>(x); }
+
+void ExpectSameBits(const RunResult& a, const RunResult& b, int cell) {
+  SCOPED_TRACE(cell);
+  ASSERT_EQ(a.status, b.status);
+  ASSERT_EQ(a.max_abs_q.size(), b.max_abs_q.size());
+  for (Eigen::Index i = 0; i < a.max_abs_q.size(); ++i) {
+    EXPECT_EQ(Bits(a.max_abs_q[i]), Bits(b.max_abs_q[i])) << "max_abs_q " << i;
+    EXPECT_EQ(Bits(a.time_of_max_s[i]), Bits(b.time_of_max_s[i])) << "time_of_max_s " << i;
+    EXPECT_EQ(Bits(a.q_end[i]), Bits(b.q_end[i])) << "q_end " << i;
+    EXPECT_EQ(Bits(a.u_end[i]), Bits(b.u_end[i])) << "u_end " << i;
+  }
+  ASSERT_EQ(a.max_travel_m.size(), b.max_travel_m.size());
+  for (Eigen::Index d = 0; d < a.max_travel_m.size(); ++d) {
+    EXPECT_EQ(Bits(a.max_travel_m[d]), Bits(b.max_travel_m[d])) << "max_travel_m " << d;
+  }
+  EXPECT_EQ(a.impacts, b.impacts);
+  EXPECT_EQ(a.free_steps, b.free_steps);
+  EXPECT_EQ(a.rk_steps, b.rk_steps);
+  EXPECT_EQ(Bits(a.min_impact_separation_s), Bits(b.min_impact_separation_s));
+  ASSERT_EQ(a.events.size(), b.events.size());
+  for (std::size_t k = 0; k < a.events.size(); ++k) {
+    EXPECT_EQ(Bits(a.events[k].t_s), Bits(b.events[k].t_s)) << "event " << k;
+  }
+}
+
+// One deck of the subsystem's kind (10 m long, eta0-like proportions) against the +x abutment
+// (or both), its frequencies, skew, gap and contact laws varied by `k`.
+model::Model Deck(int k, model::AbutmentSet set, bool non_classical) {
+  model::DeckSpec d;
+  d.mass_kg = 1.0e6;
+  d.geometry = {30.0, 10.0 + 2.0 * k, (10.0 + 9.0 * k) * std::numbers::pi / 180.0};
+  d.w0x_radps = 6.0 + 1.3 * k;
+  d.w0y_radps = 5.0 + 0.7 * k;
+  d.W0_radps = 7.5 + 0.9 * k;
+  d.xi = 0.02 + 0.01 * k;
+  d.abutments = set;
+  d.gap_plus_m = d.gap_minus_m = 0.004 + 0.002 * k;
+  d.restitution = 0.3 + 0.1 * k;
+  d.friction = 0.1 * (k % 3);
+  if (non_classical) {
+    Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
+    C.diagonal() << 2.0e5, 3.0e5, 4.0e7;
+    C(0, 2) = C(2, 0) = 1.0e6;  // couples x and theta: Phi^T C Phi is not diagonal
+    d.C = C;
+  }
+  return model::BuildDeckModel(d, "deck");
+}
+
+model::Model Spans(int n, int k) {
+  model::MultiSpanSpec b;
+  b.n_spans = n;
+  b.span_lengths_m = {30.0 + 3.0 * k};
+  b.width_m = 12.0;
+  b.skew_rad = (20.0 + 5.0 * k) * std::numbers::pi / 180.0;
+  b.mass_per_length_kgpm = 3.0e4;
+  b.w0x_radps = b.w0y_radps = 6.0 + k;
+  b.W0_radps = 8.0 + k;
+  b.abutment_gap_m = 0.01;
+  b.joint_gap_m = 0.005;
+  return model::BuildMultiSpanBridge(b, "spans");
+}
+
+TEST(RunReuse, RefittedWorkspaceGivesTheBitsOfANewOneOverShapesInOrderAndShuffled) {
+  std::vector<model::Model> models;
+  for (int k = 0; k < 4; ++k) {
+    models.push_back(Deck(k, model::AbutmentSet::kPlusX, false));
+    models.push_back(Deck(k, model::AbutmentSet::kBoth, false));
+  }
+  models.push_back(Deck(1, model::AbutmentSet::kPlusX, true));
+  models.push_back(Deck(2, model::AbutmentSet::kPlusX, true));
+  models.push_back(Spans(3, 0));
+  models.push_back(Spans(3, 1));
+  models.push_back(Spans(5, 0));
+
+  const records::PulseExcitation pulse(records::PulseShape::kCosine, 4.0, 2.0 * std::numbers::pi);
+  model::RunControl control;
+  control.end_time_s = 3.0;
+  control.energy_ledger = false;
+
+  std::vector<RunResult> fresh;
+  long impacts = 0;
+  for (const model::Model& m : models) {
+    SimulationWorkspace ws(m);
+    fresh.push_back(Simulate(m, pulse, control, ws));
+    ASSERT_EQ(fresh.back().status, RunStatus::kOk) << fresh.back().message;
+    impacts += fresh.back().impacts;
+  }
+  // The runs strike their abutments: the contact problems' storage is used, not only the flow.
+  ASSERT_GT(impacts, 10);
+
+  std::vector<int> order;
+  for (int i = 0; i < static_cast<int>(models.size()); ++i) order.push_back(i);
+  std::vector<int> shuffled;
+  std::mt19937 rng(20261129);
+  for (int round = 0; round < 3; ++round) {
+    std::vector<int> o = order;
+    std::shuffle(o.begin(), o.end(), rng);
+    shuffled.insert(shuffled.end(), o.begin(), o.end());
+  }
+  for (const std::vector<int>* sequence : {&order, &shuffled}) {
+    RunReuse reuse;
+    for (int i : *sequence) {
+      ExpectSameBits(reuse.Run(models[static_cast<std::size_t>(i)], pulse, control),
+                     fresh[static_cast<std::size_t>(i)], i);
+    }
+  }
+  // And through Run, whose thread keeps one RunReuse for every caller.
+  for (int i : shuffled) {
+    ExpectSameBits(dynamics::Run(models[static_cast<std::size_t>(i)], pulse, control),
+                   fresh[static_cast<std::size_t>(i)], i);
+  }
+}
+
+}  // namespace
+}  // namespace skewbridge::dynamics
