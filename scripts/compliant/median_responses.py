@@ -9,7 +9,9 @@ backfill's deformation, strikes), one Markdown row per cube, stripe and combinat
 
 A cube is LABEL=FILE; --fix AXIS=VALUE picks a coordinate (ignored by a cube without that axis; an
 axis left free takes its first coordinate); --stripes are indices of im_g. A response a cube does
-not store prints "–". Lengths in m, rotations in rad, forces in N, as the cube stores them.
+not store prints "–". Lengths in m, rotations in rad, forces in N, as the cube stores them. A
+break time (key_break_time_px, _mx) is inf where the keys were left intact and enters the median
+as such: "inf" when more than half the records leave them intact (keys_broken counts the breaks).
 """
 import argparse
 import sys

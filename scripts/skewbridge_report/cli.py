@@ -374,7 +374,8 @@ def run(args):
                _table(["impacts", "plastic closures", "min impact separation [s]"],
                       [(int(r.summary_attrs.get("impacts", 0)),
                         int(r.summary_attrs.get("plastic_closures", 0)),
-                        float(r.summary_attrs.get("min_impact_separation_s", np.inf)))]), "",
+                        generic.infinite_text(float(
+                            r.summary_attrs.get("min_impact_separation_s", np.inf))))]), "",
                _table(["energy term", "J"], energy), ""]
     for model_path in args.model:
         name = "plan_" + _safe(os.path.splitext(os.path.basename(model_path))[0])

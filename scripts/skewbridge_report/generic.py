@@ -559,24 +559,34 @@ def cell_text(sweep, flat_index):
                      for k, i in zip(sweep.axis_order, idx) if len(sweep.axes[k]) > 1)
 
 
+def infinite_text(v):
+    """A value of the responses table: +-inf as the text "inf" / "-inf" (a value: the event never
+    came), anything else as it is."""
+    return ("inf" if v > 0 else "-inf") if np.isinf(v) else v
+
+
 def response_table(sweep):
     """Rows (response, unit, cells with a value, min, median, max, cell of the max) of every
     response of the cube, descriptors included; the per-run responses of an IDA search
-    (ida_..._NN, shown by the IDA curves) are left out."""
+    (ida_..._NN, shown by the IDA curves) are left out. NaN is no value (a failed cell, a
+    response the cell does not have); +inf is one (a shear key that never broke,
+    key_break_time_*; fewer than two impacts, min_impact_separation): counted, and shown as
+    "inf" in min, median and max."""
     rows = []
     for name in sweep.responses:
         if IDA_RUN.match(name):
             continue
         values = np.asarray(sweep.responses[name], dtype=float)
-        finite = np.isfinite(values)
+        valued = ~np.isnan(values)
         unit = unit_text(str(sweep.response_attrs.get(name, {}).get("units", ""))) or "1"
-        if not np.any(finite):
+        if not np.any(valued):
             rows.append((name, unit, 0, None, None, None, "–"))
             continue
-        masked = np.where(finite, values, -np.inf)
-        k = int(np.argmax(masked))
-        rows.append((name, unit, int(finite.sum()), float(values[finite].min()),
-                     float(np.median(values[finite])), float(values.flat[k]),
+        k = int(np.argmax(np.where(valued, values, -np.inf)))
+        with np.errstate(invalid="ignore"):
+            median = float(np.median(values[valued]))
+        rows.append((name, unit, int(valued.sum()), infinite_text(float(values[valued].min())),
+                     infinite_text(median), infinite_text(float(values.flat[k])),
                      cell_text(sweep, k) or "the single cell"))
     return rows
 

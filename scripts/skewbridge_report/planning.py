@@ -34,6 +34,11 @@ NORMALISED_TWIN = {"x_norm": "x_m", "y_norm": "y_m", "theta_norm": "theta_m",
 # Residual displacements and the bound of the corner travel: in the table; the residual rotation
 # is drawn.
 TABLE_ONLY = {"x_end", "y_end", "travel_end_m", "travel_bound_m"}
+# Times of an event that may never come (a shear key's break, key_break_time_px / _mx: +inf for
+# keys left intact): a curve against an axis would drop the cells where it never came and read
+# as if the event came in every cell it shows. In the table, with the cells where it never came
+# counted; keys_broken is what is drawn.
+EVENT_TIMES = re.compile(r"^key_break_time_(px|mx)$")
 # Limit-state responses (ls_<name>, ls_<name>_demand): their demands repeat drawn responses and
 # their exceedances are the fragility figures' business; they stay in the tables.
 LIMIT_STATE_PREFIX = "ls_"
@@ -140,13 +145,13 @@ def quantities(sweep):
 def drawn_quantities(sweep):
     """(drawn, margins): the quantities drawn against the axes, and the unseating margins (drawn
     by unseating_margins). A normalised response is drawn only when its dimensional twin is
-    missing; theta_norm_max only without per-deck rotations."""
+    missing; theta_norm_max only without per-deck rotations; a break time (EVENT_TIMES) never."""
     qs = quantities(sweep)
     bases = {q.base for q in qs}
     drawn, margins = [], []
     for q in qs:
         if (q.base in DESCRIPTORS or q.base in SCALING_INPUTS or q.base in TABLE_ONLY
-                or q.base.startswith(LIMIT_STATE_PREFIX)
+                or EVENT_TIMES.match(q.base) or q.base.startswith(LIMIT_STATE_PREFIX)
                 or q.base.startswith(IDA_PREFIX)):
             continue
         if NORMALISED_TWIN.get(q.base) in bases:
@@ -283,6 +288,11 @@ def plan_generic(sweep):
         return todo, skipped
     if not drawn:
         skipped.append(("response_vs_axis", "no response of the bridge's demand in the cube"))
+    times = [n for n in sweep.responses if EVENT_TIMES.match(n)]
+    if times:
+        skipped.append(("response_vs_axis", f"{', '.join(times)}: the time of an event that may "
+                        "never come (inf: the keys left intact), in the table of responses with "
+                        "those cells counted; keys_broken is drawn"))
     for x in xs:
         if not drawn:
             break

@@ -144,6 +144,29 @@ assert r["keys_broken"][1] > 0 and math.isfinite(min(r["key_break_time_px"][1], 
 assert r["key_break_time_px"].attrs["units"] in (b"s", "s"), dict(r["key_break_time_px"].attrs)
 PY
 
+# The keys' cube read back: `inspect` lists the break times with their unit, and the report's table
+# of responses counts a cell whose keys held (inf) as a cell with a value and prints "inf", the
+# finite break of the other cell as its min (docs/compliant.md §4, Shear keys in the model file).
+"$exe" inspect "$work/keys.h5" >"$work/inspect.out" 2>&1 || fail "inspect: exit $? ($(cat "$work/inspect.out"))"
+grep -Eq "key_break_time_px +\[s\]" "$work/inspect.out" || fail "inspect: $(cat "$work/inspect.out")"
+/usr/bin/python3 "$src/scripts/report" "$work/keys.h5" --out "$work/report" >"$work/report.out" 2>&1 ||
+  fail "report of the keys' cube: exit $? ($(cat "$work/report.out"))"
+/usr/bin/python3 - "$work" <<'PY' || fail "the report's rows of the break times (above)"
+import sys, math, h5py
+work = sys.argv[1]
+r = h5py.File(f"{work}/keys.h5", "r")["sweeps/compliant/responses"]
+rows = {l.split("|")[1].strip(): [c.strip() for c in l.split("|")[1:-1]]
+        for l in open(f"{work}/report/summary.md") if l.startswith("| key_break_time")}
+for side in ("px", "mx"):
+    t = r["key_break_time_" + side][()]
+    row = rows["key_break_time_" + side]
+    assert row[2] == "2", row  # both cells have a value, inf included
+    finite = [x for x in t if math.isfinite(x)]
+    assert row[3] == (f"{min(finite):.4g}" if finite else "inf"), (row, t)
+    assert row[5] == ("inf" if any(math.isinf(x) for x in t) else f"{max(t):.4g}"), (row, t)
+assert any("inf" in row[3:6] for row in rows.values()), rows  # at scale 1 the keys hold
+PY
+
 # A rigid file's cube holds no compliant response.
 cp "$src/docs/examples/pilot-bridge.toml" "$work/"
 sed 's/pilot-bridge-compliant.toml/pilot-bridge.toml/' "$work/spec.toml" >"$work/rigid.toml"

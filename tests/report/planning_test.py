@@ -311,6 +311,38 @@ class Planning(unittest.TestCase):
 
 
 
+class BreakTimes(unittest.TestCase):
+    """A shear key that never breaks stores the break time +inf (key_break_time_px, _mx). The
+    generic figures do not draw break times against the axes (a curve would drop the intact
+    cells), say so once under "Figures not made", and draw keys_broken; the table of responses
+    counts the inf cells as cells with a value and prints "inf" for the min, median or max that
+    is infinite, the others over the same cells, by hand below. NaN (a failed cell) stays no
+    value."""
+
+    def test_break_times_in_the_table_not_in_the_figures(self):
+        from skewbridge_report import generic
+        s = sweep({"record": LABELS["record"], "im_g": 2},
+                  ["x_m_d0", "key_break_time_px", "key_break_time_mx", "keys_broken"],
+                  "model-file")
+        inf, nan = np.inf, np.nan
+        s.responses["key_break_time_px"] = np.array([[inf, 7.5], [inf, 3.25], [nan, inf]])
+        s.responses["key_break_time_mx"] = np.full((3, 2), inf)
+        s.responses["keys_broken"] = np.array([[0.0, 1.0], [0.0, 2.0], [nan, 0.0]])
+        drawn, _ = planning.drawn_quantities(s)
+        self.assertEqual([q.base for q in drawn], ["x_m", "keys_broken"])
+        todo, skipped = planning.plan_generic(s)
+        self.assertIn(("response_vs_axis", "im_g"), todo)
+        notes = [r for kind, r in skipped if "key_break_time_px, key_break_time_mx" in r]
+        self.assertEqual(len(notes), 1, skipped)
+        rows = {r[0]: r for r in generic.response_table(s)}
+        # px: five cells with a value (one NaN); sorted 3.25, 7.5, inf, inf, inf: median inf.
+        self.assertEqual(rows["key_break_time_px"][2:6], (5, 3.25, "inf", "inf"))
+        self.assertEqual(rows["key_break_time_mx"][2:6], (6, "inf", "inf", "inf"))
+        # keys_broken: 0, 1, 0, 2, 0 -> median 0, max 2 at the second record's second stripe.
+        self.assertEqual(rows["keys_broken"][2:6], (5, 0.0, 0.0, 2.0))
+        self.assertIn("r2", rows["keys_broken"][6])
+
+
 class RoundOffFloor(unittest.TestCase):
     """A rotation below the cube's round_off_floor_rad is 0, and its normalised twin in the same
     cells; a rotation above it, responses in other units and NaN keep their values."""
