@@ -3,7 +3,8 @@
 cubes of the same records and stripes (docs/compliant.md §5): for each panel, a combination of the
 other axes, the stored maximum-likelihood fits Phi(ln(IM / theta) / beta) and the stripes' exceeded
 fractions, one colour per coordinate of the compared axis (e.g. eps_N) and one per further cube
-(e.g. the compliant law, with its keys intact or absent), dashed.
+(e.g. the compliant law, with its keys intact or absent), each with its own line style (dashed,
+dotted, ...) and marker.
 
     scripts/compliant/compare_fragility.py CUBE.h5 --axis eps_N --out FIG.png \
         --panel "unseating seat_over_L=0.0005 a_deg=20" --panel "rotation a_deg=20" ... \
@@ -67,12 +68,17 @@ def index_of(sweep, axes, coords, fixed, free=None, k=None, where=""):
     return tuple(idx)
 
 
-def draw(ax, g, idx, colour, label, units, style="-"):
+# The further cubes' line styles and markers, one pair per cube (two cubes whose fractions
+# coincide stay apart: a square around a triangle).
+FURTHER = [("--", "s"), (":", "^"), ("-.", "D"), ((0, (5, 1, 1, 1)), "v")]
+
+
+def draw(ax, g, idx, colour, label, units, style="-", marker="o"):
     """One curve: the stripes' exceeded fractions and the fit at one index of a fragility group."""
     im = g["stripe_im"][idx]
     frac = g["stripe_exceeded"][idx] / np.maximum(g["stripe_n"][idx], 1)
     theta, beta = g["theta"][idx], g["beta"][idx]
-    ax.plot(im, frac, "o" if style == "-" else "s", color=colour, ms=4, mfc="none")
+    ax.plot(im, frac, marker, color=colour, ms=4, mfc="none")
     if np.isfinite(theta):
         x = np.geomspace(im.min() * 0.7, im.max() * 1.5, 200)
         ax.plot(x, norm.cdf(np.log(x / theta) / beta), style, color=colour,
@@ -131,8 +137,9 @@ def main():
         for j, (label, path, o, o_axes, o_coords) in enumerate(others):
             o_fixed = {x: v for x, v in fixed.items() if x in o_axes}
             idx = index_of(o, o_axes, o_coords, o_fixed, where=f"{path}: ")
+            style, marker = FURTHER[j % len(FURTHER)]
             draw(ax, o["fragility"][state], idx, f"C{len(coords[a.axis]) + j}", label, units,
-                 "--")
+                 style, marker)
         ax.set_xscale("log")
         ax.set_ylim(-0.03, 1.03)
         ax.set_xlabel(f"{decode(sweep.attrs.get('im_description', 'IM')).split(':')[0]} [{units}]",

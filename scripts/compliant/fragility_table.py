@@ -74,6 +74,31 @@ def theta_text(g, idx, flat):
     return "–" if reason.startswith("no exceedance") or not reason else f"– ({reason})"
 
 
+def expand_any(rows, shared, columns, seat_length_m):
+    """The rows (key, exceeded, cells) with each row that is "any" (key -inf) along a shared axis
+    where other rows have coordinates repeated at each of those coordinates, its cell the
+    coordinate: a fit the same along an axis belongs to every combination of it."""
+    out = list(rows)
+    for i, x in enumerate(shared):
+        values = sorted({k[i] for k, _, _ in out if k[i] != -np.inf})
+        if not values:
+            continue
+        expanded = []
+        for key, n, row in out:
+            if key[i] != -np.inf:
+                expanded.append((key, n, row))
+                continue
+            for v in values:
+                cells = list(row)
+                text = number(v)
+                if x == "seat_over_L" and seat_length_m > 0:
+                    text += f" ({1000 * v * seat_length_m:.0f} mm)"
+                cells[2 + columns.index(x)] = text
+                expanded.append((key[:i] + (v,) + key[i + 1:], n, cells))
+        out = expanded
+    return out
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("cubes", nargs="+", metavar="LABEL=FILE")
@@ -125,13 +150,16 @@ def main():
                     theta_text(g, idx, flat),
                     f"{number(lo)}-{number(hi)}" if np.isfinite(lo) and np.isfinite(hi) else "",
                     f"{beta:.2f}" if np.isfinite(beta) else ""]
-                rows.append((key, int(g["n_exceeded"][idx]), "| " + " | ".join(row) + " |"))
+                rows.append((key, int(g["n_exceeded"][idx]), row))
+        # A row that is "any" along a shared axis another cube's rows have coordinates of stands in
+        # each of their combinations, with the coordinate (its fits are the same bits there).
+        rows = expand_any(rows, shared, columns, a.seat_length_m)
         exceeded = {}
         for key, n, _ in rows:
             exceeded[key[:len(shared)]] = exceeded.get(key[:len(shared)], 0) + n
-        for key, _, line in sorted(rows, key=lambda r: r[0]):
+        for key, _, row in sorted(rows, key=lambda r: r[0]):
             if not a.skip_none or exceeded[key[:len(shared)]] > 0:
-                print(line)
+                print("| " + " | ".join(row) + " |")
 
 
 if __name__ == "__main__":
