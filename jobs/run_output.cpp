@@ -253,6 +253,16 @@ void WriteJoints(hid_t file, const RunJoints& joints) {
   h5::SetAttr(g.get(), "response_units", units);
   h5::SetAttr(g.get(), "joint_stored_J", joints.stored_J);
   h5::SetAttr(g.get(), "joint_dissipated_J", joints.dissipated_J);
+  if (!joints.spring_names.empty()) {
+    const hsize_t n = joints.spring_names.size();
+    h5::SetAttr(g.get(), "spring_names", joints.spring_names);
+    WriteDoubles(g.get(), "spring_force_N", {n}, joints.spring_force_N.data(), "N",
+                 "largest force of each backfill or joint spring (spring_names)");
+    WriteDoubles(g.get(), "spring_deformation_m", {n}, joints.spring_deformation_m.data(), "m",
+                 "largest deformation of each spring beyond its face (the joint's gap)");
+    WriteDoubles(g.get(), "spring_slip_m", {n}, joints.spring_slip_m.data(), "m",
+                 "plastic slip of each spring along its wall over the run (0 without friction)");
+  }
   if (joints.key_names.empty()) return;
   const hsize_t n = joints.key_names.size();
   h5::SetAttr(g.get(), "key_names", joints.key_names);

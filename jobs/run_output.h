@@ -54,6 +54,10 @@ struct RunJoints {
   std::vector<double> key_force_N;     ///< per key, its largest force (N)
   std::vector<double> key_deformation_m;  ///< per key, its largest deformation beyond its gap (m)
   std::vector<double> key_break_time_s;   ///< per key, when it broke (s); inf if intact
+  std::vector<std::string> spring_names;  ///< per backfill or joint spring, "+x.1", ..., "J0.1"
+  std::vector<double> spring_force_N;     ///< per spring, its largest force (N)
+  std::vector<double> spring_deformation_m;  ///< per spring, its largest deformation (m)
+  std::vector<double> spring_slip_m;         ///< per spring, its plastic slip along the wall (m)
   /// Whether there is anything to store.
   bool Empty() const { return responses.empty(); }
 };

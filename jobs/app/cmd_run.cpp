@@ -148,6 +148,12 @@ jobs::RunJoints Joints(const model::CompliantAbutments& compliant, const dynamic
     j.key_deformation_m.push_back(k.deformation_m);
     j.key_break_time_s.push_back(k.break_time_s);
   }
+  for (const dynamics::SpringMaxima& s : run.springs) {
+    j.spring_names.push_back(s.name);
+    j.spring_force_N.push_back(s.force_N);
+    j.spring_deformation_m.push_back(s.deformation_m);
+    j.spring_slip_m.push_back(s.wall_slip_m);
+  }
   return j;
 }
 

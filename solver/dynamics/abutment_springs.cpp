@@ -173,6 +173,8 @@ LawRun RunUnderLaw(const model::Model& model,
                           std::isnan(broke) ? std::numeric_limits<double>::infinity() : broke});
       continue;
     }
+    out.springs.push_back({springs[j].name, r.max_spring_force_N(i), r.max_spring_deformation_m(i),
+                           r.wall_slip_m(i)});
     std::vector<WallMaxima>& group = wall[0] == 'J' ? out.joints : out.walls;
     if (group.empty() || group.back().wall != wall) group.push_back({wall, 0.0, 0.0});
     WallMaxima& m = group.back();

@@ -51,6 +51,14 @@ struct KeyMaxima {
   double break_time_s = 0.0;   ///< when it broke (deformation DD reached, s); +inf if intact
 };
 
+/// The response of one backfill or joint spring over a compliant run.
+struct SpringMaxima {
+  std::string name;            ///< the spring's name, "+x.1" .. "+x.n", "-x.1", .., "J0.1", ..
+  double force_N = 0.0;        ///< its largest force (N)
+  double deformation_m = 0.0;  ///< its largest deformation beyond its face (m)
+  double wall_slip_m = 0.0;    ///< the plastic slip along the wall accumulated (m); 0 without mu
+};
+
 /// A run of a model under the joint law its model file gives.
 struct LawRun {
   RunResult run;                  ///< the run (for a compliant one, CompliantRunResult::run)
@@ -58,7 +66,9 @@ struct LawRun {
   /// per compliant deck-deck joint (named "J0", "J1", ...): its springs' largest force and
   /// deformation; empty for a single deck
   std::vector<WallMaxima> joints;
-  std::vector<KeyMaxima> keys;      ///< per shear key, in the springs' order; empty without keys
+  std::vector<KeyMaxima> keys;  ///< per shear key, in the springs' order; empty without keys
+  /// per backfill or joint spring (not the keys), in the springs' order (AbutmentSprings)
+  std::vector<SpringMaxima> springs;
   double joint_stored_J = 0.0;      ///< compliant: CompliantRunResult::joint_stored_J
   double joint_dissipated_J = 0.0;  ///< compliant: CompliantRunResult::joint_dissipated_J
 };
@@ -83,7 +93,7 @@ std::vector<JointResponse> JointResponses(const model::CompliantAbutments& compl
 /// rigid law, Run(model, excitation, control, policies) unchanged; with it,
 /// SimulateCompliant(WithoutContacts(model), AbutmentSprings(model, *compliant), excitation,
 /// control, {}, policies.event), the maxima of each wall's backfill springs and of each shear key
-/// beside it.
+/// beside it, and each spring's own maxima and wall slip.
 /// @throws InputError as Run and SimulateCompliant (a compliant run needs the event-driven method).
 LawRun RunUnderLaw(const model::Model& model,
                    const std::optional<model::CompliantAbutments>& compliant,

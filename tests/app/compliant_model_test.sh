@@ -54,6 +54,17 @@ assert run.attrs["impacts"] == d1["impacts"], (run.attrs["impacts"], d1["impacts
 # The smallest time between the starts of successive strikes: finite with two or more strikes.
 assert d1["impacts"] >= 2 and 0 < d1["min_impact_separation"] < float("inf"), d1
 assert run.attrs["min_impact_separation_s"] == d1["min_impact_separation"], run.attrs["min_impact_separation_s"]
+# Per spring, the run file's joints group holds the direct call's maxima, bit for bit, and the
+# wall's response is the largest of its springs'; no wall friction: no slip.
+j = h5py.File(f"{work}/run.h5", "r")["joints"]
+springs = [n.decode() if isinstance(n, bytes) else n for n in j.attrs["spring_names"]]
+assert springs == [f"{w}.{k}" for w in ("+x", "-x") for k in range(1, 6)], springs
+for k in range(10):
+    assert j["spring_force_N"][k] == d1[f"spring_force_{k}"], (k, j["spring_force_N"][k])
+    assert j["spring_deformation_m"][k] == d1[f"spring_def_{k}"], (k, j["spring_deformation_m"][k])
+assert max(j["spring_force_N"][:5]) == j.attrs["spring_force_px"] == d1["spring_force_px"]
+assert max(j["spring_deformation_m"][5:]) == j.attrs["backwall_def_mx"] == d1["backwall_def_mx"]
+assert not j["spring_slip_m"][()].any(), j["spring_slip_m"][()]
 text = open(f"{work}/run.out").read()
 for wall, side in (("+x", "px"), ("-x", "mx")):
     m = re.search(re.escape(wall) + r" wall: largest spring force (\S+) N, largest deformation (\S+) m$", text, re.M)
@@ -215,6 +226,9 @@ def run(name):
 frictionless, runs = run("wall"), {"wall": run("wall-mu"), "wall-kt": run("wall-kt-mu")}
 changed = [n for n in frictionless if runs["wall"][n] != frictionless[n]]
 assert "y_m_d0" in changed and "x_end_d0" in changed, ("mu = 0.3 changes too little", changed)
+# The springs slip along the walls with friction, none without.
+slip = {m: h5py.File(f"{work}/{m}.h5", "r")["joints/spring_slip_m"][()] for m in ("wall", "wall-mu")}
+assert not slip["wall"].any() and slip["wall-mu"].max() > 0 and (slip["wall-mu"] >= 0).all(), slip
 for model in ("wall", "wall-kt"):
     g = h5py.File(f"{work}/{model}-cube.h5", "r")["sweeps/mu"]
     assert list(g["mu"][()]) == [0.0, 0.3], g["mu"][()]

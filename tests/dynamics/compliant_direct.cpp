@@ -60,6 +60,10 @@ int main(int argc, char** argv) {
     std::printf("spring_force_%s %.17g\nbackwall_def_%s %.17g\n", w == 0 ? "px" : "mx", force,
                 w == 0 ? "px" : "mx", deformation);
   }
+  for (int j = 0; j < 10; ++j) {
+    std::printf("spring_force_%d %.17g\nspring_def_%d %.17g\n", j, r.max_spring_force_N(j), j,
+                r.max_spring_deformation_m(j));
+  }
   std::printf("status %s\n", dynamics::ToString(r.run.status));
   return 0;
 }
