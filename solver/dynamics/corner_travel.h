@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "solver/dynamics/root_finding.h"
@@ -52,11 +53,32 @@ class CornerTravelTracker {
   /// @param component_at (t, i) -> entry i of the state (q, u) (n_dof + n_dof entries) at t in
   /// [t0, t1], from the step's dense output.
   template <class ComponentAt>
-  [[gnu::noinline]] void Scan(double t0, const Eigen::Ref<const Eigen::VectorXd>& q0,
-                              const Eigen::Ref<const Eigen::VectorXd>& u0, double t1,
-                              const Eigen::Ref<const Eigen::VectorXd>& q1,
-                              const Eigen::Ref<const Eigen::VectorXd>& u1, double time_tolerance_s,
-                              ComponentAt&& component_at, Eigen::VectorXd& max_travel_m);
+  void Scan(double t0, const Eigen::Ref<const Eigen::VectorXd>& q0,
+            const Eigen::Ref<const Eigen::VectorXd>& u0, double t1,
+            const Eigen::Ref<const Eigen::VectorXd>& q1,
+            const Eigen::Ref<const Eigen::VectorXd>& u1, double time_tolerance_s,
+            ComponentAt&& component_at, Eigen::VectorXd& max_travel_m) {
+    using Map = Eigen::Map<const Eigen::VectorXd>;
+    Scan(t0, Map(q0.data(), q0.size()), Map(u0.data(), u0.size()), t1, Map(q1.data(), q1.size()),
+         Map(u1.data(), u1.size()), time_tolerance_s, component_at, max_travel_m,
+         [](int, double, double, double, double, double, double, double, double) {
+           return std::numeric_limits<double>::infinity();
+         });
+  }
+
+  /// Scan, with a bound that can spare a corner's root search: travel_bound(b, n_x, n_y, r, f0,
+  /// r0, f1, r1, h) is an upper bound of |f| over [t0, t1] (h = t1 - t0, s) for a corner of the
+  /// deck at DOF b with end-line normal (n_x, n_y) and radius at most r (m), travel f0, f1 (m)
+  /// and rate r0, r1 (m/s) at the step's ends (+inf: none); a corner whose bound is below the
+  /// running maximum is not searched (the search could not raise it) [docs/theory.md §3.20].
+  /// The ends are plain maps of the state's storage: nothing to build or destroy per step.
+  template <class ComponentAt, class TravelBound>
+  [[gnu::noinline]] void Scan(double t0, const Eigen::Map<const Eigen::VectorXd>& q0,
+                              const Eigen::Map<const Eigen::VectorXd>& u0, double t1,
+                              const Eigen::Map<const Eigen::VectorXd>& q1,
+                              const Eigen::Map<const Eigen::VectorXd>& u1, double time_tolerance_s,
+                              ComponentAt&& component_at, Eigen::VectorXd& max_travel_m,
+                              TravelBound&& travel_bound);
 
  private:
   // One deck's constants: the end-line normal and the corner coefficients of corners 1 and 2.
@@ -114,12 +136,13 @@ class CornerTravelTracker {
   std::vector<std::array<double, 6>> end_state_;
 };
 
-template <class ComponentAt>
-void CornerTravelTracker::Scan(double t0, const Eigen::Ref<const Eigen::VectorXd>& q0,
-                               const Eigen::Ref<const Eigen::VectorXd>& u0, double t1,
-                               const Eigen::Ref<const Eigen::VectorXd>& q1,
-                               const Eigen::Ref<const Eigen::VectorXd>& u1, double time_tolerance_s,
-                               ComponentAt&& component_at, Eigen::VectorXd& max_travel_m) {
+template <class ComponentAt, class TravelBound>
+void CornerTravelTracker::Scan(double t0, const Eigen::Map<const Eigen::VectorXd>& q0,
+                               const Eigen::Map<const Eigen::VectorXd>& u0, double t1,
+                               const Eigen::Map<const Eigen::VectorXd>& q1,
+                               const Eigen::Map<const Eigen::VectorXd>& u1, double time_tolerance_s,
+                               ComponentAt&& component_at, Eigen::VectorXd& max_travel_m,
+                               TravelBound&& travel_bound) {
   for (int d = 0; d < decks(); ++d) {
     const auto di = static_cast<std::size_t>(d);
     const Deck& deck = decks_[di];
@@ -157,6 +180,9 @@ void CornerTravelTracker::Scan(double t0, const Eigen::Ref<const Eigen::VectorXd
       const double bound = std::max(std::abs(c0.f[ki]), std::abs(c1.f[ki])) +
                            0.5 * (t1 - t0) * std::min(std::abs(r0), std::abs(r1));
       if (!(bound > best)) continue;
+      if (travel_bound(b, deck.nx, deck.ny, r, c0.f[ki], r0, c1.f[ki], r1, t1 - t0) < best) {
+        continue;
+      }
       best = std::max(best, PeakTravel(deck, b, k, t0, t1, r0, r1, time_tolerance_s, component_at));
     }
     end_[di] = c1;

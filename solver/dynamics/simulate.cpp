@@ -23,6 +23,7 @@
 #include "solver/dynamics/gauss_legendre.h"
 #include "solver/dynamics/indeterminate_split.h"
 #include "solver/dynamics/mode_decision.h"
+#include "solver/dynamics/peak_bound.h"
 #include "solver/dynamics/projection.h"
 #include "solver/dynamics/root_finding.h"
 #include "solver/dynamics/run_scales.h"
@@ -49,6 +50,7 @@ class Integrator final : private ConstrainedForces {
 
  private:
   using Vec = Eigen::VectorXd;
+  using View = Eigen::Map<const Vec>;  // a vector in the state's storage, nothing built per use
 
   auto q() { return z_.head(n_); }
   auto u() { return z_.segment(n_, n_); }
@@ -138,9 +140,8 @@ class Integrator final : private ConstrainedForces {
   // component_at(t, i): entry i of (q, u) at t alone; the root search for a velocity zero needs
   // one entry, not the whole state.
   template <class ComponentAt>
-  void ScanMaxima(double t0, const Eigen::Ref<const Vec>& q0, const Eigen::Ref<const Vec>& u0,
-                  double t1, const Eigen::Ref<const Vec>& q1, const Eigen::Ref<const Vec>& u1,
-                  ComponentAt&& component_at);
+  void ScanMaxima(double t0, const View& q0, const View& u0, double t1, const View& q1,
+                  const View& u1, ComponentAt&& component_at);
   // The time tolerance of a maximum's root search in a step ending at t1 (s).
   double MaximumTimeTolerance(double t1) const {
     return policy_.maximum_time_tolerance * std::max(1.0, std::abs(t1)) +
@@ -208,6 +209,8 @@ class Integrator final : private ConstrainedForces {
   // gap_floors_ bounds the gaps at t_ from below instead.
   bool gaps_exact_ = true;
   GapFloors gap_floors_;
+  // Spares ScanMaxima's and travel_'s root searches of a full free step [docs/theory.md §3.20].
+  FreeStepPeaks peaks_;
   // The key of NominalFreeStep's last value (NaN: none yet) and the value (s).
   double nominal_length_s_ = std::numeric_limits<double>::quiet_NaN();
   double nominal_omega_radps_ = std::numeric_limits<double>::quiet_NaN();
@@ -243,6 +246,7 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
       n_(model.n_dof()),
       nc_(model.n_contacts()),
       gap_floors_(ws.gap_bound_),
+      peaks_(ws.flow_.modal() ? &ws.flow_.modal_flow() : nullptr),
       modes_(model.n_contacts()),
       travel_(model),
       memory_(model.n_contacts()),
@@ -505,7 +509,9 @@ void Integrator::FreeStep() {
     ensure_dense();
     return ws_.free_dense_.EvaluateComponent(t - t_, i);
   };
+  peaks_.Arm(step.full, flow.modal_coordinates().data(), std::max(tau, step.h_s), piece.omega);
   RecordStep(t1, component_at, state_at);
+  peaks_.Disarm();
 
   // Decide: the mode decision at an impact; otherwise the step's end starts the next step.
   if (t_event < kInf) {
@@ -533,13 +539,13 @@ bool Integrator::GapsStayOpen(double tau_s) {
 
 template <class ComponentAt, class StateAt>
 void Integrator::RecordStep(double t1, ComponentAt&& component_at, StateAt&& state_at) {
-  // One view of each end's positions and velocities for both scans.
-  const Eigen::Ref<const Vec> q0 = q(), u0 = u();
-  const Eigen::Ref<const Vec> q1 = z_new_.head(n_), u1 = z_new_.segment(n_, n_);
+  // One view of each end's positions and velocities for both scans, nothing built per step.
+  const View q0(z_.data(), n_), u0(z_.data() + n_, n_);
+  const View q1(z_new_.data(), n_), u1(z_new_.data() + n_, n_);
   ScanMaxima(t_, q0, u0, t1, q1, u1, component_at);
   // The corner travels, at the same exactness: step ends and the roots of each corner's rate.
-  travel_.Scan(t_, q0, u0, t1, q1, u1, MaximumTimeTolerance(t1), component_at,
-               result_.max_travel_m);
+  travel_.Scan(t_, q0, u0, t1, q1, u1, MaximumTimeTolerance(t1), component_at, result_.max_travel_m,
+               peaks_);
   RecordOutputs(t_, t1, state_at);
   z_.head(2 * n_) = z_new_.head(2 * n_);
   t_ = t1;
@@ -573,10 +579,8 @@ double Integrator::GapRoot(int c, double t0, double t1, PositionsAt&& positions_
 }
 
 template <class ComponentAt>
-void Integrator::ScanMaxima(double t0, const Eigen::Ref<const Vec>& q0,
-                            const Eigen::Ref<const Vec>& u0, double t1,
-                            const Eigen::Ref<const Vec>& q1, const Eigen::Ref<const Vec>& u1,
-                            ComponentAt&& component_at) {
+void Integrator::ScanMaxima(double t0, const View& q0, const View& u0, double t1, const View& q1,
+                            const View& u1, ComponentAt&& component_at) {
   for (int i = 0; i < n_; ++i) {
     if (std::abs(q1[i]) > result_.max_abs_q[i]) {
       result_.max_abs_q[i] = std::abs(q1[i]);
@@ -585,7 +589,8 @@ void Integrator::ScanMaxima(double t0, const Eigen::Ref<const Vec>& q0,
     if (u0[i] * u1[i] < 0.0) {
       const double bound = std::max(std::abs(q0[i]), std::abs(q1[i])) +
                            0.5 * (t1 - t0) * std::max(std::abs(u0[i]), std::abs(u1[i]));
-      if (bound > result_.max_abs_q[i]) {
+      if (bound > result_.max_abs_q[i] &&
+          !peaks_.PeakBelow(i, q0[i], u0[i], q1[i], u1[i], t1 - t0, result_.max_abs_q[i])) {
         const auto velocity = [&](double t) { return component_at(t, n_ + i); };
         const RootResult peak =
             FindRootBrent(velocity, t0, t1, u0[i], u1[i], MaximumTimeTolerance(t1));
