@@ -3,6 +3,7 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include "solver/common/error.h"
@@ -309,6 +310,7 @@ FreeDenseOutput::FreeDenseOutput(int n_aug, int max_terms)
       eta_(Eigen::VectorXd::Zero(n_)),
       deta_(Eigen::VectorXd::Zero(n_)),
       z_scratch_(Eigen::VectorXd::Zero(n_aug)),
+      series_(Eigen::VectorXd::Zero(2 * n_)),
       mode_terms_(static_cast<std::size_t>(n_), 0) {}
 
 void FreeDenseOutput::Build(const LinearFlow& flow, double omega_radps,
@@ -317,6 +319,7 @@ void FreeDenseOutput::Build(const LinearFlow& flow, double omega_radps,
   flow_ = &flow;
   omega_radps_ = omega_radps;
   modal_ = false;
+  series_tau_s_[0] = series_tau_s_[1] = std::numeric_limits<double>::quiet_NaN();
   if (flow.modal()) {
     const ModalFlow& modal = flow.modal_flow();
     double rho_max = 0.0;
@@ -506,24 +509,35 @@ double FreeDenseOutput::EvaluateComponent(double tau_s, int i) const {
     if (i < 2 * n_) {
       // One row of Phi against the modes' series of eta (i < n) or eta' (n <= i < 2 n).
       const Eigen::MatrixXd& Phi = flow_->modal_flow().Phi();
-      const int row = i < n_ ? i : i - n_;
-      const int offset = i < n_ ? 0 : n_;
-      const Eigen::Index stride = modal_coefficients_.rows();
-      const double* c = modal_coefficients_.data();
-      // The modes' series two at a time (Horner2), summed in mode order as before.
+      const int half = i < n_ ? 0 : 1;  // eta's series or eta''s
+      const int row = i - half * n_;
+      const int offset = half * n_;
+      double* h = series_.data() + offset;
+      if (!(series_tau_s_[half] == tau_s)) {
+        // The modes' series at tau, two at a time (Horner2), once per instant: the other
+        // components at the same instant (a corner's rate reads four) take the same values.
+        const Eigen::Index stride = modal_coefficients_.rows();
+        const double* c = modal_coefficients_.data();
+        int k = 0;
+        for (; k + 1 < n_; k += 2) {
+          Horner2(c + (offset + k) * stride, mode_terms_[static_cast<std::size_t>(k)],
+                  c + (offset + k + 1) * stride, mode_terms_[static_cast<std::size_t>(k + 1)],
+                  tau_s, h[k], h[k + 1]);
+        }
+        if (k < n_) {
+          h[k] = Horner(c + (offset + k) * stride, mode_terms_[static_cast<std::size_t>(k)], tau_s);
+        }
+        series_tau_s_[half] = tau_s;
+      }
+      // Summed in mode order.
       double x = 0.0;
       int k = 0;
       for (; k + 1 < n_; k += 2) {
-        double ha = 0.0, hb = 0.0;
-        Horner2(c + (offset + k) * stride, mode_terms_[static_cast<std::size_t>(k)],
-                c + (offset + k + 1) * stride, mode_terms_[static_cast<std::size_t>(k + 1)], tau_s,
-                ha, hb);
-        x += Phi(row, k) * ha;
-        x += Phi(row, k + 1) * hb;
+        x += Phi(row, k) * h[k];
+        x += Phi(row, k + 1) * h[k + 1];
       }
       if (k < n_) {
-        x += Phi(row, k) *
-             Horner(c + (offset + k) * stride, mode_terms_[static_cast<std::size_t>(k)], tau_s);
+        x += Phi(row, k) * h[k];
       }
       return x;
     }

@@ -20,6 +20,7 @@
 /// with the energy forms per mode. The general path stays the oracle of the modal one.
 
 #include <Eigen/Core>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -199,7 +200,12 @@ class FreeDenseOutput {
   Eigen::MatrixXd Y_;                   // modal: n x 6 modal coordinates of z0
   Eigen::VectorXd eta_, deta_;          // modal: eta(tau), eta'(tau) of the last ModalAt
   Eigen::VectorXd z_scratch_;           // for EvaluateDerivative
-  std::vector<int> mode_terms_;         // modal: terms per mode
+  // modal: the modes' series of eta (first n) and eta' (last n) at the instants series_tau_s_
+  // (NaN: none since the last Build), for EvaluateComponent.
+  mutable Eigen::VectorXd series_;
+  mutable double series_tau_s_[2] = {std::numeric_limits<double>::quiet_NaN(),
+                                     std::numeric_limits<double>::quiet_NaN()};
+  std::vector<int> mode_terms_;  // modal: terms per mode
   int terms_ = 0;
 };
 

@@ -125,10 +125,16 @@ class ModalPeakBound {
   /// 1e-12 of the coordinate's modal size for the rounding of the ends and of a dense output's
   /// evaluation.
   double PeakBound(int i, double q0, double u0, double q1, double u1, double h_s) const {
-    double d[4];
-    const double size = Derivatives(i, d);
+    const double* phi = data_.data() + static_cast<Eigen::Index>(i) * n_;  // |Phi_ik| over k
+    const double* a4 = Mode(5);
+    const double* sz = Mode(6);
+    double m4 = 0.0, size = 0.0;  // Derivatives' d[3] and size, the same sums
+    for (int k = 0; k < n_; ++k) {
+      m4 += phi[k] * a4[k];
+      size += phi[k] * sz[k];
+    }
     const double h2 = h_s * h_s;
-    return (HermiteAbsBound(q0, u0, q1, u1, h_s) + d[3] * (h2 * h2 / 384.0)) * (1.0 + 1e-12) +
+    return (HermiteAbsBound(q0, u0, q1, u1, h_s) + m4 * (h2 * h2 / 384.0)) * (1.0 + 1e-12) +
            1e-12 * size;
   }
 
