@@ -104,14 +104,21 @@ Model::Model(std::vector<Body> bodies, Eigen::MatrixXd K, Eigen::MatrixXd C, Eig
   if (nb == 0) {
     Fail(where, "deck", "at least one deck is required");
   }
+  // The checks name their field only when they fail: a sweep builds a model per cell, and the
+  // names are strings to build.
+  const auto positive = [&](double value, int i, std::string_view key) {
+    if (!(std::isfinite(value) && value > 0.0)) CheckPositive(value, BodyField(nb, i, key), where);
+  };
   for (int i = 0; i < nb; ++i) {
     const Body& b = bodies_[static_cast<std::size_t>(i)];
-    CheckPositive(b.mass_kg, BodyField(nb, i, "m"), where);
-    CheckPositive(b.inertia_kgm2, BodyField(nb, i, "I_m"), where);
-    CheckPositive(b.geometry.length_m, BodyField(nb, i, "L"), where);
-    CheckPositive(b.geometry.width_m, BodyField(nb, i, "W"), where);
-    CheckRange(b.geometry.skew_rad * 180.0 / std::numbers::pi, 0.0, 90.0, true,
-               BodyField(nb, i, "skew_deg"), where, "deg");
+    positive(b.mass_kg, i, "m");
+    positive(b.inertia_kgm2, i, "I_m");
+    positive(b.geometry.length_m, i, "L");
+    positive(b.geometry.width_m, i, "W");
+    const double skew_deg = b.geometry.skew_rad * 180.0 / std::numbers::pi;
+    if (!(std::isfinite(skew_deg) && skew_deg >= 0.0 && skew_deg < 90.0)) {
+      CheckRange(skew_deg, 0.0, 90.0, true, BodyField(nb, i, "skew_deg"), where, "deg");
+    }
     if (!b.rest_position_m.allFinite()) {
       Fail(where, BodyField(nb, i, "rest_position"), "must be finite (got NaN or Inf)");
     }
@@ -144,24 +151,30 @@ Model::Model(std::vector<Body> bodies, Eigen::MatrixXd K, Eigen::MatrixXd C, Eig
   }
 
   for (const Contact& c : contacts_) {
-    const std::string field = "abutments.contacts." + c.name;
+    const auto field = [&](std::string_view key) {
+      return "abutments.contacts." + c.name + std::string(key);
+    };
     if (c.body < 0 || c.body >= nb) {
-      Fail(where, field + ".body", "must be a deck index in [0, " + std::to_string(nb) + ")");
+      Fail(where, field(".body"), "must be a deck index in [0, " + std::to_string(nb) + ")");
     }
     if (c.face.body != kGround && (c.face.body < 0 || c.face.body >= nb || c.face.body == c.body)) {
-      Fail(where, field + ".face", "must be on the ground or on another deck");
+      Fail(where, field(".face"), "must be on the ground or on another deck");
     }
     if (!c.point_m.allFinite() || !c.face.point_m.allFinite() || !c.face.normal.allFinite() ||
         !c.face.tangent.allFinite()) {
-      Fail(where, field, "must have finite geometry (got NaN or Inf)");
+      Fail(where, field(""), "must have finite geometry (got NaN or Inf)");
     }
     if (std::abs(c.face.normal.norm() - 1.0) > 1e-12 ||
         std::abs(c.face.tangent.norm() - 1.0) > 1e-12 ||
         std::abs(c.face.normal.dot(c.face.tangent)) > 1e-12) {
-      Fail(where, field + ".face", "n and t must be orthogonal unit vectors");
+      Fail(where, field(".face"), "n and t must be orthogonal unit vectors");
     }
-    CheckRange(c.restitution, 0.0, 1.0, false, field + ".eps_N", where);
-    CheckNonNegative(c.friction, field + ".mu", where);
+    if (!(std::isfinite(c.restitution) && c.restitution >= 0.0 && c.restitution <= 1.0)) {
+      CheckRange(c.restitution, 0.0, 1.0, false, field(".eps_N"), where);
+    }
+    if (!(std::isfinite(c.friction) && c.friction >= 0.0)) {
+      CheckNonNegative(c.friction, field(".mu"), where);
+    }
     // The gap at rest (q = 0): g = n . (X_i + p - A) for ground faces and
     // g = n . (X_i + p - X_j - A) for a face on body j, whose frame is not turned at rest.
     const Body& carrier = bodies_[static_cast<std::size_t>(c.body)];
