@@ -10,36 +10,16 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <random>
 
 #include "solver/contact/kinematics.h"
 #include "solver/dynamics/linear_flow.h"
 #include "solver/model/builders.h"
 #include "solver/model/multispan.h"
+#include "tests/dynamics/eccentric_deck.h"
 
 namespace skewbridge::dynamics {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
-
-// A skew deck on a principal-axes substructure with its centre of rigidity off the centre of
-// mass, so that every mode moves x, y and theta together; both abutments (four corners).
-model::Model Deck(double xi) {
-  model::DeckSpec spec;
-  spec.mass_kg = 1.5e6;
-  spec.geometry = {30.0, 12.0, 40.0 * kPi / 180.0};
-  spec.stiffness = model::DeckSpec::StiffnessKind::kPrincipal;
-  spec.w1_radps = 18.0;
-  spec.w2_radps = 26.0;
-  spec.w_theta_radps = 31.0;
-  spec.axis_rad = 0.4;
-  spec.centre_of_rigidity_m = {2.5, -1.5};
-  spec.xi = xi;
-  spec.abutments = model::AbutmentSet::kBoth;
-  spec.gap_plus_m = spec.gap_minus_m = 0.05;
-  return model::BuildDeckModel(spec);
-}
 
 struct Step {
   Eigen::VectorXd z;  // (q, u, a, slope, p, k) at the step's start
@@ -81,7 +61,7 @@ Eigen::VectorXd BoundDrop(const model::Model& model, LinearFlow& modal, const St
 // Random steps of one kind; each contact's dense drop must lie within the bound.
 void CheckSteps(double xi, int count, unsigned seed, double q_scale, double u_scale, double a_scale,
                 double tau_s, bool resonant) {
-  const model::Model model = Deck(xi);
+  const model::Model model = testing::EccentricDeck(xi);
   LinearFlow modal(model.M(), model.K(), model.C(), model.r());
   LinearFlow augmented(model.M(), model.K(), model.C(), model.r(), FlowPath::kAugmented);
   ASSERT_TRUE(modal.modal());
@@ -143,7 +123,7 @@ TEST(GapBound, HoldsOnFreeVibrationOfLargeRotation) {
 TEST(GapBound, NeverCallsAGrazingStepOpen) {
   // Each step's faces moved so that the smallest gap inside it is 1e-9 m: the start's gap minus
   // the bound must not stay above zero (the rule then searches the step).
-  const model::Model model = Deck(0.05);
+  const model::Model model = testing::EccentricDeck(0.05);
   LinearFlow modal(model.M(), model.K(), model.C(), model.r());
   LinearFlow augmented(model.M(), model.K(), model.C(), model.r(), FlowPath::kAugmented);
   const int n = model.n_dof();
@@ -172,7 +152,7 @@ TEST(GapBound, NeverCallsAGrazingStepOpen) {
 }
 
 TEST(GapBound, DoesNotApplyToAJointBetweenBodiesOrNegativeDamping) {
-  model::Model deck = Deck(0.05);
+  model::Model deck = testing::EccentricDeck(0.05);
   LinearFlow modal(deck.M(), deck.K(), deck.C(), deck.r());
   EXPECT_TRUE(ModalGapBound(deck, modal.modal_flow()).applies());
   // A model whose C is the negative of a classical damping (an energy source).

@@ -11,36 +11,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <random>
 #include <vector>
 
 #include "solver/dynamics/linear_flow.h"
-#include "solver/model/builders.h"
-#include "solver/model/deck.h"
+#include "tests/dynamics/eccentric_deck.h"
 
 namespace skewbridge::dynamics {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
-
-// A skew deck on a principal-axes substructure with its centre of rigidity off the centre of
-// mass, so that every mode moves x, y and theta together.
-model::Model Deck(double xi) {
-  model::DeckSpec spec;
-  spec.mass_kg = 1.5e6;
-  spec.geometry = {30.0, 12.0, 40.0 * kPi / 180.0};
-  spec.stiffness = model::DeckSpec::StiffnessKind::kPrincipal;
-  spec.w1_radps = 18.0;
-  spec.w2_radps = 26.0;
-  spec.w_theta_radps = 31.0;
-  spec.axis_rad = 0.4;
-  spec.centre_of_rigidity_m = {2.5, -1.5};
-  spec.xi = xi;
-  spec.abutments = model::AbutmentSet::kBoth;
-  spec.gap_plus_m = spec.gap_minus_m = 0.05;
-  return model::BuildDeckModel(spec);
-}
 
 TEST(HermiteAbsBound, BoundsRandomCubicsAndIsTightAtTheirPeaks) {
   std::mt19937 rng(11);
@@ -106,7 +84,7 @@ struct Stats {
 // Random steps of one kind: every coordinate's dense peak must lie within the bound.
 Stats CheckSteps(double xi, int count, unsigned seed, double q_scale, double u_scale,
                  double a_scale, double tau_s, bool resonant) {
-  const model::Model model = Deck(xi);
+  const model::Model model = testing::EccentricDeck(xi);
   LinearFlow modal(model.M(), model.K(), model.C(), model.r());
   LinearFlow augmented(model.M(), model.K(), model.C(), model.r(), FlowPath::kAugmented);
   EXPECT_TRUE(modal.modal());
@@ -156,7 +134,7 @@ Stats CheckSteps(double xi, int count, unsigned seed, double q_scale, double u_s
 // Random steps of the deck: every corner's dense largest travel must lie within CornerPeakBound.
 void CheckCorners(double xi, int count, unsigned seed, double q_scale, double u_scale,
                   double a_scale, double tau_s) {
-  const model::Model model = Deck(xi);
+  const model::Model model = testing::EccentricDeck(xi);
   LinearFlow modal(model.M(), model.K(), model.C(), model.r());
   LinearFlow augmented(model.M(), model.K(), model.C(), model.r(), FlowPath::kAugmented);
   ModalPeakBound bound(modal.modal_flow());

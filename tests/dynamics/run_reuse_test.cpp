@@ -11,8 +11,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <bit>
-#include <cstdint>
 #include <numbers>
 #include <random>
 #include <vector>
@@ -22,35 +20,10 @@
 #include "solver/dynamics/simulate.h"
 #include "solver/model/builders.h"
 #include "solver/model/multispan.h"
+#include "tests/dynamics/run_bits.h"
 
 namespace skewbridge::dynamics {
 namespace {
-
-std::uint64_t Bits(double x) { return std::bit_cast<std::uint64_t>(x); }
-
-void ExpectSameBits(const RunResult& a, const RunResult& b, int cell) {
-  SCOPED_TRACE(cell);
-  ASSERT_EQ(a.status, b.status);
-  ASSERT_EQ(a.max_abs_q.size(), b.max_abs_q.size());
-  for (Eigen::Index i = 0; i < a.max_abs_q.size(); ++i) {
-    EXPECT_EQ(Bits(a.max_abs_q[i]), Bits(b.max_abs_q[i])) << "max_abs_q " << i;
-    EXPECT_EQ(Bits(a.time_of_max_s[i]), Bits(b.time_of_max_s[i])) << "time_of_max_s " << i;
-    EXPECT_EQ(Bits(a.q_end[i]), Bits(b.q_end[i])) << "q_end " << i;
-    EXPECT_EQ(Bits(a.u_end[i]), Bits(b.u_end[i])) << "u_end " << i;
-  }
-  ASSERT_EQ(a.max_travel_m.size(), b.max_travel_m.size());
-  for (Eigen::Index d = 0; d < a.max_travel_m.size(); ++d) {
-    EXPECT_EQ(Bits(a.max_travel_m[d]), Bits(b.max_travel_m[d])) << "max_travel_m " << d;
-  }
-  EXPECT_EQ(a.impacts, b.impacts);
-  EXPECT_EQ(a.free_steps, b.free_steps);
-  EXPECT_EQ(a.rk_steps, b.rk_steps);
-  EXPECT_EQ(Bits(a.min_impact_separation_s), Bits(b.min_impact_separation_s));
-  ASSERT_EQ(a.events.size(), b.events.size());
-  for (std::size_t k = 0; k < a.events.size(); ++k) {
-    EXPECT_EQ(Bits(a.events[k].t_s), Bits(b.events[k].t_s)) << "event " << k;
-  }
-}
 
 // One deck of the subsystem's kind (10 m long, eta0-like proportions) against the +x abutment
 // (or both), its frequencies, skew, gap and contact laws varied by `k`.
@@ -129,14 +102,16 @@ TEST(RunReuse, RefittedWorkspaceGivesTheBitsOfANewOneOverShapesInOrderAndShuffle
   for (const std::vector<int>* sequence : {&order, &shuffled}) {
     RunReuse reuse;
     for (int i : *sequence) {
-      ExpectSameBits(reuse.Run(models[static_cast<std::size_t>(i)], pulse, control),
-                     fresh[static_cast<std::size_t>(i)], i);
+      SCOPED_TRACE(i);
+      testing::ExpectSameRunBits(reuse.Run(models[static_cast<std::size_t>(i)], pulse, control),
+                                 fresh[static_cast<std::size_t>(i)]);
     }
   }
   // And through Run, whose thread keeps one RunReuse for every caller.
   for (int i : shuffled) {
-    ExpectSameBits(dynamics::Run(models[static_cast<std::size_t>(i)], pulse, control),
-                   fresh[static_cast<std::size_t>(i)], i);
+    SCOPED_TRACE(i);
+    testing::ExpectSameRunBits(dynamics::Run(models[static_cast<std::size_t>(i)], pulse, control),
+                               fresh[static_cast<std::size_t>(i)]);
   }
 }
 

@@ -22,9 +22,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
-#include <cstdint>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -38,42 +36,19 @@
 #include "solver/dynamics/run.h"
 #include "solver/dynamics/stripes.h"
 #include "solver/model/model_file.h"
+#include "tests/dynamics/run_bits.h"
 
 namespace skewbridge::dynamics {
 namespace {
 
 const std::string kDataDir = SKEWBRIDGE_TEST_DATA_DIR;
-
-std::uint64_t Bits(double x) { return std::bit_cast<std::uint64_t>(x); }
+using testing::Bits;
 
 // The record along x at `factor`, each sample times the factor as a sweep scales it.
 records::SampledExcitation Scaled(const records::GroundMotion& motion, double factor) {
   records::GroundMotion scaled = motion;
   for (double& a : scaled.acc_mps2) a *= factor;
   return records::ToExcitation(scaled);
-}
-
-// Whether two runs' results have the same bits (histories and ledger aside).
-void ExpectSameBits(const RunResult& a, const RunResult& b) {
-  ASSERT_EQ(a.status, b.status);
-  ASSERT_EQ(a.max_abs_q.size(), b.max_abs_q.size());
-  for (Eigen::Index i = 0; i < a.max_abs_q.size(); ++i) {
-    EXPECT_EQ(Bits(a.max_abs_q[i]), Bits(b.max_abs_q[i])) << "max_abs_q " << i;
-    EXPECT_EQ(Bits(a.time_of_max_s[i]), Bits(b.time_of_max_s[i])) << "time_of_max_s " << i;
-    EXPECT_EQ(Bits(a.q_end[i]), Bits(b.q_end[i])) << "q_end " << i;
-    EXPECT_EQ(Bits(a.u_end[i]), Bits(b.u_end[i])) << "u_end " << i;
-  }
-  for (Eigen::Index d = 0; d < a.max_travel_m.size(); ++d) {
-    EXPECT_EQ(Bits(a.max_travel_m[d]), Bits(b.max_travel_m[d])) << "max_travel_m " << d;
-  }
-  EXPECT_EQ(a.impacts, b.impacts);
-  EXPECT_EQ(a.free_steps, b.free_steps);
-  EXPECT_EQ(a.rk_steps, b.rk_steps);
-  EXPECT_EQ(Bits(a.min_impact_separation_s), Bits(b.min_impact_separation_s));
-  ASSERT_EQ(a.events.size(), b.events.size());
-  for (std::size_t k = 0; k < a.events.size(); ++k) {
-    EXPECT_EQ(Bits(a.events[k].t_s), Bits(b.events[k].t_s)) << "event " << k;
-  }
 }
 
 TEST(StripeRun, HistoriesAndLedgerObserveItAndTheLedgerBalancesAcrossTheRestart) {
@@ -96,7 +71,7 @@ TEST(StripeRun, HistoriesAndLedgerObserveItAndTheLedgerBalancesAcrossTheRestart)
     const records::SampledExcitation excitation = Scaled(motion, factor);
     const RunResult stripe = RunScaledRecord(model, excitation, trace, factor, plain, policies);
     const RunResult full = RunScaledRecord(model, excitation, trace, factor, recorded, policies);
-    ExpectSameBits(full, stripe);
+    testing::ExpectSameRunBits(full, stripe);
 
     // The output grid, whole across the restart.
     const Histories& h = full.histories;
@@ -138,7 +113,7 @@ TEST(StripeRun, HistoriesAndLedgerObserveItAndTheLedgerBalancesAcrossTheRestart)
     }
     if (factor == 1.0 || factor == 4.0) {
       ++powers_of_two;
-      ExpectSameBits(full, own);
+      testing::ExpectSameRunBits(full, own);
     }
   }
   EXPECT_GE(with_impacts, 2);

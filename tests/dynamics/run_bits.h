@@ -1,0 +1,43 @@
+#pragma once
+// Bit-for-bit comparison of two runs' results, for the tests whose claim is "the same bits".
+
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+
+#include "solver/dynamics/simulate.h"
+
+namespace skewbridge::dynamics::testing {
+
+/// The bits of x, so that two doubles compare equal only when they are the same value.
+inline std::uint64_t Bits(double x) { return std::bit_cast<std::uint64_t>(x); }
+
+/// Expects two runs' results to have the same bits: status, maxima and their times, end state,
+/// corner travels, step and impact counts, the smallest impact separation and every event's time
+/// (histories and the ledger aside).
+inline void ExpectSameRunBits(const RunResult& a, const RunResult& b) {
+  ASSERT_EQ(a.status, b.status);
+  ASSERT_EQ(a.max_abs_q.size(), b.max_abs_q.size());
+  for (Eigen::Index i = 0; i < a.max_abs_q.size(); ++i) {
+    EXPECT_EQ(Bits(a.max_abs_q[i]), Bits(b.max_abs_q[i])) << "max_abs_q " << i;
+    EXPECT_EQ(Bits(a.time_of_max_s[i]), Bits(b.time_of_max_s[i])) << "time_of_max_s " << i;
+    EXPECT_EQ(Bits(a.q_end[i]), Bits(b.q_end[i])) << "q_end " << i;
+    EXPECT_EQ(Bits(a.u_end[i]), Bits(b.u_end[i])) << "u_end " << i;
+  }
+  ASSERT_EQ(a.max_travel_m.size(), b.max_travel_m.size());
+  for (Eigen::Index d = 0; d < a.max_travel_m.size(); ++d) {
+    EXPECT_EQ(Bits(a.max_travel_m[d]), Bits(b.max_travel_m[d])) << "max_travel_m " << d;
+  }
+  EXPECT_EQ(a.impacts, b.impacts);
+  EXPECT_EQ(a.free_steps, b.free_steps);
+  EXPECT_EQ(a.rk_steps, b.rk_steps);
+  EXPECT_EQ(Bits(a.min_impact_separation_s), Bits(b.min_impact_separation_s));
+  ASSERT_EQ(a.events.size(), b.events.size());
+  for (std::size_t k = 0; k < a.events.size(); ++k) {
+    EXPECT_EQ(Bits(a.events[k].t_s), Bits(b.events[k].t_s)) << "event " << k;
+  }
+}
+
+}  // namespace skewbridge::dynamics::testing
