@@ -97,7 +97,7 @@ class CompliantIntegrator {
   void Tangential(int j, const Eigen::Ref<const Vec>& q, const Eigen::Ref<const Vec>& u, double& s,
                   double& rate, Eigen::Vector3d& w_t) const;
   // (cos theta, sin theta) of body b's angle theta = q[3 b + 2] (rad): computed once per angle,
-  // since every spring of a body asks for it at the same state.
+  // since every spring of a body asks for it at the same state (the last two angles are kept).
   std::pair<double, double> Turn(int b, double theta_rad) const;
   // The slope dF/dd of spring j's current branch at d (N/m); 0 when open.
   double BranchSlope(int j, double d) const;
@@ -116,8 +116,9 @@ class CompliantIntegrator {
   // Settles every spring at the state y; counts a strike when one closes with none engaged, and
   // keeps the smallest time between the starts of two successive strikes.
   void SettleAll(const Eigen::Ref<const Vec>& y);
-  // Whether every spring is open and off its closing point (the free flow applies).
-  bool AllFree(const Eigen::Ref<const Vec>& y) const;
+  // Whether every spring is open and off its closing point at the state y_ (the free flow
+  // applies); leaves every unbroken spring's d and d' at y_ in start_d_m_, start_rate_mps_.
+  bool AllFree();
   bool AnyEngaged() const;
   // dy/dt of y = (q, u, input work, damping work, springs' work) on the piece `piece`.
   void Rhs(const ExcitationPiece& piece, double t, const Eigen::Ref<const Vec>& y,
@@ -155,12 +156,18 @@ class CompliantIntegrator {
   Vec z_, z_new_, z_eval_;  // the free flow's augmented state
   Vec e0_, e1_, e_eval_;    // the springs' event functions at a step's start, end, trial time
   mutable Vec h_, cu_;      // applied forces and C u scratch
-  // Per body: the bits of the last angle Turn was asked for, and its cosine and sine.
+  // Per body: the bits of the last two angles Turn was asked for, and their cosines and sines
+  // (two: the free step asks for each spring at the step's start and end states in turn).
   struct TurnMemo {
-    std::uint64_t theta_bits = 0;
-    double c = 1.0, s = 0.0;  // cos and sin of +0.0
+    std::uint64_t theta_bits[2] = {0, 0};
+    double c[2] = {1.0, 1.0}, s[2] = {0.0, 0.0};  // cos and sin of +0.0
+    int next = 0;                                 // the slot the next new angle replaces
   };
   mutable std::vector<TurnMemo> turn_;
+  // Per spring, d (m) and d' (m/s) at the state y_, valid for the unbroken springs while
+  // start_known_: a free step's end state is the next step's start (the same bits).
+  std::vector<double> start_d_m_, start_rate_mps_;
+  bool start_known_ = false;
   std::vector<SpringState> state_;
   std::vector<FrictionState> friction_;  // one per spring with wall friction
   int ny_;                               // size of y

@@ -18,10 +18,19 @@ namespace skewbridge::dynamics {
 std::pair<double, double> CompliantIntegrator::Turn(int b, double theta_rad) const {
   TurnMemo& m = turn_[static_cast<std::size_t>(b)];
   const auto bits = std::bit_cast<std::uint64_t>(theta_rad);
-  if (bits != m.theta_bits) {
-    m = {bits, std::cos(theta_rad), std::sin(theta_rad)};
+  int k = 0;
+  if (bits == m.theta_bits[0]) {
+    k = 0;
+  } else if (bits == m.theta_bits[1]) {
+    k = 1;
+  } else {
+    k = m.next;
+    m.next = 1 - k;
+    m.theta_bits[k] = bits;
+    m.c[k] = std::cos(theta_rad);
+    m.s[k] = std::sin(theta_rad);
   }
-  return {m.c, m.s};
+  return {m.c[k], m.s[k]};
 }
 
 void CompliantIntegrator::Along(int j, const Eigen::Vector2d& dir, const Eigen::Ref<const Vec>& q,
@@ -371,15 +380,21 @@ void CompliantIntegrator::SettleAll(const Eigen::Ref<const Vec>& y) {
   }
 }
 
-bool CompliantIntegrator::AllFree(const Eigen::Ref<const Vec>& y) const {
-  Eigen::Vector3d w;
+bool CompliantIntegrator::AllFree() {
+  if (AnyEngaged()) return false;
+  if (!start_known_) {
+    Eigen::Vector3d w;
+    for (int j = 0; j < ns_; ++j) {
+      if (state_[static_cast<std::size_t>(j)].broken) continue;
+      Kinematics(j, y_.head(n_), y_.segment(n_, n_), start_d_m_[static_cast<std::size_t>(j)],
+                 start_rate_mps_[static_cast<std::size_t>(j)], w);
+    }
+    start_known_ = true;
+  }
   for (int j = 0; j < ns_; ++j) {
     const SpringState& m = state_[static_cast<std::size_t>(j)];
-    if (m.branch != Branch::kOpen) return false;
     if (m.broken) continue;
-    double d, rate;
-    Kinematics(j, y.head(n_), y.segment(n_, n_), d, rate, w);
-    if (!(d < m.d_set_m)) return false;
+    if (!(start_d_m_[static_cast<std::size_t>(j)] < m.d_set_m)) return false;
   }
   return true;
 }

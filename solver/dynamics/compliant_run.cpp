@@ -49,6 +49,8 @@ CompliantIntegrator::CompliantIntegrator(const model::Model& model,
       n_(model.n_dof()),
       ns_(static_cast<int>(springs.size())),
       turn_(static_cast<std::size_t>(model.n_bodies())),
+      start_d_m_(springs.size()),
+      start_rate_mps_(springs.size()),
       state_(springs.size()),
       ny_(StateSize(model.n_dof(), springs)),
       rk_(ny_),
@@ -241,7 +243,7 @@ CompliantRunResult CompliantIntegrator::Run() {
           fmt::format("step limit of {} reached at t = {:g} s", control_.max_steps, t_);
       break;
     }
-    if (AllFree(y_)) {
+    if (AllFree()) {
       FreeStep();
     } else {
       CompliantStep();
@@ -290,14 +292,19 @@ void CompliantIntegrator::FreeStep() {
     return z_eval_;
   };
   // The first closing of a spring: its "gap" d_set - d reaching zero, searched as an impact.
+  // The start's d and d' are AllFree's at y_, whose (q, u) z_ holds.
   double t_event = kInf;
   Eigen::Vector3d w;
   for (int j = 0; j < ns_; ++j) {
     if (state_[static_cast<std::size_t>(j)].broken) continue;
     const double d_set = state_[static_cast<std::size_t>(j)].d_set_m;
-    double d0, r0, d1, r1;
-    Kinematics(j, z_.head(n_), z_.segment(n_, n_), d0, r0, w);
+    const double d0 = start_d_m_[static_cast<std::size_t>(j)];
+    const double r0 = start_rate_mps_[static_cast<std::size_t>(j)];
+    double d1, r1;
     Kinematics(j, z_new_.head(n_), z_new_.segment(n_, n_), d1, r1, w);
+    // Kept for the next step's start, which is this end unless an event cuts the step.
+    start_d_m_[static_cast<std::size_t>(j)] = d1;
+    start_rate_mps_[static_cast<std::size_t>(j)] = r1;
     if (!ImpactSuspected(d_set - d0, -r0, d_set - d1, -r1, tau, policy_.dip_margin)) continue;
     const auto gap = [&](double t) {
       const Vec& s = state_at(t);
@@ -320,6 +327,7 @@ void CompliantIntegrator::FreeStep() {
   if (t_event < kInf) {
     ensure_dense();
     dense.EvaluateHead(t_event - t_, 2 * n_, z_new_);
+    start_known_ = false;
   }
   const double t1 = t_event < kInf ? t_event : step.t_next_s;
   if (ledger && (!step.full || t_event < kInf)) {
@@ -351,6 +359,7 @@ void CompliantIntegrator::FreeStep() {
 }
 
 void CompliantIntegrator::CompliantStep() {
+  start_known_ = false;
   const ExcitationPiece piece = excitation_.PieceAt(t_);
   SB_DEMAND(piece.t_end > t_, "Excitation::PieceAt(t) returned a piece that ends at or before t");
   const double t_stop = std::min(piece.t_end, t_end_);
