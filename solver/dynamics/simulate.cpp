@@ -17,6 +17,7 @@
 #include "solver/dynamics/active_forces.h"
 #include "solver/dynamics/active_system.h"
 #include "solver/dynamics/contact_modes.h"
+#include "solver/dynamics/coordinate_maxima.h"
 #include "solver/dynamics/corner_travel.h"
 #include "solver/dynamics/event_location.h"
 #include "solver/dynamics/gap_floors.h"
@@ -99,7 +100,8 @@ class Integrator final : private ConstrainedForces {
   void ConstrainedStep();
   // The step [t_, t1] done, its end state (q, u) in the heads of z_new_: the maxima, the corner
   // travels and the history samples inside it, then (t_, z_) moved to its end.
-  // component_at(t, i) and state_at(t) read the step's dense output (ScanMaxima, RecordOutputs).
+  // component_at(t, i) and state_at(t) read the step's dense output (ScanCoordinateMaxima,
+  // RecordOutputs).
   template <class ComponentAt, class StateAt>
   void RecordStep(double t1, ComponentAt&& component_at, StateAt&& state_at);
 
@@ -137,11 +139,6 @@ class Integrator final : private ConstrainedForces {
   // The impact time of the open contact c in [t0, t1] (FirstGapRoot on the dense output).
   template <class PositionsAt, class StateAt>
   double GapRoot(int c, double t0, double t1, PositionsAt&& positions_at, StateAt&& state_at);
-  // component_at(t, i): entry i of (q, u) at t alone; the root search for a velocity zero needs
-  // one entry, not the whole state.
-  template <class ComponentAt>
-  void ScanMaxima(double t0, const View& q0, const View& u0, double t1, const View& q1,
-                  const View& u1, ComponentAt&& component_at);
   // The time tolerance of a maximum's root search in a step ending at t1 (s).
   double MaximumTimeTolerance(double t1) const {
     return policy_.maximum_time_tolerance * std::max(1.0, std::abs(t1)) +
@@ -209,7 +206,8 @@ class Integrator final : private ConstrainedForces {
   // gap_floors_ bounds the gaps at t_ from below instead.
   bool gaps_exact_ = true;
   GapFloors gap_floors_;
-  // Spares ScanMaxima's and travel_'s root searches of a full free step [docs/theory.md §3.20].
+  // Spares ScanCoordinateMaxima's and travel_'s root searches of a full free step [docs/theory.md
+  // §3.20].
   FreeStepPeaks peaks_;
   // The key of NominalFreeStep's last value (NaN: none yet) and the value (s).
   double nominal_length_s_ = std::numeric_limits<double>::quiet_NaN();
@@ -542,7 +540,8 @@ void Integrator::RecordStep(double t1, ComponentAt&& component_at, StateAt&& sta
   // One view of each end's positions and velocities for both scans, nothing built per step.
   const View q0(z_.data(), n_), u0(z_.data() + n_, n_);
   const View q1(z_new_.data(), n_), u1(z_new_.data() + n_, n_);
-  ScanMaxima(t_, q0, u0, t1, q1, u1, component_at);
+  ScanCoordinateMaxima(n_, t_, q0, u0, t1, q1, u1, MaximumTimeTolerance(t1), component_at, peaks_,
+                       result_.max_abs_q, result_.time_of_max_s);
   // The corner travels, at the same exactness: step ends and the roots of each corner's rate.
   travel_.Scan(t_, q0, u0, t1, q1, u1, MaximumTimeTolerance(t1), component_at, result_.max_travel_m,
                peaks_);
@@ -578,36 +577,11 @@ double Integrator::GapRoot(int c, double t0, double t1, PositionsAt&& positions_
                       gamma_N, scales_.gap_tol_m, scales_.v_tol_mps, policy_);
 }
 
-template <class ComponentAt>
-void Integrator::ScanMaxima(double t0, const View& q0, const View& u0, double t1, const View& q1,
-                            const View& u1, ComponentAt&& component_at) {
-  for (int i = 0; i < n_; ++i) {
-    if (std::abs(q1[i]) > result_.max_abs_q[i]) {
-      result_.max_abs_q[i] = std::abs(q1[i]);
-      result_.time_of_max_s[i] = t1;
-    }
-    if (u0[i] * u1[i] < 0.0) {
-      const double bound = std::max(std::abs(q0[i]), std::abs(q1[i])) +
-                           0.5 * (t1 - t0) * std::max(std::abs(u0[i]), std::abs(u1[i]));
-      if (bound > result_.max_abs_q[i] &&
-          !peaks_.PeakBelow(i, q0[i], u0[i], q1[i], u1[i], t1 - t0, result_.max_abs_q[i])) {
-        const auto velocity = [&](double t) { return component_at(t, n_ + i); };
-        const RootResult peak =
-            FindRootBrent(velocity, t0, t1, u0[i], u1[i], MaximumTimeTolerance(t1));
-        const double q_peak = std::abs(component_at(peak.x, i));
-        if (q_peak > result_.max_abs_q[i]) {
-          result_.max_abs_q[i] = q_peak;
-          result_.time_of_max_s[i] = peak.x;
-        }
-      }
-    }
-  }
-}
-
 template <class StateAt>
 void Integrator::RecordOutputs(double t0, double t1, StateAt&& state_at) {
-  while (next_output_t_ <= t1 + policy_.output_time_band * std::max(1.0, t1) &&
-         next_output_t_ <= t_end_ + policy_.output_time_band) {
+  // The run's end first: without histories next_output_t_ is +inf.
+  while (next_output_t_ <= t_end_ + policy_.output_time_band &&
+         next_output_t_ <= t1 + policy_.output_time_band * std::max(1.0, t1)) {
     const Vec& s = state_at(std::max(t0, std::min(next_output_t_, t1)));
     RecordSample(next_output_t_, s.head(n_), s.segment(n_, n_));
     next_output_t_ = control_.output_interval_s *

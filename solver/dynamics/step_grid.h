@@ -23,7 +23,9 @@ inline double FreeStepSize(const ExcitationPiece& piece, double omega_max_radps,
   const double h_max = 2.0 * std::numbers::pi / omega / policy.steps_per_period;
   if (std::isfinite(piece.t_end)) {
     const double length = piece.t_end - piece.t_begin;
-    return length / std::ceil(length / h_max);
+    const double steps = length / h_max;
+    // One step (a record's sample within h_max): ceil is 1 and length / 1 is length.
+    return steps > 0.0 && steps <= 1.0 ? length : length / std::ceil(steps);
   }
   return h_max;
 }
@@ -53,9 +55,10 @@ inline FreeStepPlan PlanFreeStep(double t_s, double piece_begin_s, double t_stop
   plan.h_s = std::abs(h_s - h_last_s) <= policy.step_reuse_band * h_s ? h_last_s : h_s;
   const double h = plan.h_s;
   // At the piece's start (a record's steps, one per sample) the quotient is 0 exactly: the same
-  // k without the division.
+  // k without the division, and for a band below 1 (as ValidatePolicy wants it) without floor.
   const double k = t_s == piece_begin_s
-                       ? std::floor(policy.step_snap_band)
+                       ? (policy.step_snap_band < 1.0 ? 0.0 * policy.step_snap_band
+                                                      : std::floor(policy.step_snap_band))
                        : std::floor((t_s - piece_begin_s) / h + policy.step_snap_band);
   plan.t_next_s = piece_begin_s + (k + 1.0) * h;
   if (plan.t_next_s > t_stop_s - policy.step_snap_band * h) {

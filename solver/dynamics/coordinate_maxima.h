@@ -1,0 +1,50 @@
+#pragma once
+/// @file
+/// The running maxima of |q_i| over a run, raised step by step at the exactness of the step's
+/// solution: each step's end, and the root of u_i inside a step where u_i changes sign and the
+/// peak could pass the running maximum (a cheap hull first, then the peaks' bound of a full modal
+/// free step, docs/theory.md §3.20, and a Brent search on the dense output only where both fail).
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+
+#include "solver/dynamics/peak_bound.h"
+#include "solver/dynamics/root_finding.h"
+
+namespace skewbridge::dynamics {
+
+/// Raises max_abs_q (and time_of_max_s, s) of the n coordinates over the step [t0, t1] with ends
+/// (q0, u0), (q1, u1); component_at(t, i) is entry i of (q, u) at t on the step's dense output
+/// (the velocity root needs one entry, not the whole state), time_tolerance_s the root search's.
+template <class ComponentAt>
+inline void ScanCoordinateMaxima(int n, double t0, const Eigen::Map<const Eigen::VectorXd>& q0,
+                                 const Eigen::Map<const Eigen::VectorXd>& u0, double t1,
+                                 const Eigen::Map<const Eigen::VectorXd>& q1,
+                                 const Eigen::Map<const Eigen::VectorXd>& u1,
+                                 double time_tolerance_s, ComponentAt&& component_at,
+                                 FreeStepPeaks& peaks, Eigen::VectorXd& max_abs_q,
+                                 Eigen::VectorXd& time_of_max_s) {
+  for (int i = 0; i < n; ++i) {
+    if (std::abs(q1[i]) > max_abs_q[i]) {
+      max_abs_q[i] = std::abs(q1[i]);
+      time_of_max_s[i] = t1;
+    }
+    if (u0[i] * u1[i] < 0.0) {
+      const double bound = std::max(std::abs(q0[i]), std::abs(q1[i])) +
+                           0.5 * (t1 - t0) * std::max(std::abs(u0[i]), std::abs(u1[i]));
+      if (bound > max_abs_q[i] &&
+          !peaks.PeakBelow(i, q0[i], u0[i], q1[i], u1[i], t1 - t0, max_abs_q[i])) {
+        const auto velocity = [&](double t) { return component_at(t, n + i); };
+        const RootResult peak = FindRootBrent(velocity, t0, t1, u0[i], u1[i], time_tolerance_s);
+        const double q_peak = std::abs(component_at(peak.x, i));
+        if (q_peak > max_abs_q[i]) {
+          max_abs_q[i] = q_peak;
+          time_of_max_s[i] = peak.x;
+        }
+      }
+    }
+  }
+}
+
+}  // namespace skewbridge::dynamics
