@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "solver/dynamics/compliant_run.h"
 #include "solver/dynamics/corner_travel.h"
 #include "solver/dynamics/event_policy.h"
+#include "solver/dynamics/gap_floors.h"
 #include "solver/dynamics/linear_flow.h"
 #include "solver/dynamics/run_scales.h"
 #include "solver/dynamics/runge_kutta.h"
@@ -117,8 +119,14 @@ class CompliantIntegrator {
   // keeps the smallest time between the starts of two successive strikes.
   void SettleAll(const Eigen::Ref<const Vec>& y);
   // Whether every spring is open and off its closing point at the state y_ (the free flow
-  // applies); leaves every unbroken spring's d and d' at y_ in start_d_m_, start_rate_mps_.
+  // applies); leaves every unbroken spring's d and d' at y_ in start_d_m_, start_rate_mps_
+  // unless the step before proved the springs open by the closing bound (start_bounded_).
   bool AllFree();
+  // d and d' of every unbroken spring at the state y_ into start_d_m_, start_rate_mps_.
+  void StartKinematics();
+  // Whether every unbroken spring's gap to its closing point, d_set - d, provably stays above
+  // twice the touch band over the full free step of length tau_s just applied (GapFloors).
+  bool SpringsStayOpen(double tau_s);
   bool AnyEngaged() const;
   // dy/dt of y = (q, u, input work, damping work, springs' work) on the piece `piece`.
   void Rhs(const ExcitationPiece& piece, double t, const Eigen::Ref<const Vec>& y,
@@ -168,6 +176,12 @@ class CompliantIntegrator {
   // start_known_: a free step's end state is the next step's start (the same bits).
   std::vector<double> start_d_m_, start_rate_mps_;
   bool start_known_ = false;
+  // The free steps since the last exact start values all proved every spring open by the
+  // closing bound: the springs are open at y_, their d and d' there not computed.
+  bool start_bounded_ = false;
+  ModalGapBound spring_bound_;                // SpringGapBound of a modal flow, else empty
+  std::unique_ptr<GapFloors> spring_floors_;  // with spring_bound_ when it applies
+  Vec spring_gaps_;                           // per spring, d_set - d at y_ (m; +inf if broken)
   std::vector<SpringState> state_;
   std::vector<FrictionState> friction_;  // one per spring with wall friction
   int ny_;                               // size of y

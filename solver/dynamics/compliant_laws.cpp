@@ -380,17 +380,22 @@ void CompliantIntegrator::SettleAll(const Eigen::Ref<const Vec>& y) {
   }
 }
 
+void CompliantIntegrator::StartKinematics() {
+  Eigen::Vector3d w;
+  for (int j = 0; j < ns_; ++j) {
+    if (state_[static_cast<std::size_t>(j)].broken) continue;
+    Kinematics(j, y_.head(n_), y_.segment(n_, n_), start_d_m_[static_cast<std::size_t>(j)],
+               start_rate_mps_[static_cast<std::size_t>(j)], w);
+  }
+  start_known_ = true;
+}
+
 bool CompliantIntegrator::AllFree() {
   if (AnyEngaged()) return false;
-  if (!start_known_) {
-    Eigen::Vector3d w;
-    for (int j = 0; j < ns_; ++j) {
-      if (state_[static_cast<std::size_t>(j)].broken) continue;
-      Kinematics(j, y_.head(n_), y_.segment(n_, n_), start_d_m_[static_cast<std::size_t>(j)],
-                 start_rate_mps_[static_cast<std::size_t>(j)], w);
-    }
-    start_known_ = true;
-  }
+  // The bound kept every spring's gap above twice the touch band up to y_: each computed d is
+  // below its d_set there.
+  if (start_bounded_) return true;
+  if (!start_known_) StartKinematics();
   for (int j = 0; j < ns_; ++j) {
     const SpringState& m = state_[static_cast<std::size_t>(j)];
     if (m.broken) continue;

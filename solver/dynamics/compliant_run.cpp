@@ -139,6 +139,11 @@ CompliantIntegrator::CompliantIntegrator(const model::Model& model,
   z_ = Vec::Zero(flow_.augmented_size());
   z_new_ = z_eval_ = z_;
   e0_ = e1_ = e_eval_ = Vec::Zero(2 * ns_ + 2 * static_cast<int>(friction_.size()));
+  if (flow_.modal()) spring_bound_ = SpringGapBound(flow_.modal_flow(), springs);
+  if (spring_bound_.applies()) {
+    spring_floors_ = std::make_unique<GapFloors>(spring_bound_);
+    spring_gaps_ = Vec::Zero(ns_);
+  }
   h_ = cu_ = Vec::Zero(n_);
   t_end_ = control.EndTime(excitation.Duration());
   scales_ = ComputeRunScales(
@@ -256,6 +261,49 @@ CompliantRunResult CompliantIntegrator::Run() {
   return Finish(t_finite);
 }
 
+ModalGapBound SpringGapBound(const ModalFlow& modal, const std::vector<CompliantSpring>& springs) {
+  ModalGapBound bound;
+  if (springs.empty() || (modal.c().array() < 0.0).any()) return bound;
+  const int n = modal.n_modes();
+  const int ns = static_cast<int>(springs.size());
+  const Eigen::MatrixXd& Phi = modal.Phi();
+  std::vector<double> W(static_cast<std::size_t>(ns) * static_cast<std::size_t>(n));
+  for (int j = 0; j < ns; ++j) {
+    const CompliantSpring& s = springs[static_cast<std::size_t>(j)];
+    if (s.face.body != model::kGround) return bound;
+    // d = -n . ((x, y) + R(theta) p - A) moves as the gap of a corner at p against the face.
+    const int i = 3 * s.body;
+    const Eigen::Vector2d& normal = s.face.normal;
+    const double arm = normal.norm() * s.point_m.norm();
+    for (int k = 0; k < n; ++k) {
+      W[static_cast<std::size_t>(j * n + k)] =
+          std::abs(normal.x() * Phi(i, k) + normal.y() * Phi(i + 1, k)) +
+          arm * std::abs(Phi(i + 2, k));
+    }
+  }
+  bound.weights = std::move(W);
+  bound.w_radps.resize(static_cast<std::size_t>(n));
+  for (int k = 0; k < n; ++k) bound.w_radps[static_cast<std::size_t>(k)] = std::sqrt(modal.w2()[k]);
+  bound.n_modes = n;
+  bound.n_contacts = ns;
+  return bound;
+}
+
+bool CompliantIntegrator::SpringsStayOpen(double tau_s) {
+  if (!spring_floors_) return false;
+  if (start_known_) {
+    // Exact values at the step's start: the bases start again from them.
+    for (int j = 0; j < ns_; ++j) {
+      const SpringState& m = state_[static_cast<std::size_t>(j)];
+      spring_gaps_[j] = m.broken ? kInf : m.d_set_m - start_d_m_[static_cast<std::size_t>(j)];
+    }
+    spring_floors_->Restart(spring_gaps_);
+  }
+  // Clear of the touch band with the rounding of the deformations' evaluation to spare.
+  return spring_floors_->StaysOpen(flow_.modal_coordinates().data(), tau_s,
+                                   2.0 * scales_.gap_tol_m);
+}
+
 void CompliantIntegrator::FreeStep() {
   fresh_start_ = false;
   LinearFlow& flow = flow_;
@@ -292,10 +340,21 @@ void CompliantIntegrator::FreeStep() {
     return z_eval_;
   };
   // The first closing of a spring: its "gap" d_set - d reaching zero, searched as an impact.
-  // The start's d and d' are AllFree's at y_, whose (q, u) z_ holds.
+  // A full step whose springs provably stay open (the closing bound, docs/theory.md §3.18) needs
+  // neither its end's deformations nor the search: the search would find no root. Otherwise the
+  // start's d and d' are AllFree's at y_, whose (q, u) z_ holds (computed now if the steps
+  // before skipped them: the same bits).
+  const bool open = step.full && SpringsStayOpen(std::max(tau, step.h_s));
+  if (open) {
+    start_known_ = false;
+    start_bounded_ = true;
+  } else if (!start_known_) {
+    StartKinematics();
+  }
+  if (!open) start_bounded_ = false;
   double t_event = kInf;
   Eigen::Vector3d w;
-  for (int j = 0; j < ns_; ++j) {
+  for (int j = 0; j < ns_ && !open; ++j) {
     if (state_[static_cast<std::size_t>(j)].broken) continue;
     const double d_set = state_[static_cast<std::size_t>(j)].d_set_m;
     const double d0 = start_d_m_[static_cast<std::size_t>(j)];
@@ -328,6 +387,7 @@ void CompliantIntegrator::FreeStep() {
     ensure_dense();
     dense.EvaluateHead(t_event - t_, 2 * n_, z_new_);
     start_known_ = false;
+    start_bounded_ = false;
   }
   const double t1 = t_event < kInf ? t_event : step.t_next_s;
   if (ledger && (!step.full || t_event < kInf)) {
@@ -360,6 +420,7 @@ void CompliantIntegrator::FreeStep() {
 
 void CompliantIntegrator::CompliantStep() {
   start_known_ = false;
+  start_bounded_ = false;
   const ExcitationPiece piece = excitation_.PieceAt(t_);
   SB_DEMAND(piece.t_end > t_, "Excitation::PieceAt(t) returned a piece that ends at or before t");
   const double t_stop = std::min(piece.t_end, t_end_);

@@ -32,6 +32,7 @@
 
 #include "solver/common/excitation.h"
 #include "solver/dynamics/event_policy.h"
+#include "solver/dynamics/gap_bound.h"
 #include "solver/dynamics/run_result.h"
 #include "solver/dynamics/simulate.h"
 #include "solver/joint/backfill.h"
@@ -102,6 +103,13 @@ std::vector<CompliantSpring> AbutmentShearKeys(const model::Model& model, int fi
 /// The model without its rigid contacts (the same bodies, K, C, r and modes): the linear system a
 /// compliant run's springs act on.
 model::Model WithoutContacts(const model::Model& model);
+
+/// The closing bound of a compliant run's free steps [docs/theory.md §3.18]: per spring (as a
+/// contact) and mode, the largest change of its deformation d per unit of the modal coordinate,
+/// W_jk = |n_x Phi_xk + n_y Phi_yk| + |n| |p_j| |Phi_theta,k| (its point p_j against its face's
+/// normal n, as a rigid corner's gap). Does not apply (empty weights) when a spring faces another
+/// body or a mode's damping is negative.
+ModalGapBound SpringGapBound(const ModalFlow& modal, const std::vector<CompliantSpring>& springs);
 
 /// What a compliant run returns besides the RunResult of a rigid one.
 struct CompliantRunResult {
