@@ -52,6 +52,10 @@ class SampledExcitation final : public Excitation {
   SampledExcitation(double dt_s, std::vector<double> ax_mps2, std::vector<double> ay_mps2 = {});
 
   ExcitationPiece PieceAt(double t) const override;
+  /// Piece k + 1 from piece k (its index) with PieceAt's operations: PieceAt(t) at t = (k + 1) dt
+  /// exactly, the piece's end, is piece k + 1 (or the rest after the last sample), so the same
+  /// bits without the division and floor.
+  void NextPiece(ExcitationPiece& piece) const override;
   double Duration() const override;
   /// Excitation::Peak from the samples in order, without PieceAt: piece k of [k dt, (k + 1) dt]
   /// is the one PieceAt gives at t = k dt (the guard of its floor), so the same bits.

@@ -26,6 +26,9 @@ struct ExcitationPiece {
   double omega = 0.0;                                       ///< rad/s of the harmonic part
   Eigen::Vector2d cos_amplitude = Eigen::Vector2d::Zero();  ///< m/s^2
   Eigen::Vector2d sin_amplitude = Eigen::Vector2d::Zero();  ///< m/s^2
+  /// The piece's number in an excitation that numbers its pieces (Excitation::NextPiece), else
+  /// -1.
+  long index = -1;
 
   /// Ground acceleration (x, y) in m/s^2 at time t (s) inside the piece.
   Eigen::Vector2d At(double t) const;
@@ -40,6 +43,12 @@ class Excitation {
   /// The smooth piece containing t (s); for t at a kink, the piece that starts there.
   /// @pre t >= 0.
   virtual ExcitationPiece PieceAt(double t) const = 0;
+
+  /// Turns `piece`, one this excitation gave, into the piece that starts at its end: the bits of
+  /// PieceAt(piece.t_end). A subclass that numbers its pieces finds it by the number, without
+  /// PieceAt's search (a free step per record sample asks this once).
+  /// @pre piece.t_end finite.
+  virtual void NextPiece(ExcitationPiece& piece) const { piece = PieceAt(piece.t_end); }
 
   /// Ground acceleration (x, y) in m/s^2 at t (s); zero after Duration().
   Eigen::Vector2d At(double t) const { return PieceAt(t).At(t); }

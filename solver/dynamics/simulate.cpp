@@ -214,6 +214,7 @@ class Integrator final : private ConstrainedForces {
   double nominal_omega_radps_ = std::numeric_limits<double>::quiet_NaN();
   double nominal_h_s_ = 0.0;
   const FreePropagator* propagator_ = nullptr;  // the last full step's (StepPropagator)
+  PieceCursor pieces_;                          // the free steps' excitation piece
   contact::GapRateScratch rates_;               // scratch of the gaps and normal rates
   ClosedEvents events_;                         // the closed contacts' event functions
   ContactModes modes_;                          // every contact's mode and the closed set
@@ -425,7 +426,7 @@ void Integrator::FreeStep() {
   // Advance: the exact flow over one step of the piece's grid, the previous step reused and
   // snapped [docs/theory.md §3.14].
   LinearFlow& flow = ws_.flow_;
-  const ExcitationPiece piece = excitation_.PieceAt(t_);
+  const ExcitationPiece& piece = pieces_.At(excitation_, t_);
   // The Excitation contract: the piece at t extends beyond t. A piece ending at t would make
   // zero-length steps until the step budget runs out, so stop at once instead.
   SB_DEMAND(piece.t_end > t_, "Excitation::PieceAt(t) returned a piece that ends at or before t");

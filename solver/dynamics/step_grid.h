@@ -68,6 +68,25 @@ inline FreeStepPlan PlanFreeStep(double t_s, double piece_begin_s, double t_stop
   return plan;
 }
 
+/// The excitation piece of the free steps: where the last step ended its piece (a record's step
+/// per sample), the next one by its number (Excitation::NextPiece, the bits of PieceAt there),
+/// else Excitation::PieceAt.
+class PieceCursor {
+ public:
+  /// The piece at t_s (PieceAt(t_s)'s bits) of `excitation`, the same for every call.
+  const ExcitationPiece& At(const Excitation& excitation, double t_s) {
+    if (t_s == piece_.t_end) {
+      excitation.NextPiece(piece_);
+    } else {
+      piece_ = excitation.PieceAt(t_s);
+    }
+    return piece_;
+  }
+
+ private:
+  ExcitationPiece piece_;  // the last piece (none yet: its end +inf, which no time equals)
+};
+
 /// The length of a constrained phase's Runge-Kutta step from `t_s` (s) [§3.14]: the step the
 /// error control proposes, `h_rk_s`, cut at the stop `t_stop_s` (the piece's end or the run's),
 /// and stretched to the stop when the rest would be below step_snap_band of the step.

@@ -1,7 +1,8 @@
 // A record as the solver's excitation: the samples are the kinks and the values between them
 // are the linear interpolation of the record read from its file. Its acceleration scale (Peak,
 // read from the samples) has the bits of the walk over PieceAt that every excitation has, and
-// with an unbounded ramp it is the largest sample's magnitude.
+// with an unbounded ramp it is the largest sample's magnitude. The piece after a piece, found by
+// its number, has the bits of PieceAt at that piece's end.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 #include <filesystem>
 #include <limits>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "records/excitations.h"
@@ -81,6 +83,59 @@ TEST(SampledExcitationPeak, IsTheBitsOfTheWalkOverPieceAt) {
       largest = std::max(largest, std::hypot(ex.ax_mps2()[k], y));
     }
     EXPECT_NEAR(ex.Peak(inf), largest, 1e-11 * largest);
+  }
+}
+
+// Every field of two pieces, bit for bit.
+void ExpectSameBits(const ExcitationPiece& a, const ExcitationPiece& b, const std::string& where) {
+  const auto bits = [](double x) { return std::bit_cast<std::uint64_t>(x); };
+  EXPECT_EQ(bits(a.t_begin), bits(b.t_begin)) << where;
+  EXPECT_EQ(bits(a.t_end), bits(b.t_end)) << where;
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_EQ(bits(a.a_begin[i]), bits(b.a_begin[i])) << where;
+    EXPECT_EQ(bits(a.slope[i]), bits(b.slope[i])) << where;
+    EXPECT_EQ(bits(a.cos_amplitude[i]), bits(b.cos_amplitude[i])) << where;
+    EXPECT_EQ(bits(a.sin_amplitude[i]), bits(b.sin_amplitude[i])) << where;
+  }
+  EXPECT_EQ(bits(a.omega), bits(b.omega)) << where;
+  EXPECT_EQ(a.index, b.index) << where;
+}
+
+TEST(SampledExcitationNextPiece, IsTheBitsOfPieceAtThePiecesEnd) {
+  const GroundMotion record =
+      ReadRecord(std::filesystem::path(SKEWBRIDGE_TEST_DATA_DIR) / "records" / "NIS090.AT2");
+  std::vector<SampledExcitation> cases;
+  cases.push_back(ToExcitation(record));
+  cases.push_back(ToExcitation(record, Eigen::Vector2d(0.6, -0.8)));
+  std::mt19937_64 random(2027);
+  std::normal_distribution<double> normal(0.0, 3.0);
+  // Steps whose multiples round (1/3, 0.1 pi, 0.0123), short and long signals, one and two
+  // components.
+  for (const double dt : {0.005, 0.01, 0.02, 0.0123, 1.0 / 3.0, 0.1 * std::acos(-1.0)}) {
+    for (const std::size_t n : {2ul, 3ul, 7ul, 5000ul}) {
+      std::vector<double> ax(n), ay(n);
+      for (std::size_t k = 0; k < n; ++k) {
+        ax[k] = normal(random);
+        ay[k] = normal(random);
+      }
+      cases.emplace_back(dt, ax);
+      cases.emplace_back(dt, ax, ay);
+    }
+  }
+  for (const SampledExcitation& ex : cases) {
+    // From the first piece to the rest after the last sample: n - 1 ramps, then the rest.
+    ExcitationPiece piece = ex.PieceAt(0.0);
+    std::size_t steps = 0;
+    while (std::isfinite(piece.t_end)) {
+      const ExcitationPiece expected = ex.PieceAt(piece.t_end);
+      ex.NextPiece(piece);
+      ExpectSameBits(piece, expected,
+                     "dt " + std::to_string(ex.dt_s()) + ", piece " + std::to_string(steps + 1));
+      ++steps;
+    }
+    EXPECT_EQ(steps, ex.ax_mps2().size() - 1);
+    EXPECT_EQ(piece.t_begin, ex.Duration());
+    EXPECT_EQ(piece.index, -1);
   }
 }
 
