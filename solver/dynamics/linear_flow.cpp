@@ -114,22 +114,6 @@ Eigen::MatrixXd LinearFlow::AugmentedMatrix(double omega_radps) const {
   return A;
 }
 
-void LinearFlow::SetGenerator(const ExcitationPiece& piece, double t_s,
-                              Eigen::Ref<Eigen::VectorXd> z) const {
-  const double tau = t_s - piece.t_begin;
-  const int ia = 2 * n_;
-  z.segment<2>(ia) = piece.a_begin + piece.slope * tau;
-  z.segment<2>(ia + 2) = piece.slope;
-  if (piece.omega != 0.0) {
-    // Matches ExcitationPiece::At, which ignores the harmonic part when omega = 0.
-    const double c = std::cos(piece.omega * tau), s = std::sin(piece.omega * tau);
-    z.segment<2>(ia + 4) = piece.cos_amplitude * c + piece.sin_amplitude * s;
-    z.segment<2>(ia + 6) = -piece.cos_amplitude * s + piece.sin_amplitude * c;
-  } else {
-    z.segment<4>(ia + 4).setZero();
-  }
-}
-
 void LinearFlow::Compute(double tau_s, double omega_radps, bool energy, FreePropagator& out) const {
   out.tau_s = tau_s;
   out.omega_radps = omega_radps;
@@ -204,13 +188,14 @@ void LinearFlow::Apply(const FreePropagator& p, const Eigen::Ref<const Eigen::Ve
     }
     return;
   }
-  modal_->ToModal(z, Y_);
-  // z and z_next are distinct (the precondition): the (q, u) written here is read by nothing after.
-  const double* Phi = modal_->Phi().data();
   // The harmonic generator (p, k) zero, as on every piece of a record: its columns of Y are
-  // signed zeros.
+  // zeros, +0 from ToModal (their products would be zeros of either sign; a sum from 0.0 with
+  // either gives the same bits, and the bounds read their magnitudes).
   const int ih = 2 * n_ + 4;
   const bool harmonic = z[ih] != 0.0 || z[ih + 1] != 0.0 || z[ih + 2] != 0.0 || z[ih + 3] != 0.0;
+  modal_->ToModal(z, Y_, harmonic);
+  // z and z_next are distinct (the precondition): the (q, u) written here is read by nothing after.
+  const double* Phi = modal_->Phi().data();
   if (n_ == 3 && !harmonic) {
     ModalStep<3, false>(Phi, n_, p.modal_rows.data(), Y_.data(), eta_.data(), deta_.data(),
                         z_next.data(), z_next.data() + n_);

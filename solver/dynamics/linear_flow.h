@@ -20,6 +20,7 @@
 /// with the energy forms per mode. The general path stays the oracle of the modal one.
 
 #include <Eigen/Core>
+#include <cmath>
 #include <limits>
 #include <optional>
 #include <vector>
@@ -147,6 +148,23 @@ class LinearFlow {
   std::vector<unsigned long> last_use_;  // per cache entry, the clock of its last use (LRU)
   unsigned long clock_ = 0;
 };
+
+// In the header: a free step per record sample sets the generator, a few operations.
+inline void LinearFlow::SetGenerator(const ExcitationPiece& piece, double t_s,
+                                     Eigen::Ref<Eigen::VectorXd> z) const {
+  const double tau = t_s - piece.t_begin;
+  const int ia = 2 * n_;
+  z.segment<2>(ia) = piece.a_begin + piece.slope * tau;
+  z.segment<2>(ia + 2) = piece.slope;
+  if (piece.omega != 0.0) {
+    // Matches ExcitationPiece::At, which ignores the harmonic part when omega = 0.
+    const double c = std::cos(piece.omega * tau), s = std::sin(piece.omega * tau);
+    z.segment<2>(ia + 4) = piece.cos_amplitude * c + piece.sin_amplitude * s;
+    z.segment<2>(ia + 6) = -piece.cos_amplitude * s + piece.sin_amplitude * c;
+  } else {
+    z.segment<4>(ia + 4).setZero();
+  }
+}
 
 /// The exact solution inside one step, used to locate events and to sample output inside a step.
 /// On the modal path: per mode the Taylor series of the closed-form transition (modal_flow.h),

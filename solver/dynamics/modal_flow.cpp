@@ -44,8 +44,9 @@ struct Reciprocals {
 constexpr Reciprocals kInverseOf{};
 
 // ToModal for kN modes known at compile time, Y column-major with stride kN: y_k's (eta, eta')
-// as ModalProduct's row-wise sums, and the four generator columns -L (gx, gy).
-template <int kN>
+// as ModalProduct's row-wise sums, and the generator columns -L (gx, gy): all four, or with
+// kHarmonic false the linear pair alone and +0 in the harmonic pair.
+template <int kN, bool kHarmonic = true>
 inline void ToModalFixed(const double* PhiTM, const double* negL, const double* z, double* Y) {
   for (int i = 0; i < kN; ++i) {
     double s = 0.0;
@@ -57,11 +58,13 @@ inline void ToModalFixed(const double* PhiTM, const double* negL, const double* 
     for (int j = 0; j < kN; ++j) s += PhiTM[i + j * kN] * z[kN + j];
     Y[kN + i] = s;
   }
-  for (int j = 0; j < 4; ++j) {
+  constexpr int kColumns = kHarmonic ? 4 : 2;
+  for (int j = 0; j < kColumns; ++j) {
     const double gx = z[2 * kN + 2 * j], gy = z[2 * kN + 2 * j + 1];
     double* y = Y + (2 + j) * kN;
     for (int k = 0; k < kN; ++k) y[k] = negL[k] * gx + negL[kN + k] * gy;
   }
+  for (int k = (2 + kColumns) * kN; k < 6 * kN; ++k) Y[k] = 0.0;
 }
 
 }  // namespace
@@ -151,18 +154,23 @@ std::optional<ModalFlow> ModalFlow::Classical(const model::Modes& modes,
   return flow;
 }
 
-void ModalFlow::ToModal(const Eigen::Ref<const Eigen::VectorXd>& z,
-                        Eigen::Ref<Eigen::MatrixXd> Y) const {
+void ModalFlow::ToModal(const Eigen::Ref<const Eigen::VectorXd>& z, Eigen::Ref<Eigen::MatrixXd> Y,
+                        bool harmonic) const {
   const int n = n_modes();
   SB_ASSERT(Y.rows() == n && Y.cols() == 6, "ModalFlow: Y must be n x 6");
   if (n == 3 && Y.outerStride() == 3) {
     // A deck's three modes, once per free step: ModalProduct's and the loop's sums below, in the
     // same order from the same 0.0 (the same bits), unrolled over plain arrays.
-    ToModalFixed<3>(PhiTM_.data(), negL_.data(), z.data(), Y.data());
+    if (harmonic) {
+      ToModalFixed<3, true>(PhiTM_.data(), negL_.data(), z.data(), Y.data());
+    } else {
+      ToModalFixed<3, false>(PhiTM_.data(), negL_.data(), z.data(), Y.data());
+    }
     return;
   }
   ModalProduct(PhiTM_, n, z.data(), z.data() + n, Y.col(0).data(), Y.col(1).data());
-  for (int j = 0; j < 4; ++j) {
+  if (!harmonic) Y.rightCols(2).setZero();
+  for (int j = 0; j < (harmonic ? 4 : 2); ++j) {
     const double gx = z[2 * n + 2 * j], gy = z[2 * n + 2 * j + 1];
     double* y = Y.col(2 + j).data();
     for (int k = 0; k < n; ++k) {

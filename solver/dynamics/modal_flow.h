@@ -78,7 +78,10 @@ class ModalFlow {
 
   /// Modal coordinates of the augmented state z = (q, u, a, slope, p, k) (linear_flow.h): Y is
   /// n x 6, row k = y_k = (Phi^T M q, Phi^T M u, -L a, -L slope, -L p, -L k)_k. No allocation.
-  void ToModal(const Eigen::Ref<const Eigen::VectorXd>& z, Eigen::Ref<Eigen::MatrixXd> Y) const;
+  /// harmonic false: z's (p, k) are zeros (a record's piece), and Y's last two columns are set to
+  /// +0 without their products (which are zeros of either sign).
+  void ToModal(const Eigen::Ref<const Eigen::VectorXd>& z, Eigen::Ref<Eigen::MatrixXd> Y,
+               bool harmonic = true) const;
 
   /// The transitions over tau_s (> 0) at the harmonic rate omega_radps: column k of `rows`
   /// (12 x n) holds T_k row-major (eta row, then eta' row). With `input` and `damping` (36 x n,

@@ -71,7 +71,17 @@ class Integrator final : private ConstrainedForces {
   void FreeStep();
   // Whether every gap provably stays above twice the touch band over the full free step of
   // length tau_s just applied (GapFloors, [docs/theory.md §3.18]).
-  bool GapsStayOpen(double tau_s);
+  bool GapsStayOpen(double tau_s) {
+    if (!ws_.gap_bound_.applies()) {
+      return false;
+    }
+    if (gaps_exact_) {
+      gap_floors_.Restart(ends_.gap0);
+    }
+    // Clear of the touch band with the rounding of the gaps' evaluation to spare.
+    return gap_floors_.StaysOpen(ws_.flow_.modal_coordinates().data(), tau_s,
+                                 2.0 * scales_.gap_tol_m);
+  }
   // FreeStepSize of `piece`, computed again only when its length or rate differ from the last
   // piece's (a record's ramps share them): the same value without its divisions.
   double NominalFreeStep(const ExcitationPiece& piece) {
@@ -522,18 +532,6 @@ void Integrator::FreeStep() {
     ends_.gN0 = ends_.gN1;
     gaps_exact_ = true;
   }
-}
-
-bool Integrator::GapsStayOpen(double tau_s) {
-  if (!ws_.gap_bound_.applies()) {
-    return false;
-  }
-  if (gaps_exact_) {
-    gap_floors_.Restart(ends_.gap0);
-  }
-  // Clear of the touch band with the rounding of the gaps' evaluation to spare.
-  return gap_floors_.StaysOpen(ws_.flow_.modal_coordinates().data(), tau_s,
-                               2.0 * scales_.gap_tol_m);
 }
 
 template <class ComponentAt, class StateAt>

@@ -410,6 +410,15 @@ TEST(LinearFlow, ModalApplyIsTheBitsOfToModalRowsAndProducts) {
         Eigen::VectorXd plain(flow.augmented_size()), with_energy(flow.augmented_size());
         double input = 0.0, damping = 0.0, input_ref = 0.0, damping_ref = 0.0;
         flow.Apply(p, z, plain);
+        // The modal coordinates Apply leaves are ToModal's values (a piece without a harmonic
+        // part: ToModal's harmonic columns are zeros of either sign, Apply's +0).
+        for (int j = 0; j < 6; ++j) {
+          for (int k = 0; k < n; ++k) {
+            EXPECT_EQ(flow.modal_coordinates()(k, j), Y(k, j))
+                << n << " modes, (" << k << ", " << j << ")";
+            if (j >= 4 && rate == 0.0) EXPECT_EQ(Y(k, j), 0.0);
+          }
+        }
         flow.Apply(p, z, with_energy, &input, &damping);
         flow.StepEnergy(p, z, input_ref, damping_ref);
         for (int i = 0; i < 2 * n; ++i) {
