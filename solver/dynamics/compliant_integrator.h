@@ -112,6 +112,8 @@ class CompliantIntegrator {
   void SettleFriction(int f, const Eigen::Ref<const Vec>& y);
   // All springs' event functions at the state y (2 per spring, then 2 per friction element).
   void AllEventValues(const Eigen::Ref<const Vec>& y, Vec& out) const;
+  // Event function e of AllEventValues at the state y, computed alone (the same bits).
+  double EventValueAt(int e, const Eigen::Ref<const Vec>& y) const;
   // The transitions of spring j at (d, d') until its event functions are positive or it cannot
   // leave its branch; returns true when it closed from open (a strike's start).
   bool Settle(int j, double d, double rate);
@@ -162,7 +164,7 @@ class CompliantIntegrator {
   // y = (q, u, input work, damping work, springs' work): the state and the running integrals.
   Vec y_, dy_, y_new_, y_eval_, atol_;
   Vec z_, z_new_, z_eval_;  // the free flow's augmented state
-  Vec e0_, e1_, e_eval_;    // the springs' event functions at a step's start, end, trial time
+  Vec e0_, e1_;             // the springs' event functions at a step's start and end
   mutable Vec h_, cu_;      // applied forces and C u scratch
   // Per body: the bits of the last two angles Turn was asked for, and their cosines and sines
   // (two: the free step asks for each spring at the step's start and end states in turn).

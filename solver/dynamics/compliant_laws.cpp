@@ -283,6 +283,20 @@ void CompliantIntegrator::AllEventValues(const Eigen::Ref<const Vec>& y, Vec& ou
   }
 }
 
+double CompliantIntegrator::EventValueAt(int e, const Eigen::Ref<const Vec>& y) const {
+  double e1, e2;
+  if (e < 2 * ns_) {
+    const int j = e / 2;
+    double d, rate;
+    Eigen::Vector3d w;
+    Kinematics(j, y.head(n_), y.segment(n_, n_), d, rate, w);
+    EventValues(j, d, rate, e1, e2);
+  } else {
+    FrictionEventValues((e - 2 * ns_) / 2, y, e1, e2);
+  }
+  return e % 2 == 0 ? e1 : e2;
+}
+
 bool CompliantIntegrator::Settle(int j, double d, double rate) {
   const CompliantSpring& s = springs_[static_cast<std::size_t>(j)];
   SpringState& m = state_[static_cast<std::size_t>(j)];

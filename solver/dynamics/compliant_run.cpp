@@ -138,7 +138,7 @@ CompliantIntegrator::CompliantIntegrator(const model::Model& model,
   dy_ = y_new_ = y_eval_ = y_;
   z_ = Vec::Zero(flow_.augmented_size());
   z_new_ = z_eval_ = z_;
-  e0_ = e1_ = e_eval_ = Vec::Zero(2 * ns_ + 2 * static_cast<int>(friction_.size()));
+  e0_ = e1_ = Vec::Zero(2 * ns_ + 2 * static_cast<int>(friction_.size()));
   if (flow_.modal()) spring_bound_ = SpringGapBound(flow_.modal_flow(), springs);
   if (spring_bound_.applies()) {
     spring_floors_ = std::make_unique<GapFloors>(spring_bound_);
@@ -455,8 +455,7 @@ void CompliantIntegrator::CompliantStep() {
     if (!(e0_[e] > 0.0 && e1_[e] <= 0.0)) continue;
     const auto value = [&](double t) {
       rk_.DenseHeadAt(t, 2 * n_, y_eval_);
-      AllEventValues(y_eval_, e_eval_);
-      return e_eval_[e];
+      return EventValueAt(e, y_eval_);
     };
     const RootResult root = FindRootBrent(value, t_, t_full, e0_[e], e1_[e], x_tol);
     t_event = std::min(t_event, root.fx <= 0.0 ? root.x : root.upper);
