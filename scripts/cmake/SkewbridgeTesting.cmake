@@ -32,6 +32,18 @@ set_property(DIRECTORY "${PROJECT_SOURCE_DIR}" APPEND PROPERTY CMAKE_CONFIGURE_D
 # The benchmarks and the measuring drivers keep the preset's flags.
 set(SKEWBRIDGE_TEST_CODE_OPTIONS "$<$<NOT:$<CONFIG:Debug>>:-Og>")
 
+# sb_unity_build(TARGET SOURCE...): a test program of several files is compiled as one
+# translation unit per 8 files (CMake's unity build): the Eigen and library templates its files
+# share are instantiated and compiled once, not once per file. Each file's anonymous namespace
+# then shares a scope with the other files': a file whose names collide puts its anonymous
+# namespace in a namespace named after the file (tests/dynamics/gap_root_test.cpp).
+function(sb_unity_build name)
+  list(LENGTH ARGN count)
+  if(count GREATER 1)
+    set_target_properties(${name} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 8)
+  endif()
+endfunction()
+
 function(sb_mpi_environment)
   set_tests_properties(${ARGN} PROPERTIES ENVIRONMENT "${SKEWBRIDGE_MPI_ENVIRONMENT}")
 endfunction()
@@ -45,6 +57,7 @@ function(sb_add_gtest name)
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_LIBS} GTest::gtest GTest::gtest_main GTest::gmock)
   target_compile_options(${name} PRIVATE ${SKEWBRIDGE_TEST_CODE_OPTIONS})
+  sb_unity_build(${name} ${ARG_SOURCES})
   target_compile_definitions(${name} PRIVATE
     SKEWBRIDGE_TEST_DATA_DIR="${SKEWBRIDGE_TEST_DATA_DIR}"
     SKEWBRIDGE_SHARED_DIR="${SKEWBRIDGE_SHARED_DIR}")
@@ -82,6 +95,7 @@ function(sb_add_mpi_gtest name)
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_LIBS} sb_mpi_gtest_main)
   target_compile_options(${name} PRIVATE ${SKEWBRIDGE_TEST_CODE_OPTIONS})
+  sb_unity_build(${name} ${ARG_SOURCES})
   target_compile_definitions(${name} PRIVATE
     SKEWBRIDGE_TEST_DATA_DIR="${SKEWBRIDGE_TEST_DATA_DIR}"
     SKEWBRIDGE_SHARED_DIR="${SKEWBRIDGE_SHARED_DIR}")

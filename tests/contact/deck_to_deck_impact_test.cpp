@@ -14,7 +14,7 @@
 #include "solver/contact/kinematics.h"
 #include "solver/model/multispan.h"
 
-namespace skewbridge::contact {
+namespace skewbridge::contact::deck_to_deck_impact_test {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
@@ -154,4 +154,4 @@ TEST(DeckToDeckImpact, SingleCornerImpactMatchesTheTwoBodyNewtonSolutionAndConse
 }
 
 }  // namespace
-}  // namespace skewbridge::contact
+}  // namespace skewbridge::contact::deck_to_deck_impact_test

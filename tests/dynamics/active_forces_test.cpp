@@ -22,7 +22,7 @@
 #include "solver/model/builders.h"
 #include "tests/dynamics/active_set_oracle.h"
 
-namespace skewbridge::dynamics {
+namespace skewbridge::dynamics::active_forces_test {
 namespace {
 
 using Eigen::MatrixXd;
@@ -281,4 +281,4 @@ TEST(ActiveForces, ClampedDeckStickingPushesWithoutSqueeze) {
 }
 
 }  // namespace
-}  // namespace skewbridge::dynamics
+}  // namespace skewbridge::dynamics::active_forces_test

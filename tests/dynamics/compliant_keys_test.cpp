@@ -14,7 +14,7 @@
 #include "solver/model/builders.h"
 #include "tests/dynamics/benchmark_cases.h"
 
-namespace skewbridge::dynamics {
+namespace skewbridge::dynamics::compliant_keys_test {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -304,4 +304,4 @@ TEST(CompliantKeys, EnergyLedgerClosesWithBackfillAndKeysOnThePilotBridge) {
 }
 
 }  // namespace
-}  // namespace skewbridge::dynamics
+}  // namespace skewbridge::dynamics::compliant_keys_test

@@ -19,7 +19,7 @@
 #include "solver/model/multispan.h"
 #include "tests/dynamics/benchmark_cases.h"
 
-namespace skewbridge::dynamics {
+namespace skewbridge::dynamics::corner_travel_test {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -224,4 +224,4 @@ TEST(CornerTravel, ASkewDeckThatPoundsTravelsLessThanTheBound) {
 }
 
 }  // namespace
-}  // namespace skewbridge::dynamics
+}  // namespace skewbridge::dynamics::corner_travel_test

@@ -14,7 +14,7 @@
 
 #include "solver/dynamics/event_location.h"
 
-namespace skewbridge::dynamics {
+namespace skewbridge::dynamics::first_event_test {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -186,4 +186,4 @@ TEST(Simultaneity, GroupsTheContactsClosedWithinTheToleranceOfTheFirst) {
 }
 
 }  // namespace
-}  // namespace skewbridge::dynamics
+}  // namespace skewbridge::dynamics::first_event_test

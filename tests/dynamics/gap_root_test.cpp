@@ -11,7 +11,7 @@
 #include <random>
 #include <string>
 
-namespace skewbridge::dynamics {
+namespace skewbridge::dynamics::gap_root_test {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -224,4 +224,4 @@ TEST(ImpactSuspicion, MissesNoRootOfAGapWhoseAccelerationKeepsItsSign) {
 }
 
 }  // namespace
-}  // namespace skewbridge::dynamics
+}  // namespace skewbridge::dynamics::gap_root_test

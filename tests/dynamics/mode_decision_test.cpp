@@ -25,7 +25,7 @@
 #include "tests/contact/test_models.h"
 #include "tests/dynamics/active_set_oracle.h"
 
-namespace skewbridge::dynamics {
+namespace skewbridge::dynamics::mode_decision_test {
 namespace {
 
 using Eigen::MatrixXd;
@@ -757,4 +757,4 @@ TEST(ModeDecision, AnEarlyCascadeNamesItsInstantWithItsSignificantDigits) {
 }
 
 }  // namespace
-}  // namespace skewbridge::dynamics
+}  // namespace skewbridge::dynamics::mode_decision_test

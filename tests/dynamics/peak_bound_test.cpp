@@ -17,7 +17,7 @@
 #include "solver/dynamics/linear_flow.h"
 #include "tests/dynamics/eccentric_deck.h"
 
-namespace skewbridge::dynamics {
+namespace skewbridge::dynamics::peak_bound_test {
 namespace {
 
 TEST(HermiteAbsBound, BoundsRandomCubicsAndIsTightAtTheirPeaks) {
@@ -233,4 +233,4 @@ TEST(ModalPeakBound, HoldsOnHeavilyDampedLongSteps) {
 }
 
 }  // namespace
-}  // namespace skewbridge::dynamics
+}  // namespace skewbridge::dynamics::peak_bound_test

@@ -16,7 +16,7 @@
 
 #include "solver/model/builders.h"
 
-namespace skewbridge::dynamics {
+namespace skewbridge::dynamics::projection_test {
 namespace {
 
 using Eigen::MatrixXd;
@@ -246,4 +246,4 @@ TEST(Projection, WithoutOpenContactsInTheProjectionOnlyTheClosedSetIsProjected) 
 }
 
 }  // namespace
-}  // namespace skewbridge::dynamics
+}  // namespace skewbridge::dynamics::projection_test

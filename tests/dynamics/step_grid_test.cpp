@@ -10,7 +10,7 @@
 #include <numbers>
 #include <set>
 
-namespace skewbridge::dynamics {
+namespace skewbridge::dynamics::step_grid_test {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -140,4 +140,4 @@ TEST(StepGrid, ConstrainedStepIsCutAtTheStopWithoutSliverSteps) {
 }
 
 }  // namespace
-}  // namespace skewbridge::dynamics
+}  // namespace skewbridge::dynamics::step_grid_test

@@ -16,7 +16,7 @@
 #include "solver/common/error.h"
 #include "solver/model/builders.h"
 
-namespace skewbridge::model {
+namespace skewbridge::model::builders_test {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
@@ -286,4 +286,4 @@ TEST(Builders, SemiDefinitenessAllowsOneBillionthOfTheLargestEntryBelowZero) {
 }
 
 }  // namespace
-}  // namespace skewbridge::model
+}  // namespace skewbridge::model::builders_test

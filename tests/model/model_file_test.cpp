@@ -11,7 +11,7 @@
 #include "solver/common/error.h"
 #include "solver/model/model_file.h"
 
-namespace skewbridge::model {
+namespace skewbridge::model::model_file_test {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
@@ -296,4 +296,4 @@ TEST(ModelFile, SyntaxErrorsAndUnreadableFilesSayWhere) {
 }
 
 }  // namespace
-}  // namespace skewbridge::model
+}  // namespace skewbridge::model::model_file_test

@@ -14,7 +14,7 @@
 #include "solver/model/model_file.h"
 #include "solver/model/multispan.h"
 
-namespace skewbridge::model {
+namespace skewbridge::model::multispan_model_test {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
@@ -345,4 +345,4 @@ TEST(MultiSpanModel, UnseatingMarginOfARotatedDeckIsSeatWidthMinusTheCornerTrave
 }
 
 }  // namespace
-}  // namespace skewbridge::model
+}  // namespace skewbridge::model::multispan_model_test

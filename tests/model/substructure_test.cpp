@@ -17,7 +17,7 @@
 #include "solver/model/model_file.h"
 #include "solver/model/substructure.h"
 
-namespace skewbridge::model {
+namespace skewbridge::model::substructure_test {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
@@ -304,4 +304,4 @@ TEST(ElementsSubstructure, BuildDeckModelChecksTheElementsItIsGiven) {
 }
 
 }  // namespace
-}  // namespace skewbridge::model
+}  // namespace skewbridge::model::substructure_test
