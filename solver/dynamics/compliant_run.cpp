@@ -272,20 +272,10 @@ ModalGapBound SpringGapBound(const ModalFlow& modal, const std::vector<Compliant
     const CompliantSpring& s = springs[static_cast<std::size_t>(j)];
     if (s.face.body != model::kGround) return bound;
     // d = -n . ((x, y) + R(theta) p - A) moves as the gap of a corner at p against the face.
-    const int i = 3 * s.body;
-    const Eigen::Vector2d& normal = s.face.normal;
-    const double arm = normal.norm() * s.point_m.norm();
-    for (int k = 0; k < n; ++k) {
-      W[static_cast<std::size_t>(j * n + k)] =
-          std::abs(normal.x() * Phi(i, k) + normal.y() * Phi(i + 1, k)) +
-          arm * std::abs(Phi(i + 2, k));
-    }
+    CornerGapWeights(Phi, 3 * s.body, s.face.normal, s.point_m,
+                     W.data() + static_cast<std::size_t>(j) * static_cast<std::size_t>(n));
   }
-  bound.weights = std::move(W);
-  bound.w_radps.resize(static_cast<std::size_t>(n));
-  for (int k = 0; k < n; ++k) bound.w_radps[static_cast<std::size_t>(k)] = std::sqrt(modal.w2()[k]);
-  bound.n_modes = n;
-  bound.n_contacts = ns;
+  bound.Set(modal, std::move(W), ns);
   return bound;
 }
 

@@ -17,20 +17,28 @@ ModalGapBound::ModalGapBound(const model::Model& model, const ModalFlow& modal) 
     if (contact.face.body != model::kGround) {
       return;
     }
-    const int i = 3 * contact.body;
-    const Eigen::Vector2d& normal = contact.face.normal;
-    const double arm = normal.norm() * contact.point_m.norm();
-    for (int k = 0; k < n; ++k) {
-      W[static_cast<std::size_t>(c * n + k)] =
-          std::abs(normal.x() * Phi(i, k) + normal.y() * Phi(i + 1, k)) +
-          arm * std::abs(Phi(i + 2, k));
-    }
+    CornerGapWeights(Phi, 3 * contact.body, contact.face.normal, contact.point_m,
+                     W.data() + static_cast<std::size_t>(c) * static_cast<std::size_t>(n));
   }
+  Set(modal, std::move(W), nc);
+}
+
+void ModalGapBound::Set(const ModalFlow& modal, std::vector<double> W, int count) {
+  const int n = modal.n_modes();
   weights = std::move(W);
   w_radps.resize(static_cast<std::size_t>(n));
   for (int k = 0; k < n; ++k) w_radps[static_cast<std::size_t>(k)] = std::sqrt(modal.w2()[k]);
   n_modes = n;
-  n_contacts = nc;
+  n_contacts = count;
+}
+
+void CornerGapWeights(const Eigen::MatrixXd& Phi, int row, const Eigen::Vector2d& normal,
+                      const Eigen::Vector2d& point_m, double* W) {
+  const double arm = normal.norm() * point_m.norm();
+  for (int k = 0; k < Phi.cols(); ++k) {
+    W[k] = std::abs(normal.x() * Phi(row, k) + normal.y() * Phi(row + 1, k)) +
+           arm * std::abs(Phi(row + 2, k));
+  }
 }
 
 }  // namespace skewbridge::dynamics

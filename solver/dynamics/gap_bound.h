@@ -40,7 +40,16 @@ struct ModalGapBound {
   ModalGapBound() = default;
   /// True when the bound applies to the model.
   bool applies() const { return !weights.empty(); }
+  /// Takes the weights W of `count` gaps (row-major, count x n_modes) and the modes' frequencies
+  /// of `modal`: the bound then applies.
+  void Set(const ModalFlow& modal, std::vector<double> W, int count);
 };
+
+/// The weights of one gap, into W[0 .. n_modes): a corner at point_m (m, body frame) of the body
+/// whose x, y and theta rows of Phi start at `row`, against a ground face of outward normal
+/// `normal`, W_k = |n_x Phi_xk + n_y Phi_yk| + |n| |p| |Phi_theta,k|.
+void CornerGapWeights(const Eigen::MatrixXd& Phi, int row, const Eigen::Vector2d& normal,
+                      const Eigen::Vector2d& point_m, double* W);
 
 /// D_k (per mode, into `drift`) of the step [0, tau_s] from the modal coordinates Y (n x 6,
 /// column-major, rows y_k = (eta, eta', alpha, beta, gamma, delta) as ModalFlow::ToModal gives
