@@ -47,16 +47,18 @@ TEST(ToExcitation, SplitsTheRecordAlongADirection) {
   EXPECT_THROW(ToExcitation(m, Eigen::Vector2d(1.0, 1.0)), InputError);
 }
 
-TEST(SampledExcitationPeak, IsTheBitsOfTheWalkOverPieceAt) {
+// NIS090 along x and along (0.6, -0.8), then random signals (standard deviation 3 m/s^2, seed
+// `seed`) at steps whose multiples round (1/3, 0.1 pi, 0.0123), short and long, with one and two
+// components.
+std::vector<SampledExcitation> SampledCases(std::uint64_t seed) {
   const GroundMotion record =
       ReadRecord(std::filesystem::path(SKEWBRIDGE_TEST_DATA_DIR) / "records" / "NIS090.AT2");
   std::vector<SampledExcitation> cases;
   cases.push_back(ToExcitation(record));
   cases.push_back(ToExcitation(record, Eigen::Vector2d(0.6, -0.8)));
-  std::mt19937_64 random(2011);
+  std::mt19937_64 random(seed);
   std::normal_distribution<double> normal(0.0, 3.0);
-  // Steps whose multiples round (1/3, 0.1 pi), short and long signals, one and two components.
-  for (const double dt : {0.005, 0.01, 0.02, 1.0 / 3.0, 0.1 * std::acos(-1.0)}) {
+  for (const double dt : {0.005, 0.01, 0.02, 0.0123, 1.0 / 3.0, 0.1 * std::acos(-1.0)}) {
     for (const std::size_t n : {2ul, 3ul, 7ul, 5000ul}) {
       std::vector<double> ax(n), ay(n);
       for (std::size_t k = 0; k < n; ++k) {
@@ -67,6 +69,11 @@ TEST(SampledExcitationPeak, IsTheBitsOfTheWalkOverPieceAt) {
       cases.emplace_back(dt, ax, ay);
     }
   }
+  return cases;
+}
+
+TEST(SampledExcitationPeak, IsTheBitsOfTheWalkOverPieceAt) {
+  const std::vector<SampledExcitation> cases = SampledCases(2011);
   const double inf = std::numeric_limits<double>::infinity();
   for (const SampledExcitation& ex : cases) {
     const double dt = ex.dt_s();
@@ -102,26 +109,7 @@ void ExpectSameBits(const ExcitationPiece& a, const ExcitationPiece& b, const st
 }
 
 TEST(SampledExcitationNextPiece, IsTheBitsOfPieceAtThePiecesEnd) {
-  const GroundMotion record =
-      ReadRecord(std::filesystem::path(SKEWBRIDGE_TEST_DATA_DIR) / "records" / "NIS090.AT2");
-  std::vector<SampledExcitation> cases;
-  cases.push_back(ToExcitation(record));
-  cases.push_back(ToExcitation(record, Eigen::Vector2d(0.6, -0.8)));
-  std::mt19937_64 random(2027);
-  std::normal_distribution<double> normal(0.0, 3.0);
-  // Steps whose multiples round (1/3, 0.1 pi, 0.0123), short and long signals, one and two
-  // components.
-  for (const double dt : {0.005, 0.01, 0.02, 0.0123, 1.0 / 3.0, 0.1 * std::acos(-1.0)}) {
-    for (const std::size_t n : {2ul, 3ul, 7ul, 5000ul}) {
-      std::vector<double> ax(n), ay(n);
-      for (std::size_t k = 0; k < n; ++k) {
-        ax[k] = normal(random);
-        ay[k] = normal(random);
-      }
-      cases.emplace_back(dt, ax);
-      cases.emplace_back(dt, ax, ay);
-    }
-  }
+  const std::vector<SampledExcitation> cases = SampledCases(2027);
   for (const SampledExcitation& ex : cases) {
     // From the first piece to the rest after the last sample: n - 1 ramps, then the rest.
     ExcitationPiece piece = ex.PieceAt(0.0);
