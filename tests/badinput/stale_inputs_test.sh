@@ -90,7 +90,8 @@ refused() {
   [ "$own" -eq 1 ] || fail "$spec ($ranks ranks): $own error lines, expected 1: $(cat err.txt)"
   grep -q -- "$pattern" err.txt || fail "$spec ($ranks ranks): '$(cat err.txt)' lacks '$pattern'"
   cmp -s "$target" before.bin || fail "$spec ($ranks ranks): the refused resume changed $target"
-  [ "$(ls)" = "$listing" ] || fail "$spec ($ranks ranks): the refused resume left files: $(ls)"
+  [ "$(ls)" = "$listing" ] ||
+    fail "$spec ($ranks ranks): the refused resume changed the folder: $(diff <(echo "$listing") <(ls) | tr '\n' ' ')"
   rm before.bin
   checks=$((checks + 1))
   echo "  refused: $(grep '^skewbridge: error: ' err.txt)"

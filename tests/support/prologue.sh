@@ -151,4 +151,16 @@ interrupt_at_checkpoint() {
     kill -CONT $ranks 2>/dev/null || true
     [ "$ranks" = "$pid" ] || kill "-$signal" "$pid"
   fi
+  # mpiexec can return before its ranks have finished exiting; a rank still alive could write in
+  # the folder after the caller's `wait`. Wait (at most 30 s) until each is gone or a zombie.
+  local rank state
+  if [ "$ranks" != "$pid" ]; then
+    for rank in $ranks; do
+      for step in $(seq 1 3000); do
+        state=$(awk '{print $3}' "/proc/$rank/stat" 2>/dev/null) || break
+        [ "$state" != Z ] || break
+        sleep 0.01
+      done
+    done
+  fi
 }
