@@ -132,6 +132,37 @@ void WriteHdf5(const std::filesystem::path& path, const std::string& model_text,
   std::filesystem::rename(temporary, path);
 }
 
+// The compliant walls of a run in words: "5 springs per wall and two shear keys per abutment"
+// when every wall has the same number of springs and every abutment keys, else wall by wall.
+std::string WallsText(const model::CompliantAbutments& compliant) {
+  const std::vector<model::CompliantWall>& walls = compliant.walls;
+  bool same_springs = true;
+  bool all_keys = true;
+  for (const model::CompliantWall& w : walls) {
+    same_springs = same_springs && w.springs == walls.front().springs;
+    all_keys = all_keys && w.shear_keys.has_value();
+  }
+  std::string text;
+  if (same_springs) {
+    text = std::to_string(walls.front().springs) + " springs per wall";
+  } else {
+    for (std::size_t w = 0; w < walls.size(); ++w) {
+      text.append(w == 0 ? "" : ", ")
+          .append(std::to_string(walls[w].springs))
+          .append(w == 0 ? " springs on the " : " on the ")
+          .append(model::WallName(w))
+          .append(" wall");
+    }
+  }
+  if (all_keys) return text + " and two shear keys per abutment";
+  for (std::size_t w = 0; w < walls.size(); ++w) {
+    if (walls[w].shear_keys) {
+      text.append(" and two shear keys at the ").append(model::WallName(w)).append(" abutment");
+    }
+  }
+  return text;
+}
+
 // The compliant joints' responses of a run for its file, as a sweep's cell stores them.
 jobs::RunJoints Joints(const model::CompliantAbutments& compliant, const dynamics::LawRun& run) {
   jobs::RunJoints j;
@@ -427,13 +458,11 @@ void Execute(const RunInput& in, const RunOptions& o) {
       Number("%.6e", e.impact_J).c_str(), Number("%.6e", e.friction_J).c_str(),
       Number("%.6e", e.kinetic_J + e.strain_J).c_str(), Number("%.3e", e.balance_error_J).c_str());
   if (in.compliant) {
-    std::printf(
-        "  compliant abutments, %d springs per wall%s; %s energy (J): stored %s, "
-        "dissipated %s\n",
-        in.compliant->springs, in.compliant->shear_keys ? " and two shear keys per abutment" : "",
-        in.compliant->shear_keys ? "backfill and keys'" : "backfill",
-        Number("%.6e", law_run.joint_stored_J).c_str(),
-        Number("%.6e", law_run.joint_dissipated_J).c_str());
+    std::printf("  compliant abutments, %s; %s energy (J): stored %s, dissipated %s\n",
+                WallsText(*in.compliant).c_str(),
+                in.compliant->HasShearKeys() ? "backfill and keys'" : "backfill",
+                Number("%.6e", law_run.joint_stored_J).c_str(),
+                Number("%.6e", law_run.joint_dissipated_J).c_str());
     for (const dynamics::WallMaxima& w : law_run.walls) {
       std::printf("  %s wall: largest spring force %s N, largest deformation %s m\n",
                   w.wall.c_str(), Number("%.6e", w.spring_force_N).c_str(),

@@ -26,7 +26,9 @@ std::vector<CompliantSpring> AbutmentSprings(const model::Model& rigid,
   const int n_decks = rigid.n_bodies();
   SB_DEMAND(spec.joints.size() + 1 == static_cast<std::size_t>(n_decks),
             "AbutmentSprings: one compliant law per deck-deck joint");
-  if (spec.shear_keys) joint::ValidateShearKey(spec.shear_keys->key, rigid.source());
+  for (const model::CompliantWall& w : spec.walls) {
+    if (w.shear_keys) joint::ValidateShearKey(w.shear_keys->key, rigid.source());
+  }
   // A single deck's corners are P1..P4; a row's are D<i>.P<k>, the +x wall on the last deck.
   const auto corner = [&](int deck, int k) {
     // append() rather than operator+ on temporaries: g++ 12 reports a false -Wrestrict there.
@@ -34,32 +36,36 @@ std::vector<CompliantSpring> AbutmentSprings(const model::Model& rigid,
     if (n_decks > 1) name.append(std::to_string(deck)).append(".P");
     return name.append(std::to_string(k));
   };
+  // The walls in the order of spec.walls: +x, then -x.
   const struct {
     int deck;
     int first, last;
-    const char* prefix;
-  } walls[] = {{n_decks - 1, 1, 2, "+x"}, {0, 3, 4, "-x"}};
+  } walls[] = {{n_decks - 1, 1, 2}, {0, 3, 4}};
   std::vector<CompliantSpring> springs;
-  // The backfill of every wall first (with the wall's friction), then the keys of every abutment.
+  // The backfill of every wall first (with the walls' friction), then the keys of every abutment.
   for (const bool keys : {false, true}) {
-    if (keys && !spec.shear_keys) break;
-    for (const auto& w : walls) {
+    for (std::size_t i = 0; i < 2; ++i) {
+      const auto& w = walls[i];
       const int first = ContactIndex(rigid, corner(w.deck, w.first));
       const int last = ContactIndex(rigid, corner(w.deck, w.last));
       if (first < 0 || last < 0) continue;  // set = "+x": no -x wall
+      SB_DEMAND(i < spec.walls.size(), "AbutmentSprings: a compliant law per wall of the model");
+      const model::CompliantWall& law = spec.walls[i];
+      const std::string prefix(model::WallName(i));
       if (keys) {
+        if (!law.shear_keys) continue;
         const std::vector<CompliantSpring> these =
-            AbutmentShearKeys(rigid, first, last, spec.shear_keys->key, w.prefix);
+            AbutmentShearKeys(rigid, first, last, law.shear_keys->key, prefix);
         springs.insert(springs.end(), these.begin(), these.end());
         continue;
       }
       const joint::HyperbolicGap wall =
-          model::WallBackfill(spec.backfill, rigid.body(w.deck).geometry, rigid.source());
+          model::WallBackfill(law.backfill, rigid.body(w.deck).geometry, rigid.source());
       std::vector<CompliantSpring> these =
-          WallSprings(rigid, first, last, wall, spec.springs, w.prefix);
+          WallSprings(rigid, first, last, wall, law.springs, prefix);
       for (CompliantSpring& s : these) {
         s.mu = spec.wall_friction;
-        s.k_t_N_per_m = spec.stick_stiffness_Npm / spec.springs;  // 0: the spring's K_max
+        s.k_t_N_per_m = spec.stick_stiffness_Npm / law.springs;  // 0: the spring's K_max
       }
       springs.insert(springs.end(), these.begin(), these.end());
     }
@@ -112,7 +118,9 @@ std::vector<JointResponse> JointResponses(const model::CompliantAbutments& compl
                        " beyond its gap (the largest of its springs)",
                    [i](const LawRun& r) { return r.joints[i].deformation_m; }});
   }
-  if (!compliant.shear_keys) return out;
+  // The keys' responses of both abutments when either has keys (an abutment without keys: 0, and
+  // inf for the break), so that a cube's responses do not depend on which abutment has them.
+  if (!compliant.HasShearKeys()) return out;
   // The keys of one abutment: the largest of `of` over them, or the earliest break.
   const auto over = [](std::string wall, double KeyMaxima::*of, bool earliest) {
     return [wall, of, earliest](const LawRun& r) {

@@ -22,16 +22,17 @@ namespace skewbridge::dynamics {
 
 /// The springs of `spec` on the decks of `rigid` (a single deck built with its corner contacts
 /// P1, P2 against the +x wall and, with both abutments, P3, P4 against -x; a row of decks with the
-/// last deck's D<i>.P1, D<i>.P2 and deck 0's D0.P3, D0.P4): per wall WallSprings(rigid, first,
-/// last, WallBackfill(spec.backfill, deck), spec.springs, "+x" / "-x"), the wall's law from its
-/// deck's geometry (its length and skew angle); every spring with the wall's friction
-/// spec.wall_friction and an n-th of its stick stiffness (0: the spring's K_max). Then, with
-/// spec.shear_keys, per abutment AbutmentShearKeys(rigid, first, last, key, "+x" / "-x"). Then
-/// per deck-deck joint i (spec.joints) on its two contacts, WallSprings with the joint's backfill
-/// on the striking deck's end or SpringDashpots, named "J<i>". The order: the +x wall's springs,
-/// the -x wall's, the +x keys (+y, -y), the -x keys, the joints.
-/// @pre spec.joints has one law per joint of `rigid`.
-/// @throws InputError naming the model's source when the wall's law or the key is invalid.
+/// last deck's D<i>.P1, D<i>.P2 and deck 0's D0.P3, D0.P4): per wall w (spec.walls[0] the +x
+/// wall, [1] the -x wall) WallSprings(rigid, first, last, WallBackfill(w.backfill, deck),
+/// w.springs, "+x" / "-x"), the wall's law from its deck's geometry (its length and skew angle);
+/// every spring with the walls' friction spec.wall_friction and an n-th of the stick stiffness
+/// (0: the spring's K_max). Then, per abutment with keys (w.shear_keys),
+/// AbutmentShearKeys(rigid, first, last, key, "+x" / "-x"). Then per deck-deck joint i
+/// (spec.joints) on its two contacts, WallSprings with the joint's backfill on the striking deck's
+/// end or SpringDashpots, named "J<i>". The order: the +x wall's springs, the -x wall's, the +x
+/// keys (+y, -y), the -x keys, the joints.
+/// @pre spec.walls has a law per wall of `rigid`; spec.joints one per joint of `rigid`.
+/// @throws InputError naming the model's source when a wall's law or a key is invalid.
 std::vector<CompliantSpring> AbutmentSprings(const model::Model& rigid,
                                              const model::CompliantAbutments& spec);
 
@@ -86,7 +87,8 @@ struct JointResponse {
 /// (+x "_px", then -x "_mx") spring_force and backwall_def; per deck-deck joint i joint_force_j<i>
 /// and joint_def_j<i>; with shear keys, per abutment
 /// key_force, key_def and key_break_time (the earliest break of its two keys, +inf when neither
-/// broke), then keys_broken (the keys broken over the run).
+/// broke), then keys_broken (the keys broken over the run); the keys' responses of both abutments
+/// when either has keys (one without: 0, 0 and +inf).
 std::vector<JointResponse> JointResponses(const model::CompliantAbutments& compliant, bool both);
 
 /// One run of `model` (built with its contacts) under `excitation`: without `compliant`, the

@@ -2,11 +2,12 @@
 /// @file
 /// The joint law of a model file's abutments ([abutments] law, docs/model-format.md): the rigid
 /// impact law lives in the Model's contacts; the compliant law is described here, beside the
-/// Model, as the file gives it: the backfill behind each backwall in one of three forms, the
-/// number of springs along the wall, the wall's friction, and the exterior shear keys of each
-/// abutment [docs/compliant.md §1, §2, §4]. solver/dynamics turns it into springs
-/// (abutment_springs.h). SI: N, m.
+/// Model, as the file gives it: per wall the backfill behind its backwall in one of three forms,
+/// the number of springs along it and the abutment's exterior shear keys, and the walls' friction
+/// [docs/compliant.md §1, §2, §4]. solver/dynamics turns it into springs (abutment_springs.h).
+/// SI: N, m.
 
+#include <cstddef>
 #include <optional>
 #include <string_view>
 #include <vector>
@@ -30,7 +31,7 @@ enum class BackfillForm {
   kCaltrans,       ///< Caltrans SDC 2.0 from the backwall's width and height
 };
 
-/// The backfill of every compliant wall of a model file, as written (one law for both walls).
+/// The backfill of one compliant wall (or deck-deck joint) of a model file, as written.
 struct BackfillSpec {
   BackfillForm form = BackfillForm::kHyperbolicGap;
   /// kHyperbolicGap: the constants are per metre of wall (N/m/m, N/m), multiplied by the wall's
@@ -47,8 +48,9 @@ struct BackfillSpec {
   bool skew_reduction = true;  ///< kCaltrans: R_sk = exp(-a / 45 deg), else R_sk = 1
 };
 
-/// The exterior shear keys of every abutment of a model file ([abutments.shear_keys]): two per
-/// abutment, one beside each side of the deck, each with this backbone [docs/compliant.md §2].
+/// The exterior shear keys of one abutment ([abutments.shear_keys] for every abutment, or
+/// [abutments.shear_keys."+x"] for one): two, one beside each side of the deck, each with this
+/// backbone [docs/compliant.md §2].
 struct ShearKeysSpec {
   /// Each key's backbone; gap_m is the transverse gap between the deck's side and the key.
   joint::ShearKey key;
@@ -70,20 +72,42 @@ struct CompliantJoint {
   int springs = 5;        ///< springs along the joint, >= 2
 };
 
-/// The compliant joints of a model file ([abutments] law = "compliant"): `springs` springs per
-/// wall from corner to corner, each with an n-th of the wall's law, optionally the two exterior
-/// shear keys of each abutment, and, for a [[deck]] file, each deck-deck joint's law.
+/// The compliant law of one abutment ([abutments] law = "compliant"): the backfill behind its
+/// backwall, the springs along the wall and its exterior shear keys. The file gives it for both
+/// walls at once ([abutments.backfill], [abutments.shear_keys], `springs` a number) or per wall
+/// ([abutments.backfill."+x"], a `springs` table, ...); either way each wall holds its own.
+struct CompliantWall {
+  BackfillSpec backfill;                    ///< the wall's backfill law
+  int springs = 5;                          ///< springs along the wall from corner to corner, >= 2
+  std::optional<ShearKeysSpec> shear_keys;  ///< the abutment's two exterior keys; none when empty
+};
+
+/// The compliant joints of a model file ([abutments] law = "compliant"): per wall its law
+/// (`springs` springs from corner to corner, each with an n-th of the wall's backfill, and
+/// optionally the abutment's two exterior shear keys), the walls' friction, and, for a [[deck]]
+/// file, each deck-deck joint's law.
 struct CompliantAbutments {
-  BackfillSpec backfill;  ///< the law of each wall
-  int springs = 5;        ///< springs per wall, >= 2
+  /// The law of each wall: [0] the +x wall, [1] the -x wall (with set = "both"; absent with
+  /// set = "+x"). One [abutments.backfill] or [abutments.shear_keys] table fills every wall.
+  std::vector<CompliantWall> walls;
   /// Coulomb friction coefficient on each wall, >= 0, on the springs' normal forces; 0: none.
   double wall_friction = 0.0;
-  /// The wall's stick stiffness along it (N/m), shared by its springs; 0: the wall's K_max.
+  /// Each wall's stick stiffness along it (N/m), shared by its springs; 0: the wall's K_max.
   double stick_stiffness_Npm = 0.0;
-  std::optional<ShearKeysSpec> shear_keys;  ///< the keys of each abutment; none when empty
   /// A [[deck]] file: joint i between decks i and i + 1; empty for a single deck.
   std::vector<CompliantJoint> joints;
+
+  /// Whether any abutment has shear keys.
+  bool HasShearKeys() const {
+    for (const CompliantWall& w : walls) {
+      if (w.shear_keys) return true;
+    }
+    return false;
+  }
 };
+
+/// The name of wall `index` of CompliantAbutments::walls: "+x" (0) or "-x" (1).
+constexpr std::string_view WallName(std::size_t index) { return index == 0 ? "+x" : "-x"; }
 
 /// The length of a wall of `deck` from corner to corner along its skewed end line, W / cos a (m).
 double WallLength_m(const DeckGeometry& deck);

@@ -46,7 +46,8 @@ void RejectOtherKindOfFile(const toml::table& root, std::string_view source) {
 }
 
 // The compliant abutments against what the rest of the file says: the event-driven method (the
-// only integrator of compliant springs) and a wall law that the deck's geometry gives.
+// only integrator of compliant springs) and a law of each wall that its deck's geometry gives
+// (`walls`: the deck of each wall of c.walls, +x then -x).
 void CheckCompliant(const toml::table& root, const CompliantAbutments& c,
                     const std::vector<DeckGeometry>& walls, const RunControl& run,
                     std::string_view source) {
@@ -58,12 +59,19 @@ void CheckCompliant(const toml::table& root, const CompliantAbutments& c,
          "method only (allowed: \"event-driven\")");
   }
   const toml::node* backfill = root.at_path("abutments.backfill").node();
-  const long line = backfill != nullptr    ? detail::LineOf(*backfill)
-                    : abutments != nullptr ? detail::LineOf(*abutments)
-                                           : 0;
-  for (const DeckGeometry& deck : walls) {
-    (void)WallBackfill(c.backfill, deck,
-                       std::string(source) + ":" + std::to_string(line) + ": abutments.backfill");
+  for (std::size_t w = 0; w < c.walls.size(); ++w) {
+    // The wall's own table [abutments.backfill."+x"], or the one of every wall.
+    const std::string_view name = WallName(w);
+    const toml::node* own =
+        backfill != nullptr && backfill->is_table() ? backfill->as_table()->get(name) : nullptr;
+    const toml::node* table = own != nullptr ? own : backfill;
+    const long line = table != nullptr       ? detail::LineOf(*table)
+                      : abutments != nullptr ? detail::LineOf(*abutments)
+                                             : 0;
+    const std::string field =
+        own != nullptr ? "abutments.backfill.\"" + std::string(name) + "\"" : "abutments.backfill";
+    (void)WallBackfill(c.walls[w].backfill, walls[w],
+                       std::string(source) + ":" + std::to_string(line) + ": " + field);
   }
 }
 
@@ -72,7 +80,8 @@ void CheckCompliant(const toml::table& root, const CompliantAbutments& c,
 void CheckCompliantDecks(const toml::table& root, const CompliantAbutments& c,
                          const MultiDeckSpec& decks, const RunControl& run,
                          std::string_view source) {
-  CheckCompliant(root, c, {decks.decks.front().geometry, decks.decks.back().geometry}, run, source);
+  // The +x wall on the last deck's end, the -x wall on deck 0's.
+  CheckCompliant(root, c, {decks.decks.back().geometry, decks.decks.front().geometry}, run, source);
   const toml::array* joints =
       root.get("joint") != nullptr ? root.get("joint")->as_array() : nullptr;
   for (std::size_t i = 0; i < c.joints.size(); ++i) {
@@ -156,7 +165,9 @@ ModelFile Parse(const toml::table& root, std::string_view source,
   top.Finish("sections deck, substructure, abutments, excitation, run");
   CheckRunLength(excitation, run, source);
   Model model = BuildDeckModel(deck, std::string(source));
-  if (compliant) CheckCompliant(root, *compliant, {deck.geometry}, run, source);
+  if (compliant) {
+    CheckCompliant(root, *compliant, {deck.geometry, deck.geometry}, run, source);
+  }
   return ModelFile{path, deck, std::move(model), excitation, run, std::nullopt, compliant};
 }
 

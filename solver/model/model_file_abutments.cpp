@@ -173,18 +173,17 @@ ShearKeysSpec ReadShearKeys(Section& k) {
   CheckNonNegative(key.gap_m, k.Field("gap_m"), k.At("gap_m"));
   const toml::table* details = k.Table("details");
   if (details != nullptr) {
-    k.Reject("v_n_N",
-             "give the capacity v_n_N or the key's concrete and steel "
-             "[abutments.shear_keys.details] (V_n = V_c + V_s), not both");
+    k.Reject("v_n_N", "give the capacity v_n_N or the key's concrete and steel [" +
+                          k.Field("details") + "] (V_n = V_c + V_s), not both");
     Section d(*details, k.Field("details"), k.source());
     spec.details = ReadShearKeyDetails(d);
-    key.v_n_N = joint::ShearKeyCapacity_N(*spec.details, std::string(k.source()) + ":" +
-                                                             std::to_string(d.TableLine()) +
-                                                             ": abutments.shear_keys.details");
+    key.v_n_N = joint::ShearKeyCapacity_N(
+        *spec.details,
+        std::string(k.source()) + ":" + std::to_string(d.TableLine()) + ": " + d.path());
   } else {
     key.v_n_N = Positive(k, "v_n_N",
-                         "the key's capacity V_n, N, or its concrete and steel in a table "
-                         "[abutments.shear_keys.details]");
+                         "the key's capacity V_n, N, or its concrete and steel in a table [" +
+                             k.Field("details") + "]");
   }
   key.d3_m = Positive(k, "d3_m", "deformation beyond the gap at the capacity, m");
   key.dd_m = Positive(k, "dd_m", "deformation beyond the gap at which the key has broken, m");
@@ -212,14 +211,116 @@ ShearKeysSpec ReadShearKeys(Section& k) {
     key.d_res_m = key.dd_m;
   }
   // Every range is checked above with its line; the backbone's own check stays the last word.
-  joint::ValidateShearKey(key, std::string(k.source()) + ":" + std::to_string(k.TableLine()) +
-                                   ": abutments.shear_keys");
+  joint::ValidateShearKey(
+      key, std::string(k.source()) + ":" + std::to_string(k.TableLine()) + ": " + k.path());
   k.Finish(kShearKeyKeys);
   return spec;
 }
 
-// law = "compliant": the springs per wall, the backfill of each wall and the shear keys.
-CompliantAbutments ReadCompliant(Section& s) {
+// A wall "-x" in a per-wall table `t` when the set has the +x wall only (`walls` = 1).
+void RejectMinusX(const Section& t, std::size_t walls) {
+  if (walls == 1 && t.Has("-x")) {
+    Fail(t.At("-x"), t.Field("-x"), "no -x wall with set = \"+x\" (allowed: \"+x\")");
+  }
+}
+
+// A key of [abutments] given for every wall at once or per wall, as a table { "+x" = ...,
+// "-x" = ... } ([abutments.backfill."+x"]): whether `s` gives `key` per wall. A per-wall table
+// holds the walls' names only (a key for both walls beside them is refused), and only the walls
+// of the set (`walls`: 1 with set = "+x", 2 with "both").
+bool PerWall(Section& s, std::string_view key, std::size_t walls) {
+  const toml::node* node = s.Get(key);
+  if (node == nullptr || !node->is_table()) return false;
+  const toml::table& table = *node->as_table();
+  if (!table.contains("+x") && !table.contains("-x")) return false;
+  // The first key (by line) that is not a wall's name: a key of one table for both walls.
+  const toml::node* shared = nullptr;
+  std::string shared_key;
+  for (auto&& [name, value] : table) {
+    if (name.str() != "+x" && name.str() != "-x" &&
+        (shared == nullptr || LineOf(value) < LineOf(*shared))) {
+      shared = &value;
+      shared_key = name.str();
+    }
+  }
+  const Section t(table, s.Field(key), s.source());
+  if (shared != nullptr) {
+    Fail(Where{s.source(), LineOf(*shared)}, t.Field(shared_key),
+         "a key for both walls beside the per-wall table [" +
+             t.Field(table.contains("+x") ? "+x" : "-x") +
+             "]: give one table for both walls or one per wall, not both");
+  }
+  RejectMinusX(t, walls);
+  return true;
+}
+
+// The tables that give `key` for each wall ([abutments.backfill] or [abutments.shear_keys]).
+struct WallTables {
+  bool per_wall = false;  ///< one table per wall; else one table for every wall, or none
+  /// Per wall its own table (per_wall), or tables[0] the one for every wall; empty: none.
+  std::vector<std::optional<Section>> tables;
+};
+
+// The tables of `key`: one for every wall, or per wall (PerWall). A wall without a table of its
+// own has none; with `required` it is refused as a missing key, `what` naming it.
+WallTables ReadWallTables(Section& s, std::string_view key, std::size_t walls, bool required,
+                          std::string_view what) {
+  WallTables out;
+  out.tables.resize(walls);
+  out.per_wall = PerWall(s, key, walls);
+  const toml::table* table = s.Table(key);
+  if (table == nullptr) return out;
+  if (!out.per_wall) {
+    out.tables.front().emplace(*table, s.Field(key), s.source());
+    return out;
+  }
+  Section t(*table, s.Field(key), s.source());
+  for (std::size_t w = 0; w < walls; ++w) {
+    const std::string_view name = WallName(w);
+    if (const toml::table* own = t.Table(name)) {
+      out.tables[w].emplace(*own, t.Field(name), s.source());
+    } else if (required) {
+      t.Missing(name, "the " + std::string(name) + " wall's " + std::string(what) + ": a table [" +
+                          t.Field(name) + "]");
+    }
+  }
+  return out;
+}
+
+// `springs`: one number for every wall or a table { "+x" = ..., "-x" = ... }; 5 when absent.
+std::vector<int> WallSpringCounts(Section& s, std::size_t walls) {
+  const auto count = [](Section& t, std::string_view key, int fallback) {
+    const std::optional<double> n = t.Number(key);
+    if (!n) return fallback;
+    if (*n != std::floor(*n) || *n < 2.0 || *n > 1000.0) {
+      Fail(t.At(key), t.Field(key),
+           "must be a whole number of springs per wall from 2 to 1000 (got " + Show(*n) + ")");
+    }
+    return static_cast<int>(*n);
+  };
+  const toml::node* node = s.Get("springs");
+  if (node == nullptr || !node->is_table()) {
+    return std::vector<int>(walls, count(s, "springs", 5));
+  }
+  Section g(*node->as_table(), s.Field("springs"), s.source());
+  const std::string_view allowed = walls == 2 ? "\"+x\", \"-x\"" : "\"+x\" (with set = \"+x\")";
+  g.Expect(allowed);
+  RejectMinusX(g, walls);
+  std::vector<int> out;
+  for (std::size_t w = 0; w < walls; ++w) {
+    const std::string_view name = WallName(w);
+    if (!g.Has(name)) {
+      g.Missing(name, "springs along the " + std::string(name) + " wall, 2 to 1000");
+    }
+    out.push_back(count(g, name, 5));
+  }
+  g.Finish(allowed);
+  return out;
+}
+
+// law = "compliant": per wall its springs, its backfill and its abutment's shear keys; the walls'
+// friction. `walls`: 1 with set = "+x", 2 with "both".
+CompliantAbutments ReadCompliant(Section& s, std::size_t walls) {
   for (std::string_view key : {"eps_N", "contacts"}) {
     s.Reject(key,
              "belongs to law = \"impact\" (the compliant springs have no restitution or "
@@ -241,24 +342,28 @@ CompliantAbutments ReadCompliant(Section& s) {
     }
     c.stick_stiffness_Npm = *k_t;
   }
-  if (const std::optional<double> n = s.Number("springs")) {
-    if (*n != std::floor(*n) || *n < 2.0 || *n > 1000.0) {
-      Fail(s.At("springs"), s.Field("springs"),
-           "must be a whole number of springs per wall from 2 to 1000 (got " + Show(*n) + ")");
-    }
-    c.springs = static_cast<int>(*n);
-  }
-  const toml::table* backfill = s.Table("backfill");
-  if (backfill == nullptr) {
+  const std::vector<int> springs = WallSpringCounts(s, walls);
+  c.walls.resize(walls);
+  for (std::size_t w = 0; w < walls; ++w) c.walls[w].springs = springs[w];
+  if (!s.Has("backfill")) {
     s.Missing("backfill",
               "the backfill of each wall with law = \"compliant\": a table "
-              "[abutments.backfill]");
+              "[abutments.backfill], or one per wall [abutments.backfill.\"+x\"]");
   }
-  Section b(*backfill, s.Field("backfill"), s.source());
-  c.backfill = ReadBackfill(b);
-  if (const toml::table* keys = s.Table("shear_keys")) {
-    Section k(*keys, s.Field("shear_keys"), s.source());
-    c.shear_keys = ReadShearKeys(k);
+  // One table fills every wall alike; per-wall tables each their own wall.
+  WallTables backfill = ReadWallTables(s, "backfill", walls, true, "backfill");
+  WallTables keys = ReadWallTables(s, "shear_keys", walls, false, "shear keys");
+  if (!backfill.per_wall) {
+    const BackfillSpec law = ReadBackfill(*backfill.tables.front());
+    for (CompliantWall& w : c.walls) w.backfill = law;
+  }
+  if (!keys.per_wall && keys.tables.front()) {
+    const ShearKeysSpec both = ReadShearKeys(*keys.tables.front());
+    for (CompliantWall& w : c.walls) w.shear_keys = both;
+  }
+  for (std::size_t w = 0; w < walls; ++w) {
+    if (backfill.per_wall) c.walls[w].backfill = ReadBackfill(*backfill.tables[w]);
+    if (keys.per_wall && keys.tables[w]) c.walls[w].shear_keys = ReadShearKeys(*keys.tables[w]);
   }
   return c;
 }
@@ -301,7 +406,7 @@ AbutmentParameters ReadAbutments(Section& s, bool multi_deck) {
   const bool compliant = s.String("law", {"impact", "compliant"}).value_or("impact") == "compliant";
   if (compliant) {
     s.Expect(kCompliantKeys, {{"law = \"impact\"", "eps_N, contacts"}});
-    a.compliant = ReadCompliant(s);
+    a.compliant = ReadCompliant(s, a.set == AbutmentSet::kBoth ? 2 : 1);
     s.Finish(kCompliantKeys);
     return a;
   }

@@ -173,6 +173,8 @@ class Section {
   }
 
   std::string_view source() const { return source_; }
+  /// The table's own key path ("abutments.backfill").
+  const std::string& path() const { return path_; }
 
  private:
   // Fails on the first key (by line) for which `unknown` holds, naming the allowed keys, the

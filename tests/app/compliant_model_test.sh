@@ -9,7 +9,8 @@
 # responses of a rigid file hold none of the compliant ones; `run --from-cube` re-runs a compliant
 # cell with its springs. With shear keys (pilot-bridge-compliant-keys.toml) the run file's group
 # `joints`, the cube and a cell run again from it hold the same joint responses, the keys' break
-# times among them. A sweep's eps_N is refused with one line and no cube.
+# times among them. A law per wall (pilot-bridge-one-keyed-abutment.toml): each spring's largest
+# force on its own wall's envelope. A sweep's eps_N is refused with one line and no cube.
 # usage: compliant_model_test.sh SKEWBRIDGE MPIEXEC COMPLIANT_DIRECT SOURCE_DIR
 source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
 args exe mpiexec direct src -- "$@"
@@ -176,6 +177,43 @@ for side in ("px", "mx"):
     assert row[3] == (f"{min(finite):.4g}" if finite else "inf"), (row, t)
     assert row[5] == ("inf" if any(math.isinf(x) for x in t) else f"{max(t):.4g}"), (row, t)
 assert any("inf" in row[3:6] for row in rows.values()), rows  # at scale 1 the keys hold
+PY
+
+# A law per wall (docs/examples/pilot-bridge-one-keyed-abutment.toml): `skewbridge run` names each
+# wall's springs and the keyed abutment; the run file holds 5 springs at +x and 7 at -x, keys at +x
+# only (the -x abutment's key responses 0 and inf), and each spring's largest force is its own
+# wall's envelope F = d / (1/K_max + R_f d / F_ult) at its largest deformation d, with each wall's
+# constants worked here by hand (+x: Wilson and Elgamal per metre over W / cos a; -x: the Caltrans
+# rules for w = 19.36 m, h = 3.0 m at 20 deg), an n-th per spring; the other wall's law misses.
+cp "$src/docs/examples/pilot-bridge-one-keyed-abutment.toml" "$work/"
+"$exe" run "$work/pilot-bridge-one-keyed-abutment.toml" --out "$work/one-keyed.h5" \
+  >"$work/one-keyed.out" 2>&1 || fail "run one-keyed: exit $? ($(cat "$work/one-keyed.out"))"
+grep -q "compliant abutments, 5 springs on the +x wall, 7 on the -x wall and two shear keys at the +x abutment; backfill and keys' energy" \
+  "$work/one-keyed.out" || fail "one-keyed summary: $(cat "$work/one-keyed.out")"
+/usr/bin/python3 - "$work" <<'PY' || fail "a law per wall: the run file against the walls' envelopes (above)"
+import sys, math, h5py
+work = sys.argv[1]
+j = h5py.File(f"{work}/one-keyed.h5", "r")["joints"]
+text = lambda v: [n.decode() if isinstance(n, bytes) else n for n in v]
+names = text(j.attrs["spring_names"])
+assert names == [f"+x.{k}" for k in range(1, 6)] + [f"-x.{k}" for k in range(1, 8)], names
+assert text(j.attrs["key_names"]) == ["+x.key+y", "+x.key-y"], j.attrs["key_names"]
+assert j.attrs["key_force_px"] > 0 and j.attrs["key_force_mx"] == 0, dict(j.attrs)
+assert math.isinf(j.attrs["key_break_time_mx"]), j.attrs["key_break_time_mx"]
+kip_per_in, kip, ft = 4448.2216152605 / 0.0254, 4448.2216152605, 0.3048
+wall_m = 19.36 / math.cos(math.radians(20.0))
+w, h, r_sk = 19.36 / ft, 3.0 / ft, math.exp(-20.0 / 45.0)
+k_c, p_c = w * (5.5 * h + 20.0) * r_sk * kip_per_in, w * 5.5 * h**2.5 / (1.0 + 2.37 * h) * r_sk * kip
+laws = {"+x": (20.3e6 * wall_m / 5, 0.7, 326e3 * wall_m / 5),
+        "-x": (k_c / 7, 1.0 - p_c / (k_c * 0.05 * 3.0), p_c / 7)}
+envelope = lambda law, d: d / (1.0 / law[0] + law[1] * d / law[2])
+force, deformation = j["spring_force_N"][()], j["spring_deformation_m"][()]
+for name, f, d in zip(names, force, deformation):
+    own, other = (("+x", "-x") if name[:2] == "+x" else ("-x", "+x"))
+    assert d > 0, (name, d)
+    assert abs(f - envelope(laws[own], d)) <= 1e-12 * f, (name, f, envelope(laws[own], d))
+    assert abs(f - envelope(laws[other], d)) > 0.03 * f, (name, f, envelope(laws[other], d))
+assert j.attrs["spring_force_mx"] == max(force[5:]) and j.attrs["backwall_def_mx"] == max(deformation[5:])
 PY
 
 # A rigid file's cube holds no compliant response.

@@ -108,6 +108,27 @@ sed 's/^\[excitation\]/[abutments.shear_keys]\ngap_m = 0.01\n\n&/' "$root/docs/e
   > keys_rigid.toml
 expect "keys_rigid.toml:30: abutments.shear_keys: belongs to law = \"compliant\" (the law here is \"impact\")" \
   run keys_rigid.toml --out run.h5
+# --- a compliant law per wall: a key for both walls beside a wall's table, a wall's table missing
+# or outside the set, springs for one wall of two ---
+cp "$root/docs/examples/pilot-bridge-one-keyed-abutment.toml" one_keyed.toml
+sed 's/^\[abutments.backfill."+x"\]/[abutments.backfill]/' one_keyed.toml > wall_mix.toml
+expect "wall_mix.toml:37: abutments.backfill.form: a key for both walls beside the per-wall table [abutments.backfill.\"-x\"]: give one table for both walls or one per wall, not both" \
+  run wall_mix.toml --out run.h5
+awk '/^\[abutments.backfill."-x"\]/ { skip = 1; next } /^\[/ { skip = 0 } !skip' one_keyed.toml \
+  > wall_missing.toml
+expect "wall_missing.toml:36: abutments.backfill.\"-x\": missing required key (the -x wall's backfill: a table [abutments.backfill.\"-x\"])" \
+  run wall_missing.toml --out run.h5
+sed -e 's/^set = "both"/set = "+x"/' -e 's/^gap_m = .*/gap_m = 0.008/' -e 's/^springs = .*/springs = 5/' \
+  one_keyed.toml > wall_set.toml
+expect "wall_set.toml:42: abutments.backfill.\"-x\": no -x wall with set = \"+x\" (allowed: \"+x\")" \
+  run wall_set.toml --out run.h5
+sed 's/^springs = .*/springs = { "+x" = 5 }/' one_keyed.toml > wall_springs.toml
+expect "wall_springs.toml:34: abutments.springs.\"-x\": missing required key (springs along the -x wall, 2 to 1000)" \
+  run wall_springs.toml --out run.h5
+sed 's/^\[abutments.shear_keys."+x"\]/[abutments.shear_keys]\ngap_m = 0.002\n\n&/' one_keyed.toml \
+  > keys_mix.toml
+expect "keys_mix.toml:48: abutments.shear_keys.gap_m: a key for both walls beside the per-wall table [abutments.shear_keys.\"+x\"]: give one table for both walls or one per wall, not both" \
+  run keys_mix.toml --out run.h5
 # --- the wrong kind of file, named as what it is ---
 cp "$spec" spec.toml
 for command in run modes; do
