@@ -24,6 +24,7 @@
 #include "solver/dynamics/run.h"
 #include "solver/model/builders.h"
 #include "solver/model/model_file.h"
+#include "tests/dynamics/pilot_abutments.h"
 
 namespace skewbridge::dynamics {
 namespace {
@@ -34,39 +35,12 @@ constexpr double kInch_m = 0.0254;
 constexpr double kFoot_m = 0.3048;
 constexpr double kKsi_Pa = 6.894757293168e6;
 
-std::string Examples() { return std::string(SKEWBRIDGE_TEST_DATA_DIR) + "/../../docs/examples"; }
-
-std::string ReadText(const std::string& path) {
-  std::ifstream in(path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-// `text` with its [abutments] section (up to the next section) replaced by `abutments`.
-std::string WithAbutments(const std::string& text, const std::string& abutments) {
-  const std::size_t begin = text.find("[abutments]");
-  const std::size_t end = text.find("\n[excitation]");
-  EXPECT_NE(begin, std::string::npos);
-  EXPECT_NE(end, std::string::npos);
-  return text.substr(0, begin) + abutments + text.substr(end);
-}
-
-// The pilot bridge's file with `abutments`, parsed as if it stood beside the examples.
-model::ModelFile Pilot(const std::string& abutments, const std::string& name = "m.toml") {
-  return model::ParseModelString(
-      WithAbutments(ReadText(Examples() + "/pilot-bridge.toml"), abutments), name, Examples());
-}
-
-// The message of the InputError that parsing `abutments` into the pilot bridge throws.
-std::string Refusal(const std::string& abutments) {
-  try {
-    Pilot(abutments);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(accepted)";
-}
+using testing::CompliantWith;
+using testing::Examples;
+using testing::Pilot;
+using testing::ReadText;
+using testing::Refusal;
+using testing::WithAbutments;
 
 TEST(AbutmentSprings, TheModelFilesRunIsSimulateCompliantWithSpringsBuiltByHand) {
   // The example file: Wilson and Elgamal's per-metre law over W / cos a, five springs per wall.
@@ -334,14 +308,6 @@ TEST(AbutmentSprings, BadKeysAreRefusedInOneLineNamingFileLineAndKey) {
               std::string::npos)
         << e.what();
   }
-}
-
-// [abutments] of the compliant example (Wilson and Elgamal's backfill, gaps 8 mm) with `keys`.
-std::string CompliantWith(const std::string& keys) {
-  return "[abutments]\nset = \"both\"\ngap_m = 0.008\nlaw = \"compliant\"\nsprings = 5\n"
-         "[abutments.backfill]\nform = \"hyperbolic-gap\"\nk_max_Npm_per_m = 20.3e6\n"
-         "r_f = 0.7\nf_ult_N_per_m = 326e3\n" +
-         keys;
 }
 
 TEST(AbutmentSprings, TheModelFilesKeysRunAsSimulateCompliantWithKeysBuiltByHand) {
@@ -636,143 +602,6 @@ TEST(AbutmentSprings, ARowOfDecksTakesOneKindOfLawForEveryJoint) {
       "three-span.toml:31: joint[0].eps_N: unknown key (allowed: gap_m, law, springs, backfill, "
       "spring_dashpot); it is a key of law = \"impact\"");
   refusal("k_Npm = 1.0e9", "k_Npm = -1.0e9", "joint[0].spring_dashpot.k_Npm: must be > 0");
-}
-
-// Per-wall laws ([abutments.backfill."+x"], [abutments.shear_keys."-x"], `springs` per wall).
-
-// The [abutments] of the pilot with a backfill and keys per wall: `plus` and `minus` the walls'
-// tables' bodies (the backfill's keys, then optionally a keys table's header and keys).
-std::string PerWall(const std::string& head, const std::string& plus, const std::string& minus) {
-  return "[abutments]\nset = \"both\"\nlaw = \"compliant\"\n" + head +
-         "[abutments.backfill.\"+x\"]\n" + plus + "[abutments.backfill.\"-x\"]\n" + minus;
-}
-
-// Wilson and Elgamal's backfill per metre of wall, and a Caltrans wall of a taller backwall.
-constexpr const char* kWilson =
-    "form = \"hyperbolic-gap\"\nk_max_Npm_per_m = 20.3e6\nr_f = 0.7\nf_ult_N_per_m = 326e3\n";
-constexpr const char* kCaltrans = "form = \"caltrans\"\nwidth_m = 19.36\nheight_m = 2.5\n";
-constexpr const char* kKeys =
-    "gap_m = 0.005\nv_n_N = 0.5e6\nd3_m = 0.002\nv_res_N = 0.1e6\n"
-    "d_res_m = 0.004\ndd_m = 0.008\n";
-
-// Every number a run under the law reports, compared bit for bit.
-void ExpectSameRun(const LawRun& a, const LawRun& b) {
-  ASSERT_EQ(a.run.status, RunStatus::kOk) << a.run.message;
-  ASSERT_EQ(b.run.status, RunStatus::kOk) << b.run.message;
-  for (int i = 0; i < 3; ++i) {
-    EXPECT_EQ(a.run.max_abs_q(i), b.run.max_abs_q(i)) << "dof " << i;
-    EXPECT_EQ(a.run.time_of_max_s(i), b.run.time_of_max_s(i)) << "dof " << i;
-    EXPECT_EQ(a.run.q_end(i), b.run.q_end(i)) << "dof " << i;
-    EXPECT_EQ(a.run.u_end(i), b.run.u_end(i)) << "dof " << i;
-  }
-  EXPECT_EQ(a.run.impacts, b.run.impacts);
-  EXPECT_EQ(a.run.rk_steps, b.run.rk_steps);
-  EXPECT_EQ(a.run.free_steps, b.run.free_steps);
-  EXPECT_EQ(a.joint_stored_J, b.joint_stored_J);
-  EXPECT_EQ(a.joint_dissipated_J, b.joint_dissipated_J);
-  ASSERT_EQ(a.walls.size(), b.walls.size());
-  for (std::size_t w = 0; w < a.walls.size(); ++w) {
-    EXPECT_EQ(a.walls[w].spring_force_N, b.walls[w].spring_force_N);
-    EXPECT_EQ(a.walls[w].deformation_m, b.walls[w].deformation_m);
-  }
-  ASSERT_EQ(a.keys.size(), b.keys.size());
-  for (std::size_t k = 0; k < a.keys.size(); ++k) {
-    EXPECT_EQ(a.keys[k].name, b.keys[k].name);
-    EXPECT_EQ(a.keys[k].force_N, b.keys[k].force_N);
-    EXPECT_EQ(a.keys[k].break_time_s, b.keys[k].break_time_s);
-  }
-  ASSERT_EQ(a.springs.size(), b.springs.size());
-  for (std::size_t s = 0; s < a.springs.size(); ++s) {
-    EXPECT_EQ(a.springs[s].name, b.springs[s].name);
-    EXPECT_EQ(a.springs[s].force_N, b.springs[s].force_N);
-    EXPECT_EQ(a.springs[s].deformation_m, b.springs[s].deformation_m);
-  }
-}
-
-// One sine cycle of 1.2 g and 1 s at `angle_deg` from x, times `sign`: walls and keys engage.
-records::PulseExcitation Cycle(double angle_deg, double sign = 1.0) {
-  const double angle = angle_deg * kPi / 180.0;
-  return records::PulseExcitation(records::PulseShape::kSine, 1.2 * 9.80665, 2.0 * kPi / 1.0,
-                                  sign * Eigen::Vector2d(std::cos(angle), std::sin(angle)));
-}
-
-model::RunControl ThreeSeconds(const model::ModelFile& file) {
-  model::RunControl control = file.run;
-  control.end_time_s = 3.0;
-  control.output_interval_s = 0.0;
-  return control;
-}
-
-TEST(AbutmentWalls, OneTableAndTheSameTablePerWallGiveTheSameRunBitForBit) {
-  // The same backfill, springs and keys for both walls, once as one table and once per wall.
-  const model::ModelFile one =
-      Pilot(CompliantWith(std::string("[abutments.shear_keys]\n") + kKeys));
-  const model::ModelFile per =
-      Pilot(PerWall("gap_m = 0.008\nsprings = { \"+x\" = 5, \"-x\" = 5 }\n", kWilson,
-                    std::string(kWilson) + "[abutments.shear_keys.\"+x\"]\n" + kKeys +
-                        "[abutments.shear_keys.\"-x\"]\n" + kKeys));
-  ASSERT_TRUE(one.compliant && per.compliant);
-  ASSERT_EQ(per.compliant->walls.size(), 2u);
-  const records::PulseExcitation ex = Cycle(60.0);
-  const LawRun a = RunUnderLaw(one.model, one.compliant, ex, ThreeSeconds(one));
-  const LawRun b = RunUnderLaw(per.model, per.compliant, ex, ThreeSeconds(per));
-  ExpectSameRun(a, b);
-  ASSERT_EQ(a.keys.size(), 4u);
-  EXPECT_GT(a.walls[1].spring_force_N, 0.0) << "the -x wall must be struck";
-  // set = "+x": one table and a "+x" table alike.
-  const model::ModelFile plus_one = Pilot(
-      "[abutments]\nset = \"+x\"\ngap_m = 0.008\nlaw = \"compliant\"\n[abutments.backfill]\n" +
-      std::string(kCaltrans));
-  const model::ModelFile plus_per = Pilot(
-      "[abutments]\nset = \"+x\"\ngap_m = 0.008\nlaw = \"compliant\"\nsprings = { \"+x\" = 5 }\n"
-      "[abutments.backfill.\"+x\"]\n" +
-      std::string(kCaltrans));
-  ASSERT_EQ(plus_per.compliant->walls.size(), 1u);
-  ExpectSameRun(RunUnderLaw(plus_one.model, plus_one.compliant, ex, ThreeSeconds(plus_one)),
-                RunUnderLaw(plus_per.model, plus_per.compliant, ex, ThreeSeconds(plus_per)));
-}
-
-TEST(AbutmentWalls, PerWallTablesThatDoNotFitTheSetAreRefusedInOneLine) {
-  const auto refused = [&](const std::string& abutments, const std::string& expected) {
-    const std::string message = Refusal(abutments);
-    EXPECT_NE(message.find(expected), std::string::npos) << message;
-    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-  };
-  const std::string plus = std::string("[abutments.backfill.\"+x\"]\n") + kCaltrans;
-  const std::string minus = std::string("[abutments.backfill.\"-x\"]\n") + kCaltrans;
-  const std::string head = "[abutments]\nset = \"both\"\ngap_m = 0.008\nlaw = \"compliant\"\n";
-  // A key for both walls beside a wall's own table ([abutments] is line 24 of the pilot's file).
-  refused(head + "[abutments.backfill]\n" + kCaltrans + minus,
-          "m.toml:29: abutments.backfill.form: a key for both walls beside the per-wall table "
-          "[abutments.backfill.\"-x\"]: give one table for both walls or one per wall, not both");
-  // A wall's table missing with set = "both"; a -x wall's table with set = "+x".
-  refused(head + plus,
-          "m.toml:28: abutments.backfill.\"-x\": missing required key (the -x wall's backfill: a "
-          "table [abutments.backfill.\"-x\"])");
-  refused("[abutments]\nset = \"+x\"\ngap_m = 0.008\nlaw = \"compliant\"\n" + plus + minus,
-          "m.toml:32: abutments.backfill.\"-x\": no -x wall with set = \"+x\" (allowed: \"+x\")");
-  // A wall's table is read as a whole table of its own, with its path.
-  refused(head + plus + "[abutments.backfill.\"-x\"]\nform = \"caltrans\"\nwidth_m = 19\n",
-          "m.toml:32: abutments.backfill.\"-x\".height_m: missing required key");
-  refused(head + plus + minus +
-              "[abutments.shear_keys.\"-x\"]\ngap_m = 0.01\nv_n_N = 1e6\n"
-              "d3_m = 0.01\ndd_m = 0.001\n",
-          "m.toml:40: abutments.shear_keys.\"-x\".dd_m: must be > d3_m = 0.01 m (got 0.001)");
-  refused(head + plus + minus + "[abutments.shear_keys]\ngap_m = 0.01\n" +
-              "[abutments.shear_keys.\"+x\"]\n" + kKeys,
-          "m.toml:37: abutments.shear_keys.gap_m: a key for both walls beside the per-wall table "
-          "[abutments.shear_keys.\"+x\"]");
-  // springs per wall: both walls, whole numbers, the set's walls only.
-  refused(head + "springs = { \"+x\" = 5 }\n" + plus + minus,
-          "m.toml:28: abutments.springs.\"-x\": missing required key (springs along the -x wall");
-  refused(head + "springs = { \"+x\" = 5, \"-x\" = 1.5 }\n" + plus + minus,
-          "m.toml:28: abutments.springs.\"-x\": must be a whole number of springs per wall from 2 "
-          "to 1000 (got 1.5)");
-  refused(
-      "[abutments]\nset = \"+x\"\ngap_m = 0.008\nlaw = \"compliant\"\n"
-      "springs = { \"+x\" = 5, \"-x\" = 4 }\n" +
-          plus,
-      "m.toml:28: abutments.springs.\"-x\": no -x wall with set = \"+x\" (allowed: \"+x\")");
 }
 
 }  // namespace
