@@ -24,9 +24,12 @@ constexpr std::size_t kCacheCapacity = 8;
 // their terms are left out. That is the same bits: each term is then a signed zero, a sum that
 // starts from +0.0 is never -0.0 (x + (-x) rounds to +0.0), and s + (+-0) = s for every s other
 // than -0.0.
+//
+// The arrays do not overlap (__restrict: no run-time overlap tests, the same operations).
 template <int kN, bool kHarmonic>
-void ModalStep(const double* Phi, int n_runtime, const double* T, const double* Y, double* eta,
-               double* deta, double* q_next, double* u_next) {
+void ModalStep(const double* __restrict Phi, int n_runtime, const double* __restrict T,
+               const double* __restrict Y, double* __restrict eta, double* __restrict deta,
+               double* __restrict q_next, double* __restrict u_next) {
   const int n = kN > 0 ? kN : n_runtime;
   constexpr int kColumns = kHarmonic ? 6 : 4;
   for (int k = 0; k < n; ++k) {
@@ -180,6 +183,21 @@ const FreePropagator& LinearFlow::Propagator(double tau_s, double omega_radps, b
 
 void LinearFlow::Apply(const FreePropagator& p, const Eigen::Ref<const Eigen::VectorXd>& z,
                        Eigen::Ref<Eigen::VectorXd> z_next, double* input_J, double* damping_J) {
+  ApplyMotion(p, z, z_next, input_J, damping_J);
+  if (!modal_) {
+    return;  // the whole of z_next: e^{A_hat tau} z
+  }
+  // The generator: a + slope tau, slope, and (p, k) turned by omega tau.
+  const int ia = 2 * n_;
+  z_next.segment<2>(ia) = z.segment<2>(ia) + p.tau_s * z.segment<2>(ia + 2);
+  z_next.segment<2>(ia + 2) = z.segment<2>(ia + 2);
+  z_next.segment<2>(ia + 4) = p.cos_wt * z.segment<2>(ia + 4) + p.sin_wt * z.segment<2>(ia + 6);
+  z_next.segment<2>(ia + 6) = -p.sin_wt * z.segment<2>(ia + 4) + p.cos_wt * z.segment<2>(ia + 6);
+}
+
+void LinearFlow::ApplyMotion(const FreePropagator& p, const Eigen::Ref<const Eigen::VectorXd>& z,
+                             Eigen::Ref<Eigen::VectorXd> z_next, double* input_J,
+                             double* damping_J) {
   const bool energy = input_J != nullptr && damping_J != nullptr;
   if (!modal_) {
     z_next.noalias() = p.phi * z;
@@ -210,12 +228,6 @@ void LinearFlow::Apply(const FreePropagator& p, const Eigen::Ref<const Eigen::Ve
     SB_DEMAND(p.has_energy, "LinearFlow: the propagator was built without its energy forms");
     ModalEnergy(p, *input_J, *damping_J);
   }
-  // The generator: a + slope tau, slope, and (p, k) turned by omega tau.
-  const int ia = 2 * n_;
-  z_next.segment<2>(ia) = z.segment<2>(ia) + p.tau_s * z.segment<2>(ia + 2);
-  z_next.segment<2>(ia + 2) = z.segment<2>(ia + 2);
-  z_next.segment<2>(ia + 4) = p.cos_wt * z.segment<2>(ia + 4) + p.sin_wt * z.segment<2>(ia + 6);
-  z_next.segment<2>(ia + 6) = -p.sin_wt * z.segment<2>(ia + 4) + p.cos_wt * z.segment<2>(ia + 6);
 }
 
 void LinearFlow::StepEnergy(const FreePropagator& p, const Eigen::Ref<const Eigen::VectorXd>& z,

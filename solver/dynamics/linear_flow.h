@@ -101,6 +101,13 @@ class LinearFlow {
              Eigen::Ref<Eigen::VectorXd> z_next, double* input_J = nullptr,
              double* damping_J = nullptr);
 
+  /// Apply's (q, u) at the step's end (the heads of z_next, the same bits) and energy, for a
+  /// caller that sets the generator itself at the next step: on the modal path the generator
+  /// part of z_next is left as it was. @pre as Apply's.
+  void ApplyMotion(const FreePropagator& p, const Eigen::Ref<const Eigen::VectorXd>& z,
+                   Eigen::Ref<Eigen::VectorXd> z_next, double* input_J = nullptr,
+                   double* damping_J = nullptr);
+
   /// The modal coordinates (n x 6, rows y_k as ModalFlow::ToModal) of the state the last Apply
   /// started from. @pre modal(), and Apply was called.
   const Eigen::MatrixXd& modal_coordinates() const { return Y_; }

@@ -45,9 +45,11 @@ constexpr Reciprocals kInverseOf{};
 
 // ToModal for kN modes known at compile time, Y column-major with stride kN: y_k's (eta, eta')
 // as ModalProduct's row-wise sums, and the generator columns -L (gx, gy): all four, or with
-// kHarmonic false the linear pair alone and +0 in the harmonic pair.
+// kHarmonic false the linear pair alone and +0 in the harmonic pair. Y overlaps none of the
+// inputs (__restrict: no run-time overlap tests, the same operations).
 template <int kN, bool kHarmonic = true>
-inline void ToModalFixed(const double* PhiTM, const double* negL, const double* z, double* Y) {
+inline void ToModalFixed(const double* __restrict PhiTM, const double* __restrict negL,
+                         const double* __restrict z, double* __restrict Y) {
   for (int i = 0; i < kN; ++i) {
     double s = 0.0;
     for (int j = 0; j < kN; ++j) s += PhiTM[i + j * kN] * z[j];

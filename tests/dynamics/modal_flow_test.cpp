@@ -426,6 +426,18 @@ TEST(LinearFlow, ModalApplyIsTheBitsOfToModalRowsAndProducts) {
           EXPECT_EQ(with_energy[i], want[i]) << n << " modes, entry " << i << ", h " << h;
         }
         EXPECT_EQ(plain.tail(kGeneratorSize), with_energy.tail(kGeneratorSize));
+        // ApplyMotion: the same (q, u) bits and energy, the generator part left as it was.
+        Eigen::VectorXd motion = Eigen::VectorXd::Constant(flow.augmented_size(), -3.5);
+        double input_motion = 0.0, damping_motion = 0.0;
+        flow.ApplyMotion(p, z, motion, &input_motion, &damping_motion);
+        for (int i = 0; i < 2 * n; ++i) {
+          EXPECT_EQ(motion[i], want[i]) << n << " modes, entry " << i << ", h " << h;
+        }
+        for (int i = 2 * n; i < flow.augmented_size(); ++i) {
+          EXPECT_EQ(motion[i], -3.5) << n << " modes, generator entry " << i << " written";
+        }
+        EXPECT_EQ(input_motion, input_ref) << n << " modes";
+        EXPECT_EQ(damping_motion, damping_ref) << n << " modes";
         EXPECT_EQ(input, input_ref) << n << " modes";
         EXPECT_EQ(damping, damping_ref) << n << " modes";
         EXPECT_NE(input, 0.0) << n << " modes";
