@@ -2,13 +2,15 @@
 // per wall; docs/model-format.md, "a law per wall"): one table and the same table per wall give
 // the same run bit for bit; a half turn of the parallelogram deck in plan swaps the walls' laws
 // and turns the ground motion (law A at +x and B at -x under a_g is B at +x and A at -x under
-// -a_g, with x and y turned); per-wall tables that do not fit the set are refused in one line.
+// -a_g, with x and y turned); per-wall tables that do not fit the set are refused in one line;
+// a row of decks takes per-wall tables as a single deck does.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "records/excitations.h"
 #include "solver/dynamics/abutment_springs.h"
@@ -245,6 +247,60 @@ TEST(AbutmentWalls, AHalfTurnInPlanSwapsTheWallsLawsAndTurnsTheGroundMotion) {
   // The arithmetic is mirrored but not in the same order (the springs' forces are summed +x wall
   // first), so the check is relative; on the release build the two runs agree bit for bit.
   EXPECT_LE(worst, 1e-10);
+}
+
+TEST(AbutmentWalls, ARowOfDecksTakesALawPerWallAsTheSingleDeckDoes) {
+  // docs/examples/three-span-compliant.toml: the +x wall on deck[2]'s end, the -x wall on
+  // deck[0]'s. Its one backfill table given per wall runs the same bits; a -x law of half the
+  // per-metre constants lands on deck[0]'s springs only.
+  const std::string text = ReadText(Examples() + "/three-span-compliant.toml");
+  const std::string head = "[abutments.backfill]\n";
+  const std::size_t begin = text.find(head);
+  const std::size_t end = text.find("\n\n", begin);
+  ASSERT_NE(begin, std::string::npos);
+  ASSERT_NE(end, std::string::npos);
+  const std::string body = text.substr(begin + head.size(), end + 1 - begin - head.size());
+  const auto with = [&](const std::string& plus, const std::string& minus) {
+    return model::ParseModelString(text.substr(0, begin) + "[abutments.backfill.\"+x\"]\n" + plus +
+                                       "[abutments.backfill.\"-x\"]\n" + minus + text.substr(end),
+                                   "s.toml", Examples());
+  };
+  const model::ModelFile one = model::ParseModelString(text, "s.toml", Examples());
+  const model::ModelFile per = with(body, body);
+  const records::PulseExcitation ex(records::PulseShape::kCosine, 0.4 * 9.80665,
+                                    2.0 * std::numbers::pi / 0.6, Eigen::Vector2d::UnitX());
+  model::RunControl control = one.run;
+  control.output_interval_s = 0.0;
+  const LawRun a = RunUnderLaw(one.model, one.compliant, ex, control);
+  const LawRun b = RunUnderLaw(per.model, per.compliant, ex, control);
+  ExpectSameRun(a, b);
+  EXPECT_TRUE(a.run.max_abs_q == b.run.max_abs_q);  // every deck's
+  EXPECT_TRUE(a.run.q_end == b.run.q_end);
+  ASSERT_EQ(a.joints.size(), 2u);
+  EXPECT_GT(a.walls[1].spring_force_N, 0.0) << "the -x wall must be struck";
+
+  std::string half = body;
+  for (const char* key : {"k_max_Npm_per_m = 20.3e6", "f_ult_N_per_m = 326e3"}) {
+    const std::size_t at = half.find(key);
+    ASSERT_NE(at, std::string::npos) << key;
+    half.replace(at, std::string(key).size(),
+                 key[0] == 'k' ? "k_max_Npm_per_m = 10.15e6" : "f_ult_N_per_m = 163e3");
+  }
+  const model::ModelFile unlike = with(body, half);
+  const std::vector<CompliantSpring> springs = AbutmentSprings(unlike.model, *unlike.compliant);
+  ASSERT_GE(springs.size(), 10u);
+  for (std::size_t k = 0; k < 5; ++k) {
+    const CompliantSpring& plus = springs[k];
+    const CompliantSpring& minus = springs[5 + k];
+    EXPECT_EQ(plus.name, "+x." + std::to_string(k + 1));
+    EXPECT_EQ(minus.name, "-x." + std::to_string(k + 1));
+    EXPECT_EQ(plus.body, 2);
+    EXPECT_EQ(minus.body, 0);
+    // Halving is exact in binary: the -x springs' constants are the +x springs' over 2.
+    EXPECT_EQ(minus.backfill.k_max_N_per_m, plus.backfill.k_max_N_per_m / 2.0);
+    EXPECT_EQ(minus.backfill.f_ult_N, plus.backfill.f_ult_N / 2.0);
+    EXPECT_EQ(minus.backfill.r_f, plus.backfill.r_f);
+  }
 }
 
 }  // namespace
