@@ -7,7 +7,7 @@
 #include "records/excitations.h"
 #include "solver/common/error.h"
 
-namespace skewbridge::records {
+namespace skewbridge::records::excitations_test {
 namespace {
 
 TEST(PulseExcitation, CosinePulseIsOneCycleThenRest) {
@@ -60,4 +60,4 @@ TEST(SampledExcitation, RejectsBadInput) {
 }
 
 }  // namespace
-}  // namespace skewbridge::records
+}  // namespace skewbridge::records::excitations_test

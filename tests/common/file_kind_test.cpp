@@ -8,7 +8,7 @@
 #include <fstream>
 #include <string>
 
-namespace skewbridge {
+namespace skewbridge::file_kind_test {
 namespace {
 
 const std::string kSignature("\x89HDF\r\n\x1a\n", 8);
@@ -40,4 +40,4 @@ TEST(WhyUnreadable, NamesAMissingFileAndAFolder) {
 }
 
 }  // namespace
-}  // namespace skewbridge
+}  // namespace skewbridge::file_kind_test

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace skewbridge {
+namespace skewbridge::nearest_test {
 namespace {
 
 TEST(EditDistance, TextbookPairs) {
@@ -68,4 +68,4 @@ TEST(NearestNames, NearestFirstAtMostCount) {
 }
 
 }  // namespace
-}  // namespace skewbridge
+}  // namespace skewbridge::nearest_test

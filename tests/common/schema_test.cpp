@@ -16,7 +16,7 @@
 
 #include "solver/common/error.h"
 
-namespace skewbridge::schema {
+namespace skewbridge::schema::schema_test {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -259,4 +259,4 @@ TEST(Schema, MemberCountFindsADescriptionThatForgetsAMember) {
 }
 
 }  // namespace
-}  // namespace skewbridge::schema
+}  // namespace skewbridge::schema::schema_test

@@ -26,7 +26,7 @@
 #include "solver/model/model_file.h"
 #include "tests/dynamics/pilot_abutments.h"
 
-namespace skewbridge::dynamics {
+namespace skewbridge::dynamics::abutment_springs_test {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -605,4 +605,4 @@ TEST(AbutmentSprings, ARowOfDecksTakesOneKindOfLawForEveryJoint) {
 }
 
 }  // namespace
-}  // namespace skewbridge::dynamics
+}  // namespace skewbridge::dynamics::abutment_springs_test

@@ -17,7 +17,7 @@
 #include "solver/model/model_file.h"
 #include "tests/dynamics/pilot_abutments.h"
 
-namespace skewbridge::dynamics {
+namespace skewbridge::dynamics::abutment_walls_test {
 namespace {
 
 using testing::CompliantWith;
@@ -304,4 +304,4 @@ TEST(AbutmentWalls, ARowOfDecksTakesALawPerWallAsTheSingleDeckDoes) {
 }
 
 }  // namespace
-}  // namespace skewbridge::dynamics
+}  // namespace skewbridge::dynamics::abutment_walls_test

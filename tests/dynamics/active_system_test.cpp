@@ -10,7 +10,7 @@
 #include <Eigen/QR>
 #include <random>
 
-namespace skewbridge::dynamics {
+namespace skewbridge::dynamics::active_system_test {
 namespace {
 
 using Eigen::MatrixXd;
@@ -122,4 +122,4 @@ TEST(ActiveSystem, SingularSystemsGiveTheMinimumNormSolutionAndTheKernel) {
 }
 
 }  // namespace
-}  // namespace skewbridge::dynamics
+}  // namespace skewbridge::dynamics::active_system_test

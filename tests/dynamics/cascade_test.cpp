@@ -12,7 +12,7 @@
 #include "solver/dynamics/simulate.h"
 #include "solver/model/model_file.h"
 
-namespace skewbridge::dynamics {
+namespace skewbridge::dynamics::cascade_test {
 namespace {
 
 const std::string kExamplesDir = std::string(SKEWBRIDGE_TEST_DATA_DIR) + "/../../docs/examples";
@@ -103,4 +103,4 @@ TEST(DynamicsCascade, FrictionlessPilotBridgeImpactsNeverGainEnergy) {
 }
 
 }  // namespace
-}  // namespace skewbridge::dynamics
+}  // namespace skewbridge::dynamics::cascade_test

@@ -17,7 +17,7 @@
 #include "solver/dynamics/linear_flow.h"
 #include "tests/dynamics/eccentric_deck.h"
 
-namespace skewbridge::dynamics {
+namespace skewbridge::dynamics::compliant_bound_test {
 namespace {
 
 // The eccentric deck's springs: five backfill springs on each wall (P1-P2, P3-P4) and the two
@@ -142,4 +142,4 @@ TEST(SpringGapBound, DoesNotApplyToASpringOnABodyOrNegativeDamping) {
 }
 
 }  // namespace
-}  // namespace skewbridge::dynamics
+}  // namespace skewbridge::dynamics::compliant_bound_test

@@ -18,7 +18,7 @@
 #include "solver/model/builders.h"
 #include "tests/dynamics/benchmark_cases.h"
 
-namespace skewbridge::dynamics {
+namespace skewbridge::dynamics::compliant_friction_test {
 namespace {
 
 // The drive of the block test: the ground's acceleration along the wall D(t) (m/s^2, the block
@@ -232,4 +232,4 @@ TEST(CompliantFriction, RefusesABadCoefficient) {
 }
 
 }  // namespace
-}  // namespace skewbridge::dynamics
+}  // namespace skewbridge::dynamics::compliant_friction_test

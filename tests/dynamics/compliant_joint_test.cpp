@@ -14,7 +14,7 @@
 #include "solver/model/builders.h"
 #include "solver/model/multispan.h"
 
-namespace skewbridge::dynamics {
+namespace skewbridge::dynamics::compliant_joint_test {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -204,4 +204,4 @@ TEST(CompliantJoint, FrictionAndKeysStayOnTheAbutments) {
 }
 
 }  // namespace
-}  // namespace skewbridge::dynamics
+}  // namespace skewbridge::dynamics::compliant_joint_test

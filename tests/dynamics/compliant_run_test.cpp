@@ -18,7 +18,7 @@
 #include "solver/model/model_file.h"
 #include "tests/dynamics/benchmark_cases.h"
 
-namespace skewbridge::dynamics {
+namespace skewbridge::dynamics::compliant_run_test {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -382,4 +382,4 @@ TEST(CompliantRun, StrikeSeparationIsTheClosedFormBetweenTwoWalls) {
 }
 
 }  // namespace
-}  // namespace skewbridge::dynamics
+}  // namespace skewbridge::dynamics::compliant_run_test

@@ -11,7 +11,7 @@
 
 #include "solver/joint/backfill.h"
 
-namespace skewbridge::dynamics {
+namespace skewbridge::dynamics::compliant_strike_test {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -150,4 +150,4 @@ TEST(CompliantStrike, BackfillRemembersTheEarlierExcursion) {
 }
 
 }  // namespace
-}  // namespace skewbridge::dynamics
+}  // namespace skewbridge::dynamics::compliant_strike_test

@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-namespace skewbridge::dynamics {
+namespace skewbridge::dynamics::contact_modes_test {
 namespace {
 
 constexpr ContactMode kAll[] = {ContactMode::kOpen, ContactMode::kStick,
@@ -69,4 +69,4 @@ TEST(ContactModes, HelpersMatchTheirTables) {
 }
 
 }  // namespace
-}  // namespace skewbridge::dynamics
+}  // namespace skewbridge::dynamics::contact_modes_test

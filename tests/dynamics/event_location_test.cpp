@@ -12,7 +12,7 @@
 #include "solver/dynamics/simulate.h"
 #include "tests/contact/test_models.h"
 
-namespace skewbridge::dynamics {
+namespace skewbridge::dynamics::event_location_test {
 namespace {
 
 constexpr double kSkew = 30.0 * std::numbers::pi / 180.0;
@@ -61,4 +61,4 @@ TEST(Simulate, DipThatStaysAboveZeroGivesNoEvent) {
 }
 
 }  // namespace
-}  // namespace skewbridge::dynamics
+}  // namespace skewbridge::dynamics::event_location_test

@@ -21,7 +21,7 @@
 #include "solver/dynamics/event_policy.h"
 #include "solver/dynamics/time_stepping_policy.h"
 
-namespace skewbridge::dynamics {
+namespace skewbridge::dynamics::event_policy_schema_test {
 namespace {
 
 using schema::Entry;
@@ -244,4 +244,4 @@ TEST(TimeSteppingPolicySchema, TheoryTableListsExactlyTheDescribedMembers) {
 }
 
 }  // namespace
-}  // namespace skewbridge::dynamics
+}  // namespace skewbridge::dynamics::event_policy_schema_test

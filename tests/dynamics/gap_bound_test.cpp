@@ -18,7 +18,7 @@
 #include "solver/model/multispan.h"
 #include "tests/dynamics/eccentric_deck.h"
 
-namespace skewbridge::dynamics {
+namespace skewbridge::dynamics::gap_bound_test {
 namespace {
 
 struct Step {
@@ -175,4 +175,4 @@ TEST(GapBound, DoesNotApplyToAJointBetweenBodiesOrNegativeDamping) {
 }
 
 }  // namespace
-}  // namespace skewbridge::dynamics
+}  // namespace skewbridge::dynamics::gap_bound_test

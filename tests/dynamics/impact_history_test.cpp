@@ -7,7 +7,7 @@
 
 #include <limits>
 
-namespace skewbridge::dynamics {
+namespace skewbridge::dynamics::impact_history_test {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -120,4 +120,4 @@ TEST(ImpactHistory, BounceClosesWhenItsPredictedFlightIsShort) {
 }
 
 }  // namespace
-}  // namespace skewbridge::dynamics
+}  // namespace skewbridge::dynamics::impact_history_test

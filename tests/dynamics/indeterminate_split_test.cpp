@@ -16,7 +16,7 @@
 #include "solver/contact/kinematics.h"
 #include "solver/model/builders.h"
 
-namespace skewbridge::dynamics {
+namespace skewbridge::dynamics::indeterminate_split_test {
 namespace {
 
 using Eigen::MatrixXd;
@@ -193,4 +193,4 @@ TEST(IndeterminateSplit, DeterminateSystemKeepsItsUniqueSolution) {
 }
 
 }  // namespace
-}  // namespace skewbridge::dynamics
+}  // namespace skewbridge::dynamics::indeterminate_split_test

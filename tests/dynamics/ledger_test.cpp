@@ -7,7 +7,7 @@
 #include "solver/dynamics/simulate.h"
 #include "tests/dynamics/benchmark_cases.h"
 
-namespace skewbridge::dynamics {
+namespace skewbridge::dynamics::ledger_test {
 namespace {
 
 void ExpectSameResponses(const model::Model& m, const Excitation& ex, model::RunControl control) {
@@ -66,4 +66,4 @@ TEST(EnergyLedger, ResponsesAreTheSameBitsWithoutItOnTheGeneralPath) {
 }
 
 }  // namespace
-}  // namespace skewbridge::dynamics
+}  // namespace skewbridge::dynamics::ledger_test

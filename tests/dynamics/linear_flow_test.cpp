@@ -7,7 +7,7 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 
-namespace skewbridge::dynamics {
+namespace skewbridge::dynamics::linear_flow_test {
 namespace {
 
 // A coupled 3-DOF deck-like system; modal superposition with closed forms per mode is the oracle.
@@ -199,4 +199,4 @@ TEST(LinearFlow, ModalStepOfTwoHIsTwoStepsOfH) {
 }
 
 }  // namespace
-}  // namespace skewbridge::dynamics
+}  // namespace skewbridge::dynamics::linear_flow_test

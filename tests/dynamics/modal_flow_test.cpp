@@ -15,7 +15,7 @@
 #include "solver/model/builders.h"
 #include "solver/model/multispan.h"
 
-namespace skewbridge::dynamics {
+namespace skewbridge::dynamics::modal_flow_test {
 namespace {
 
 constexpr double kRelative = 1e-12;
@@ -492,4 +492,4 @@ TEST(ModalFlow, TermCountBoundsTheFirstOmittedTerm) {
 }
 
 }  // namespace
-}  // namespace skewbridge::dynamics
+}  // namespace skewbridge::dynamics::modal_flow_test

@@ -15,7 +15,7 @@
 #include "solver/dynamics/simulate.h"
 #include "tests/contact/test_models.h"
 
-namespace skewbridge::dynamics {
+namespace skewbridge::dynamics::painleve_test {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
@@ -76,4 +76,4 @@ TEST(Simulate, SlidingCornerWithNegativeContactMassEndsInPainleveAtClosure) {
 }
 
 }  // namespace
-}  // namespace skewbridge::dynamics
+}  // namespace skewbridge::dynamics::painleve_test

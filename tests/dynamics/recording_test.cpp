@@ -20,7 +20,7 @@
 #include "solver/model/model_file.h"
 #include "tests/dynamics/benchmark_cases.h"
 
-namespace skewbridge::dynamics {
+namespace skewbridge::dynamics::recording_test {
 namespace {
 
 const std::string kExamplesDir = std::string(SKEWBRIDGE_TEST_DATA_DIR) + "/../../docs/examples";
@@ -211,4 +211,4 @@ TEST(Recording, HistoriesLeaveEveryResultBitIdentical) {
 }
 
 }  // namespace
-}  // namespace skewbridge::dynamics
+}  // namespace skewbridge::dynamics::recording_test

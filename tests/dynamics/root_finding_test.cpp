@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-namespace skewbridge::dynamics {
+namespace skewbridge::dynamics::root_finding_test {
 namespace {
 
 TEST(FindRootBrent, ConvergesToDottieNumberWithinTolerance) {
@@ -53,4 +53,4 @@ TEST(FindRootBrent, ReportsMissingSignChange) {
 }
 
 }  // namespace
-}  // namespace skewbridge::dynamics
+}  // namespace skewbridge::dynamics::root_finding_test

@@ -22,7 +22,7 @@
 #include "solver/model/multispan.h"
 #include "tests/dynamics/run_bits.h"
 
-namespace skewbridge::dynamics {
+namespace skewbridge::dynamics::run_reuse_test {
 namespace {
 
 // One deck of the subsystem's kind (10 m long, eta0-like proportions) against the +x abutment
@@ -116,4 +116,4 @@ TEST(RunReuse, RefittedWorkspaceGivesTheBitsOfANewOneOverShapesInOrderAndShuffle
 }
 
 }  // namespace
-}  // namespace skewbridge::dynamics
+}  // namespace skewbridge::dynamics::run_reuse_test

@@ -12,7 +12,7 @@
 
 #include "records/excitations.h"
 
-namespace skewbridge::dynamics {
+namespace skewbridge::dynamics::run_scales_test {
 namespace {
 
 // A deck of 30 m with natural frequencies 2 and 40 rad/s and a 1e6 kg deck mass.
@@ -88,4 +88,4 @@ TEST(RunScales, ExcitationPeakOfAPulse) {
 }
 
 }  // namespace
-}  // namespace skewbridge::dynamics
+}  // namespace skewbridge::dynamics::run_scales_test

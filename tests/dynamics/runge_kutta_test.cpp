@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-namespace skewbridge::dynamics {
+namespace skewbridge::dynamics::runge_kutta_test {
 namespace {
 
 // y'' = -y as a first-order system; exact y = (sin t, cos t) from (0, 1).
@@ -97,4 +97,4 @@ TEST(DormandPrince45, AdaptiveControlMeetsTheToleranceOnGaussian) {
 }
 
 }  // namespace
-}  // namespace skewbridge::dynamics
+}  // namespace skewbridge::dynamics::runge_kutta_test

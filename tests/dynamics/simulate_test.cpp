@@ -17,7 +17,7 @@
 #include "solver/model/builders.h"
 #include "tests/dynamics/modal_oracle.h"
 
-namespace skewbridge::dynamics {
+namespace skewbridge::dynamics::simulate_test {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -550,4 +550,4 @@ TEST(Simulate, RefusesAnEventPolicyItCannotRunWith) {
 }
 
 }  // namespace
-}  // namespace skewbridge::dynamics
+}  // namespace skewbridge::dynamics::simulate_test

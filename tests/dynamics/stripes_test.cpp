@@ -38,7 +38,7 @@
 #include "solver/model/model_file.h"
 #include "tests/dynamics/run_bits.h"
 
-namespace skewbridge::dynamics {
+namespace skewbridge::dynamics::stripes_test {
 namespace {
 
 const std::string kDataDir = SKEWBRIDGE_TEST_DATA_DIR;
@@ -262,4 +262,4 @@ TEST(StripeTrace, RestartsAndTravelsAreThoseOfTheExactGapsAtEveryStep) {
 }
 
 }  // namespace
-}  // namespace skewbridge::dynamics
+}  // namespace skewbridge::dynamics::stripes_test

@@ -12,7 +12,7 @@
 
 #include "tests/jobs/test_evaluator.h"
 
-namespace skewbridge::jobs {
+namespace skewbridge::jobs::dry_run_test {
 namespace {
 
 using ::testing::HasSubstr;
@@ -176,4 +176,4 @@ TEST(DryRun, ScaleFactorsSummarisedPerStripeAndTabledOnlyWhenAskedAboveTwentyRec
 }
 
 }  // namespace
-}  // namespace skewbridge::jobs
+}  // namespace skewbridge::jobs::dry_run_test

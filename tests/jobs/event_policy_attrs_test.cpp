@@ -13,7 +13,7 @@
 #include "solver/dynamics/event_policy.h"
 #include "solver/dynamics/time_stepping_policy.h"
 
-namespace skewbridge::jobs::h5 {
+namespace skewbridge::jobs::h5::event_policy_attrs_test {
 namespace {
 
 TEST(EventPolicyAttrs, EveryMemberRoundTripsThroughAFileWithItsUnitAndScale) {
@@ -97,4 +97,4 @@ TEST(EventPolicyAttrs, EachMethodStoresItsOwnPolicy) {
 }
 
 }  // namespace
-}  // namespace skewbridge::jobs::h5
+}  // namespace skewbridge::jobs::h5::event_policy_attrs_test

@@ -29,7 +29,7 @@
 #include "solver/model/multispan.h"
 #include "spectra/model_file_evaluator.h"
 
-namespace skewbridge::jobs {
+namespace skewbridge::jobs::model_file_evaluator_test {
 namespace {
 
 using spectra::CellOutcome;
@@ -724,4 +724,4 @@ TEST(Stripes, SpecErrorsNameTheKey) {
 }
 
 }  // namespace
-}  // namespace skewbridge::jobs
+}  // namespace skewbridge::jobs::model_file_evaluator_test

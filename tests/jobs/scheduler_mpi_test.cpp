@@ -18,7 +18,7 @@
 #include "jobs/sweep_runner.h"
 #include "tests/jobs/test_evaluator.h"
 
-namespace skewbridge::jobs {
+namespace skewbridge::jobs::scheduler_mpi_test {
 namespace {
 
 // 2 x 40 x 1000 = 80 000 cells.
@@ -255,4 +255,4 @@ INSTANTIATE_TEST_SUITE_P(Chunking, Scheduler8,
                                            std::make_pair(std::uint64_t{65536}, 0.01)));
 
 }  // namespace
-}  // namespace skewbridge::jobs
+}  // namespace skewbridge::jobs::scheduler_mpi_test

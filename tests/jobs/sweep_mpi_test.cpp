@@ -14,7 +14,7 @@
 #include "jobs/sweep_runner.h"
 #include "tests/jobs/test_evaluator.h"
 
-namespace skewbridge::jobs {
+namespace skewbridge::jobs::sweep_mpi_test {
 namespace {
 
 const char* kSpec = R"(
@@ -210,4 +210,4 @@ TEST(MpiSweep, StopOnRankZeroAloneCheckpointsEveryComputedCellAndResumes) {
 }
 
 }  // namespace
-}  // namespace skewbridge::jobs
+}  // namespace skewbridge::jobs::sweep_mpi_test

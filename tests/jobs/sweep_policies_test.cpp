@@ -21,7 +21,7 @@
 #include "spectra/point.h"
 #include "spectra/spectra_evaluator.h"
 
-namespace skewbridge::jobs {
+namespace skewbridge::jobs::sweep_policies_test {
 namespace {
 
 using ::testing::HasSubstr;
@@ -275,4 +275,4 @@ mu = 0.2
 }
 
 }  // namespace
-}  // namespace skewbridge::jobs
+}  // namespace skewbridge::jobs::sweep_policies_test

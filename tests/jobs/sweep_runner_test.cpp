@@ -14,7 +14,7 @@
 #include "solver/common/error.h"
 #include "tests/jobs/test_evaluator.h"
 
-namespace skewbridge::jobs {
+namespace skewbridge::jobs::sweep_runner_test {
 namespace {
 
 using ::testing::HasSubstr;
@@ -588,4 +588,4 @@ TEST(ResultBatches, TruncateKeepsTheFirstCellsOfEveryResponse) {
 }
 
 }  // namespace
-}  // namespace skewbridge::jobs
+}  // namespace skewbridge::jobs::sweep_runner_test

@@ -10,7 +10,7 @@
 #include "jobs/sweep_spec.h"
 #include "solver/common/error.h"
 
-namespace skewbridge::jobs {
+namespace skewbridge::jobs::sweep_spec_test {
 namespace {
 
 using ::testing::HasSubstr;
@@ -204,9 +204,9 @@ TEST(SweepSpec, LoadsAFileAndResolvesRecordSetRelativeToIt) {
 }
 
 }  // namespace
-}  // namespace skewbridge::jobs
+}  // namespace skewbridge::jobs::sweep_spec_test
 
-namespace skewbridge::jobs {
+namespace skewbridge::jobs::sweep_spec_test {
 namespace {
 
 // TOML sees a key and its quoted symbol as two keys; the specification sees one parameter.
@@ -313,9 +313,9 @@ TEST(SweepSpec, IdentityChangeNamesTheKeyOrTheFile) {
 }
 
 }  // namespace
-}  // namespace skewbridge::jobs
+}  // namespace skewbridge::jobs::sweep_spec_test
 
-namespace skewbridge::jobs {
+namespace skewbridge::jobs::sweep_spec_test {
 namespace {
 
 TEST(SweepSpec, LimitStatesAreCanonicalAndPartOfTheIdentity) {
@@ -342,4 +342,4 @@ TEST(SweepSpec, LimitStatesAreCanonicalAndPartOfTheIdentity) {
 }
 
 }  // namespace
-}  // namespace skewbridge::jobs
+}  // namespace skewbridge::jobs::sweep_spec_test

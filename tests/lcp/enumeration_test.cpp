@@ -11,7 +11,7 @@
 #include "solver/lcp/lcp_check.h"
 #include "solver/lcp/lemke.h"
 
-namespace skewbridge::lcp {
+namespace skewbridge::lcp::enumeration_test {
 namespace {
 
 TEST(LcpEnumeration, AgreesWithLemkeOnRandomPMatrices) {
@@ -84,4 +84,4 @@ TEST(LcpEnumeration, RefusesProblemsTooLargeToEnumerate) {
 }
 
 }  // namespace
-}  // namespace skewbridge::lcp
+}  // namespace skewbridge::lcp::enumeration_test

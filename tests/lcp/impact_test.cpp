@@ -34,7 +34,7 @@
 #include "solver/lcp/lemke.h"
 #include "tests/lcp/impact_problem.h"
 
-namespace skewbridge::lcp {
+namespace skewbridge::lcp::impact_test {
 namespace {
 
 using testing::BuildImpactProblem;
@@ -276,4 +276,4 @@ TEST(ImpactProblem, FourCornerImpactsOfTheRotatingPilotDeckSolveWithoutCreatingE
 }
 
 }  // namespace
-}  // namespace skewbridge::lcp
+}  // namespace skewbridge::lcp::impact_test

@@ -11,7 +11,7 @@
 #include "solver/lcp/lemke.h"
 #include "tests/lcp/lcp_oracles.h"
 
-namespace skewbridge::lcp {
+namespace skewbridge::lcp::lemke_test {
 namespace {
 
 using Eigen::MatrixXd;
@@ -544,4 +544,4 @@ TEST(CheckSolution, MeasuresEachViolationOnItsOwnScale) {
 }
 
 }  // namespace
-}  // namespace skewbridge::lcp
+}  // namespace skewbridge::lcp::lemke_test

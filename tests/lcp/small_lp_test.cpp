@@ -12,7 +12,7 @@
 
 #include "solver/lcp/small_lp.h"
 
-namespace skewbridge::lcp {
+namespace skewbridge::lcp::small_lp_test {
 namespace {
 
 // The best objective over the feasible vertices, -inf if none (brute force over p-subsets).
@@ -126,4 +126,4 @@ TEST(SmallLp, DegenerateVertexOfTheMaxMinMargin) {
 }
 
 }  // namespace
-}  // namespace skewbridge::lcp
+}  // namespace skewbridge::lcp::small_lp_test

@@ -19,7 +19,7 @@
 #include "records/ground_motion.h"
 #include "solver/common/error.h"
 
-namespace skewbridge::records {
+namespace skewbridge::records::excitation_test {
 namespace {
 
 TEST(ToExcitation, ReproducesTheRecordAtSamplesAndInterpolatesBetween) {
@@ -128,4 +128,4 @@ TEST(SampledExcitationNextPiece, IsTheBitsOfPieceAtThePiecesEnd) {
 }
 
 }  // namespace
-}  // namespace skewbridge::records
+}  // namespace skewbridge::records::excitation_test

@@ -13,7 +13,7 @@
 #include "records/measures.h"
 #include "solver/common/error.h"
 
-namespace skewbridge::records {
+namespace skewbridge::records::measures_test {
 namespace {
 
 using std::numbers::pi;
@@ -339,4 +339,4 @@ TEST(ComputeMeasures, DerivedQuantitiesFollowFromTm) {
 }
 
 }  // namespace
-}  // namespace skewbridge::records
+}  // namespace skewbridge::records::measures_test

@@ -11,7 +11,7 @@
 #include "records/ground_motion.h"
 #include "solver/common/error.h"
 
-namespace skewbridge::records {
+namespace skewbridge::records::readers_test {
 namespace {
 
 using ::testing::HasSubstr;
@@ -306,4 +306,4 @@ TEST(ParseUnits, AcceptsTheCommonSpellings) {
 }
 
 }  // namespace
-}  // namespace skewbridge::records
+}  // namespace skewbridge::records::readers_test

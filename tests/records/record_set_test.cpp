@@ -11,7 +11,7 @@
 #include "records/record_set.h"
 #include "solver/common/error.h"
 
-namespace skewbridge::records {
+namespace skewbridge::records::record_set_test {
 namespace {
 
 using ::testing::HasSubstr;
@@ -386,4 +386,4 @@ TEST(GlobMatch, StarQuestionMarkAndClasses) {
 }
 
 }  // namespace
-}  // namespace skewbridge::records
+}  // namespace skewbridge::records::record_set_test

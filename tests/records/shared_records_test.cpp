@@ -13,7 +13,7 @@
 #include "records/ground_motion.h"
 #include "records/record_set.h"
 
-namespace skewbridge::records {
+namespace skewbridge::records::shared_records_test {
 namespace {
 
 const std::filesystem::path kShared = std::filesystem::path(SKEWBRIDGE_SHARED_DIR) / "records";
@@ -169,4 +169,4 @@ TEST(SharedRecords, FormatIsDetectedByContentNotExtension) {
 }
 
 }  // namespace
-}  // namespace skewbridge::records
+}  // namespace skewbridge::records::shared_records_test

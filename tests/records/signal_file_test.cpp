@@ -11,7 +11,7 @@
 #include "records/excitations.h"
 #include "solver/common/error.h"
 
-namespace skewbridge::records {
+namespace skewbridge::records::signal_file_test {
 namespace {
 
 std::string Message(std::string_view text, std::optional<double> dt_s, double to_mps2 = 1.0) {
@@ -86,4 +86,4 @@ TEST(ExcitationSamples, RefusesEachMalformedLineWhereItStands) {
 }
 
 }  // namespace
-}  // namespace skewbridge::records
+}  // namespace skewbridge::records::signal_file_test

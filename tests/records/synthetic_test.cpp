@@ -18,7 +18,7 @@
 #include "records/synthetic.h"
 #include "solver/common/error.h"
 
-namespace skewbridge::records {
+namespace skewbridge::records::synthetic_test {
 namespace {
 
 std::string Slurp(const std::filesystem::path& path) {
@@ -197,4 +197,4 @@ TEST(SynthesizeSuite, SixtyTwoRecordsEndAtRestWithPgdBelowOneMetre) {
 }
 
 }  // namespace
-}  // namespace skewbridge::records
+}  // namespace skewbridge::records::synthetic_test

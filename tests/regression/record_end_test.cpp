@@ -21,7 +21,7 @@
 #include "solver/model/builders.h"
 #include "spectra/point.h"
 
-namespace skewbridge {
+namespace skewbridge::record_end_test {
 namespace {
 
 /// n samples of a_g sin(w t) at interval dt (m/s^2).
@@ -101,4 +101,4 @@ TEST(RecordEnd, PilotBridgeRunsPastTheEndOfARecordWhoseEndRoundsDown) {
 }
 
 }  // namespace
-}  // namespace skewbridge
+}  // namespace skewbridge::record_end_test

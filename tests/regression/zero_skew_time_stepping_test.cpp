@@ -16,7 +16,7 @@
 #include "solver/dynamics/time_stepping.h"
 #include "solver/model/builders.h"
 
-namespace skewbridge {
+namespace skewbridge::zero_skew_time_stepping_test {
 namespace {
 
 /// docs/examples/subsystem.toml with a = 0 (W = 6.495 m), gap 0 and mu = 0.3.
@@ -60,4 +60,4 @@ TEST(ZeroSkewTimeStepping, RunsThroughAndMatchesTheEventDrivenMaximum) {
 }
 
 }  // namespace
-}  // namespace skewbridge
+}  // namespace skewbridge::zero_skew_time_stepping_test

@@ -16,7 +16,7 @@
 #include "spectra/hazard_measure.h"
 #include "spectra/study.h"
 
-namespace skewbridge::spectra {
+namespace skewbridge::spectra::hazard_curve_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -340,4 +340,4 @@ TEST(ParseIntensityDescription, RoundTripsEveryMeasure) {
 }
 
 }  // namespace
-}  // namespace skewbridge::spectra
+}  // namespace skewbridge::spectra::hazard_curve_test

@@ -10,7 +10,7 @@
 
 #include "spectra/risk_table.h"
 
-namespace skewbridge::spectra {
+namespace skewbridge::spectra::risk_table_test {
 namespace {
 
 using ::testing::HasSubstr;
@@ -129,4 +129,4 @@ TEST(RiskTable, FlagsAppearExactlyWhenTheirConditionHolds) {
 }
 
 }  // namespace
-}  // namespace skewbridge::spectra
+}  // namespace skewbridge::spectra::risk_table_test

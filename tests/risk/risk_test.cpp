@@ -17,7 +17,7 @@
 #include "spectra/hazard_curve.h"
 #include "spectra/risk.h"
 
-namespace skewbridge::spectra {
+namespace skewbridge::spectra::risk_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -293,4 +293,4 @@ TEST(Risk, ProbabilityInYearsIsPoisson) {
 }
 
 }  // namespace
-}  // namespace skewbridge::spectra
+}  // namespace skewbridge::spectra::risk_test

@@ -9,8 +9,7 @@
 #include "solver/dynamics/event_policy.h"
 #include "tests/robustness/robustness_grid.h"
 
-using namespace skewbridge;
-
+namespace skewbridge::event_policy_test {
 namespace {
 
 // The closed-joint cells of the grid that bounce (eps_N = 0.5, w0/w_g = 10).
@@ -64,3 +63,4 @@ TEST(EventPolicy, ZenoExtrapolationRemovesImpactsOfABouncingCorner) {
 }
 
 }  // namespace
+}  // namespace skewbridge::event_policy_test

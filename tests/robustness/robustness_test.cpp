@@ -22,7 +22,7 @@
 #include "solver/model/model_file.h"
 #include "tests/robustness/robustness_grid.h"
 
-namespace skewbridge::robustness {
+namespace skewbridge::robustness::robustness_test {
 namespace {
 
 // |a - b| within 1 % of |b|, or within `floor` (normalised by L_e) where both are near zero.
@@ -247,4 +247,4 @@ INSTANTIATE_TEST_SUITE_P(PilotClosedJoints, PilotClosedJointAgreement,
                                            std::pair{5, 0.1}));
 
 }  // namespace
-}  // namespace skewbridge::robustness
+}  // namespace skewbridge::robustness::robustness_test

@@ -24,7 +24,7 @@
 #include "spectra/spectra_evaluator.h"
 #include "spectra/study.h"
 
-namespace skewbridge::spectra {
+namespace skewbridge::spectra::evaluator_responses_test {
 namespace {
 
 constexpr double kG = 9.80665;
@@ -257,4 +257,4 @@ TEST(MultiSpanResponses, EachNameSatisfiesItsDefinition) {
 }
 
 }  // namespace
-}  // namespace skewbridge::spectra
+}  // namespace skewbridge::spectra::evaluator_responses_test

@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-namespace skewbridge::spectra {
+namespace skewbridge::spectra::ida_test {
 namespace {
 
 // A search over a demand D(IM) = IM^1.5 with the limit state D > d_c: the capacity is exactly
@@ -220,4 +220,4 @@ TEST(Ida, CensoredCapacityFitRecoversAKnownLognormal) {
 }
 
 }  // namespace
-}  // namespace skewbridge::spectra
+}  // namespace skewbridge::spectra::ida_test

@@ -20,7 +20,7 @@
 #include "solver/model/model_file.h"
 #include "spectra/model_file_evaluator.h"
 
-namespace skewbridge::spectra {
+namespace skewbridge::spectra::incidence_test {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -227,4 +227,4 @@ TEST(Incidence, TransverseOnlyComponentAtZeroSkewIsTheLinearOscillatorAcross) {
 }
 
 }  // namespace
-}  // namespace skewbridge::spectra
+}  // namespace skewbridge::spectra::incidence_test

@@ -12,7 +12,7 @@
 #include "solver/common/error.h"
 #include "spectra/inputs.h"
 
-namespace skewbridge::spectra {
+namespace skewbridge::spectra::inputs_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -132,4 +132,4 @@ TEST_F(GridInputsTest, APulseGridWithoutAModelReadsNoFile) {
 }
 
 }  // namespace
-}  // namespace skewbridge::spectra
+}  // namespace skewbridge::spectra::inputs_test

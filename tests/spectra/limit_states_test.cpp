@@ -15,7 +15,7 @@
 #include "spectra/limit_states.h"
 #include "spectra/spectra_evaluator.h"
 
-namespace skewbridge::spectra {
+namespace skewbridge::spectra::limit_states_test {
 namespace {
 
 std::size_t ColumnOf(const std::vector<ResponseInfo>& responses, const std::string& name) {
@@ -96,4 +96,4 @@ TEST(LimitStates, AnInnerCellWithoutItsResponsesIsAnInternalErrorNotPadded) {
 }
 
 }  // namespace
-}  // namespace skewbridge::spectra
+}  // namespace skewbridge::spectra::limit_states_test

@@ -11,7 +11,7 @@
 #include "solver/model/deck.h"
 #include "spectra/point.h"
 
-namespace skewbridge::spectra {
+namespace skewbridge::spectra::point_test {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -289,4 +289,4 @@ TEST(ToDimensional, RejectsANonPositiveTimeStep) {
 }
 
 }  // namespace
-}  // namespace skewbridge::spectra
+}  // namespace skewbridge::spectra::point_test

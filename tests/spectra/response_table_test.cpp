@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-namespace skewbridge::spectra {
+namespace skewbridge::spectra::response_table_test {
 namespace {
 
 struct Cell {
@@ -88,4 +88,4 @@ TEST(ResponseCount, AnotherCountBecomesAnInternalErrorWithoutValues) {
 }
 
 }  // namespace
-}  // namespace skewbridge::spectra
+}  // namespace skewbridge::spectra::response_table_test

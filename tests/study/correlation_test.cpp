@@ -7,7 +7,7 @@
 #include <cmath>
 #include <vector>
 
-namespace skewbridge::spectra {
+namespace skewbridge::spectra::correlation_test {
 namespace {
 
 TEST(Pearson, IsOneForAnIncreasingLineAndMinusOneForADecreasingOne) {
@@ -120,4 +120,4 @@ TEST(Correlation, DegenerateInputsGiveNaNWithAReason) {
 }
 
 }  // namespace
-}  // namespace skewbridge::spectra
+}  // namespace skewbridge::spectra::correlation_test

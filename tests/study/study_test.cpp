@@ -32,7 +32,7 @@
 #include "spectra/point.h"
 #include "spectra/spectra_evaluator.h"
 
-namespace skewbridge::jobs {
+namespace skewbridge::jobs::study_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -606,4 +606,4 @@ TEST(PilotStudy, RecordsWithGapsThatNeverCloseRotateAsTheContactFreeDeck) {
 }
 
 }  // namespace
-}  // namespace skewbridge::jobs
+}  // namespace skewbridge::jobs::study_test
