@@ -47,15 +47,16 @@ clock_stop() {
   record "$1" $((SECONDS - stage_wall)) $((cpu - stage_cpu))
 }
 
-# build_preset PRESET [SUFFIX]: configure and build one preset (its log starts afresh), timed
-# under the name "PRESET configure+build SUFFIX"; the status is cmake's.
+# build_preset PRESET BUILD_PRESET [SUFFIX]: configure one preset and build it with the build
+# preset BUILD_PRESET (its log starts afresh), timed under the name "PRESET configure+build
+# SUFFIX"; the status is cmake's.
 build_preset() {
   local log="$logs/$1.log"
   : >"$log"
   clock_start
-  cmake --preset "$1" >>"$log" 2>&1 && cmake --build --preset "$1" >>"$log" 2>&1
+  cmake --preset "$1" >>"$log" 2>&1 && cmake --build --preset "$2" >>"$log" 2>&1
   local status=$?
-  clock_stop "$1 configure+build${2:+ $2}"
+  clock_stop "$1 configure+build${3:+ $3}"
   [ "$status" -eq 0 ] || echo "$1: build failed (exit $status), see $log"
   return "$status"
 }
@@ -90,7 +91,13 @@ test_preset() {
 clock_start
 all_wall=$stage_wall all_cpu=$stage_cpu
 echo "== release: build and test"
-if build_preset release; then release_built=1; else release_built=0; failed=$((failed + 1)); fi
+# The benchmark programs, which no test runs, are left to the build preset release (and so
+# to every build a developer runs with it): release-tests builds everything else.
+if build_preset release release-tests; then
+  release_built=1
+else
+  release_built=0 failed=$((failed + 1))
+fi
 # The release tests leave a core idle much of the time (MPI start-up, files, waits), so the
 # asan-ubsan build runs beside them at a lower priority (nice 10): the tests keep the cores
 # they ask for, the build takes the rest. Its own wall and CPU time are measured in its
@@ -98,7 +105,7 @@ if build_preset release; then release_built=1; else release_built=0; failed=$((f
 echo "== asan-ubsan: build beside the release tests (MPI off; see docs/architecture.md)"
 (
   renice -n 10 -p "$BASHPID" >/dev/null 2>&1 || true
-  build_preset asan-ubsan "(nice 10)"
+  build_preset asan-ubsan asan-ubsan "(nice 10)"
 ) >"$logs/.asan-build.out" 2>&1 &
 asan_build=$!
 [ "$release_built" -eq 0 ] || test_preset release

@@ -15,7 +15,11 @@
 #       the tests get MPI initialised by tests/support/mpi_gtest_main.cpp. With several
 #       rank counts, one program runs as the ctest tests NAME<n>, NAME<n2>, ...
 #   sb_add_benchmark(NAME SOURCES ... LIBS ...)
-#       a Google Benchmark program (built, not run by ctest).
+#       a Google Benchmark program (not run by ctest), built by the target `benchmarks`.
+#   sb_benchmark_target(TARGET)
+#       a measuring program (a benchmark, a driver for callgrind or a study run by hand): left
+#       out of the target `all`, which CI builds (build preset release-tests), and built by the
+#       target `benchmarks`, which the build presets release and debug build with `all`.
 #   sb_mpi_environment(TEST...)
 #       Open MPI's environment (scripts/openmpi.env) for tests that start MPI programs without
 #       the shell tests' prologue (tests/support/prologue.sh), e.g. Python tests.
@@ -260,6 +264,14 @@ function(sb_add_mpi_gtest name)
   endif()
 endfunction()
 
+# The measuring programs, built on demand or by the build presets release and debug.
+add_custom_target(benchmarks)
+
+function(sb_benchmark_target name)
+  set_target_properties(${name} PROPERTIES EXCLUDE_FROM_ALL ON)
+  add_dependencies(benchmarks ${name})
+endfunction()
+
 function(sb_add_benchmark name)
   cmake_parse_arguments(ARG "" "" "SOURCES;LIBS" ${ARGN})
   if(NOT SKEWBRIDGE_BUILD_BENCHMARKS)
@@ -267,6 +279,7 @@ function(sb_add_benchmark name)
   endif()
   find_package(benchmark REQUIRED)
   add_executable(${name} ${ARG_SOURCES})
+  sb_benchmark_target(${name})
   target_link_libraries(${name} PRIVATE ${ARG_LIBS} benchmark::benchmark benchmark::benchmark_main)
   target_compile_definitions(${name} PRIVATE
     SKEWBRIDGE_TEST_DATA_DIR="${SKEWBRIDGE_TEST_DATA_DIR}")
