@@ -72,13 +72,40 @@ class CornerTravelTracker {
   /// and rate r0, r1 (m/s) at the step's ends (+inf: none); a corner whose bound is below the
   /// running maximum is not searched (the search could not raise it) [docs/theory.md §3.20].
   /// The ends are plain maps of the state's storage: nothing to build or destroy per step.
+  /// Inline: the reach test of every deck (most steps end there), the rest out of line.
   template <class ComponentAt, class TravelBound>
-  [[gnu::noinline]] void Scan(double t0, const Eigen::Map<const Eigen::VectorXd>& q0,
-                              const Eigen::Map<const Eigen::VectorXd>& u0, double t1,
-                              const Eigen::Map<const Eigen::VectorXd>& q1,
-                              const Eigen::Map<const Eigen::VectorXd>& u1, double time_tolerance_s,
-                              ComponentAt&& component_at, Eigen::VectorXd& max_travel_m,
-                              TravelBound&& travel_bound);
+  void Scan(double t0, const Eigen::Map<const Eigen::VectorXd>& q0,
+            const Eigen::Map<const Eigen::VectorXd>& u0, double t1,
+            const Eigen::Map<const Eigen::VectorXd>& q1,
+            const Eigen::Map<const Eigen::VectorXd>& u1, double time_tolerance_s,
+            ComponentAt&& component_at, Eigen::VectorXd& max_travel_m, TravelBound&& travel_bound) {
+    const double* x0 = q0.data();
+    const double* v0 = u0.data();
+    const double* x1 = q1.data();
+    const double* v1 = u1.data();
+    const int decks = this->decks();
+    for (int d = 0; d < decks; ++d) {
+      const Deck& deck = decks_[static_cast<std::size_t>(d)];
+      const int b = 3 * d;
+      // A corner moves at most |theta| r from the translation's share (|(R(theta) - E) P| <=
+      // |theta| |P| <= |theta| r) and at most |u_theta| r faster: when neither end nor the
+      // interior peak allowed below can reach the running maximum, the corners are not
+      // evaluated.
+      const double r = deck.radius;
+      const double reach0 =
+          std::abs(deck.nx * x0[b] + deck.ny * x0[b + 1]) + r * std::abs(x0[b + 2]);
+      const double reach1 =
+          std::abs(deck.nx * x1[b] + deck.ny * x1[b + 1]) + r * std::abs(x1[b + 2]);
+      const double speed0 =
+          std::abs(deck.nx * v0[b] + deck.ny * v0[b + 1]) + r * std::abs(v0[b + 2]);
+      const double speed1 =
+          std::abs(deck.nx * v1[b] + deck.ny * v1[b + 1]) + r * std::abs(v1[b + 2]);
+      const double reach = std::max(reach0, reach1) + 0.5 * (t1 - t0) * std::min(speed0, speed1);
+      if (reach * (1.0 + 1e-12) < max_travel_m[d]) continue;
+      ScanDeck(d, t0, q0, u0, t1, q1, u1, time_tolerance_s, component_at, max_travel_m[d],
+               travel_bound);
+    }
+  }
 
  private:
   // One deck's constants: the end-line normal and the corner coefficients of corners 1 and 2.
@@ -107,6 +134,15 @@ class CornerTravelTracker {
     return std::abs(
         Travel(deck, k, component_at(x, b), component_at(x, b + 1), component_at(x, b + 2)));
   }
+  // Scan's work for deck d past its reach test: the corners at the step's end, their travel
+  // into `best` (the deck's running maximum), and the roots of their rates; out of line.
+  template <class ComponentAt, class TravelBound>
+  [[gnu::noinline]] void ScanDeck(int d, double t0, const Eigen::Map<const Eigen::VectorXd>& q0,
+                                  const Eigen::Map<const Eigen::VectorXd>& u0, double t1,
+                                  const Eigen::Map<const Eigen::VectorXd>& q1,
+                                  const Eigen::Map<const Eigen::VectorXd>& u1,
+                                  double time_tolerance_s, ComponentAt& component_at, double& best,
+                                  TravelBound& travel_bound);
   // sin theta and cos theta - 1, by their Taylor series to rounding for |theta| <= 0.01 rad (the
   // rotations of decks; no library call in the time loop), else by std::sin, std::cos.
   static void SinCosMinusOne(double th, double& s, double& c_minus_1) {
@@ -137,57 +173,45 @@ class CornerTravelTracker {
 };
 
 template <class ComponentAt, class TravelBound>
-void CornerTravelTracker::Scan(double t0, const Eigen::Map<const Eigen::VectorXd>& q0,
-                               const Eigen::Map<const Eigen::VectorXd>& u0, double t1,
-                               const Eigen::Map<const Eigen::VectorXd>& q1,
-                               const Eigen::Map<const Eigen::VectorXd>& u1, double time_tolerance_s,
-                               ComponentAt&& component_at, Eigen::VectorXd& max_travel_m,
-                               TravelBound&& travel_bound) {
-  for (int d = 0; d < decks(); ++d) {
-    const auto di = static_cast<std::size_t>(d);
-    const Deck& deck = decks_[di];
-    const int b = 3 * d;
-    double& best = max_travel_m[d];
-    // A corner moves at most |theta| r from the translation's share (|(R(theta) - E) P| <=
-    // |theta| |P| <= |theta| r) and at most |u_theta| r faster: when neither end nor the
-    // interior peak allowed below can reach the running maximum, the corners are not evaluated.
-    const double r = deck.radius;
-    const double reach0 = std::abs(deck.nx * q0[b] + deck.ny * q0[b + 1]) + r * std::abs(q0[b + 2]);
-    const double reach1 = std::abs(deck.nx * q1[b] + deck.ny * q1[b + 1]) + r * std::abs(q1[b + 2]);
-    const double speed0 = std::abs(deck.nx * u0[b] + deck.ny * u0[b + 1]) + r * std::abs(u0[b + 2]);
-    const double speed1 = std::abs(deck.nx * u1[b] + deck.ny * u1[b + 1]) + r * std::abs(u1[b + 2]);
-    const double reach = std::max(reach0, reach1) + 0.5 * (t1 - t0) * std::min(speed0, speed1);
-    if (reach * (1.0 + 1e-12) < best) continue;
-    // The step's start: the last step's end unless an impact or a projection moved the state.
-    const std::array<double, 6> s0{q0[b], q0[b + 1], q0[b + 2], u0[b], u0[b + 1], u0[b + 2]};
-    if (s0 != end_state_[di]) {
-      Evaluate(deck, s0[0], s0[1], s0[2], s0[3], s0[4], s0[5], end_[di]);
-    }
-    const CornerState& c0 = end_[di];
-    const std::array<double, 6> s1{q1[b], q1[b + 1], q1[b + 2], u1[b], u1[b + 1], u1[b + 2]};
-    CornerState c1;
-    Evaluate(deck, s1[0], s1[1], s1[2], s1[3], s1[4], s1[5], c1);
-    for (int k = 0; k < 4; ++k) {
-      best = std::max(best, std::abs(c1.f[static_cast<std::size_t>(k)]));
-    }
-    for (int k = 0; k < 4; ++k) {
-      const auto ki = static_cast<std::size_t>(k);
-      const double r0 = c0.rate[ki], r1 = c1.rate[ki];
-      if (!(r0 * r1 < 0.0)) continue;
-      // Were the rate linear in t, the peak would exceed the larger end value by
-      // min(r0^2, r1^2) (t1 - t0) / (2 (|r0| + |r1|)) <= (t1 - t0) min(|r0|, |r1|) / 4; twice
-      // that leaves room for the rate's curvature over a step.
-      const double bound = std::max(std::abs(c0.f[ki]), std::abs(c1.f[ki])) +
-                           0.5 * (t1 - t0) * std::min(std::abs(r0), std::abs(r1));
-      if (!(bound > best)) continue;
-      if (travel_bound(b, deck.nx, deck.ny, r, c0.f[ki], r0, c1.f[ki], r1, t1 - t0) < best) {
-        continue;
-      }
-      best = std::max(best, PeakTravel(deck, b, k, t0, t1, r0, r1, time_tolerance_s, component_at));
-    }
-    end_[di] = c1;
-    end_state_[di] = s1;
+void CornerTravelTracker::ScanDeck(int d, double t0, const Eigen::Map<const Eigen::VectorXd>& q0,
+                                   const Eigen::Map<const Eigen::VectorXd>& u0, double t1,
+                                   const Eigen::Map<const Eigen::VectorXd>& q1,
+                                   const Eigen::Map<const Eigen::VectorXd>& u1,
+                                   double time_tolerance_s, ComponentAt& component_at, double& best,
+                                   TravelBound& travel_bound) {
+  const auto di = static_cast<std::size_t>(d);
+  const Deck& deck = decks_[di];
+  const int b = 3 * d;
+  const double r = deck.radius;
+  // The step's start: the last step's end unless an impact or a projection moved the state.
+  const std::array<double, 6> s0{q0[b], q0[b + 1], q0[b + 2], u0[b], u0[b + 1], u0[b + 2]};
+  if (s0 != end_state_[di]) {
+    Evaluate(deck, s0[0], s0[1], s0[2], s0[3], s0[4], s0[5], end_[di]);
   }
+  const CornerState& c0 = end_[di];
+  const std::array<double, 6> s1{q1[b], q1[b + 1], q1[b + 2], u1[b], u1[b + 1], u1[b + 2]};
+  CornerState c1;
+  Evaluate(deck, s1[0], s1[1], s1[2], s1[3], s1[4], s1[5], c1);
+  for (int k = 0; k < 4; ++k) {
+    best = std::max(best, std::abs(c1.f[static_cast<std::size_t>(k)]));
+  }
+  for (int k = 0; k < 4; ++k) {
+    const auto ki = static_cast<std::size_t>(k);
+    const double r0 = c0.rate[ki], r1 = c1.rate[ki];
+    if (!(r0 * r1 < 0.0)) continue;
+    // Were the rate linear in t, the peak would exceed the larger end value by
+    // min(r0^2, r1^2) (t1 - t0) / (2 (|r0| + |r1|)) <= (t1 - t0) min(|r0|, |r1|) / 4; twice
+    // that leaves room for the rate's curvature over a step.
+    const double bound = std::max(std::abs(c0.f[ki]), std::abs(c1.f[ki])) +
+                         0.5 * (t1 - t0) * std::min(std::abs(r0), std::abs(r1));
+    if (!(bound > best)) continue;
+    if (travel_bound(b, deck.nx, deck.ny, r, c0.f[ki], r0, c1.f[ki], r1, t1 - t0) < best) {
+      continue;
+    }
+    best = std::max(best, PeakTravel(deck, b, k, t0, t1, r0, r1, time_tolerance_s, component_at));
+  }
+  end_[di] = c1;
+  end_state_[di] = s1;
 }
 
 }  // namespace skewbridge::dynamics
