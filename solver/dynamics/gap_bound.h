@@ -67,6 +67,9 @@ inline void ModalDrift(const ModalGapBound& bound, const double* Y, double tau_s
 }
 
 /// ModalDrift of a deck's three modes (bound.n_modes == 3), unrolled: the same operations.
+/// kHarmonic false: Y's harmonic columns (gamma, delta) are zeros (a record's piece) and their
+/// magnitudes are left out, the same bits (+0 added to a sum of magnitudes changes nothing).
+template <bool kHarmonic = true>
 inline void ModalDrift3(const ModalGapBound& bound, const double* Y, double tau_s,
                         double drift[3]) {
   const double* w = bound.w_radps.data();
@@ -74,7 +77,8 @@ inline void ModalDrift3(const ModalGapBound& bound, const double* Y, double tau_
   for (int k = 0; k < 3; ++k) {
     const double amplitude = std::abs(Y[3 + k]) + w[k] * std::abs(Y[k]);
     const double a0 = std::abs(Y[6 + k]), a1 = std::abs(Y[6 + k] + Y[9 + k] * tau_s);
-    const double force = (a0 > a1 ? a0 : a1) + std::abs(Y[12 + k]) + std::abs(Y[15 + k]);
+    const double ramp = a0 > a1 ? a0 : a1;
+    const double force = kHarmonic ? ramp + std::abs(Y[12 + k]) + std::abs(Y[15 + k]) : ramp;
     drift[k] = tau_s * (amplitude + half_tau * force);
   }
 }

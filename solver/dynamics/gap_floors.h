@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 
+#include "solver/common/error.h"
 #include "solver/dynamics/gap_bound.h"
 
 namespace skewbridge::dynamics {
@@ -42,8 +43,10 @@ class GapFloors {
   /// Whether every gap stays above `margin_m` over a step of tau_s from the modal coordinates Y
   /// (ModalDrift's layout): its drifts join the sums if so. The smallest base less
   /// sum_k max_c W_ck S_k answers for every contact at once; each contact's own sum only when
-  /// that fails. Every kFoldSteps steps the sums go into the bases.
-  bool StaysOpen(const double* Y, double tau_s, double margin_m) {
+  /// that fails. Every kFoldSteps steps the sums go into the bases. `harmonic` false: Y's
+  /// harmonic columns are zeros (a record's piece) and a deck's drifts leave them out, the same
+  /// bits. Inline: a step that stays open by the smallest base ends here.
+  bool StaysOpen(const double* Y, double tau_s, double margin_m, bool harmonic = true) {
     const int n = bound_.n_modes;
     double* sum = trial_.data();  // S_k with this step's drift; kept if the step stays open
     const double* sum0 = sum_.data();
@@ -51,8 +54,15 @@ class GapFloors {
     double closure_max = 0.0;
     if (n == 3) {
       // A deck's three modes, unrolled.
+      SB_ASSERT(harmonic || (Y[12] == 0.0 && Y[13] == 0.0 && Y[14] == 0.0 && Y[15] == 0.0 &&
+                             Y[16] == 0.0 && Y[17] == 0.0),
+                "GapFloors: harmonic columns must be zeros when left out");
       double drift[3];
-      ModalDrift3(bound_, Y, tau_s, drift);
+      if (harmonic) {
+        ModalDrift3<true>(bound_, Y, tau_s, drift);
+      } else {
+        ModalDrift3<false>(bound_, Y, tau_s, drift);
+      }
       sum[0] = sum0[0] + drift[0];
       sum[1] = sum0[1] + drift[1];
       sum[2] = sum0[2] + drift[2];
@@ -64,21 +74,12 @@ class GapFloors {
         closure_max += w_max[k] * sum[k];
       }
     }
-    if (!(base_min_ - closure_max * (1.0 + 1e-12) > margin_m)) {
-      for (int c = 0; c < bound_.n_contacts; ++c) {
-        if (!(base_[c] - GapClosureBound(bound_, c, sum) > margin_m)) {
-          return false;
-        }
-      }
+    if (!(base_min_ - closure_max * (1.0 + 1e-12) > margin_m) && !EachStaysOpen(margin_m)) {
+      return false;
     }
     sum_.swap(trial_);
     if (++steps_ == kFoldSteps) {
-      for (int c = 0; c < bound_.n_contacts; ++c) {
-        base_[c] -= GapClosureBound(bound_, c, sum_.data());
-      }
-      base_min_ = base_.minCoeff();
-      sum_.setZero();
-      steps_ = 0;
+      Fold();
     }
     return true;
   }
@@ -87,6 +88,24 @@ class GapFloors {
   // At most this many drifts are summed before they go into the bases: the sum's rounding (a
   // relative kFoldSteps ulps) stays far below the bound's relative 1e-12.
   static constexpr int kFoldSteps = 256;
+  // Each contact's own base less its closure with the sums of trial_, above margin_m.
+  [[gnu::noinline]] bool EachStaysOpen(double margin_m) const {
+    for (int c = 0; c < bound_.n_contacts; ++c) {
+      if (!(base_[c] - GapClosureBound(bound_, c, trial_.data()) > margin_m)) {
+        return false;
+      }
+    }
+    return true;
+  }
+  // The sums into the bases, the sums restarted.
+  [[gnu::noinline]] void Fold() {
+    for (int c = 0; c < bound_.n_contacts; ++c) {
+      base_[c] -= GapClosureBound(bound_, c, sum_.data());
+    }
+    base_min_ = base_.minCoeff();
+    sum_.setZero();
+    steps_ = 0;
+  }
   const ModalGapBound& bound_;
   Eigen::VectorXd base_;        // per contact, the base g_c (m)
   double base_min_ = 0.0;       // the smallest base (m)

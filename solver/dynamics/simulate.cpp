@@ -70,8 +70,9 @@ class Integrator final : private ConstrainedForces {
   // the decision.
   void FreeStep();
   // Whether every gap provably stays above twice the touch band over the full free step of
-  // length tau_s just applied (GapFloors, [docs/theory.md §3.18]).
-  bool GapsStayOpen(double tau_s) {
+  // length tau_s just applied (GapFloors, [docs/theory.md §3.18]); `harmonic` false when the
+  // step's piece has no harmonic part (omega 0: the modal coordinates' harmonic columns zeros).
+  bool GapsStayOpen(double tau_s, bool harmonic) {
     if (!ws_.gap_bound_.applies()) {
       return false;
     }
@@ -80,7 +81,7 @@ class Integrator final : private ConstrainedForces {
     }
     // Clear of the touch band with the rounding of the gaps' evaluation to spare.
     return gap_floors_.StaysOpen(ws_.flow_.modal_coordinates().data(), tau_s,
-                                 2.0 * scales_.gap_tol_m);
+                                 2.0 * scales_.gap_tol_m, harmonic);
   }
   // FreeStepSize of `piece`, computed again only when its length or rate differ from the last
   // piece's (a record's ramps share them): the same value without its divisions.
@@ -479,7 +480,7 @@ void Integrator::FreeStep() {
   // Locate the first event: the first impact of an open contact, and the contacts that strike
   // with it [§3.12]; the step ends there. A full step whose gaps provably stay open (§3.18)
   // needs neither its end's gaps nor the search.
-  const bool open = step.full && GapsStayOpen(std::max(tau, step.h_s));
+  const bool open = step.full && GapsStayOpen(std::max(tau, step.h_s), piece.omega != 0.0);
   double t_event = kInf;
   if (!open) {
     if (!gaps_exact_) {

@@ -13,6 +13,7 @@
 #include <random>
 
 #include "solver/contact/kinematics.h"
+#include "solver/dynamics/gap_floors.h"
 #include "solver/dynamics/linear_flow.h"
 #include "solver/model/builders.h"
 #include "solver/model/multispan.h"
@@ -118,6 +119,54 @@ TEST(GapBound, HoldsAtResonance) { CheckSteps(0.02, 150, 4, 0.01, 0.1, 5.0, 0.04
 TEST(GapBound, HoldsOnFreeVibrationOfLargeRotation) {
   // No input, rotation dominant: the arm's term carries the closure.
   CheckSteps(0.05, 150, 5, 0.3, 3.0, 0.0, 0.01, false);
+}
+
+TEST(GapBound, ADecksDriftsWithoutHarmonicColumnsAreTheBitsOfTheGeneralLoop) {
+  // A record's piece (omega 0, no harmonic generator): ModalDrift3<false> leaves out the
+  // harmonic columns' magnitudes, which are +0; its drifts must be the bits of ModalDrift's
+  // general loop and of ModalDrift3<true>, and GapFloors must take the same decisions and sums.
+  const model::Model model = testing::EccentricDeck(0.05);
+  LinearFlow modal(model.M(), model.K(), model.C(), model.r());
+  ASSERT_TRUE(modal.modal());
+  const ModalGapBound bound(model, modal.modal_flow());
+  ASSERT_EQ(bound.n_modes, 3);
+  const int n = model.n_dof();
+  std::mt19937 rng(71u);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  GapFloors with(bound), without(bound);
+  const Eigen::VectorXd gaps = Eigen::VectorXd::Constant(model.n_contacts(), 0.05);
+  with.Restart(gaps);
+  without.Restart(gaps);
+  int open_steps = 0;
+  for (int s = 0; s < 600; ++s) {
+    Eigen::VectorXd z = Eigen::VectorXd::Zero(modal.augmented_size()), z_next = z;
+    for (int i = 0; i < 2 * n; ++i) z[i] = 1e-4 * unit(rng);
+    for (int j = 0; j < 4; ++j) z[2 * n + j] = (j < 2 ? 1.0 : 50.0) * unit(rng);
+    if (s % 7 == 0) z[2 * n] = -0.0;  // signed zeros of the forcing
+    modal.Apply(modal.Propagator(0.01, 0.0, false), z, z_next);
+    const double* Y = modal.modal_coordinates().data();
+    double general[3], plain[3], harmonic[3];
+    ModalDrift(bound, Y, 0.01, general);
+    ModalDrift3<false>(bound, Y, 0.01, plain);
+    ModalDrift3<true>(bound, Y, 0.01, harmonic);
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_EQ(std::signbit(plain[k]), std::signbit(general[k])) << "step " << s;
+      EXPECT_EQ(plain[k], general[k]) << "step " << s << " mode " << k;
+      EXPECT_EQ(harmonic[k], general[k]) << "step " << s << " mode " << k;
+    }
+    const bool a = with.StaysOpen(Y, 0.01, 1e-6, true);
+    const bool b = without.StaysOpen(Y, 0.01, 1e-6, false);
+    ASSERT_EQ(a, b) << "step " << s;
+    if (!a) {
+      with.Restart(gaps);
+      without.Restart(gaps);
+    } else {
+      ++open_steps;
+    }
+  }
+  // Both answers occur: runs of open steps long enough to fold, and steps the sums close.
+  EXPECT_GT(open_steps, 256);
+  EXPECT_LT(open_steps, 600);
 }
 
 TEST(GapBound, NeverCallsAGrazingStepOpen) {
