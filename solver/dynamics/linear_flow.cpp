@@ -211,7 +211,11 @@ void LinearFlow::ApplyMotion(const FreePropagator& p, const Eigen::Ref<const Eig
   // either gives the same bits, and the bounds read their magnitudes).
   const int ih = 2 * n_ + 4;
   const bool harmonic = z[ih] != 0.0 || z[ih + 1] != 0.0 || z[ih + 2] != 0.0 || z[ih + 3] != 0.0;
-  modal_->ToModal(z, Y_, harmonic);
+  if (n_ == 3) {
+    modal_->ToModal3(z.data(), Y_.data(), harmonic);  // Y_ is 3 x 6, column-major
+  } else {
+    modal_->ToModal(z, Y_, harmonic);
+  }
   // z and z_next are distinct (the precondition): the (q, u) written here is read by nothing after.
   const double* Phi = modal_->Phi().data();
   if (n_ == 3 && !harmonic) {

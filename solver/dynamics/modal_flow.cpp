@@ -43,32 +43,6 @@ struct Reciprocals {
 };
 constexpr Reciprocals kInverseOf{};
 
-// ToModal for kN modes known at compile time, Y column-major with stride kN: y_k's (eta, eta')
-// as ModalProduct's row-wise sums, and the generator columns -L (gx, gy): all four, or with
-// kHarmonic false the linear pair alone and +0 in the harmonic pair. Y overlaps none of the
-// inputs (__restrict: no run-time overlap tests, the same operations).
-template <int kN, bool kHarmonic = true>
-inline void ToModalFixed(const double* __restrict PhiTM, const double* __restrict negL,
-                         const double* __restrict z, double* __restrict Y) {
-  for (int i = 0; i < kN; ++i) {
-    double s = 0.0;
-    for (int j = 0; j < kN; ++j) s += PhiTM[i + j * kN] * z[j];
-    Y[i] = s;
-  }
-  for (int i = 0; i < kN; ++i) {
-    double s = 0.0;
-    for (int j = 0; j < kN; ++j) s += PhiTM[i + j * kN] * z[kN + j];
-    Y[kN + i] = s;
-  }
-  constexpr int kColumns = kHarmonic ? 4 : 2;
-  for (int j = 0; j < kColumns; ++j) {
-    const double gx = z[2 * kN + 2 * j], gy = z[2 * kN + 2 * j + 1];
-    double* y = Y + (2 + j) * kN;
-    for (int k = 0; k < kN; ++k) y[k] = negL[k] * gx + negL[kN + k] * gy;
-  }
-  for (int k = (2 + kColumns) * kN; k < 6 * kN; ++k) Y[k] = 0.0;
-}
-
 }  // namespace
 
 int ModalTermCount(double rho) {
@@ -164,9 +138,9 @@ void ModalFlow::ToModal(const Eigen::Ref<const Eigen::VectorXd>& z, Eigen::Ref<E
     // A deck's three modes, once per free step: ModalProduct's and the loop's sums below, in the
     // same order from the same 0.0 (the same bits), unrolled over plain arrays.
     if (harmonic) {
-      ToModalFixed<3, true>(PhiTM_.data(), negL_.data(), z.data(), Y.data());
+      detail::ToModalFixed<3, true>(PhiTM_.data(), negL_.data(), z.data(), Y.data());
     } else {
-      ToModalFixed<3, false>(PhiTM_.data(), negL_.data(), z.data(), Y.data());
+      detail::ToModalFixed<3, false>(PhiTM_.data(), negL_.data(), z.data(), Y.data());
     }
     return;
   }

@@ -49,6 +49,36 @@ int ModalTermCount(double rho);
 void ModalProduct(const Eigen::MatrixXd& A, int rows, const double* x1, const double* x2,
                   double* y1, double* y2);
 
+namespace detail {
+
+// ToModal for kN modes known at compile time, Y column-major with stride kN: y_k's (eta, eta')
+// as ModalProduct's row-wise sums, and the generator columns -L (gx, gy): all four, or with
+// kHarmonic false the linear pair alone and +0 in the harmonic pair. Y overlaps none of the
+// inputs (__restrict: no run-time overlap tests, the same operations).
+template <int kN, bool kHarmonic = true>
+inline void ToModalFixed(const double* __restrict PhiTM, const double* __restrict negL,
+                         const double* __restrict z, double* __restrict Y) {
+  for (int i = 0; i < kN; ++i) {
+    double s = 0.0;
+    for (int j = 0; j < kN; ++j) s += PhiTM[i + j * kN] * z[j];
+    Y[i] = s;
+  }
+  for (int i = 0; i < kN; ++i) {
+    double s = 0.0;
+    for (int j = 0; j < kN; ++j) s += PhiTM[i + j * kN] * z[kN + j];
+    Y[kN + i] = s;
+  }
+  constexpr int kColumns = kHarmonic ? 4 : 2;
+  for (int j = 0; j < kColumns; ++j) {
+    const double gx = z[2 * kN + 2 * j], gy = z[2 * kN + 2 * j + 1];
+    double* y = Y + (2 + j) * kN;
+    for (int k = 0; k < kN; ++k) y[k] = negL[k] * gx + negL[kN + k] * gy;
+  }
+  for (int k = (2 + kColumns) * kN; k < 6 * kN; ++k) Y[k] = 0.0;
+}
+
+}  // namespace detail
+
 /// The modes of a classically damped model and the per-mode transitions.
 class ModalFlow {
  public:
@@ -82,6 +112,15 @@ class ModalFlow {
   /// +0 without their products (which are zeros of either sign).
   void ToModal(const Eigen::Ref<const Eigen::VectorXd>& z, Eigen::Ref<Eigen::MatrixXd> Y,
                bool harmonic = true) const;
+  /// ToModal of a deck's three modes (n_modes() == 3) into Y's 18 entries (column-major, 3 x 6),
+  /// inline and over plain arrays: the same operations. @pre z has 2 n + 8 entries.
+  void ToModal3(const double* z, double* Y, bool harmonic) const {
+    if (harmonic) {
+      detail::ToModalFixed<3, true>(PhiTM_.data(), negL_.data(), z, Y);
+    } else {
+      detail::ToModalFixed<3, false>(PhiTM_.data(), negL_.data(), z, Y);
+    }
+  }
 
   /// The transitions over tau_s (> 0) at the harmonic rate omega_radps: column k of `rows`
   /// (12 x n) holds T_k row-major (eta row, then eta' row). With `input` and `damping` (36 x n,
