@@ -165,6 +165,7 @@ endfunction()
 # sb_add_shared_gtests(PROGRAM): the ctest tests of the shared PROGRAM, each with its filter.
 function(sb_add_shared_gtests program)
   get_property(tests GLOBAL PROPERTY SB_PROGRAM_TESTS_${program})
+  set(filters "")
   # The tests of each suite.
   foreach(test IN LISTS tests)
     get_property(spec GLOBAL PROPERTY SB_TEST_${test})
@@ -206,7 +207,17 @@ function(sb_add_shared_gtests program)
     string(REPLACE ";" ":" filter "${patterns}")
     sb_add_test_of(${test} ${program} ${kind} "--gtest_filter=${filter}" "${shards}"
                    "${nprocs}" "${labels}")
+    string(APPEND filters "${test}\t${filter}\n")
   endforeach()
+  # The filters are read from the sources' text: a test case they miss (a macro of another
+  # name, a suite defined through a helper) would build and never run. This test lists the
+  # program's cases and requires each to be selected by exactly one of its tests' filters.
+  set(list_file "${CMAKE_CURRENT_BINARY_DIR}/${program}.filters")
+  file(GENERATE OUTPUT "${list_file}" CONTENT "$<TARGET_FILE:${program}>\n${filters}")
+  add_test(NAME lint_gtest_filters_${program}
+    COMMAND bash ${PROJECT_SOURCE_DIR}/tests/lint/check_gtest_filters.sh "${list_file}")
+  set_tests_properties(lint_gtest_filters_${program} PROPERTIES LABELS "lint")
+  sb_mpi_environment(lint_gtest_filters_${program})
 endfunction()
 
 function(sb_add_gtest name)
