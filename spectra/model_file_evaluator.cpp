@@ -486,7 +486,7 @@ ModelFileCell ModelFileEvaluator::MakeCell(std::span<const std::size_t> index, b
       if (has_eps) d.restitution = eps_N;
       // Compliant abutments: mu is the backwall friction (the contacts' mu is unused).
       if (has_mu && c.compliant) {
-        c.compliant->wall_friction = mu;
+        c.compliant->SetWallFriction(mu);
       } else if (has_mu) {
         d.friction = mu;
       }
@@ -520,7 +520,7 @@ ModelFileCell ModelFileEvaluator::MakeCell(std::span<const std::size_t> index, b
       }
       // Compliant joints: mu is the backwalls' friction (the joints' springs carry none).
       if (has_mu && c.compliant) {
-        c.compliant->wall_friction = mu;
+        c.compliant->SetWallFriction(mu);
       } else if (has_mu) {
         m.friction = mu;
         for (model::JointSpec& j : m.joints) j.friction = mu;

@@ -42,7 +42,7 @@ std::vector<CompliantSpring> AbutmentSprings(const model::Model& rigid,
     int first, last;
   } walls[] = {{n_decks - 1, 1, 2}, {0, 3, 4}};
   std::vector<CompliantSpring> springs;
-  // The backfill of every wall first (with the walls' friction), then the keys of every abutment.
+  // The backfill of every wall first (each with its wall's friction), then every abutment's keys.
   for (const bool keys : {false, true}) {
     for (std::size_t i = 0; i < 2; ++i) {
       const auto& w = walls[i];
@@ -64,8 +64,8 @@ std::vector<CompliantSpring> AbutmentSprings(const model::Model& rigid,
       std::vector<CompliantSpring> these =
           WallSprings(rigid, first, last, wall, law.springs, prefix);
       for (CompliantSpring& s : these) {
-        s.mu = spec.wall_friction;
-        s.k_t_N_per_m = spec.stick_stiffness_Npm / law.springs;  // 0: the spring's K_max
+        s.mu = law.friction;
+        s.k_t_N_per_m = law.stick_stiffness_Npm / law.springs;  // 0: the spring's K_max
       }
       springs.insert(springs.end(), these.begin(), these.end());
     }

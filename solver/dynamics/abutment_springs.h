@@ -25,8 +25,8 @@ namespace skewbridge::dynamics {
 /// last deck's D<i>.P1, D<i>.P2 and deck 0's D0.P3, D0.P4): per wall w (spec.walls[0] the +x
 /// wall, [1] the -x wall) WallSprings(rigid, first, last, WallBackfill(w.backfill, deck),
 /// w.springs, "+x" / "-x"), the wall's law from its deck's geometry (its length and skew angle);
-/// every spring with the walls' friction spec.wall_friction and an n-th of the stick stiffness
-/// (0: the spring's K_max). Then, per abutment with keys (w.shear_keys),
+/// every spring with its wall's friction w.friction and an n-th of its stick stiffness
+/// w.stick_stiffness_Npm (0: the spring's K_max). Then, per abutment with keys (w.shear_keys),
 /// AbutmentShearKeys(rigid, first, last, key, "+x" / "-x"). Then per deck-deck joint i
 /// (spec.joints) on its two contacts, WallSprings with the joint's backfill on the striking deck's
 /// end or SpringDashpots, named "J<i>". The order: the +x wall's springs, the -x wall's, the +x

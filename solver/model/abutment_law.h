@@ -80,22 +80,29 @@ struct CompliantWall {
   BackfillSpec backfill;                    ///< the wall's backfill law
   int springs = 5;                          ///< springs along the wall from corner to corner, >= 2
   std::optional<ShearKeysSpec> shear_keys;  ///< the abutment's two exterior keys; none when empty
+  /// Coulomb friction coefficient on the wall, >= 0, on its springs' normal forces; 0: none.
+  double friction = 0.0;
+  /// The wall's stick stiffness along it (N/m), shared by its springs; 0: the wall's K_max.
+  double stick_stiffness_Npm = 0.0;
 };
 
 /// The compliant joints of a model file ([abutments] law = "compliant"): per wall its law
-/// (`springs` springs from corner to corner, each with an n-th of the wall's backfill, and
-/// optionally the abutment's two exterior shear keys), the walls' friction, and, for a [[deck]]
-/// file, each deck-deck joint's law.
+/// (`springs` springs from corner to corner, each with an n-th of the wall's backfill, optionally
+/// the abutment's two exterior shear keys, the wall's friction and stick stiffness) and, for a
+/// [[deck]] file, each deck-deck joint's law.
 struct CompliantAbutments {
   /// The law of each wall: [0] the +x wall, [1] the -x wall (with set = "both"; absent with
-  /// set = "+x"). One [abutments.backfill] or [abutments.shear_keys] table fills every wall.
+  /// set = "+x"). One [abutments.backfill] or [abutments.shear_keys] table, or one `mu` or
+  /// `stick_stiffness_Npm` number, fills every wall.
   std::vector<CompliantWall> walls;
-  /// Coulomb friction coefficient on each wall, >= 0, on the springs' normal forces; 0: none.
-  double wall_friction = 0.0;
-  /// Each wall's stick stiffness along it (N/m), shared by its springs; 0: the wall's K_max.
-  double stick_stiffness_Npm = 0.0;
   /// A [[deck]] file: joint i between decks i and i + 1; empty for a single deck.
   std::vector<CompliantJoint> joints;
+
+  /// Gives every wall the friction coefficient `mu` (>= 0), as `mu = ...` for both walls in the
+  /// file would (a sweep's mu); each wall keeps its stick stiffness.
+  void SetWallFriction(double mu) {
+    for (CompliantWall& w : walls) w.friction = mu;
+  }
 
   /// Whether any abutment has shear keys.
   bool HasShearKeys() const {

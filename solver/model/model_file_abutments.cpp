@@ -1,6 +1,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
+#include <type_traits>
 
 #include "solver/model/model_file_tables.h"
 
@@ -287,39 +289,103 @@ WallTables ReadWallTables(Section& s, std::string_view key, std::size_t walls, b
   return out;
 }
 
-// `springs`: one number for every wall or a table { "+x" = ..., "-x" = ... }; 5 when absent.
-std::vector<int> WallSpringCounts(Section& s, std::size_t walls) {
-  const auto count = [](Section& t, std::string_view key, int fallback) {
-    const std::optional<double> n = t.Number(key);
-    if (!n) return fallback;
-    if (*n != std::floor(*n) || *n < 2.0 || *n > 1000.0) {
-      Fail(t.At(key), t.Field(key),
-           "must be a whole number of springs per wall from 2 to 1000 (got " + Show(*n) + ")");
-    }
-    return static_cast<int>(*n);
-  };
-  const toml::node* node = s.Get("springs");
+// One wall's number of a key given for every wall or per wall: its value (empty when the file
+// gives none), where it is written and its key path.
+struct WallNumber {
+  std::optional<double> value;
+  Where at;
+  std::string field;
+};
+
+// `key`: one number for every wall, or a table { "+x" = ..., "-x" = ... } with a number for the
+// walls of the set (`walls`: 1 with set = "+x", 2 with "both"), each wall's required unless
+// `what` is null. Per wall its number; empty when the file gives none for it. `what(name)` says
+// what the wall `name` misses in a table without it. `per_wall`, when given, is set to whether
+// the file gives a table.
+template <class What>
+std::vector<WallNumber> WallNumbers(Section& s, std::string_view key, std::size_t walls, What what,
+                                    bool* per_wall = nullptr) {
+  const toml::node* node = s.Get(key);
+  if (per_wall != nullptr) *per_wall = node != nullptr && node->is_table();
   if (node == nullptr || !node->is_table()) {
-    return std::vector<int>(walls, count(s, "springs", 5));
+    const std::optional<double> value = s.Number(key);
+    return std::vector<WallNumber>(walls, WallNumber{value, s.At(key), s.Field(key)});
   }
-  Section g(*node->as_table(), s.Field("springs"), s.source());
+  Section g(*node->as_table(), s.Field(key), s.source());
   const std::string_view allowed = walls == 2 ? "\"+x\", \"-x\"" : "\"+x\" (with set = \"+x\")";
   g.Expect(allowed);
   RejectMinusX(g, walls);
-  std::vector<int> out;
+  std::vector<WallNumber> out;
   for (std::size_t w = 0; w < walls; ++w) {
     const std::string_view name = WallName(w);
-    if (!g.Has(name)) {
-      g.Missing(name, "springs along the " + std::string(name) + " wall, 2 to 1000");
+    if constexpr (!std::is_same_v<What, std::nullptr_t>) {
+      if (!g.Has(name)) g.Missing(name, what(name));
     }
-    out.push_back(count(g, name, 5));
+    out.push_back({g.Number(name), g.At(name), g.Field(name)});
   }
   g.Finish(allowed);
   return out;
 }
 
-// law = "compliant": per wall its springs, its backfill and its abutment's shear keys; the walls'
-// friction. `walls`: 1 with set = "+x", 2 with "both".
+// `springs`: one number for every wall or a table { "+x" = ..., "-x" = ... }; 5 when absent.
+std::vector<int> WallSpringCounts(Section& s, std::size_t walls) {
+  std::vector<int> out;
+  for (const WallNumber& n : WallNumbers(s, "springs", walls, [](std::string_view name) {
+         return "springs along the " + std::string(name) + " wall, 2 to 1000";
+       })) {
+    if (!n.value) {
+      out.push_back(5);
+      continue;
+    }
+    if (*n.value != std::floor(*n.value) || *n.value < 2.0 || *n.value > 1000.0) {
+      Fail(
+          n.at, n.field,
+          "must be a whole number of springs per wall from 2 to 1000 (got " + Show(*n.value) + ")");
+    }
+    out.push_back(static_cast<int>(*n.value));
+  }
+  return out;
+}
+
+// `mu` and `stick_stiffness_Npm`: each wall's Coulomb friction and stick stiffness along it, one
+// number for every wall or one per wall (mu for both walls; a stick stiffness for either, the
+// other taking its K_max); a stick stiffness belongs to a wall with friction (one for every wall:
+// to at least one wall with friction) [docs/compliant.md §4, Wall friction].
+void ReadWallFriction(Section& s, std::vector<CompliantWall>& walls) {
+  const std::vector<WallNumber> mu = WallNumbers(s, "mu", walls.size(), [](std::string_view name) {
+    return "the Coulomb friction coefficient of the " + std::string(name) + " wall, >= 0";
+  });
+  bool any = false;
+  for (std::size_t w = 0; w < walls.size(); ++w) {
+    walls[w].friction = mu[w].value.value_or(0.0);
+    CheckNonNegative(walls[w].friction, mu[w].field, mu[w].at);
+    any = any || walls[w].friction > 0.0;
+  }
+  // A wall left out of a per-wall table takes its K_max, as a file without the key.
+  bool per_wall = false;
+  const std::vector<WallNumber> k_t =
+      WallNumbers(s, "stick_stiffness_Npm", walls.size(), nullptr, &per_wall);
+  for (std::size_t w = 0; w < walls.size(); ++w) {
+    if (!k_t[w].value) continue;
+    const double k = *k_t[w].value;
+    if (!(k > 0.0 && std::isfinite(k))) {
+      Fail(k_t[w].at, k_t[w].field,
+           "must be a stiffness > 0 N/m (the wall's, shared by its springs; omit it for the "
+           "wall's K_max) (got " +
+               Show(k) + ")");
+    }
+    if (per_wall && !(walls[w].friction > 0.0)) {
+      Fail(k_t[w].at, k_t[w].field,
+           "belongs to a wall with friction (the " + std::string(WallName(w)) +
+               " wall's mu is 0; give it mu > 0 or omit its stick stiffness)");
+    }
+    if (!any) Fail(k_t[w].at, k_t[w].field, "belongs to a wall with friction (mu > 0)");
+    walls[w].stick_stiffness_Npm = k;
+  }
+}
+
+// law = "compliant": per wall its friction, its springs, its backfill and its abutment's shear
+// keys. `walls`: 1 with set = "+x", 2 with "both".
 CompliantAbutments ReadCompliant(Section& s, std::size_t walls) {
   for (std::string_view key : {"eps_N", "contacts"}) {
     s.Reject(key,
@@ -327,23 +393,9 @@ CompliantAbutments ReadCompliant(Section& s, std::size_t walls) {
              "contacts)");
   }
   CompliantAbutments c;
-  c.wall_friction = s.Number("mu").value_or(0.0);
-  CheckNonNegative(c.wall_friction, s.Field("mu"), s.At("mu"));
-  if (const std::optional<double> k_t = s.Number("stick_stiffness_Npm")) {
-    if (!(*k_t > 0.0 && std::isfinite(*k_t))) {
-      Fail(s.At("stick_stiffness_Npm"), s.Field("stick_stiffness_Npm"),
-           "must be a stiffness > 0 N/m (the wall's, shared by its springs; omit it for the "
-           "wall's K_max) (got " +
-               Show(*k_t) + ")");
-    }
-    if (!(c.wall_friction > 0.0)) {
-      Fail(s.At("stick_stiffness_Npm"), s.Field("stick_stiffness_Npm"),
-           "belongs to a wall with friction (mu > 0)");
-    }
-    c.stick_stiffness_Npm = *k_t;
-  }
-  const std::vector<int> springs = WallSpringCounts(s, walls);
   c.walls.resize(walls);
+  ReadWallFriction(s, c.walls);
+  const std::vector<int> springs = WallSpringCounts(s, walls);
   for (std::size_t w = 0; w < walls; ++w) c.walls[w].springs = springs[w];
   if (!s.Has("backfill")) {
     s.Missing("backfill",
@@ -415,6 +467,13 @@ AbutmentParameters ReadAbutments(Section& s, bool multi_deck) {
   }
   a.restitution = s.Number("eps_N").value_or(0.5);
   CheckRange(a.restitution, 0.0, 1.0, false, s.Field("eps_N"), s.At("eps_N"));
+  if (const toml::node* mu = s.Get("mu"); mu != nullptr && mu->is_table()) {
+    Fail(s.At("mu"), s.Field("mu"),
+         multi_deck ? "a friction per wall belongs to law = \"compliant\"; with law = \"impact\" "
+                      "give one number"
+                    : "a friction per wall belongs to law = \"compliant\"; with law = \"impact\" "
+                      "give one number, or one per corner in [abutments.contacts.P1] (mu)");
+  }
   a.friction = s.Number("mu").value_or(0.0);
   CheckNonNegative(a.friction, s.Field("mu"), s.At("mu"));
   if (multi_deck) {

@@ -129,6 +129,26 @@ sed 's/^\[abutments.shear_keys."+x"\]/[abutments.shear_keys]\ngap_m = 0.002\n\n&
   > keys_mix.toml
 expect "keys_mix.toml:48: abutments.shear_keys.gap_m: a key for both walls beside the per-wall table [abutments.shear_keys.\"+x\"]: give one table for both walls or one per wall, not both" \
   run keys_mix.toml --out run.h5
+# --- a friction per wall: both walls of the set, a wall's stick stiffness with its own mu, the
+# rigid law's mu one number ---
+sed 's/^springs = .*/&\nmu = { "+x" = 0.3 }/' one_keyed.toml > wall_mu_one.toml
+expect "wall_mu_one.toml:35: abutments.mu.\"-x\": missing required key (the Coulomb friction coefficient of the -x wall, >= 0)" \
+  run wall_mu_one.toml --out run.h5
+sed 's/^springs = .*/&\nmu = { "+x" = 0.3, "-x" = -0.1 }/' one_keyed.toml > wall_mu_neg.toml
+expect "wall_mu_neg.toml:35: abutments.mu.\"-x\": must be >= 0 (got -0.1)" \
+  run wall_mu_neg.toml --out run.h5
+sed 's/^springs = .*/&\nmu = { "+x" = 0.3, "-x" = 0 }\nstick_stiffness_Npm = { "-x" = 1e9 }/' \
+  one_keyed.toml > wall_kt_minus.toml
+expect "wall_kt_minus.toml:36: abutments.stick_stiffness_Npm.\"-x\": belongs to a wall with friction (the -x wall's mu is 0; give it mu > 0 or omit its stick stiffness)" \
+  run wall_kt_minus.toml --out run.h5
+sed -e 's/^set = "both"/set = "+x"/' -e 's/^gap_m = .*/gap_m = 0.008/' -e 's/^springs = .*/springs = 5\nmu = { "+x" = 0.3, "-x" = 0.1 }/' \
+  one_keyed.toml > wall_mu_set.toml
+expect "wall_mu_set.toml:35: abutments.mu.\"-x\": no -x wall with set = \"+x\" (allowed: \"+x\")" \
+  run wall_mu_set.toml --out run.h5
+sed 's/^mu = 0.3$/mu = { "+x" = 0.3, "-x" = 0.1 }/' "$root/docs/examples/pilot-bridge.toml" \
+  > rigid_mu_walls.toml
+expect "rigid_mu_walls.toml:28: abutments.mu: a friction per wall belongs to law = \"compliant\"; with law = \"impact\" give one number, or one per corner in [abutments.contacts.P1] (mu)" \
+  run rigid_mu_walls.toml --out run.h5
 # --- the wrong kind of file, named as what it is ---
 cp "$spec" spec.toml
 for command in run modes; do

@@ -114,8 +114,10 @@ TEST(AbutmentSprings, TheFilesWallFrictionIsTheSpringsCoulombLaw) {
       "k_max_Npm_per_m = 20.3e6\nr_f = 0.7\nf_ult_N_per_m = 326e3\n";
   const model::ModelFile file = Pilot(abutments);
   ASSERT_TRUE(file.compliant.has_value());
-  EXPECT_EQ(file.compliant->wall_friction, 0.25);
-  EXPECT_EQ(file.compliant->stick_stiffness_Npm, 2e9);
+  for (const model::CompliantWall& w : file.compliant->walls) {
+    EXPECT_EQ(w.friction, 0.25);
+    EXPECT_EQ(w.stick_stiffness_Npm, 2e9);
+  }
   const std::vector<CompliantSpring> from_file = AbutmentSprings(file.model, *file.compliant);
   ASSERT_EQ(from_file.size(), 10u);
   for (const CompliantSpring& s : from_file) {

@@ -73,6 +73,7 @@ void ExpectSameRun(const LawRun& a, const LawRun& b) {
     EXPECT_EQ(a.springs[s].name, b.springs[s].name);
     EXPECT_EQ(a.springs[s].force_N, b.springs[s].force_N);
     EXPECT_EQ(a.springs[s].deformation_m, b.springs[s].deformation_m);
+    EXPECT_EQ(a.springs[s].wall_slip_m, b.springs[s].wall_slip_m);
   }
 }
 
@@ -118,6 +119,91 @@ TEST(AbutmentWalls, OneTableAndTheSameTablePerWallGiveTheSameRunBitForBit) {
   ASSERT_EQ(plus_per.compliant->walls.size(), 1u);
   ExpectSameRun(RunUnderLaw(plus_one.model, plus_one.compliant, ex, ThreeSeconds(plus_one)),
                 RunUnderLaw(plus_per.model, plus_per.compliant, ex, ThreeSeconds(plus_per)));
+}
+
+TEST(AbutmentWalls, OneFrictionAndTheSameFrictionPerWallGiveTheSameRunBitForBit) {
+  // mu and stick_stiffness_Npm given once for both walls and given per wall.
+  const std::string keys = std::string("[abutments.shear_keys]\n") + kKeys;
+  std::string one_text = CompliantWith(keys);
+  std::string per_text = one_text;
+  const std::string law = "law = \"compliant\"\n";
+  one_text.replace(one_text.find(law), law.size(), law + "mu = 0.3\nstick_stiffness_Npm = 2e9\n");
+  per_text.replace(per_text.find(law), law.size(),
+                   law +
+                       "mu = { \"+x\" = 0.3, \"-x\" = 0.3 }\n"
+                       "stick_stiffness_Npm = { \"+x\" = 2e9, \"-x\" = 2e9 }\n");
+  const model::ModelFile one = Pilot(one_text);
+  const model::ModelFile per = Pilot(per_text);
+  const records::PulseExcitation ex = Cycle(60.0);
+  const LawRun a = RunUnderLaw(one.model, one.compliant, ex, ThreeSeconds(one));
+  ExpectSameRun(a, RunUnderLaw(per.model, per.compliant, ex, ThreeSeconds(per)));
+  double slip = 0.0;
+  for (const SpringMaxima& s : a.springs) slip += s.wall_slip_m;
+  EXPECT_GT(slip, 0.0) << "the walls must slip";
+
+  // Unlike walls: each wall's springs carry its own mu and an n-th of its own stick stiffness
+  // (a wall left out of the stick stiffness table: 0, its K_max).
+  per_text = CompliantWith(keys);
+  per_text.replace(per_text.find(law), law.size(),
+                   law +
+                       "mu = { \"+x\" = 0.3, \"-x\" = 0.1 }\n"
+                       "stick_stiffness_Npm = { \"+x\" = 2e9 }\nsprings = { \"+x\" = 5, "
+                       "\"-x\" = 4 }\n");
+  per_text.erase(per_text.find("springs = 5\n"), 12);
+  const model::ModelFile unlike = Pilot(per_text);
+  ASSERT_EQ(unlike.compliant->walls.size(), 2u);
+  EXPECT_EQ(unlike.compliant->walls[0].friction, 0.3);
+  EXPECT_EQ(unlike.compliant->walls[1].friction, 0.1);
+  EXPECT_EQ(unlike.compliant->walls[0].stick_stiffness_Npm, 2e9);
+  EXPECT_EQ(unlike.compliant->walls[1].stick_stiffness_Npm, 0.0);
+  const std::vector<CompliantSpring> springs = AbutmentSprings(unlike.model, *unlike.compliant);
+  ASSERT_EQ(springs.size(), 13u);  // 5 + 4 backfill springs, then 4 keys without friction
+  for (std::size_t k = 0; k < springs.size(); ++k) {
+    const bool plus = k < 5, minus = k >= 5 && k < 9;
+    EXPECT_EQ(springs[k].mu, plus ? 0.3 : minus ? 0.1 : 0.0) << springs[k].name;
+    EXPECT_EQ(springs[k].k_t_N_per_m, plus ? 2e9 / 5 : 0.0) << springs[k].name;
+  }
+}
+
+TEST(AbutmentWalls, AFrictionPerWallThatDoesNotFitIsRefusedInOneLine) {
+  const auto refused = [&](const std::string& abutments, const std::string& expected) {
+    const std::string message = Refusal(abutments);
+    EXPECT_NE(message.find(expected), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  };
+  const std::string walls = std::string("[abutments.backfill]\n") + kCaltrans;
+  const std::string head = "[abutments]\nset = \"both\"\ngap_m = 0.008\nlaw = \"compliant\"\n";
+  // mu per wall: both walls of the set, each >= 0, no other key.
+  refused(head + "mu = { \"+x\" = 0.2 }\n" + walls,
+          "m.toml:28: abutments.mu.\"-x\": missing required key (the Coulomb friction coefficient "
+          "of the -x wall, >= 0)");
+  refused(head + "mu = { \"+x\" = 0.2, \"-x\" = -0.1 }\n" + walls,
+          "m.toml:28: abutments.mu.\"-x\": must be >= 0 (got -0.1)");
+  refused(head + "mu = { \"+x\" = 0.2, \"-x\" = \"rough\" }\n" + walls,
+          "m.toml:28: abutments.mu.\"-x\": must be a number");
+  refused(head + "mu = { \"+x\" = 0.2, \"-x\" = 0.1, \"+y\" = 0.1 }\n" + walls,
+          "m.toml:28: abutments.mu.\"+y\": unknown key (allowed: \"+x\", \"-x\")");
+  refused(
+      "[abutments]\nset = \"+x\"\ngap_m = 0.008\nlaw = \"compliant\"\n"
+      "mu = { \"+x\" = 0.2, \"-x\" = 0.1 }\n" +
+          walls,
+      "m.toml:28: abutments.mu.\"-x\": no -x wall with set = \"+x\" (allowed: \"+x\")");
+  // A wall's stick stiffness belongs to a wall with friction; one for both to either wall.
+  refused(
+      head + "mu = { \"+x\" = 0.2, \"-x\" = 0 }\nstick_stiffness_Npm = { \"-x\" = 1e9 }\n" + walls,
+      "m.toml:29: abutments.stick_stiffness_Npm.\"-x\": belongs to a wall with friction (the "
+      "-x wall's mu is 0; give it mu > 0 or omit its stick stiffness)");
+  refused(head + "mu = { \"+x\" = 0, \"-x\" = 0 }\nstick_stiffness_Npm = 1e9\n" + walls,
+          "m.toml:29: abutments.stick_stiffness_Npm: belongs to a wall with friction (mu > 0)");
+  refused(head + "mu = 0.2\nstick_stiffness_Npm = { \"+x\" = 1e9, \"-x\" = -1 }\n" + walls,
+          "m.toml:29: abutments.stick_stiffness_Npm.\"-x\": must be a stiffness > 0 N/m");
+  EXPECT_EQ(
+      Refusal(head + "mu = { \"+x\" = 0.2, \"-x\" = 0 }\nstick_stiffness_Npm = 1e9\n" + walls),
+      "(accepted)");
+  // The rigid law's mu is one number (or per corner).
+  refused("[abutments]\nset = \"both\"\ngap_m = 0.008\nmu = { \"+x\" = 0.2, \"-x\" = 0.1 }\n",
+          "m.toml:27: abutments.mu: a friction per wall belongs to law = \"compliant\"; with law = "
+          "\"impact\" give one number, or one per corner in [abutments.contacts.P1] (mu)");
 }
 
 TEST(AbutmentWalls, PerWallTablesThatDoNotFitTheSetAreRefusedInOneLine) {
@@ -176,27 +262,38 @@ model::ModelFile CentredPilot(const std::string& abutments) {
 }
 
 // [abutments] with law `plus` at +x and `minus` at -x: each a gap, a springs count and its
-// backfill table's body, optionally keys.
+// backfill table's body, optionally keys, a wall friction mu and a stick stiffness k_t (N/m).
 struct WallLaw {
-  std::string gap_m, springs, backfill, keys;
+  std::string gap_m, springs, backfill, keys, mu = "", k_t = "";
 };
 std::string TwoWalls(const WallLaw& plus, const WallLaw& minus) {
   std::string text =
       "[abutments]\nset = \"both\"\nlaw = \"compliant\"\ngap_m = { \"+x\" = " + plus.gap_m +
       ", \"-x\" = " + minus.gap_m + " }\nsprings = { \"+x\" = " + plus.springs +
-      ", \"-x\" = " + minus.springs + " }\n[abutments.backfill.\"+x\"]\n" + plus.backfill +
-      "[abutments.backfill.\"-x\"]\n" + minus.backfill;
+      ", \"-x\" = " + minus.springs + " }\n";
+  if (!plus.mu.empty() || !minus.mu.empty()) {
+    text += "mu = { \"+x\" = " + (plus.mu.empty() ? "0" : plus.mu) +
+            ", \"-x\" = " + (minus.mu.empty() ? "0" : minus.mu) + " }\n";
+  }
+  if (!plus.k_t.empty() || !minus.k_t.empty()) {  // a wall without k_t: its K_max
+    text += "stick_stiffness_Npm = { ";
+    if (!plus.k_t.empty()) text += "\"+x\" = " + plus.k_t + (minus.k_t.empty() ? " " : ", ");
+    if (!minus.k_t.empty()) text += "\"-x\" = " + minus.k_t + " ";
+    text += "}\n";
+  }
+  text += "[abutments.backfill.\"+x\"]\n" + plus.backfill + "[abutments.backfill.\"-x\"]\n" +
+          minus.backfill;
   if (!plus.keys.empty()) text += "[abutments.shear_keys.\"+x\"]\n" + plus.keys;
   if (!minus.keys.empty()) text += "[abutments.shear_keys.\"-x\"]\n" + minus.keys;
   return text;
 }
 
-TEST(AbutmentWalls, AHalfTurnInPlanSwapsTheWallsLawsAndTurnsTheGroundMotion) {
-  // The deck is a parallelogram: a half turn about its mass centre maps P1 <-> P3, P2 <-> P4, the
-  // +x wall onto the -x wall and (x, y, theta) onto (-x, -y, theta). With K and C unchanged by it,
-  // law A at +x and B at -x under a_g(t) moves as B at +x and A at -x under -a_g(t), turned.
-  const WallLaw a{"0.008", "5", kWilson, kKeys};
-  const WallLaw b{"0.012", "7", kCaltrans, ""};
+// The deck is a parallelogram: a half turn about its mass centre maps P1 <-> P3, P2 <-> P4, the
+// +x wall onto the -x wall and (x, y, theta) onto (-x, -y, theta). With K and C unchanged by it,
+// law A at +x and B at -x under a_g(t) moves as B at +x and A at -x under -a_g(t), turned: checked
+// for `a` of 5 springs with keys at +x and `b` of 7 springs without keys at -x, every number
+// compared to 1e-10. The run of A at +x and B at -x is left in `out`.
+void ExpectAHalfTurnSwapsTheWalls(const WallLaw& a, const WallLaw& b, LawRun* out = nullptr) {
   const model::ModelFile ab = CentredPilot(TwoWalls(a, b));
   const model::ModelFile ba = CentredPilot(TwoWalls(b, a));
   const LawRun run = RunUnderLaw(ab.model, ab.compliant, Cycle(60.0), ThreeSeconds(ab));
@@ -244,9 +341,37 @@ TEST(AbutmentWalls, AHalfTurnInPlanSwapsTheWallsLawsAndTurnsTheGroundMotion) {
   const LawRun same_model =
       RunUnderLaw(ab.model, ab.compliant, Cycle(60.0, -1.0), ThreeSeconds(ab));
   EXPECT_GT(std::abs(same_model.run.max_abs_q(0) / run.run.max_abs_q(0) - 1.0), 1e-3);
+  // Each spring's slip along its wall (0 without friction) moves with its wall's law.
+  for (std::size_t k = 0; k < 5; ++k) {
+    near(turned.springs[7 + k].wall_slip_m, run.springs[k].wall_slip_m, run.springs[k].name);
+  }
+  for (std::size_t k = 0; k < 7; ++k) {
+    near(turned.springs[k].wall_slip_m, run.springs[5 + k].wall_slip_m, run.springs[5 + k].name);
+  }
   // The arithmetic is mirrored but not in the same order (the springs' forces are summed +x wall
   // first), so the check is relative; on the release build the two runs agree bit for bit.
   EXPECT_LE(worst, 1e-10);
+  if (out != nullptr) *out = run;
+}
+
+TEST(AbutmentWalls, AHalfTurnInPlanSwapsTheWallsLawsAndTurnsTheGroundMotion) {
+  // A: Wilson and Elgamal, 5 springs, keys, gap 8 mm; B: Caltrans h = 2.5 m, 7 springs, 12 mm.
+  ExpectAHalfTurnSwapsTheWalls({"0.008", "5", kWilson, kKeys}, {"0.012", "7", kCaltrans, ""});
+}
+
+TEST(AbutmentWalls, AHalfTurnInPlanSwapsTheWallsFrictionWithTheirLaws) {
+  // As above with a friction per wall: A's mu = 0.3 with a stick stiffness of 2e9 N/m, B's
+  // mu = 0.1 with its K_max. Both walls slip, each by its own law.
+  LawRun run;
+  ExpectAHalfTurnSwapsTheWalls({"0.008", "5", kWilson, kKeys, "0.3", "2e9"},
+                               {"0.012", "7", kCaltrans, "", "0.1", ""}, &run);
+  ASSERT_EQ(run.springs.size(), 12u);
+  double slip_plus = 0.0, slip_minus = 0.0;
+  for (const SpringMaxima& s : run.springs) {
+    (s.name.rfind("+x.", 0) == 0 ? slip_plus : slip_minus) += s.wall_slip_m;
+  }
+  EXPECT_GT(slip_plus, 0.0);
+  EXPECT_GT(slip_minus, 0.0);
 }
 
 TEST(AbutmentWalls, ARowOfDecksTakesALawPerWallAsTheSingleDeckDoes) {
