@@ -79,7 +79,7 @@ double SampledExcitation::Peak(double ramp_horizon_s) const {
   // Excitation::Peak visits t = k dt for k = 0 .. n - 2 (each below Duration() = dt (n - 1), so
   // no rest piece), where PieceAt returns piece k: its operations, and the same max, here.
   double a_peak = 0.0;
-  for (std::size_t k = 0; k + 1 < n; ++k) {
+  const auto visit = [&](std::size_t k) {
     const double t = static_cast<double>(k) * dt_s_;
     const double t_end = static_cast<double>(k + 1) * dt_s_;
     const Eigen::Vector2d a_begin = Sample(k);
@@ -87,7 +87,14 @@ double SampledExcitation::Peak(double ramp_horizon_s) const {
     const double begin = a_begin.norm();
     a_peak = std::max(
         {a_peak, begin, (a_begin + slope * std::min(t_end - t, ramp_horizon_s)).norm(), begin});
+  };
+  if (peak_pieces_ && peak_pieces_->ramp_horizon_s == ramp_horizon_s) {
+    // Every other piece's terms lie below one of these pieces' (FindPeakPieces), so the max over
+    // these is the max over all, and a max of doubles does not depend on the order.
+    for (const std::size_t k : peak_pieces_->pieces) visit(k);
+    return a_peak;
   }
+  for (std::size_t k = 0; k + 1 < n; ++k) visit(k);
   return a_peak;
 }
 
@@ -135,17 +142,69 @@ void SampledExcitation::NextPiece(ExcitationPiece& piece) const {
 }
 
 SampledExcitation ToExcitation(const GroundMotion& motion, Eigen::Vector2d direction) {
+  return ScaledExcitation(motion, 1.0, direction);
+}
+
+PeakPieces FindPeakPieces(std::span<const double> acc_mps2, double dt_s, double ramp_horizon_s) {
+  // Why these pieces hold the peak of the record scaled by f along a unit direction d. Write
+  // u = 2^-53, A the largest |a_k|, w_k = min((k + 1) dt - k dt, horizon) (the same double in
+  // every computation below) and Q_k = max(|a_k|, |a_k + (a_{k+1} - a_k) w_k / dt|) in exact
+  // arithmetic. The scaled samples are d (f a_k) each rounded twice (relative 2u), and piece k's
+  // terms of Peak are a few roundings of sums and products of them, w_k / dt <= 1 + 1e-12, so
+  // they are |f| |d| Q_k within 50 u |f| A; the terms below, from the unscaled samples in one
+  // dimension, are Q_k within 50 u A. A piece left out has a term q_k < M - 1e-9 A, M = q_j the
+  // largest, so Q_j - Q_k > (1e-9 - 100 u) A, and its scaled terms lie below piece j's by more
+  // than |f| |d| A (1e-9 - 200 u) > 0: a kept piece holds the largest term, whatever f and d.
+  // (|d| = 1 within 1e-12 is a common factor; ScaledExcitation keeps the pieces only while
+  // |f| A lies well inside the normal range, where these relative bounds hold.)
+  PeakPieces out;
+  out.ramp_horizon_s = ramp_horizon_s;
+  const std::size_t n = acc_mps2.size();
+  for (const double a : acc_mps2) out.largest_mps2 = std::max(out.largest_mps2, std::abs(a));
+  if (n < 2) return out;
+  std::vector<double> term(n - 1);
+  double largest_term = 0.0;
+  for (std::size_t k = 0; k + 1 < n; ++k) {
+    const double t = static_cast<double>(k) * dt_s;
+    const double t_end = static_cast<double>(k + 1) * dt_s;
+    const double slope = (acc_mps2[k + 1] - acc_mps2[k]) / dt_s;
+    term[k] = std::max(std::abs(acc_mps2[k]),
+                       std::abs(acc_mps2[k] + slope * std::min(t_end - t, ramp_horizon_s)));
+    largest_term = std::max(largest_term, term[k]);
+  }
+  const double floor = largest_term - 1e-9 * out.largest_mps2;
+  for (std::size_t k = 0; k + 1 < n; ++k) {
+    if (term[k] >= floor) out.pieces.push_back(k);
+  }
+  return out;
+}
+
+SampledExcitation ScaledExcitation(const GroundMotion& motion, double factor,
+                                   const Eigen::Vector2d& direction,
+                                   std::shared_ptr<const PeakPieces> peak_pieces) {
   if (!direction.allFinite() || std::abs(direction.norm() - 1.0) > 1e-12) {
     throw InputError::AtField(motion.file, "direction", "must be a unit vector");
   }
-  std::vector<double> ax(motion.acc_mps2.size());
+  // Each sample as a scaled copy of the motion and ToExcitation would make it: (a f) d_x, and
+  // (a f) d_y when d_y is not zero; a times 1 is a itself.
+  const std::size_t n = motion.acc_mps2.size();
+  std::vector<double> ax(n);
   std::vector<double> ay;
-  for (std::size_t k = 0; k < ax.size(); ++k) ax[k] = direction.x() * motion.acc_mps2[k];
+  for (std::size_t k = 0; k < n; ++k) ax[k] = direction.x() * (motion.acc_mps2[k] * factor);
   if (direction.y() != 0.0) {
-    ay.resize(ax.size());
-    for (std::size_t k = 0; k < ay.size(); ++k) ay[k] = direction.y() * motion.acc_mps2[k];
+    ay.resize(n);
+    for (std::size_t k = 0; k < n; ++k) ay[k] = direction.y() * (motion.acc_mps2[k] * factor);
   }
-  return SampledExcitation(motion.dt_s, std::move(ax), std::move(ay));
+  SampledExcitation excitation(motion.dt_s, std::move(ax), std::move(ay));
+  if (peak_pieces && n >= 2 && !peak_pieces->pieces.empty() && motion.dt_s > 1e-100) {
+    // The bounds of FindPeakPieces are relative: they hold while no scaled sample, slope, square
+    // or product comes near overflow or the subnormal range.
+    const double top = std::abs(factor) * peak_pieces->largest_mps2;
+    if (top == 0.0 || (top > 1e-100 && top < 1e100)) {
+      excitation.peak_pieces_ = std::move(peak_pieces);
+    }
+  }
+  return excitation;
 }
 
 }  // namespace skewbridge::records

@@ -5,7 +5,9 @@
 
 #include <Eigen/Core>
 #include <filesystem>
+#include <memory>
 #include <optional>
+#include <span>
 #include <string_view>
 #include <vector>
 
@@ -42,6 +44,31 @@ class PulseExcitation final : public Excitation {
   Eigen::Vector2d direction_;
 };
 
+/// The pieces of a sampled record that can hold the acceleration peak (Excitation::Peak at one
+/// ramp horizon) of the record times any factor along any unit direction (ScaledExcitation).
+struct PeakPieces {
+  double ramp_horizon_s = 0.0;      ///< the ramp horizon (s) of Peak they hold for
+  double largest_mps2 = 0.0;        ///< the largest |sample| of the record (m/s^2)
+  std::vector<std::size_t> pieces;  ///< piece numbers k (of [k dt, (k + 1) dt]), ascending
+};
+
+/// The pieces of the record `acc_mps2` (at least two samples, finite) sampled at `dt_s` whose
+/// terms of Peak(ramp_horizon_s) come within 1e-9 of the largest sample of the largest term:
+/// the record times any factor along any unit direction takes its peak at one of them, to the
+/// bit (the proof is at the definition).
+PeakPieces FindPeakPieces(std::span<const double> acc_mps2, double dt_s, double ramp_horizon_s);
+
+class SampledExcitation;
+
+/// `motion` with every acceleration times `factor` (left as read when the factor is 1), linear
+/// between samples, along the unit (x, y) `direction`: ToExcitation of the scaled motion, sample
+/// for sample, in one pass. With `peak_pieces` (FindPeakPieces of the motion), Peak at their
+/// horizon reads those pieces only, with the bits of the walk over every piece.
+/// @throws InputError as ToExcitation.
+SampledExcitation ScaledExcitation(const GroundMotion& motion, double factor,
+                                   const Eigen::Vector2d& direction,
+                                   std::shared_ptr<const PeakPieces> peak_pieces = nullptr);
+
 /// A uniformly sampled ground motion, linear between samples (the Nigam-Jennings assumption),
 /// starting at t = 0 and at rest after the last sample. Each sample is a kink.
 class SampledExcitation final : public Excitation {
@@ -58,7 +85,8 @@ class SampledExcitation final : public Excitation {
   void NextPiece(ExcitationPiece& piece) const override;
   double Duration() const override;
   /// Excitation::Peak from the samples in order, without PieceAt: piece k of [k dt, (k + 1) dt]
-  /// is the one PieceAt gives at t = k dt (the guard of its floor), so the same bits.
+  /// is the one PieceAt gives at t = k dt (the guard of its floor), so the same bits. An
+  /// excitation made by ScaledExcitation with PeakPieces of that horizon reads only those pieces.
   double Peak(double ramp_horizon_s) const override;
 
   double dt_s() const { return dt_s_; }
@@ -66,11 +94,18 @@ class SampledExcitation final : public Excitation {
   const std::vector<double>& ay_mps2() const { return ay_; }
 
  private:
+  friend SampledExcitation ScaledExcitation(const GroundMotion&, double, const Eigen::Vector2d&,
+                                            std::shared_ptr<const PeakPieces>);
+
   Eigen::Vector2d Sample(std::size_t k) const;
+  /// Piece k's terms of Peak: the largest of |a_begin| and |a_begin + slope min(dt_k, horizon)|.
+  double PiecePeak(std::size_t k, double ramp_horizon_s) const;
 
   double dt_s_;
   std::vector<double> ax_;
   std::vector<double> ay_;
+  /// The pieces that hold Peak, when the samples are a record's times a factor along a direction.
+  std::shared_ptr<const PeakPieces> peak_pieces_;
 };
 
 /// Samples of a model file's excitation file (docs/model-format.md, excitation.file).

@@ -346,20 +346,27 @@ std::optional<CellScaling> ModelFileEvaluator::Scaling(
 
 records::SampledExcitation ScaledRecordExcitation(const records::GroundMotion& motion,
                                                   double factor, const Eigen::Vector2d& direction) {
-  records::GroundMotion scaled;
-  scaled.file = motion.file;
-  scaled.dt_s = motion.dt_s;
-  scaled.acc_mps2 = motion.acc_mps2;
-  if (factor != 1.0) {
-    for (double& a : scaled.acc_mps2) a *= factor;
-  }
-  return records::ToExcitation(scaled, direction);
+  return records::ScaledExcitation(motion, factor, direction);
 }
 
 records::SampledExcitation ScaledPairExcitation(const records::GroundMotion& h1,
                                                 const records::GroundMotion& h2, double factor,
                                                 double incidence_deg) {
   return records::PairExcitation(h1, h2, incidence_deg, factor);
+}
+
+std::shared_ptr<const records::PeakPieces> ModelFileEvaluator::RecordPeakPieces(
+    const SweepRecord& record) const {
+  if (record.IsPair() || record.motion.npts() < 2) return nullptr;
+  const double horizon_s = policies().event.ramp_horizon_s;
+  peak_pieces_.resize(records_.size());
+  std::shared_ptr<const records::PeakPieces>& kept =
+      peak_pieces_[static_cast<std::size_t>(&record - records_.data())];
+  if (!kept || kept->ramp_horizon_s != horizon_s) {
+    kept = std::make_shared<const records::PeakPieces>(
+        records::FindPeakPieces(record.motion.acc_mps2, record.motion.dt_s, horizon_s));
+  }
+  return kept;
 }
 
 ModelFileCell ModelFileEvaluator::MakeCell(std::span<const std::size_t> index, bool with_excitation,
@@ -398,7 +405,8 @@ ModelFileCell ModelFileEvaluator::MakeCell(std::span<const std::size_t> index, b
       c.excitation = std::make_unique<records::SampledExcitation>(
           c.record->IsPair()
               ? records::PairExcitation(c.record->motion, *c.record->motion_h2, direction, c.scale)
-              : ScaledRecordExcitation(c.record->motion, c.scale, direction));
+              : records::ScaledExcitation(c.record->motion, c.scale, direction,
+                                          RecordPeakPieces(*c.record)));
     }
   } else if (samples_measures_) {
     c.a_g_mps2 = samples_measures_->pga_mps2 * c.scale;

@@ -175,6 +175,12 @@ class ModelFileEvaluator final : public CellEvaluator, public RecordScaling {
   std::size_t stripe_capacity_ = 1;
   std::uint64_t work_block_ = 1;  ///< WorkBlock()
   mutable std::size_t next_stripe_group_ = 0;
+  /// The pieces of `record`'s H1 that hold the acceleration peak of every scaled copy at the
+  /// event-driven policy's ramp horizon (records::FindPeakPieces), found on the first call for
+  /// that record and kept; nullptr for a pair.
+  std::shared_ptr<const records::PeakPieces> RecordPeakPieces(const SweepRecord& record) const;
+  /// Per record of records_, its RecordPeakPieces once found.
+  mutable std::vector<std::shared_ptr<const records::PeakPieces>> peak_pieces_;
   /// The dynamic run of cell `c` (its own factor): as a stripe of its record when the cells run
   /// so, the method is event-driven and the law rigid, else its own run under its law.
   dynamics::LawRun CellRun(std::span<const std::size_t> axis_index, const ModelFileCell& c) const;

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <limits>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -124,6 +125,119 @@ TEST(SampledExcitationNextPiece, IsTheBitsOfPieceAtThePiecesEnd) {
     EXPECT_EQ(steps, ex.ax_mps2().size() - 1);
     EXPECT_EQ(piece.t_begin, ex.Duration());
     EXPECT_EQ(piece.index, -1);
+  }
+}
+
+// Records whose peak pieces are hard to tell apart: NIS090, random signals (one of them with
+// every sample of one magnitude and alternating sign, so every piece ties), two peaks an ulp
+// and 1e-12 apart, and a record whose largest term is a ramp's end between smaller samples.
+std::vector<GroundMotion> PeakRecords(std::uint64_t seed) {
+  std::vector<GroundMotion> records;
+  records.push_back(
+      ReadRecord(std::filesystem::path(SKEWBRIDGE_TEST_DATA_DIR) / "records" / "NIS090.AT2"));
+  std::mt19937_64 random(seed);
+  std::normal_distribution<double> normal(0.0, 3.0);
+  for (const double dt : {0.01, 0.0123, 1.0 / 3.0}) {
+    GroundMotion m;
+    m.dt_s = dt;
+    m.acc_mps2.resize(3001);
+    for (double& a : m.acc_mps2) a = normal(random);
+    records.push_back(m);
+    for (std::size_t k = 0; k < m.acc_mps2.size(); ++k) m.acc_mps2[k] = k % 2 ? -2.5 : 2.5;
+    records.push_back(m);
+    m.acc_mps2.assign(3001, 0.0);
+    for (double& a : m.acc_mps2) a = 0.1 * normal(random);
+    m.acc_mps2[700] = 4.0;
+    m.acc_mps2[2100] = -std::nextafter(4.0, 5.0);
+    m.acc_mps2[2900] = 4.0 * (1.0 + 1e-12);
+    records.push_back(m);
+  }
+  return records;
+}
+
+TEST(ScaledExcitation, IsTheBitsOfAScaledCopyThroughToExcitation) {
+  for (const GroundMotion& m : PeakRecords(7)) {
+    for (const double factor : {1.0, 0.37, 27.9}) {
+      for (const double angle_deg : {0.0, 30.0, 90.0, 200.0}) {
+        const Eigen::Vector2d d(std::cos(angle_deg * std::acos(-1.0) / 180.0),
+                                std::sin(angle_deg * std::acos(-1.0) / 180.0));
+        GroundMotion copy = m;
+        for (double& a : copy.acc_mps2) a *= factor;
+        const SampledExcitation expected = ToExcitation(copy, d);
+        const SampledExcitation ex = ScaledExcitation(m, factor, d);
+        ASSERT_EQ(ex.ax_mps2().size(), expected.ax_mps2().size());
+        ASSERT_EQ(ex.ay_mps2().size(), expected.ay_mps2().size());
+        for (std::size_t k = 0; k < ex.ax_mps2().size(); ++k) {
+          ASSERT_EQ(std::bit_cast<std::uint64_t>(ex.ax_mps2()[k]),
+                    std::bit_cast<std::uint64_t>(expected.ax_mps2()[k]));
+          if (!ex.ay_mps2().empty()) {
+            ASSERT_EQ(std::bit_cast<std::uint64_t>(ex.ay_mps2()[k]),
+                      std::bit_cast<std::uint64_t>(expected.ay_mps2()[k]));
+          }
+        }
+      }
+    }
+  }
+  GroundMotion m;
+  m.dt_s = 0.1;
+  m.acc_mps2 = {1.0, -2.0};
+  EXPECT_THROW(ScaledExcitation(m, 2.0, Eigen::Vector2d(1.0, 1.0)), InputError);
+}
+
+// The peak read from the pieces FindPeakPieces keeps has the bits of the walk over PieceAt
+// (Excitation::Peak), for factors from 2^-40 to 30 and directions all round; at another
+// horizon the excitation walks every piece.
+TEST(ScaledExcitation, PeakFromItsPeakPiecesIsTheBitsOfTheWalk) {
+  std::mt19937_64 random(2029);
+  std::uniform_real_distribution<double> log_factor(-3.0, 3.5);
+  std::uniform_real_distribution<double> angle(0.0, 360.0);
+  for (const GroundMotion& m : PeakRecords(11)) {
+    const double horizon = 1e3;
+    const auto pieces =
+        std::make_shared<const PeakPieces>(FindPeakPieces(m.acc_mps2, m.dt_s, horizon));
+    ASSERT_FALSE(pieces->pieces.empty());
+    std::vector<double> factors = {1.0, std::ldexp(1.0, -40), 0.5, 3.0, 27.91};
+    for (int i = 0; i < 20; ++i) factors.push_back(std::exp(log_factor(random)));
+    for (const double factor : factors) {
+      std::vector<double> angles = {0.0, 15.0, 45.0, 60.0, 90.0, 180.0, 270.0};
+      for (int i = 0; i < 5; ++i) angles.push_back(angle(random));
+      for (const double angle_deg : angles) {
+        const Eigen::Vector2d d(std::cos(angle_deg * std::acos(-1.0) / 180.0),
+                                std::sin(angle_deg * std::acos(-1.0) / 180.0));
+        const SampledExcitation ex = ScaledExcitation(m, factor, d, pieces);
+        for (const double h : {horizon, 0.3 * m.dt_s}) {
+          const double walk = ex.Excitation::Peak(h);
+          ASSERT_EQ(std::bit_cast<std::uint64_t>(ex.Peak(h)), std::bit_cast<std::uint64_t>(walk))
+              << m.acc_mps2.size() << " samples at dt " << m.dt_s << ", factor " << factor
+              << ", angle " << angle_deg << " deg, horizon " << h;
+        }
+      }
+    }
+  }
+}
+
+// The pieces kept: every piece of a record whose samples all tie, both of two peaks an ulp
+// apart, and of a random record only those within 1e-9 of its largest sample of the largest
+// term (a few), each of them checked against the terms computed here.
+TEST(FindPeakPieces, KeepsThePiecesNearTheLargestTerm) {
+  const std::vector<GroundMotion> records = PeakRecords(13);
+  const GroundMotion& random = records[1];
+  const GroundMotion& ties = records[2];
+  const GroundMotion& close = records[3];
+  EXPECT_EQ(FindPeakPieces(ties.acc_mps2, ties.dt_s, 1e3).pieces.size(), 3000u);
+  const std::vector<std::size_t> near = FindPeakPieces(close.acc_mps2, close.dt_s, 1e3).pieces;
+  // The ramps into and out of samples 700, 2100 and 2900 reach them: pieces 699, 700, 2099,
+  // 2100, 2899 and 2900.
+  EXPECT_EQ(near, (std::vector<std::size_t>{699, 700, 2099, 2100, 2899, 2900}));
+  const PeakPieces found = FindPeakPieces(random.acc_mps2, random.dt_s, 1e3);
+  double largest = 0.0;
+  for (const double a : random.acc_mps2) largest = std::max(largest, std::abs(a));
+  EXPECT_EQ(found.largest_mps2, largest);
+  EXPECT_GE(found.pieces.size(), 1u);
+  EXPECT_LE(found.pieces.size(), 2u);  // the ramps into and out of the largest sample
+  for (const std::size_t k : found.pieces) {
+    const double top = std::max(std::abs(random.acc_mps2[k]), std::abs(random.acc_mps2[k + 1]));
+    EXPECT_NEAR(top, largest, 1e-9 * largest);
   }
 }
 
