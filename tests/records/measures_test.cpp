@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <complex>
+#include <cstdint>
 #include <filesystem>
 #include <numbers>
 #include <vector>
@@ -209,6 +211,31 @@ TEST(OscillatorDisplacement, PeakIsTheSpectralDisplacement) {
     for (const double x : u) peak = std::max(peak, std::abs(x));
     const std::vector<double> one{period};
     EXPECT_EQ(peak, ElasticResponseSpectrum(m.acc_mps2, m.dt_s, one, 0.05).sd_m[0]);
+  }
+}
+
+// The spectrum runs its periods' oscillators side by side; each has the bits of the recurrence
+// run alone (OscillatorDisplacement), for AvgSa's 50 periods and 13 periods (a last block of 5),
+// at two dampings.
+TEST(ElasticResponseSpectrum, EachPeriodIsTheBitsOfItsOscillatorAlone) {
+  const GroundMotion m = ReadRecord(kData / "NIS090.AT2");
+  std::vector<double> thirteen;
+  for (int i = 0; i < 13; ++i) thirteen.push_back(0.05 * std::pow(1.4, i));
+  for (const std::vector<double>& periods : {AvgSaPeriods(0.7), thirteen}) {
+    for (const double xi : {0.0, 0.05}) {
+      const ResponseSpectrum s = ElasticResponseSpectrum(m.acc_mps2, m.dt_s, periods, xi);
+      ASSERT_EQ(s.sd_m.size(), periods.size());
+      for (std::size_t i = 0; i < periods.size(); ++i) {
+        const std::vector<double> u = OscillatorDisplacement(m.acc_mps2, m.dt_s, periods[i], xi);
+        double peak = 0.0;
+        for (const double x : u) peak = std::max(peak, std::abs(x));
+        const double w = 2.0 * std::numbers::pi / periods[i];
+        EXPECT_EQ(std::bit_cast<std::uint64_t>(s.sd_m[i]), std::bit_cast<std::uint64_t>(peak))
+            << "period " << periods[i] << " s, xi " << xi;
+        EXPECT_EQ(std::bit_cast<std::uint64_t>(s.psa_mps2[i]),
+                  std::bit_cast<std::uint64_t>(w * w * peak));
+      }
+    }
   }
 }
 
