@@ -36,6 +36,19 @@ def restitution(exe, mass, law, speeds):
     return list(csv.DictReader(io.StringIO(out)))
 
 
+def energy_equivalent(exe, mass, law, every, first):
+    """The energy-equivalent restitution eps_E of the impacts at the speeds `every` (m/s),
+    eps_E^2 = sum v^2 e(v)^2 / sum v^2, with e(v) interpolated in log v between 60 strikes on a
+    geometric grid over the speeds of `every` and `first`; returns (eps_E, the grid's rows of
+    `skewbridge restitution --csv`, the grid's ends lo and hi)."""
+    lo, hi = max(min(every.min(), first.min()) * 0.9, 1e-3), max(every.max(), first.max()) * 1.1
+    g = restitution(exe, mass, law, np.geomspace(lo, hi, 60))
+    v = np.array([float(r["approach_mps"]) for r in g])
+    e_of = np.array([float(r["restitution"]) for r in g])
+    e_every = np.interp(np.log(every), np.log(v), e_of)
+    return float(np.sqrt(np.sum(every**2 * e_every**2) / np.sum(every**2))), g, lo, hi
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("exe")
@@ -58,13 +71,8 @@ def main():
             print(f"{name}: first-impact speed {q} % {float(r['approach_mps']):.4g} m/s: "
                   f"eps_N {float(r['restitution']):.4f}, contact {float(r['contact_duration_s']):.4g} s, "
                   f"permanent set {1e3 * float(r['permanent_set_m']):.4g} mm")
-        lo, hi = max(min(every.min(), first.min()) * 0.9, 1e-3), max(every.max(), first.max()) * 1.1
-        grid = np.geomspace(lo, hi, 60)
-        g = restitution(a.exe, mass, law, grid)
+        e_energy, g, lo, hi = energy_equivalent(a.exe, mass, law, every, first)
         v = np.array([float(r["approach_mps"]) for r in g])
-        e_of = np.array([float(r["restitution"]) for r in g])
-        e_every = np.interp(np.log(every), np.log(v), e_of)
-        e_energy = float(np.sqrt(np.sum(every**2 * e_every**2) / np.sum(every**2)))
         print(f"{name}: {every.size} impacts, {first.size} runs with impacts; speeds of every impact "
               f"16/50/84 % {np.percentile(every, 16):.3g} / {np.median(every):.3g} / "
               f"{np.percentile(every, 84):.3g} m/s; energy-equivalent eps_E = {e_energy:.4f}")
