@@ -47,4 +47,28 @@ inline void ScanCoordinateMaxima(int n, double t0, const Eigen::Map<const Eigen:
   }
 }
 
+/// ScanCoordinateMaxima's work that needs no dense output, over plain arrays: raises
+/// max_abs_q[i] (and time_of_max_s[i]) to |q1[i]| at the step's end t1, and returns whether some
+/// u_i changes sign inside the step [t1 - h_s, t1] with the cheap hull's peak above the running
+/// maximum: only then would ScanCoordinateMaxima ask the peaks' bound or search (the same tests
+/// in the same order, so a step for which this returns false leaves the maxima as that scan
+/// would).
+inline bool RaiseMaximaAtEnd(int n, const double* q0, const double* u0, double t1, const double* q1,
+                             const double* u1, double h_s, double* max_abs_q,
+                             double* time_of_max_s) {
+  bool search = false;
+  for (int i = 0; i < n; ++i) {
+    if (std::abs(q1[i]) > max_abs_q[i]) {
+      max_abs_q[i] = std::abs(q1[i]);
+      time_of_max_s[i] = t1;
+    }
+    if (u0[i] * u1[i] < 0.0) {
+      const double bound = std::max(std::abs(q0[i]), std::abs(q1[i])) +
+                           0.5 * h_s * std::max(std::abs(u0[i]), std::abs(u1[i]));
+      search = search || bound > max_abs_q[i];
+    }
+  }
+  return search;
+}
+
 }  // namespace skewbridge::dynamics

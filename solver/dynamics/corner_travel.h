@@ -85,26 +85,31 @@ class CornerTravelTracker {
     const double* v1 = u1.data();
     const int decks = this->decks();
     for (int d = 0; d < decks; ++d) {
-      const Deck& deck = decks_[static_cast<std::size_t>(d)];
-      const int b = 3 * d;
-      // A corner moves at most |theta| r from the translation's share (|(R(theta) - E) P| <=
-      // |theta| |P| <= |theta| r) and at most |u_theta| r faster: when neither end nor the
-      // interior peak allowed below can reach the running maximum, the corners are not
-      // evaluated.
-      const double r = deck.radius;
-      const double reach0 =
-          std::abs(deck.nx * x0[b] + deck.ny * x0[b + 1]) + r * std::abs(x0[b + 2]);
-      const double reach1 =
-          std::abs(deck.nx * x1[b] + deck.ny * x1[b + 1]) + r * std::abs(x1[b + 2]);
-      const double speed0 =
-          std::abs(deck.nx * v0[b] + deck.ny * v0[b + 1]) + r * std::abs(v0[b + 2]);
-      const double speed1 =
-          std::abs(deck.nx * v1[b] + deck.ny * v1[b + 1]) + r * std::abs(v1[b + 2]);
-      const double reach = std::max(reach0, reach1) + 0.5 * (t1 - t0) * std::min(speed0, speed1);
-      if (reach * (1.0 + 1e-12) < max_travel_m[d]) continue;
+      if (!MayReach(d, x0, v0, x1, v1, t1 - t0, max_travel_m[d])) continue;
       ScanDeck(d, t0, q0, u0, t1, q1, u1, time_tolerance_s, component_at, max_travel_m[d],
                travel_bound);
     }
+  }
+
+  /// Whether deck d's corner travel may reach `best` (m) over a step of h_s (s) with the
+  /// positions x and velocities v (n_dof each) at its ends: false when neither end nor the
+  /// interior peak that Scan's root search could find can reach it, so that Scan evaluates no
+  /// corner of the deck. Scan's test; inline.
+  bool MayReach(int d, const double* x0, const double* v0, const double* x1, const double* v1,
+                double h_s, double best) const {
+    const Deck& deck = decks_[static_cast<std::size_t>(d)];
+    const int b = 3 * d;
+    // A corner moves at most |theta| r from the translation's share (|(R(theta) - E) P| <=
+    // |theta| |P| <= |theta| r) and at most |u_theta| r faster: when neither end nor the
+    // interior peak allowed below can reach the running maximum, the corners are not
+    // evaluated.
+    const double r = deck.radius;
+    const double reach0 = std::abs(deck.nx * x0[b] + deck.ny * x0[b + 1]) + r * std::abs(x0[b + 2]);
+    const double reach1 = std::abs(deck.nx * x1[b] + deck.ny * x1[b + 1]) + r * std::abs(x1[b + 2]);
+    const double speed0 = std::abs(deck.nx * v0[b] + deck.ny * v0[b + 1]) + r * std::abs(v0[b + 2]);
+    const double speed1 = std::abs(deck.nx * v1[b] + deck.ny * v1[b + 1]) + r * std::abs(v1[b + 2]);
+    const double reach = std::max(reach0, reach1) + 0.5 * h_s * std::min(speed0, speed1);
+    return !(reach * (1.0 + 1e-12) < best);
   }
 
  private:

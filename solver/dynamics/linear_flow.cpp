@@ -13,47 +13,6 @@ namespace {
 
 constexpr std::size_t kCacheCapacity = 8;
 
-// Apply's modal path from Y = ToModal(z) (n x 6, column-major) to (q, u) at the step's end, in
-// one pass over plain arrays: the per-mode rows T (12 x n) and the back transform
-// (q, u) = (Phi eta, Phi eta'). Every sum runs over the same terms in the same order from the same
-// 0.0 as the mode loop and ModalProduct (row-wise or by columns), so the result is the same bits;
-// with the mode count kN known at compile time (a deck's 3) the loops unroll and no Eigen
-// expression is built per step. kN = 0: the count `n_runtime`.
-//
-// kHarmonic false: the harmonic columns of Y (gamma, delta) are zeros (a record's piece), and
-// their terms are left out. That is the same bits: each term is then a signed zero, a sum that
-// starts from +0.0 is never -0.0 (x + (-x) rounds to +0.0), and s + (+-0) = s for every s other
-// than -0.0.
-//
-// The arrays do not overlap (__restrict: no run-time overlap tests, the same operations).
-template <int kN, bool kHarmonic>
-void ModalStep(const double* __restrict Phi, int n_runtime, const double* __restrict T,
-               const double* __restrict Y, double* __restrict eta, double* __restrict deta,
-               double* __restrict q_next, double* __restrict u_next) {
-  const int n = kN > 0 ? kN : n_runtime;
-  constexpr int kColumns = kHarmonic ? 6 : 4;
-  for (int k = 0; k < n; ++k) {
-    const double* Tk = T + 12 * k;
-    double e = 0.0, de = 0.0;
-    for (int j = 0; j < kColumns; ++j) {
-      e += Tk[j] * Y[j * n + k];
-      de += Tk[6 + j] * Y[j * n + k];
-    }
-    eta[k] = e;
-    deta[k] = de;
-  }
-  for (int i = 0; i < n; ++i) {
-    double s = 0.0;
-    for (int j = 0; j < n; ++j) s += Phi[i + j * n] * eta[j];
-    q_next[i] = s;
-  }
-  for (int i = 0; i < n; ++i) {
-    double s = 0.0;
-    for (int j = 0; j < n; ++j) s += Phi[i + j * n] * deta[j];
-    u_next[i] = s;
-  }
-}
-
 }  // namespace
 
 LinearFlow::LinearFlow(const Eigen::Ref<const Eigen::MatrixXd>& M,
@@ -219,14 +178,14 @@ void LinearFlow::ApplyMotion(const FreePropagator& p, const Eigen::Ref<const Eig
   // z and z_next are distinct (the precondition): the (q, u) written here is read by nothing after.
   const double* Phi = modal_->Phi().data();
   if (n_ == 3 && !harmonic) {
-    ModalStep<3, false>(Phi, n_, p.modal_rows.data(), Y_.data(), eta_.data(), deta_.data(),
-                        z_next.data(), z_next.data() + n_);
+    detail::ModalStep<3, false>(Phi, n_, p.modal_rows.data(), Y_.data(), eta_.data(), deta_.data(),
+                                z_next.data(), z_next.data() + n_);
   } else if (n_ == 3) {
-    ModalStep<3, true>(Phi, n_, p.modal_rows.data(), Y_.data(), eta_.data(), deta_.data(),
-                       z_next.data(), z_next.data() + n_);
+    detail::ModalStep<3, true>(Phi, n_, p.modal_rows.data(), Y_.data(), eta_.data(), deta_.data(),
+                               z_next.data(), z_next.data() + n_);
   } else {
-    ModalStep<0, true>(Phi, n_, p.modal_rows.data(), Y_.data(), eta_.data(), deta_.data(),
-                       z_next.data(), z_next.data() + n_);
+    detail::ModalStep<0, true>(Phi, n_, p.modal_rows.data(), Y_.data(), eta_.data(), deta_.data(),
+                               z_next.data(), z_next.data() + n_);
   }
   if (energy) {
     SB_DEMAND(p.has_energy, "LinearFlow: the propagator was built without its energy forms");

@@ -33,6 +33,51 @@ namespace skewbridge::dynamics {
 /// Size of the forcing generator appended to (q, u): (a, slope, p, k), two components each.
 inline constexpr int kGeneratorSize = 8;
 
+namespace detail {
+
+// Apply's modal path from Y = ToModal(z) (n x 6, column-major) to (q, u) at the step's end, in
+// one pass over plain arrays: the per-mode rows T (12 x n) and the back transform
+// (q, u) = (Phi eta, Phi eta'). Every sum runs over the same terms in the same order from the same
+// 0.0 as the mode loop and ModalProduct (row-wise or by columns), so the result is the same bits;
+// with the mode count kN known at compile time (a deck's 3) the loops unroll and no Eigen
+// expression is built per step. kN = 0: the count `n_runtime`.
+//
+// kHarmonic false: the harmonic columns of Y (gamma, delta) are zeros (a record's piece), and
+// their terms are left out. That is the same bits: each term is then a signed zero, a sum that
+// starts from +0.0 is never -0.0 (x + (-x) rounds to +0.0), and s + (+-0) = s for every s other
+// than -0.0.
+//
+// The arrays do not overlap (__restrict: no run-time overlap tests, the same operations).
+template <int kN, bool kHarmonic>
+inline void ModalStep(const double* __restrict Phi, int n_runtime, const double* __restrict T,
+                      const double* __restrict Y, double* __restrict eta, double* __restrict deta,
+                      double* __restrict q_next, double* __restrict u_next) {
+  const int n = kN > 0 ? kN : n_runtime;
+  constexpr int kColumns = kHarmonic ? 6 : 4;
+  for (int k = 0; k < n; ++k) {
+    const double* Tk = T + 12 * k;
+    double e = 0.0, de = 0.0;
+    for (int j = 0; j < kColumns; ++j) {
+      e += Tk[j] * Y[j * n + k];
+      de += Tk[6 + j] * Y[j * n + k];
+    }
+    eta[k] = e;
+    deta[k] = de;
+  }
+  for (int i = 0; i < n; ++i) {
+    double s = 0.0;
+    for (int j = 0; j < n; ++j) s += Phi[i + j * n] * eta[j];
+    q_next[i] = s;
+  }
+  for (int i = 0; i < n; ++i) {
+    double s = 0.0;
+    for (int j = 0; j < n; ++j) s += Phi[i + j * n] * deta[j];
+    u_next[i] = s;
+  }
+}
+
+}  // namespace detail
+
 /// Which transition a LinearFlow uses.
 enum class FlowPath {
   kAuto,       ///< modal when C is classical, else augmented
@@ -107,6 +152,20 @@ class LinearFlow {
   void ApplyMotion(const FreePropagator& p, const Eigen::Ref<const Eigen::VectorXd>& z,
                    Eigen::Ref<Eigen::VectorXd> z_next, double* input_J = nullptr,
                    double* damping_J = nullptr);
+
+  /// ApplyMotion without energy of a step on a piece without harmonic part (a record's: z's
+  /// (p, k) zeros), inline over plain arrays for a deck's three modes: the same operations, so
+  /// the same bits, as ApplyMotion's. @pre modal(); z and z_next of the augmented size, distinct;
+  /// z's harmonic generator entries zeros.
+  void ApplyRecordMotion(const FreePropagator& p, Eigen::VectorXd& z, Eigen::VectorXd& z_next) {
+    if (n_ != 3) {
+      ApplyMotion(p, z, z_next);
+      return;
+    }
+    modal_->ToModal3(z.data(), Y_.data(), false);
+    detail::ModalStep<3, false>(modal_->Phi().data(), 3, p.modal_rows.data(), Y_.data(),
+                                eta_.data(), deta_.data(), z_next.data(), z_next.data() + 3);
+  }
 
   /// The modal coordinates (n x 6, rows y_k as ModalFlow::ToModal) of the state the last Apply
   /// started from. @pre modal(), and Apply was called.

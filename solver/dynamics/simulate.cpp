@@ -23,6 +23,7 @@
 #include "solver/dynamics/gap_floors.h"
 #include "solver/dynamics/gauss_legendre.h"
 #include "solver/dynamics/indeterminate_split.h"
+#include "solver/dynamics/integrator.h"
 #include "solver/dynamics/mode_decision.h"
 #include "solver/dynamics/peak_bound.h"
 #include "solver/dynamics/projection.h"
@@ -38,211 +39,6 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 }  // namespace
-
-/// The state machine of one run (see simulate.h); lives for one Simulate call. It is the mode
-/// decision's source of constrained forces (ActiveForces).
-class Integrator final : private ConstrainedForces {
- public:
-  Integrator(const model::Model& model, const Excitation& excitation,
-             const model::RunControl& control, SimulationWorkspace& ws, const InitialState& initial,
-             const EventPolicy& policy, FreeStepObserver* observer);
-
-  RunResult Run();
-
- private:
-  using Vec = Eigen::VectorXd;
-  using View = Eigen::Map<const Vec>;  // a vector in the state's storage, nothing built per use
-
-  auto q() { return z_.head(n_); }
-  auto u() { return z_.segment(n_, n_); }
-  bool AnyClosed() const { return modes_.any_closed(); }
-  bool Failed() const { return result_.status != RunStatus::kOk; }
-  void Fail(RunStatus status, const std::string& message) {
-    result_.status = status;
-    result_.message = message;
-  }
-
-  // The result at the end of the run: the final state, the decisions' events and counts, the
-  // energy ledger, and the non-finite status if the state or its energy is no number;
-  // `t_finite_s` is the last time the state was checked finite.
-  RunResult Finish(double t_finite_s);
-  // Contact-free phase: one exact step of the flow, up to its end or its first impact; there
-  // the decision.
-  void FreeStep();
-  // Whether every gap provably stays above twice the touch band over the full free step of
-  // length tau_s just applied (GapFloors, [docs/theory.md §3.18]); `harmonic` false when the
-  // step's piece has no harmonic part (omega 0: the modal coordinates' harmonic columns zeros).
-  bool GapsStayOpen(double tau_s, bool harmonic) {
-    if (!ws_.gap_bound_.applies()) {
-      return false;
-    }
-    if (gaps_exact_) {
-      gap_floors_.Restart(ends_.gap0);
-    }
-    // Clear of the touch band with the rounding of the gaps' evaluation to spare.
-    return gap_floors_.StaysOpen(ws_.flow_.modal_coordinates().data(), tau_s,
-                                 2.0 * scales_.gap_tol_m, harmonic);
-  }
-  // FreeStepSize of `piece`, computed again only when its length or rate differ from the last
-  // piece's (a record's ramps share them): the same value without its divisions.
-  double NominalFreeStep(const ExcitationPiece& piece) {
-    const double length = piece.t_end - piece.t_begin;
-    if (!(length == nominal_length_s_ && piece.omega == nominal_omega_radps_)) {
-      nominal_h_s_ = FreeStepSize(piece, ws_.omega_max_radps_, policy_);
-      nominal_length_s_ = length;
-      nominal_omega_radps_ = piece.omega;
-    }
-    return nominal_h_s_;
-  }
-  // The flow's propagator of a full step h_s at omega_radps (with its energy forms if `energy`):
-  // the last step's when the key is the same, else LinearFlow::Propagator. Nothing but the free
-  // steps asks the workspace's flow for a propagator during a run, so the last one stays valid,
-  // and it is the cache's most recently used entry: not asking again keeps its eviction order.
-  const FreePropagator& StepPropagator(double h_s, double omega_radps, bool energy) {
-    if (propagator_ == nullptr || h_s != propagator_->tau_s ||
-        omega_radps != propagator_->omega_radps || (energy && !propagator_->has_energy)) {
-      propagator_ = &ws_.flow_.Propagator(h_s, omega_radps, energy);
-    }
-    return *propagator_;
-  }
-  // Constrained phase: one Runge-Kutta step, up to its end or its first event (an impact of an
-  // open contact or an event function of a closed one); there the decision, else the
-  // projection.
-  void ConstrainedStep();
-  // The step [t_, t1] done, its end state (q, u) in the heads of z_new_: the maxima, the corner
-  // travels and the history samples inside it, then (t_, z_) moved to its end.
-  // component_at(t, i) and state_at(t) read the step's dense output (ScanCoordinateMaxima,
-  // RecordOutputs).
-  template <class ComponentAt, class StateAt>
-  void RecordStep(double t1, ComponentAt&& component_at, StateAt&& state_at);
-
-  // Forces of the active set `modes` at (t, q, u) into `storage`: du/dt, lambda per contact,
-  // the friction power [solver/dynamics/active_forces.h], with the kinematics of `which`
-  // contacts: a constrained phase's stages and event searches need the closed ones' only (the
-  // open ones' gaps are read at the step's ends).
-  void ActiveForces(const ContactModes& modes, double t, const Eigen::Ref<const Vec>& q,
-                    const Eigen::Ref<const Vec>& u, KinematicsOf which, Eigen::Ref<Vec> du,
-                    ActiveForcesStorage& storage) {
-    EvaluateActiveForces(model_, modes, policy_, scales_.force_tol_N, GroundAcceleration(t), q, u,
-                         which, du, storage);
-  }
-  // The constrained phase's right-hand side: dy/dt of y = (q, u, the three work integrals).
-  void Rhs(double t, const Eigen::Ref<const Vec>& y, KinematicsOf which, Eigen::Ref<Vec> dy);
-  // Event-function values of the closed contacts at the last ActiveForces call.
-  void ClosedEventValues(Eigen::Ref<Vec> values) const;
-
-  // The mode decision at the current state [docs/theory.md §3.1]; `forced` lists the contacts
-  // the event location found striking together.
-  void ResolveContacts(const std::vector<int>& forced);
-  // ConstrainedForces: lambda_N, lambda_T of ActiveForces at (t, q, u) with the modes `modes`.
-  void Forces(const ContactModes& modes, double t, const Eigen::Ref<const Vec>& q,
-              const Eigen::Ref<const Vec>& u, Eigen::Ref<Vec> lambda_N,
-              Eigen::Ref<Vec> lambda_T) override;
-  void Project();
-
-  // The first impact of an open contact in the step [t0, t1] (+inf: none) [docs/theory.md
-  // §3.12]: each contact whose gaps and rates at the step's ends (ends_) make
-  // an impact suspected (ImpactSuspected with `dip_margin`) is searched by FirstGapRoot on the
-  // dense output: positions_at(t) gives q at t, state_at(t) a vector whose heads are q and u.
-  template <class PositionsAt, class StateAt>
-  double FirstImpact(double t0, double t1, double dip_margin, PositionsAt&& positions_at,
-                     StateAt&& state_at);
-  // The impact time of the open contact c in [t0, t1] (FirstGapRoot on the dense output).
-  template <class PositionsAt, class StateAt>
-  double GapRoot(int c, double t0, double t1, PositionsAt&& positions_at, StateAt&& state_at);
-  // The time tolerance of a maximum's root search in a step ending at t1 (s).
-  double MaximumTimeTolerance(double t1) const {
-    return policy_.maximum_time_tolerance * std::max(1.0, std::abs(t1)) +
-           policy_.event_time_floor_s;
-  }
-  // The history samples in (t0, t1]; state_at(t) as for FirstImpact.
-  template <class StateAt>
-  void RecordOutputs(double t0, double t1, StateAt&& state_at);
-  void RecordSample(double t, const Eigen::Ref<const Vec>& q, const Eigen::Ref<const Vec>& u);
-  // 1/2 u^T M u (J), M diagonal.
-  double Kinetic() { return 0.5 * u().dot(model_.mass_diagonal().cwiseProduct(u())); }
-  // The gap of contact c at q, and its normal rate gamma_N at (q, u), for the event searches.
-  double GapAt(int c, const Eigen::Ref<const Vec>& q) const { return contact::Gap(model_, c, q); }
-  double NormalRateAt(int c, const Eigen::Ref<const Vec>& q, const Eigen::Ref<const Vec>& u) {
-    return contact::NormalRate(model_, c, q, u, rates_);
-  }
-  // Gaps and normal rates of every contact at (q, u), without the rest of the kinematics.
-  void GapsAndRates(const Eigen::Ref<const Vec>& q, const Eigen::Ref<const Vec>& u, Vec& gap,
-                    Vec& gamma_N) {
-    contact::GapsAndRates(model_, q, u, gap, gamma_N, rates_);
-  }
-  Eigen::Vector2d GroundAcceleration(double t) const { return excitation_.At(t); }
-
-  // The open contacts' gaps (m) and normal rates (m/s) at a step's two ends: what impact
-  // suspicion and FirstGapRoot start from. The end of one step is the start of the next,
-  // unless a decision there gives its own.
-  struct StepEnds {
-    Vec gap0, gN0, gap1, gN1;
-  };
-  // The closed contacts' event functions (2 n_c, ClosedEventValues): at the step's start, its
-  // end, and a trial time inside it.
-  struct ClosedEvents {
-    Vec f0, f1, f_eval;
-  };
-
-  // The run's inputs. The workspace is the model's, owned whole by one run at a time: the flow,
-  // the dense outputs, the constrained phase's force evaluations (ws_.forces_) and the mode
-  // decision's storage (ws_.decision_), whose kinematics are its own: a ConstrainedForces
-  // answer writes ws_.forces_ only.
-  const model::Model& model_;
-  const Excitation& excitation_;
-  const model::RunControl& control_;
-  const EventPolicy policy_;
-  SimulationWorkspace& ws_;
-  int n_, nc_;
-  // The run's tolerances and scales [docs/theory.md §3.2], which the decision, the projection,
-  // the event functions and the event searches compare with.
-  DecisionScales scales_;
-  double t_ = 0.0, t_end_ = 0.0;  // the time and the end of the run (s)
-  double h_rk_ = 0.0;             // the next Runge-Kutta step the error control proposes (s)
-  double h_free_ = 0.0;           // the last nominal free step (s)
-  double next_output_t_ = kInf;   // the next history sample (s)
-  // Samples of the output grid before this run's first (the run from rest recorded them up to
-  // the start time InitialState::t_s).
-  std::size_t output_offset_ = 0;
-  // The state (q, u and the excitation's states of the free flow), a step's end, and the free
-  // step's dense output at a trial time.
-  Vec z_, z_new_, z_eval_;
-  // The constrained phase's Runge-Kutta state y = (q, u, work integrals), its rate, its dense
-  // output at a trial time, and its absolute tolerances.
-  Vec y_, dy_, y_eval_, atol_;
-  Vec cu_, du_;    // C u; du/dt of the last force evaluation
-  StepEnds ends_;  // the open contacts' gaps and rates at the step's ends
-  // ends_.gap0 and gN0 hold the gaps and rates at t_; when false, free steps skipped them and
-  // gap_floors_ bounds the gaps at t_ from below instead.
-  bool gaps_exact_ = true;
-  GapFloors gap_floors_;
-  // Spares ScanCoordinateMaxima's and travel_'s root searches of a full free step [docs/theory.md
-  // §3.20].
-  FreeStepPeaks peaks_;
-  // The key of NominalFreeStep's last value (NaN: none yet) and the value (s).
-  double nominal_length_s_ = std::numeric_limits<double>::quiet_NaN();
-  double nominal_omega_radps_ = std::numeric_limits<double>::quiet_NaN();
-  double nominal_h_s_ = 0.0;
-  const FreePropagator* propagator_ = nullptr;  // the last full step's (StepPropagator)
-  PieceCursor pieces_;                          // the free steps' excitation piece
-  contact::GapRateScratch rates_;               // scratch of the gaps and normal rates
-  ClosedEvents events_;                         // the closed contacts' event functions
-  ContactModes modes_;                          // every contact's mode and the closed set
-  std::vector<int> forced_;                     // contacts striking together at the located impact
-  RunResult result_;
-  CornerTravelTracker travel_;  // the decks' corner travels (result_.max_travel_m)
-  DecisionMemory memory_;       // what the mode decision remembers between instants
-  DecisionLog log_;             // the events and counts the decisions add
-  // A history sample's force evaluation (with histories only): recording leaves ws_.forces_ as
-  // it was, so a run takes the same decisions whether it records histories or not.
-  std::unique_ptr<ActiveForcesStorage> sample_forces_;
-  // Sees the free steps until the first event (Simulate's observer), and the state at the
-  // start of the step it is shown.
-  FreeStepObserver* observer_ = nullptr;
-  Vec observed_z0_;
-  long initial_steps_ = 0;  // free steps before the run's start (InitialState::free_steps)
-};
 
 Integrator::Integrator(const model::Model& model, const Excitation& excitation,
                        const model::RunControl& control, SimulationWorkspace& ws,
@@ -364,6 +160,7 @@ RunResult Integrator::Run() {
   ResolveContacts(forced_);
   long steps = initial_steps_;
   double t_finite = t_;  // the last time the state was checked finite (s)
+  const bool record_flight = RecordFlightApplies();
   while (!Failed() && t_ < t_end_) {
     if (++steps > control_.max_steps) {
       Fail(RunStatus::kStepLimit,
@@ -372,6 +169,10 @@ RunResult Integrator::Run() {
     }
     if (AnyClosed()) {
       ConstrainedStep();
+    } else if (record_flight) {
+      if (!RecordFlight(steps, t_finite)) {
+        break;
+      }
     } else if (observer_ != nullptr && log_.events.empty()) {
       const double t0 = t_, h0 = h_free_;
       observed_z0_ = z_.head(2 * n_);
@@ -436,7 +237,6 @@ RunResult Integrator::Finish(double t_finite_s) {
 void Integrator::FreeStep() {
   // Advance: the exact flow over one step of the piece's grid, the previous step reused and
   // snapped [docs/theory.md §3.14].
-  LinearFlow& flow = ws_.flow_;
   const ExcitationPiece& piece = pieces_.At(excitation_, t_);
   // The Excitation contract: the piece at t extends beyond t. A piece ending at t would make
   // zero-length steps until the step budget runs out, so stop at once instead.
@@ -444,15 +244,13 @@ void Integrator::FreeStep() {
   const FreeStepPlan step = PlanFreeStep(t_, piece.t_begin, std::min(piece.t_end, t_end_),
                                          NominalFreeStep(piece), h_free_, policy_);
   h_free_ = step.h_s;
+  FreeStepOf(piece, step);
+}
+
+void Integrator::FreeStepOf(const ExcitationPiece& piece, const FreeStepPlan& step) {
+  LinearFlow& flow = ws_.flow_;
   const double tau = step.t_next_s - t_;
   flow.SetGenerator(piece, t_, z_);
-  bool dense_built = false;
-  auto ensure_dense = [&]() {
-    if (!dense_built) {
-      ws_.free_dense_.Build(flow, piece.omega, z_, tau);
-      dense_built = true;
-    }
-  };
   double input = 0.0, damping = 0.0;
   const bool ledger = control_.energy_ledger;
   if (step.full) {
@@ -460,10 +258,27 @@ void Integrator::FreeStep() {
     // z_new_'s generator is never read: the next step sets z_'s from its piece.
     flow.ApplyMotion(p, z_, z_new_, ledger ? &input : nullptr, ledger ? &damping : nullptr);
   } else {
-    ensure_dense();
+    ws_.free_dense_.Build(flow, piece.omega, z_, tau);
     ws_.free_dense_.Evaluate(tau, z_new_);
   }
   ++result_.free_steps;
+  // A full step whose gaps provably stay open (§3.18) needs neither its end's gaps nor the
+  // impact search.
+  const bool open = step.full && GapsStayOpen(std::max(tau, step.h_s), piece.omega != 0.0);
+  FinishFreeStep(piece, step, open, !step.full, input, damping);
+}
+
+void Integrator::FinishFreeStep(const ExcitationPiece& piece, const FreeStepPlan& step, bool open,
+                                bool dense_built, double input, double damping) {
+  LinearFlow& flow = ws_.flow_;
+  const double tau = step.t_next_s - t_;
+  auto ensure_dense = [&]() {
+    if (!dense_built) {
+      ws_.free_dense_.Build(flow, piece.omega, z_, tau);
+      dense_built = true;
+    }
+  };
+  const bool ledger = control_.energy_ledger;
   // The flow's dense output inside the step, in z_eval_: q alone (half the modal series: what a
   // gap needs), or q and u.
   const auto positions_at = [&](double t) {
@@ -478,9 +293,7 @@ void Integrator::FreeStep() {
   };
 
   // Locate the first event: the first impact of an open contact, and the contacts that strike
-  // with it [§3.12]; the step ends there. A full step whose gaps provably stay open (§3.18)
-  // needs neither its end's gaps nor the search.
-  const bool open = step.full && GapsStayOpen(std::max(tau, step.h_s), piece.omega != 0.0);
+  // with it [§3.12]; the step ends there (an open step has none).
   double t_event = kInf;
   if (!open) {
     if (!gaps_exact_) {
