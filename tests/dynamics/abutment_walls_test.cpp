@@ -426,6 +426,23 @@ TEST(AbutmentWalls, ARowOfDecksTakesALawPerWallAsTheSingleDeckDoes) {
     EXPECT_EQ(minus.backfill.f_ult_N, plus.backfill.f_ult_N / 2.0);
     EXPECT_EQ(minus.backfill.r_f, plus.backfill.r_f);
   }
+
+  // A friction per wall: deck[2]'s +x springs carry the +x wall's, deck[0]'s -x springs the -x
+  // wall's (with its stick stiffness over 5), the deck-deck joints' springs none.
+  std::string rough = text;
+  const std::string law = "law = \"compliant\"\n";
+  rough.replace(
+      rough.find(law, rough.find("[abutments]")), law.size(),
+      law + "mu = { \"+x\" = 0.3, \"-x\" = 0.1 }\nstick_stiffness_Npm = { \"-x\" = 1e9 }\n");
+  const model::ModelFile walls = model::ParseModelString(rough, "s.toml", Examples());
+  const std::vector<CompliantSpring> rough_springs = AbutmentSprings(walls.model, *walls.compliant);
+  ASSERT_EQ(rough_springs.size(), springs.size());
+  for (const CompliantSpring& s : rough_springs) {
+    const bool plus = s.name.rfind("+x.", 0) == 0, minus = s.name.rfind("-x.", 0) == 0;
+    EXPECT_EQ(s.mu, plus ? 0.3 : minus ? 0.1 : 0.0) << s.name;
+    EXPECT_EQ(s.k_t_N_per_m, minus ? 1e9 / 5 : 0.0) << s.name;
+    EXPECT_EQ(s.body, plus ? 2 : minus ? 0 : s.body) << s.name;
+  }
 }
 
 }  // namespace
