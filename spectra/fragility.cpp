@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 #include "solver/common/error.h"
@@ -109,45 +110,20 @@ LognormalFit Refused(std::string reason, std::int64_t trials, std::int64_t excee
   return f;
 }
 
-}  // namespace
+// The extremes of the usable observations' im that the refusals read.
+struct ImRange {
+  double max_x_non;  // largest im with a non-exceedance
+  double min_x_exc;  // smallest im with an exceedance
+  double min_x;
+  double max_x;
+};
 
-double LognormalFragility(double im, double theta, double beta) {
-  return NormalCdf(std::log(im / theta) / beta);
-}
-
-LognormalFit FitLognormalMle(std::span<const double> im, std::span<const double> trials,
-                             std::span<const double> exceeded) {
-  SB_DEMAND(im.size() == trials.size() && im.size() == exceeded.size(),
-            "fragility data of unequal lengths");
-  std::vector<Point> pts;
-  double n_total = 0.0, z_total = 0.0;
-  double max_x_non = -kInf;  // largest im with a non-exceedance
-  double min_x_exc = kInf;   // smallest im with an exceedance
-  double min_x = kInf, max_x = -kInf;
-  for (std::size_t i = 0; i < im.size(); ++i) {
-    if (!(std::isfinite(im[i]) && im[i] > 0.0) || !(trials[i] > 0.0)) continue;
-    SB_DEMAND(exceeded[i] >= 0.0 && exceeded[i] <= trials[i], "exceedances outside 0..trials");
-    pts.push_back({std::log(im[i]), trials[i], exceeded[i]});
-    n_total += trials[i];
-    z_total += exceeded[i];
-    if (exceeded[i] < trials[i]) max_x_non = std::max(max_x_non, im[i]);
-    if (exceeded[i] > 0.0) min_x_exc = std::min(min_x_exc, im[i]);
-    min_x = std::min(min_x, im[i]);
-    max_x = std::max(max_x, im[i]);
-  }
-  // Observations at one IM are one binomial point, their trials and exceedances summed: the
-  // likelihood is the same function, and a stripe of R records costs one term in place of R.
-  std::sort(pts.begin(), pts.end(), [](const Point& a, const Point& b) { return a.ln_x < b.ln_x; });
-  std::size_t distinct = 0;
-  for (std::size_t i = 0; i < pts.size(); ++i) {
-    if (distinct > 0 && pts[distinct - 1].ln_x == pts[i].ln_x) {
-      pts[distinct - 1].n += pts[i].n;
-      pts[distinct - 1].z += pts[i].z;
-    } else {
-      pts[distinct++] = pts[i];
-    }
-  }
-  pts.resize(distinct);
+// FitLognormalMle from its pooled points (distinct ln x, ascending), the totals of trials and
+// exceedances and the im range; `at_level(x)` gives the trials and exceedances at im == x.
+template <class AtLevel>
+LognormalFit FitPooled(const std::vector<Point>& pts, double n_total, double z_total,
+                       const ImRange& range, const AtLevel& at_level) {
+  const auto [max_x_non, min_x_exc, min_x, max_x] = range;
   const auto n_all = static_cast<std::int64_t>(n_total);
   const auto z_all = static_cast<std::int64_t>(z_total);
   if (pts.empty()) return Refused("no cell with a positive, finite IM", 0, 0);
@@ -179,13 +155,7 @@ LognormalFit FitLognormalMle(std::span<const double> im, std::span<const double>
   if (min_x_exc == max_x_non) {
     // One IM level holds both outcomes; below it none exceeded, above it all: the steepest
     // curve through that level fits best, and the words say only what lies on each side.
-    double n_at = 0.0, z_at = 0.0;
-    for (std::size_t i = 0; i < im.size(); ++i) {
-      if (im[i] == min_x_exc && trials[i] > 0.0) {
-        n_at += trials[i];
-        z_at += exceeded[i];
-      }
-    }
+    const auto [n_at, z_at] = at_level(min_x_exc);
     std::string sides;
     if (min_x < min_x_exc) sides += ", none below it";
     if (max_x > min_x_exc) sides += ", every cell above it";
@@ -252,6 +222,129 @@ LognormalFit FitLognormalMle(std::span<const double> im, std::span<const double>
   fit.se_beta = std::sqrt(cov(1, 1));
   fit.cov_ln_theta_beta = cov(0, 1);
   return fit;
+}
+
+}  // namespace
+
+double LognormalFragility(double im, double theta, double beta) {
+  return NormalCdf(std::log(im / theta) / beta);
+}
+
+LognormalFit FitLognormalMle(std::span<const double> im, std::span<const double> trials,
+                             std::span<const double> exceeded) {
+  SB_DEMAND(im.size() == trials.size() && im.size() == exceeded.size(),
+            "fragility data of unequal lengths");
+  std::vector<Point> pts;
+  double n_total = 0.0, z_total = 0.0;
+  double max_x_non = -kInf;  // largest im with a non-exceedance
+  double min_x_exc = kInf;   // smallest im with an exceedance
+  double min_x = kInf, max_x = -kInf;
+  for (std::size_t i = 0; i < im.size(); ++i) {
+    if (!(std::isfinite(im[i]) && im[i] > 0.0) || !(trials[i] > 0.0)) continue;
+    SB_DEMAND(exceeded[i] >= 0.0 && exceeded[i] <= trials[i], "exceedances outside 0..trials");
+    pts.push_back({std::log(im[i]), trials[i], exceeded[i]});
+    n_total += trials[i];
+    z_total += exceeded[i];
+    if (exceeded[i] < trials[i]) max_x_non = std::max(max_x_non, im[i]);
+    if (exceeded[i] > 0.0) min_x_exc = std::min(min_x_exc, im[i]);
+    min_x = std::min(min_x, im[i]);
+    max_x = std::max(max_x, im[i]);
+  }
+  // Observations at one IM are one binomial point, their trials and exceedances summed: the
+  // likelihood is the same function, and a stripe of R records costs one term in place of R.
+  std::sort(pts.begin(), pts.end(), [](const Point& a, const Point& b) { return a.ln_x < b.ln_x; });
+  std::size_t distinct = 0;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    if (distinct > 0 && pts[distinct - 1].ln_x == pts[i].ln_x) {
+      pts[distinct - 1].n += pts[i].n;
+      pts[distinct - 1].z += pts[i].z;
+    } else {
+      pts[distinct++] = pts[i];
+    }
+  }
+  pts.resize(distinct);
+  return FitPooled(pts, n_total, z_total, {max_x_non, min_x_exc, min_x, max_x}, [&](double level) {
+    // The trials and exceedances of the observations at im == level.
+    double n_at = 0.0, z_at = 0.0;
+    for (std::size_t i = 0; i < im.size(); ++i) {
+      if (im[i] == level && trials[i] > 0.0) {
+        n_at += trials[i];
+        z_at += exceeded[i];
+      }
+    }
+    return std::pair<double, double>(n_at, z_at);
+  });
+}
+
+ResampledLognormalFits::ResampledLognormalFits(std::span<const double> im,
+                                               std::span<const double> exceeded)
+    : im_(im.begin(), im.end()), exceeded_(exceeded.begin(), exceeded.end()) {
+  SB_DEMAND(im.size() == exceeded.size(), "fragility data of unequal lengths");
+  // Each usable observation's ln im, as FitLognormalMle takes it, and the distinct values in
+  // ascending order: the points FitLognormalMle pools (equal ln x, not equal im, are one point).
+  std::vector<double> ln(im.size());
+  level_.assign(im.size(), kSkipped);
+  for (std::size_t i = 0; i < im.size(); ++i) {
+    if (!(std::isfinite(im[i]) && im[i] > 0.0)) continue;
+    if (exceeded[i] != 0.0 && exceeded[i] != 1.0) whole_ = false;
+    ln[i] = std::log(im[i]);
+    ln_im_.push_back(ln[i]);
+    level_[i] = 0;
+  }
+  std::sort(ln_im_.begin(), ln_im_.end());
+  ln_im_.erase(std::unique(ln_im_.begin(), ln_im_.end()), ln_im_.end());
+  for (std::size_t i = 0; i < im.size(); ++i) {
+    if (level_[i] == kSkipped) continue;
+    level_[i] = static_cast<std::uint32_t>(std::lower_bound(ln_im_.begin(), ln_im_.end(), ln[i]) -
+                                           ln_im_.begin());
+  }
+}
+
+LognormalFit ResampledLognormalFits::Fit(std::span<const std::uint32_t> draws) const {
+  SB_DEMAND(draws.size() == im_.size(), "one draw count per observation");
+  if (!whole_) {  // sums of other exceedances depend on their order: FitLognormalMle itself
+    std::vector<double> x, ones, e;
+    for (std::size_t i = 0; i < im_.size(); ++i) {
+      for (std::uint32_t k = 0; k < draws[i]; ++k) {
+        x.push_back(im_[i]);
+        e.push_back(exceeded_[i]);
+      }
+    }
+    ones.assign(x.size(), 1.0);
+    return FitLognormalMle(x, ones, e);
+  }
+  // FitLognormalMle's sums, over the observations each repeated draws[i] times: every term is
+  // a whole number (one trial, 0 or 1 exceedance), so each sum is exact in any order.
+  std::vector<double> n(ln_im_.size(), 0.0), z(ln_im_.size(), 0.0);
+  double n_total = 0.0, z_total = 0.0;
+  ImRange range{-kInf, kInf, kInf, -kInf};
+  for (std::size_t i = 0; i < im_.size(); ++i) {
+    if (draws[i] == 0 || level_[i] == kSkipped) continue;
+    const double d = static_cast<double>(draws[i]);
+    const double e = d * exceeded_[i];
+    n[level_[i]] += d;
+    z[level_[i]] += e;
+    n_total += d;
+    z_total += e;
+    if (exceeded_[i] < 1.0) range.max_x_non = std::max(range.max_x_non, im_[i]);
+    if (exceeded_[i] > 0.0) range.min_x_exc = std::min(range.min_x_exc, im_[i]);
+    range.min_x = std::min(range.min_x, im_[i]);
+    range.max_x = std::max(range.max_x, im_[i]);
+  }
+  std::vector<Point> pts;
+  for (std::size_t g = 0; g < ln_im_.size(); ++g) {
+    if (n[g] > 0.0) pts.push_back({ln_im_[g], n[g], z[g]});
+  }
+  return FitPooled(pts, n_total, z_total, range, [&](double level) {
+    double n_at = 0.0, z_at = 0.0;
+    for (std::size_t i = 0; i < im_.size(); ++i) {
+      if (draws[i] > 0 && im_[i] == level) {
+        n_at += static_cast<double>(draws[i]);
+        z_at += static_cast<double>(draws[i]) * exceeded_[i];
+      }
+    }
+    return std::pair<double, double>(n_at, z_at);
+  });
 }
 
 CloudFit FitCloud(std::span<const double> im, std::span<const double> demand_over_capacity) {

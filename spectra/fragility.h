@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <vector>
 
 namespace skewbridge::spectra {
 
@@ -46,6 +47,28 @@ struct LognormalFit {
 /// @pre im, trials, exceeded have equal sizes; 0 <= exceeded_j <= trials_j, whole numbers
 LognormalFit FitLognormalMle(std::span<const double> im, std::span<const double> trials,
                              std::span<const double> exceeded);
+
+/// One-trial observations (im_i, exceeded_i) made ready for FitLognormalMle of many resamples of
+/// them (a bootstrap): each observation's ln im and its place among the distinct ones are found
+/// once, so a resample, given as how many times it draws each observation, costs no logarithm
+/// and no sort. Its fit is FitLognormalMle of the observations so repeated, bit for bit: the
+/// pooled points are the same, in the same order, and their sums are whole numbers.
+class ResampledLognormalFits {
+ public:
+  /// @pre im and exceeded have equal sizes; 0 <= exceeded_i <= 1
+  ResampledLognormalFits(std::span<const double> im, std::span<const double> exceeded);
+  /// FitLognormalMle(x, ones, e) of the arrays x, e holding observation i draws[i] times.
+  /// @pre draws.size() equals the number of observations
+  LognormalFit Fit(std::span<const std::uint32_t> draws) const;
+
+ private:
+  std::vector<double> im_;
+  std::vector<double> exceeded_;
+  std::vector<double> ln_im_;         ///< the distinct ln im of usable observations, ascending
+  std::vector<std::uint32_t> level_;  ///< per observation, its ln im's index in ln_im_
+  bool whole_ = true;  ///< every usable exceeded_i is 0 or 1 (else Fit runs FitLognormalMle)
+  static constexpr std::uint32_t kSkipped = 0xffffffffu;  ///< a level_ of a skipped observation
+};
 
 /// The cloud fit: least squares of ln(D / C) = intercept + slope ln(IM) over the cells, sigma
 /// the standard error of the residuals (n - 2 degrees of freedom); the fragility

@@ -145,18 +145,17 @@ FragilityTable FitFragilityOverCells(const CellGrid& grid, const std::string& st
       std::seed_seq seq{bootstrap_seed, static_cast<std::uint64_t>(combo)};
       std::mt19937_64 gen(seq);
       std::uniform_int_distribution<std::size_t> pick(0, records - 1);
-      std::vector<double> thetas, betas, bim, bones, bz;
+      // A resample is how many times it draws each cell; its fit is FitLognormalMle of the
+      // cells so repeated (ResampledLognormalFits), without a logarithm or a sort per resample.
+      const ResampledLognormalFits resampled(im, z);
+      std::vector<std::uint32_t> draws(m.size());
+      std::vector<double> thetas, betas;
       for (int b = 0; b < bootstrap_resamples; ++b) {
-        bim.clear();
-        bz.clear();
+        std::fill(draws.begin(), draws.end(), 0u);
         for (std::size_t r = 0; r < records; ++r) {
-          for (std::size_t i : by_record[pick(gen)]) {
-            bim.push_back(im[i]);
-            bz.push_back(z[i]);
-          }
+          for (std::size_t i : by_record[pick(gen)]) ++draws[i];
         }
-        bones.assign(bim.size(), 1.0);
-        const LognormalFit f = FitLognormalMle(bim, bones, bz);
+        const LognormalFit f = resampled.Fit(draws);
         if (f.reason.empty()) {
           thetas.push_back(f.theta);
           betas.push_back(f.beta);

@@ -5,9 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <random>
+#include <string>
 #include <vector>
 
 namespace skewbridge::spectra {
@@ -155,6 +158,80 @@ TEST(FragilityCloud, RefusesTooFewCellsAndAFallingDemand) {
       FitCloud(std::vector<double>{0.1, 0.2, 0.4}, std::vector<double>{3, 2, 1});
   EXPECT_NE(falling.reason.find("does not grow"), std::string::npos);
   EXPECT_TRUE(std::isnan(falling.theta));
+}
+
+// Every field of two fits, doubles bit for bit.
+void ExpectSameFit(const LognormalFit& a, const LognormalFit& b, const std::string& where) {
+  const auto bits = [](double x) { return std::bit_cast<std::uint64_t>(x); };
+  EXPECT_EQ(a.reason, b.reason) << where;
+  EXPECT_EQ(bits(a.theta), bits(b.theta)) << where;
+  EXPECT_EQ(bits(a.beta), bits(b.beta)) << where;
+  EXPECT_EQ(bits(a.se_ln_theta), bits(b.se_ln_theta)) << where;
+  EXPECT_EQ(bits(a.se_beta), bits(b.se_beta)) << where;
+  EXPECT_EQ(bits(a.cov_ln_theta_beta), bits(b.cov_ln_theta_beta)) << where;
+  EXPECT_EQ(bits(a.log_likelihood), bits(b.log_likelihood)) << where;
+  EXPECT_EQ(a.iterations, b.iterations) << where;
+  EXPECT_EQ(a.trials, b.trials) << where;
+  EXPECT_EQ(a.exceeded, b.exceeded) << where;
+}
+
+// A resample's fit from ResampledLognormalFits is FitLognormalMle of the cells it draws, each
+// repeated: cells of 40 records at 12 stripes (a tenth of them an ulp off their stripe's IM, as
+// scaled records land; some with no usable IM), drawn as a bootstrap over records and as random
+// counts, fitted and refused alike (every cell exceeded, none, and separated stripes); and with
+// an exceedance other than 0 or 1 it runs FitLognormalMle itself.
+TEST(ResampledLognormalFits, AResampleIsTheBitsOfFitLognormalMleOfItsCells) {
+  std::mt19937_64 gen(2033);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (const int data : {0, 1, 2, 3, 4, 5}) {
+    const int records = 40, stripes = 12;
+    std::vector<double> im, z;
+    for (int r = 0; r < records; ++r) {
+      for (int j = 0; j < stripes; ++j) {
+        double x = 0.1 * std::pow(1.35, j);
+        if (unit(gen) < 0.1) x = std::nextafter(x, unit(gen) < 0.5 ? 0.0 : 10.0);
+        if (data == 0 && unit(gen) < 0.02) x = unit(gen) < 0.5 ? -1.0 : std::nan("");
+        double e = unit(gen) < Phi(std::log(x / 0.8) / 0.45) ? 1.0 : 0.0;
+        if (data == 1) e = 1.0;                 // every cell exceeded
+        if (data == 2) e = 0.0;                 // none
+        if (data == 3) e = j >= 6 ? 1.0 : 0.0;  // the stripes separate
+        if (data == 4 && j == 5) e = 0.5;       // not one trial's outcome
+        im.push_back(x);
+        z.push_back(e);
+      }
+    }
+    const ResampledLognormalFits resampled(im, z);
+    std::uniform_int_distribution<int> pick(0, records - 1);
+    std::uniform_int_distribution<std::uint32_t> count(0, 3);
+    for (int b = 0; b < 40; ++b) {
+      std::vector<std::uint32_t> draws(im.size(), 0);
+      if (b % 2 == 0) {
+        for (int r = 0; r < records; ++r) {
+          const int drawn = pick(gen);
+          for (int j = 0; j < stripes; ++j) ++draws[static_cast<std::size_t>(drawn * stripes + j)];
+        }
+      } else {
+        for (std::uint32_t& d : draws) d = count(gen);
+      }
+      std::vector<double> x, ones, e;
+      for (std::size_t i = 0; i < im.size(); ++i) {
+        for (std::uint32_t k = 0; k < draws[i]; ++k) {
+          x.push_back(im[i]);
+          e.push_back(z[i]);
+        }
+      }
+      ones.assign(x.size(), 1.0);
+      const LognormalFit expected = FitLognormalMle(x, ones, e);
+      if (data == 0) {
+        EXPECT_TRUE(expected.reason.empty()) << expected.reason;
+      }
+      if (data >= 1 && data <= 3) {
+        EXPECT_FALSE(expected.reason.empty());
+      }
+      ExpectSameFit(resampled.Fit(draws), expected,
+                    "data " + std::to_string(data) + ", resample " + std::to_string(b));
+    }
+  }
 }
 
 }  // namespace
