@@ -35,6 +35,17 @@ LinearFlow::LinearFlow(const Eigen::Ref<const Eigen::MatrixXd>& M,
     EnsureAugmented();
   }
   Y_ = Eigen::MatrixXd::Zero(n_, 6);
+  if (modal_ && n_ == 3) {
+    for (int e = 0; e < 9; ++e) {
+      const double a = modal_->PhiTM().data()[e], b = modal_->Phi().data()[e];
+      deck_.PhiTM[e] = detail::Lanes2{a, a};
+      deck_.Phi[e] = detail::Lanes2{b, b};
+    }
+    for (int e = 0; e < 6; ++e) {
+      const double a = modal_->negL().data()[e];
+      deck_.negL[e] = detail::Lanes2{a, a};
+    }
+  }
   eta_ = deta_ = Eigen::VectorXd::Zero(n_);
 }
 
@@ -84,6 +95,15 @@ void LinearFlow::Compute(double tau_s, double omega_radps, bool energy, FreeProp
     out.modal_rows.resize(12, n_);
     modal_->Transitions(tau_s, omega_radps, out.modal_rows, energy ? &out.modal_input : nullptr,
                         energy ? &out.modal_damping : nullptr);
+    if (n_ == 3) {
+      out.record_pairs.resize(24);
+      for (int k = 0; k < 3; ++k) {
+        for (int j = 0; j < 4; ++j) {
+          out.record_pairs[8 * k + 2 * j] = out.modal_rows(j, k);
+          out.record_pairs[8 * k + 2 * j + 1] = out.modal_rows(6 + j, k);
+        }
+      }
+    }
     out.cos_wt = std::cos(omega_radps * tau_s);
     out.sin_wt = std::sin(omega_radps * tau_s);
     return;

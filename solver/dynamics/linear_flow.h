@@ -76,6 +76,60 @@ inline void ModalStep(const double* __restrict Phi, int n_runtime, const double*
   }
 }
 
+// Two doubles side by side: each operation on it is the IEEE operation on each lane.
+using Lanes2 = double __attribute__((vector_size(16)));
+
+// A deck's modal transforms (three modes) with each entry in both lanes (LinearFlow's deck
+// step): Phi^T M and Phi (entry i + 3 j, column-major) and -L (entry k + 3 c, column c).
+struct DeckLanes {
+  Lanes2 PhiTM[9], Phi[9], negL[6];
+};
+
+// ApplyMotion of a deck's three modes on a piece without harmonic part with two lanes per
+// operation: ToModalFixed<3, false> with (q, u) side by side, and the generator's (a, slope);
+// ModalStep<3, false> with (eta_k, eta_k') side by side (the rows of T_k in `pairs`, per mode
+// and column j < 4 the pair (T_k[j], T_k[6 + j])) and (q_i, u_i). Every lane runs the scalar
+// path's operations in its order from the same +0.0, so Y and z_next are the same bits.
+inline void DeckRecordStep(const DeckLanes& d, const double* __restrict pairs,
+                           const double* __restrict z, double* __restrict Y,
+                           double* __restrict z_next) {
+  Lanes2 qu[3], ab[3], ed[3];
+  // Eigen's storage is aligned to 16 bytes: a pair loads as one operand.
+  const auto* T = static_cast<const double*>(__builtin_assume_aligned(pairs, 16));
+  const Lanes2 zq[3] = {{z[0], z[3]}, {z[1], z[4]}, {z[2], z[5]}};
+  const Lanes2 gx = {z[6], z[8]}, gy = {z[7], z[9]};  // (a, slope) of x, of y
+  for (int i = 0; i < 3; ++i) {
+    Lanes2 s = {0.0, 0.0};
+    for (int j = 0; j < 3; ++j) s += d.PhiTM[i + 3 * j] * zq[j];
+    qu[i] = s;
+    ab[i] = d.negL[i] * gx + d.negL[3 + i] * gy;
+  }
+  for (int k = 0; k < 3; ++k) {
+    const Lanes2 y[4] = {
+        {qu[k][0], qu[k][0]}, {qu[k][1], qu[k][1]}, {ab[k][0], ab[k][0]}, {ab[k][1], ab[k][1]}};
+    Lanes2 e = {0.0, 0.0};
+    for (int j = 0; j < 4; ++j) {
+      Lanes2 t;
+      __builtin_memcpy(&t, T + 8 * k + 2 * j, sizeof t);
+      e += t * y[j];
+    }
+    ed[k] = e;
+  }
+  for (int i = 0; i < 3; ++i) {
+    Lanes2 s = {0.0, 0.0};
+    for (int j = 0; j < 3; ++j) s += d.Phi[i + 3 * j] * ed[j];
+    z_next[i] = s[0];
+    z_next[3 + i] = s[1];
+  }
+  for (int i = 0; i < 3; ++i) {
+    Y[i] = qu[i][0];
+    Y[3 + i] = qu[i][1];
+    Y[6 + i] = ab[i][0];
+    Y[9 + i] = ab[i][1];
+  }
+  for (int k = 12; k < 18; ++k) Y[k] = 0.0;
+}
+
 }  // namespace detail
 
 /// Which transition a LinearFlow uses.
@@ -98,8 +152,12 @@ struct FreePropagator {
   Eigen::MatrixXd modal_rows;     ///< 12 x n: per mode the 2 x 6 transition T_k(tau)
   Eigen::MatrixXd modal_input;    ///< 36 x n: per mode the input-energy form Q_k (J)
   Eigen::MatrixXd modal_damping;  ///< 36 x n: per mode the damping-energy form Q_k (J)
-  double cos_wt = 1.0;            ///< cos(omega tau), the generator's rotation
-  double sin_wt = 0.0;            ///< sin(omega tau)
+  /// Modal path of three modes: per mode k and column j < 4 the pair (T_k[0][j], T_k[1][j])
+  /// (the eta and eta' rows side by side, 24 entries, 16-byte aligned), for
+  /// LinearFlow::ApplyRecordMotion.
+  Eigen::VectorXd record_pairs;
+  double cos_wt = 1.0;  ///< cos(omega tau), the generator's rotation
+  double sin_wt = 0.0;  ///< sin(omega tau)
 };
 
 /// The contact-free linear flow of a model: matrices, generator bookkeeping and a cache of
@@ -162,9 +220,7 @@ class LinearFlow {
       ApplyMotion(p, z, z_next);
       return;
     }
-    modal_->ToModal3(z.data(), Y_.data(), false);
-    detail::ModalStep<3, false>(modal_->Phi().data(), 3, p.modal_rows.data(), Y_.data(),
-                                eta_.data(), deta_.data(), z_next.data(), z_next.data() + 3);
+    detail::DeckRecordStep(deck_, p.record_pairs.data(), z.data(), Y_.data(), z_next.data());
   }
 
   /// The modal coordinates (n x 6, rows y_k as ModalFlow::ToModal) of the state the last Apply
@@ -199,6 +255,7 @@ class LinearFlow {
   std::optional<ModalFlow> modal_;
   Eigen::MatrixXd Y_;           // n x 6 modal coordinates of the state being propagated
   Eigen::VectorXd eta_, deta_;  // modal state at the step end
+  detail::DeckLanes deck_{};    // a deck's transforms in both lanes (three modes)
   Eigen::MatrixXd M_, K_, C_, r_;
   Eigen::MatrixXd Mr_;  // M r, n x 2
   // The augmented path's matrices, built on first use: a modal flow (every sweep cell's) needs

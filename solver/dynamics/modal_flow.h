@@ -105,6 +105,10 @@ class ModalFlow {
   const Eigen::VectorXd& c() const { return c_; }
   /// Phi, n x n, column k = mode k (Phi^T M Phi = I).
   const Eigen::MatrixXd& Phi() const { return Phi_; }
+  /// Phi^T M, n x n (ToModal's transform of q and u).
+  const Eigen::MatrixXd& PhiTM() const { return PhiTM_; }
+  /// -L = -Phi^T M r, n x 2 (ToModal's transform of a ground acceleration (x, y), m/s^2).
+  const Eigen::MatrixXd& negL() const { return negL_; }
 
   /// Modal coordinates of the augmented state z = (q, u, a, slope, p, k) (linear_flow.h): Y is
   /// n x 6, row k = y_k = (Phi^T M q, Phi^T M u, -L a, -L slope, -L p, -L k)_k. No allocation.

@@ -54,7 +54,12 @@ bool Integrator::RecordFlight(long& steps, double& t_finite) {
           FinishFreeStep(piece, step, true, false, 0.0, 0.0);
           common = false;
         } else {
-          std::copy(x1, x1 + 2 * n_, z_.data());
+          double* z = z_.data();
+          if (n_ == 3) {
+            for (int i = 0; i < 6; ++i) z[i] = x1[i];  // a deck's six moves, no call
+          } else {
+            std::copy(x1, x1 + 2 * n_, z);
+          }
           t_ = t1;
           gaps_exact_ = false;
         }

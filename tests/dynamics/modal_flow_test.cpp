@@ -446,6 +446,46 @@ TEST(LinearFlow, ModalApplyIsTheBitsOfToModalRowsAndProducts) {
   }
 }
 
+TEST(LinearFlow, RecordMotionIsTheBitsOfApplyMotion) {
+  // ApplyRecordMotion (a deck's three modes with two lanes per operation; any other count
+  // through ApplyMotion) must leave the bits of ApplyMotion's (q, u) and modal coordinates for a
+  // piece without harmonic part, over states and steps of every scale, the generator included.
+  std::mt19937 rng(31u);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (int n : {3, 1, 6}) {
+    const RandomModel m = MakeModel(rng, n, n > 2 ? 1 : 0, {0.02, 0.3});
+    LinearFlow flow(m.M, m.K, m.C, m.r);
+    ASSERT_TRUE(flow.modal()) << n << " modes";
+    for (int trial = 0; trial < 40; ++trial) {
+      const ExcitationPiece piece = RandomPiece(rng, 0.0);
+      Eigen::VectorXd z = RandomState(rng, flow, piece, 0.005 * (unit(rng) + 1.0));
+      z.head(2 * n) *= std::pow(10.0, 3.0 * unit(rng));
+      if (trial % 4 == 1) z.head(2 * n).setZero();  // at rest: signed zeros in the sums
+      if (trial % 4 == 2) z[2 * n] = -0.0;
+      ASSERT_TRUE((z.segment<4>(2 * n + 4).array() == 0.0).all());
+      const double h = std::pow(10.0, -3.0 + 2.0 * (unit(rng) + 1.0) / 2.0);
+      const FreePropagator& p = flow.Propagator(h, 0.0, false);
+      Eigen::VectorXd want = Eigen::VectorXd::Constant(flow.augmented_size(), -3.5);
+      Eigen::VectorXd got = want;
+      flow.ApplyMotion(p, z, want);
+      const Eigen::MatrixXd Y_want = flow.modal_coordinates();
+      flow.ApplyMotion(p, -z, got);  // other modal coordinates in between
+      flow.ApplyRecordMotion(p, z, got);
+      for (int i = 0; i < flow.augmented_size(); ++i) {
+        EXPECT_EQ(std::signbit(got[i]), std::signbit(want[i])) << n << " modes, entry " << i;
+        EXPECT_EQ(got[i], want[i]) << n << " modes, entry " << i << ", trial " << trial;
+      }
+      for (int j = 0; j < 6; ++j) {
+        for (int k = 0; k < n; ++k) {
+          EXPECT_EQ(flow.modal_coordinates()(k, j), Y_want(k, j))
+              << n << " modes, Y(" << k << ", " << j << ")";
+          EXPECT_EQ(std::signbit(flow.modal_coordinates()(k, j)), std::signbit(Y_want(k, j)));
+        }
+      }
+    }
+  }
+}
+
 TEST(LinearFlow, AugmentedPartsOfAModalFlowAreBuiltOnDemandAndMatchTheGeneralPath) {
   // A modal flow builds A_hat only when asked (AugmentedMatrix, Derivative, or a dense output
   // longer than the modal series' radius): the same matrix and series as the general path's.
