@@ -416,7 +416,9 @@ TEST(LinearFlow, ModalApplyIsTheBitsOfToModalRowsAndProducts) {
           for (int k = 0; k < n; ++k) {
             EXPECT_EQ(flow.modal_coordinates()(k, j), Y(k, j))
                 << n << " modes, (" << k << ", " << j << ")";
-            if (j >= 4 && rate == 0.0) EXPECT_EQ(Y(k, j), 0.0);
+            if (j >= 4 && rate == 0.0) {
+              EXPECT_EQ(Y(k, j), 0.0);
+            }
           }
         }
         flow.Apply(p, z, with_energy, &input, &damping);
