@@ -27,8 +27,9 @@ void EvaluateActiveForces(const model::Model& model, const ContactModes& modes,
                           const Eigen::Vector2d& a_g_mps2,
                           const Eigen::Ref<const Eigen::VectorXd>& q,
                           const Eigen::Ref<const Eigen::VectorXd>& u, KinematicsOf which,
-                          Eigen::Ref<Eigen::VectorXd> du, ActiveForcesStorage& s) {
-  model.AppliedForces(q, u, a_g_mps2, s.h);
+                          Eigen::Ref<Eigen::VectorXd> du, ActiveForcesStorage& s,
+                          AddedForces* added) {
+  AppliedForces(model, added, q, u, a_g_mps2, s.h);
   if (which == KinematicsOf::kClosedContacts) {
     contact::EvaluateContacts(model, q, u, modes.closed_ids(), s.kin);
   } else {

@@ -50,6 +50,30 @@ struct ActiveForcesStorage {
   double friction_power_W = 0.0;  ///< -sum lambda_T gamma_T over the closed contacts (W)
 };
 
+/// Forces a run adds to the model's applied forces h(t, q, u) = -C u - K q - M r a_g: a compliant
+/// wall's springs beside the rigid contacts [docs/compliant.md §4]. Every place the event-driven
+/// integrator forms h (EvaluateActiveForces, the mode decision's contact problem and bounce
+/// prediction) calls AppliedForces below, which adds them.
+class AddedForces {
+ public:
+  virtual ~AddedForces() = default;
+  /// Adds the forces at (q, u) to h (N, N m; n_dof entries).
+  virtual void AddTo(const Eigen::Ref<const Eigen::VectorXd>& q,
+                     const Eigen::Ref<const Eigen::VectorXd>& u, Eigen::Ref<Eigen::VectorXd> h) = 0;
+};
+
+/// h = Model::AppliedForces(q, u, a_g), then `added`'s forces when not null; without them h is the
+/// model's, bit for bit.
+inline void AppliedForces(const model::Model& model, AddedForces* added,
+                          const Eigen::Ref<const Eigen::VectorXd>& q,
+                          const Eigen::Ref<const Eigen::VectorXd>& u,
+                          const Eigen::Vector2d& a_g_mps2, Eigen::Ref<Eigen::VectorXd> h) {
+  model.AppliedForces(q, u, a_g_mps2, h);
+  if (added != nullptr) {
+    added->AddTo(q, u, h);
+  }
+}
+
 /// Which contacts' kinematics an evaluation computes.
 enum class KinematicsOf {
   kAllContacts,     ///< every contact (kin complete afterwards)
@@ -59,13 +83,15 @@ enum class KinematicsOf {
 /// Evaluates the forces of the active set `modes` at (q, u) under the ground acceleration
 /// `a_g_mps2` into `s`: s.kin, s.h, s.lambda_N, s.lambda_T, s.friction_power_W, and
 /// du = du/dt (m/s^2, rad/s^2). A rank-deficient system is split by SplitIndeterminateForces
-/// with `policy` and the force scale `force_tol_N` [docs/theory.md §3.13].
+/// with `policy` and the force scale `force_tol_N` [docs/theory.md §3.13]. The applied forces
+/// include `added`'s (AppliedForces) when it is not null.
 /// @pre s sized for `model`; q, u, du of size n_dof.
 void EvaluateActiveForces(const model::Model& model, const ContactModes& modes,
                           const EventPolicy& policy, double force_tol_N,
                           const Eigen::Vector2d& a_g_mps2,
                           const Eigen::Ref<const Eigen::VectorXd>& q,
                           const Eigen::Ref<const Eigen::VectorXd>& u, KinematicsOf which,
-                          Eigen::Ref<Eigen::VectorXd> du, ActiveForcesStorage& s);
+                          Eigen::Ref<Eigen::VectorXd> du, ActiveForcesStorage& s,
+                          AddedForces* added = nullptr);
 
 }  // namespace skewbridge::dynamics

@@ -129,7 +129,7 @@ class Integrator final : private ConstrainedForces {
                     const Eigen::Ref<const Vec>& u, KinematicsOf which, Eigen::Ref<Vec> du,
                     ActiveForcesStorage& storage) {
     EvaluateActiveForces(model_, modes, policy_, scales_.force_tol_N, GroundAcceleration(t), q, u,
-                         which, du, storage);
+                         which, du, storage, added_);
   }
   // The constrained phase's right-hand side: dy/dt of y = (q, u, the three work integrals).
   void Rhs(double t, const Eigen::Ref<const Vec>& y, KinematicsOf which, Eigen::Ref<Vec> dy);
@@ -199,6 +199,9 @@ class Integrator final : private ConstrainedForces {
   const model::RunControl& control_;
   const EventPolicy policy_;
   SimulationWorkspace& ws_;
+  // Forces added to the applied forces wherever they are formed (AppliedForces); null: none,
+  // and every force keeps the model's bits.
+  AddedForces* added_ = nullptr;
   int n_, nc_;
   // The run's tolerances and scales [docs/theory.md §3.2], which the decision, the projection,
   // the event functions and the event searches compare with.

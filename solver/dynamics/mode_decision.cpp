@@ -110,7 +110,7 @@ class Decider {
   Decider(const model::Model& model, const EventPolicy& policy, const DecisionScales& s,
           const DecisionInstant& instant, Eigen::Ref<Vec> q, Eigen::Ref<Vec> u, ContactModes& modes,
           DecisionMemory& memory, ConstrainedForces& forces, DecisionWorkspace& ws,
-          DecisionLog& log)
+          DecisionLog& log, AddedForces* added)
       : model_(model),
         policy_(policy),
         s_(s),
@@ -125,6 +125,7 @@ class Decider {
         kin_(ws.projection.kin),
         scratch_(ws.scratch),
         log_(log),
+        added_(added),
         nc_(model.n_contacts()) {}
 
   DecisionOutcome Decide(std::span<const int> forced);
@@ -159,6 +160,7 @@ class Decider {
   contact::ContactKinematics& kin_;
   DecisionScratch& scratch_;
   DecisionLog& log_;
+  AddedForces* added_;  // forces added to the applied forces (AppliedForces); null: none
   const int nc_;
 };
 
@@ -332,7 +334,7 @@ Decider::PassEnd Decider::Pass(std::span<const int> forced, DecisionOutcome& out
   const bool all_leave = impact && std::all_of(index_set.begin(), index_set.end(), leaves);
   Vec& h = scratch_.h;
   if (all_leave) {
-    model_.AppliedForces(q_, u_, a_g_, h);
+    AppliedForces(model_, added_, q_, u_, a_g_, h);
   }
   std::vector<contact::ClosedContact>& closed = scratch_.closed;
   closed.clear();
@@ -377,7 +379,7 @@ Decider::PassEnd Decider::Pass(std::span<const int> forced, DecisionOutcome& out
   }
   if (!closed.empty()) {
     // The contact problem [§3.7].
-    model_.AppliedForces(q_, u_, a_g_, h);
+    AppliedForces(model_, added_, q_, u_, a_g_, h);
     const contact::ContactStatus status =
         ws_.contact_problem.Solve(kin, closed, h, ws_.contact_result);
     if (policy_.jam && status == contact::ContactStatus::kPainleve && !memory_.jammed_here &&
@@ -515,13 +517,13 @@ DecisionOutcome DecideModes(const model::Model& model, const EventPolicy& policy
                             const DecisionScales& scales, const DecisionInstant& instant,
                             Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> u,
                             ContactModes& modes, DecisionMemory& memory, ConstrainedForces& forces,
-                            DecisionWorkspace& ws, DecisionLog& log) {
+                            DecisionWorkspace& ws, DecisionLog& log, AddedForces* added) {
   SB_DEMAND(modes.size() == model.n_contacts() &&
                 static_cast<int>(memory.history.size()) == model.n_contacts() &&
                 static_cast<int>(memory.tie.size()) == model.n_contacts() &&
                 static_cast<int>(ws.scratch.cone_sign.size()) == model.n_contacts(),
             "DecideModes: modes, memory or scratch sized for another model");
-  Decider decider(model, policy, scales, instant, q, u, modes, memory, forces, ws, log);
+  Decider decider(model, policy, scales, instant, q, u, modes, memory, forces, ws, log, added);
   return decider.Decide(instant.forced);
 }
 

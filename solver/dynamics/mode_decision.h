@@ -17,6 +17,7 @@
 #include "solver/contact/contact_problem.h"
 #include "solver/contact/impact_problem.h"
 #include "solver/contact/kinematics.h"
+#include "solver/dynamics/active_forces.h"
 #include "solver/dynamics/contact_modes.h"
 #include "solver/dynamics/event_policy.h"
 #include "solver/dynamics/impact_history.h"
@@ -148,13 +149,14 @@ struct DecisionOutcome {
 ///    repeated while an open contact at its face approaches it.
 /// On kOk, `q`, `u` and `modes` hold the state the integrator continues from, `memory` the
 /// updated histories, ties and counters, and `log` the added events, counts and the kinetic
-/// energy lost (impact_J). On a failure the state is where the decision stopped.
+/// energy lost (impact_J). On a failure the state is where the decision stopped. The applied
+/// forces it forms include `added`'s when it is not null (AppliedForces).
 /// @pre modes, memory and the scratch sized for `model`; q, u of size n_dof.
 DecisionOutcome DecideModes(const model::Model& model, const EventPolicy& policy,
                             const DecisionScales& scales, const DecisionInstant& instant,
                             Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> u,
                             ContactModes& modes, DecisionMemory& memory, ConstrainedForces& forces,
-                            DecisionWorkspace& ws, DecisionLog& log);
+                            DecisionWorkspace& ws, DecisionLog& log, AddedForces* added = nullptr);
 
 /// The jam test [§3.9]: true when the contact problem's contacts `closed` include two on
 /// opposing faces (normals at more than 90 deg) and at least one of them slides: a deck that

@@ -557,7 +557,7 @@ void Integrator::Project() {
 void Integrator::ResolveContacts(const std::vector<int>& forced) {
   const DecisionOutcome outcome =
       DecideModes(model_, policy_, scales_, {t_, GroundAcceleration(t_), forced}, q(), u(), modes_,
-                  memory_, *this, ws_.decision_, log_);
+                  memory_, *this, ws_.decision_, log_, added_);
   if (outcome.status != RunStatus::kOk) {
     Fail(outcome.status, outcome.message);
     return;

@@ -206,6 +206,51 @@ TEST(ActiveForces, ClosedContactsKinematicsGiveTheSameBits) {
   EXPECT_EQ(all.s.friction_power_W, closed.s.friction_power_W);
 }
 
+// A constant force added to the applied forces (AddedForces): -M r da.
+class GroundShare final : public AddedForces {
+ public:
+  GroundShare(const model::Model& m, const Vector2d& da)
+      : f_(-m.mass_diagonal().cwiseProduct(m.r() * da)) {}
+  void AddTo(const Eigen::Ref<const VectorXd>&, const Eigen::Ref<const VectorXd>&,
+             Eigen::Ref<VectorXd> h) override {
+    h += f_;
+  }
+
+ private:
+  VectorXd f_;
+};
+
+// Forces added through the hook act as the model's own: -M r da added to h gives the forces and
+// accelerations of the ground acceleration a_g + da without it (to rounding), for a free deck,
+// a corner sliding and a corner sticking; the same evaluation without the hook differs.
+TEST(ActiveForces, AddedForcesActAsTheModelsAppliedForces) {
+  const model::Model m = FreeDeck(0.4);
+  const Vector2d a_g(-1.0, 0.7), da(-1.5, 0.4);
+  for (const ContactMode mode :
+       {ContactMode::kOpen, ContactMode::kSlidePositive, ContactMode::kStick}) {
+    SCOPED_TRACE(static_cast<int>(mode));
+    ContactModes modes(m.n_contacts());
+    modes.Set(0, mode);
+    const VectorXd q = Touching(m, 0, -0.01);
+    const VectorXd u = ConsistentVelocity(m, modes, q, mode == ContactMode::kStick ? 0.0 : 0.2);
+    const Evaluation shifted(m, modes, a_g + da, q, u);
+    GroundShare share(m, da);
+    ActiveForcesStorage s(m, EventPolicy{}.rank_threshold);
+    VectorXd du = VectorXd::Zero(m.n_dof());
+    EvaluateActiveForces(m, modes, EventPolicy{}, 1e-6 * kMass, a_g, q, u,
+                         KinematicsOf::kAllContacts, du, s, &share);
+    const Evaluation plain(m, modes, a_g, q, u);
+    const double a_scale = shifted.du.cwiseAbs().maxCoeff() + 1.0;
+    for (int i = 0; i < m.n_dof(); ++i) {
+      EXPECT_NEAR(du[i], shifted.du[i], 1e-13 * a_scale) << "dof " << i;
+      EXPECT_NEAR(s.h[i], shifted.s.h[i], 1e-13 * kMass * a_scale) << "dof " << i;
+    }
+    EXPECT_NEAR(s.lambda_N[0], shifted.s.lambda_N[0], 1e-12 * kMass);
+    EXPECT_NEAR(s.lambda_T[0], shifted.s.lambda_T[0], 1e-12 * kMass);
+    EXPECT_GT((du - plain.du).cwiseAbs().maxCoeff(), 0.1) << "the hook adds its force";
+  }
+}
+
 // The postconditions of a singular set's answer, whatever the split: the accelerations are
 // the oracle's (A = R M^-1 R^T, so the kernel of A carries no generalized force: R^T x and du
 // are unique), every constraint acceleration vanishes, du is M^-1 (h + W_N lambda_N + W_T
