@@ -32,6 +32,16 @@ int StateSize(int n_dof, const std::vector<CompliantSpring>& springs) {
   return 2 * n_dof + 3 + (friction ? 1 : 0);
 }
 
+// `model`, when it has no rigid contact.
+const model::Model& CheckedWithoutContacts(const model::Model& model) {
+  if (model.n_contacts() > 0) {
+    throw InputError::AtField(model.source(), "abutments",
+                              "a model with compliant springs has no rigid contact (one law for "
+                              "every abutment)");
+  }
+  return model;
+}
+
 }  // namespace
 
 CompliantIntegrator::CompliantIntegrator(const model::Model& model,
@@ -39,8 +49,8 @@ CompliantIntegrator::CompliantIntegrator(const model::Model& model,
                                          const Excitation& excitation,
                                          const model::RunControl& control,
                                          const InitialState& initial, const EventPolicy& policy)
-    : model_(model),
-      springs_(springs),
+    : model_(CheckedWithoutContacts(model)),
+      set_(model, springs),
       excitation_(excitation),
       control_(control),
       policy_(policy),
@@ -48,64 +58,12 @@ CompliantIntegrator::CompliantIntegrator(const model::Model& model,
       dense_(flow_.augmented_size()),
       n_(model.n_dof()),
       ns_(static_cast<int>(springs.size())),
-      turn_(static_cast<std::size_t>(model.n_bodies())),
       start_d_m_(springs.size()),
       start_rate_mps_(springs.size()),
-      state_(springs.size()),
       ny_(StateSize(model.n_dof(), springs)),
       rk_(ny_),
       result_(out_.run),
       travel_(model) {
-  if (model.n_contacts() > 0) {
-    throw InputError::AtField(model.source(), "abutments",
-                              "a model with compliant springs has no rigid contact (one law for "
-                              "every abutment)");
-  }
-  for (const CompliantSpring& s : springs) {
-    const std::string where = model.source() + ": spring " + s.name;
-    const bool face_ok =
-        s.face.body == model::kGround ||
-        (s.face.body >= 0 && s.face.body < model.n_bodies() && s.face.body != s.body);
-    if (s.body < 0 || s.body >= model.n_bodies() || !face_ok || !s.point_m.allFinite() ||
-        !s.face.point_m.allFinite() || !(std::abs(s.face.normal.norm() - 1.0) <= 1e-12)) {
-      throw InputError::AtField(where, "geometry",
-                                "needs a body index, finite points and a unit normal of a face on "
-                                "the ground or on another body");
-    }
-    if (s.law == SpringLaw::kShearKey && s.face.body != model::kGround) {
-      throw InputError::AtField(where, "law", "a shear key stands on the ground (an abutment)");
-    }
-    if (s.law == SpringLaw::kBackfill) {
-      joint::ValidateHyperbolicGap(s.backfill, where);
-    } else if (s.law == SpringLaw::kShearKey) {
-      joint::ValidateShearKey(s.key, where);
-    } else if (!(s.k_N_per_m > 0.0 && std::isfinite(s.k_N_per_m) && s.c_Ns_per_m >= 0.0 &&
-                 std::isfinite(s.c_Ns_per_m))) {
-      throw InputError::AtField(where, "k, c", "must be k > 0, c >= 0, finite");
-    }
-    if (!(s.mu >= 0.0 && std::isfinite(s.mu))) {
-      throw InputError::AtField(where, "mu", "wall friction must be a finite number >= 0");
-    }
-    if (!(s.k_t_N_per_m >= 0.0 && std::isfinite(s.k_t_N_per_m))) {
-      throw InputError::AtField(where, "k_t", "stick stiffness must be finite, >= 0 (0: K_max)");
-    }
-    if (s.mu > 0.0 && (s.law != SpringLaw::kBackfill || s.face.body != model::kGround)) {
-      throw InputError::AtField(where, "mu",
-                                "wall friction acts on the backfill springs of abutments only");
-    }
-    if (s.mu > 0.0 && !(std::abs(s.face.tangent.norm() - 1.0) <= 1e-12 &&
-                        std::abs(s.face.tangent.dot(s.face.normal)) <= 1e-12)) {
-      throw InputError::AtField(where, "geometry",
-                                "wall friction needs the face's unit tangent, normal to n");
-    }
-    if (s.mu > 0.0) {
-      FrictionState f;
-      f.spring = static_cast<int>(&s - springs.data());
-      f.mu = s.mu;
-      f.k_t_N_per_m = s.k_t_N_per_m > 0.0 ? s.k_t_N_per_m : s.backfill.k_max_N_per_m;
-      friction_.push_back(f);
-    }
-  }
   if (flow_.modal()) {
     const Eigen::VectorXd& w2 = flow_.modal_flow().w2();
     omega_max_radps_ = std::sqrt(std::max(w2.maxCoeff(), 0.0));
@@ -138,7 +96,7 @@ CompliantIntegrator::CompliantIntegrator(const model::Model& model,
   dy_ = y_new_ = y_eval_ = y_;
   z_ = Vec::Zero(flow_.augmented_size());
   z_new_ = z_eval_ = z_;
-  e0_ = e1_ = Vec::Zero(2 * ns_ + 2 * static_cast<int>(friction_.size()));
+  e0_ = e1_ = Vec::Zero(set_.n_events());
   if (flow_.modal()) spring_bound_ = SpringGapBound(flow_.modal_flow(), springs);
   if (spring_bound_.applies()) {
     spring_floors_ = std::make_unique<GapFloors>(spring_bound_);
@@ -165,7 +123,7 @@ CompliantIntegrator::CompliantIntegrator(const model::Model& model,
         break;
     }
   }
-  for (const FrictionState& f : friction_) k_sum += f.k_t_N_per_m;
+  for (const SpringSet::FrictionState& f : set_.friction()) k_sum += f.k_t_N_per_m;
   const double omega_spring = std::sqrt(k_sum / MaxTranslationalMass(model));
   const double omega_top = std::max(scales_.omega_top_radps, omega_spring);
   rtol_ = control.relative_tolerance;
@@ -175,11 +133,6 @@ CompliantIntegrator::CompliantIntegrator(const model::Model& model,
   h_rk_ = std::min(scales_.first_rk_step_s, 0.01 / omega_top);
   result_.max_abs_q = y_.head(n_).cwiseAbs();
   result_.time_of_max_s = Vec::Zero(n_);
-  out_.max_spring_force_N = Vec::Zero(ns_);
-  out_.max_spring_deformation_m = Vec::Zero(ns_);
-  out_.key_break_time_s = Vec::Constant(ns_, std::numeric_limits<double>::quiet_NaN());
-  out_.wall_slip_m = Vec::Zero(ns_);
-  out_.first_slip_time_s = Vec::Constant(ns_, std::numeric_limits<double>::quiet_NaN());
   travel_.Start(y_.head(n_), result_.max_travel_m);
   if (control.output_interval_s > 0.0) {
     result_.histories.n_dof = n_;
@@ -202,31 +155,8 @@ void CompliantIntegrator::Rhs(const ExcitationPiece& piece, double t,
   }
   cu_.noalias() = model_.C() * u;
   const double damping_W = u.dot(cu_);
-  double joint_W = 0.0;
-  Eigen::Vector3d w, w_face;
-  for (int j = 0; j < ns_; ++j) {
-    if (state_[static_cast<std::size_t>(j)].branch == Branch::kOpen) continue;
-    double d, rate;
-    const CompliantSpring& sp = springs_[static_cast<std::size_t>(j)];
-    const bool on_body = sp.face.body != model::kGround;
-    Kinematics(j, q, u, d, rate, w, on_body ? &w_face : nullptr);
-    const double f = BranchForce(j, d, rate);
-    h_.segment<3>(3 * sp.body) += f * w;
-    // A joint between bodies pushes the face's body back with the same force.
-    if (on_body) h_.segment<3>(3 * sp.face.body) += f * w_face;
-    joint_W += f * rate;
-  }
-  double friction_W = 0.0;
-  for (const FrictionState& fr : friction_) {
-    if (fr.mode == Friction::kFree) continue;
-    double d, rate, s, s_rate;
-    Kinematics(fr.spring, q, u, d, rate, w);
-    const double normal = BranchForce(fr.spring, d, rate);
-    Tangential(fr.spring, q, u, s, s_rate, w);
-    const double f_t = FrictionForce(fr, s, normal);
-    h_.segment<3>(3 * springs_[static_cast<std::size_t>(fr.spring)].body) += f_t * w;
-    friction_W -= f_t * s_rate;
-  }
+  double joint_W, friction_W;
+  set_.AddForces(q, u, h_, joint_W, friction_W);
   dy.head(n_) = u;
   dy.segment(n_, n_) = model_.inverse_mass_diagonal().cwiseProduct(h_);
   dy[2 * n_] = input_W;
@@ -261,6 +191,39 @@ CompliantRunResult CompliantIntegrator::Run() {
   return Finish(t_finite);
 }
 
+void CompliantIntegrator::SettleAll(const Eigen::Ref<const Vec>& y) {
+  if (set_.SettleAll(y, t_)) {
+    ++result_.impacts;
+    result_.min_impact_separation_s =
+        std::min(result_.min_impact_separation_s, t_ - last_strike_t_s_);
+    last_strike_t_s_ = t_;
+  }
+}
+
+void CompliantIntegrator::StartKinematics() {
+  Eigen::Vector3d w;
+  for (int j = 0; j < ns_; ++j) {
+    if (set_.state(j).broken) continue;
+    set_.Kinematics(j, y_.head(n_), y_.segment(n_, n_), start_d_m_[static_cast<std::size_t>(j)],
+                    start_rate_mps_[static_cast<std::size_t>(j)], w);
+  }
+  start_known_ = true;
+}
+
+bool CompliantIntegrator::AllFree() {
+  if (set_.AnyEngaged()) return false;
+  // The bound kept every spring's gap above twice the touch band up to y_: each computed d is
+  // below its d_set there.
+  if (start_bounded_) return true;
+  if (!start_known_) StartKinematics();
+  for (int j = 0; j < ns_; ++j) {
+    const SpringState& m = set_.state(j);
+    if (m.broken) continue;
+    if (!(start_d_m_[static_cast<std::size_t>(j)] < m.d_set_m)) return false;
+  }
+  return true;
+}
+
 ModalGapBound SpringGapBound(const ModalFlow& modal, const std::vector<CompliantSpring>& springs) {
   ModalGapBound bound;
   if (springs.empty() || (modal.c().array() < 0.0).any()) return bound;
@@ -284,7 +247,7 @@ bool CompliantIntegrator::SpringsStayOpen(double tau_s) {
   if (start_known_) {
     // Exact values at the step's start: the bases start again from them.
     for (int j = 0; j < ns_; ++j) {
-      const SpringState& m = state_[static_cast<std::size_t>(j)];
+      const SpringState& m = set_.state(j);
       spring_gaps_[j] = m.broken ? kInf : m.d_set_m - start_d_m_[static_cast<std::size_t>(j)];
     }
     spring_floors_->Restart(spring_gaps_);
@@ -345,12 +308,12 @@ void CompliantIntegrator::FreeStep() {
   double t_event = kInf;
   Eigen::Vector3d w;
   for (int j = 0; j < ns_ && !open; ++j) {
-    if (state_[static_cast<std::size_t>(j)].broken) continue;
-    const double d_set = state_[static_cast<std::size_t>(j)].d_set_m;
+    if (set_.state(j).broken) continue;
+    const double d_set = set_.state(j).d_set_m;
     const double d0 = start_d_m_[static_cast<std::size_t>(j)];
     const double r0 = start_rate_mps_[static_cast<std::size_t>(j)];
     double d1, r1;
-    Kinematics(j, z_new_.head(n_), z_new_.segment(n_, n_), d1, r1, w);
+    set_.Kinematics(j, z_new_.head(n_), z_new_.segment(n_, n_), d1, r1, w);
     // Kept for the next step's start, which is this end unless an event cuts the step.
     start_d_m_[static_cast<std::size_t>(j)] = d1;
     start_rate_mps_[static_cast<std::size_t>(j)] = r1;
@@ -359,14 +322,14 @@ void CompliantIntegrator::FreeStep() {
       const Vec& s = state_at(t);
       double d, rate;
       Eigen::Vector3d ww;
-      Kinematics(j, s.head(n_), s.segment(n_, n_), d, rate, ww);
+      set_.Kinematics(j, s.head(n_), s.segment(n_, n_), d, rate, ww);
       return d_set - d;
     };
     const auto gamma_N = [&](double t) {
       const Vec& s = state_at(t);
       double d, rate;
       Eigen::Vector3d ww;
-      Kinematics(j, s.head(n_), s.segment(n_, n_), d, rate, ww);
+      set_.Kinematics(j, s.head(n_), s.segment(n_, n_), d, rate, ww);
       return -rate;
     };
     t_event =
@@ -422,7 +385,7 @@ void CompliantIntegrator::CompliantStep() {
     // located there (a free step or a piece ending exactly at it): its transition first.
     SettleAll(y_);
     Rhs(piece, t_, y_, dy_);
-    AllEventValues(y_, e0_);
+    set_.AllEventValues(y_, e0_);
   }
   fresh_start_ = false;
   double h = 0.0, error = 0.0;
@@ -436,7 +399,7 @@ void CompliantIntegrator::CompliantStep() {
   }
   ++result_.rk_steps;
   const double t_full = t_ + h;
-  AllEventValues(rk_.y_end(), e1_);
+  set_.AllEventValues(rk_.y_end(), e1_);
   // The first event function to change sign, located on the dense output; the time taken on its
   // far side so that the transition sees it crossed.
   double t_event = kInf;
@@ -445,7 +408,7 @@ void CompliantIntegrator::CompliantStep() {
     if (!(e0_[e] > 0.0 && e1_[e] <= 0.0)) continue;
     const auto value = [&](double t) {
       rk_.DenseHeadAt(t, 2 * n_, y_eval_);
-      return EventValueAt(e, y_eval_);
+      return set_.EventValueAt(e, y_eval_);
     };
     const RootResult root = FindRootBrent(value, t_, t_full, e0_[e], e1_[e], x_tol);
     t_event = std::min(t_event, root.fx <= 0.0 ? root.x : root.upper);
@@ -506,19 +469,7 @@ void CompliantIntegrator::RecordStep(double t1, const Eigen::Ref<const Vec>& y_n
   RecordOutputs(t_, t1, state_at);
   y_ = y_new;
   t_ = t1;
-  SpringMaxima(y_);
-}
-
-void CompliantIntegrator::SpringMaxima(const Eigen::Ref<const Vec>& y) {
-  Eigen::Vector3d w;
-  for (int j = 0; j < ns_; ++j) {
-    if (state_[static_cast<std::size_t>(j)].branch == Branch::kOpen) continue;
-    double d, rate;
-    Kinematics(j, y.head(n_), y.segment(n_, n_), d, rate, w);
-    out_.max_spring_force_N[j] =
-        std::max(out_.max_spring_force_N[j], std::max(0.0, BranchForce(j, d, rate)));
-    out_.max_spring_deformation_m[j] = std::max(out_.max_spring_deformation_m[j], d);
-  }
+  set_.Maxima(y_);
 }
 
 template <class StateAt>
@@ -550,41 +501,14 @@ CompliantRunResult CompliantIntegrator::Finish(double t_finite_s) {
   e.damping_J = y_[2 * n_ + 1];
   const double work = y_[2 * n_ + 2];
   // What the springs would give back by unloading: F^2 / (2 K_ur) on the backfill's line or
-  // envelope, 1/2 k d^2 for an engaged spring-dashpot.
-  double stored = 0.0;
-  Eigen::Vector3d w;
-  for (int j = 0; j < ns_; ++j) {
-    const CompliantSpring& s = springs_[static_cast<std::size_t>(j)];
-    const SpringState& m = state_[static_cast<std::size_t>(j)];
-    if (m.branch == Branch::kOpen) continue;
-    double d, rate;
-    Kinematics(j, y_.head(n_), y_.segment(n_, n_), d, rate, w);
-    if (s.law != SpringLaw::kSpringDashpot) {
-      const double f = std::max(0.0, BranchForce(j, d, rate));
-      stored += f * f / (2.0 * LineStiffness(j));
-    } else {
-      stored += 0.5 * s.k_N_per_m * d * d;
-    }
-  }
+  // envelope, 1/2 k d^2 for an engaged spring-dashpot; and the stick springs' F_t^2 / (2 k_t).
+  double stored, friction_stored;
+  set_.EndEnergies(y_.head(n_), y_.segment(n_, n_), stored, friction_stored);
   out_.joint_stored_J = stored;
   out_.joint_dissipated_J = work - stored;
-  if (!friction_.empty()) {
-    // The stick springs' energy F_t^2 / (2 k_t) is stored; the rest of the friction's work is
-    // dissipated. A slip going on at the end adds its travel so far.
-    double friction_stored = 0.0;
-    for (FrictionState& fr : friction_) {
-      if (fr.mode == Friction::kFree) continue;
-      double d, rate, s, s_rate;
-      Kinematics(fr.spring, y_.head(n_), y_.segment(n_, n_), d, rate, w);
-      const double normal = BranchForce(fr.spring, d, rate);
-      Tangential(fr.spring, y_.head(n_), y_.segment(n_, n_), s, s_rate, w);
-      const double f_t = FrictionForce(fr, s, normal);
-      friction_stored += f_t * f_t / (2.0 * fr.k_t_N_per_m);
-      if (fr.mode == Friction::kSlip) {
-        out_.wall_slip_m[fr.spring] +=
-            std::abs(s - fr.sigma * fr.mu * normal / fr.k_t_N_per_m - fr.slip_begin_m);
-      }
-    }
+  const bool friction = set_.n_friction() > 0;
+  if (friction) {
+    // The rest of the friction's work is dissipated.
     out_.joint_stored_J += friction_stored;
     e.friction_J = y_[2 * n_ + 3] - friction_stored;
   }
@@ -593,15 +517,16 @@ CompliantRunResult CompliantIntegrator::Finish(double t_finite_s) {
   e.strain_J = 0.5 * y_.head(n_).dot(model_.K() * y_.head(n_));
   e.balance_error_J = (e.kinetic_J + e.strain_J + out_.joint_stored_J) -
                       (e.initial_J + e.input_J - e.damping_J - out_.joint_dissipated_J);
-  if (!friction_.empty()) {
+  if (friction) {
     e.balance_error_J =
         (e.kinetic_J + e.strain_J + out_.joint_stored_J) -
         (e.initial_J + e.input_J - e.damping_J - out_.joint_dissipated_J - e.friction_J);
   }
   if (!control_.energy_ledger) {
     e.input_J = e.damping_J = e.balance_error_J = std::numeric_limits<double>::quiet_NaN();
-    if (!friction_.empty()) e.friction_J = std::numeric_limits<double>::quiet_NaN();
+    if (friction) e.friction_J = std::numeric_limits<double>::quiet_NaN();
   }
+  set_.MoveResults(out_);
   return std::move(out_);
 }
 

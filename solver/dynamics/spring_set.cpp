@@ -1,21 +1,82 @@
-// The laws of a compliant run's springs in CompliantIntegrator (compliant_integrator.h): the
-// kinematics of a spring along and across its face, the force of each piece of its law, the event
-// functions that say where it leaves the piece and the transitions there, and the friction element
-// of a spring with wall friction [docs/compliant.md §4].
+// The laws of a run's compliant springs (spring_set.h): the kinematics of a spring along and
+// across its face, the force of each piece of its law, the event functions that say where it
+// leaves the piece and the transitions there, and the friction element of a spring with wall
+// friction [docs/compliant.md §4].
 #include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <utility>
 #include <vector>
 
-#include "solver/dynamics/compliant_integrator.h"
+#include "solver/common/error.h"
+#include "solver/dynamics/spring_set.h"
 #include "solver/joint/backfill.h"
 #include "solver/joint/shear_key.h"
 
 namespace skewbridge::dynamics {
 
-std::pair<double, double> CompliantIntegrator::Turn(int b, double theta_rad) const {
+SpringSet::SpringSet(const model::Model& model, const std::vector<CompliantSpring>& springs)
+    : model_(model),
+      springs_(springs),
+      n_(model.n_dof()),
+      ns_(static_cast<int>(springs.size())),
+      turn_(static_cast<std::size_t>(model.n_bodies())),
+      state_(springs.size()) {
+  for (const CompliantSpring& s : springs) {
+    const std::string where = model.source() + ": spring " + s.name;
+    const bool face_ok =
+        s.face.body == model::kGround ||
+        (s.face.body >= 0 && s.face.body < model.n_bodies() && s.face.body != s.body);
+    if (s.body < 0 || s.body >= model.n_bodies() || !face_ok || !s.point_m.allFinite() ||
+        !s.face.point_m.allFinite() || !(std::abs(s.face.normal.norm() - 1.0) <= 1e-12)) {
+      throw InputError::AtField(where, "geometry",
+                                "needs a body index, finite points and a unit normal of a face on "
+                                "the ground or on another body");
+    }
+    if (s.law == SpringLaw::kShearKey && s.face.body != model::kGround) {
+      throw InputError::AtField(where, "law", "a shear key stands on the ground (an abutment)");
+    }
+    if (s.law == SpringLaw::kBackfill) {
+      joint::ValidateHyperbolicGap(s.backfill, where);
+    } else if (s.law == SpringLaw::kShearKey) {
+      joint::ValidateShearKey(s.key, where);
+    } else if (!(s.k_N_per_m > 0.0 && std::isfinite(s.k_N_per_m) && s.c_Ns_per_m >= 0.0 &&
+                 std::isfinite(s.c_Ns_per_m))) {
+      throw InputError::AtField(where, "k, c", "must be k > 0, c >= 0, finite");
+    }
+    if (!(s.mu >= 0.0 && std::isfinite(s.mu))) {
+      throw InputError::AtField(where, "mu", "wall friction must be a finite number >= 0");
+    }
+    if (!(s.k_t_N_per_m >= 0.0 && std::isfinite(s.k_t_N_per_m))) {
+      throw InputError::AtField(where, "k_t", "stick stiffness must be finite, >= 0 (0: K_max)");
+    }
+    if (s.mu > 0.0 && (s.law != SpringLaw::kBackfill || s.face.body != model::kGround)) {
+      throw InputError::AtField(where, "mu",
+                                "wall friction acts on the backfill springs of abutments only");
+    }
+    if (s.mu > 0.0 && !(std::abs(s.face.tangent.norm() - 1.0) <= 1e-12 &&
+                        std::abs(s.face.tangent.dot(s.face.normal)) <= 1e-12)) {
+      throw InputError::AtField(where, "geometry",
+                                "wall friction needs the face's unit tangent, normal to n");
+    }
+    if (s.mu > 0.0) {
+      FrictionState f;
+      f.spring = static_cast<int>(&s - springs.data());
+      f.mu = s.mu;
+      f.k_t_N_per_m = s.k_t_N_per_m > 0.0 ? s.k_t_N_per_m : s.backfill.k_max_N_per_m;
+      friction_.push_back(f);
+    }
+  }
+  max_force_N_ = Vec::Zero(ns_);
+  max_deformation_m_ = Vec::Zero(ns_);
+  key_break_time_s_ = Vec::Constant(ns_, std::numeric_limits<double>::quiet_NaN());
+  wall_slip_m_ = Vec::Zero(ns_);
+  first_slip_time_s_ = Vec::Constant(ns_, std::numeric_limits<double>::quiet_NaN());
+}
+
+std::pair<double, double> SpringSet::Turn(int b, double theta_rad) const {
   TurnMemo& m = turn_[static_cast<std::size_t>(b)];
   const auto bits = std::bit_cast<std::uint64_t>(theta_rad);
   int k = 0;
@@ -33,9 +94,9 @@ std::pair<double, double> CompliantIntegrator::Turn(int b, double theta_rad) con
   return {m.c[k], m.s[k]};
 }
 
-void CompliantIntegrator::Along(int j, const Eigen::Vector2d& dir, const Eigen::Ref<const Vec>& q,
-                                const Eigen::Ref<const Vec>& u, double& coord, double& rate,
-                                Eigen::Vector3d& w, Eigen::Vector3d* w_face) const {
+void SpringSet::Along(int j, const Eigen::Vector2d& dir, const Eigen::Ref<const Vec>& q,
+                      const Eigen::Ref<const Vec>& u, double& coord, double& rate,
+                      Eigen::Vector3d& w, Eigen::Vector3d* w_face) const {
   const CompliantSpring& sp = springs_[static_cast<std::size_t>(j)];
   const int b = 3 * sp.body;
   const auto [c, sn] = Turn(sp.body, q[b + 2]);
@@ -69,22 +130,21 @@ void CompliantIntegrator::Along(int j, const Eigen::Vector2d& dir, const Eigen::
   if (w_face != nullptr) *w_face = on_face;
 }
 
-void CompliantIntegrator::Kinematics(int j, const Eigen::Ref<const Vec>& q,
-                                     const Eigen::Ref<const Vec>& u, double& d, double& rate,
-                                     Eigen::Vector3d& w, Eigen::Vector3d* w_face) const {
+void SpringSet::Kinematics(int j, const Eigen::Ref<const Vec>& q, const Eigen::Ref<const Vec>& u,
+                           double& d, double& rate, Eigen::Vector3d& w,
+                           Eigen::Vector3d* w_face) const {
   double gap, gap_rate;
   Along(j, springs_[static_cast<std::size_t>(j)].face.normal, q, u, gap, gap_rate, w, w_face);
   d = -gap;
   rate = -gap_rate;
 }
 
-void CompliantIntegrator::Tangential(int j, const Eigen::Ref<const Vec>& q,
-                                     const Eigen::Ref<const Vec>& u, double& s, double& rate,
-                                     Eigen::Vector3d& w_t) const {
+void SpringSet::Tangential(int j, const Eigen::Ref<const Vec>& q, const Eigen::Ref<const Vec>& u,
+                           double& s, double& rate, Eigen::Vector3d& w_t) const {
   Along(j, springs_[static_cast<std::size_t>(j)].face.tangent, q, u, s, rate, w_t);
 }
 
-double CompliantIntegrator::BranchSlope(int j, double d) const {
+double SpringSet::BranchSlope(int j, double d) const {
   const CompliantSpring& s = springs_[static_cast<std::size_t>(j)];
   switch (state_[static_cast<std::size_t>(j)].branch) {
     case Branch::kLine:
@@ -100,7 +160,7 @@ double CompliantIntegrator::BranchSlope(int j, double d) const {
   }
 }
 
-double CompliantIntegrator::FrictionForce(const FrictionState& f, double s, double normal_N) const {
+double SpringSet::FrictionForce(const FrictionState& f, double s, double normal_N) const {
   switch (f.mode) {
     case Friction::kStick:
       return -f.k_t_N_per_m * (s - f.anchor_m);
@@ -112,8 +172,8 @@ double CompliantIntegrator::FrictionForce(const FrictionState& f, double s, doub
   return 0.0;
 }
 
-void CompliantIntegrator::FrictionEventValues(int f, const Eigen::Ref<const Vec>& y, double& e1,
-                                              double& e2) const {
+void SpringSet::FrictionEventValues(int f, const Eigen::Ref<const Vec>& y, double& e1,
+                                    double& e2) const {
   const FrictionState& fr = friction_[static_cast<std::size_t>(f)];
   e1 = e2 = kInf;
   if (fr.mode == Friction::kFree) return;
@@ -133,7 +193,7 @@ void CompliantIntegrator::FrictionEventValues(int f, const Eigen::Ref<const Vec>
   }
 }
 
-void CompliantIntegrator::SettleFriction(int f, const Eigen::Ref<const Vec>& y) {
+void SpringSet::SettleFriction(int f, const Eigen::Ref<const Vec>& y, double t_s) {
   FrictionState& fr = friction_[static_cast<std::size_t>(f)];
   const int j = fr.spring;
   double d, d_rate, s, s_rate;
@@ -144,7 +204,7 @@ void CompliantIntegrator::SettleFriction(int f, const Eigen::Ref<const Vec>& y) 
   const auto end_slip = [&]() {
     // The slip ends: the anchor where the slipping element has it.
     const double anchor = s - fr.sigma * fr.mu * normal / fr.k_t_N_per_m;
-    out_.wall_slip_m[j] += std::abs(anchor - fr.slip_begin_m);
+    wall_slip_m_[j] += std::abs(anchor - fr.slip_begin_m);
     return anchor;
   };
   if (state_[static_cast<std::size_t>(j)].branch == Branch::kOpen) {
@@ -170,7 +230,7 @@ void CompliantIntegrator::SettleFriction(int f, const Eigen::Ref<const Vec>& y) 
       fr.mode = Friction::kSlip;
       fr.sigma = sigma;
       fr.slip_begin_m = fr.anchor_m;
-      if (std::isnan(out_.first_slip_time_s[j])) out_.first_slip_time_s[j] = t_;
+      if (std::isnan(first_slip_time_s_[j])) first_slip_time_s_[j] = t_s;
     } else {
       if (rate_along(fr.sigma) > 0.0) return;
       fr.anchor_m = end_slip();
@@ -179,7 +239,7 @@ void CompliantIntegrator::SettleFriction(int f, const Eigen::Ref<const Vec>& y) 
   }
 }
 
-double CompliantIntegrator::BranchForce(int j, double d, double rate) const {
+double SpringSet::BranchForce(int j, double d, double rate) const {
   const CompliantSpring& s = springs_[static_cast<std::size_t>(j)];
   const SpringState& m = state_[static_cast<std::size_t>(j)];
   switch (m.branch) {
@@ -202,12 +262,12 @@ double CompliantIntegrator::BranchForce(int j, double d, double rate) const {
   return 0.0;
 }
 
-double CompliantIntegrator::LineStiffness(int j) const {
+double SpringSet::LineStiffness(int j) const {
   const CompliantSpring& s = springs_[static_cast<std::size_t>(j)];
   return s.law == SpringLaw::kShearKey ? s.key.v_n_N / s.key.d3_m : s.backfill.k_ur_N_per_m;
 }
 
-CompliantIntegrator::Branch CompliantIntegrator::KeyPieceAbove(int j, double d) const {
+SpringSet::Branch SpringSet::KeyPieceAbove(int j, double d) const {
   const joint::ShearKey& key = springs_[static_cast<std::size_t>(j)].key;
   if (d < key.d3_m) return Branch::kKeyRise;
   if (d < key.d_res_m) return Branch::kKeySoften;
@@ -215,7 +275,7 @@ CompliantIntegrator::Branch CompliantIntegrator::KeyPieceAbove(int j, double d) 
   return Branch::kOpen;
 }
 
-void CompliantIntegrator::CommitTurn(int j, double d) {
+void SpringSet::CommitTurn(int j, double d) {
   const CompliantSpring& s = springs_[static_cast<std::size_t>(j)];
   SpringState& m = state_[static_cast<std::size_t>(j)];
   if (s.law == SpringLaw::kShearKey) {
@@ -232,7 +292,7 @@ void CompliantIntegrator::CommitTurn(int j, double d) {
   m.branch = Branch::kLine;
 }
 
-void CompliantIntegrator::EventValues(int j, double d, double rate, double& e1, double& e2) const {
+void SpringSet::EventValues(int j, double d, double rate, double& e1, double& e2) const {
   const CompliantSpring& s = springs_[static_cast<std::size_t>(j)];
   const SpringState& m = state_[static_cast<std::size_t>(j)];
   e1 = e2 = kInf;
@@ -271,7 +331,7 @@ void CompliantIntegrator::EventValues(int j, double d, double rate, double& e1, 
   }
 }
 
-void CompliantIntegrator::AllEventValues(const Eigen::Ref<const Vec>& y, Vec& out) const {
+void SpringSet::AllEventValues(const Eigen::Ref<const Vec>& y, Vec& out) const {
   Eigen::Vector3d w;
   for (int j = 0; j < ns_; ++j) {
     double d, rate;
@@ -283,7 +343,7 @@ void CompliantIntegrator::AllEventValues(const Eigen::Ref<const Vec>& y, Vec& ou
   }
 }
 
-double CompliantIntegrator::EventValueAt(int e, const Eigen::Ref<const Vec>& y) const {
+double SpringSet::EventValueAt(int e, const Eigen::Ref<const Vec>& y) const {
   double e1, e2;
   if (e < 2 * ns_) {
     const int j = e / 2;
@@ -297,7 +357,7 @@ double CompliantIntegrator::EventValueAt(int e, const Eigen::Ref<const Vec>& y) 
   return e % 2 == 0 ? e1 : e2;
 }
 
-bool CompliantIntegrator::Settle(int j, double d, double rate) {
+bool SpringSet::Settle(int j, double d, double rate, double t_s) {
   const CompliantSpring& s = springs_[static_cast<std::size_t>(j)];
   SpringState& m = state_[static_cast<std::size_t>(j)];
   const bool dashpot = s.law == SpringLaw::kSpringDashpot;
@@ -360,7 +420,7 @@ bool CompliantIntegrator::Settle(int j, double d, double rate) {
           m.d_max_m = m.d_set_m = s.key.dd_m;
           m.f_peak_N = 0.0;
           m.broken = true;
-          out_.key_break_time_s[j] = t_;
+          key_break_time_s_[j] = t_s;
         }
         break;
       }
@@ -369,53 +429,115 @@ bool CompliantIntegrator::Settle(int j, double d, double rate) {
   return closed;
 }
 
-bool CompliantIntegrator::AnyEngaged() const {
+bool SpringSet::AnyEngaged() const {
   for (const SpringState& m : state_) {
     if (m.branch != Branch::kOpen) return true;
   }
   return false;
 }
 
-void CompliantIntegrator::SettleAll(const Eigen::Ref<const Vec>& y) {
+bool SpringSet::SettleAll(const Eigen::Ref<const Vec>& y, double t_s) {
   const bool engaged = AnyEngaged();
   bool strike = false;
   Eigen::Vector3d w;
   for (int j = 0; j < ns_; ++j) {
     double d, rate;
     Kinematics(j, y.head(n_), y.segment(n_, n_), d, rate, w);
-    strike = Settle(j, d, rate) || strike;
+    strike = Settle(j, d, rate, t_s) || strike;
   }
-  for (int f = 0; f < static_cast<int>(friction_.size()); ++f) SettleFriction(f, y);
-  if (strike && !engaged) {
-    ++result_.impacts;
-    result_.min_impact_separation_s =
-        std::min(result_.min_impact_separation_s, t_ - last_strike_t_s_);
-    last_strike_t_s_ = t_;
+  for (int f = 0; f < static_cast<int>(friction_.size()); ++f) SettleFriction(f, y, t_s);
+  return strike && !engaged;
+}
+
+void SpringSet::AddForces(const Eigen::Ref<const Vec>& q, const Eigen::Ref<const Vec>& u,
+                          Eigen::Ref<Vec> h, double& joint_W, double& friction_W) const {
+  joint_W = 0.0;
+  Eigen::Vector3d w, w_face;
+  for (int j = 0; j < ns_; ++j) {
+    if (state_[static_cast<std::size_t>(j)].branch == Branch::kOpen) continue;
+    double d, rate;
+    const CompliantSpring& sp = springs_[static_cast<std::size_t>(j)];
+    const bool on_body = sp.face.body != model::kGround;
+    Kinematics(j, q, u, d, rate, w, on_body ? &w_face : nullptr);
+    const double f = BranchForce(j, d, rate);
+    h.segment<3>(3 * sp.body) += f * w;
+    // A joint between bodies pushes the face's body back with the same force.
+    if (on_body) h.segment<3>(3 * sp.face.body) += f * w_face;
+    joint_W += f * rate;
+  }
+  friction_W = 0.0;
+  for (const FrictionState& fr : friction_) {
+    if (fr.mode == Friction::kFree) continue;
+    double d, rate, s, s_rate;
+    Kinematics(fr.spring, q, u, d, rate, w);
+    const double normal = BranchForce(fr.spring, d, rate);
+    Tangential(fr.spring, q, u, s, s_rate, w);
+    const double f_t = FrictionForce(fr, s, normal);
+    h.segment<3>(3 * springs_[static_cast<std::size_t>(fr.spring)].body) += f_t * w;
+    friction_W -= f_t * s_rate;
   }
 }
 
-void CompliantIntegrator::StartKinematics() {
+void SpringSet::AddTo(const Eigen::Ref<const Vec>& q, const Eigen::Ref<const Vec>& u,
+                      Eigen::Ref<Vec> h) {
+  double joint_W, friction_W;
+  AddForces(q, u, h, joint_W, friction_W);
+}
+
+void SpringSet::Maxima(const Eigen::Ref<const Vec>& y) {
   Eigen::Vector3d w;
   for (int j = 0; j < ns_; ++j) {
-    if (state_[static_cast<std::size_t>(j)].broken) continue;
-    Kinematics(j, y_.head(n_), y_.segment(n_, n_), start_d_m_[static_cast<std::size_t>(j)],
-               start_rate_mps_[static_cast<std::size_t>(j)], w);
+    if (state_[static_cast<std::size_t>(j)].branch == Branch::kOpen) continue;
+    double d, rate;
+    Kinematics(j, y.head(n_), y.segment(n_, n_), d, rate, w);
+    max_force_N_[j] = std::max(max_force_N_[j], std::max(0.0, BranchForce(j, d, rate)));
+    max_deformation_m_[j] = std::max(max_deformation_m_[j], d);
   }
-  start_known_ = true;
 }
 
-bool CompliantIntegrator::AllFree() {
-  if (AnyEngaged()) return false;
-  // The bound kept every spring's gap above twice the touch band up to y_: each computed d is
-  // below its d_set there.
-  if (start_bounded_) return true;
-  if (!start_known_) StartKinematics();
+void SpringSet::EndEnergies(const Eigen::Ref<const Vec>& q, const Eigen::Ref<const Vec>& u,
+                            double& joint_stored_J, double& friction_stored_J) {
+  double stored = 0.0;
+  Eigen::Vector3d w;
   for (int j = 0; j < ns_; ++j) {
+    const CompliantSpring& s = springs_[static_cast<std::size_t>(j)];
     const SpringState& m = state_[static_cast<std::size_t>(j)];
-    if (m.broken) continue;
-    if (!(start_d_m_[static_cast<std::size_t>(j)] < m.d_set_m)) return false;
+    if (m.branch == Branch::kOpen) continue;
+    double d, rate;
+    Kinematics(j, q, u, d, rate, w);
+    if (s.law != SpringLaw::kSpringDashpot) {
+      const double f = std::max(0.0, BranchForce(j, d, rate));
+      stored += f * f / (2.0 * LineStiffness(j));
+    } else {
+      stored += 0.5 * s.k_N_per_m * d * d;
+    }
   }
-  return true;
+  joint_stored_J = stored;
+  // The stick springs' energy F_t^2 / (2 k_t) is stored; the rest of the friction's work is
+  // dissipated. A slip going on at the end adds its travel so far.
+  double friction_stored = 0.0;
+  for (FrictionState& fr : friction_) {
+    if (fr.mode == Friction::kFree) continue;
+    double d, rate, s, s_rate;
+    Kinematics(fr.spring, q, u, d, rate, w);
+    const double normal = BranchForce(fr.spring, d, rate);
+    Tangential(fr.spring, q, u, s, s_rate, w);
+    const double f_t = FrictionForce(fr, s, normal);
+    friction_stored += f_t * f_t / (2.0 * fr.k_t_N_per_m);
+    if (fr.mode == Friction::kSlip) {
+      wall_slip_m_[fr.spring] +=
+          std::abs(s - fr.sigma * fr.mu * normal / fr.k_t_N_per_m - fr.slip_begin_m);
+    }
+  }
+  friction_stored_J = friction_stored;
+}
+
+void SpringSet::MoveResults(CompliantRunResult& out) {
+  out.max_spring_force_N = std::move(max_force_N_);
+  out.max_spring_deformation_m = std::move(max_deformation_m_);
+  out.key_break_time_s = std::move(key_break_time_s_);
+  out.wall_slip_m = std::move(wall_slip_m_);
+  out.first_slip_time_s = std::move(first_slip_time_s_);
 }
 
 }  // namespace skewbridge::dynamics
