@@ -176,7 +176,7 @@ CheckpointFile CheckpointFile::Create(const std::filesystem::path& path, const S
     const Datasets image = CreateLayout(path.string(), spec, layout, false, 1, impl->created_utc);
     // No fsync: the new file holds no cell yet, and the first checkpoint's FlushToDisk syncs
     // the whole file (its layout with its cells) before any cell counts as saved.
-    SaveFileImage(image.file.get(), path.string(), Durability::kWritten);
+    SaveFileImage(image.file.get(), *image.memory, path.string(), Durability::kWritten);
   }
   impl->d = OpenLayout(path.string(), spec.name, true, nullptr);
   return CheckpointFile(std::move(impl));

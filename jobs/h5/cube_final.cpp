@@ -243,7 +243,7 @@ void WriteFinalCube(const std::filesystem::path& path, const SweepSpec& spec,
     SetAttr(d.group.get(), "completed_utc", UtcNow());
     SetAttr(d.group.get(), "complete",
             static_cast<std::int64_t>(all_done && !cells_collectively ? 1 : 0));
-    SaveFileImage(d.file.get(), tmp.string());
+    SaveFileImage(d.file.get(), *d.memory, tmp.string());
   } catch (const H5Error& e) {
     ReleaseFarm(farm, farmed);
     throw H5Error(tmp.string() + ": " + e.what());

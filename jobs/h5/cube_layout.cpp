@@ -38,7 +38,9 @@ Datasets CreateLayout(const std::string& path, const SweepSpec& spec, const Cube
   Datasets d;
   // Built in memory and written out whole (SaveFileImage): a full disk then fails in a plain
   // write, which leaves no half-written file and no HDF5 file that cannot be closed.
-  d.file = CreateMemoryFile(path);
+  MemoryFile image = CreateMemoryFile(path);
+  d.memory = std::move(image.memory);
+  d.file = std::move(image.file);
   SetAttr(d.file.get(), "format", std::string(kCubeFormat));
   SetAttr(d.file.get(), "format_version", kCubeFormatVersion);
   d.group = CreateGroup(d.file.get(), GroupPath(spec.name));

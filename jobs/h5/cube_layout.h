@@ -29,6 +29,7 @@ std::vector<hsize_t> ShapeOf(const SweepSpec& spec);
 
 /// The datasets of one sweep group, opened or created.
 struct Datasets {
+  FileMemoryHandle memory;    ///< the memory of a cube being created (CreateMemoryFile)
   Id file;                    ///< the cube (in memory while it is being created)
   Id group;                   ///< sweeps/<name>
   std::vector<Id> responses;  ///< responses/<name>, in the layout's response order

@@ -1,8 +1,6 @@
 #include "jobs/h5/h5.h"
 
 #include <H5DSpublic.h>
-#include <fcntl.h>
-#include <sys/mman.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -83,8 +81,6 @@ Id::~Id() {
 
 void SilenceErrorStack() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
 
-namespace {
-
 // Without file locks: the single writer of a cube holds no lock, so that readers (inspect,
 // h5py, a progress check) can open FILE.partial while the sweep runs; the checkpoint file is
 // safe to read at any moment because after creation only raw bytes change.
@@ -97,6 +93,8 @@ Id UnlockedAccess() {
         "H5Pset_libver_bounds");
   return fapl;
 }
+
+namespace {
 
 // Chunks hold whole rows along the last axis and grow over the preceding axes up to about
 // this many elements (a spectrum is one contiguous read).
@@ -113,14 +111,6 @@ std::vector<hsize_t> DefaultChunk(std::span<const hsize_t> shape) {
     elements *= chunk[k];
   }
   return chunk;
-}
-
-Id CreateMemoryFile(const std::string& name) {
-  SilenceErrorStack();
-  Id fapl = UnlockedAccess();
-  Check(H5Pset_fapl_core(fapl.get(), 1 << 20, false), "H5Pset_fapl_core " + name);
-  return Id(H5Fcreate(name.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), H5Fclose,
-            "create file in memory " + name);
 }
 
 Id CreateFile(const std::string& path) {
@@ -609,76 +599,6 @@ herr_t ReadObjectAttributes(hid_t root, const char* name, const H5O_info_t* /*in
 void ReadAllMetadata(hid_t file) {
   Check(H5Ovisit2(file, H5_INDEX_NAME, H5_ITER_INC, ReadObjectAttributes, nullptr, H5O_INFO_BASIC),
         "H5Ovisit (every object and attribute)");
-}
-
-// HDF5's metadata checksum (Jenkins' lookup3), exported by the library though not in its
-// public headers.
-extern "C" std::uint32_t H5_checksum_metadata(const void* data, std::size_t len,
-                                              std::uint32_t initval);
-
-namespace {
-
-// HDF5 1.10 clears the "open for writing" flag of a version-2 superblock in the image it hands
-// out but leaves the checksum computed with the flag set, so the image would not open. When the
-// stored checksum is exactly that of the flag set, it is recomputed for the bytes as they are.
-void RepairSuperblockChecksum(std::vector<char>& image) {
-  if (image.size() < 64 || image[8] != 2 || image[11] != 0) {
-    return;
-  }
-  const std::size_t offsets = static_cast<unsigned char>(image[9]);
-  const std::size_t body = 12 + 4 * offsets;
-  if (offsets == 0 || body + 4 > image.size()) {
-    return;
-  }
-  std::uint32_t stored = 0;
-  std::memcpy(&stored, image.data() + body, 4);
-  std::vector<char> open_for_write(image.begin(), image.begin() + static_cast<long>(body));
-  open_for_write[11] = 1;
-  if (H5_checksum_metadata(open_for_write.data(), body, 0) != stored) {
-    return;  // not the known case: leave the image as HDF5 made it
-  }
-  const std::uint32_t fixed = H5_checksum_metadata(image.data(), body, 0);
-  std::memcpy(image.data() + body, &fixed, 4);
-}
-
-}  // namespace
-
-void SaveFileImage(hid_t file, const std::string& path, Durability durability) {
-  Check(H5Fflush(file, H5F_SCOPE_LOCAL), "H5Fflush (memory) " + path);
-  const ssize_t size = H5Fget_file_image(file, nullptr, 0);
-  Check(size < 0 ? -1 : 0, "H5Fget_file_image " + path);
-  std::vector<char> image(static_cast<std::size_t>(size));
-  Check(H5Fget_file_image(file, image.data(), image.size()) < 0 ? -1 : 0,
-        "H5Fget_file_image " + path);
-  RepairSuperblockChecksum(image);
-  auto fail = [&path](const char* what, int fd) {
-    const std::string reason = std::strerror(errno);
-    if (fd >= 0) {
-      ::close(fd);
-    }
-    ::unlink(path.c_str());  // nothing half-written stays behind
-    throw H5Error(std::string(what) + ": " + reason);
-  };
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) {
-    fail("create", -1);
-  }
-  for (std::size_t at = 0; at < image.size();) {
-    const ssize_t n = ::write(fd, image.data() + at, image.size() - at);
-    if (n < 0 && errno == EINTR) {
-      continue;
-    }
-    if (n <= 0) {
-      fail("write", fd);
-    }
-    at += static_cast<std::size_t>(n);
-  }
-  if (durability == Durability::kOnDisk && ::fsync(fd) != 0) {
-    fail("fsync", fd);
-  }
-  if (::close(fd) != 0) {
-    fail("close", -1);
-  }
 }
 
 void FlushToDisk(hid_t file) {

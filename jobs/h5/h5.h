@@ -5,7 +5,9 @@
 
 #include <hdf5.h>
 
+#include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <string_view>
@@ -52,11 +54,37 @@ std::string ObjectName(hid_t obj);
 /// Silences HDF5's automatic error stack printing (libraries never print); errors are thrown.
 void SilenceErrorStack();
 
+/// The file access of every cube file: no file locks (readers may open a running sweep's
+/// checkpoint), the 1.8 object format (checksummed metadata) or later.
+Id UnlockedAccess();
 /// A file created (truncating) or opened; @throws H5Error.
 Id CreateFile(const std::string& path);
+/// Where a file built in memory (CreateMemoryFile) lies: an anonymous mapping that HDF5's core
+/// driver grows through the file image callbacks (huge pages where the kernel gives them: a
+/// cube of 30 000 cells is tens of megabytes, and each 4 kB page's first touch is a fault), so
+/// that SaveFileImage writes the bytes from where HDF5 put them.
+struct FileMemory {
+  unsigned char* base = nullptr;  ///< the mapping, nullptr before the first write
+  std::size_t capacity = 0;       ///< its length [byte]
+  /// The holders: the MemoryFile's handle, and the driver while it holds the mapping (its free
+  /// callback at the file's close releases it), so that either may go first.
+  int holders = 1;
+};
+/// Releases one holder of a FileMemory, deleting it with the last.
+struct ReleaseFileMemory {
+  /// Drops the handle's hold.
+  void operator()(FileMemory* memory) const;
+};
+/// The handle of a file's memory held by its creator.
+using FileMemoryHandle = std::unique_ptr<FileMemory, ReleaseFileMemory>;
+/// A file held in memory and its memory.
+struct MemoryFile {
+  FileMemoryHandle memory;
+  Id file;
+};
 /// A file held in memory (HDF5's core driver, no backing store), to be written out whole by
 /// SaveFileImage; `name` is only a label. @throws H5Error.
-Id CreateMemoryFile(const std::string& name);
+MemoryFile CreateMemoryFile(const std::string& name);
 /// Opens an existing file read-only or read-write; @throws H5Error when not an HDF5 file.
 Id OpenFile(const std::string& path, bool writable);
 /// Collective over MPI_COMM_WORLD: opens an existing file read-write through MPI-IO (parallel
@@ -150,13 +178,20 @@ enum class Durability {
   kWritten,  ///< handed to the system only: a later fsync of the file makes it durable
 };
 
-/// Writes the bytes of a file built in memory (CreateMemoryFile) to `path` with plain writes,
-/// then fsync unless `durability` is kWritten. A failure (a full disk) removes what was written
+/// Writes the bytes of a file built in memory (CreateMemoryFile: the file and its memory) to
+/// `path` with plain writes,
+/// then fsync unless `durability` is kWritten: the bytes of H5Fget_file_image (the superblock's
+/// status flags cleared, its checksum made to match), written from the driver's memory with
+/// only the superblock copied. A failure (a full disk) removes what was written
 /// and throws H5Error naming the system call and the system's reason (the caller adds the path);
 /// HDF5 itself never meets the failing write, since a failed flush leaves its metadata cache
 /// unable to close the file (and its shutdown then crashes).
-void SaveFileImage(hid_t file, const std::string& path,
+void SaveFileImage(hid_t file, const FileMemory& memory, const std::string& path,
                    Durability durability = Durability::kOnDisk);
+/// The bytes of a flushed memory file as H5Fget_file_image copies them out, the superblock's
+/// checksum repaired: what SaveFileImage writes (the reference it is checked against, and its
+/// way when the driver's memory does not start with the superblock it expects).
+std::vector<char> CopyFileImage(hid_t file);
 
 /// H5Fflush, then fsync of the file descriptor, so the bytes survive a crash of the process
 /// and of the machine.

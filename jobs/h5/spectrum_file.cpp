@@ -31,7 +31,8 @@ void WriteSpectrumFile(const std::filesystem::path& path, const SpectrumTable& t
   SilenceErrorStack();
   const std::string tmp = path.string() + ".tmp";
   try {
-    Id file = CreateMemoryFile(tmp);
+    MemoryFile image = CreateMemoryFile(tmp);
+    const Id& file = image.file;
     Id g = CreateGroup(file.get(), "spectra");
     SetAttr(g.get(), "command", t.command);
     SetAttr(g.get(), "method",
@@ -90,7 +91,7 @@ void WriteSpectrumFile(const std::filesystem::path& path, const SpectrumTable& t
         AttachScale(ds.get(), period.get(), 2, "period_s");
       }
     }
-    SaveFileImage(file.get(), tmp);
+    SaveFileImage(file.get(), *image.memory, tmp);
   } catch (const H5Error& e) {
     std::error_code ec;
     std::filesystem::remove(tmp, ec);
