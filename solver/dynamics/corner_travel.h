@@ -126,18 +126,21 @@ class CornerTravelTracker {
     std::array<double, 4> rate{};
   };
   // The travel of corner k of the deck at DOF b at the root of its rate in [t0, t1] (Brent's
-  // method on the dense output); out of line, so the step's common path stays small.
+  // method on the dense output); out of line, so the step's common path stays small. `turned`
+  // is set when some theta or u_theta it read is not zero (+0 or -0).
   template <class ComponentAt>
   [[gnu::noinline]] double PeakTravel(const Deck& deck, int b, int k, double t0, double t1,
                                       double r0, double r1, double time_tolerance_s,
-                                      ComponentAt& component_at) const {
+                                      ComponentAt& component_at, bool& turned) const {
     const auto rate = [&](double t) {
-      return Rate(deck, k, component_at(t, n_ + b), component_at(t, n_ + b + 1),
-                  component_at(t, b + 2), component_at(t, n_ + b + 2));
+      const double th = component_at(t, b + 2), uth = component_at(t, n_ + b + 2);
+      turned = turned || th != 0.0 || uth != 0.0;
+      return Rate(deck, k, component_at(t, n_ + b), component_at(t, n_ + b + 1), th, uth);
     };
     const double x = FindRootBrent(rate, t0, t1, r0, r1, time_tolerance_s).x;
-    return std::abs(
-        Travel(deck, k, component_at(x, b), component_at(x, b + 1), component_at(x, b + 2)));
+    const double th = component_at(x, b + 2);
+    turned = turned || th != 0.0;
+    return std::abs(Travel(deck, k, component_at(x, b), component_at(x, b + 1), th));
   }
   // Scan's work for deck d past its reach test: the corners at the step's end, their travel
   // into `best` (the deck's running maximum), and the roots of their rates; out of line.
@@ -200,10 +203,18 @@ void CornerTravelTracker::ScanDeck(int d, double t0, const Eigen::Map<const Eige
   for (int k = 0; k < 4; ++k) {
     best = std::max(best, std::abs(c1.f[static_cast<std::size_t>(k)]));
   }
+  // A corner searched over a deck that did not turn at any instant its search read: `still`.
+  // Another corner with the same end rates (bit for bit, or both zero) would search the same
+  // instants and find the same travel [docs/theory.md §3.20], which `best` already holds.
+  int still = -1;
   for (int k = 0; k < 4; ++k) {
     const auto ki = static_cast<std::size_t>(k);
     const double r0 = c0.rate[ki], r1 = c1.rate[ki];
     if (!(r0 * r1 < 0.0)) continue;
+    if (still >= 0 && r0 == c0.rate[static_cast<std::size_t>(still)] &&
+        r1 == c1.rate[static_cast<std::size_t>(still)]) {
+      continue;
+    }
     // Were the rate linear in t, the peak would exceed the larger end value by
     // min(r0^2, r1^2) (t1 - t0) / (2 (|r0| + |r1|)) <= (t1 - t0) min(|r0|, |r1|) / 4; twice
     // that leaves room for the rate's curvature over a step.
@@ -213,7 +224,10 @@ void CornerTravelTracker::ScanDeck(int d, double t0, const Eigen::Map<const Eige
     if (travel_bound(b, deck.nx, deck.ny, r, c0.f[ki], r0, c1.f[ki], r1, t1 - t0) < best) {
       continue;
     }
-    best = std::max(best, PeakTravel(deck, b, k, t0, t1, r0, r1, time_tolerance_s, component_at));
+    bool turned = false;
+    best = std::max(best,
+                    PeakTravel(deck, b, k, t0, t1, r0, r1, time_tolerance_s, component_at, turned));
+    if (!turned && still < 0) still = k;
   }
   end_[di] = c1;
   end_state_[di] = s1;

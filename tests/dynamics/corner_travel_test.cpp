@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "records/excitations.h"
+#include "solver/dynamics/corner_travel.h"
 #include "solver/dynamics/simulate.h"
 #include "solver/dynamics/time_stepping.h"
 #include "solver/model/builders.h"
@@ -221,6 +222,76 @@ TEST(CornerTravel, ASkewDeckThatPoundsTravelsLessThanTheBound) {
   ASSERT_EQ(r.status, RunStatus::kOk);
   const double bound = model::CornerTravelBound(model.body(0).geometry, r.max_abs_q.head<3>());
   EXPECT_LT(r.max_travel_m[0], 0.95 * bound);
+}
+
+// One step of a deck moving along x = X sin(w t), y = X sin(w t) / 3 and theta = e (t (h - t))^2
+// over [0, h] (theta and its rate zero at both ends, exactly): the tracked travel against a
+// dense maximum of model::CornerTravelAt, and the dense output's reads. A deck that does not
+// turn (e = 0) has four corners on one function: one search finds its peak, the other three
+// would repeat it read for read. A deck that turns inside the step (e != 0, the same ends) has
+// four different peaks and needs every search.
+struct StepScan {
+  double travel_m = 0.0;  // the tracked travel
+  double dense_m = 0.0;   // the dense maximum
+  int reads = 0;          // reads of the dense output
+};
+
+StepScan ScanOneStep(const model::Model& model, double e) {
+  const double h = 0.2, X = 0.1, w = 2.0 * kPi / 0.3;
+  const auto state = [&](double t, int i) {
+    const double p = t * (h - t), dp = h - 2.0 * t;
+    switch (i) {
+      case 0:
+        return X * std::sin(w * t);
+      case 1:
+        return X * std::sin(w * t) / 3.0;
+      case 2:
+        return e * p * p;
+      case 3:
+        return X * w * std::cos(w * t);
+      case 4:
+        return X * w * std::cos(w * t) / 3.0;
+      default:
+        return 2.0 * e * p * dp;
+    }
+  };
+  StepScan out;
+  const auto component_at = [&](double t, int i) {
+    ++out.reads;
+    return state(t, i);
+  };
+  Eigen::VectorXd q0(3), u0(3), q1(3), u1(3);
+  for (int i = 0; i < 3; ++i) {
+    q0[i] = state(0.0, i);
+    u0[i] = state(0.0, 3 + i);
+    q1[i] = state(h, i);
+    u1[i] = state(h, 3 + i);
+  }
+  CornerTravelTracker travel(model);
+  Eigen::VectorXd max_travel;
+  travel.Start(q0, max_travel);
+  travel.Scan(0.0, q0, u0, h, q1, u1, 1e-13, component_at, max_travel);
+  out.travel_m = max_travel[0];
+  const model::DeckGeometry& g = model.body(0).geometry;
+  for (int j = 0; j <= 200000; ++j) {
+    const double t = h * j / 200000.0;
+    out.dense_m =
+        std::max(out.dense_m, model::CornerTravelAt(g, {state(t, 0), state(t, 1), state(t, 2)}));
+  }
+  return out;
+}
+
+TEST(CornerTravel, ADeckThatDoesNotTurnSearchesOneCornerOfFour) {
+  const model::Model model = model::BuildDeckModel(Subsystem(30.0, 1e3));
+  ASSERT_EQ(model.n_dof(), 3);
+  const StepScan still = ScanOneStep(model, 0.0);
+  const StepScan turning = ScanOneStep(model, 1e-4 / std::pow(0.1, 4));  // theta up to 1e-4 rad
+  EXPECT_NEAR(still.travel_m, still.dense_m, 1e-9 * still.dense_m);
+  EXPECT_NEAR(turning.travel_m, turning.dense_m, 1e-9 * turning.dense_m);
+  EXPECT_GT(turning.travel_m, still.travel_m * (1.0 + 1e-6));  // the corners' peaks differ
+  // Per search: four reads per rate evaluation and three for the travel at the root.
+  EXPECT_GT(still.reads, 4 * 4);
+  EXPECT_GE(turning.reads, 3 * still.reads);
 }
 
 }  // namespace
