@@ -21,6 +21,9 @@ constexpr int kRecordTag = 7101;
 constexpr int kJobTag = 7102;     // rank 0 -> a rank: a job; 0 bytes = stop
 constexpr int kResultTag = 7103;  // a rank -> rank 0: the result of its oldest job
 constexpr int kJobsInFlight = 2;  // per rank: one to work on, one already waiting
+// Up to this many ranks rank 0 also runs farm jobs itself: it is then a large share of the
+// workers (half with 2 ranks), and a job of its own delays the others' results by one job only.
+constexpr int kRootWorksUpToRanks = 4;
 
 void CheckMpi(int code, const char* what) { SB_DEMAND(code == MPI_SUCCESS, what); }
 
@@ -208,7 +211,9 @@ class MpiTransport final : public Transport {
   // returns a result (dynamic, as the cells); then a zero-byte job tells each rank to stop.
   // MPI keeps the order of messages between two ranks, so a rank's results come back in the
   // order of its jobs: rank 0 keeps the job numbers of each rank in a queue and the messages
-  // carry nothing but the bytes.
+  // carry nothing but the bytes. With few ranks rank 0 runs the next job itself whenever no
+  // result is waiting, and a rank sends its result without waiting for rank 0 to take it (it
+  // may be in a job of its own), going on with the job already waiting.
   void Farm(std::size_t count, const std::function<std::vector<char>(std::size_t)>& job,
             const std::function<std::vector<char>(std::span<const char>)>& work,
             const std::function<void(std::size_t, std::span<const char>)>& done) override {
@@ -218,21 +223,28 @@ class MpiTransport final : public Transport {
     }
     if (rank_ != 0) {
       std::vector<char> in;
+      std::list<Outgoing> results;  // a list: Isend buffers must not move
       while (true) {
         const int bytes = ProbeSleeping(0, kJobTag);
         in.resize(static_cast<std::size_t>(bytes));
         CheckMpi(MPI_Recv(in.data(), bytes, MPI_BYTE, 0, kJobTag, comm_, MPI_STATUS_IGNORE),
                  "MPI_Recv");
         if (bytes == 0) {
-          return;
+          break;
         }
-        const std::vector<char> result = work(in);
-        SB_DEMAND(result.size() <= static_cast<std::size_t>(std::numeric_limits<int>::max()),
+        results.push_back({work(in), MPI_REQUEST_NULL});
+        Outgoing& result = results.back();
+        SB_DEMAND(result.bytes.size() <= static_cast<std::size_t>(std::numeric_limits<int>::max()),
                   "a farm result exceeds MPI's int count");
-        CheckMpi(MPI_Send(result.data(), static_cast<int>(result.size()), MPI_BYTE, 0, kResultTag,
-                          comm_),
-                 "MPI_Send");
+        CheckMpi(MPI_Isend(result.bytes.data(), static_cast<int>(result.bytes.size()), MPI_BYTE, 0,
+                           kResultTag, comm_, &result.request),
+                 "MPI_Isend");
+        ReapSends(results);
       }
+      for (Outgoing& result : results) {
+        CheckMpi(MPI_Wait(&result.request, MPI_STATUS_IGNORE), "MPI_Wait");
+      }
+      return;
     }
     std::list<Outgoing> sends;  // a list: Isend buffers must not move
     std::vector<std::deque<std::size_t>> queued(static_cast<std::size_t>(size_));
@@ -267,9 +279,23 @@ class MpiTransport final : public Transport {
         hand_out(to);
       }
     }
-    while (outstanding > 0) {
+    const bool root_works = size_ <= kRootWorksUpToRanks;
+    while (outstanding > 0 || (root_works && !error && next < count)) {
       MPI_Status status;
-      const int bytes = ProbeSleeping(MPI_ANY_SOURCE, kResultTag, &status);
+      int waiting = 0;
+      CheckMpi(MPI_Iprobe(MPI_ANY_SOURCE, kResultTag, comm_, &waiting, &status), "MPI_Iprobe");
+      if (!waiting && root_works && !error && next < count) {
+        const std::size_t index = next++;
+        try {
+          const std::vector<char> result = work(job(index));
+          done(index, result);
+        } catch (...) {
+          error = std::current_exception();  // no more jobs; results on their way are drained
+        }
+        continue;
+      }
+      const int bytes =
+          waiting ? CountOf(status) : ProbeSleeping(MPI_ANY_SOURCE, kResultTag, &status);
       if (buffer_.size() < static_cast<std::size_t>(bytes)) {
         buffer_.resize(static_cast<std::size_t>(bytes));
       }
@@ -289,11 +315,7 @@ class MpiTransport final : public Transport {
         }
       }
       hand_out(status.MPI_SOURCE);
-      for (auto it = sends.begin(); it != sends.end();) {
-        int complete = 0;
-        CheckMpi(MPI_Test(&it->request, &complete, MPI_STATUS_IGNORE), "MPI_Test");
-        it = complete ? sends.erase(it) : std::next(it);
-      }
+      ReapSends(sends);
     }
     for (int to = 1; to < size_; ++to) {
       send(to, {});
@@ -314,6 +336,13 @@ class MpiTransport final : public Transport {
   }
 
  private:
+  // The byte count of a probed message.
+  static int CountOf(const MPI_Status& status) {
+    int bytes = 0;
+    CheckMpi(MPI_Get_count(&status, MPI_BYTE, &bytes), "MPI_Get_count");
+    return bytes;
+  }
+
   // Waits for a message (MPI_Iprobe, sleeping 20 us between tries: a blocking MPI_Probe spins
   // and would take the core from the ranks computing beside it) and returns its byte count.
   int ProbeSleeping(int source, int tag, MPI_Status* out = nullptr) {
@@ -338,6 +367,15 @@ class MpiTransport final : public Transport {
     std::vector<char> bytes;
     MPI_Request request;
   };
+
+  // Frees the buffers of the sends that have completed.
+  static void ReapSends(std::list<Outgoing>& sends) {
+    for (auto it = sends.begin(); it != sends.end();) {
+      int complete = 0;
+      CheckMpi(MPI_Test(&it->request, &complete, MPI_STATUS_IGNORE), "MPI_Test");
+      it = complete ? sends.erase(it) : std::next(it);
+    }
+  }
 
   std::uint64_t FetchAdd(std::uint64_t add) {
     std::uint64_t old = 0;

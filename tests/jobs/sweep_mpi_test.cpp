@@ -7,6 +7,9 @@
 #include <algorithm>
 #include <cstring>
 #include <filesystem>
+#include <map>
+#include <span>
+#include <stdexcept>
 #include <vector>
 
 #include "jobs/h5/cube_file.h"
@@ -124,6 +127,64 @@ TEST(MpiClaims, ClaimsToBlockEndsPartitionThePendingListAtBlockBoundaries) {
   }
   EXPECT_EQ(next, kCells);
   EXPECT_GE(claims.size(), kCells / (2 * kBlock));  // more than a few large claims
+}
+
+// The final cube's chunk farm on 2 and 3 ranks, where rank 0 runs jobs too: every job's result
+// reaches rank 0 exactly once and is the work's result for that job whichever rank ran it; a
+// throwing `done` ends the farm on every rank, rethrown on rank 0 alone, and leaves no message
+// behind (a second farm on the same transport gets its own results).
+std::vector<char> FarmJob(std::size_t i) {
+  std::vector<char> bytes(100 + (i * 977) % 70000);  // above and below MPI's eager limits
+  for (std::size_t k = 0; k < bytes.size(); ++k) bytes[k] = static_cast<char>((i * 31 + k) % 251);
+  return bytes;
+}
+
+std::vector<char> FarmWork(std::span<const char> in) {
+  std::vector<char> out(in.rbegin(), in.rend());  // the job reversed, then its length mod 256
+  out.push_back(static_cast<char>(in.size() % 256));
+  return out;
+}
+
+TEST(MpiFarm, EveryJobsResultReachesRankZeroOnceAndAThrowingDoneEndsItOnEveryRank) {
+  auto transport = MakeMpiTransport();
+  const bool root = transport->Rank() == 0;
+  constexpr std::size_t kJobs = 300;
+  std::map<std::size_t, int> seen;
+  std::size_t wrong = 0;
+  auto check = [&](std::size_t i, std::span<const char> result) {
+    ++seen[i];
+    const std::vector<char> expected = FarmWork(FarmJob(i));
+    if (!std::equal(result.begin(), result.end(), expected.begin(), expected.end())) ++wrong;
+  };
+  if (root) {
+    transport->Farm(kJobs, FarmJob, FarmWork, check);
+    EXPECT_EQ(seen.size(), kJobs);
+    EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](const auto& e) { return e.second == 1; }));
+    EXPECT_EQ(wrong, 0u);
+  } else {
+    transport->Farm(0, {}, FarmWork, {});
+  }
+
+  std::size_t calls = 0;
+  const auto failing = [&](std::size_t, std::span<const char>) {
+    if (++calls == 7) throw std::runtime_error("disk full");
+  };
+  if (root) {
+    EXPECT_THROW(transport->Farm(kJobs, FarmJob, FarmWork, failing), std::runtime_error);
+    EXPECT_EQ(calls, 7u);  // no result handed on after the failure
+  } else {
+    EXPECT_NO_THROW(transport->Farm(0, {}, FarmWork, {}));
+  }
+
+  seen.clear();
+  wrong = 0;
+  if (root) {
+    transport->Farm(20, FarmJob, FarmWork, check);
+    EXPECT_EQ(seen.size(), 20u);
+    EXPECT_EQ(wrong, 0u);
+  } else {
+    transport->Farm(0, {}, FarmWork, {});
+  }
 }
 
 TEST(MpiSweep, RankZeroOnlyGathersAboveTheThresholdAndTheCubeIsUnchanged) {
