@@ -9,9 +9,11 @@
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <string>
+#include <type_traits>
 
 #include "solver/common/error.h"
 #include "solver/dynamics/active_forces.h"
@@ -58,7 +60,16 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
       memory_(model.n_contacts()),
       observer_(observer) {
   SB_DEMAND(&ws.model() == &model, "Simulate: workspace built for another model");
-  ValidatePolicy(policy);
+  // A sweep's runs share one policy: its members are checked once per workspace, and again
+  // whenever a run brings other bytes (the verdict depends on the bytes alone).
+  static_assert(std::is_trivially_copyable_v<EventPolicy>);
+  if (!ws.policy_validated_ ||
+      std::memcmp(ws.validated_policy_, &policy, sizeof(EventPolicy)) != 0) {
+    ws.policy_validated_ = false;
+    ValidatePolicy(policy);
+    std::memcpy(ws.validated_policy_, &policy, sizeof(EventPolicy));
+    ws.policy_validated_ = true;
+  }
   // The contact layer's thresholds of this run [docs/theory.md §3.15]: the workspace's problems
   // keep those of the last run otherwise.
   ws.decision_.impact.SetPolicy(policy.contact);

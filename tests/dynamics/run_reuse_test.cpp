@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "records/excitations.h"
+#include "solver/common/error.h"
 #include "solver/dynamics/run.h"
 #include "solver/dynamics/simulate.h"
 #include "solver/model/builders.h"
@@ -113,6 +114,30 @@ TEST(RunReuse, RefittedWorkspaceGivesTheBitsOfANewOneOverShapesInOrderAndShuffle
     testing::ExpectSameRunBits(dynamics::Run(models[static_cast<std::size_t>(i)], pulse, control),
                                fresh[static_cast<std::size_t>(i)]);
   }
+}
+
+// The workspace checks a policy once for runs that bring the same bytes: a policy outside its
+// ranges after a valid one in the same workspace is still refused (each time), and a valid one
+// after it runs with the bits of a new workspace.
+TEST(RunReuse, AWorkspaceStillRefusesABadPolicyAfterAGoodOne) {
+  const model::Model model = Deck(1, model::AbutmentSet::kPlusX, false);
+  const records::PulseExcitation pulse(records::PulseShape::kCosine, 4.0, 2.0 * std::numbers::pi);
+  model::RunControl control;
+  control.end_time_s = 3.0;
+  EventPolicy bad;
+  bad.finite_check_steps = 3;  // not a power of two
+  EventPolicy other;
+  other.finite_check_steps = 32;  // valid, other bytes
+  SimulationWorkspace fresh_ws(model);
+  const RunResult fresh = Simulate(model, pulse, control, fresh_ws);
+  SimulationWorkspace ws(model);
+  for (int round = 0; round < 2; ++round) {
+    testing::ExpectSameRunBits(Simulate(model, pulse, control, ws), fresh);
+    EXPECT_THROW(Simulate(model, pulse, control, ws, {}, bad), InputError);
+    EXPECT_THROW(Simulate(model, pulse, control, ws, {}, bad), InputError);
+    EXPECT_EQ(Simulate(model, pulse, control, ws, {}, other).status, RunStatus::kOk);
+  }
+  testing::ExpectSameRunBits(Simulate(model, pulse, control, ws), fresh);
 }
 
 }  // namespace
