@@ -128,17 +128,9 @@ ExcitationPiece SampledExcitation::PieceAt(double t) const {
 void SampledExcitation::NextPiece(ExcitationPiece& piece) const {
   // At t = (k + 1) dt, PieceAt's floor gives k or k + 1 and its guard k + 1 whenever
   // k + 2 < n; for k + 2 >= n, t is Duration() (the same product) and the piece is the rest.
-  const std::size_t n = ax_.size();
-  const std::size_t k = piece.index < 0 ? 0 : static_cast<std::size_t>(piece.index) + 1;
-  if (piece.index < 0 || k + 1 >= n || piece.t_end != static_cast<double>(k) * dt_s_) {
+  if (!NextSampledPiece(Samples(), piece)) {
     piece = PieceAt(piece.t_end);
-    return;
   }
-  piece.t_begin = piece.t_end;
-  piece.t_end = static_cast<double>(k + 1) * dt_s_;
-  piece.a_begin = Sample(k);
-  piece.slope = (Sample(k + 1) - Sample(k)) / dt_s_;
-  piece.index = static_cast<long>(k);
 }
 
 SampledExcitation ToExcitation(const GroundMotion& motion, Eigen::Vector2d direction) {

@@ -83,6 +83,10 @@ class SampledExcitation final : public Excitation {
   /// exactly, the piece's end, is piece k + 1 (or the rest after the last sample), so the same
   /// bits without the division and floor.
   void NextPiece(ExcitationPiece& piece) const override;
+  /// The samples: ax, ay (null when ay is empty) and dt.
+  SampleView Samples() const override {
+    return {dt_s_, ax_.data(), ay_.empty() ? nullptr : ay_.data(), ax_.size()};
+  }
   double Duration() const override;
   /// Excitation::Peak from the samples in order, without PieceAt: piece k of [k dt, (k + 1) dt]
   /// is the one PieceAt gives at t = k dt (the guard of its floor), so the same bits. An

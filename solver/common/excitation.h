@@ -13,6 +13,7 @@
 /// contact-free state transition can be exact on every piece ([docs/theory.md §3, smooth phases]).
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <limits>
 
 namespace skewbridge {
@@ -34,6 +35,38 @@ struct ExcitationPiece {
   Eigen::Vector2d At(double t) const;
 };
 
+/// The samples of an excitation that is linear between uniformly spaced samples from t = 0, each
+/// a kink (Excitation::Samples): piece k is [k dt, (k + 1) dt] from sample k to sample k + 1.
+struct SampleView {
+  double dt_s = 0.0;                ///< sample interval (s)
+  const double* ax_mps2 = nullptr;  ///< the x components (m/s^2), `count` of them
+  const double* ay_mps2 = nullptr;  ///< the y components (m/s^2), or null: y is 0
+  std::size_t count = 0;            ///< the samples; 0: the excitation has no such view
+};
+
+/// Excitation::NextPiece of an excitation with the samples `view`, inline: piece k + 1 from
+/// piece k (its index) when it is a ramp between two samples, then true; false, `piece`
+/// untouched, where the piece's end is not sample k + 1's time (k + 1) dt, the piece has no
+/// number, or the ramps end (the caller asks the excitation). PieceAt at t = (k + 1) dt gives
+/// piece k + 1 there (its floor's guard), so these operations are its bits.
+inline bool NextSampledPiece(const SampleView& view, ExcitationPiece& piece) {
+  const std::size_t k = piece.index < 0 ? 0 : static_cast<std::size_t>(piece.index) + 1;
+  if (piece.index < 0 || k + 1 >= view.count ||
+      piece.t_end != static_cast<double>(k) * view.dt_s) {
+    return false;
+  }
+  const double* ax = view.ax_mps2;
+  const double* ay = view.ay_mps2;
+  const double y0 = ay != nullptr ? ay[k] : 0.0;
+  const double y1 = ay != nullptr ? ay[k + 1] : 0.0;
+  piece.t_begin = piece.t_end;
+  piece.t_end = static_cast<double>(k + 1) * view.dt_s;
+  piece.a_begin = Eigen::Vector2d(ax[k], y0);
+  piece.slope = Eigen::Vector2d((ax[k + 1] - ax[k]) / view.dt_s, (y1 - y0) / view.dt_s);
+  piece.index = static_cast<long>(k);
+  return true;
+}
+
 /// A horizontal ground motion, the same for every support (uniform excitation).
 /// Implementations are immutable and thread-compatible: the integrators only call const methods.
 class Excitation {
@@ -49,6 +82,12 @@ class Excitation {
   /// PieceAt's search (a free step per record sample asks this once).
   /// @pre piece.t_end finite.
   virtual void NextPiece(ExcitationPiece& piece) const { piece = PieceAt(piece.t_end); }
+
+  /// The samples of an excitation whose pieces are ramps between uniform samples (SampleView),
+  /// valid while the excitation lives: NextSampledPiece over them gives NextPiece's bits, so a
+  /// caller that steps piece by piece reads them without a virtual call per piece. count 0 (the
+  /// default): no such view.
+  virtual SampleView Samples() const { return {}; }
 
   /// Ground acceleration (x, y) in m/s^2 at t (s); zero after Duration().
   Eigen::Vector2d At(double t) const { return PieceAt(t).At(t); }

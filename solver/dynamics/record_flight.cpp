@@ -16,13 +16,15 @@ bool Integrator::RecordFlight(long& steps, double& t_finite) {
   double* max_q = result_.max_abs_q.data();
   double* time_of_max = result_.time_of_max_s.data();
   double* max_travel = result_.max_travel_m.data();
+  // A record's samples, read by the next piece of every step without a virtual call.
+  const SampleView samples = excitation_.Samples();
   for (;;) {
     // FreeStep's plan, the same operations.
     const double t0 = t_, h0 = h_free_;
     if (observe) {
       observed_z0_ = z_.head(2 * n_);
     }
-    const ExcitationPiece& piece = pieces_.At(excitation_, t_);
+    const ExcitationPiece& piece = pieces_.At(excitation_, samples, t_);
     SB_DEMAND(piece.t_end > t_, "Excitation::PieceAt(t) returned a piece that ends at or before t");
     const FreeStepPlan step = PlanFreeStep(t_, piece.t_begin, std::min(piece.t_end, t_end_),
                                            NominalFreeStep(piece), h_free_, policy_);

@@ -82,6 +82,18 @@ class PieceCursor {
     }
     return piece_;
   }
+  /// At's piece, with the next piece of a sampled excitation read from its samples `view`
+  /// (Excitation::Samples) inline: the same bits.
+  const ExcitationPiece& At(const Excitation& excitation, const SampleView& view, double t_s) {
+    if (t_s == piece_.t_end) {
+      if (!NextSampledPiece(view, piece_)) {
+        excitation.NextPiece(piece_);
+      }
+    } else {
+      piece_ = excitation.PieceAt(t_s);
+    }
+    return piece_;
+  }
 
  private:
   ExcitationPiece piece_;  // the last piece (none yet: its end +inf, which no time equals)

@@ -128,6 +128,25 @@ TEST(SampledExcitationNextPiece, IsTheBitsOfPieceAtThePiecesEnd) {
   }
 }
 
+TEST(SampledExcitationSamples, ReadInlineAreTheBitsOfPieceAtThePiecesEnd) {
+  for (const SampledExcitation& ex : SampledCases(2028)) {
+    const SampleView view = ex.Samples();
+    ASSERT_EQ(view.count, ex.ax_mps2().size());
+    EXPECT_EQ(view.ay_mps2 == nullptr, ex.ay_mps2().empty());
+    ExcitationPiece piece = ex.PieceAt(0.0);
+    std::size_t ramps = 1;
+    // Every ramp after the first from the samples; the last one's end is the rest (false).
+    while (NextSampledPiece(view, piece)) {
+      ExpectSameBits(piece, ex.PieceAt(piece.t_begin), "piece " + std::to_string(ramps));
+      ++ramps;
+    }
+    EXPECT_EQ(ramps, ex.ax_mps2().size() - 1);
+    EXPECT_EQ(piece.t_end, ex.Duration());
+  }
+  // A pulse has no samples.
+  EXPECT_EQ(PulseExcitation(PulseShape::kSine, 1.0, 3.0).Samples().count, 0u);
+}
+
 // Records whose peak pieces are hard to tell apart: NIS090, random signals (one of them with
 // every sample of one magnitude and alternating sign, so every piece ties), two peaks an ulp
 // and 1e-12 apart, and a record whose largest term is a ramp's end between smaller samples.
