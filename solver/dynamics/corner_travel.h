@@ -97,17 +97,30 @@ class CornerTravelTracker {
   /// corner of the deck. Scan's test; inline.
   bool MayReach(int d, const double* x0, const double* v0, const double* x1, const double* v1,
                 double h_s, double best) const {
+    double reach0, speed0, reach1, speed1;
+    EndReach(d, x0, v0, reach0, speed0);
+    EndReach(d, x1, v1, reach1, speed1);
+    return MayReach(reach0, speed0, reach1, speed1, h_s, best);
+  }
+
+  /// MayReach's terms of one end of a step for deck d: the reach |n_e . (x, y)| + r |theta| (m)
+  /// and the speed, the same of the velocities (m/s), from the positions x and velocities v
+  /// (n_dof each). A step's end gives the next step's start the same terms.
+  void EndReach(int d, const double* x, const double* v, double& reach, double& speed) const {
     const Deck& deck = decks_[static_cast<std::size_t>(d)];
     const int b = 3 * d;
     // A corner moves at most |theta| r from the translation's share (|(R(theta) - E) P| <=
-    // |theta| |P| <= |theta| r) and at most |u_theta| r faster: when neither end nor the
-    // interior peak allowed below can reach the running maximum, the corners are not
-    // evaluated.
+    // |theta| |P| <= |theta| r) and at most |u_theta| r faster.
     const double r = deck.radius;
-    const double reach0 = std::abs(deck.nx * x0[b] + deck.ny * x0[b + 1]) + r * std::abs(x0[b + 2]);
-    const double reach1 = std::abs(deck.nx * x1[b] + deck.ny * x1[b + 1]) + r * std::abs(x1[b + 2]);
-    const double speed0 = std::abs(deck.nx * v0[b] + deck.ny * v0[b + 1]) + r * std::abs(v0[b + 2]);
-    const double speed1 = std::abs(deck.nx * v1[b] + deck.ny * v1[b + 1]) + r * std::abs(v1[b + 2]);
+    reach = std::abs(deck.nx * x[b] + deck.ny * x[b + 1]) + r * std::abs(x[b + 2]);
+    speed = std::abs(deck.nx * v[b] + deck.ny * v[b + 1]) + r * std::abs(v[b + 2]);
+  }
+
+  /// MayReach from its ends' terms (EndReach): when neither end nor the interior peak that
+  /// Scan's root search could find can reach the running maximum `best` (m), the corners are not
+  /// evaluated.
+  static bool MayReach(double reach0, double speed0, double reach1, double speed1, double h_s,
+                       double best) {
     const double reach = std::max(reach0, reach1) + 0.5 * h_s * std::min(speed0, speed1);
     return !(reach * (1.0 + 1e-12) < best);
   }

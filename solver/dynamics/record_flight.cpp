@@ -18,6 +18,13 @@ bool Integrator::RecordFlight(long& steps, double& t_finite) {
   double* max_travel = result_.max_travel_m.data();
   // A record's samples, read by the next piece of every step without a virtual call.
   const SampleView samples = excitation_.Samples();
+  // The history grid's next sample moves only in a step this loop leaves by.
+  const bool outputs = next_output_t_ <= output_reach;
+  // One deck's corner-reach terms at the step's start (CornerTravelTracker::EndReach).
+  double reach0 = 0.0, speed0 = 0.0;
+  if (decks == 1) {
+    travel_.EndReach(0, z_.data(), z_.data() + n_, reach0, speed0);
+  }
   for (;;) {
     // FreeStep's plan, the same operations.
     const double t0 = t_, h0 = h_free_;
@@ -46,12 +53,26 @@ bool Integrator::RecordFlight(long& steps, double& t_finite) {
         const double t1 = step.t_next_s;
         const double* x0 = z_.data();
         const double* x1 = z_new_.data();
-        bool rare = RaiseMaximaAtEnd(n_, x0, x0 + n_, t1, x1, x1 + n_, t1 - t_, max_q, time_of_max);
-        for (int d = 0; d < decks && !rare; ++d) {
-          rare = travel_.MayReach(d, x0, x0 + n_, x1, x1 + n_, t1 - t_, max_travel[d]);
+        // A deck's three coordinates unrolled.
+        bool rare = n_ == 3 ? RaiseMaximaAtEnd(3, x0, x0 + 3, t1, x1, x1 + 3, t1 - t_, max_q,
+                                               time_of_max)
+                            : RaiseMaximaAtEnd(n_, x0, x0 + n_, t1, x1, x1 + n_, t1 - t_, max_q,
+                                               time_of_max);
+        if (decks == 1) {
+          // One deck: the start's terms are the last step's end's.
+          double reach1, speed1;
+          travel_.EndReach(0, x1, x1 + n_, reach1, speed1);
+          rare = rare || CornerTravelTracker::MayReach(reach0, speed0, reach1, speed1, t1 - t_,
+                                                       max_travel[0]);
+          reach0 = reach1;
+          speed0 = speed1;
+        } else {
+          for (int d = 0; d < decks && !rare; ++d) {
+            rare = travel_.MayReach(d, x0, x0 + n_, x1, x1 + n_, t1 - t_, max_travel[d]);
+          }
         }
-        rare = rare || (next_output_t_ <= output_reach &&
-                        next_output_t_ <= t1 + policy_.output_time_band * std::max(1.0, t1));
+        rare = rare || (outputs && next_output_t_ <= t1 + policy_.output_time_band *
+                                                               std::max(1.0, t1));
         if (rare) {
           FinishFreeStep(piece, step, true, false, 0.0, 0.0);
           common = false;
