@@ -61,7 +61,7 @@ class GapFloors {
       if (harmonic) {
         ModalDrift3<true>(bound_, Y, tau_s, drift);
       } else {
-        ModalDrift3<false>(bound_, Y, tau_s, drift);
+        ModalDrift3Lanes(bound_, Y, tau_s, drift);  // ModalDrift3<false>'s bits
       }
       sum[0] = sum0[0] + drift[0];
       sum[1] = sum0[1] + drift[1];

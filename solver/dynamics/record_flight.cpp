@@ -18,6 +18,9 @@ bool Integrator::RecordFlight(long& steps, double& t_finite) {
   double* max_travel = result_.max_travel_m.data();
   // A record's samples, read by the next piece of every step without a virtual call.
   const SampleView samples = excitation_.Samples();
+  // GapsStayOpen's margin and the flow's modal coordinates (their storage is the flow's own).
+  const double gap_margin = 2.0 * scales_.gap_tol_m;
+  const double* modal_y = flow.modal_coordinates().data();
   // The history grid's next sample moves only in a step this loop leaves by.
   const bool outputs = next_output_t_ <= output_reach;
   // One deck's corner-reach terms at the step's start (CornerTravelTracker::EndReach).
@@ -44,7 +47,11 @@ bool Integrator::RecordFlight(long& steps, double& t_finite) {
       flow.SetGenerator(piece, t_, z_);
       flow.ApplyRecordMotion(StepPropagator(step.h_s, 0.0, false), z_, z_new_);
       ++result_.free_steps;
-      if (!GapsStayOpen(std::max(tau, step.h_s), false)) {
+      if (gaps_exact_) {
+        gap_floors_.Restart(ends_.gap0);
+      }
+      // GapsStayOpen (the bound applies in this loop) with the flight's margin and coordinates.
+      if (!gap_floors_.StaysOpen(modal_y, std::max(tau, step.h_s), gap_margin, false)) {
         FinishFreeStep(piece, step, false, false, 0.0, 0.0);
         common = false;
       } else {

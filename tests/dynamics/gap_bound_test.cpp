@@ -9,7 +9,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <random>
 
 #include "solver/contact/kinematics.h"
@@ -145,14 +147,17 @@ TEST(GapBound, ADecksDriftsWithoutHarmonicColumnsAreTheBitsOfTheGeneralLoop) {
     if (s % 7 == 0) z[2 * n] = -0.0;  // signed zeros of the forcing
     modal.Apply(modal.Propagator(0.01, 0.0, false), z, z_next);
     const double* Y = modal.modal_coordinates().data();
-    double general[3], plain[3], harmonic[3];
+    double general[3], plain[3], harmonic[3], lanes[3];
     ModalDrift(bound, Y, 0.01, general);
     ModalDrift3<false>(bound, Y, 0.01, plain);
     ModalDrift3<true>(bound, Y, 0.01, harmonic);
+    ModalDrift3Lanes(bound, Y, 0.01, lanes);
     for (int k = 0; k < 3; ++k) {
       EXPECT_EQ(std::signbit(plain[k]), std::signbit(general[k])) << "step " << s;
       EXPECT_EQ(plain[k], general[k]) << "step " << s << " mode " << k;
       EXPECT_EQ(harmonic[k], general[k]) << "step " << s << " mode " << k;
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(lanes[k]), std::bit_cast<std::uint64_t>(plain[k]))
+          << "step " << s << " mode " << k;
     }
     const bool a = with.StaysOpen(Y, 0.01, 1e-6, true);
     const bool b = without.StaysOpen(Y, 0.01, 1e-6, false);
