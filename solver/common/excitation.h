@@ -51,8 +51,7 @@ struct SampleView {
 /// piece k + 1 there (its floor's guard), so these operations are its bits.
 inline bool NextSampledPiece(const SampleView& view, ExcitationPiece& piece) {
   const std::size_t k = piece.index < 0 ? 0 : static_cast<std::size_t>(piece.index) + 1;
-  if (piece.index < 0 || k + 1 >= view.count ||
-      piece.t_end != static_cast<double>(k) * view.dt_s) {
+  if (piece.index < 0 || k + 1 >= view.count || piece.t_end != static_cast<double>(k) * view.dt_s) {
     return false;
   }
   const double* ax = view.ax_mps2;

@@ -61,10 +61,10 @@ bool Integrator::RecordFlight(long& steps, double& t_finite) {
         const double* x0 = z_.data();
         const double* x1 = z_new_.data();
         // A deck's three coordinates unrolled.
-        bool rare = n_ == 3 ? RaiseMaximaAtEnd(3, x0, x0 + 3, t1, x1, x1 + 3, t1 - t_, max_q,
-                                               time_of_max)
-                            : RaiseMaximaAtEnd(n_, x0, x0 + n_, t1, x1, x1 + n_, t1 - t_, max_q,
-                                               time_of_max);
+        bool rare =
+            n_ == 3
+                ? RaiseMaximaAtEnd(3, x0, x0 + 3, t1, x1, x1 + 3, t1 - t_, max_q, time_of_max)
+                : RaiseMaximaAtEnd(n_, x0, x0 + n_, t1, x1, x1 + n_, t1 - t_, max_q, time_of_max);
         if (decks == 1) {
           // One deck: the start's terms are the last step's end's.
           double reach1, speed1;
@@ -78,8 +78,8 @@ bool Integrator::RecordFlight(long& steps, double& t_finite) {
             rare = travel_.MayReach(d, x0, x0 + n_, x1, x1 + n_, t1 - t_, max_travel[d]);
           }
         }
-        rare = rare || (outputs && next_output_t_ <= t1 + policy_.output_time_band *
-                                                               std::max(1.0, t1));
+        rare = rare ||
+               (outputs && next_output_t_ <= t1 + policy_.output_time_band * std::max(1.0, t1));
         if (rare) {
           FinishFreeStep(piece, step, true, false, 0.0, 0.0);
           common = false;
