@@ -225,11 +225,27 @@ std::unique_ptr<Excitation> SpectraEvaluator::MakeExcitation(
         records::PairExcitation(record->motion, *record->motion_h2, direction));
   }
   if (record != nullptr) {
+    // ToExcitation's samples (a factor of 1 leaves them as read), with the pieces that hold
+    // their peak: the run's scale has the bits of the walk over every piece.
     return std::make_unique<records::SampledExcitation>(
-        records::ToExcitation(record->motion, direction));
+        records::ScaledExcitation(record->motion, 1.0, direction, RecordPeakPieces(*record)));
   }
   return std::make_unique<records::PulseExcitation>(p.pulse, scales.a_g_mps2, scales.w_g_radps,
                                                     direction);
+}
+
+std::shared_ptr<const records::PeakPieces> SpectraEvaluator::RecordPeakPieces(
+    const SweepRecord& record) const {
+  if (record.IsPair() || record.motion.npts() < 2) return nullptr;
+  const double horizon_s = policies().event.ramp_horizon_s;
+  peak_pieces_.resize(records_.size());
+  std::shared_ptr<const records::PeakPieces>& kept =
+      peak_pieces_[static_cast<std::size_t>(&record - records_.data())];
+  if (!kept || kept->ramp_horizon_s != horizon_s) {
+    kept = std::make_shared<const records::PeakPieces>(
+        records::FindPeakPieces(record.motion.acc_mps2, record.motion.dt_s, horizon_s));
+  }
+  return kept;
 }
 
 SpectraEvaluator::SeatRun SpectraEvaluator::RunOf(std::span<const std::size_t> axis_index) const {

@@ -81,6 +81,13 @@ class SpectraEvaluator final : public CellEvaluator {
   mutable SharedRuns<SeatRun> shared_;  ///< the last runs (spectra/shared_runs.h)
   /// The point and run of a cell, without its seat width.
   SeatRun RunOf(std::span<const std::size_t> axis_index) const;
+  /// The pieces of a single `record` that hold the acceleration peak at the event-driven
+  /// policy's ramp horizon (records::FindPeakPieces), found on the first call for that record
+  /// and kept, so that a cell's run reads those pieces instead of the whole record; nullptr for
+  /// a pair.
+  std::shared_ptr<const records::PeakPieces> RecordPeakPieces(const SweepRecord& record) const;
+  /// Per record of records_, its RecordPeakPieces once found.
+  mutable std::vector<std::shared_ptr<const records::PeakPieces>> peak_pieces_;
 };
 
 }  // namespace skewbridge::spectra

@@ -4,11 +4,14 @@
 // Arguments: subsystem|pilot|pilot-study, contacts 0|1, N (pilot-study: the pilot bridge at the
 // gaps of Pi_delta = 0.5), and optionally warm (the default: one workspace for every run) or cold
 // (a new copy of the model and a new workspace for every run) or cell (cold and without the energy
-// ledger: what a sweep cell does). Prints the run's status, counts and maxima.
+// ledger: what a sweep cell does; a record's excitation then carries the pieces that hold its
+// peak, records::FindPeakPieces, as a sweep's evaluators keep them per record, so that a run's
+// scale does not walk the record). Prints the run's status, counts and maxima.
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 
+#include "records/excitations.h"
 #include "solver/dynamics/simulate.h"
 #include "tests/dynamics/benchmark_cases.h"
 
@@ -27,10 +30,23 @@ int main(int argc, char** argv) {
   const std::string which = argv[1];
   const bool contacts = std::atoi(argv[2]) != 0;
   const int n = std::atoi(argv[3]);
-  const bench::Case c = which == "pilot" ? bench::PilotBridgeRecord(contacts)
-                        : which == "pilot-study"
-                            ? bench::PilotBridgeRecord(contacts, bench::kPilotStudyGap_m)
-                            : bench::SubsystemCosinePulse(contacts);
+  bench::Case c = which == "pilot" ? bench::PilotBridgeRecord(contacts)
+                  : which == "pilot-study"
+                      ? bench::PilotBridgeRecord(contacts, bench::kPilotStudyGap_m)
+                      : bench::SubsystemCosinePulse(contacts);
+  if (mode == "cell" && which != "subsystem") {
+    // The same samples (a factor of 1 leaves them as read) with their peak's pieces.
+    skewbridge::records::GroundMotion motion;
+    motion.dt_s = 0.01;
+    motion.acc_mps2 = bench::RecordLikeSignal();
+    const EventPolicy policy;
+    c.excitation = std::make_unique<skewbridge::records::SampledExcitation>(
+        skewbridge::records::ScaledExcitation(
+            motion, 1.0, Eigen::Vector2d::UnitX(),
+            std::make_shared<const skewbridge::records::PeakPieces>(
+                skewbridge::records::FindPeakPieces(motion.acc_mps2, motion.dt_s,
+                                                    policy.ramp_horizon_s))));
+  }
   SimulationWorkspace ws(c.model);
   // The warm-up run keeps the energy ledger as the mode's runs do, so that a whole-program
   // profile of `cell` runs shows no ledger work either.

@@ -23,6 +23,7 @@
 #include "jobs/sweep_runner.h"
 #include "jobs/transport.h"
 #include "records/excitations.h"
+#include "records/incidence.h"
 #include "records/synthetic.h"
 #include "solver/common/error.h"
 #include "solver/dynamics/simulate.h"
@@ -602,6 +603,44 @@ TEST(PilotStudy, RecordsWithGapsThatNeverCloseRotateAsTheContactFreeDeck) {
     EXPECT_NEAR(theta_m, free_run.max_abs_q(2), 1e-9 * free_run.max_abs_q(2));
     EXPECT_NEAR(cube.responses[Column(names, "x_m")][cell], free_run.max_abs_q(0),
                 1e-9 * free_run.max_abs_q(0));
+  }
+}
+
+// A pilot-bridge cell's record excitation carries the pieces of its record that hold the peak
+// (found once per record): its scale has the bits of the walk over every piece of the record as
+// read, for each record and incidence, and its samples are the record's. Pieces kept for
+// another record, or for the unscaled direction only, would give another scale.
+TEST(PilotBridgeRecords, ACellsScaleIsTheWalkOverEveryPieceOfItsRecord) {
+  const SweepSpec spec = SyntheticPilotSpec("peak", 4, "incidence_deg = [0.0, 35.0, 90.0]\n");
+  const SpectraEvaluator evaluator(spec);
+  const double horizon = evaluator.policies().event.ramp_horizon_s;
+  ASSERT_EQ(spec.CellCount(), 12u);
+  for (std::uint64_t c = 0; c < spec.CellCount(); ++c) {
+    SCOPED_TRACE("cell " + std::to_string(c));
+    const std::vector<std::size_t> index = spec.AxisIndex(c);
+    const spectra::SweepRecord* record = nullptr;
+    const spectra::PointParameters p = evaluator.Parameters(index, &record);
+    ASSERT_NE(record, nullptr);
+    const spectra::ExcitationScales scales{record->measures.pga_mps2,
+                                           record->measures.omega_g_radps};
+    const std::unique_ptr<Excitation> got = evaluator.MakeExcitation(index, p, record, scales);
+    double incidence_deg = 0.0;
+    for (std::size_t k = 0; k < spec.axes.size(); ++k) {
+      if (spec.axes[k].key == "incidence_deg") incidence_deg = spec.axes[k].values[index[k]];
+    }
+    const records::SampledExcitation own = records::ToExcitation(
+        record->motion,
+        incidence_deg == 0.0 ? Eigen::Vector2d::UnitX() : records::DirectionAt(incidence_deg));
+    const SampleView a = got->Samples(), b = own.Samples();
+    ASSERT_EQ(a.count, b.count);
+    ASSERT_EQ(a.ay_mps2 == nullptr, b.ay_mps2 == nullptr);
+    EXPECT_EQ(std::memcmp(a.ax_mps2, b.ax_mps2, a.count * sizeof(double)), 0);
+    if (b.ay_mps2 != nullptr) {
+      EXPECT_EQ(std::memcmp(a.ay_mps2, b.ay_mps2, a.count * sizeof(double)), 0);
+    }
+    const double walk = own.Excitation::Peak(horizon);
+    const double peak = got->Peak(horizon);
+    EXPECT_EQ(std::memcmp(&peak, &walk, sizeof(double)), 0) << peak << " against " << walk;
   }
 }
 
