@@ -17,6 +17,27 @@
 
 namespace skewbridge::dynamics {
 
+namespace {
+
+// Spring j of `set` seen by its friction element at (q, u): the deformation d (m) and its rate
+// (m/s), the coordinate s along the wall (m) and its rate (m/s), the tangent's gradient w_t on
+// the body's 3 DOFs, and the normal force N of the spring's current branch (N).
+struct AlongTheWall {
+  double d_m, d_rate_mps, s_m, s_rate_mps, normal_N;
+  Eigen::Vector3d w_t;
+};
+
+AlongTheWall WallMotion(const SpringSet& set, int j, const Eigen::Ref<const SpringSet::Vec>& q,
+                        const Eigen::Ref<const SpringSet::Vec>& u) {
+  AlongTheWall m;
+  set.Kinematics(j, q, u, m.d_m, m.d_rate_mps, m.w_t);
+  set.Tangential(j, q, u, m.s_m, m.s_rate_mps, m.w_t);
+  m.normal_N = set.BranchForce(j, m.d_m, m.d_rate_mps);
+  return m;
+}
+
+}  // namespace
+
 SpringSet::SpringSet(const model::Model& model, const std::vector<CompliantSpring>& springs)
     : model_(model),
       springs_(springs),
@@ -178,11 +199,9 @@ void SpringSet::FrictionEventValues(int f, const Eigen::Ref<const Vec>& y, doubl
   e1 = e2 = kInf;
   if (fr.mode == Friction::kFree) return;
   const int j = fr.spring;
-  double d, d_rate, s, s_rate;
-  Eigen::Vector3d w;
-  Kinematics(j, y.head(n_), y.segment(n_, n_), d, d_rate, w);
-  Tangential(j, y.head(n_), y.segment(n_, n_), s, s_rate, w);
-  const double normal = BranchForce(j, d, d_rate);
+  const AlongTheWall m = WallMotion(*this, j, y.head(n_), y.segment(n_, n_));
+  const double d = m.d_m, d_rate = m.d_rate_mps, s = m.s_m, s_rate = m.s_rate_mps;
+  const double normal = m.normal_N;
   if (fr.mode == Friction::kStick) {
     const double f_t = FrictionForce(fr, s, normal);
     e1 = fr.mu * normal - f_t;  // the stick force reaches the cone along +t
@@ -196,11 +215,9 @@ void SpringSet::FrictionEventValues(int f, const Eigen::Ref<const Vec>& y, doubl
 void SpringSet::SettleFriction(int f, const Eigen::Ref<const Vec>& y, double t_s) {
   FrictionState& fr = friction_[static_cast<std::size_t>(f)];
   const int j = fr.spring;
-  double d, d_rate, s, s_rate;
-  Eigen::Vector3d w;
-  Kinematics(j, y.head(n_), y.segment(n_, n_), d, d_rate, w);
-  Tangential(j, y.head(n_), y.segment(n_, n_), s, s_rate, w);
-  const double normal = BranchForce(j, d, d_rate);
+  const AlongTheWall m = WallMotion(*this, j, y.head(n_), y.segment(n_, n_));
+  const double d = m.d_m, d_rate = m.d_rate_mps, s = m.s_m, s_rate = m.s_rate_mps;
+  const double normal = m.normal_N;
   const auto end_slip = [&]() {
     // The slip ends: the anchor where the slipping element has it.
     const double anchor = s - fr.sigma * fr.mu * normal / fr.k_t_N_per_m;
@@ -468,13 +485,10 @@ void SpringSet::AddForces(const Eigen::Ref<const Vec>& q, const Eigen::Ref<const
   friction_W = 0.0;
   for (const FrictionState& fr : friction_) {
     if (fr.mode == Friction::kFree) continue;
-    double d, rate, s, s_rate;
-    Kinematics(fr.spring, q, u, d, rate, w);
-    const double normal = BranchForce(fr.spring, d, rate);
-    Tangential(fr.spring, q, u, s, s_rate, w);
-    const double f_t = FrictionForce(fr, s, normal);
-    h.segment<3>(3 * springs_[static_cast<std::size_t>(fr.spring)].body) += f_t * w;
-    friction_W -= f_t * s_rate;
+    const AlongTheWall m = WallMotion(*this, fr.spring, q, u);
+    const double f_t = FrictionForce(fr, m.s_m, m.normal_N);
+    h.segment<3>(3 * springs_[static_cast<std::size_t>(fr.spring)].body) += f_t * m.w_t;
+    friction_W -= f_t * m.s_rate_mps;
   }
 }
 
@@ -518,10 +532,8 @@ void SpringSet::EndEnergies(const Eigen::Ref<const Vec>& q, const Eigen::Ref<con
   double friction_stored = 0.0;
   for (FrictionState& fr : friction_) {
     if (fr.mode == Friction::kFree) continue;
-    double d, rate, s, s_rate;
-    Kinematics(fr.spring, q, u, d, rate, w);
-    const double normal = BranchForce(fr.spring, d, rate);
-    Tangential(fr.spring, q, u, s, s_rate, w);
+    const AlongTheWall m = WallMotion(*this, fr.spring, q, u);
+    const double s = m.s_m, normal = m.normal_N;
     const double f_t = FrictionForce(fr, s, normal);
     friction_stored += f_t * f_t / (2.0 * fr.k_t_N_per_m);
     if (fr.mode == Friction::kSlip) {
