@@ -1,19 +1,17 @@
 #include "jobs/sweep_runner.h"
 
-#include <fmt/format.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
 #include <ctime>
 #include <exception>
-#include <limits>
 #include <optional>
 
 #include "jobs/cube.h"
 #include "jobs/h5/cube_file.h"
 #include "jobs/study.h"
+#include "jobs/sweep_cells.h"
 #include "solver/common/error.h"
 
 namespace skewbridge::jobs {
@@ -37,53 +35,6 @@ bool StopRequested(const SweepOptions& options) {
   return options.stop != nullptr && *options.stop != 0;
 }
 
-// One cell into slot i of its chunk's batch, with every failure turned into data.
-void EvaluateInto(const SweepSpec& spec, const CellEvaluator& evaluator, const CubeLayout& layout,
-                  std::uint64_t cell, std::size_t i, ResultBatch& batch) {
-  const std::size_t n = batch.Size();
-  const std::vector<std::size_t> index = spec.AxisIndex(cell);
-  const Clock::time_point start = Clock::now();
-  std::int32_t status = kStatusOk;
-  std::string text;
-  try {
-    CellOutcome outcome = evaluator.Evaluate(index);
-    // A cell without exactly the evaluator's responses is an internal error of its own status:
-    // no value is guessed for it.
-    const bool complete = CheckResponseCount(outcome, layout.evaluator_responses);
-    status = outcome.status;
-    batch.events[i] = outcome.stats.events;
-    batch.steps[i] = outcome.stats.steps;
-    if (outcome.status != kStatusOk) {
-      text = std::move(outcome.status_text);
-    }
-    for (std::size_t r = 0; r < layout.source_index.size(); ++r) {
-      batch.values[r * n + i] = complete ? outcome.responses[layout.source_index[r]]
-                                         : std::numeric_limits<double>::quiet_NaN();
-    }
-  } catch (const std::exception& e) {
-    status = kStatusException;
-    text = e.what();
-    for (std::size_t r = 0; r < layout.source_index.size(); ++r) {
-      batch.values[r * n + i] = std::numeric_limits<double>::quiet_NaN();
-    }
-  }
-  batch.status[i] = status;
-  batch.wall_s[i] = Seconds(start);
-  if (status != kStatusOk) {
-    const auto it = std::find_if(batch.failures.begin(), batch.failures.end(),
-                                 [&](const FailureNote& f) { return f.status == status; });
-    if (it == batch.failures.end()) {
-      batch.failures.push_back({status, 1, cell, std::move(text)});
-    } else {
-      ++it->count;
-      if (cell < it->lowest_cell) {
-        it->lowest_cell = cell;
-        it->text = std::move(text);
-      }
-    }
-  }
-}
-
 template <typename T>
 void CopyColumn(T* cube, const char* column, std::size_t n) {
   std::memcpy(cube, column, n * sizeof(T));
@@ -102,8 +53,13 @@ class Writer {
   Writer(const SweepSpec& spec, const CubeLayout& layout, const SweepOptions& options)
       : spec_(spec), layout_(layout), options_(options) {}
 
-  // Opens or resumes; returns false when --resume finds the sweep already complete.
-  bool Open() {
+  // What Open decided: the sweep is complete already, a checkpoint was resumed, or a fresh
+  // checkpoint file is still to be created (Create).
+  enum class Opened { kComplete, kResumed, kToCreate };
+
+  // Checks the output and resumes a checkpoint, or prepares a fresh cube in memory (every cell
+  // pending) whose checkpoint file Create then writes: the other ranks compute meanwhile.
+  Opened Open() {
     const std::filesystem::path partial = PartialPath(options_.out);
     std::error_code ec;
     const bool out_exists = std::filesystem::exists(options_.out, ec);
@@ -130,7 +86,7 @@ class Writer {
         }
         if (s.spec_hash == spec_.Hash() && s.complete) {
           data_.Reset(spec_.CellCount(), layout_.responses.size());
-          return false;
+          return Opened::kComplete;
         }
       }
       throw InputError::AtLine(options_.out.string(), 0,
@@ -143,12 +99,18 @@ class Writer {
       if (data_.Cells() != spec_.CellCount()) {
         throw InputError::AtLine(partial.string(), 0, "cannot resume: its shape differs");
       }
-    } else {
-      data_.Reset(spec_.CellCount(), layout_.responses.size());
-      file_.emplace(h5::CheckpointFile::Create(partial, spec_, layout_));
+      run_ = file_->Run();
+      return Opened::kResumed;
     }
+    data_.Reset(spec_.CellCount(), layout_.responses.size());
+    return Opened::kToCreate;
+  }
+
+  // Creates the fresh checkpoint file that Open prepared (run 1). @throws h5::H5Error when it
+  // cannot be written (nothing is left at its path then).
+  void Create() {
+    file_.emplace(h5::CheckpointFile::Create(PartialPath(options_.out), spec_, layout_));
     run_ = file_->Run();
-    return true;
   }
 
   PendingCells Pending() const {
@@ -388,22 +350,6 @@ class Writer {
   std::map<std::int32_t, std::uint64_t> example_cells_;
 };
 
-// Guided self-scheduling [Polychronopoulos and Kuck 1987]: claim a share of what is left,
-// smaller near the end so that the ranks finish together, capped so that a chunk takes about
-// chunk_seconds at this rank's last measured cell time (1 cell while none is measured).
-std::uint64_t ChunkSize(std::uint64_t total, std::uint64_t seen, int ranks,
-                        const SweepOptions& options, double cell_s) {
-  const std::uint64_t left = total > seen ? total - seen : 0;
-  const std::uint64_t share = left / (2 * static_cast<std::uint64_t>(ranks));
-  std::uint64_t cap = std::max<std::uint64_t>(1, options.max_chunk);
-  if (!(cell_s > 0.0)) {
-    cap = 1;
-  } else if (options.chunk_seconds / cell_s < static_cast<double>(cap)) {
-    cap = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(options.chunk_seconds / cell_s));
-  }
-  return std::clamp<std::uint64_t>(share, 1, cap);
-}
-
 // The cells a rank other than 0 computed in this run, from its kept batches (in pending order,
 // which is cell order), for the collective final write.
 h5::FinalCells KeptCells(std::vector<ResultBatch>& kept, const PendingCells& pending,
@@ -534,14 +480,20 @@ SweepReport RunSweep(const SweepSpec& spec, const CellEvaluator& evaluator, Tran
   // Setup errors surface on every rank before any work.
   std::optional<Writer> writer;
   std::string setup = "run";
+  const auto setup_error = [&options](const std::exception& e, bool h5) {
+    return std::string("error:") + (h5 ? options.out.string() + ".partial: " : "") + e.what();
+  };
   if (root) {
     writer.emplace(spec, layout, options);
     try {
-      setup = writer->Open() ? "run" : "complete";
+      const Writer::Opened opened = writer->Open();
+      setup = opened == Writer::Opened::kComplete   ? "complete"
+              : opened == Writer::Opened::kToCreate ? "create"
+                                                    : "run";
     } catch (const InputError& e) {
-      setup = std::string("error:") + e.what();
+      setup = setup_error(e, false);
     } catch (const h5::H5Error& e) {
-      setup = std::string("error:") + options.out.string() + ".partial: " + e.what();
+      setup = setup_error(e, true);
     }
   }
   setup = transport.BroadcastText(setup);
@@ -565,6 +517,29 @@ SweepReport RunSweep(const SweepSpec& spec, const CellEvaluator& evaluator, Tran
   }
   transport.BroadcastPending(pending);
   const std::uint64_t total = pending.size();
+
+  bool all_finished = transport.Size() == 1;
+  // A fresh checkpoint file (its datasets filled in memory, then written: about 8 us per cell
+  // of 154 datasets) is created by rank 0 while the other ranks claim and compute their first
+  // cells. Should it fail, the claims stop, rank 0 drains and drops what was computed, and
+  // every rank ends with the one error line, as for any setup error (below).
+  std::string create_error;
+  if (root && setup == "create") {
+    try {
+      writer->Create();
+    } catch (const InputError& e) {
+      create_error = setup_error(e, false);
+    } catch (const h5::H5Error& e) {
+      create_error = setup_error(e, true);
+    }
+    if (!create_error.empty()) {
+      transport.StopClaims();
+      while (!all_finished) {
+        all_finished = transport.Receive([](std::span<const char>) {}, 0.05);
+      }
+    }
+  }
+  // The cells' time as rank 0 sees it (ranks > 0 may have begun during the creation above).
   const Clock::time_point start = Clock::now();
   Clock::time_point last_progress = start;
 
@@ -590,7 +565,6 @@ SweepReport RunSweep(const SweepSpec& spec, const CellEvaluator& evaluator, Tran
     options.progress(p);
   };
 
-  bool all_finished = transport.Size() == 1;
   // The collective final write: every rank keeps what it computed (rank 0: where its cells are).
   const bool collective =
       transport.Size() > 1 && transport.Size() >= options.collective_final_from_ranks;
@@ -616,7 +590,8 @@ SweepReport RunSweep(const SweepSpec& spec, const CellEvaluator& evaluator, Tran
   double cell_s = 0.0;  // this rank's mean cell time in its last chunk [s]
   const std::uint64_t work_block = evaluator.WorkBlock();
   const bool computes =
-      !root || transport.Size() <= options.root_computes_up_to_ranks || transport.Size() == 1;
+      create_error.empty() &&
+      (!root || transport.Size() <= options.root_computes_up_to_ranks || transport.Size() == 1);
   while (computes && !stopping) {
     if (StopRequested(options)) {
       stopping = true;
@@ -669,7 +644,9 @@ SweepReport RunSweep(const SweepSpec& spec, const CellEvaluator& evaluator, Tran
     }
   }
 
-  if (root) {
+  if (root && !create_error.empty()) {
+    // Nothing was computed here, and the other ranks' streams are drained.
+  } else if (root) {
     if (stopping) {
       transport.StopClaims();
       if (writer->computed() > 0) {
@@ -708,9 +685,18 @@ SweepReport RunSweep(const SweepSpec& spec, const CellEvaluator& evaluator, Tran
   // Every rank learns whether rank 0 writes the final cube: the others, idle now, then deflate
   // its chunks (the 0.65-1 us per cell that rank 0 would spend alone, docs/hdf5-layout.md).
   const bool farm = transport.Size() > 1 && options.farm_final_cube;
-  const bool finalize =
-      transport.BroadcastText(root && !report.interrupted && writer->AllDone() ? "final" : "") ==
-      "final";
+  std::string ending;
+  if (root) {
+    ending = !create_error.empty()                      ? create_error
+             : !report.interrupted && writer->AllDone() ? "final"
+                                                        : "";
+  }
+  ending = transport.BroadcastText(ending);
+  if (ending.rfind("error:", 0) == 0) {
+    transport.Finish();  // every stream drained: no rank is left waiting
+    throw InputError(ending.substr(6));
+  }
+  const bool finalize = ending == "final";
   // The fragility fits, their bootstraps spread over the ranks, before the final write.
   std::optional<std::vector<FragilityStudy>> fragility;
   if (finalize && !spec.limit_states.empty()) {
@@ -767,34 +753,6 @@ SweepReport RunSweep(const SweepSpec& spec, const CellEvaluator& evaluator, Tran
     writer->FillReport(report);
   }
   return report;
-}
-
-std::string FormatProgress(const SweepProgress& p) {
-  const double percent =
-      p.cells_total ? 100.0 * static_cast<double>(p.cells_done) / static_cast<double>(p.cells_total)
-                    : 100.0;
-  return fmt::format("sweep: {}/{} cells ({:.1f}%), {} failed, {:.1f} cells/s, ETA {:.0f} s",
-                     p.cells_done, p.cells_total, percent, p.run_failed, p.cells_per_s, p.eta_s);
-}
-
-std::string FormatSummary(const SweepReport& r) {
-  if (r.already_complete) {
-    return fmt::format("sweep: already complete ({} cells); nothing to do", r.cells_total);
-  }
-  const double rate = r.wall_s > 0 ? static_cast<double>(r.cells_computed) / r.wall_s : 0.0;
-  std::string failures;
-  for (const auto& [name, count] : r.failed_by_status) {
-    failures += fmt::format("{}{} {}", failures.empty() ? " (" : ", ", count, name);
-  }
-  if (!failures.empty()) {
-    failures += ")";
-  }
-  const char* state = r.complete ? "complete" : (r.interrupted ? "interrupted" : "incomplete");
-  return fmt::format(
-      "sweep {}: run {}, {}/{} cells done, {} computed on {} ranks in {:.2f} s ({:.1f} cells/s), "
-      "{} failed{}, {} checkpoints",
-      state, r.run, r.cells_done, r.cells_total, r.cells_computed, r.ranks, r.wall_s, rate,
-      r.cells_failed, failures, r.checkpoints);
 }
 
 }  // namespace skewbridge::jobs

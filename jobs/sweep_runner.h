@@ -114,7 +114,9 @@ struct SweepReport {
 /// kStatusException and never stops the sweep.
 /// @throws InputError before any work, on every rank, for an unusable output file (exists
 ///         without --resume/--force, a different specification on resume), and for
-///         responses the evaluator does not know.
+///         responses the evaluator does not know; also on every rank when a fresh checkpoint
+///         file cannot be written (ranks > 0 compute while rank 0 creates it: what they
+///         computed is dropped, and nothing is left at FILE.partial or FILE).
 SweepReport RunSweep(const SweepSpec& spec, const CellEvaluator& evaluator, Transport& transport,
                      const SweepOptions& options);
 

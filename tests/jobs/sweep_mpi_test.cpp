@@ -10,11 +10,13 @@
 #include <map>
 #include <span>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "jobs/h5/cube_file.h"
 #include "jobs/mpi/mpi_transport.h"
 #include "jobs/sweep_runner.h"
+#include "solver/common/error.h"
 #include "tests/jobs/test_evaluator.h"
 
 namespace skewbridge::jobs::sweep_mpi_test {
@@ -268,6 +270,51 @@ TEST(MpiSweep, StopOnRankZeroAloneCheckpointsEveryComputedCellAndResumes) {
   }
   EXPECT_EQ(first_run, computed_everywhere);
   std::filesystem::remove(options.out);
+}
+
+// Ranks > 0 compute while rank 0 creates the checkpoint file; a creation that fails (a folder
+// where no file can be made, even by root) ends every rank with the same error, naming the
+// checkpoint file, leaves no file behind, and leaves no message in flight: a sweep on a new
+// transport then runs to a complete cube.
+TEST(MpiSweep, AFailedCheckpointCreationEndsEveryRankWithItsErrorAndNoFile) {
+  const SweepSpec spec = ParseSweepSpec(kSpec, "spec.toml", ".");
+  const testing::TestEvaluator evaluator(spec, 100, 0);
+  const testing::TestEvaluator slow(spec, 100, 5.0);
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  SweepOptions options;
+  options.out = "/proc/sb_mpi_no_file_" + std::to_string(WorldSize()) + ".h5";
+  options.max_chunk = 4;
+  std::string error;
+  {
+    auto transport = MakeMpiTransport();
+    try {
+      RunSweep(spec, rank == 0 ? evaluator : slow, *transport, options);
+    } catch (const InputError& e) {
+      error = e.what();
+    }
+    transport.reset();
+  }
+  EXPECT_NE(error.find(options.out.string() + ".partial: create: "), std::string::npos) << error;
+  std::error_code ec;
+  EXPECT_FALSE(std::filesystem::exists(options.out, ec));
+  EXPECT_FALSE(std::filesystem::exists(PartialPath(options.out), ec));
+  // Every rank holds the same line (rank 0's, broadcast).
+  std::uint64_t length = error.size();
+  std::uint64_t longest = 0;
+  MPI_Allreduce(&length, &longest, 1, MPI_UINT64_T, MPI_MAX, MPI_COMM_WORLD);
+  EXPECT_EQ(length, longest);
+
+  options.out = std::filesystem::temp_directory_path() /
+                ("sb_mpi_after_failure_" + std::to_string(WorldSize()) + ".h5");
+  options.force = true;
+  auto transport = MakeMpiTransport();
+  const SweepReport report = RunSweep(spec, rank == 0 ? evaluator : slow, *transport, options);
+  if (rank == 0) {
+    EXPECT_TRUE(report.complete);
+    EXPECT_EQ(report.cells_done, spec.CellCount());
+    std::filesystem::remove(options.out);
+  }
 }
 
 }  // namespace
