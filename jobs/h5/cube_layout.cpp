@@ -38,7 +38,16 @@ Datasets CreateLayout(const std::string& path, const SweepSpec& spec, const Cube
   Datasets d;
   // Built in memory and written out whole (SaveFileImage): a full disk then fails in a plain
   // write, which leaves no half-written file and no HDF5 file that cannot be closed.
-  MemoryFile image = CreateMemoryFile(path);
+  // A checkpoint's chunks are allocated and filled at creation: its per-cell bytes (a double
+  // per response, the status, done, run, events, steps and wall time) are most of the file,
+  // and its memory is mapped at that length, with room for the chunks' index and checksums and
+  // the metadata, so that it never grows. A final cube's chunks are deflated: no estimate.
+  const double cell_bytes =
+      8.0 * static_cast<double>(layout.responses.size()) + 4 + 1 + 4 + 8 + 8 + 8;
+  const double expected =
+      final ? 0.0 : 1.125 * cell_bytes * static_cast<double>(spec.CellCount()) + (1 << 20);
+  MemoryFile image = CreateMemoryFile(
+      path, expected < 0x1p40 ? static_cast<std::size_t>(expected) : std::size_t{1} << 40);
   d.memory = std::move(image.memory);
   d.file = std::move(image.file);
   SetAttr(d.file.get(), "format", std::string(kCubeFormat));

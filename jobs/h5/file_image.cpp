@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdint>
 #include <cstring>
 
 #include "jobs/h5/h5.h"
@@ -16,14 +17,38 @@ namespace skewbridge::jobs::h5 {
 namespace {
 
 // The core driver's memory as file image callbacks (each behaves as its C library namesake, on
-// the FileMemory passed as udata): one anonymous mapping, grown at least twofold by mremap (which
-// moves page tables, not bytes), advised for transparent huge pages. The driver still grows its
-// file by its increment and zeroes each new part; those parts then mostly lie in memory the
-// mapping already holds, and their first touch faults in 2 MiB pages where the kernel has them.
+// the FileMemory passed as udata): one anonymous mapping that starts on a 2 MiB boundary and is
+// a whole number of 2 MiB pages long, advised for transparent huge pages, so that the first
+// touch of each 2 MiB faults in one huge page where the kernel has them instead of 512 pages of
+// 4 kB. Its first length is the creator's estimate of the file (FileMemory::expected) when
+// that is larger than what the driver asks; it grows at least twofold into a new aligned range
+// by mremap (which moves page tables, huge pages whole, not bytes). The driver still grows its
+// file by its increment and zeroes each new part; those parts lie in memory the mapping holds.
 constexpr std::size_t kImagePage = std::size_t{1} << 21;
 
 std::size_t RoundUpToImagePage(std::size_t bytes) {
   return (bytes + kImagePage - 1) / kImagePage * kImagePage;
+}
+
+// An anonymous read-write mapping of `bytes` (a multiple of kImagePage) at a multiple of
+// kImagePage, or MAP_FAILED: a mapping one page longer, its unaligned head and tail unmapped.
+void* MapAligned(std::size_t bytes) {
+  if (bytes > SIZE_MAX - kImagePage) {
+    return MAP_FAILED;
+  }
+  void* raw = ::mmap(nullptr, bytes + kImagePage, PROT_READ | PROT_WRITE,
+                     MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (raw == MAP_FAILED) {
+    return MAP_FAILED;
+  }
+  const auto at = reinterpret_cast<std::uintptr_t>(raw);
+  const std::uintptr_t aligned = (at + kImagePage - 1) / kImagePage * kImagePage;
+  const std::size_t head = aligned - at;
+  if (head > 0) {
+    ::munmap(raw, head);
+  }
+  ::munmap(reinterpret_cast<void*>(aligned + bytes), kImagePage - head);  // never empty
+  return reinterpret_cast<void*>(aligned);
 }
 
 void* ImageRealloc(void* ptr, std::size_t size, H5FD_file_image_op_t /*op*/, void* udata) {
@@ -34,11 +59,24 @@ void* ImageRealloc(void* ptr, std::size_t size, H5FD_file_image_op_t /*op*/, voi
   if (ptr != nullptr && size <= memory->capacity) {
     return ptr;
   }
-  const std::size_t capacity = RoundUpToImagePage(std::max(size, 2 * memory->capacity));
-  void* at = ptr == nullptr ? ::mmap(nullptr, capacity, PROT_READ | PROT_WRITE,
-                                     MAP_PRIVATE | MAP_ANONYMOUS, -1, 0)
-                            : ::mremap(ptr, memory->capacity, capacity, MREMAP_MAYMOVE);
+  std::size_t capacity = RoundUpToImagePage(std::max(size, 2 * memory->capacity));
+  void* at = MAP_FAILED;
+  if (ptr == nullptr && memory->expected > capacity) {
+    capacity = RoundUpToImagePage(memory->expected);
+    at = MapAligned(capacity);
+    if (at == MAP_FAILED) {  // the estimate refused: what the driver asks, grown as it needs
+      capacity = RoundUpToImagePage(size);
+    }
+  }
   if (at == MAP_FAILED) {
+    at = MapAligned(capacity);
+  }
+  if (at == MAP_FAILED) {
+    return nullptr;
+  }
+  if (ptr != nullptr && ::mremap(ptr, memory->capacity, memory->capacity,
+                                 MREMAP_MAYMOVE | MREMAP_FIXED, at) == MAP_FAILED) {
+    ::munmap(at, capacity);
     return nullptr;
   }
   ::madvise(at, capacity, MADV_HUGEPAGE);  // advice only: 4 kB pages where it is refused
@@ -86,10 +124,11 @@ void ReleaseFileMemory::operator()(FileMemory* memory) const {
   }
 }
 
-MemoryFile CreateMemoryFile(const std::string& name) {
+MemoryFile CreateMemoryFile(const std::string& name, std::size_t expected_bytes) {
   SilenceErrorStack();
   MemoryFile out;
   out.memory = FileMemoryHandle(new FileMemory);
+  out.memory->expected = expected_bytes;
   Id fapl = UnlockedAccess();
   Check(H5Pset_fapl_core(fapl.get(), 1 << 20, false), "H5Pset_fapl_core " + name);
   H5FD_file_image_callbacks_t callbacks{ImageMalloc, ImageMemcpy, ImageRealloc,    ImageFree,

@@ -60,12 +60,13 @@ Id UnlockedAccess();
 /// A file created (truncating) or opened; @throws H5Error.
 Id CreateFile(const std::string& path);
 /// Where a file built in memory (CreateMemoryFile) lies: an anonymous mapping that HDF5's core
-/// driver grows through the file image callbacks (huge pages where the kernel gives them: a
-/// cube of 30 000 cells is tens of megabytes, and each 4 kB page's first touch is a fault), so
-/// that SaveFileImage writes the bytes from where HDF5 put them.
+/// driver grows through the file image callbacks (aligned to 2 MiB for huge pages where the
+/// kernel gives them: a cube of 30 000 cells is tens of megabytes, and each 4 kB page's first
+/// touch is a fault), so that SaveFileImage writes the bytes from where HDF5 put them.
 struct FileMemory {
   unsigned char* base = nullptr;  ///< the mapping, nullptr before the first write
   std::size_t capacity = 0;       ///< its length [byte]
+  std::size_t expected = 0;       ///< the creator's estimate of the file's length, 0: none [byte]
   /// The holders: the MemoryFile's handle, and the driver while it holds the mapping (its free
   /// callback at the file's close releases it), so that either may go first.
   int holders = 1;
@@ -83,8 +84,10 @@ struct MemoryFile {
   Id file;
 };
 /// A file held in memory (HDF5's core driver, no backing store), to be written out whole by
-/// SaveFileImage; `name` is only a label. @throws H5Error.
-MemoryFile CreateMemoryFile(const std::string& name);
+/// SaveFileImage; `name` is only a label. Its first mapping is `expected_bytes` long (an estimate
+/// of the whole file, so that it need not grow; untouched pages cost no memory) when that is
+/// more than the driver asks. @throws H5Error.
+MemoryFile CreateMemoryFile(const std::string& name, std::size_t expected_bytes = 0);
 /// Opens an existing file read-only or read-write; @throws H5Error when not an HDF5 file.
 Id OpenFile(const std::string& path, bool writable);
 /// Collective over MPI_COMM_WORLD: opens an existing file read-write through MPI-IO (parallel
