@@ -232,7 +232,25 @@ std::string ObjectName(hid_t obj) {
 }
 
 void WriteAll(hid_t dataset, hid_t mem_type, const void* data) {
-  Check(H5Dwrite(dataset, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data),
+  // A write that converts (strings, integers stored narrower) fills a type conversion buffer
+  // that HDF5 allocates zeroed at its default size, 1 MiB, whatever the data: 256 fresh pages
+  // and their faults for a table of a few values. One that holds the whole write (elements
+  // times the larger of the two types' sizes, at least the 16 bytes of a variable-length
+  // string in the file) converts the same elements in the same single pass.
+  constexpr std::size_t kDefaultBuffer = std::size_t{1} << 20;  // H5D_TEMP_BUF_SIZE
+  Id space(H5Dget_space(dataset), H5Sclose, "H5Dget_space");
+  Id file_type(H5Dget_type(dataset), H5Tclose, "H5Dget_type");
+  const hssize_t n = H5Sget_simple_extent_npoints(space.get());
+  const std::size_t element =
+      std::max({H5Tget_size(mem_type), H5Tget_size(file_type.get()), std::size_t{16}});
+  Id transfer;
+  if (n >= 0 && static_cast<std::size_t>(n) < kDefaultBuffer / element) {
+    transfer = Id(H5Pcreate(H5P_DATASET_XFER), H5Pclose, "H5Pcreate(transfer)");
+    Check(H5Pset_buffer(transfer.get(), std::max<std::size_t>(1, n) * element, nullptr, nullptr),
+          "H5Pset_buffer");
+  }
+  Check(H5Dwrite(dataset, mem_type, H5S_ALL, H5S_ALL,
+                 transfer.get() >= 0 ? transfer.get() : H5P_DEFAULT, data),
         "H5Dwrite " + ObjectName(dataset));
 }
 
