@@ -84,35 +84,48 @@ inline void ModalDrift3(const ModalGapBound& bound, const double* Y, double tau_
   }
 }
 
-/// ModalDrift3<false> with modes 0 and 1 side by side in two lanes and mode 2 alone: each lane
-/// runs the scalar operations in their order (a magnitude by clearing the sign bit, as
-/// std::abs does; the larger ramp end by the same comparison), so the same bits.
-inline void ModalDrift3Lanes(const ModalGapBound& bound, const double* Y, double tau_s,
-                             double drift[3]) {
-  using Lanes2 = double __attribute__((vector_size(16)));
+/// Two doubles side by side: each operation on it is the IEEE operation on each lane.
+using DriftLanes = double __attribute__((vector_size(16)));
+
+/// ModalDrift3<false> from a deck's modal coordinates in registers: modes 0 and 1 side by side
+/// (eta = (Y[0], Y[1]), deta = (Y[3], Y[4]), a = (Y[6], Y[7]), slope = (Y[9], Y[10])) and mode 2
+/// alone (eta2 = Y[2], deta2 = Y[5], a2 = Y[8], slope2 = Y[11]). Each lane runs the scalar
+/// operations in their order (a magnitude by clearing the sign bit, as std::abs does; the larger
+/// ramp end by the same comparison), so the same bits.
+inline void ModalDrift3Lanes(const ModalGapBound& bound, DriftLanes eta, DriftLanes deta,
+                             DriftLanes a, DriftLanes slope, double eta2, double deta2, double a2,
+                             double slope2, double tau_s, double drift[3]) {
   using Bits2 = long long __attribute__((vector_size(16)));
   const double* w = bound.w_radps.data();
   const double half_tau = 0.5 * tau_s;
-  const auto magnitude = [](Lanes2 x) {
-    return std::bit_cast<Lanes2>(std::bit_cast<Bits2>(x) &
-                                 Bits2{0x7fffffffffffffffLL, 0x7fffffffffffffffLL});
+  const auto magnitude = [](DriftLanes x) {
+    return std::bit_cast<DriftLanes>(std::bit_cast<Bits2>(x) &
+                                     Bits2{0x7fffffffffffffffLL, 0x7fffffffffffffffLL});
   };
-  Lanes2 eta, deta, a, slope, wk;
+  DriftLanes wk;
+  __builtin_memcpy(&wk, w, sizeof wk);
+  const DriftLanes tau = {tau_s, tau_s}, half = {half_tau, half_tau};
+  const DriftLanes amplitude = magnitude(deta) + wk * magnitude(eta);
+  const DriftLanes a0 = magnitude(a), a1 = magnitude(a + slope * tau);
+  const DriftLanes ramp = a0 > a1 ? a0 : a1;
+  const DriftLanes d = tau * (amplitude + half * ramp);
+  drift[0] = d[0];
+  drift[1] = d[1];
+  const double amplitude2 = std::abs(deta2) + w[2] * std::abs(eta2);
+  const double b0 = std::abs(a2), b1 = std::abs(a2 + slope2 * tau_s);
+  drift[2] = tau_s * (amplitude2 + half_tau * (b0 > b1 ? b0 : b1));
+}
+
+/// ModalDrift3<false> with modes 0 and 1 side by side in two lanes and mode 2 alone (the
+/// registers' form above, read from Y), so the same bits.
+inline void ModalDrift3Lanes(const ModalGapBound& bound, const double* Y, double tau_s,
+                             double drift[3]) {
+  DriftLanes eta, deta, a, slope;
   __builtin_memcpy(&eta, Y, sizeof eta);
   __builtin_memcpy(&deta, Y + 3, sizeof deta);
   __builtin_memcpy(&a, Y + 6, sizeof a);
   __builtin_memcpy(&slope, Y + 9, sizeof slope);
-  __builtin_memcpy(&wk, w, sizeof wk);
-  const Lanes2 tau = {tau_s, tau_s}, half = {half_tau, half_tau};
-  const Lanes2 amplitude = magnitude(deta) + wk * magnitude(eta);
-  const Lanes2 a0 = magnitude(a), a1 = magnitude(a + slope * tau);
-  const Lanes2 ramp = a0 > a1 ? a0 : a1;
-  const Lanes2 d = tau * (amplitude + half * ramp);
-  drift[0] = d[0];
-  drift[1] = d[1];
-  const double amplitude2 = std::abs(Y[5]) + w[2] * std::abs(Y[2]);
-  const double b0 = std::abs(Y[8]), b1 = std::abs(Y[8] + Y[11] * tau_s);
-  drift[2] = tau_s * (amplitude2 + half_tau * (b0 > b1 ? b0 : b1));
+  ModalDrift3Lanes(bound, eta, deta, a, slope, Y[2], Y[5], Y[8], Y[11], tau_s, drift);
 }
 
 /// The largest closure of contact c's gap over the step (m): sum_k W_ck D_k, rounded up by a

@@ -48,10 +48,6 @@ class GapFloors {
   /// bits. Inline: a step that stays open by the smallest base ends here.
   bool StaysOpen(const double* Y, double tau_s, double margin_m, bool harmonic = true) {
     const int n = bound_.n_modes;
-    double* sum = trial_.data();  // S_k with this step's drift; kept if the step stays open
-    const double* sum0 = sum_.data();
-    const double* w_max = weight_max_.data();
-    double closure_max = 0.0;
     if (n == 3) {
       // A deck's three modes, unrolled.
       SB_ASSERT(harmonic || (Y[12] == 0.0 && Y[13] == 0.0 && Y[14] == 0.0 && Y[15] == 0.0 &&
@@ -63,17 +59,39 @@ class GapFloors {
       } else {
         ModalDrift3Lanes(bound_, Y, tau_s, drift);  // ModalDrift3<false>'s bits
       }
-      sum[0] = sum0[0] + drift[0];
-      sum[1] = sum0[1] + drift[1];
-      sum[2] = sum0[2] + drift[2];
-      closure_max = w_max[0] * sum[0] + w_max[1] * sum[1] + w_max[2] * sum[2];
-    } else {
-      ModalDrift(bound_, Y, tau_s, sum);
-      for (int k = 0; k < n; ++k) {
-        sum[k] += sum0[k];
-        closure_max += w_max[k] * sum[k];
-      }
+      return DeckStaysOpen(drift, margin_m);
     }
+    double* sum = trial_.data();  // S_k with this step's drift; kept if the step stays open
+    const double* sum0 = sum_.data();
+    const double* w_max = weight_max_.data();
+    double closure_max = 0.0;
+    ModalDrift(bound_, Y, tau_s, sum);
+    for (int k = 0; k < n; ++k) {
+      sum[k] += sum0[k];
+      closure_max += w_max[k] * sum[k];
+    }
+    return Keep(closure_max, margin_m);
+  }
+
+  /// StaysOpen of a deck (three modes) from its drifts over the step (ModalDrift3's, m per unit
+  /// of eta_k): the same operations.
+  bool DeckStaysOpen(const double drift[3], double margin_m) {
+    double* sum = trial_.data();  // S_k with this step's drift; kept if the step stays open
+    const double* sum0 = sum_.data();
+    const double* w_max = weight_max_.data();
+    sum[0] = sum0[0] + drift[0];
+    sum[1] = sum0[1] + drift[1];
+    sum[2] = sum0[2] + drift[2];
+    return Keep(w_max[0] * sum[0] + w_max[1] * sum[1] + w_max[2] * sum[2], margin_m);
+  }
+
+ private:
+  // At most this many drifts are summed before they go into the bases: the sum's rounding (a
+  // relative kFoldSteps ulps) stays far below the bound's relative 1e-12.
+  static constexpr int kFoldSteps = 256;
+  // Whether the gaps stay open with the sums of trial_, whose largest closure over the contacts
+  // is at most closure_max (m): they become the sums if so, folded every kFoldSteps steps.
+  bool Keep(double closure_max, double margin_m) {
     if (!(base_min_ - closure_max * (1.0 + 1e-12) > margin_m) && !EachStaysOpen(margin_m)) {
       return false;
     }
@@ -83,11 +101,6 @@ class GapFloors {
     }
     return true;
   }
-
- private:
-  // At most this many drifts are summed before they go into the bases: the sum's rounding (a
-  // relative kFoldSteps ulps) stays far below the bound's relative 1e-12.
-  static constexpr int kFoldSteps = 256;
   // Each contact's own base less its closure with the sums of trial_, above margin_m.
   [[gnu::noinline]] bool EachStaysOpen(double margin_m) const {
     for (int c = 0; c < bound_.n_contacts; ++c) {

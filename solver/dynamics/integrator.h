@@ -74,6 +74,16 @@ class Integrator final : private ConstrainedForces {
   // (the step limit, the finite check every finite_check_steps steps into `t_finite`, the
   // observer); returns false when the observer stops the run.
   bool RecordFlight(long& steps, double& t_finite);
+  // RecordFlight's steps of one deck (three coordinates) on the ramps of a sampled record
+  // (`samples`), without an observer: each step's operations in RecordFlight's order, with the
+  // state, the piece, the plan's nominal step, the maxima and the counts held in locals and
+  // written back before a step leaves the loop; the gap floors' drifts from the modal
+  // coordinates' lanes. reach0 and speed0 carry the deck's corner-reach terms at the step's
+  // start. Returns true when the flight ends (a step finished by FinishFreeStep or FreeStepOf,
+  // the run's end, the step limit or the finite check), false before a step that is not the
+  // record's next ramp (RecordFlight takes that one).
+  bool DeckRecordSteps(long& steps, double& t_finite, const SampleView& samples, double& reach0,
+                       double& speed0);
   // Whether every gap provably stays above twice the touch band over the full free step of
   // length tau_s just applied (GapFloors, [docs/theory.md §3.18]); `harmonic` false when the
   // step's piece has no harmonic part (omega 0: the modal coordinates' harmonic columns zeros).

@@ -86,18 +86,17 @@ struct DeckLanes {
 };
 
 // ApplyMotion of a deck's three modes on a piece without harmonic part with two lanes per
-// operation: ToModalFixed<3, false> with (q, u) side by side, and the generator's (a, slope);
-// ModalStep<3, false> with (eta_k, eta_k') side by side (the rows of T_k in `pairs`, per mode
-// and column j < 4 the pair (T_k[j], T_k[6 + j])) and (q_i, u_i). Every lane runs the scalar
-// path's operations in its order from the same +0.0, so Y and z_next are the same bits.
-inline void DeckRecordStep(const DeckLanes& d, const double* __restrict pairs,
-                           const double* __restrict z, double* __restrict Y,
-                           double* __restrict z_next) {
-  Lanes2 qu[3], ab[3], ed[3];
+// operation, in registers: ToModalFixed<3, false> of the state zq (the pairs (q_i, u_i)) and the
+// generator's (a, slope) gx of x and gy of y into qu[k] = (eta_k, eta_k') and ab[k] = (a_k,
+// slope_k) (Y's columns 0 to 3 of mode k); ModalStep<3, false> with (eta_k, eta_k') side by side
+// (the rows of T_k in `pairs`, per mode and column j < 4 the pair (T_k[j], T_k[6 + j])) into
+// the step's end (q_i, u_i) in next[i]. Every lane runs the scalar path's operations in its order
+// from the same +0.0, so the same bits.
+inline void DeckRecordLanes(const DeckLanes& d, const double* __restrict pairs, const Lanes2 zq[3],
+                            Lanes2 gx, Lanes2 gy, Lanes2 qu[3], Lanes2 ab[3], Lanes2 next[3]) {
+  Lanes2 ed[3];
   // Eigen's storage is aligned to 16 bytes: a pair loads as one operand.
   const auto* T = static_cast<const double*>(__builtin_assume_aligned(pairs, 16));
-  const Lanes2 zq[3] = {{z[0], z[3]}, {z[1], z[4]}, {z[2], z[5]}};
-  const Lanes2 gx = {z[6], z[8]}, gy = {z[7], z[9]};  // (a, slope) of x, of y
   for (int i = 0; i < 3; ++i) {
     Lanes2 s = {0.0, 0.0};
     for (int j = 0; j < 3; ++j) s += d.PhiTM[i + 3 * j] * zq[j];
@@ -118,8 +117,22 @@ inline void DeckRecordStep(const DeckLanes& d, const double* __restrict pairs,
   for (int i = 0; i < 3; ++i) {
     Lanes2 s = {0.0, 0.0};
     for (int j = 0; j < 3; ++j) s += d.Phi[i + 3 * j] * ed[j];
-    z_next[i] = s[0];
-    z_next[3 + i] = s[1];
+    next[i] = s;
+  }
+}
+
+// DeckRecordLanes from the augmented state z (q, u, then the generator's a and slope) into
+// z_next's (q, u) and the modal coordinates Y (n x 6, the harmonic columns +0).
+inline void DeckRecordStep(const DeckLanes& d, const double* __restrict pairs,
+                           const double* __restrict z, double* __restrict Y,
+                           double* __restrict z_next) {
+  Lanes2 qu[3], ab[3], next[3];
+  const Lanes2 zq[3] = {{z[0], z[3]}, {z[1], z[4]}, {z[2], z[5]}};
+  const Lanes2 gx = {z[6], z[8]}, gy = {z[7], z[9]};  // (a, slope) of x, of y
+  DeckRecordLanes(d, pairs, zq, gx, gy, qu, ab, next);
+  for (int i = 0; i < 3; ++i) {
+    z_next[i] = next[i][0];
+    z_next[3 + i] = next[i][1];
   }
   for (int i = 0; i < 3; ++i) {
     Y[i] = qu[i][0];
@@ -222,6 +235,10 @@ class LinearFlow {
     }
     detail::DeckRecordStep(deck_, p.record_pairs.data(), z.data(), Y_.data(), z_next.data());
   }
+
+  /// A deck's transforms in both lanes (detail::DeckRecordLanes), for a caller that steps a
+  /// deck's record in registers. @pre modal() and three degrees of freedom.
+  const detail::DeckLanes& deck_lanes() const { return deck_; }
 
   /// The modal coordinates (n x 6, rows y_k as ModalFlow::ToModal) of the state the last Apply
   /// started from. @pre modal(), and Apply was called.

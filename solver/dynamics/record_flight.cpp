@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "solver/dynamics/coordinate_maxima.h"
 #include "solver/dynamics/integrator.h"
@@ -28,7 +29,13 @@ bool Integrator::RecordFlight(long& steps, double& t_finite) {
   if (decks == 1) {
     travel_.EndReach(0, z_.data(), z_.data() + n_, reach0, speed0);
   }
+  // A deck's steps on a record's ramps go through DeckRecordSteps, the rest through this loop.
+  const bool deck =
+      !observe && n_ == 3 && decks == 1 && samples.count > 0 && ws_.gap_bound_.n_modes == 3;
   for (;;) {
+    if (deck && DeckRecordSteps(steps, t_finite, samples, reach0, speed0)) {
+      return true;
+    }
     // FreeStep's plan, the same operations.
     const double t0 = t_, h0 = h_free_;
     if (observe) {
@@ -117,6 +124,198 @@ bool Integrator::RecordFlight(long& steps, double& t_finite) {
     }
     ++steps;
   }
+}
+
+bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleView& samples,
+                                 double& reach0, double& speed0) {
+  using detail::Lanes2;
+  ExcitationPiece& piece = pieces_.last();
+  if (!(piece.omega == 0.0)) {
+    return false;  // the ramps' harmonic part is RecordFlight's (NextSampledPiece keeps it)
+  }
+  LinearFlow& flow = ws_.flow_;
+  const detail::DeckLanes& lanes = flow.deck_lanes();
+  const ModalGapBound& bound = ws_.gap_bound_;
+  const long check_mask = policy_.finite_check_steps - 1;
+  const double gap_margin = 2.0 * scales_.gap_tol_m;
+  const bool outputs = next_output_t_ <= t_end_ + policy_.output_time_band;
+  const double h_max = FreeStepMax(0.0, ws_.omega_max_radps_, policy_);  // a ramp's (omega 0)
+  const long max_steps = control_.max_steps;
+  const double t_end = t_end_;
+  const double dt = samples.dt_s;
+  const double* ax = samples.ax_mps2;
+  const double* ay = samples.ay_mps2;
+  // The piece, the state ((q_i, u_i) side by side) and its generator, the plan's cache, the
+  // propagator's key, the maxima and the counts.
+  long index = piece.index;
+  double tb = piece.t_begin, te = piece.t_end;
+  double ax0 = piece.a_begin[0], ay0 = piece.a_begin[1], sx = piece.slope[0], sy = piece.slope[1];
+  double t = t_, h_last = h_free_;
+  double nominal_length = nominal_length_s_, nominal_omega = nominal_omega_radps_;
+  double nominal_h = nominal_h_s_;
+  Lanes2 x[3] = {{z_[0], z_[3]}, {z_[1], z_[4]}, {z_[2], z_[5]}};
+  double g[4] = {0.0, 0.0, 0.0, 0.0};  // the generator SetGenerator gave the last step
+  bool generated = false;              // whether a step set g (z_'s generator is then g, +0)
+  double max_q[3], time_of_max[3];
+  for (int i = 0; i < 3; ++i) {
+    max_q[i] = result_.max_abs_q[i];
+    time_of_max[i] = result_.time_of_max_s[i];
+  }
+  double max_travel = result_.max_travel_m[0];
+  long steps = steps_io, free_steps = result_.free_steps;
+  // StepPropagator's key of propagator_ (NaN: none, or not a ramp's).
+  const FreePropagator* p = propagator_;
+  double p_tau =
+      p != nullptr && p->omega_radps == 0.0 ? p->tau_s : std::numeric_limits<double>::quiet_NaN();
+  // The state and its generator into z_.
+  const auto state_back = [&]() {
+    for (int i = 0; i < 3; ++i) {
+      z_[i] = x[i][0];
+      z_[3 + i] = x[i][1];
+    }
+    if (generated) {
+      for (int i = 0; i < 4; ++i) z_[6 + i] = g[i];
+      for (int i = 10; i < 14; ++i) z_[i] = 0.0;
+    }
+  };
+  // Everything into the members, as RecordFlight's steps would have left them.
+  const auto write_back = [&]() {
+    state_back();
+    t_ = t;
+    h_free_ = h_last;
+    nominal_length_s_ = nominal_length;
+    nominal_omega_radps_ = nominal_omega;
+    nominal_h_s_ = nominal_h;
+    piece.t_begin = tb;
+    piece.t_end = te;
+    piece.a_begin = Eigen::Vector2d(ax0, ay0);
+    piece.slope = Eigen::Vector2d(sx, sy);
+    piece.index = index;
+    for (int i = 0; i < 3; ++i) {
+      result_.max_abs_q[i] = max_q[i];
+      result_.time_of_max_s[i] = time_of_max[i];
+    }
+    result_.max_travel_m[0] = max_travel;
+    result_.free_steps = free_steps;
+    steps_io = steps;
+  };
+  // How the loop ends: the next step is RecordFlight's, the flight ends, or the step is
+  // finished by FreeStepOf or by FinishFreeStep (gaps not proved open, or open).
+  enum class Exit { kOther, kEnded, kPartial, kClosing, kRare };
+  Exit exit = Exit::kOther;
+  FreeStepPlan step;
+  for (;;) {
+    // The record's next ramp (PieceCursor::At, NextSampledPiece's operations); any other piece
+    // is RecordFlight's.
+    const std::size_t k = index < 0 ? 0 : static_cast<std::size_t>(index) + 1;
+    if (!(t == te) || index < 0 || k + 1 >= samples.count || te != static_cast<double>(k) * dt) {
+      break;
+    }
+    const double y0 = ay != nullptr ? ay[k] : 0.0;
+    const double y1 = ay != nullptr ? ay[k + 1] : 0.0;
+    tb = te;
+    te = static_cast<double>(k + 1) * dt;
+    ax0 = ax[k];
+    ay0 = y0;
+    sx = (ax[k + 1] - ax[k]) / dt;
+    sy = (y1 - y0) / dt;
+    index = static_cast<long>(k);
+    SB_DEMAND(te > t, "Excitation::PieceAt(t) returned a piece that ends at or before t");
+    // NominalFreeStep (a finite piece of rate 0) and the plan.
+    const double length = te - tb;
+    if (!(length == nominal_length && 0.0 == nominal_omega)) {
+      nominal_h = FreeStepOfLength(length, h_max);
+      nominal_length = length;
+      nominal_omega = 0.0;
+    }
+    step = PlanFreeStep(t, tb, std::min(te, t_end), nominal_h, h_last, policy_);
+    h_last = step.h_s;
+    if (!step.full) {
+      exit = Exit::kPartial;
+      break;
+    }
+    // StepPropagator, SetGenerator's generator, and ApplyRecordMotion's operations on the
+    // registers.
+    if (step.h_s != p_tau) {
+      p = &StepPropagator(step.h_s, 0.0, false);
+      p_tau = p->tau_s;
+    }
+    const double tau_start = t - tb;
+    g[0] = ax0 + sx * tau_start;
+    g[1] = ay0 + sy * tau_start;
+    g[2] = sx;
+    g[3] = sy;
+    generated = true;
+    Lanes2 qu[3], ab[3], next[3];
+    detail::DeckRecordLanes(lanes, p->record_pairs.data(), x, Lanes2{g[0], g[2]},
+                            Lanes2{g[1], g[3]}, qu, ab, next);
+    ++free_steps;
+    if (gaps_exact_) {
+      gap_floors_.Restart(ends_.gap0);
+    }
+    // The gap floors' check (GapsStayOpen) with the drifts from the modal coordinates' lanes.
+    const double tau = step.t_next_s - t;
+    double drift[3];
+    ModalDrift3Lanes(bound, __builtin_shufflevector(qu[0], qu[1], 0, 2),
+                     __builtin_shufflevector(qu[0], qu[1], 1, 3),
+                     __builtin_shufflevector(ab[0], ab[1], 0, 2),
+                     __builtin_shufflevector(ab[0], ab[1], 1, 3), qu[2][0], qu[2][1], ab[2][0],
+                     ab[2][1], std::max(tau, step.h_s), drift);
+    if (!gap_floors_.DeckStaysOpen(drift, gap_margin)) {
+      exit = Exit::kClosing;
+      break;
+    }
+    // RecordFlight's tests that need no dense output.
+    const double t1 = step.t_next_s;
+    const double x0s[6] = {x[0][0], x[1][0], x[2][0], x[0][1], x[1][1], x[2][1]};
+    const double x1s[6] = {next[0][0], next[1][0], next[2][0], next[0][1], next[1][1], next[2][1]};
+    bool rare = RaiseMaximaAtEnd(3, x0s, x0s + 3, t1, x1s, x1s + 3, t1 - t, max_q, time_of_max);
+    double reach1, speed1;
+    travel_.EndReach(0, x1s, x1s + 3, reach1, speed1);
+    rare =
+        rare || CornerTravelTracker::MayReach(reach0, speed0, reach1, speed1, t1 - t, max_travel);
+    reach0 = reach1;
+    speed0 = speed1;
+    rare = rare || (outputs && next_output_t_ <= t1 + policy_.output_time_band * std::max(1.0, t1));
+    if (rare) {
+      exit = Exit::kRare;
+      break;
+    }
+    for (int i = 0; i < 3; ++i) x[i] = next[i];
+    t = t1;
+    gaps_exact_ = false;
+    // Run's work after the step.
+    if ((steps & check_mask) == 0) {
+      state_back();
+      if (!StateFinite(z_) || !std::isfinite(t)) {
+        exit = Exit::kEnded;  // Run's check stops the run
+        break;
+      }
+      t_finite = t;
+    }
+    if (!(t < t_end) || steps >= max_steps) {
+      exit = Exit::kEnded;  // Run ends the run, or counts the step and stops at the limit
+      break;
+    }
+    ++steps;
+  }
+  write_back();
+  switch (exit) {
+    case Exit::kOther:
+      return false;
+    case Exit::kEnded:
+      return true;
+    case Exit::kPartial:
+      FreeStepOf(piece, step);
+      return true;
+    case Exit::kClosing:
+    case Exit::kRare:
+      // The step's transition again (the flow's modal coordinates and z_new_, the same bits).
+      flow.ApplyRecordMotion(*p, z_, z_new_);
+      FinishFreeStep(piece, step, exit == Exit::kRare, false, 0.0, 0.0);
+      return true;
+  }
+  return true;
 }
 
 }  // namespace skewbridge::dynamics

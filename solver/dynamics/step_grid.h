@@ -14,18 +14,29 @@
 
 namespace skewbridge::dynamics {
 
+/// FreeStepSize's longest step h_max (s) on a piece of harmonic rate piece_omega_radps.
+inline double FreeStepMax(double piece_omega_radps, double omega_max_radps,
+                          const EventPolicy& policy) {
+  const double omega =
+      std::max({omega_max_radps, std::abs(piece_omega_radps), policy.omega_floor_radps});
+  return 2.0 * std::numbers::pi / omega / policy.steps_per_period;
+}
+
+/// FreeStepSize of a finite piece of length_s with the longest step h_max_s (FreeStepMax).
+inline double FreeStepOfLength(double length_s, double h_max_s) {
+  const double steps = length_s / h_max_s;
+  // One step (a record's sample within h_max): ceil is 1 and length / 1 is length.
+  return steps > 0.0 && steps <= 1.0 ? length_s : length_s / std::ceil(steps);
+}
+
 /// The nominal free step on `piece` (s) [§3.14]: at most 2 pi / omega / steps_per_period, omega
 /// the largest of the model's highest natural frequency `omega_max_radps`, the piece's own
 /// frequency and omega_floor_radps; a finite piece is cut into equal steps of at most that.
 inline double FreeStepSize(const ExcitationPiece& piece, double omega_max_radps,
                            const EventPolicy& policy) {
-  const double omega = std::max({omega_max_radps, std::abs(piece.omega), policy.omega_floor_radps});
-  const double h_max = 2.0 * std::numbers::pi / omega / policy.steps_per_period;
+  const double h_max = FreeStepMax(piece.omega, omega_max_radps, policy);
   if (std::isfinite(piece.t_end)) {
-    const double length = piece.t_end - piece.t_begin;
-    const double steps = length / h_max;
-    // One step (a record's sample within h_max): ceil is 1 and length / 1 is length.
-    return steps > 0.0 && steps <= 1.0 ? length : length / std::ceil(steps);
+    return FreeStepOfLength(piece.t_end - piece.t_begin, h_max);
   }
   return h_max;
 }
@@ -82,6 +93,8 @@ class PieceCursor {
     }
     return piece_;
   }
+  /// The last piece At gave, for a caller that moves it on itself (the same bits as At's).
+  ExcitationPiece& last() { return piece_; }
   /// At's piece, with the next piece of a sampled excitation read from its samples `view`
   /// (Excitation::Samples) inline: the same bits.
   const ExcitationPiece& At(const Excitation& excitation, const SampleView& view, double t_s) {
