@@ -17,7 +17,9 @@
 # and the time spent in fsync (the checkpoint file's creation, the final cube's write).
 # strace slows the system calls, so the phases add up to more than the plain wall time; they
 # show where the time goes, the plain runs what it costs. With --against, the other program
-# runs the same, alternating, so both see the same load.
+# runs the same, alternating, so both see the same load. When mpicc is found, a bare MPI program
+# (MPI_Init, then MPI_Finalize, nothing else) runs the same three ways beside them: its wall
+# time is what Open MPI's start and end cost on this machine, whatever the program.
 set -euo pipefail
 here=$(cd "$(dirname "$0")/../.." && pwd)
 build=build/release
@@ -61,6 +63,24 @@ joint_closing = true
 TOML
 set -a && source "$here/scripts/openmpi.env" && set +a  # Open MPI as root, more ranks than cores
 
+bare=""
+if command -v mpicc > /dev/null; then
+  printf '#include <mpi.h>\nint main(int c, char** v) { MPI_Init(&c, &v); MPI_Finalize(); return 0; }\n' > bare.c
+  mpicc -O2 bare.c -o bare && bare=$work/bare
+fi
+run_bare() {  # run_bare MODE: the bare MPI program once; prints its wall time [s]
+  local t0 t1 cmd
+  case "$1" in
+    plain) cmd=("$bare") ;;
+    n1) cmd=(mpiexec -n 1 "$bare") ;;
+    n2) cmd=(mpiexec -n 2 "$bare") ;;
+  esac
+  t0=$(date +%s.%N)
+  "${cmd[@]}" > /dev/null 2>&1 || { echo "the bare MPI program failed" >&2; return 1; }
+  t1=$(date +%s.%N)
+  awk -v a="$t0" -v b="$t1" 'BEGIN {printf "%.3f\n", b - a}'
+}
+
 run() {  # run MODE PROGRAM [strace]: one 1-cell sweep; prints its wall time [s]
   local mode=$1 program=$2 trace=${3:-} t0 t1 cmd
   case "$mode" in
@@ -93,7 +113,9 @@ labels="this"
 echo "load $(cut -d' ' -f1-3 /proc/loadavg) on $(nproc) cores"
 for mode in plain n1 n2; do
   for label in $labels; do : > "$label.$mode.wall"; : > "$label.$mode.phases"; done
+  : > "bare.$mode.wall"
   for i in $(seq "$repeat"); do
+    [ -z "$bare" ] || run_bare "$mode" >> "bare.$mode.wall"
     for label in $labels; do
       program=$exe
       [ "$label" = this ] || program=$other
@@ -115,4 +137,11 @@ for label in $labels; do
     echo "  $m  wall $w   phases $p"
   done
 done
+if [ -n "$bare" ]; then
+  echo "a bare MPI program (MPI_Init, MPI_Finalize: Open MPI's start and end alone), best of $repeat:"
+  for mode in plain n1 n2; do
+    case "$mode" in plain) m="without mpiexec" ;; n1) m="mpiexec -n 1  " ;; n2) m="mpiexec -n 2  " ;; esac
+    echo "  $m  wall $(sort -g "bare.$mode.wall" | head -1)"
+  done
+fi
 echo "load at the end: $(cut -d' ' -f1-3 /proc/loadavg)"
