@@ -4,9 +4,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include "solver/common/error.h"
+#include "solver/model/builders.h"
 
 namespace skewbridge::dynamics {
 namespace {
@@ -20,21 +22,53 @@ LinearFlow::LinearFlow(const Eigen::Ref<const Eigen::MatrixXd>& M,
                        const Eigen::Ref<const Eigen::MatrixXd>& C,
                        const Eigen::Ref<const Eigen::MatrixXd>& r, FlowPath path,
                        const model::Modes* modes)
-    : n_(static_cast<int>(M.rows())), M_(M), K_(K), C_(C), r_(r) {
-  SB_DEMAND(M.cols() == n_ && K.rows() == n_ && K.cols() == n_ && C.rows() == n_ &&
-                C.cols() == n_ && r.rows() == n_ && r.cols() == 2,
+    : n_(static_cast<int>(M.rows())), path_(path), M_(M), K_(K), C_(C), r_(r) {
+  Setup(modes);
+}
+
+void LinearFlow::Refit(const Eigen::Ref<const Eigen::MatrixXd>& M,
+                       const Eigen::Ref<const Eigen::MatrixXd>& K,
+                       const Eigen::Ref<const Eigen::MatrixXd>& C,
+                       const Eigen::Ref<const Eigen::MatrixXd>& r, const model::Modes* modes) {
+  if (M.rows() != n_) {
+    *this = LinearFlow(M, K, C, r, path_, modes);
+    return;
+  }
+  M_ = M;
+  K_ = K;
+  C_ = C;
+  r_ = r;
+  augmented_ready_ = false;
+  cache_size_ = 0;
+  clock_ = 0;
+  Setup(modes);
+}
+
+void LinearFlow::Setup(const model::Modes* modes) {
+  SB_DEMAND(M_.cols() == n_ && K_.rows() == n_ && K_.cols() == n_ && C_.rows() == n_ &&
+                C_.cols() == n_ && r_.rows() == n_ && r_.cols() == 2,
             "LinearFlow: inconsistent matrix sizes");
   const Eigen::LLT<Eigen::MatrixXd> llt(M_);
   SB_DEMAND(llt.info() == Eigen::Success, "LinearFlow: M must be symmetric positive definite");
-  Mr_ = M_ * r_;
-  if (path == FlowPath::kAuto) {
-    modal_ = modes != nullptr ? ModalFlow::Classical(*modes, M_, C_, r_)
-                              : ModalFlow::Classical(M_, K_, C_, r_);
+  Mr_.noalias() = M_ * r_;
+  bool modal = false;
+  if (path_ == FlowPath::kAuto) {
+    // Classical's flow, in the storage of the last one when there is one.
+    std::optional<model::Modes> solved;
+    if (modes == nullptr) {
+      solved = model::ComputeModes(M_, K_);
+      modes = &*solved;
+    }
+    if (!modal_) {
+      modal_.emplace();
+    }
+    modal = modal_->Assign(*modes, M_, C_, r_);
   }
-  if (!modal_) {
+  if (!modal) {
+    modal_.reset();
     EnsureAugmented();
   }
-  Y_ = Eigen::MatrixXd::Zero(n_, 6);
+  Y_.setZero(n_, 6);
   if (modal_ && n_ == 3) {
     for (int e = 0; e < 9; ++e) {
       const double a = modal_->PhiTM().data()[e], b = modal_->Phi().data()[e];
@@ -46,7 +80,8 @@ LinearFlow::LinearFlow(const Eigen::Ref<const Eigen::MatrixXd>& M,
       deck_.negL[e] = detail::Lanes2{a, a};
     }
   }
-  eta_ = deta_ = Eigen::VectorXd::Zero(n_);
+  eta_.setZero(n_);
+  deta_.setZero(n_);
 }
 
 void LinearFlow::EnsureAugmented() const {
@@ -136,7 +171,7 @@ void LinearFlow::Compute(double tau_s, double omega_radps, bool energy, FreeProp
 const FreePropagator& LinearFlow::Propagator(double tau_s, double omega_radps, bool energy) {
   SB_DEMAND(tau_s > 0.0 && std::isfinite(tau_s), "LinearFlow: step must be positive");
   ++clock_;
-  for (std::size_t i = 0; i < cache_.size(); ++i) {
+  for (std::size_t i = 0; i < cache_size_; ++i) {
     if (cache_[i].tau_s == tau_s && cache_[i].omega_radps == omega_radps) {
       last_use_[i] = clock_;
       if (energy && !cache_[i].has_energy) {
@@ -145,11 +180,16 @@ const FreePropagator& LinearFlow::Propagator(double tau_s, double omega_radps, b
       return cache_[i];
     }
   }
-  if (cache_.size() < kCacheCapacity) {
-    cache_.emplace_back();
-    last_use_.push_back(clock_);
-    Compute(tau_s, omega_radps, energy, cache_.back());
-    return cache_.back();
+  if (cache_size_ < kCacheCapacity) {
+    if (cache_size_ == cache_.size()) {
+      cache_.emplace_back();
+      last_use_.push_back(clock_);
+    }
+    // A kept entry's storage is written over: Compute sets every member a path reads.
+    const std::size_t slot = cache_size_++;
+    last_use_[slot] = clock_;
+    Compute(tau_s, omega_radps, energy, cache_[slot]);
+    return cache_[slot];
   }
   // Least recently used: a record's nominal step and a pulse's pieces stay while the odd step
   // sizes (a piece's last step) come and go.

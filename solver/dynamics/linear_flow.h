@@ -189,6 +189,13 @@ class LinearFlow {
              const Eigen::Ref<const Eigen::MatrixXd>& C, const Eigen::Ref<const Eigen::MatrixXd>& r,
              FlowPath path = FlowPath::kAuto, const model::Modes* modes = nullptr);
 
+  /// Makes this flow what LinearFlow(M, K, C, r, path, modes) would be, with the path it was
+  /// built with: at the same size its matrices and its propagators' storage are kept (no heap
+  /// block per new model of a sweep), and the cache starts empty. The same bits as a new flow.
+  void Refit(const Eigen::Ref<const Eigen::MatrixXd>& M, const Eigen::Ref<const Eigen::MatrixXd>& K,
+             const Eigen::Ref<const Eigen::MatrixXd>& C, const Eigen::Ref<const Eigen::MatrixXd>& r,
+             const model::Modes* modes = nullptr);
+
   /// True when the flow propagates in modal coordinates.
   bool modal() const { return modal_.has_value(); }
   /// The modal flow. @pre modal().
@@ -266,9 +273,13 @@ class LinearFlow {
 
  private:
   void Compute(double tau_s, double omega_radps, bool energy, FreePropagator& out) const;
+  // The constructor's work past the matrices' copies: the checks, M r, the modal flow (into
+  // modal_'s storage when it has one), the lanes and the zeroed state.
+  void Setup(const model::Modes* modes);
   void ModalEnergy(const FreePropagator& p, double& input_J, double& damping_J) const;
 
   int n_;
+  FlowPath path_ = FlowPath::kAuto;
   std::optional<ModalFlow> modal_;
   Eigen::MatrixXd Y_;           // n x 6 modal coordinates of the state being propagated
   Eigen::VectorXd eta_, deta_;  // modal state at the step end
@@ -284,7 +295,10 @@ class LinearFlow {
   mutable Eigen::MatrixXd A_u_;        // its n rows of du/dt
   mutable Eigen::MatrixXd Q_input_;    // quadratic form of the ground's power on z
   mutable Eigen::MatrixXd Q_damping_;  // quadratic form of the damping power on z
+  // The cache: its first cache_size_ entries are live; those past them are storage kept from
+  // before a Refit, filled again before any other grows the vector.
   std::vector<FreePropagator> cache_;
+  std::size_t cache_size_ = 0;
   std::vector<unsigned long> last_use_;  // per cache entry, the clock of its last use (LRU)
   unsigned long clock_ = 0;
 };

@@ -96,12 +96,25 @@ std::optional<ModalFlow> ModalFlow::Classical(const model::Modes& modes,
                                               const Eigen::Ref<const Eigen::MatrixXd>& M,
                                               const Eigen::Ref<const Eigen::MatrixXd>& C,
                                               const Eigen::Ref<const Eigen::MatrixXd>& r) {
+  ModalFlow flow;
+  if (!flow.Assign(modes, M, C, r)) {
+    return std::nullopt;
+  }
+  return flow;
+}
+
+bool ModalFlow::Assign(const model::Modes& modes, const Eigen::Ref<const Eigen::MatrixXd>& M,
+                       const Eigen::Ref<const Eigen::MatrixXd>& C,
+                       const Eigen::Ref<const Eigen::MatrixXd>& r) {
   SB_DEMAND(modes.phi.rows() == M.rows() && modes.phi.cols() == M.rows() &&
                 modes.eigenvalues.size() == M.rows(),
             "ModalFlow: the modes do not match M");
-  ModalFlow flow;
-  flow.Phi_ = modes.phi;
-  const Eigen::MatrixXd D = flow.Phi_.transpose() * C * flow.Phi_;
+  Phi_ = modes.phi;
+  // Phi^T C Phi as the product of two products, each into storage of its own (the nested
+  // product's temporary, kept).
+  PhiTC_.noalias() = Phi_.transpose() * C;
+  D_.noalias() = PhiTC_ * Phi_;
+  const Eigen::MatrixXd& D = D_;
   const int n = static_cast<int>(M.rows());
   double diagonal = 0.0, off = 0.0;
   for (int j = 0; j < n; ++j) {
@@ -110,24 +123,24 @@ std::optional<ModalFlow> ModalFlow::Classical(const model::Modes& modes,
     }
   }
   if (off > kClassicalTolerance * diagonal) {
-    return std::nullopt;
+    return false;
   }
   // Entries at rounding level are zero: a DOF that no mode couples (the transverse DOFs of an
   // unskewed deck under a longitudinal pulse) then stays exactly at rest.
   for (int k = 0; k < n; ++k) {
     const double floor =
-        64.0 * std::numeric_limits<double>::epsilon() * flow.Phi_.col(k).cwiseAbs().maxCoeff();
+        64.0 * std::numeric_limits<double>::epsilon() * Phi_.col(k).cwiseAbs().maxCoeff();
     for (int i = 0; i < n; ++i) {
-      if (std::abs(flow.Phi_(i, k)) < floor) {
-        flow.Phi_(i, k) = 0.0;
+      if (std::abs(Phi_(i, k)) < floor) {
+        Phi_(i, k) = 0.0;
       }
     }
   }
-  flow.w2_ = modes.eigenvalues.cwiseMax(0.0);
-  flow.c_ = D.diagonal();
-  flow.PhiTM_ = flow.Phi_.transpose() * M;
-  flow.negL_ = -flow.PhiTM_ * r;
-  return flow;
+  w2_ = modes.eigenvalues.cwiseMax(0.0);
+  c_ = D.diagonal();
+  PhiTM_.noalias() = Phi_.transpose() * M;
+  negL_.noalias() = -PhiTM_ * r;
+  return true;
 }
 
 void ModalFlow::ToModal(const Eigen::Ref<const Eigen::VectorXd>& z, Eigen::Ref<Eigen::MatrixXd> Y,

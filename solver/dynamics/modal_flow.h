@@ -98,6 +98,15 @@ class ModalFlow {
                                             const Eigen::Ref<const Eigen::MatrixXd>& C,
                                             const Eigen::Ref<const Eigen::MatrixXd>& r);
 
+  /// An empty flow (no modes), storage for Assign.
+  ModalFlow() = default;
+
+  /// Classical's flow of (modes, M, C, r) in this object's storage (no allocation at the same
+  /// size): the same bits as Classical's; false (the flow then unusable) when C is not classical.
+  bool Assign(const model::Modes& modes, const Eigen::Ref<const Eigen::MatrixXd>& M,
+              const Eigen::Ref<const Eigen::MatrixXd>& C,
+              const Eigen::Ref<const Eigen::MatrixXd>& r);
+
   int n_modes() const { return static_cast<int>(w2_.size()); }
   /// w_k^2 (rad^2/s^2), ascending; rounding below zero of a free body's rigid modes is set to 0.
   const Eigen::VectorXd& w2() const { return w2_; }
@@ -145,12 +154,11 @@ class ModalFlow {
                            const int* terms, double* eta, double* deta, Eigen::Index stride) const;
 
  private:
-  ModalFlow() = default;
-
   Eigen::VectorXd w2_, c_;
-  Eigen::MatrixXd Phi_;    // n x n
-  Eigen::MatrixXd PhiTM_;  // Phi^T M, n x n
-  Eigen::MatrixXd negL_;   // -Phi^T M r, n x 2
+  Eigen::MatrixXd Phi_;        // n x n
+  Eigen::MatrixXd PhiTM_;      // Phi^T M, n x n
+  Eigen::MatrixXd negL_;       // -Phi^T M r, n x 2
+  Eigen::MatrixXd PhiTC_, D_;  // Assign's Phi^T C and Phi^T C Phi, n x n
 };
 
 }  // namespace skewbridge::dynamics

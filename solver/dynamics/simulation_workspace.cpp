@@ -59,7 +59,7 @@ bool SimulationWorkspace::SameShape(const model::Model& other) const {
 
 void SimulationWorkspace::Refit() {
   const model::Model& model = model_;
-  flow_ = LinearFlow(model.M(), model.K(), model.C(), model.r(), FlowPath::kAuto, model.modes());
+  flow_.Refit(model.M(), model.K(), model.C(), model.r(), model.modes());
   // A new workspace's kinematics start at zero, and their evaluation writes only the entries of
   // each contact's bodies: zeroed again (no allocation at the same size), every entry is what it
   // would be in a new workspace. The rest of the storage is written before it is read in a run.

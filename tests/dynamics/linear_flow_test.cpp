@@ -6,6 +6,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <cstring>
 
 namespace skewbridge::dynamics::linear_flow_test {
 namespace {
@@ -178,6 +179,79 @@ TEST(LinearFlow, CachesOnePropagatorPerStepSize) {
   const FreePropagator& single = flow.Propagator(0.01, 0.0);
   const Eigen::MatrixXd squared = single.phi * single.phi;
   EXPECT_LT((other.phi - squared).cwiseAbs().maxCoeff(), 1e-12 * squared.cwiseAbs().maxCoeff());
+}
+
+// The bits of two matrices are the same (NaNs by their bits too).
+bool SameBits(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+  return a.rows() == b.rows() && a.cols() == b.cols() &&
+         std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0;
+}
+
+// Expects `refitted` and `fresh` to be the same flow: the modal transforms, and the transition
+// and end state of a step at each (tau, omega), from the same state.
+void ExpectSameFlow(LinearFlow& refitted, LinearFlow& fresh) {
+  ASSERT_EQ(refitted.modal(), fresh.modal());
+  if (fresh.modal()) {
+    const ModalFlow& a = refitted.modal_flow();
+    const ModalFlow& b = fresh.modal_flow();
+    EXPECT_TRUE(SameBits(a.w2(), b.w2()));
+    EXPECT_TRUE(SameBits(a.c(), b.c()));
+    EXPECT_TRUE(SameBits(a.Phi(), b.Phi()));
+    EXPECT_TRUE(SameBits(a.PhiTM(), b.PhiTM()));
+    EXPECT_TRUE(SameBits(a.negL(), b.negL()));
+  }
+  const ExcitationPiece piece = TestPiece(5.3);
+  for (const double tau : {0.01, 0.013, 0.02}) {
+    for (const double omega : {0.0, piece.omega}) {
+      const FreePropagator& p = refitted.Propagator(tau, omega, true);
+      const FreePropagator& q = fresh.Propagator(tau, omega, true);
+      // The path's own members (a kept entry may hold the other path's from before).
+      if (fresh.modal()) {
+        EXPECT_TRUE(SameBits(p.modal_rows, q.modal_rows));
+        EXPECT_TRUE(SameBits(p.record_pairs, q.record_pairs));
+        EXPECT_TRUE(SameBits(p.modal_input, q.modal_input));
+      } else {
+        EXPECT_TRUE(SameBits(p.phi, q.phi));
+        EXPECT_TRUE(SameBits(p.input_gram, q.input_gram));
+      }
+      Eigen::VectorXd z = Eigen::VectorXd::Zero(fresh.augmented_size());
+      z.head(3) << 0.01, -0.02, 0.003;
+      z.segment(3, 3) << 0.1, 0.05, -0.01;
+      fresh.SetGenerator(piece, 0.3, z);
+      Eigen::VectorXd za(z.size()), zb(z.size());
+      double ia = 0.0, da = 0.0, ib = 0.0, db = 0.0;
+      refitted.Apply(refitted.Propagator(tau, omega, true), z, za, &ia, &da);
+      fresh.Apply(fresh.Propagator(tau, omega, true), z, zb, &ib, &db);
+      EXPECT_TRUE(SameBits(za, zb)) << "tau " << tau << " omega " << omega;
+      EXPECT_EQ(ia, ib);
+      EXPECT_EQ(da, db);
+    }
+  }
+}
+
+TEST(LinearFlow, ARefittedFlowIsTheBitsOfANewOne) {
+  // A flow used for one system (its cache full and cycling) and refitted to others in turn:
+  // classical with other matrices, not classical (the augmented path), classical again. Each
+  // time every transform and propagator is a new flow's, none of the last system's.
+  const TestSystem first(0.05), second(0.3);
+  LinearFlow flow(first.M, first.K, first.C, first.r);
+  for (int i = 1; i <= 12; ++i) flow.Propagator(0.001 * i, 0.0);
+  flow.Propagator(0.01, 5.3);
+  flow.Refit(second.M, second.K, second.C, second.r);
+  LinearFlow fresh_second(second.M, second.K, second.C, second.r);
+  ExpectSameFlow(flow, fresh_second);
+
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(3, 3);
+  C(0, 0) = 50.0;
+  C(0, 1) = C(1, 0) = 20.0;
+  LinearFlow fresh_general(first.M, first.K, C, first.r);
+  ASSERT_FALSE(fresh_general.modal());
+  flow.Refit(first.M, first.K, C, first.r);
+  ExpectSameFlow(flow, fresh_general);
+
+  flow.Refit(first.M, first.K, first.C, first.r);
+  LinearFlow fresh_first(first.M, first.K, first.C, first.r);
+  ExpectSameFlow(flow, fresh_first);
 }
 
 TEST(LinearFlow, ModalStepOfTwoHIsTwoStepsOfH) {
