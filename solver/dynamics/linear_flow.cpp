@@ -129,7 +129,7 @@ void LinearFlow::Compute(double tau_s, double omega_radps, bool energy, FreeProp
   if (modal_) {
     out.modal_rows.resize(12, n_);
     modal_->Transitions(tau_s, omega_radps, out.modal_rows, energy ? &out.modal_input : nullptr,
-                        energy ? &out.modal_damping : nullptr);
+                        energy ? &out.modal_damping : nullptr, &memo_);
     if (n_ == 3) {
       out.record_pairs.resize(24);
       for (int k = 0; k < 3; ++k) {
@@ -331,7 +331,8 @@ FreeDenseOutput::FreeDenseOutput(int n_aug, int max_terms)
       deta_(Eigen::VectorXd::Zero(n_)),
       z_scratch_(Eigen::VectorXd::Zero(n_aug)),
       series_(Eigen::VectorXd::Zero(2 * n_)),
-      mode_terms_(static_cast<std::size_t>(n_), 0) {}
+      mode_terms_(static_cast<std::size_t>(n_), 0),
+      mode_rho_(static_cast<std::size_t>(n_), std::numeric_limits<double>::quiet_NaN()) {}
 
 void FreeDenseOutput::Build(const LinearFlow& flow, double omega_radps,
                             const Eigen::Ref<const Eigen::VectorXd>& z0, double tau_max_s) {
@@ -357,9 +358,13 @@ void FreeDenseOutput::Build(const LinearFlow& flow, double omega_radps,
     for (int k = 0; k < n_; ++k) {
       const double rho =
           tau_max_s * (std::sqrt(modal.w2()[k]) + std::abs(modal.c()[k]) + std::abs(omega_radps));
-      const int terms = ModalTermCount(rho);
-      mode_terms_[static_cast<std::size_t>(k)] = terms;
-      terms_ = std::max(terms_, terms);
+      // The count of the mode's last rho when it is the same (the steps of one length).
+      const auto ki = static_cast<std::size_t>(k);
+      if (!(rho == mode_rho_[ki])) {
+        mode_terms_[ki] = ModalTermCount(rho);
+        mode_rho_[ki] = rho;
+      }
+      terms_ = std::max(terms_, mode_terms_[ki]);
     }
     modal.AllModeCoefficients(omega_radps, Y_, mode_terms_.data(), modal_coefficients_.data(),
                               modal_coefficients_.col(n_).data(), modal_coefficients_.rows());

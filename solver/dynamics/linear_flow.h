@@ -299,6 +299,9 @@ class LinearFlow {
   // before a Refit, filled again before any other grows the vector.
   std::vector<FreePropagator> cache_;
   std::size_t cache_size_ = 0;
+  // The modes' transitions of this flow and of those it was refitted from (Compute's): a
+  // sweep's models share modes' frequencies and damping from cell to cell.
+  mutable TransitionMemo memo_;
   std::vector<unsigned long> last_use_;  // per cache entry, the clock of its last use (LRU)
   unsigned long clock_ = 0;
 };
@@ -377,7 +380,8 @@ class FreeDenseOutput {
   mutable Eigen::VectorXd series_;
   mutable double series_tau_s_[2] = {std::numeric_limits<double>::quiet_NaN(),
                                      std::numeric_limits<double>::quiet_NaN()};
-  std::vector<int> mode_terms_;  // modal: terms per mode
+  std::vector<int> mode_terms_;   // modal: terms per mode
+  std::vector<double> mode_rho_;  // modal: the rho per mode mode_terms_ counts for (NaN: none)
   int terms_ = 0;
 };
 

@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "solver/common/error.h"
@@ -277,8 +278,42 @@ void ModalFlow::AllModeCoefficients(double omega_radps, const Eigen::Ref<const E
   }
 }
 
+std::size_t TransitionMemo::SlotOf(const double (&key)[4]) {
+  std::uint64_t h = 0;
+  for (const double x : key) {
+    std::uint64_t b;
+    std::memcpy(&b, &x, sizeof b);
+    h = (h ^ b) * 0x9E3779B97F4A7C15ULL;
+    h ^= h >> 29;
+  }
+  return static_cast<std::size_t>(h % kSlots);
+}
+
+bool TransitionMemo::Find(const double (&key)[4], double* row) const {
+  if (slots_.empty()) {
+    return false;
+  }
+  const Slot& slot = slots_[SlotOf(key)];
+  if (!slot.used || std::memcmp(slot.key, key, sizeof slot.key) != 0) {
+    return false;
+  }
+  std::memcpy(row, slot.row, sizeof slot.row);
+  return true;
+}
+
+void TransitionMemo::Store(const double (&key)[4], const double* row) {
+  if (slots_.empty()) {
+    slots_.resize(kSlots);
+  }
+  Slot& slot = slots_[SlotOf(key)];
+  std::memcpy(slot.key, key, sizeof slot.key);
+  std::memcpy(slot.row, row, sizeof slot.row);
+  slot.used = true;
+}
+
 void ModalFlow::Transitions(double tau_s, double omega_radps, Eigen::Ref<Eigen::MatrixXd> rows,
-                            Eigen::MatrixXd* input, Eigen::MatrixXd* damping) const {
+                            Eigen::MatrixXd* input, Eigen::MatrixXd* damping,
+                            TransitionMemo* memo) const {
   const int n = n_modes();
   const bool energy = input != nullptr && damping != nullptr;
   SB_DEMAND(rows.rows() == 12 && rows.cols() == n, "ModalFlow: rows must be 12 x n");
@@ -290,7 +325,19 @@ void ModalFlow::Transitions(double tau_s, double omega_radps, Eigen::Ref<Eigen::
   // Columns: the responses to unit (eta, eta', alpha, beta, gamma, delta). Indices: [m][j].
   double e[kModalMaxTerms][6], v[kModalMaxTerms][6], f[kModalMaxTerms][6];
   double weight[2 * kModalMaxTerms];
+  if (energy) {
+    memo = nullptr;  // it holds the transitions alone
+  }
   for (int k = 0; k < n; ++k) {
+    // T_k is a function of these bits alone.
+    const double key[4] = {w2_[k], c_[k], tau_s, omega_radps};
+    double row[12];
+    if (memo != nullptr && memo->Find(key, row)) {
+      for (int i = 0; i < 12; ++i) {
+        rows(i, k) = row[i];
+      }
+      continue;
+    }
     const double rho = tau_s * (std::sqrt(w2_[k]) + std::abs(c_[k]) + W);
     int halvings = 0;
     double tau = tau_s;
@@ -319,7 +366,6 @@ void ModalFlow::Transitions(double tau_s, double omega_radps, Eigen::Ref<Eigen::
       }
     }
     // Sum the series at tau (Horner).
-    double row[12];
     for (int j = 0; j < 6; ++j) {
       double a = e[terms - 1][j], b = v[terms - 1][j];
       for (int m = terms - 2; m >= 0; --m) {
@@ -388,6 +434,9 @@ void ModalFlow::Transitions(double tau_s, double omega_radps, Eigen::Ref<Eigen::
     }
     for (int i = 0; i < 12; ++i) {
       rows(i, k) = row[i];
+    }
+    if (memo != nullptr) {
+      memo->Store(key, row);
     }
     if (energy) {
       input->col(k) = Eigen::Map<const Eigen::Matrix<double, 36, 1>>(Qin.data());

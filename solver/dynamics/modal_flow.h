@@ -29,7 +29,10 @@
 ///     int u^T C u ds = sum_k c_k int eta_k'^2 ds,  -int u^T M r a_g ds = sum_k int eta_k' f_k ds.
 
 #include <Eigen/Core>
+#include <cstddef>
+#include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "solver/model/model.h"
 
@@ -78,6 +81,29 @@ inline void ToModalFixed(const double* __restrict PhiTM, const double* __restric
 }
 
 }  // namespace detail
+
+/// Per-mode transitions already computed, keyed by the bits of (w_k^2, c_k, tau, omega): T_k is
+/// a function of these alone (ModalFlow::Transitions), so a sweep's next model whose mode has
+/// the same frequency and damping (or another mode of the same model) takes its T_k from here,
+/// the same bits. Direct-mapped: a new key takes its slot from the one before. Its storage
+/// (kSlots slots) is allocated on first use.
+class TransitionMemo {
+ public:
+  /// Copies the 12 entries of T_k held for `key` into `row`; false when none is held.
+  bool Find(const double (&key)[4], double* row) const;
+  /// Holds `row` (12 entries) for `key`.
+  void Store(const double (&key)[4], const double* row);
+
+ private:
+  static constexpr std::size_t kSlots = 512;
+  struct Slot {
+    std::uint64_t key[4] = {};
+    double row[12] = {};
+    bool used = false;
+  };
+  static std::size_t SlotOf(const double (&key)[4]);
+  std::vector<Slot> slots_;
+};
 
 /// The modes of a classically damped model and the per-mode transitions.
 class ModalFlow {
@@ -139,8 +165,11 @@ class ModalFlow {
   /// (12 x n) holds T_k row-major (eta row, then eta' row). With `input` and `damping` (36 x n,
   /// column k a 6 x 6 column-major symmetric form Q_k), also the step's energy integrals:
   /// y_k^T Q_k y_k summed over k is -int u^T M r a_g ds (input) or int u^T C u ds (damping), J.
+  /// Without the energy forms, `memo` (if given) supplies the modes' T_k it holds and keeps
+  /// those computed.
   void Transitions(double tau_s, double omega_radps, Eigen::Ref<Eigen::MatrixXd> rows,
-                   Eigen::MatrixXd* input, Eigen::MatrixXd* damping) const;
+                   Eigen::MatrixXd* input, Eigen::MatrixXd* damping,
+                   TransitionMemo* memo = nullptr) const;
 
   /// Taylor coefficients of eta_k and eta_k' (s since the step start) from y_k, `terms` of each
   /// into eta[0 .. terms) and deta[0 .. terms). @pre terms <= kModalMaxTerms.

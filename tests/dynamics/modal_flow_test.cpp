@@ -7,7 +7,9 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <cstring>
 #include <numbers>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -329,6 +331,44 @@ TEST(ModalFlow, AllModeCoefficientsAreEachModesOwnBits) {
       }
     }
   }
+}
+
+TEST(ModalFlow, TransitionsFromTheMemoAreTheBitsOfTheirComputation) {
+  // Models of 3 and 5 modes share one memo over many steps and rates (440 keys in 512 slots,
+  // some of them taken over): each transition, computed with the memo or taken from it,
+  // is the bits of the transition computed without it. A memo keyed on fewer of the mode's
+  // numbers would hand one model's T_k to another.
+  std::mt19937 rng(11);
+  const RandomModel a = MakeModel(rng, 3, 0, {0.05});
+  const RandomModel b = MakeModel(rng, 5, 1, {0.02, 0.3});
+  // c's modes are a's with their damping doubled: the same w_k^2, other c_k.
+  const std::optional<ModalFlow> fa = ModalFlow::Classical(a.M, a.K, a.C, a.r);
+  const std::optional<ModalFlow> fb = ModalFlow::Classical(b.M, b.K, b.C, b.r);
+  const std::optional<ModalFlow> fc = ModalFlow::Classical(a.M, a.K, 2.0 * a.C, a.r);
+  ASSERT_TRUE(fa && fb && fc);
+  ASSERT_EQ(fa->w2()[0], fc->w2()[0]);
+  ASSERT_NE(fa->c()[0], fc->c()[0]);
+  TransitionMemo memo;
+  int held = 0;
+  for (int pass = 0; pass < 2; ++pass) {
+    for (int i = 1; i <= 40; ++i) {
+      const double tau = 0.0007 * i;
+      const double omega = (i % 3) * 2.7;
+      for (const ModalFlow* f : {&*fa, &*fb, &*fc}) {
+        Eigen::MatrixXd plain(12, f->n_modes()), memoised(12, f->n_modes());
+        f->Transitions(tau, omega, plain, nullptr, nullptr);
+        for (int k = 0; k < f->n_modes(); ++k) {
+          double row[12];
+          const double key[4] = {f->w2()[k], f->c()[k], tau, omega};
+          held += memo.Find(key, row) ? 1 : 0;
+        }
+        f->Transitions(tau, omega, memoised, nullptr, nullptr, &memo);
+        ASSERT_EQ(0, std::memcmp(plain.data(), memoised.data(), sizeof(double) * plain.size()))
+            << "tau " << tau << " omega " << omega << " modes " << f->n_modes();
+      }
+    }
+  }
+  EXPECT_GT(held, 100);  // the second pass found some in the memo
 }
 
 TEST(ModalFlow, ProductsSumEachRowInColumnOrder) {
