@@ -146,4 +146,19 @@ CompliantRunResult SimulateCompliant(const model::Model& model,
                                      const InitialState& initial = {},
                                      const EventPolicy& policy = {});
 
+/// One run of `model` with its rigid contacts (those of the rigid wall) and the compliant
+/// `springs` (those of the other wall) under `excitation` from `initial`: the event-driven
+/// integrator of Simulate carrying the springs [docs/compliant.md §4, docs/theory.md §3.22]. A free
+/// (exact) step only with every contact open and every spring open and off its closing point, a
+/// spring's closing searched as an impact; otherwise the constrained Runge-Kutta step with the
+/// springs' forces in the applied forces and their events beside the contacts'. The result's
+/// `run` counts the springs' strikes among its impacts and the wall friction's dissipation in its
+/// friction_J; its ledger closes as kinetic + strain + joint_stored = initial + input - damping -
+/// impact - friction - joint_dissipated. With no spring ever engaged it is Simulate's run.
+/// @throws InputError as Simulate, and when a spring is invalid.
+CompliantRunResult SimulateMixed(const model::Model& model,
+                                 const std::vector<CompliantSpring>& springs,
+                                 const Excitation& excitation, const model::RunControl& control,
+                                 const InitialState& initial = {}, const EventPolicy& policy = {});
+
 }  // namespace skewbridge::dynamics

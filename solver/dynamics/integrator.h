@@ -18,6 +18,7 @@
 #include "solver/dynamics/mode_decision.h"
 #include "solver/dynamics/peak_bound.h"
 #include "solver/dynamics/simulate.h"
+#include "solver/dynamics/spring_set.h"
 #include "solver/dynamics/step_grid.h"
 
 namespace skewbridge::dynamics {
@@ -27,9 +28,14 @@ namespace skewbridge::dynamics {
 /// call. It is the mode decision's source of constrained forces (ActiveForces).
 class Integrator final : private ConstrainedForces {
  public:
+  // `springs`, when not null, are a compliant wall's beside the rigid contacts (SimulateMixed).
   Integrator(const model::Model& model, const Excitation& excitation,
              const model::RunControl& control, SimulationWorkspace& ws, const InitialState& initial,
-             const EventPolicy& policy, FreeStepObserver* observer);
+             const EventPolicy& policy, FreeStepObserver* observer, SpringSet* springs = nullptr);
+
+  // The springs' stored energy at the end and their work less it (J), after Run with springs.
+  double joint_stored_J() const { return joint_stored_J_; }
+  double joint_dissipated_J() const { return joint_dissipated_J_; }
 
   RunResult Run();
 
@@ -62,10 +68,21 @@ class Integrator final : private ConstrainedForces {
   // history samples, the decision.
   void FinishFreeStep(const ExcitationPiece& piece, const FreeStepPlan& step, bool open,
                       bool dense_built, double input_J, double damping_J);
-  // Whether the free steps may run RecordFlight: a modal flow with the gap bound, no ledger.
+  // Whether the free steps may run RecordFlight: a modal flow with the gap bound, no ledger, no
+  // springs.
   bool RecordFlightApplies() const {
-    return !control_.energy_ledger && ws_.flow_.modal() && ws_.gap_bound_.applies();
+    return !control_.energy_ledger && ws_.flow_.modal() && ws_.gap_bound_.applies() &&
+           springs_ == nullptr;
   }
+  // With springs: whether every spring is open and off its closing point at z_ (a free step may
+  // follow); true without springs.
+  bool SpringsFree() const;
+  // With springs: their transitions at z_ [docs/theory.md §3.22], a strike counted.
+  void SettleSprings();
+  // With springs: the first closing of an open spring in the free step [t_, t1] whose end state
+  // z_new_ holds (+inf: none), searched as an impact on the dense output state_at.
+  template <class StateAt>
+  double FirstSpringClosing(double t1, StateAt&& state_at);
   // A record's free flight [docs/theory.md §3.21]: from the step `steps` on (counted by Run and
   // within the limit), free steps as FreeStep takes them, each in a tight loop while it is a
   // full step on a piece without harmonic part whose gaps the bound keeps open, whose maxima
@@ -209,9 +226,17 @@ class Integrator final : private ConstrainedForces {
   const model::RunControl& control_;
   const EventPolicy policy_;
   SimulationWorkspace& ws_;
-  // Forces added to the applied forces wherever they are formed (AppliedForces); null: none,
-  // and every force keeps the model's bits.
+  // A compliant wall's springs beside the contacts; null: none. They are the forces added to the
+  // applied forces wherever these are formed (AppliedForces); without them every force keeps
+  // the model's bits.
+  SpringSet* springs_ = nullptr;
   AddedForces* added_ = nullptr;
+  int ny_ = 0;  // the size of y: (q, u, three work integrals[, springs', friction's work])
+  Vec spring_e0_, spring_e1_, spring_scratch_h_;       // the springs' event values at a step's ends
+  double joint_work_J_ = 0.0, wall_friction_J_ = 0.0;  // the springs' and their friction's work
+  double joint_stored_J_ = 0.0, joint_dissipated_J_ = 0.0;
+  long strikes_ = 0;                            // springs closing while none was engaged
+  std::unique_ptr<DormandPrince45> spring_rk_;  // with springs: the steps of the longer y
   int n_, nc_;
   // The run's tolerances and scales [docs/theory.md §3.2], which the decision, the projection,
   // the event functions and the event searches compare with.

@@ -83,13 +83,20 @@ class DormandPrince45 {
 
   /// RMS of err_i / (atol_i + rtol max(|y0_i|, |y1_i|)): the step is accepted when <= 1.
   double ErrorNorm(const Eigen::Ref<const Eigen::VectorXd>& atol, double rtol) const {
+    return ErrorNorm(atol, rtol, y0_.size());
+  }
+  /// As ErrorNorm, the mean taken over `count` entries: a state whose further entries ride along
+  /// with an infinite absolute tolerance (their terms zero) then has the norm of its first
+  /// `count` entries alone, bit for bit.
+  double ErrorNorm(const Eigen::Ref<const Eigen::VectorXd>& atol, double rtol,
+                   Eigen::Index count) const {
     double sum = 0.0;
     for (Eigen::Index i = 0; i < y0_.size(); ++i) {
       const double scale = atol[i] + rtol * std::max(std::abs(y0_[i]), std::abs(y1_[i]));
       const double e = error_[i] / scale;
       sum += e * e;
     }
-    return std::sqrt(sum / static_cast<double>(std::max<Eigen::Index>(1, y0_.size())));
+    return std::sqrt(sum / static_cast<double>(std::max<Eigen::Index>(1, count)));
   }
 
   /// Dense output y(t0 + s h) for s in [0, 1] (4th order) [Hairer et al. 1993, §II.6].

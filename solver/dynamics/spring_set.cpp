@@ -544,6 +544,25 @@ void SpringSet::EndEnergies(const Eigen::Ref<const Vec>& q, const Eigen::Ref<con
   friction_stored_J = friction_stored;
 }
 
+double SpringSet::StiffnessSum_Npm() const {
+  double k_sum = 0.0;
+  for (const CompliantSpring& s : springs_) {
+    switch (s.law) {
+      case SpringLaw::kBackfill:
+        k_sum += std::max(s.backfill.k_max_N_per_m, s.backfill.k_ur_N_per_m);
+        break;
+      case SpringLaw::kSpringDashpot:
+        k_sum += s.k_N_per_m;
+        break;
+      case SpringLaw::kShearKey:
+        k_sum += s.key.v_n_N / s.key.d3_m;
+        break;
+    }
+  }
+  for (const FrictionState& f : friction_) k_sum += f.k_t_N_per_m;
+  return k_sum;
+}
+
 void SpringSet::MoveResults(CompliantRunResult& out) {
   out.max_spring_force_N = std::move(max_force_N_);
   out.max_spring_deformation_m = std::move(max_deformation_m_);

@@ -92,6 +92,9 @@ class SpringSet final : public AddedForces {
   double LineStiffness(int j) const;
   /// The friction force F_t along the tangent of friction element f (N) at (s, N).
   double FrictionForce(const FrictionState& f, double s, double normal_N) const;
+  /// The sum of the springs' largest stiffnesses and the stick springs' (N/m): with the largest
+  /// translational mass, the springs' frequency the step control's velocity scale takes.
+  double StiffnessSum_Npm() const;
   /// Whether some spring is on a branch other than open.
   bool AnyEngaged() const;
 
