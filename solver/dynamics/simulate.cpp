@@ -345,7 +345,7 @@ void Integrator::FinishFreeStep(const ExcitationPiece& piece, const FreeStepPlan
   }
   // A spring closing first ends the step without a contact decision.
   const double t_impact = t_event;
-  if (springs_ != nullptr) {
+  if (springs_ != nullptr) [[unlikely]] {
     t_event = std::min(t_event, FirstSpringClosing(step.t_next_s, state_at));
   }
   forced_.clear();
@@ -355,7 +355,7 @@ void Integrator::FinishFreeStep(const ExcitationPiece& piece, const FreeStepPlan
           t_event, step.t_next_s, scales_.simultaneity_s, scales_.gap_tol_m, modes_, positions_at,
           [this](int c, const Eigen::Ref<const Vec>& qq) { return GapAt(c, qq); }, forced_);
     }
-    ensure_dense();
+    if (springs_ != nullptr) ensure_dense();  // a spring's closing may be its only search
     ws_.free_dense_.EvaluateHead(t_event - t_, 2 * n_, z_new_);  // what state_at(t_event) gives
   }
   const double t1 = t_event < kInf ? t_event : step.t_next_s;
@@ -492,7 +492,8 @@ void Integrator::Rhs(double t, const Eigen::Ref<const Vec>& y, KinematicsOf whic
   if (!control_.energy_ledger) {
     // The work integrals ride along in y with an infinite absolute tolerance: they never steer
     // the step size, so leaving them at zero changes no response.
-    dy.tail(ny_ - 2 * n_).setZero();
+    dy.segment(2 * n_, 3).setZero();
+    if (springs_ != nullptr) dy.tail(2).setZero();
     return;
   }
   const Eigen::Vector2d ag = GroundAcceleration(t);
@@ -531,7 +532,8 @@ void Integrator::ConstrainedStep() {
     SettleSprings();
   }
   y_.head(2 * n_) = z_.head(2 * n_);
-  y_.tail(ny_ - 2 * n_).setZero();
+  y_.segment(2 * n_, 3).setZero();
+  if (springs_ != nullptr) y_.tail(2).setZero();
   // The stages need the closed contacts' kinematics only; the step's start needs every
   // contact's (the open ones' gaps and rates there).
   const auto rhs = [this](double t, const Eigen::Ref<const Vec>& y, Eigen::Ref<Vec> dy) {
