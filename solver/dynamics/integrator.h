@@ -74,15 +74,38 @@ class Integrator final : private ConstrainedForces {
     return !control_.energy_ledger && ws_.flow_.modal() && ws_.gap_bound_.applies() &&
            springs_ == nullptr;
   }
-  // With springs: whether every spring is open and off its closing point at z_ (a free step may
-  // follow); true without springs.
+  // The springs' part of a run (mixed_run.cpp), each called only with springs: out of line and
+  // in a translation unit of its own, so that the rigid law's steps compile as they do without
+  // them.
+  // Whether every spring is open and off its closing point at z_ (a free step may follow).
   bool SpringsFree() const;
-  // With springs: their transitions at z_ [docs/theory.md §3.22], a strike counted.
+  // Their transitions at z_ [docs/theory.md §3.22], a strike counted.
   void SettleSprings();
-  // With springs: the first closing of an open spring in the free step [t_, t1] whose end state
-  // z_new_ holds (+inf: none), searched as an impact on the dense output state_at.
-  template <class StateAt>
-  double FirstSpringClosing(double t1, StateAt&& state_at);
+  // Each engaged spring's largest force and deformation raised to its values at z_.
+  void SpringMaxima();
+  // The first closing of an open spring in the free step `step` on `piece` from t_, whose end
+  // state z_new_ holds (+inf: none), searched as an impact on the flow's dense output; that is
+  // built (unless `dense_built` says it is) when a search needs it, and always when a closing is
+  // found.
+  double FreeStepSpringClosing(const ExcitationPiece& piece, const FreeStepPlan& step,
+                               bool dense_built);
+  // The first spring event of the Runge-Kutta step from t_ to t1 (+inf: none), on its dense
+  // output; spring_e0_ holds the event values at the step's start. The time is taken on the
+  // root's far side, so that the transition sees the event function crossed.
+  double FirstSpringEvent(double t1);
+  // After a spring closed first in a free step: its transition; the contacts' gaps and rates at
+  // the new start.
+  void SpringClosedInFreeStep();
+  // Rhs with the springs: Rhs on (q, u) and the three work integrals (the springs' forces are
+  // in du through the hook), then the springs' power and their friction's in dy's last two
+  // entries (W).
+  void SpringsRhs(double t, const Eigen::Ref<const Vec>& y, KinematicsOf which, Eigen::Ref<Vec> dy);
+  // The Runge-Kutta step of length h from (t_, y_) with the springs (SpringsRhs), their event
+  // values at its start into spring_e0_.
+  void SpringsStep(double h);
+  // The run's end with springs: their stored energy and dissipation, the wall friction's
+  // dissipation in e's friction, their strikes among the impacts, e's balance error.
+  void FinishSprings(EnergyLedger& e);
   // A record's free flight [docs/theory.md §3.21]: from the step `steps` on (counted by Run and
   // within the limit), free steps as FreeStep takes them, each in a tight loop while it is a
   // full step on a piece without harmonic part whose gaps the bound keeps open, whose maxima
@@ -235,8 +258,7 @@ class Integrator final : private ConstrainedForces {
   Vec spring_e0_, spring_e1_, spring_scratch_h_;       // the springs' event values at a step's ends
   double joint_work_J_ = 0.0, wall_friction_J_ = 0.0;  // the springs' and their friction's work
   double joint_stored_J_ = 0.0, joint_dissipated_J_ = 0.0;
-  long strikes_ = 0;                            // springs closing while none was engaged
-  std::unique_ptr<DormandPrince45> spring_rk_;  // with springs: the steps of the longer y
+  long strikes_ = 0;  // springs closing while none was engaged
   int n_, nc_;
   // The run's tolerances and scales [docs/theory.md §3.2], which the decision, the projection,
   // the event functions and the event searches compare with.

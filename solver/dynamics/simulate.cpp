@@ -109,8 +109,10 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   if (springs != nullptr) {
     spring_e0_ = spring_e1_ = Vec::Zero(springs->n_events());
     spring_scratch_h_ = Vec::Zero(n_);
-    spring_rk_ = std::make_unique<DormandPrince45>(ny_);
   }
+  // The workspace's Runge-Kutta storage for y (a run with springs lengthens it, the next run
+  // without shortens it again).
+  if (ws_.rk_.size() != ny_) ws_.rk_.Resize(ny_);
   du_ = cu_ = Vec::Zero(n_);
   ends_.gap0 = ends_.gN0 = ends_.gap1 = ends_.gN1 = Vec::Zero(nc_);
   events_.f0 = events_.f1 = events_.f_eval = Vec::Zero(2 * nc_);
@@ -246,18 +248,7 @@ RunResult Integrator::Finish(double t_finite_s) {
     e.balance_error_J = (e.kinetic_J + e.strain_J) -
                         (e.initial_J + e.input_J - e.damping_J - e.impact_J - e.friction_J);
   } else {
-    // The springs as a compliant run has them: what they would give back by unloading is stored
-    // (their stick springs' F_t^2 / (2 k_t) too), the rest of their work dissipated; the wall
-    // friction's dissipation joins the contacts' friction.
-    double stored, friction_stored;
-    springs_->EndEnergies(q(), u(), stored, friction_stored);
-    joint_stored_J_ = stored + friction_stored;
-    joint_dissipated_J_ = joint_work_J_ - stored;
-    e.friction_J += wall_friction_J_ - friction_stored;
-    result_.impacts += strikes_;
-    e.balance_error_J =
-        (e.kinetic_J + e.strain_J + joint_stored_J_) -
-        (e.initial_J + e.input_J - e.damping_J - e.impact_J - e.friction_J - joint_dissipated_J_);
+    FinishSprings(e);
   }
   if (!Failed() && !std::isfinite(e.kinetic_J + e.strain_J)) {
     // A finite state whose energy overflows is no result either.
@@ -343,19 +334,24 @@ void Integrator::FinishFreeStep(const ExcitationPiece& piece, const FreeStepPlan
     GapsAndRates(z_new_.head(n_), z_new_.segment(n_, n_), ends_.gap1, ends_.gN1);
     t_event = FirstImpact(t_, step.t_next_s, policy_.dip_margin, positions_at, state_at);
   }
-  // A spring closing first ends the step without a contact decision.
-  const double t_impact = t_event;
+  // A spring closing first (before an impact, not with it) ends the step without a contact
+  // decision.
+  bool spring_first = false;
   if (springs_ != nullptr) [[unlikely]] {
-    t_event = std::min(t_event, FirstSpringClosing(step.t_next_s, state_at));
+    const double t_spring = FreeStepSpringClosing(piece, step, dense_built);
+    spring_first = t_spring < t_event;
+    if (spring_first) {
+      t_event = t_spring;
+      dense_built = true;  // the search built it
+    }
   }
   forced_.clear();
   if (t_event < kInf) {
-    if (t_event == t_impact) {
+    if (!spring_first) {
       SimultaneousContacts(
           t_event, step.t_next_s, scales_.simultaneity_s, scales_.gap_tol_m, modes_, positions_at,
           [this](int c, const Eigen::Ref<const Vec>& qq) { return GapAt(c, qq); }, forced_);
     }
-    if (springs_ != nullptr) ensure_dense();  // a spring's closing may be its only search
     ws_.free_dense_.EvaluateHead(t_event - t_, 2 * n_, z_new_);  // what state_at(t_event) gives
   }
   const double t1 = t_event < kInf ? t_event : step.t_next_s;
@@ -386,13 +382,10 @@ void Integrator::FinishFreeStep(const ExcitationPiece& piece, const FreeStepPlan
   peaks_.Disarm();
 
   // Decide: the mode decision at an impact; otherwise the step's end starts the next step.
-  if (t_event < kInf && t_event == t_impact) {
-    ResolveContacts(forced_);
+  if (spring_first) [[unlikely]] {
+    SpringClosedInFreeStep();
   } else if (t_event < kInf) {
-    // A spring closed: its transition; the contacts' gaps and rates at the new start.
-    SettleSprings();
-    GapsAndRates(q(), u(), ends_.gap0, ends_.gN0);
-    gaps_exact_ = true;
+    ResolveContacts(forced_);
   } else if (open) {
     gaps_exact_ = false;
   } else {
@@ -415,7 +408,6 @@ void Integrator::RecordStep(double t1, ComponentAt&& component_at, StateAt&& sta
   RecordOutputs(t_, t1, state_at);
   z_.head(2 * n_) = z_new_.head(2 * n_);
   t_ = t1;
-  if (springs_ != nullptr) springs_->Maxima(z_.head(2 * n_));
 }
 
 template <class PositionsAt, class StateAt>
@@ -492,8 +484,7 @@ void Integrator::Rhs(double t, const Eigen::Ref<const Vec>& y, KinematicsOf whic
   if (!control_.energy_ledger) {
     // The work integrals ride along in y with an infinite absolute tolerance: they never steer
     // the step size, so leaving them at zero changes no response.
-    dy.segment(2 * n_, 3).setZero();
-    if (springs_ != nullptr) dy.tail(2).setZero();
+    dy.tail(3).setZero();
     return;
   }
   const Eigen::Vector2d ag = GroundAcceleration(t);
@@ -504,14 +495,6 @@ void Integrator::Rhs(double t, const Eigen::Ref<const Vec>& y, KinematicsOf whic
   cu_.noalias() = model_.C() * uu;
   dy[2 * n_ + 1] = uu.dot(cu_);
   dy[2 * n_ + 2] = ws_.forces_.friction_power_W;
-  if (springs_ != nullptr) {
-    // The springs' powers (their forces are in du already, through the hook).
-    double joint_W, friction_W;
-    spring_scratch_h_.setZero();
-    springs_->AddForces(qq, uu, spring_scratch_h_, joint_W, friction_W);
-    dy[2 * n_ + 3] = joint_W;
-    dy[2 * n_ + 4] = friction_W;
-  }
 }
 
 void Integrator::ClosedEventValues(Eigen::Ref<Vec> values) const {
@@ -526,27 +509,34 @@ void Integrator::ConstrainedStep() {
   const ExcitationPiece piece = excitation_.PieceAt(t_);
   SB_DEMAND(piece.t_end > t_, "Excitation::PieceAt(t) returned a piece that ends at or before t");
   const double h = ConstrainedStepLength(t_, std::min(piece.t_end, t_end_), h_rk_, policy_);
-  if (springs_ != nullptr) {
+  if (springs_ != nullptr) [[unlikely]] {
     // A spring may sit on the end of its piece at the step's start without an event located
-    // there: its transition first.
+    // there: its transition first. The springs' two work integrals start at zero with the rest.
     SettleSprings();
+    y_.tail(5).setZero();
   }
   y_.head(2 * n_) = z_.head(2 * n_);
-  y_.segment(2 * n_, 3).setZero();
-  if (springs_ != nullptr) y_.tail(2).setZero();
+  y_.tail(3).setZero();
   // The stages need the closed contacts' kinematics only; the step's start needs every
   // contact's (the open ones' gaps and rates there).
   const auto rhs = [this](double t, const Eigen::Ref<const Vec>& y, Eigen::Ref<Vec> dy) {
     Rhs(t, y, KinematicsOf::kClosedContacts, dy);
   };
-  Rhs(t_, y_, KinematicsOf::kAllContacts, dy_);
+  if (springs_ == nullptr) [[likely]] {
+    Rhs(t_, y_, KinematicsOf::kAllContacts, dy_);
+  } else {
+    SpringsRhs(t_, y_, KinematicsOf::kAllContacts, dy_);
+  }
   ClosedEventValues(events_.f0);
   ends_.gap0 = ws_.forces_.kin.gap_m;
   ends_.gN0 = ws_.forces_.kin.gamma_N;
   gaps_exact_ = true;
-  if (springs_ != nullptr) springs_->AllEventValues(y_, spring_e0_);
-  DormandPrince45& rk = springs_ != nullptr ? *spring_rk_ : ws_.rk_;
-  rk.Step(rhs, t_, y_, dy_, h);
+  DormandPrince45& rk = ws_.rk_;
+  if (springs_ == nullptr) [[likely]] {
+    rk.Step(rhs, t_, y_, dy_, h);
+  } else {
+    SpringsStep(h);
+  }
   // The norm of (q, u) alone: the work integrals' terms are zero (infinite tolerance).
   const double err = rk.ErrorNorm(atol_, control_.relative_tolerance, 2 * n_ + 3);
   if (!(err <= 1.0)) {
@@ -585,23 +575,14 @@ void Integrator::ConstrainedStep() {
     ClosedEventValues(events_.f_eval);
     return events_.f_eval[e];
   };
-  const double t_contact = std::min(
+  double t_event = std::min(
       t_impact, FirstClosedEvent(t_, t1, events_.f0, events_.f1, modes_, event_value_at, policy_));
-  double t_event = t_contact;
-  if (springs_ != nullptr) {
-    // The first spring event function to change sign, on the dense output; the time taken on its
-    // far side so that the transition sees it crossed (as a compliant run does).
-    springs_->AllEventValues(y1, spring_e1_);
-    const double x_tol = EventTimeBracket(t1, policy_);
-    for (int e = 0; e < spring_e0_.size(); ++e) {
-      if (!(spring_e0_[e] > 0.0 && spring_e1_[e] <= 0.0)) continue;
-      const auto value = [&](double t) {
-        rk.DenseHeadAt(t, 2 * n_, y_eval_);
-        return springs_->EventValueAt(e, y_eval_);
-      };
-      const RootResult root = FindRootBrent(value, t_, t1, spring_e0_[e], spring_e1_[e], x_tol);
-      t_event = std::min(t_event, root.fx <= 0.0 ? root.x : root.upper);
-    }
+  // A spring's event first (before the contacts' events, not with them): its transition alone.
+  bool spring_first = false;
+  if (springs_ != nullptr) [[unlikely]] {
+    const double t_spring = FirstSpringEvent(t1);
+    spring_first = t_spring < t_event;
+    if (spring_first) t_event = t_spring;
   }
   forced_.clear();
   if (t_impact < kInf && t_impact == t_event) {
@@ -620,22 +601,26 @@ void Integrator::ConstrainedStep() {
   result_.energy.input_J += y_eval_[2 * n_];
   result_.energy.damping_J += y_eval_[2 * n_ + 1];
   result_.energy.friction_J += y_eval_[2 * n_ + 2];
-  if (springs_ != nullptr) {
+  if (springs_ != nullptr) [[unlikely]] {
     joint_work_J_ += y_eval_[2 * n_ + 3];
     wall_friction_J_ += y_eval_[2 * n_ + 4];
   }
   z_new_.head(2 * n_) = y_eval_.head(2 * n_);
   const auto component_at = [&](double t, int i) { return rk.DenseComponentAt(t, i); };
   RecordStep(t_new, component_at, state_at);
+  // The springs' maxima at the step's end (a free step has every spring open).
+  if (springs_ != nullptr) [[unlikely]] {
+    SpringMaxima();
+  }
   h_rk_ = t_event < kInf ? h : h * DormandPrince45::StepFactor(err);
 
   // Decide: the mode decision at an event; otherwise the projection onto the closed contacts.
   // A spring's event alone: its transition, and the projection of the closed contacts.
-  if (t_event < kInf && t_event == t_contact) {
-    ResolveContacts(forced_);
-  } else if (t_event < kInf) {
+  if (spring_first) [[unlikely]] {
     SettleSprings();
     if (AnyClosed()) Project();
+  } else if (t_event < kInf) {
+    ResolveContacts(forced_);
   } else {
     Project();
   }
@@ -663,56 +648,9 @@ void Integrator::ResolveContacts(const std::vector<int>& forced) {
   ends_.gN0 = ws_.decision_.projection.kin.gamma_N;
   gaps_exact_ = true;
   // The springs after the decision, with the velocities it left [docs/theory.md §3.22].
-  if (springs_ != nullptr) SettleSprings();
-}
-
-bool Integrator::SpringsFree() const {
-  if (springs_->AnyEngaged()) return false;
-  Eigen::Vector3d w;
-  for (int j = 0; j < springs_->size(); ++j) {
-    const SpringSet::SpringState& m = springs_->state(j);
-    if (m.broken) continue;
-    double d, rate;
-    springs_->Kinematics(j, z_.head(n_), z_.segment(n_, n_), d, rate, w);
-    if (!(d < m.d_set_m)) return false;
+  if (springs_ != nullptr) [[unlikely]] {
+    SettleSprings();
   }
-  return true;
-}
-
-void Integrator::SettleSprings() {
-  if (springs_->SettleAll(z_.head(2 * n_), t_)) ++strikes_;
-}
-
-template <class StateAt>
-double Integrator::FirstSpringClosing(double t1, StateAt&& state_at) {
-  double t_event = kInf;
-  Eigen::Vector3d w;
-  for (int j = 0; j < springs_->size(); ++j) {
-    const SpringSet::SpringState& m = springs_->state(j);
-    if (m.broken) continue;
-    const double d_set = m.d_set_m;
-    double d0, r0, d1, r1;
-    springs_->Kinematics(j, z_.head(n_), z_.segment(n_, n_), d0, r0, w);
-    springs_->Kinematics(j, z_new_.head(n_), z_new_.segment(n_, n_), d1, r1, w);
-    if (!ImpactSuspected(d_set - d0, -r0, d_set - d1, -r1, t1 - t_, policy_.dip_margin)) continue;
-    const auto gap = [&](double t) {
-      const Vec& s = state_at(t);
-      double d, rate;
-      Eigen::Vector3d ww;
-      springs_->Kinematics(j, s.head(n_), s.segment(n_, n_), d, rate, ww);
-      return d_set - d;
-    };
-    const auto gamma_N = [&](double t) {
-      const Vec& s = state_at(t);
-      double d, rate;
-      Eigen::Vector3d ww;
-      springs_->Kinematics(j, s.head(n_), s.segment(n_, n_), d, rate, ww);
-      return -rate;
-    };
-    t_event = std::min(t_event, FirstGapRoot(t_, t1, d_set - d0, -r0, d_set - d1, -r1, gap, gamma_N,
-                                             scales_.gap_tol_m, scales_.v_tol_mps, policy_));
-  }
-  return t_event;
 }
 
 void Integrator::Forces(const ContactModes& modes, double t, const Eigen::Ref<const Vec>& qq,
