@@ -133,9 +133,23 @@ void WriteHdf5(const std::filesystem::path& path, const std::string& model_text,
 }
 
 // The compliant walls of a run in words: "5 springs per wall and two shear keys per abutment"
-// when every wall has the same number of springs and every abutment keys, else wall by wall.
+// when every wall has the same number of springs and every abutment keys, else wall by wall. With
+// a law per abutment, the compliant wall's: "-x (the +x abutment rigid), 5 springs".
 std::string WallsText(const model::CompliantAbutments& compliant) {
-  const std::vector<model::CompliantWall>& walls = compliant.walls;
+  std::vector<model::CompliantWall> walls;
+  std::string mixed;
+  for (std::size_t w = 0; w < compliant.walls.size(); ++w) {
+    if (compliant.walls[w].law == model::JointLaw::kCompliant) {
+      walls.push_back(compliant.walls[w]);
+    } else {
+      mixed = std::string(model::WallName(1 - w)) + " (the " + std::string(model::WallName(w)) +
+              " abutment rigid), ";
+    }
+  }
+  if (!mixed.empty()) {
+    return mixed + std::to_string(walls.front().springs) + " springs" +
+           (walls.front().shear_keys ? " and two shear keys" : "");
+  }
   bool same_springs = true;
   bool all_keys = true;
   for (const model::CompliantWall& w : walls) {
@@ -166,9 +180,10 @@ std::string WallsText(const model::CompliantAbutments& compliant) {
 // The compliant joints' responses of a run for its file, as a sweep's cell stores them.
 jobs::RunJoints Joints(const model::CompliantAbutments& compliant, const dynamics::LawRun& run) {
   jobs::RunJoints j;
-  // The -x wall exists when the model has its contacts (P3, P4): the walls' maxima say so.
+  // The -x wall exists when the model has its contacts (P3, P4): the walls' maxima say so (with a
+  // law per abutment, both walls exist and one has springs).
   for (const dynamics::JointResponse& r :
-       dynamics::JointResponses(compliant, run.walls.size() == 2)) {
+       dynamics::JointResponses(compliant, run.walls.size() == 2 || compliant.Mixed())) {
     j.responses.push_back({r.name, r.unit, r.value(run)});
   }
   j.stored_J = run.joint_stored_J;
@@ -420,9 +435,10 @@ void Execute(const RunInput& in, const RunOptions& o) {
                 *in.model, *in.excitation, *in.trace_excitation, in.factor, control, in.policies)}
           : dynamics::RunUnderLaw(*in.model, in.compliant, *in.excitation, control, in.policies);
   const dynamics::RunResult& r = law_run.run;
-  // A compliant run's histories and files describe the deck without its rigid contacts.
+  // A compliant run's histories and files describe the deck without its rigid contacts (with a
+  // law per abutment, with the rigid wall's only): the model it integrated.
   const std::optional<model::Model> contactless =
-      in.compliant ? std::optional<model::Model>(dynamics::WithoutContacts(*in.model))
+      in.compliant ? std::optional<model::Model>(dynamics::LawModel(*in.model, *in.compliant))
                    : std::nullopt;
   const model::Model& model = contactless ? *contactless : *in.model;
   std::printf("%s: method %s", in.title.c_str(), model::ToString(control.method));
@@ -446,11 +462,18 @@ void Execute(const RunInput& in, const RunOptions& o) {
   std::printf("  impacts %ld, plastic closures %ld, detachments %ld, stick %ld, slip %ld\n",
               r.impacts, r.plastic_closures, r.detachments, r.stick_transitions,
               r.slip_transitions);
+  // A compliant run's events are strikes; with a law per abutment impacts and strikes both count.
+  const char* strikes_are = !in.compliant           ? "impact"
+                            : in.compliant->Mixed() ? "impact or strike"
+                                                    : "strike";
+  const char* strikes_are_plural = !in.compliant           ? "impacts"
+                                   : in.compliant->Mixed() ? "impacts or strikes"
+                                                           : "strikes";
   std::printf("  steps: exact %ld, Runge-Kutta %ld (+%ld rejected); smallest %s separation %s\n",
-              r.free_steps, r.rk_steps, r.rk_rejected, in.compliant ? "strike" : "impact",
-              r.impacts < 2 ? (in.compliant ? "none (fewer than two strikes)"
-                                            : "none (fewer than two impacts)")
-                            : (Number("%.3e", r.min_impact_separation_s) + " s").c_str());
+              r.free_steps, r.rk_steps, r.rk_rejected, strikes_are,
+              r.impacts < 2
+                  ? (std::string("none (fewer than two ") + strikes_are_plural + ")").c_str()
+                  : (Number("%.3e", r.min_impact_separation_s) + " s").c_str());
   const dynamics::EnergyLedger& e = r.energy;
   std::printf(
       "  energy (J): input %s, damping %s, impacts %s, friction %s, now %s, balance error %s\n",
@@ -458,7 +481,8 @@ void Execute(const RunInput& in, const RunOptions& o) {
       Number("%.6e", e.impact_J).c_str(), Number("%.6e", e.friction_J).c_str(),
       Number("%.6e", e.kinetic_J + e.strain_J).c_str(), Number("%.3e", e.balance_error_J).c_str());
   if (in.compliant) {
-    std::printf("  compliant abutments, %s; %s energy (J): stored %s, dissipated %s\n",
+    std::printf("  compliant %s%s; %s energy (J): stored %s, dissipated %s\n",
+                in.compliant->Mixed() ? "abutment " : "abutments, ",
                 WallsText(*in.compliant).c_str(),
                 in.compliant->HasShearKeys() ? "backfill and keys'" : "backfill",
                 Number("%.6e", law_run.joint_stored_J).c_str(),

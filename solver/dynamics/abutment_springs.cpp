@@ -51,6 +51,7 @@ std::vector<CompliantSpring> AbutmentSprings(const model::Model& rigid,
       if (first < 0 || last < 0) continue;  // set = "+x": no -x wall
       SB_DEMAND(i < spec.walls.size(), "AbutmentSprings: a compliant law per wall of the model");
       const model::CompliantWall& law = spec.walls[i];
+      if (law.law == model::JointLaw::kImpact) continue;  // a law per abutment's rigid wall
       const std::string prefix(model::WallName(i));
       if (keys) {
         if (!law.shear_keys) continue;
@@ -95,18 +96,52 @@ std::vector<CompliantSpring> AbutmentSprings(const model::Model& rigid,
   return springs;
 }
 
+model::Model LawModel(const model::Model& model, const model::CompliantAbutments& compliant) {
+  if (!compliant.Mixed()) return WithoutContacts(model);
+  SB_DEMAND(model.n_bodies() == 1 && compliant.joints.empty(),
+            "LawModel: a law per abutment is for a single deck");
+  // The corners of each compliant wall (+x: P1, P2; -x: P3, P4) leave; the others stay in order.
+  std::vector<model::Contact> contacts;
+  for (const model::Contact& c : model.contacts()) {
+    const bool plus_x = c.name == "P1" || c.name == "P2";
+    const std::size_t wall = plus_x ? 0 : 1;
+    if (wall < compliant.walls.size() && compliant.walls[wall].law == model::JointLaw::kCompliant) {
+      continue;
+    }
+    contacts.push_back(c);
+  }
+  std::optional<model::Modes> modes;
+  if (model.modes() != nullptr) modes = *model.modes();
+  return model::Model(model.bodies(), model.K(), model.C(), model.r(), std::move(contacts),
+                      model.source(), std::move(modes));
+}
+
 std::vector<JointResponse> JointResponses(const model::CompliantAbutments& compliant, bool both) {
   std::vector<JointResponse> out;
   const std::size_t n = both ? 2 : 1;
+  // A wall's maxima in the run, found by its name (a law per abutment's run has the compliant
+  // wall's only).
+  const auto wall_of = [](const LawRun& r, const std::string& wall) -> const WallMaxima& {
+    for (const WallMaxima& m : r.walls) {
+      if (m.wall == wall) return m;
+    }
+    SB_DEMAND(false, "JointResponses: the run has the wall's maxima");
+    return r.walls.front();
+  };
+  // The rigid wall of a law per abutment has no springs and no keys: no response of its own.
+  const auto compliant_wall = [&](std::size_t w) {
+    return w >= compliant.walls.size() || compliant.walls[w].law == model::JointLaw::kCompliant;
+  };
   for (std::size_t w = 0; w < n; ++w) {
+    if (!compliant_wall(w)) continue;
     const std::string side = w == 0 ? "px" : "mx", wall = w == 0 ? "+x" : "-x";
     out.push_back({"spring_force_" + side, "N",
                    "largest force of one backfill spring of the " + wall + " wall",
-                   [w](const LawRun& r) { return r.walls[w].spring_force_N; }});
+                   [wall, wall_of](const LawRun& r) { return wall_of(r, wall).spring_force_N; }});
     out.push_back({"backwall_def_" + side, "m",
                    "largest deformation of the " + wall +
                        " backfill beyond the gap (the largest of its springs)",
-                   [w](const LawRun& r) { return r.walls[w].deformation_m; }});
+                   [wall, wall_of](const LawRun& r) { return wall_of(r, wall).deformation_m; }});
   }
   for (std::size_t i = 0; i < compliant.joints.size(); ++i) {
     const std::string id = std::to_string(i);
@@ -132,6 +167,7 @@ std::vector<JointResponse> JointResponses(const model::CompliantAbutments& compl
     };
   };
   for (std::size_t w = 0; w < n; ++w) {
+    if (!compliant_wall(w)) continue;
     const std::string side = w == 0 ? "px" : "mx", wall = w == 0 ? "+x" : "-x";
     out.push_back({"key_force_" + side, "N",
                    "largest force of the " + wall + " abutment's two shear keys",
@@ -169,8 +205,12 @@ LawRun RunUnderLaw(const model::Model& model,
                               "(allowed: \"event-driven\")");
   }
   const std::vector<CompliantSpring> springs = AbutmentSprings(model, *compliant);
-  CompliantRunResult r =
-      SimulateCompliant(WithoutContacts(model), springs, excitation, control, {}, policies.event);
+  // A law per abutment: the rigid integrator with the rigid wall's contacts, carrying the springs.
+  CompliantRunResult r = compliant->Mixed()
+                             ? SimulateMixed(LawModel(model, *compliant), springs, excitation,
+                                             control, {}, policies.event)
+                             : SimulateCompliant(WithoutContacts(model), springs, excitation,
+                                                 control, {}, policies.event);
   for (std::size_t j = 0; j < springs.size(); ++j) {
     const int i = static_cast<int>(j);
     const std::string wall = springs[j].name.substr(0, springs[j].name.find('.'));

@@ -62,8 +62,10 @@ struct SpringMaxima {
 
 /// A run of a model under the joint law its model file gives.
 struct LawRun {
-  RunResult run;                  ///< the run (for a compliant one, CompliantRunResult::run)
-  std::vector<WallMaxima> walls;  ///< per compliant wall (backfill springs only), +x then -x
+  RunResult run;  ///< the run (for a compliant one, CompliantRunResult::run)
+  /// per compliant wall (backfill springs only), +x then -x; with a law per abutment the compliant
+  /// wall's only
+  std::vector<WallMaxima> walls;
   /// per compliant deck-deck joint (named "J0", "J1", ...): its springs' largest force and
   /// deformation; empty for a single deck
   std::vector<WallMaxima> joints;
@@ -83,19 +85,28 @@ struct JointResponse {
   std::function<double(const LawRun&)> value;  ///< how it is read from the run
 };
 
-/// The responses of the joints of `compliant` (`both`: with the -x abutment), in order: per wall
-/// (+x "_px", then -x "_mx") spring_force and backwall_def; per deck-deck joint i joint_force_j<i>
+/// The responses of the joints of `compliant` (`both`: with the -x abutment), in order: per
+/// compliant wall (+x "_px", then -x "_mx"; not the rigid wall of a law per abutment)
+/// spring_force and backwall_def; per deck-deck joint i joint_force_j<i>
 /// and joint_def_j<i>; with shear keys, per abutment
 /// key_force, key_def and key_break_time (the earliest break of its two keys, +inf when neither
-/// broke), then keys_broken (the keys broken over the run); the keys' responses of both abutments
-/// when either has keys (one without: 0, 0 and +inf).
+/// broke), then keys_broken (the keys broken over the run); the keys' responses of both compliant
+/// abutments when either has keys (one without: 0, 0 and +inf).
 std::vector<JointResponse> JointResponses(const model::CompliantAbutments& compliant, bool both);
+
+/// The model a run under `compliant` integrates, from `model` built with every corner contact:
+/// WithoutContacts(model) when every wall is compliant; with a law per abutment (a single deck,
+/// compliant.Mixed()), `model` without the corner contacts of its compliant wall (+x: P1, P2;
+/// -x: P3, P4), the rigid wall's kept in their order (the same bodies, K, C, r and modes).
+model::Model LawModel(const model::Model& model, const model::CompliantAbutments& compliant);
 
 /// One run of `model` (built with its contacts) under `excitation`: without `compliant`, the
 /// rigid law, Run(model, excitation, control, policies) unchanged; with it,
 /// SimulateCompliant(WithoutContacts(model), AbutmentSprings(model, *compliant), excitation,
-/// control, {}, policies.event), the maxima of each wall's backfill springs and of each shear key
-/// beside it, and each spring's own maxima and wall slip.
+/// control, {}, policies.event), or with a law per abutment (compliant->Mixed())
+/// SimulateMixed(LawModel(model, *compliant), AbutmentSprings(...), ...): the maxima of each
+/// compliant wall's backfill springs and of each shear key beside it, and each spring's own
+/// maxima and wall slip.
 /// @throws InputError as Run and SimulateCompliant (a compliant run needs the event-driven method).
 LawRun RunUnderLaw(const model::Model& model,
                    const std::optional<model::CompliantAbutments>& compliant,

@@ -77,6 +77,11 @@ struct CompliantJoint {
 /// walls at once ([abutments.backfill], [abutments.shear_keys], `springs` a number) or per wall
 /// ([abutments.backfill."+x"], a `springs` table, ...); either way each wall holds its own.
 struct CompliantWall {
+  /// The wall's law: kCompliant, or kImpact for the rigid wall of a per-abutment law ([abutments]
+  /// law = { "+x" = "impact", "-x" = "compliant" }): its corners keep the Model's rigid contacts
+  /// and it has no springs or keys (backfill, springs, shear_keys and stick_stiffness_Npm unused;
+  /// `friction` is its corners' mu).
+  JointLaw law = JointLaw::kCompliant;
   BackfillSpec backfill;                    ///< the wall's backfill law
   int springs = 5;                          ///< springs along the wall from corner to corner, >= 2
   std::optional<ShearKeysSpec> shear_keys;  ///< the abutment's two exterior keys; none when empty
@@ -86,7 +91,8 @@ struct CompliantWall {
   double stick_stiffness_Npm = 0.0;
 };
 
-/// The compliant joints of a model file ([abutments] law = "compliant"): per wall its law
+/// The compliant joints of a model file ([abutments] law = "compliant", or a law per abutment with
+/// one wall compliant): per wall its law
 /// (`springs` springs from corner to corner, each with an n-th of the wall's backfill, optionally
 /// the abutment's two exterior shear keys, the wall's friction and stick stiffness) and, for a
 /// [[deck]] file, each deck-deck joint's law.
@@ -102,6 +108,14 @@ struct CompliantAbutments {
   /// file would (a sweep's mu); each wall keeps its stick stiffness.
   void SetWallFriction(double mu) {
     for (CompliantWall& w : walls) w.friction = mu;
+  }
+
+  /// Whether one wall keeps the impact law (a per-abutment law): the run is SimulateMixed's.
+  bool Mixed() const {
+    for (const CompliantWall& w : walls) {
+      if (w.law == JointLaw::kImpact) return true;
+    }
+    return false;
   }
 
   /// Whether any abutment has shear keys.

@@ -55,11 +55,14 @@ void CheckCompliant(const toml::table& root, const CompliantAbutments& c,
   if (run.method != Method::kEventDriven) {
     const toml::node* method = root.at_path("run.method").node();
     Fail(Where{source, method != nullptr ? detail::LineOf(*method) : 0}, "run.method",
-         "the compliant abutments (abutments.law = \"compliant\") run with the event-driven "
-         "method only (allowed: \"event-driven\")");
+         c.Mixed() ? "a law per abutment (abutments.law, one wall compliant) runs with the "
+                     "event-driven method only (allowed: \"event-driven\")"
+                   : "the compliant abutments (abutments.law = \"compliant\") run with the "
+                     "event-driven method only (allowed: \"event-driven\")");
   }
   const toml::node* backfill = root.at_path("abutments.backfill").node();
   for (std::size_t w = 0; w < c.walls.size(); ++w) {
+    if (c.walls[w].law == JointLaw::kImpact) continue;  // a law per abutment's rigid wall
     // The wall's own table [abutments.backfill."+x"], or the one of every wall.
     const std::string_view name = WallName(w);
     const toml::node* own =

@@ -13,6 +13,9 @@ namespace {
 constexpr std::string_view kImpactKeys = "set, gap_m, law, eps_N, mu, contacts";
 constexpr std::string_view kCompliantKeys =
     "set, gap_m, law, springs, backfill, mu, stick_stiffness_Npm, shear_keys";
+// With a law per abutment, one wall of each law: the rigid wall's keys and the compliant wall's.
+constexpr std::string_view kMixedKeys =
+    "set, gap_m, law, eps_N, mu, contacts, springs, backfill, stick_stiffness_Npm, shear_keys";
 constexpr std::string_view kShearKeyKeys = "gap_m, v_n_N, details, d3_m, v_res_N, d_res_m, dd_m";
 constexpr std::string_view kShearKeyDetailKeys =
     "f_c_MPa, stem_width_m, stem_height_m, key_length_m, load_height_m, tie1_N, tie2_N, "
@@ -226,6 +229,18 @@ void RejectMinusX(const Section& t, std::size_t walls) {
   }
 }
 
+// The rigid wall `impact` (a law per abutment; none: every wall compliant) named in a per-wall
+// table `t` of a key that only a compliant wall takes.
+void RejectImpactWall(const Section& t, std::optional<std::size_t> impact) {
+  if (!impact) return;
+  const std::string_view name = WallName(*impact), other = WallName(1 - *impact);
+  if (t.Has(name)) {
+    Fail(t.At(name), t.Field(name),
+         "the " + std::string(name) + " abutment's law is \"impact\" (rigid contacts, no " +
+             "springs or keys); allowed: \"" + std::string(other) + "\"");
+  }
+}
+
 // A key of [abutments] given for every wall at once or per wall, as a table { "+x" = ...,
 // "-x" = ... } ([abutments.backfill."+x"]): whether `s` gives `key` per wall. A per-wall table
 // holds the walls' names only (a key for both walls beside them is refused), and only the walls
@@ -264,9 +279,10 @@ struct WallTables {
 };
 
 // The tables of `key`: one for every wall, or per wall (PerWall). A wall without a table of its
-// own has none; with `required` it is refused as a missing key, `what` naming it.
+// own has none; with `required` it is refused as a missing key, `what` naming it. The rigid wall
+// `impact` of a law per abutment takes none (its table is refused).
 WallTables ReadWallTables(Section& s, std::string_view key, std::size_t walls, bool required,
-                          std::string_view what) {
+                          std::string_view what, std::optional<std::size_t> impact) {
   WallTables out;
   out.tables.resize(walls);
   out.per_wall = PerWall(s, key, walls);
@@ -277,7 +293,9 @@ WallTables ReadWallTables(Section& s, std::string_view key, std::size_t walls, b
     return out;
   }
   Section t(*table, s.Field(key), s.source());
+  RejectImpactWall(t, impact);
   for (std::size_t w = 0; w < walls; ++w) {
+    if (w == impact) continue;
     const std::string_view name = WallName(w);
     if (const toml::table* own = t.Table(name)) {
       out.tables[w].emplace(*own, t.Field(name), s.source());
@@ -301,10 +319,11 @@ struct WallNumber {
 // walls of the set (`walls`: 1 with set = "+x", 2 with "both"), each wall's required unless
 // `what` is null. Per wall its number; empty when the file gives none for it. `what(name)` says
 // what the wall `name` misses in a table without it. `per_wall`, when given, is set to whether
-// the file gives a table.
+// the file gives a table. The rigid wall `impact` of a law per abutment, when given, takes none.
 template <class What>
 std::vector<WallNumber> WallNumbers(Section& s, std::string_view key, std::size_t walls, What what,
-                                    bool* per_wall = nullptr) {
+                                    bool* per_wall = nullptr,
+                                    std::optional<std::size_t> impact = std::nullopt) {
   const toml::node* node = s.Get(key);
   if (per_wall != nullptr) *per_wall = node != nullptr && node->is_table();
   if (node == nullptr || !node->is_table()) {
@@ -312,12 +331,19 @@ std::vector<WallNumber> WallNumbers(Section& s, std::string_view key, std::size_
     return std::vector<WallNumber>(walls, WallNumber{value, s.At(key), s.Field(key)});
   }
   Section g(*node->as_table(), s.Field(key), s.source());
-  const std::string_view allowed = walls == 2 ? "\"+x\", \"-x\"" : "\"+x\" (with set = \"+x\")";
+  const std::string_view allowed = impact       ? (*impact == 0 ? "\"-x\"" : "\"+x\"")
+                                   : walls == 2 ? "\"+x\", \"-x\""
+                                                : "\"+x\" (with set = \"+x\")";
   g.Expect(allowed);
   RejectMinusX(g, walls);
+  RejectImpactWall(g, impact);
   std::vector<WallNumber> out;
   for (std::size_t w = 0; w < walls; ++w) {
     const std::string_view name = WallName(w);
+    if (w == impact) {
+      out.push_back({std::nullopt, g.At(name), g.Field(name)});
+      continue;
+    }
     if constexpr (!std::is_same_v<What, std::nullptr_t>) {
       if (!g.Has(name)) g.Missing(name, what(name));
     }
@@ -328,11 +354,13 @@ std::vector<WallNumber> WallNumbers(Section& s, std::string_view key, std::size_
 }
 
 // `springs`: one number for every wall or a table { "+x" = ..., "-x" = ... }; 5 when absent.
-std::vector<int> WallSpringCounts(Section& s, std::size_t walls) {
+std::vector<int> WallSpringCounts(Section& s, std::size_t walls,
+                                  std::optional<std::size_t> impact) {
   std::vector<int> out;
-  for (const WallNumber& n : WallNumbers(s, "springs", walls, [](std::string_view name) {
-         return "springs along the " + std::string(name) + " wall, 2 to 1000";
-       })) {
+  const auto what = [](std::string_view name) {
+    return "springs along the " + std::string(name) + " wall, 2 to 1000";
+  };
+  for (const WallNumber& n : WallNumbers(s, "springs", walls, what, nullptr, impact)) {
     if (!n.value) {
       out.push_back(5);
       continue;
@@ -350,8 +378,11 @@ std::vector<int> WallSpringCounts(Section& s, std::size_t walls) {
 // `mu` and `stick_stiffness_Npm`: each wall's Coulomb friction and stick stiffness along it, one
 // number for every wall or one per wall (mu for both walls; a stick stiffness for either, the
 // other taking its K_max); a stick stiffness belongs to a wall with friction (one for every wall:
-// to at least one wall with friction) [docs/compliant.md §4, Wall friction].
-void ReadWallFriction(Section& s, std::vector<CompliantWall>& walls) {
+// to at least one wall with friction) [docs/compliant.md §4, Wall friction]. With a law per
+// abutment (`impact`, the rigid wall) mu is each wall's, the rigid wall's its corners'; the stick
+// stiffness is the compliant wall's only.
+void ReadWallFriction(Section& s, std::vector<CompliantWall>& walls,
+                      std::optional<std::size_t> impact) {
   const std::vector<WallNumber> mu = WallNumbers(s, "mu", walls.size(), [](std::string_view name) {
     return "the Coulomb friction coefficient of the " + std::string(name) + " wall, >= 0";
   });
@@ -359,12 +390,12 @@ void ReadWallFriction(Section& s, std::vector<CompliantWall>& walls) {
   for (std::size_t w = 0; w < walls.size(); ++w) {
     walls[w].friction = mu[w].value.value_or(0.0);
     CheckNonNegative(walls[w].friction, mu[w].field, mu[w].at);
-    any = any || walls[w].friction > 0.0;
+    any = any || (walls[w].friction > 0.0 && w != impact);
   }
   // A wall left out of a per-wall table takes its K_max, as a file without the key.
   bool per_wall = false;
   const std::vector<WallNumber> k_t =
-      WallNumbers(s, "stick_stiffness_Npm", walls.size(), nullptr, &per_wall);
+      WallNumbers(s, "stick_stiffness_Npm", walls.size(), nullptr, &per_wall, impact);
   for (std::size_t w = 0; w < walls.size(); ++w) {
     if (!k_t[w].value) continue;
     const double k = *k_t[w].value;
@@ -379,45 +410,142 @@ void ReadWallFriction(Section& s, std::vector<CompliantWall>& walls) {
            "belongs to a wall with friction (the " + std::string(WallName(w)) +
                " wall's mu is 0; give it mu > 0 or omit its stick stiffness)");
     }
-    if (!any) Fail(k_t[w].at, k_t[w].field, "belongs to a wall with friction (mu > 0)");
+    if (!any) {
+      Fail(k_t[w].at, k_t[w].field,
+           impact ? "belongs to a compliant wall with friction (the " +
+                        std::string(WallName(1 - *impact)) + " wall's mu is 0)"
+                  : std::string("belongs to a wall with friction (mu > 0)"));
+    }
     walls[w].stick_stiffness_Npm = k;
   }
 }
 
 // law = "compliant": per wall its friction, its springs, its backfill and its abutment's shear
-// keys. `walls`: 1 with set = "+x", 2 with "both".
-CompliantAbutments ReadCompliant(Section& s, std::size_t walls) {
-  for (std::string_view key : {"eps_N", "contacts"}) {
-    s.Reject(key,
-             "belongs to law = \"impact\" (the compliant springs have no restitution or "
-             "contacts)");
+// keys. `walls`: 1 with set = "+x", 2 with "both". `impact`: with a law per abutment, the wall that
+// keeps the impact law (its friction read, nothing else; eps_N and contacts are then the caller's).
+CompliantAbutments ReadCompliant(Section& s, std::size_t walls,
+                                 std::optional<std::size_t> impact = std::nullopt) {
+  if (!impact) {
+    for (std::string_view key : {"eps_N", "contacts"}) {
+      s.Reject(key,
+               "belongs to law = \"impact\" (the compliant springs have no restitution or "
+               "contacts)");
+    }
   }
   CompliantAbutments c;
   c.walls.resize(walls);
-  ReadWallFriction(s, c.walls);
-  const std::vector<int> springs = WallSpringCounts(s, walls);
+  if (impact) c.walls[*impact].law = JointLaw::kImpact;
+  ReadWallFriction(s, c.walls, impact);
+  const std::vector<int> springs = WallSpringCounts(s, walls, impact);
   for (std::size_t w = 0; w < walls; ++w) c.walls[w].springs = springs[w];
   if (!s.Has("backfill")) {
     s.Missing("backfill",
-              "the backfill of each wall with law = \"compliant\": a table "
-              "[abutments.backfill], or one per wall [abutments.backfill.\"+x\"]");
+              impact ? "the backfill of the compliant " + std::string(WallName(1 - *impact)) +
+                           " wall: a table [abutments.backfill]"
+                     : std::string("the backfill of each wall with law = \"compliant\": a table "
+                                   "[abutments.backfill], or one per wall "
+                                   "[abutments.backfill.\"+x\"]"));
   }
-  // One table fills every wall alike; per-wall tables each their own wall.
-  WallTables backfill = ReadWallTables(s, "backfill", walls, true, "backfill");
-  WallTables keys = ReadWallTables(s, "shear_keys", walls, false, "shear keys");
+  // One table fills every compliant wall alike; per-wall tables each their own wall.
+  WallTables backfill = ReadWallTables(s, "backfill", walls, true, "backfill", impact);
+  WallTables keys = ReadWallTables(s, "shear_keys", walls, false, "shear keys", impact);
   if (!backfill.per_wall) {
     const BackfillSpec law = ReadBackfill(*backfill.tables.front());
-    for (CompliantWall& w : c.walls) w.backfill = law;
+    for (CompliantWall& w : c.walls) {
+      if (w.law == JointLaw::kCompliant) w.backfill = law;
+    }
   }
   if (!keys.per_wall && keys.tables.front()) {
     const ShearKeysSpec both = ReadShearKeys(*keys.tables.front());
-    for (CompliantWall& w : c.walls) w.shear_keys = both;
+    for (CompliantWall& w : c.walls) {
+      if (w.law == JointLaw::kCompliant) w.shear_keys = both;
+    }
   }
   for (std::size_t w = 0; w < walls; ++w) {
+    if (w == impact) continue;
     if (backfill.per_wall) c.walls[w].backfill = ReadBackfill(*backfill.tables[w]);
     if (keys.per_wall && keys.tables[w]) c.walls[w].shear_keys = ReadShearKeys(*keys.tables[w]);
   }
   return c;
+}
+
+// [abutments.contacts]: per corner its eps_N and mu. With a law per abutment (`impact`, the rigid
+// wall) only that wall's corners have contacts (+x: P1, P2; -x: P3, P4).
+void ReadContactOverrides(Section& s, AbutmentParameters& a, std::optional<std::size_t> impact) {
+  const toml::table* contacts = s.Table("contacts");
+  if (contacts == nullptr) return;
+  Section cs(*contacts, s.Field("contacts"), s.source());
+  const bool both = a.set == AbutmentSet::kBoth;
+  const std::string_view allowed = impact ? (*impact == 0 ? "P1, P2" : "P3, P4")
+                                   : both ? "P1, P2, P3, P4"
+                                          : "P1, P2 (with set = \"+x\")";
+  for (std::string_view name : {"P1", "P2", "P3", "P4"}) {
+    const bool plus_x = name == "P1" || name == "P2";
+    if (!both && !plus_x) {
+      continue;
+    }
+    if (impact && plus_x != (*impact == 0)) {
+      if (cs.Has(name)) {
+        Fail(cs.At(name), cs.Field(name),
+             std::string(name) + " is a corner of the " + (plus_x ? "+x" : "-x") +
+                 " wall, whose law is \"compliant\" (springs, no rigid contact); allowed: " +
+                 std::string(allowed));
+      }
+      continue;
+    }
+    if (const toml::table* t = cs.Table(name)) {
+      Section c(*t, cs.Field(name), s.source());
+      ContactOverride o;
+      o.name = std::string(name);
+      o.restitution = c.Number("eps_N");
+      if (o.restitution) {
+        CheckRange(*o.restitution, 0.0, 1.0, false, c.Field("eps_N"), c.At("eps_N"));
+      }
+      o.friction = c.Number("mu");
+      if (o.friction) {
+        CheckNonNegative(*o.friction, c.Field("mu"), c.At("mu"));
+      }
+      c.Finish("eps_N, mu");
+      a.overrides.push_back(o);
+    }
+  }
+  cs.Finish(allowed);
+}
+
+// `law`: one for both abutments ("impact", the default, or "compliant"), or, for a single deck
+// with set = "both", one per abutment, a table { "+x" = ..., "-x" = ... } naming both. Per wall
+// (+x, then -x) its law.
+std::array<JointLaw, 2> ReadLaws(Section& s, bool multi_deck, AbutmentSet set) {
+  const toml::node* node = s.Get("law");
+  if (node == nullptr || !node->is_table()) {
+    const JointLaw law = s.String("law", {"impact", "compliant"}).value_or("impact") == "compliant"
+                             ? JointLaw::kCompliant
+                             : JointLaw::kImpact;
+    return {law, law};
+  }
+  if (multi_deck) {
+    Fail(s.At("law"), s.Field("law"),
+         "a law per abutment is for a single deck; a row of [[deck]] tables takes one law for "
+         "both abutments and every joint (allowed: \"impact\", \"compliant\")");
+  }
+  if (set != AbutmentSet::kBoth) {
+    Fail(s.At("law"), s.Field("law"),
+         "a law per abutment needs set = \"both\"; with set = \"+x\" give one law (allowed: "
+         "\"impact\", \"compliant\")");
+  }
+  Section t(*node->as_table(), s.Field("law"), s.source());
+  t.Expect("\"+x\", \"-x\"");
+  std::array<JointLaw, 2> out{};
+  for (std::size_t w = 0; w < 2; ++w) {
+    const std::string name(WallName(w));
+    if (!t.Has(name)) {
+      t.Missing(name, "the law of the " + name + " abutment: \"impact\" or \"compliant\"");
+    }
+    out[w] = *t.String(name, {"impact", "compliant"}) == "compliant" ? JointLaw::kCompliant
+                                                                     : JointLaw::kImpact;
+  }
+  t.Finish("\"+x\", \"-x\"");
+  return out;
 }
 
 }  // namespace
@@ -455,7 +583,22 @@ AbutmentParameters ReadAbutments(Section& s, bool multi_deck) {
     a.gap_plus_m = gap;
     a.gap_minus_m = gap;
   }
-  const bool compliant = s.String("law", {"impact", "compliant"}).value_or("impact") == "compliant";
+  const std::array<JointLaw, 2> laws = ReadLaws(s, multi_deck, a.set);
+  if (laws[0] != laws[1]) {
+    // A law per abutment, one wall of each: the rigid wall keeps its corners' contacts with eps_N,
+    // mu and their per-contact tables; the compliant wall's keys are read as law = "compliant"
+    // reads them; mu is both walls' (one number, or per wall).
+    const std::size_t impact = laws[0] == JointLaw::kImpact ? 0 : 1;
+    s.Expect(kMixedKeys);
+    a.compliant = ReadCompliant(s, 2, impact);
+    a.restitution = s.Number("eps_N").value_or(0.5);
+    CheckRange(a.restitution, 0.0, 1.0, false, s.Field("eps_N"), s.At("eps_N"));
+    a.friction = a.compliant->walls[impact].friction;
+    ReadContactOverrides(s, a, impact);
+    s.Finish(kMixedKeys);
+    return a;
+  }
+  const bool compliant = laws[0] == JointLaw::kCompliant;
   if (compliant) {
     s.Expect(kCompliantKeys, {{"law = \"impact\"", "eps_N, contacts"}});
     a.compliant = ReadCompliant(s, a.set == AbutmentSet::kBoth ? 2 : 1);
@@ -480,31 +623,7 @@ AbutmentParameters ReadAbutments(Section& s, bool multi_deck) {
     s.Finish("set, gap_m, law, eps_N, mu (with [[deck]] tables)");
     return a;
   }
-  if (const toml::table* contacts = s.Table("contacts")) {
-    Section cs(*contacts, s.Field("contacts"), s.source());
-    const bool both = a.set == AbutmentSet::kBoth;
-    for (std::string_view name : {"P1", "P2", "P3", "P4"}) {
-      if (!both && (name == "P3" || name == "P4")) {
-        continue;
-      }
-      if (const toml::table* t = cs.Table(name)) {
-        Section c(*t, cs.Field(name), s.source());
-        ContactOverride o;
-        o.name = std::string(name);
-        o.restitution = c.Number("eps_N");
-        if (o.restitution) {
-          CheckRange(*o.restitution, 0.0, 1.0, false, c.Field("eps_N"), c.At("eps_N"));
-        }
-        o.friction = c.Number("mu");
-        if (o.friction) {
-          CheckNonNegative(*o.friction, c.Field("mu"), c.At("mu"));
-        }
-        c.Finish("eps_N, mu");
-        a.overrides.push_back(o);
-      }
-    }
-    cs.Finish(both ? "P1, P2, P3, P4" : "P1, P2 (with set = \"+x\")");
-  }
+  ReadContactOverrides(s, a, std::nullopt);
   s.Finish(kImpactKeys);
   return a;
 }

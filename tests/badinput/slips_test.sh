@@ -149,6 +149,44 @@ sed 's/^mu = 0.3$/mu = { "+x" = 0.3, "-x" = 0.1 }/' "$root/docs/examples/pilot-b
   > rigid_mu_walls.toml
 expect "rigid_mu_walls.toml:28: abutments.mu: a friction per wall belongs to law = \"compliant\"; with law = \"impact\" give one number, or one per corner in [abutments.contacts.P1] (mu)" \
   run rigid_mu_walls.toml --out run.h5
+# --- a law per abutment: a table of both abutments with set = "both", a single deck, the rigid
+# wall without springs, keys or a stick stiffness, the compliant wall's corners without contacts ---
+cp "$root/docs/examples/pilot-bridge-mixed.toml" mixed.toml
+sed 's/^set = "both"/set = "+x"/' mixed.toml > law_set.toml
+expect "law_set.toml:29: abutments.law: a law per abutment needs set = \"both\"; with set = \"+x\" give one law (allowed: \"impact\", \"compliant\")" \
+  run law_set.toml --out run.h5
+sed 's/^law = .*/law = { "+x" = "impact" }/' mixed.toml > law_one.toml
+expect "law_one.toml:29: abutments.law.\"-x\": missing required key (the law of the -x abutment: \"impact\" or \"compliant\")" \
+  run law_one.toml --out run.h5
+sed 's/^law = .*/law = { "+x" = "impact", "-x" = "springy" }/' mixed.toml > law_bad.toml
+expect "law_bad.toml:29: abutments.law.\"-x\": must be one of impact, compliant (got \"springy\")" \
+  run law_bad.toml --out run.h5
+sed 's/^\[abutments.backfill\].*/[abutments.backfill."+x"]/' mixed.toml > law_backfill.toml
+expect "law_backfill.toml:34: abutments.backfill.\"+x\": the +x abutment's law is \"impact\" (rigid contacts, no springs or keys); allowed: \"-x\"" \
+  run law_backfill.toml --out run.h5
+sed 's/^springs = .*/springs = { "+x" = 5, "-x" = 5 }/' mixed.toml > law_springs.toml
+expect "law_springs.toml:32: abutments.springs.\"+x\": the +x abutment's law is \"impact\" (rigid contacts, no springs or keys); allowed: \"-x\"" \
+  run law_springs.toml --out run.h5
+sed 's/^\[excitation\]/[abutments.shear_keys."+x"]\ngap_m = 0.01\nv_n_N = 1e6\nd3_m = 0.01\ndd_m = 0.05\n\n&/' \
+  mixed.toml > law_keys.toml
+expect "law_keys.toml:40: abutments.shear_keys.\"+x\": the +x abutment's law is \"impact\" (rigid contacts, no springs or keys); allowed: \"-x\"" \
+  run law_keys.toml --out run.h5
+sed 's/^springs = .*/&\nstick_stiffness_Npm = 1e9/' mixed.toml > law_kt.toml
+expect "law_kt.toml:33: abutments.stick_stiffness_Npm: belongs to a compliant wall with friction (the -x wall's mu is 0)" \
+  run law_kt.toml --out run.h5
+sed 's/^springs = .*/&\n\n[abutments.contacts.P3]\neps_N = 0.6/' mixed.toml > law_p3.toml
+expect "law_p3.toml:34: abutments.contacts.P3: P3 is a corner of the -x wall, whose law is \"compliant\" (springs, no rigid contact); allowed: P1, P2" \
+  run law_p3.toml --out run.h5
+awk '/^\[abutments.backfill\]/ { skip = 1; next } /^\[/ { skip = 0 } !skip' mixed.toml > law_nobackfill.toml
+expect "law_nobackfill.toml:26: abutments.backfill: missing required key (the backfill of the compliant -x wall: a table [abutments.backfill])" \
+  run law_nobackfill.toml --out run.h5
+sed 's/^tail_s = .*/&\nmethod = "time-stepping"/' mixed.toml > law_ts.toml
+expect "law_ts.toml:48: run.method: a law per abutment (abutments.law, one wall compliant) runs with the event-driven method only (allowed: \"event-driven\")" \
+  run law_ts.toml --out run.h5
+sed 's/^\[abutments\].*/&\nlaw = { "+x" = "impact", "-x" = "compliant" }/' "$root/docs/examples/three-span.toml" \
+  > law_decks.toml
+expect "law_decks.toml:36: abutments.law: a law per abutment is for a single deck; a row of [[deck]] tables takes one law for both abutments and every joint (allowed: \"impact\", \"compliant\")" \
+  run law_decks.toml --out run.h5
 # --- the wrong kind of file, named as what it is ---
 cp "$spec" spec.toml
 for command in run modes; do
