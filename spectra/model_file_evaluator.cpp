@@ -61,7 +61,7 @@ model::ModelFile CheckedModelFile(const CellGrid& spec) {
     }
   }
   model::ModelFile file = model::ParseModelFile(spec.model_path);
-  if (file.compliant && Mentions(spec, "eps_N")) {
+  if (file.compliant && !file.compliant->Mixed() && Mentions(spec, "eps_N")) {
     // The compliant springs have no restitution; their backwall friction is the sweep's mu.
     throw InputError(KeyWhere(spec, "eps_N") + ": the abutments of " + spec.model_file +
                      " are compliant (law = \"compliant\"), whose springs have no restitution; "
@@ -492,12 +492,10 @@ ModelFileCell ModelFileEvaluator::MakeCell(std::span<const std::size_t> index, b
         if (has_mu) o.friction.reset();
       }
       if (has_eps) d.restitution = eps_N;
-      // Compliant abutments: mu is the backwall friction (the contacts' mu is unused).
-      if (has_mu && c.compliant) {
-        c.compliant->SetWallFriction(mu);
-      } else if (has_mu) {
-        d.friction = mu;
-      }
+      // Compliant abutments: mu is the backwall friction (the contacts' mu is unused); with a law
+      // per abutment, the rigid wall's corners' and the compliant wall's alike.
+      if (has_mu && c.compliant) c.compliant->SetWallFriction(mu);
+      if (has_mu && (!c.compliant || c.compliant->Mixed())) d.friction = mu;
       if (has_xi) d.xi = xi;
       c.model = model::BuildDeckModel(d, model_source);
       if (k_factor != 1.0) {
