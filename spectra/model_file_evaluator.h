@@ -180,7 +180,7 @@ class ModelFileEvaluator final : public CellEvaluator, public RecordScaling {
   /// that record and kept; nullptr for a pair.
   std::shared_ptr<const records::PeakPieces> RecordPeakPieces(const SweepRecord& record) const;
   /// Per record of records_, its RecordPeakPieces once found.
-  mutable std::vector<std::shared_ptr<const records::PeakPieces>> peak_pieces_;
+  RecordPeakCache peak_pieces_;
   /// The dynamic run of cell `c` (its own factor): as a stripe of its record when the cells run
   /// so, the method is event-driven and the law rigid, else its own run under its law.
   dynamics::LawRun CellRun(std::span<const std::size_t> axis_index, const ModelFileCell& c) const;

@@ -236,16 +236,7 @@ std::unique_ptr<Excitation> SpectraEvaluator::MakeExcitation(
 
 std::shared_ptr<const records::PeakPieces> SpectraEvaluator::RecordPeakPieces(
     const SweepRecord& record) const {
-  if (record.IsPair() || record.motion.npts() < 2) return nullptr;
-  const double horizon_s = policies().event.ramp_horizon_s;
-  peak_pieces_.resize(records_.size());
-  std::shared_ptr<const records::PeakPieces>& kept =
-      peak_pieces_[static_cast<std::size_t>(&record - records_.data())];
-  if (!kept || kept->ramp_horizon_s != horizon_s) {
-    kept = std::make_shared<const records::PeakPieces>(
-        records::FindPeakPieces(record.motion.acc_mps2, record.motion.dt_s, horizon_s));
-  }
-  return kept;
+  return peak_pieces_.Get(records_, record, policies().event.ramp_horizon_s);
 }
 
 SpectraEvaluator::SeatRun SpectraEvaluator::RunOf(std::span<const std::size_t> axis_index) const {

@@ -87,7 +87,7 @@ class SpectraEvaluator final : public CellEvaluator {
   /// a pair.
   std::shared_ptr<const records::PeakPieces> RecordPeakPieces(const SweepRecord& record) const;
   /// Per record of records_, its RecordPeakPieces once found.
-  mutable std::vector<std::shared_ptr<const records::PeakPieces>> peak_pieces_;
+  RecordPeakCache peak_pieces_;
 };
 
 }  // namespace skewbridge::spectra

@@ -420,4 +420,17 @@ CorrelationTable CorrelateOverRecords(const CellGrid& grid, std::span<const doub
   return table;
 }
 
+std::shared_ptr<const records::PeakPieces> RecordPeakCache::Get(
+    const std::vector<SweepRecord>& records, const SweepRecord& record, double horizon_s) const {
+  if (record.IsPair() || record.motion.npts() < 2) return nullptr;
+  kept_.resize(records.size());
+  std::shared_ptr<const records::PeakPieces>& kept =
+      kept_[static_cast<std::size_t>(&record - records.data())];
+  if (!kept || kept->ramp_horizon_s != horizon_s) {
+    kept = std::make_shared<const records::PeakPieces>(
+        records::FindPeakPieces(record.motion.acc_mps2, record.motion.dt_s, horizon_s));
+  }
+  return kept;
+}
+
 }  // namespace skewbridge::spectra

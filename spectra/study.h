@@ -9,12 +9,14 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "records/excitations.h"
 #include "records/ground_motion.h"
 #include "records/measures.h"
 #include "records/record_set.h"
@@ -155,5 +157,19 @@ inline constexpr std::int64_t kMinBandRecords = 3;
 CorrelationTable CorrelateOverRecords(const CellGrid& grid, std::span<const double> theta,
                                       std::span<const double> le, std::span<const double> band,
                                       std::span<const std::uint8_t> usable, std::size_t band_count);
+
+/// Each record's peak pieces (records::FindPeakPieces) found once per rank: the pieces a record
+/// excitation's Peak reads instead of walking every sample.
+class RecordPeakCache {
+ public:
+  /// The peak pieces of `record`, an element of `records`, at the ramp horizon horizon_s (s);
+  /// null for a pair or a record of fewer than 2 samples (their Peak walks the samples).
+  std::shared_ptr<const records::PeakPieces> Get(const std::vector<SweepRecord>& records,
+                                                 const SweepRecord& record, double horizon_s) const;
+
+ private:
+  /// Per record of the sweep, its pieces once found.
+  mutable std::vector<std::shared_ptr<const records::PeakPieces>> kept_;
+};
 
 }  // namespace skewbridge::spectra

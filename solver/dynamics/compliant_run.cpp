@@ -109,21 +109,7 @@ CompliantIntegrator::CompliantIntegrator(const model::Model& model,
       {omega_min_radps_, omega_max_radps_, length_scale, MaxTranslationalMass(model)},
       control.accumulation_threshold, policy_);
   // The springs' own frequency joins the step control's velocity scale.
-  double k_sum = 0.0;
-  for (const CompliantSpring& s : springs) {
-    switch (s.law) {
-      case SpringLaw::kBackfill:
-        k_sum += std::max(s.backfill.k_max_N_per_m, s.backfill.k_ur_N_per_m);
-        break;
-      case SpringLaw::kSpringDashpot:
-        k_sum += s.k_N_per_m;
-        break;
-      case SpringLaw::kShearKey:
-        k_sum += s.key.v_n_N / s.key.d3_m;
-        break;
-    }
-  }
-  for (const SpringSet::FrictionState& f : set_.friction()) k_sum += f.k_t_N_per_m;
+  const double k_sum = set_.StiffnessSum_Npm();
   const double omega_spring = std::sqrt(k_sum / MaxTranslationalMass(model));
   const double omega_top = std::max(scales_.omega_top_radps, omega_spring);
   rtol_ = control.relative_tolerance;
