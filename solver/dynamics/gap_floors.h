@@ -73,6 +73,47 @@ class GapFloors {
     return Keep(closure_max, margin_m);
   }
 
+  /// DeckStaysOpen's state for a loop that holds it in locals between steps (Deck, Store): the
+  /// sums S_k, the largest weights max_c W_ck, the smallest base (m) and the sums' count.
+  struct DeckSums {
+    double sum[3];
+    double w_max[3];
+    double base_min;
+    int steps;
+  };
+  /// The floors' state of a deck (three modes) as DeckSums.
+  DeckSums Deck() const {
+    return {{sum_[0], sum_[1], sum_[2]},
+            {weight_max_[0], weight_max_[1], weight_max_[2]},
+            base_min_,
+            steps_};
+  }
+  /// A deck's state `d` (Deck) back into the floors.
+  void Store(const DeckSums& d) {
+    for (int k = 0; k < 3; ++k) sum_[k] = d.sum[k];
+    steps_ = d.steps;
+  }
+  /// DeckStaysOpen on the state `d` the caller holds: the same operations, the same outcome;
+  /// each contact's check and the fold take the members (written for them and read back).
+  bool DeckStaysOpen(DeckSums& d, const double drift[3], double margin_m) {
+    const double trial[3] = {d.sum[0] + drift[0], d.sum[1] + drift[1], d.sum[2] + drift[2]};
+    const double closure_max =
+        d.w_max[0] * trial[0] + d.w_max[1] * trial[1] + d.w_max[2] * trial[2];
+    if (!(d.base_min - closure_max * (1.0 + 1e-12) > margin_m)) {
+      for (int k = 0; k < 3; ++k) trial_[k] = trial[k];
+      if (!EachStaysOpen(margin_m)) {
+        return false;
+      }
+    }
+    for (int k = 0; k < 3; ++k) d.sum[k] = trial[k];
+    if (++d.steps == kFoldSteps) {
+      Store(d);
+      Fold();
+      d = Deck();
+    }
+    return true;
+  }
+
   /// StaysOpen of a deck (three modes) from its drifts over the step (ModalDrift3's, m per unit
   /// of eta_k): the same operations.
   bool DeckStaysOpen(const double drift[3], double margin_m) {

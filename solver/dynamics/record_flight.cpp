@@ -163,6 +163,7 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
   }
   double max_travel = result_.max_travel_m[0];
   long steps = steps_io, free_steps = result_.free_steps;
+  GapFloors::DeckSums floors = gap_floors_.Deck();
   // StepPropagator's key of propagator_ (NaN: none, or not a ramp's).
   const FreePropagator* p = propagator_;
   double p_tau =
@@ -198,17 +199,24 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
     result_.max_travel_m[0] = max_travel;
     result_.free_steps = free_steps;
     steps_io = steps;
+    gap_floors_.Store(floors);
   };
   // How the loop ends: the next step is RecordFlight's, the flight ends, or the step is
   // finished by FreeStepOf or by FinishFreeStep (gaps not proved open, or open).
   enum class Exit { kOther, kEnded, kPartial, kClosing, kRare };
   Exit exit = Exit::kOther;
   FreeStepPlan step;
+  // NextSampledPiece's tests of the piece's number and end: a ramp this loop reads ends at
+  // (k + 1) dt of its own k, the next ramp's start, so they hold for every later ramp.
+  if (index < 0 || te != static_cast<double>(index + 1) * dt) {
+    write_back();
+    return false;
+  }
   for (;;) {
     // The record's next ramp (PieceCursor::At, NextSampledPiece's operations); any other piece
     // is RecordFlight's.
-    const std::size_t k = index < 0 ? 0 : static_cast<std::size_t>(index) + 1;
-    if (!(t == te) || index < 0 || k + 1 >= samples.count || te != static_cast<double>(k) * dt) {
+    const std::size_t k = static_cast<std::size_t>(index) + 1;
+    if (!(t == te) || k + 1 >= samples.count) {
       break;
     }
     const double y0 = ay != nullptr ? ay[k] : 0.0;
@@ -252,6 +260,7 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
     ++free_steps;
     if (gaps_exact_) {
       gap_floors_.Restart(ends_.gap0);
+      floors = gap_floors_.Deck();
     }
     // The gap floors' check (GapsStayOpen) with the drifts from the modal coordinates' lanes.
     const double tau = step.t_next_s - t;
@@ -261,7 +270,7 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
                      __builtin_shufflevector(ab[0], ab[1], 0, 2),
                      __builtin_shufflevector(ab[0], ab[1], 1, 3), qu[2][0], qu[2][1], ab[2][0],
                      ab[2][1], std::max(tau, step.h_s), drift);
-    if (!gap_floors_.DeckStaysOpen(drift, gap_margin)) {
+    if (!gap_floors_.DeckStaysOpen(floors, drift, gap_margin)) {
       exit = Exit::kClosing;
       break;
     }
