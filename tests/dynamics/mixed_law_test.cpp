@@ -17,6 +17,7 @@
 #include "solver/dynamics/abutment_springs.h"
 #include "solver/model/model_file.h"
 #include "tests/dynamics/benchmark_cases.h"
+#include "tests/dynamics/run_bits.h"
 
 namespace skewbridge::dynamics::mixed_law_test {
 namespace {
@@ -49,31 +50,6 @@ LawRun RunFile(const model::ModelFile& file) {
   return RunUnderLaw(file.model, file.compliant, ex, control);
 }
 
-// Every number of two runs the same, bit for bit.
-void ExpectSameRun(const RunResult& a, const RunResult& b) {
-  EXPECT_EQ(a.status, b.status);
-  EXPECT_TRUE(a.max_abs_q == b.max_abs_q);
-  EXPECT_TRUE(a.time_of_max_s == b.time_of_max_s);
-  EXPECT_TRUE(a.max_travel_m == b.max_travel_m);
-  EXPECT_TRUE(a.q_end == b.q_end);
-  EXPECT_TRUE(a.u_end == b.u_end);
-  EXPECT_EQ(a.impacts, b.impacts);
-  EXPECT_EQ(a.detachments, b.detachments);
-  EXPECT_EQ(a.stick_transitions, b.stick_transitions);
-  EXPECT_EQ(a.slip_transitions, b.slip_transitions);
-  EXPECT_EQ(a.free_steps, b.free_steps);
-  EXPECT_EQ(a.rk_steps, b.rk_steps);
-  EXPECT_EQ(a.rk_rejected, b.rk_rejected);
-  ASSERT_EQ(a.events.size(), b.events.size());
-  for (std::size_t i = 0; i < a.events.size(); ++i) {
-    EXPECT_EQ(a.events[i].t_s, b.events[i].t_s) << "event " << i;
-  }
-  EXPECT_EQ(a.energy.input_J, b.energy.input_J);
-  EXPECT_EQ(a.energy.impact_J, b.energy.impact_J);
-  EXPECT_EQ(a.energy.friction_J, b.energy.friction_J);
-  EXPECT_EQ(a.energy.balance_error_J, b.energy.balance_error_J);
-}
-
 TEST(MixedLaw, TheFileGivesOneRigidWallAndOneCompliant) {
   const model::ModelFile file = Mixed({});
   ASSERT_TRUE(file.compliant.has_value());
@@ -103,7 +79,7 @@ TEST(MixedLaw, TheFileGivesOneRigidWallAndOneCompliant) {
   EXPECT_FALSE(both.compliant->Mixed());
   const model::ModelFile named =
       Mixed({{"law = ", R"(law = "compliant")"}, {"eps_N = ", ""}, {"mu = ", "mu = 0.0"}});
-  ExpectSameRun(RunFile(both).run, RunFile(named).run);
+  testing::ExpectSameRunAndLedgerBits(RunFile(both).run, RunFile(named).run);
 }
 
 TEST(MixedLaw, ACompliantWallOutOfReachGivesTheRigidRunBitForBit) {
@@ -125,7 +101,7 @@ TEST(MixedLaw, ACompliantWallOutOfReachGivesTheRigidRunBitForBit) {
   EXPECT_EQ(mixed.walls[0].wall, "-x");
   EXPECT_EQ(mixed.walls[0].spring_force_N, 0.0) << "the backfill is out of reach";
   EXPECT_EQ(mixed.joint_dissipated_J, 0.0);
-  ExpectSameRun(mixed.run, rigid.run);
+  testing::ExpectSameRunAndLedgerBits(mixed.run, rigid.run);
   // And the rigid law at both abutments, the -x corners out of reach.
   const LawRun both = RunFile(Mixed({{"gap_m = ", R"(gap_m = { "+x" = 0.0095, "-x" = 10.0 })"},
                                      {"law = ", R"(law = "impact")"},
@@ -136,7 +112,7 @@ TEST(MixedLaw, ACompliantWallOutOfReachGivesTheRigidRunBitForBit) {
                                      {"k_max_Npm_per_m = ", ""},
                                      {"r_f = ", ""},
                                      {"f_ult_N_per_m = ", ""}}));
-  ExpectSameRun(mixed.run, both.run);
+  testing::ExpectSameRunAndLedgerBits(mixed.run, both.run);
 }
 
 TEST(MixedLaw, ARigidWallOutOfReachGivesTheCompliantRun) {

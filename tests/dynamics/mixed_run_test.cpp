@@ -14,6 +14,7 @@
 #include "solver/model/builders.h"
 #include "solver/model/model_file.h"
 #include "tests/dynamics/benchmark_cases.h"
+#include "tests/dynamics/run_bits.h"
 
 namespace skewbridge::dynamics::mixed_run_test {
 namespace {
@@ -44,29 +45,6 @@ std::vector<CompliantSpring> MinusXBackfill(double gap_minus_m) {
   return WallSprings(both, 2, 3, wall, 5, "-x");
 }
 
-// Every number of two runs the same, bit for bit.
-void ExpectSameRun(const RunResult& a, const RunResult& b) {
-  EXPECT_TRUE(a.max_abs_q == b.max_abs_q);
-  EXPECT_TRUE(a.time_of_max_s == b.time_of_max_s);
-  EXPECT_TRUE(a.max_travel_m == b.max_travel_m);
-  EXPECT_TRUE(a.q_end == b.q_end);
-  EXPECT_TRUE(a.u_end == b.u_end);
-  EXPECT_EQ(a.impacts, b.impacts);
-  EXPECT_EQ(a.detachments, b.detachments);
-  EXPECT_EQ(a.free_steps, b.free_steps);
-  EXPECT_EQ(a.rk_steps, b.rk_steps);
-  EXPECT_EQ(a.rk_rejected, b.rk_rejected);
-  ASSERT_EQ(a.events.size(), b.events.size());
-  for (std::size_t i = 0; i < a.events.size(); ++i) {
-    EXPECT_EQ(a.events[i].t_s, b.events[i].t_s) << "event " << i;
-  }
-  const auto same = [](double x, double y) { return x == y || (std::isnan(x) && std::isnan(y)); };
-  EXPECT_TRUE(same(a.energy.input_J, b.energy.input_J));
-  EXPECT_TRUE(same(a.energy.impact_J, b.energy.impact_J));
-  EXPECT_TRUE(same(a.energy.friction_J, b.energy.friction_J));
-  EXPECT_TRUE(same(a.energy.balance_error_J, b.energy.balance_error_J));
-}
-
 TEST(MixedRun, SpringsOutOfReachGiveTheRigidRunBitForBit) {
   const model::Model rigid = RigidPlusX(bench::kPilotStudyGap_m);
   const std::vector<CompliantSpring> far = MinusXBackfill(10.0);
@@ -83,7 +61,7 @@ TEST(MixedRun, SpringsOutOfReachGiveTheRigidRunBitForBit) {
     const CompliantRunResult mixed = SimulateMixed(rigid, far, ex, control);
     ASSERT_EQ(mixed.run.status, RunStatus::kOk) << mixed.run.message;
     EXPECT_EQ(mixed.max_spring_force_N.maxCoeff(), 0.0);
-    ExpectSameRun(alone, mixed.run);
+    testing::ExpectSameRunAndLedgerBits(alone, mixed.run);
   }
 }
 

@@ -40,4 +40,18 @@ inline void ExpectSameRunBits(const RunResult& a, const RunResult& b) {
   }
 }
 
+/// Expects ExpectSameRunBits and, besides, the same detachment, stick, slip and rejected-step
+/// counts and the same bits of the energy ledger's input, impact, friction and balance terms.
+inline void ExpectSameRunAndLedgerBits(const RunResult& a, const RunResult& b) {
+  ExpectSameRunBits(a, b);
+  EXPECT_EQ(a.detachments, b.detachments);
+  EXPECT_EQ(a.stick_transitions, b.stick_transitions);
+  EXPECT_EQ(a.slip_transitions, b.slip_transitions);
+  EXPECT_EQ(a.rk_rejected, b.rk_rejected);
+  EXPECT_EQ(Bits(a.energy.input_J), Bits(b.energy.input_J));
+  EXPECT_EQ(Bits(a.energy.impact_J), Bits(b.energy.impact_J));
+  EXPECT_EQ(Bits(a.energy.friction_J), Bits(b.energy.friction_J));
+  EXPECT_EQ(Bits(a.energy.balance_error_J), Bits(b.energy.balance_error_J));
+}
+
 }  // namespace skewbridge::dynamics::testing
