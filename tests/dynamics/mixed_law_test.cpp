@@ -82,19 +82,27 @@ TEST(MixedLaw, TheFileGivesOneRigidWallAndOneCompliant) {
   testing::ExpectSameRunAndLedgerBits(RunFile(both).run, RunFile(named).run);
 }
 
+// The example under the rigid law at every abutment it keeps: `edits` first, then the law
+// "impact", mu 0.3 and the backfill's table turned into the +x corner P1's.
+model::ModelFile AllRigid(std::vector<std::pair<std::string, std::string>> edits) {
+  const std::vector<std::pair<std::string, std::string>> rigid = {
+      {"law = ", R"(law = "impact")"},
+      {"mu = ", "mu = 0.3"},
+      {"springs = ", ""},
+      {"[abutments.backfill]", "[abutments.contacts.P1]"},
+      {"form = ", ""},
+      {"k_max_Npm_per_m = ", ""},
+      {"r_f = ", ""},
+      {"f_ult_N_per_m = ", ""}};
+  edits.insert(edits.end(), rigid.begin(), rigid.end());
+  return Mixed(edits);
+}
+
 TEST(MixedLaw, ACompliantWallOutOfReachGivesTheRigidRunBitForBit) {
   const LawRun mixed = RunFile(Mixed({{"gap_m = ", R"(gap_m = { "+x" = 0.0095, "-x" = 10.0 })"}}));
   // The +x abutment alone under the rigid law: its own file, set = "+x", no springs.
-  const LawRun rigid = RunFile(Mixed({{"set = ", R"(set = "+x")"},
-                                      {"gap_m = ", "gap_m = 0.0095"},
-                                      {"law = ", R"(law = "impact")"},
-                                      {"mu = ", "mu = 0.3"},
-                                      {"springs = ", ""},
-                                      {"[abutments.backfill]", "[abutments.contacts.P1]"},
-                                      {"form = ", ""},
-                                      {"k_max_Npm_per_m = ", ""},
-                                      {"r_f = ", ""},
-                                      {"f_ult_N_per_m = ", ""}}));
+  const LawRun rigid =
+      RunFile(AllRigid({{"set = ", R"(set = "+x")"}, {"gap_m = ", "gap_m = 0.0095"}}));
   ASSERT_EQ(rigid.run.status, RunStatus::kOk) << rigid.run.message;
   ASSERT_GT(rigid.run.impacts, 5) << "the rigid wall is struck";
   ASSERT_EQ(mixed.walls.size(), 1u);
@@ -103,15 +111,8 @@ TEST(MixedLaw, ACompliantWallOutOfReachGivesTheRigidRunBitForBit) {
   EXPECT_EQ(mixed.joint_dissipated_J, 0.0);
   testing::ExpectSameRunAndLedgerBits(mixed.run, rigid.run);
   // And the rigid law at both abutments, the -x corners out of reach.
-  const LawRun both = RunFile(Mixed({{"gap_m = ", R"(gap_m = { "+x" = 0.0095, "-x" = 10.0 })"},
-                                     {"law = ", R"(law = "impact")"},
-                                     {"mu = ", "mu = 0.3"},
-                                     {"springs = ", ""},
-                                     {"[abutments.backfill]", "[abutments.contacts.P1]"},
-                                     {"form = ", ""},
-                                     {"k_max_Npm_per_m = ", ""},
-                                     {"r_f = ", ""},
-                                     {"f_ult_N_per_m = ", ""}}));
+  const LawRun both =
+      RunFile(AllRigid({{"gap_m = ", R"(gap_m = { "+x" = 0.0095, "-x" = 10.0 })"}}));
   testing::ExpectSameRunAndLedgerBits(mixed.run, both.run);
 }
 
