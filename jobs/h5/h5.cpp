@@ -588,6 +588,101 @@ void AttachScale(hid_t dataset, hid_t scale, unsigned dim, const std::string& la
 
 namespace {
 
+// The attribute names and the REFERENCE_LIST type of the HDF5 dimension scale specification
+// (hl/src/H5DSprivate.h): {dataset: object reference, dimension: native int}, 16 bytes.
+constexpr const char* kDimensionList = "DIMENSION_LIST";
+constexpr const char* kDimensionLabels = "DIMENSION_LABELS";
+constexpr const char* kReferenceList = "REFERENCE_LIST";
+
+hobj_ref_t ObjectReference(hid_t obj, std::string_view what) {
+  hobj_ref_t ref{};
+  Check(H5Rcreate(&ref, obj, ".", H5R_OBJECT, -1), std::string("H5Rcreate ") + std::string(what));
+  return ref;
+}
+
+}  // namespace
+
+void ScaleAttacher::Attach(hid_t dataset, std::span<const hid_t> scales,
+                           std::span<const std::string> labels) {
+  if (std::all_of(scales.begin(), scales.end(), [](hid_t s) { return s < 0; })) return;
+  const std::string name = ObjectName(dataset);
+  if (scales.size() != labels.size()) {
+    throw H5Error("attach scales to " + name + ": one label per scale");
+  }
+  if (HasAttr(dataset, kDimensionList)) {
+    throw H5Error("attach scales to " + name + ": it has dimension scales already");
+  }
+  int rank = 0;
+  {
+    Id space(H5Dget_space(dataset), H5Sclose, "H5Dget_space " + name);
+    // A scalar has one dimension to H5DS.
+    rank = std::max(1, Check(H5Sget_simple_extent_ndims(space.get()), "rank of " + name));
+  }
+  if (scales.size() > static_cast<std::size_t>(rank)) {
+    throw H5Error("attach scales to " + name + ": more scales than dimensions");
+  }
+  if (file_.get() < 0) {
+    file_ = Id(H5Iget_file_id(dataset), H5Fclose, "H5Iget_file_id " + name);
+  }
+  const hobj_ref_t self = ObjectReference(dataset, name);
+  std::vector<hobj_ref_t> refs(scales.size());
+  std::vector<hvl_t> lists(static_cast<std::size_t>(rank), hvl_t{0, nullptr});
+  std::vector<const char*> names(static_cast<std::size_t>(rank), nullptr);
+  for (std::size_t k = 0; k < scales.size(); ++k) {
+    if (scales[k] < 0) continue;
+    refs[k] = ObjectReference(scales[k], labels[k]);
+    lists[k] = hvl_t{1, &refs[k]};
+    names[k] = labels[k].c_str();
+    auto it = std::find_if(pending_.begin(), pending_.end(),
+                           [&](const auto& p) { return p.first == refs[k]; });
+    if (it == pending_.end()) it = pending_.insert(pending_.end(), {refs[k], {}});
+    it->second.push_back({self, static_cast<unsigned int>(k)});
+  }
+  const hsize_t n = static_cast<hsize_t>(rank);
+  Id space = Dataspace(std::span<const hsize_t>(&n, 1));
+  Id list_type(H5Tvlen_create(H5T_STD_REF_OBJ), H5Tclose, "H5Tvlen_create");
+  Id list = CreateAttr(dataset, kDimensionList, list_type.get(), space.get());
+  Check(H5Awrite(list.get(), list_type.get(), lists.data()), "write DIMENSION_LIST of " + name);
+  Id label_type(H5Tcopy(H5T_C_S1), H5Tclose, "H5Tcopy");
+  Check(H5Tset_size(label_type.get(), H5T_VARIABLE), "H5Tset_size");
+  Id label = CreateAttr(dataset, kDimensionLabels, label_type.get(), space.get());
+  Check(H5Awrite(label.get(), label_type.get(), names.data()), "write DIMENSION_LABELS of " + name);
+}
+
+void ScaleAttacher::Write() {
+  if (pending_.empty()) return;
+  Id type(H5Tcreate(H5T_COMPOUND, sizeof(BackReference)), H5Tclose, "H5Tcreate(compound)");
+  Check(H5Tinsert(type.get(), "dataset", HOFFSET(BackReference, dataset), H5T_STD_REF_OBJ),
+        "H5Tinsert dataset");
+  Check(H5Tinsert(type.get(), "dimension", HOFFSET(BackReference, dim), H5T_NATIVE_INT),
+        "H5Tinsert dimension");
+  for (auto& [ref, added] : pending_) {
+    Id scale(H5Rdereference2(file_.get(), H5P_DEFAULT, H5R_OBJECT, &ref), H5Dclose,
+             "open a dimension scale by reference");
+    const std::string name = ObjectName(scale.get());
+    if (Check(H5DSis_scale(scale.get()), "H5DSis_scale " + name) <= 0) {
+      throw H5Error("attach " + name + ": not a dimension scale");
+    }
+    std::vector<BackReference> entries;
+    if (HasAttr(scale.get(), kReferenceList)) {
+      Id old = OpenAttr(scale.get(), kReferenceList);
+      entries.resize(AttrCount(old.get()));
+      Check(H5Aread(old.get(), type.get(), entries.data()), "read REFERENCE_LIST of " + name);
+      old = Id();
+      Check(H5Adelete(scale.get(), kReferenceList), "delete REFERENCE_LIST of " + name);
+    }
+    entries.insert(entries.end(), added.begin(), added.end());
+    const hsize_t n = entries.size();
+    Id space = Dataspace(std::span<const hsize_t>(&n, 1));
+    Id list = CreateAttr(scale.get(), kReferenceList, type.get(), space.get());
+    Check(H5Awrite(list.get(), type.get(), entries.data()), "write REFERENCE_LIST of " + name);
+  }
+  pending_.clear();
+  file_ = Id();
+}
+
+namespace {
+
 // Reads every attribute of one object (the attribute heaps and indexes of the 1.8 format are
 // checksummed, so damage shows here rather than when a writer first touches them).
 herr_t ReadAttribute(hid_t obj, const char* name, const H5A_info_t* /*info*/, void* /*data*/) {
