@@ -58,7 +58,7 @@ spectra::FragilityTable FitWorstIncidence(const SweepSpec& spec, std::size_t k,
                                           const std::string& stripe_axis,
                                           const spectra::FragilityCells& cells,
                                           const std::string& no_cloud,
-                                          const spectra::BootstrapShare& share) {
+                                          const spectra::FitShare& share) {
   const spectra::AxisSplit split = spectra::SplitAlong(spec, k);
   const spectra::AxisStatistics z = spectra::ReduceOverAxis(spec, k, cells.exceeded, cells.usable);
   std::vector<double> dc;
@@ -116,8 +116,8 @@ std::optional<OverIncidence> MakeOverIncidence(const SweepSpec& spec, const Cube
 }
 
 // The fits per combination of every limit state, then, with an incidence_deg axis, every limit
-// state's fit at the worst angle (worst_incidence set). The bootstraps are numbered in that
-// order over all the fits, combination by combination, and drawn by the ranks in turn.
+// state's fit at the worst angle (worst_incidence set). The combinations are numbered in that
+// order over all the fits and fitted by the ranks in turn.
 std::vector<FragilityStudy> MakeFragility(const SweepSpec& spec, const CubeLayout& layout,
                                           const CubeData& data, int rank, int ranks) {
   std::vector<FragilityStudy> out;
@@ -181,7 +181,7 @@ std::vector<FragilityStudy> MakeFragility(const SweepSpec& spec, const CubeLayou
       excluded[cell] = data.responses[*far][cell] == 1.0 ? 1 : 0;
     }
   }
-  std::size_t jobs = 0;  // the bootstraps of the fits before this one
+  std::size_t jobs = 0;  // the combinations of the fits before this one
   const std::ptrdiff_t incidence = IncidenceAxis(spec);
   for (const bool at_worst : {false, true}) {
     if (at_worst && incidence < 0) break;
@@ -211,7 +211,7 @@ std::vector<FragilityStudy> MakeFragility(const SweepSpec& spec, const CubeLayou
       std::string no_cloud;
       const std::vector<double> dc = DemandOverCapacity(ls, demand_read, &no_cloud);
       const spectra::FragilityCells cells{im, exceeded_read, dc, usable, excluded};
-      const spectra::BootstrapShare share{rank, ranks, jobs};
+      const spectra::FitShare share{rank, ranks, jobs};
       f.table = at_worst ? FitWorstIncidence(spec, static_cast<std::size_t>(incidence), stripe_axis,
                                              cells, no_cloud, share)
                          : spectra::FitFragilityOverCells(spec, stripe_axis, cells, no_cloud,
@@ -481,20 +481,53 @@ CubeData UnpackFragilityInputs(const CubeLayout& layout, std::string_view bytes)
   return data;
 }
 
-std::string PackBootstraps(const std::vector<FragilityStudy>& studies, int rank, int ranks) {
+namespace {
+
+// The per-combination values of a FragilityTable that the rank fitting the combination computes
+// (the counts per stripe every rank computes).
+constexpr std::vector<double> spectra::FragilityTable::*kFitDoubles[] = {
+    &spectra::FragilityTable::theta,
+    &spectra::FragilityTable::beta,
+    &spectra::FragilityTable::se_ln_theta,
+    &spectra::FragilityTable::se_beta,
+    &spectra::FragilityTable::cov_ln_theta_beta,
+    &spectra::FragilityTable::theta_lo,
+    &spectra::FragilityTable::theta_hi,
+    &spectra::FragilityTable::beta_lo,
+    &spectra::FragilityTable::beta_hi,
+    &spectra::FragilityTable::boot_theta_lo,
+    &spectra::FragilityTable::boot_theta_hi,
+    &spectra::FragilityTable::boot_beta_lo,
+    &spectra::FragilityTable::boot_beta_hi,
+    &spectra::FragilityTable::cloud_intercept,
+    &spectra::FragilityTable::cloud_slope,
+    &spectra::FragilityTable::cloud_sigma,
+    &spectra::FragilityTable::cloud_theta,
+    &spectra::FragilityTable::cloud_beta};
+constexpr std::vector<std::int64_t> spectra::FragilityTable::*kFitCounts[] = {
+    &spectra::FragilityTable::boot_used, &spectra::FragilityTable::n_cells,
+    &spectra::FragilityTable::n_exceeded, &spectra::FragilityTable::cloud_n,
+    &spectra::FragilityTable::cloud_excluded};
+constexpr std::vector<std::string> spectra::FragilityTable::*kFitTexts[] = {
+    &spectra::FragilityTable::reason, &spectra::FragilityTable::cloud_reason};
+
+}  // namespace
+
+std::string PackFits(const std::vector<FragilityStudy>& studies, int rank, int ranks) {
   std::string out;
   std::size_t first_job = 0;
   for (std::size_t k = 0; k < studies.size(); ++k) {
     const FragilityTable& t = studies[k].table;
-    const spectra::BootstrapShare share{rank, ranks, first_job};
+    const spectra::FitShare share{rank, ranks, first_job};
     for (std::size_t combo = 0; combo < t.theta.size(); ++combo) {
       if (!share.Mine(combo)) continue;
       Put(out, static_cast<std::uint64_t>(k));
       Put(out, static_cast<std::uint64_t>(combo));
-      Put(out, t.boot_used[combo]);
-      for (double v : {t.boot_theta_lo[combo], t.boot_theta_hi[combo], t.boot_beta_lo[combo],
-                       t.boot_beta_hi[combo]}) {
-        Put(out, v);
+      for (const auto column : kFitDoubles) Put(out, (t.*column)[combo]);
+      for (const auto column : kFitCounts) Put(out, (t.*column)[combo]);
+      for (const auto column : kFitTexts) {
+        const std::string& text = (t.*column)[combo];
+        PutArray(out, std::vector<char>(text.begin(), text.end()));
       }
     }
     first_job += t.theta.size();
@@ -502,19 +535,20 @@ std::string PackBootstraps(const std::vector<FragilityStudy>& studies, int rank,
   return out;
 }
 
-void MergeBootstraps(std::vector<FragilityStudy>& studies, std::string_view bytes) {
+void MergeFits(std::vector<FragilityStudy>& studies, std::string_view bytes) {
   Reader in(bytes);
   while (!in.Done()) {
     const auto k = in.Get<std::uint64_t>();
     const auto combo = in.Get<std::uint64_t>();
     SB_DEMAND(k < studies.size() && combo < studies[k].table.theta.size(),
-              "a bootstrap of a combination the fragility does not have");
+              "a fit of a combination the fragility does not have");
     FragilityTable& t = studies[k].table;
-    t.boot_used[combo] = in.Get<std::int64_t>();
-    t.boot_theta_lo[combo] = in.Get<double>();
-    t.boot_theta_hi[combo] = in.Get<double>();
-    t.boot_beta_lo[combo] = in.Get<double>();
-    t.boot_beta_hi[combo] = in.Get<double>();
+    for (const auto column : kFitDoubles) (t.*column)[combo] = in.Get<double>();
+    for (const auto column : kFitCounts) (t.*column)[combo] = in.Get<std::int64_t>();
+    for (const auto column : kFitTexts) {
+      const std::vector<char> text = in.GetArray<char>();
+      (t.*column)[combo].assign(text.begin(), text.end());
+    }
   }
 }
 

@@ -103,7 +103,7 @@ struct StudyTables {
 /// stripes when there is one). With an `incidence_deg` axis the responses of the bridge are
 /// reduced over it (OverIncidence) and each limit state is fitted again at the worst angle.
 /// @throws InputError as LoadSweepRecords.
-/// `fragility`: the studies MakeFragilityStudies made (the ranks' shared bootstraps merged), so
+/// `fragility`: the studies MakeFragilityStudies made (the ranks' shared fits merged), so
 /// that they are not fitted again; nullptr to fit them here.
 StudyTables MakeStudyTables(const SweepSpec& spec, const CubeLayout& layout, const CubeData& data,
                             const std::vector<SweepRecord>* records = nullptr,
@@ -111,9 +111,9 @@ StudyTables MakeStudyTables(const SweepSpec& spec, const CubeLayout& layout, con
 
 /// The fragility of each limit state over the cube, as MakeStudyTables stores it: the fits per
 /// combination, then, with an incidence_deg axis, the fits at the worst angle (worst_incidence
-/// set); with `ranks` > 1 only the bootstraps of this rank's share are drawn
-/// (spectra::BootstrapShare, the jobs numbered over those fits in order), the others wait for
-/// MergeBootstraps.
+/// set); with `ranks` > 1 only the combinations of this rank's share are fitted
+/// (spectra::FitShare, the jobs numbered over those fits in order), the others wait for
+/// MergeFits.
 std::vector<FragilityStudy> MakeFragilityStudies(const SweepSpec& spec, const CubeLayout& layout,
                                                  const CubeData& data, int rank = 0, int ranks = 1);
 
@@ -124,9 +124,10 @@ std::string PackFragilityInputs(const SweepSpec& spec, const CubeLayout& layout,
 /// A cube image holding only those columns (the others empty), from PackFragilityInputs.
 CubeData UnpackFragilityInputs(const CubeLayout& layout, std::string_view bytes);
 
-/// The bootstraps this rank drew (its share of MakeFragilityStudies), as bytes for rank 0.
-std::string PackBootstraps(const std::vector<FragilityStudy>& studies, int rank, int ranks);
-/// Puts another rank's bootstraps (PackBootstraps) into `studies`.
-void MergeBootstraps(std::vector<FragilityStudy>& studies, std::string_view bytes);
+/// The fits this rank made (its share of MakeFragilityStudies: point fits, cloud fits and
+/// bootstrap intervals of its combinations), as bytes for rank 0.
+std::string PackFits(const std::vector<FragilityStudy>& studies, int rank, int ranks);
+/// Puts another rank's fits (PackFits) into `studies`.
+void MergeFits(std::vector<FragilityStudy>& studies, std::string_view bytes);
 
 }  // namespace skewbridge::jobs

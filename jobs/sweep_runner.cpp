@@ -428,9 +428,9 @@ std::exception_ptr WriteFinalCollectively(
 }
 
 // The fragility fits of the final cube, collective: rank 0's columns go to every rank, each
-// draws its share of the bootstraps (spectra::BootstrapShare; the bits of a bootstrap do not
-// depend on the rank that draws it) and rank 0 gathers them. One rank draws them all when the
-// columns would not fit one MPI message.
+// fits its share of the combinations (spectra::FitShare: point fit, cloud fit and bootstrap;
+// the bits of a fit do not depend on the rank that makes it) and rank 0 gathers them. One rank
+// fits them all when the columns would not fit one MPI message.
 std::vector<FragilityStudy> ShareFragility(const SweepSpec& spec, const CubeLayout& layout,
                                            const std::optional<Writer>& writer,
                                            Transport& transport) {
@@ -446,10 +446,10 @@ std::vector<FragilityStudy> ShareFragility(const SweepSpec& spec, const CubeLayo
   const CubeData theirs = root ? CubeData{} : UnpackFragilityInputs(layout, columns);
   std::vector<FragilityStudy> studies = MakeFragilityStudies(
       spec, layout, root ? writer->data() : theirs, transport.Rank(), transport.Size());
-  const std::vector<std::string> drawn = transport.GatherText(
-      root ? std::string() : PackBootstraps(studies, transport.Rank(), transport.Size()));
+  const std::vector<std::string> fitted = transport.GatherText(
+      root ? std::string() : PackFits(studies, transport.Rank(), transport.Size()));
   if (root) {
-    for (std::size_t r = 1; r < drawn.size(); ++r) MergeBootstraps(studies, drawn[r]);
+    for (std::size_t r = 1; r < fitted.size(); ++r) MergeFits(studies, fitted[r]);
   }
   return studies;
 }

@@ -30,7 +30,7 @@ double Quantile(const std::vector<double>& sorted, double p) {
 FragilityTable FitFragilityOverCells(const CellGrid& grid, const std::string& stripe_axis,
                                      const FragilityCells& cells, const std::string& no_cloud,
                                      int bootstrap_resamples, std::uint64_t bootstrap_seed,
-                                     const BootstrapShare& share) {
+                                     const FitShare& share) {
   const std::uint64_t n_cells = grid.CellCount();
   SB_DEMAND(
       cells.im.size() == n_cells && cells.exceeded.size() == n_cells &&
@@ -122,6 +122,7 @@ FragilityTable FitFragilityOverCells(const CellGrid& grid, const std::string& st
         }
       }
     }
+    if (!share.Mine(combo)) continue;  // another rank fits it
     const LognormalFit fit = FitLognormalMle(im, ones, z);
     t.theta[combo] = fit.theta;
     t.beta[combo] = fit.beta;
@@ -139,7 +140,7 @@ FragilityTable FitFragilityOverCells(const CellGrid& grid, const std::string& st
     // The bootstrap over records: whole records (all their stripes) drawn with replacement.
     t.boot_theta_lo[combo] = t.boot_theta_hi[combo] = kNaN;
     t.boot_beta_lo[combo] = t.boot_beta_hi[combo] = kNaN;
-    if (fit.reason.empty() && records > 1 && bootstrap_resamples > 0 && share.Mine(combo)) {
+    if (fit.reason.empty() && records > 1 && bootstrap_resamples > 0) {
       std::vector<std::vector<std::size_t>> by_record(records);
       for (std::size_t i = 0; i < m.size(); ++i) by_record[m[i].record].push_back(i);
       std::seed_seq seq{bootstrap_seed, static_cast<std::uint64_t>(combo)};

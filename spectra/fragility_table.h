@@ -58,14 +58,15 @@ struct FragilityTable {
   std::vector<std::int64_t> n_excluded, stripe_excluded;
 };
 
-/// Which combinations of a limit state draw their bootstrap here, when the ranks of a sweep
-/// share the bootstraps: combination c does when (first_job + c) % ranks == rank. The others
-/// keep NaN intervals and boot_used 0 until the rank that drew them hands them over.
-struct BootstrapShare {
+/// Which combinations of a limit state are fitted here, when the ranks of a sweep share the
+/// fits: combination c is (its point fit, cloud fit and bootstrap) when
+/// (first_job + c) % ranks == rank. The others keep only their counts per stripe (and of
+/// excluded cells) until the rank that fitted them hands them over.
+struct FitShare {
   int rank = 0;               ///< this rank
   int ranks = 1;              ///< ranks sharing the work
   std::size_t first_job = 0;  ///< jobs of the limit states before this one
-  /// Whether combination `combo` draws its bootstrap on this rank.
+  /// Whether combination `combo` is fitted on this rank.
   bool Mine(std::size_t combo) const {
     return (first_job + combo) % static_cast<std::size_t>(ranks) == static_cast<std::size_t>(rank);
   }
@@ -77,14 +78,14 @@ struct BootstrapShare {
 /// and a percentile bootstrap that resamples the records with replacement (no bootstrap
 /// without a record axis). Deterministic: the generator is seeded per combination. A cell
 /// marked in `cells.excluded` enters no fit, count or stripe; it is counted in n_excluded.
-/// `share`: only the combinations it names draw their bootstrap (every one by default); the
-/// bits of a drawn bootstrap do not depend on the share.
+/// `share`: only the combinations it names are fitted (every one by default); the bits of a
+/// fit do not depend on the share.
 /// @pre every span of `cells` has grid.CellCount() entries (demand_over_capacity, excluded:
 /// or none)
 FragilityTable FitFragilityOverCells(const CellGrid& grid, const std::string& stripe_axis,
                                      const FragilityCells& cells, const std::string& no_cloud,
                                      int bootstrap_resamples = kBootstrapResamples,
                                      std::uint64_t bootstrap_seed = kBootstrapSeed,
-                                     const BootstrapShare& share = {});
+                                     const FitShare& share = {});
 
 }  // namespace skewbridge::spectra
