@@ -515,10 +515,10 @@ ModelFileCell ModelFileEvaluator::MakeCell(std::span<const std::size_t> index, b
         m.restitution = eps_N;
         for (model::JointSpec& j : m.joints) j.restitution = eps_N;
       }
-      // Compliant joints: mu is the backwalls' friction (the joints' springs carry none).
-      if (has_mu && c.compliant) {
-        c.compliant->SetWallFriction(mu);
-      } else if (has_mu) {
+      // Compliant joints: mu is the backwalls' friction (the joints' springs carry none); with
+      // rigid parts beside them (a mixed row), the rigid corners' friction too.
+      if (has_mu && c.compliant) c.compliant->SetWallFriction(mu);
+      if (has_mu && (!c.compliant || c.compliant->Mixed())) {
         m.friction = mu;
         for (model::JointSpec& j : m.joints) j.friction = mu;
       }

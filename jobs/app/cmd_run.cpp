@@ -177,6 +177,33 @@ std::string WallsText(const model::CompliantAbutments& compliant) {
   return text;
 }
 
+// A row of decks with rigid and compliant parts in words: "-x wall (5 springs), J1 (5 springs);
+// rigid: +x wall, J0".
+std::string RowText(const model::CompliantAbutments& c) {
+  std::string compliant, rigid;
+  const auto add = [](std::string& text, const std::string& part) {
+    text.append(text.empty() ? "" : ", ").append(part);
+  };
+  for (std::size_t w = 0; w < c.walls.size(); ++w) {
+    const std::string wall = std::string(model::WallName(w)) + " wall";
+    if (c.walls[w].law == model::JointLaw::kImpact) {
+      add(rigid, wall);
+      continue;
+    }
+    add(compliant, wall + " (" + std::to_string(c.walls[w].springs) + " springs" +
+                       (c.walls[w].shear_keys ? " and two shear keys)" : ")"));
+  }
+  for (std::size_t i = 0; i < c.joints.size(); ++i) {
+    const std::string joint = "J" + std::to_string(i);
+    if (c.joints[i].law == model::JointLaw::kImpact) {
+      add(rigid, joint);
+      continue;
+    }
+    add(compliant, joint + " (" + std::to_string(c.joints[i].springs) + " springs)");
+  }
+  return compliant + "; rigid: " + rigid;
+}
+
 // The compliant joints' responses of a run for its file, as a sweep's cell stores them.
 jobs::RunJoints Joints(const model::CompliantAbutments& compliant, const dynamics::LawRun& run) {
   jobs::RunJoints j;
@@ -481,9 +508,12 @@ void Execute(const RunInput& in, const RunOptions& o) {
       Number("%.6e", e.impact_J).c_str(), Number("%.6e", e.friction_J).c_str(),
       Number("%.6e", e.kinetic_J + e.strain_J).c_str(), Number("%.3e", e.balance_error_J).c_str());
   if (in.compliant) {
+    const bool row = in.compliant->Mixed() && !in.compliant->joints.empty();
     std::printf("  compliant %s%s; %s energy (J): stored %s, dissipated %s\n",
-                in.compliant->Mixed() ? "abutment " : "abutments, ",
-                WallsText(*in.compliant).c_str(),
+                row                     ? "parts "
+                : in.compliant->Mixed() ? "abutment "
+                                        : "abutments, ",
+                (row ? RowText(*in.compliant) : WallsText(*in.compliant)).c_str(),
                 in.compliant->HasShearKeys() ? "backfill and keys'" : "backfill",
                 Number("%.6e", law_run.joint_stored_J).c_str(),
                 Number("%.6e", law_run.joint_dissipated_J).c_str());

@@ -75,6 +75,7 @@ std::vector<CompliantSpring> AbutmentSprings(const model::Model& rigid,
   // face), in the model's order.
   for (std::size_t i = 0; i < spec.joints.size(); ++i) {
     const model::CompliantJoint& law = spec.joints[i];
+    if (law.law == model::JointLaw::kImpact) continue;  // a rigid joint of a mixed row
     std::vector<int> pair;
     for (int c = 0; c < rigid.n_contacts(); ++c) {
       const model::Contact& contact = rigid.contact(c);
@@ -98,16 +99,23 @@ std::vector<CompliantSpring> AbutmentSprings(const model::Model& rigid,
 
 model::Model LawModel(const model::Model& model, const model::CompliantAbutments& compliant) {
   if (!compliant.Mixed()) return WithoutContacts(model);
-  SB_DEMAND(model.n_bodies() == 1 && compliant.joints.empty(),
-            "LawModel: a law per abutment is for a single deck");
-  // The corners of each compliant wall (+x: P1, P2; -x: P3, P4) leave; the others stay in order.
+  const int n_decks = model.n_bodies();
+  SB_DEMAND(compliant.joints.size() + 1 == static_cast<std::size_t>(n_decks),
+            "LawModel: a law per deck-deck joint");
+  // A contact's law: an abutment corner's is its wall's (+x: P1, P2, of the last deck; -x: P3, P4,
+  // of deck 0), a deck-deck corner's its joint's (the lower of its two decks). The compliant
+  // ones leave; the others stay in order.
+  const auto law_of = [&](const model::Contact& c) {
+    if (c.face.body != model::kGround) {
+      return compliant.joints[static_cast<std::size_t>(std::min(c.body, c.face.body))].law;
+    }
+    const char k = c.name.back();
+    const std::size_t wall = k == '1' || k == '2' ? 0 : 1;
+    return wall < compliant.walls.size() ? compliant.walls[wall].law : model::JointLaw::kImpact;
+  };
   std::vector<model::Contact> contacts;
   for (const model::Contact& c : model.contacts()) {
-    const bool plus_x = c.name == "P1" || c.name == "P2";
-    const std::size_t wall = plus_x ? 0 : 1;
-    if (wall < compliant.walls.size() && compliant.walls[wall].law == model::JointLaw::kCompliant) {
-      continue;
-    }
+    if (law_of(c) == model::JointLaw::kCompliant) continue;
     contacts.push_back(c);
   }
   std::optional<model::Modes> modes;
@@ -143,15 +151,25 @@ std::vector<JointResponse> JointResponses(const model::CompliantAbutments& compl
                        " backfill beyond the gap (the largest of its springs)",
                    [wall, wall_of](const LawRun& r) { return wall_of(r, wall).deformation_m; }});
   }
+  // A compliant joint's maxima in the run, found by its name "J<i>" (a mixed row's run has the
+  // compliant joints' only).
+  const auto joint_of = [](const LawRun& r, const std::string& name) -> const WallMaxima& {
+    for (const WallMaxima& m : r.joints) {
+      if (m.wall == name) return m;
+    }
+    SB_DEMAND(false, "JointResponses: the run has the joint's maxima");
+    return r.joints.front();
+  };
   for (std::size_t i = 0; i < compliant.joints.size(); ++i) {
-    const std::string id = std::to_string(i);
+    if (compliant.joints[i].law == model::JointLaw::kImpact) continue;  // a rigid joint
+    const std::string id = std::to_string(i), name = "J" + id;
     out.push_back({"joint_force_j" + id, "N",
                    "largest force of one spring of deck-deck joint " + id,
-                   [i](const LawRun& r) { return r.joints[i].spring_force_N; }});
+                   [name, joint_of](const LawRun& r) { return joint_of(r, name).spring_force_N; }});
     out.push_back({"joint_def_j" + id, "m",
                    "largest deformation of deck-deck joint " + id +
                        " beyond its gap (the largest of its springs)",
-                   [i](const LawRun& r) { return r.joints[i].deformation_m; }});
+                   [name, joint_of](const LawRun& r) { return joint_of(r, name).deformation_m; }});
   }
   // The keys' responses of both abutments when either has keys (an abutment without keys: 0, and
   // inf for the break), so that a cube's responses do not depend on which abutment has them.

@@ -28,9 +28,10 @@ namespace skewbridge::dynamics {
 /// every spring with its wall's friction w.friction and an n-th of its stick stiffness
 /// w.stick_stiffness_Npm (0: the spring's K_max). Then, per abutment with keys (w.shear_keys),
 /// AbutmentShearKeys(rigid, first, last, key, "+x" / "-x"). Then per deck-deck joint i
-/// (spec.joints) on its two contacts, WallSprings with the joint's backfill on the striking deck's
-/// end or SpringDashpots, named "J<i>". The order: the +x wall's springs, the -x wall's, the +x
-/// keys (+y, -y), the -x keys, the joints.
+/// (spec.joints) of the compliant law on its two contacts, WallSprings with the joint's backfill on
+/// the striking deck's end or SpringDashpots, named "J<i>". The order: the +x wall's springs, the
+/// -x wall's, the +x keys (+y, -y), the -x keys, the joints. A wall or joint of the impact law (a
+/// mixed model) has none.
 /// @pre spec.walls has a law per wall of `rigid`; spec.joints one per joint of `rigid`.
 /// @throws InputError naming the model's source when a wall's law or a key is invalid.
 std::vector<CompliantSpring> AbutmentSprings(const model::Model& rigid,
@@ -66,8 +67,8 @@ struct LawRun {
   /// per compliant wall (backfill springs only), +x then -x; with a law per abutment the compliant
   /// wall's only
   std::vector<WallMaxima> walls;
-  /// per compliant deck-deck joint (named "J0", "J1", ...): its springs' largest force and
-  /// deformation; empty for a single deck
+  /// per compliant deck-deck joint (named "J0", "J1", ... by its index; a rigid joint of a mixed
+  /// row has none): its springs' largest force and deformation; empty for a single deck
   std::vector<WallMaxima> joints;
   std::vector<KeyMaxima> keys;  ///< per shear key, in the springs' order; empty without keys
   /// per backfill or joint spring (not the keys), in the springs' order (AbutmentSprings)
@@ -87,24 +88,28 @@ struct JointResponse {
 
 /// The responses of the joints of `compliant` (`both`: with the -x abutment), in order: per
 /// compliant wall (+x "_px", then -x "_mx"; not the rigid wall of a law per abutment)
-/// spring_force and backwall_def; per deck-deck joint i joint_force_j<i>
-/// and joint_def_j<i>; with shear keys, per abutment
+/// spring_force and backwall_def; per compliant deck-deck joint i joint_force_j<i>
+/// and joint_def_j<i> (not a rigid joint of a mixed row); with shear keys, per abutment
 /// key_force, key_def and key_break_time (the earliest break of its two keys, +inf when neither
 /// broke), then keys_broken (the keys broken over the run); the keys' responses of both compliant
 /// abutments when either has keys (one without: 0, 0 and +inf).
 std::vector<JointResponse> JointResponses(const model::CompliantAbutments& compliant, bool both);
 
 /// The model a run under `compliant` integrates, from `model` built with every corner contact:
-/// WithoutContacts(model) when every wall is compliant; with a law per abutment (a single deck,
-/// compliant.Mixed()), `model` without the corner contacts of its compliant wall (+x: P1, P2;
-/// -x: P3, P4), the rigid wall's kept in their order (the same bodies, K, C, r and modes).
+/// WithoutContacts(model) when every wall and joint is compliant; else (compliant.Mixed(): a law
+/// per abutment, or a row of decks with rigid and compliant parts) `model` without the corner
+/// contacts of its compliant walls (+x: P1, P2 of the last deck; -x: P3, P4 of deck 0) and
+/// compliant deck-deck joints, the rigid ones kept in their order (the same bodies, K, C, r and
+/// modes).
+/// @pre compliant.joints has one law per deck-deck joint of `model`.
 model::Model LawModel(const model::Model& model, const model::CompliantAbutments& compliant);
 
 /// One run of `model` (built with its contacts) under `excitation`: without `compliant`, the
 /// rigid law, Run(model, excitation, control, policies) unchanged; with it,
 /// SimulateCompliant(WithoutContacts(model), AbutmentSprings(model, *compliant), excitation,
-/// control, {}, policies.event), or with a law per abutment (compliant->Mixed())
-/// SimulateMixed(LawModel(model, *compliant), AbutmentSprings(...), ...): the maxima of each
+/// control, {}, policies.event), or with rigid and compliant parts (compliant->Mixed(): a law per
+/// abutment, or a row with rigid and compliant joints) SimulateMixed(LawModel(model, *compliant),
+/// AbutmentSprings(...), ...): the maxima of each
 /// compliant wall's backfill springs and of each shear key beside it, and each spring's own
 /// maxima and wall slip.
 /// @throws InputError as Run and SimulateCompliant (a compliant run needs the event-driven method).

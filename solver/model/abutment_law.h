@@ -59,13 +59,15 @@ struct ShearKeysSpec {
   std::optional<joint::ShearKeyDetails> details;
 };
 
-/// One compliant deck-deck joint of a [[deck]] model file ([[joint]] law = "compliant"):
-/// `springs` springs from corner to corner of the narrower deck's end, on the relative
-/// displacement of the two decks' facing edges normal to the skewed joint, each with an n-th of
-/// the joint's law: the hyperbolic backfill-type law or a linear spring-dashpot
-/// [docs/compliant.md §6].
+/// One deck-deck joint of a [[deck]] model file with compliant parts ([[joint]] law =
+/// "compliant"): `springs` springs from corner to corner of the narrower deck's end, on the
+/// relative displacement of the two decks' facing edges normal to the skewed joint, each with an
+/// n-th of the joint's law: the hyperbolic backfill-type law or a linear spring-dashpot
+/// [docs/compliant.md §6]. Or, in a row with rigid and compliant parts, a rigid joint (law
+/// kImpact): its corners keep the Model's contacts with their eps_N and mu, and the rest is unused.
 struct CompliantJoint {
-  bool spring_dashpot = false;  ///< true: k_Npm and c_Nspm; false: `backfill`
+  JointLaw law = JointLaw::kCompliant;  ///< kImpact: the joint keeps its rigid contacts
+  bool spring_dashpot = false;          ///< true: k_Npm and c_Nspm; false: `backfill`
   BackfillSpec backfill;  ///< the joint's hyperbolic law, as a wall's (per metre: of the joint)
   double k_Npm = 0.0;     ///< spring-dashpot: the joint's stiffness (N/m), > 0
   double c_Nspm = 0.0;    ///< spring-dashpot: the joint's dashpot (N s/m), >= 0
@@ -91,8 +93,8 @@ struct CompliantWall {
   double stick_stiffness_Npm = 0.0;
 };
 
-/// The compliant joints of a model file ([abutments] law = "compliant", or a law per abutment with
-/// one wall compliant): per wall its law
+/// The compliant joints of a model file ([abutments] law = "compliant", a law per abutment with
+/// one wall compliant, or a [[deck]] row with some joint or abutment compliant): per wall its law
 /// (`springs` springs from corner to corner, each with an n-th of the wall's backfill, optionally
 /// the abutment's two exterior shear keys, the wall's friction and stick stiffness) and, for a
 /// [[deck]] file, each deck-deck joint's law.
@@ -101,7 +103,8 @@ struct CompliantAbutments {
   /// set = "+x"). One [abutments.backfill] or [abutments.shear_keys] table, or one `mu` or
   /// `stick_stiffness_Npm` number, fills every wall.
   std::vector<CompliantWall> walls;
-  /// A [[deck]] file: joint i between decks i and i + 1; empty for a single deck.
+  /// A [[deck]] file: joint i between decks i and i + 1, each with its law; empty for a single
+  /// deck.
   std::vector<CompliantJoint> joints;
 
   /// Gives every wall the friction coefficient `mu` (>= 0), as `mu = ...` for both walls in the
@@ -110,10 +113,14 @@ struct CompliantAbutments {
     for (CompliantWall& w : walls) w.friction = mu;
   }
 
-  /// Whether one wall keeps the impact law (a per-abutment law): the run is SimulateMixed's.
+  /// Whether one wall or deck-deck joint keeps the impact law (a law per abutment, or a row with
+  /// rigid and compliant joints): the run is SimulateMixed's.
   bool Mixed() const {
     for (const CompliantWall& w : walls) {
       if (w.law == JointLaw::kImpact) return true;
+    }
+    for (const CompliantJoint& j : joints) {
+      if (j.law == JointLaw::kImpact) return true;
     }
     return false;
   }

@@ -55,10 +55,13 @@ void CheckCompliant(const toml::table& root, const CompliantAbutments& c,
   if (run.method != Method::kEventDriven) {
     const toml::node* method = root.at_path("run.method").node();
     Fail(Where{source, method != nullptr ? detail::LineOf(*method) : 0}, "run.method",
-         c.Mixed() ? "a law per abutment (abutments.law, one wall compliant) runs with the "
-                     "event-driven method only (allowed: \"event-driven\")"
-                   : "the compliant abutments (abutments.law = \"compliant\") run with the "
-                     "event-driven method only (allowed: \"event-driven\")");
+         c.Mixed() && !c.joints.empty()
+             ? "a row with compliant joints (abutments.law, joint[i].law) runs "
+               "with the event-driven method only (allowed: \"event-driven\")"
+         : c.Mixed() ? "a law per abutment (abutments.law, one wall compliant) runs with the "
+                       "event-driven method only (allowed: \"event-driven\")"
+                     : "the compliant abutments (abutments.law = \"compliant\") run with "
+                       "the event-driven method only (allowed: \"event-driven\")");
   }
   const toml::node* backfill = root.at_path("abutments.backfill").node();
   for (std::size_t w = 0; w < c.walls.size(); ++w) {
@@ -88,7 +91,7 @@ void CheckCompliantDecks(const toml::table& root, const CompliantAbutments& c,
   const toml::array* joints =
       root.get("joint") != nullptr ? root.get("joint")->as_array() : nullptr;
   for (std::size_t i = 0; i < c.joints.size(); ++i) {
-    if (c.joints[i].spring_dashpot) continue;
+    if (c.joints[i].law == JointLaw::kImpact || c.joints[i].spring_dashpot) continue;
     const DeckGeometry& left = decks.decks[i].geometry;
     const DeckGeometry& right = decks.decks[i + 1].geometry;
     const toml::node* table = joints != nullptr ? joints->get(i) : nullptr;

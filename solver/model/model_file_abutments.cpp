@@ -13,9 +13,13 @@ namespace {
 constexpr std::string_view kImpactKeys = "set, gap_m, law, eps_N, mu, contacts";
 constexpr std::string_view kCompliantKeys =
     "set, gap_m, law, springs, backfill, mu, stick_stiffness_Npm, shear_keys";
-// With a law per abutment, one wall of each law: the rigid wall's keys and the compliant wall's.
+// With a law per abutment, one wall of each law: the rigid wall's keys and the compliant wall's
+// (a [[deck]] file's abutments have no per-corner tables).
 constexpr std::string_view kMixedKeys =
     "set, gap_m, law, eps_N, mu, contacts, springs, backfill, stick_stiffness_Npm, shear_keys";
+constexpr std::string_view kMixedDeckKeys =
+    "set, gap_m, law, eps_N, mu, springs, backfill, stick_stiffness_Npm, shear_keys (with [[deck]] "
+    "tables)";
 constexpr std::string_view kShearKeyKeys = "gap_m, v_n_N, details, d3_m, v_res_N, d_res_m, dd_m";
 constexpr std::string_view kShearKeyDetailKeys =
     "f_c_MPa, stem_width_m, stem_height_m, key_length_m, load_height_m, tie1_N, tie2_N, "
@@ -512,21 +516,16 @@ void ReadContactOverrides(Section& s, AbutmentParameters& a, std::optional<std::
   cs.Finish(allowed);
 }
 
-// `law`: one for both abutments ("impact", the default, or "compliant"), or, for a single deck
-// with set = "both", one per abutment, a table { "+x" = ..., "-x" = ... } naming both. Per wall
-// (+x, then -x) its law.
-std::array<JointLaw, 2> ReadLaws(Section& s, bool multi_deck, AbutmentSet set) {
+// `law`: one for both abutments ("impact", the default, or "compliant"), or, with set = "both"
+// (a [[deck]] file's always), one per abutment, a table { "+x" = ..., "-x" = ... } naming both.
+// Per wall (+x, then -x) its law.
+std::array<JointLaw, 2> ReadLaws(Section& s, AbutmentSet set) {
   const toml::node* node = s.Get("law");
   if (node == nullptr || !node->is_table()) {
     const JointLaw law = s.String("law", {"impact", "compliant"}).value_or("impact") == "compliant"
                              ? JointLaw::kCompliant
                              : JointLaw::kImpact;
     return {law, law};
-  }
-  if (multi_deck) {
-    Fail(s.At("law"), s.Field("law"),
-         "a law per abutment is for a single deck; a row of [[deck]] tables takes one law for "
-         "both abutments and every joint (allowed: \"impact\", \"compliant\")");
   }
   if (set != AbutmentSet::kBoth) {
     Fail(s.At("law"), s.Field("law"),
@@ -583,19 +582,20 @@ AbutmentParameters ReadAbutments(Section& s, bool multi_deck) {
     a.gap_plus_m = gap;
     a.gap_minus_m = gap;
   }
-  const std::array<JointLaw, 2> laws = ReadLaws(s, multi_deck, a.set);
+  const std::array<JointLaw, 2> laws = ReadLaws(s, a.set);
   if (laws[0] != laws[1]) {
     // A law per abutment, one wall of each: the rigid wall keeps its corners' contacts with eps_N,
-    // mu and their per-contact tables; the compliant wall's keys are read as law = "compliant"
-    // reads them; mu is both walls' (one number, or per wall).
+    // mu and (a single deck) their per-contact tables; the compliant wall's keys are read as
+    // law = "compliant" reads them; mu is both walls' (one number, or per wall).
     const std::size_t impact = laws[0] == JointLaw::kImpact ? 0 : 1;
-    s.Expect(kMixedKeys);
+    const std::string_view keys = multi_deck ? kMixedDeckKeys : kMixedKeys;
+    s.Expect(keys);
     a.compliant = ReadCompliant(s, 2, impact);
     a.restitution = s.Number("eps_N").value_or(0.5);
     CheckRange(a.restitution, 0.0, 1.0, false, s.Field("eps_N"), s.At("eps_N"));
     a.friction = a.compliant->walls[impact].friction;
-    ReadContactOverrides(s, a, impact);
-    s.Finish(kMixedKeys);
+    if (!multi_deck) ReadContactOverrides(s, a, impact);
+    s.Finish(keys);
     return a;
   }
   const bool compliant = laws[0] == JointLaw::kCompliant;

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 
 #include "solver/model/model_file_tables.h"
@@ -69,7 +70,9 @@ constexpr std::string_view kCompliantJointKeys = "gap_m, law, springs, backfill,
 
 // [[joint]] law = "compliant": the springs along the joint and their law, a backfill table or a
 // linear spring-dashpot table [docs/compliant.md §6].
-CompliantJoint ReadCompliantJoint(Section& s) {
+// `taken`: the law is the abutments' (the joint gives none), which the missing table's message
+// says.
+CompliantJoint ReadCompliantJoint(Section& s, bool taken) {
   CompliantJoint j;
   if (const std::optional<double> n = s.Number("springs")) {
     if (*n != std::floor(*n) || *n < 2.0 || *n > 1000.0) {
@@ -87,8 +90,12 @@ CompliantJoint ReadCompliantJoint(Section& s) {
   }
   if (backfill == nullptr && dashpot == nullptr) {
     s.Missing("backfill",
-              "the joint's law with law = \"compliant\": a table [joint.backfill] or "
-              "[joint.spring_dashpot] with k_Npm and c_Nspm");
+              std::string(taken ? "the joint's law, compliant as [abutments] law is: a table "
+                                  "[joint.backfill] or [joint.spring_dashpot] with k_Npm and "
+                                  "c_Nspm, or law = \"impact\" for a rigid joint"
+                                : "the joint's law with law = \"compliant\": a table "
+                                  "[joint.backfill] or [joint.spring_dashpot] with k_Npm and "
+                                  "c_Nspm"));
   }
   if (backfill != nullptr) {
     Section b(*backfill, s.Field("backfill"), s.source());
@@ -146,13 +153,35 @@ MultiDeckSpec ReadMultiDeck(Section& top, std::string_view source,
              " [[deck]] tables, one after each deck but the last (got " +
              std::to_string(joints.size()) + ")");
   }
-  // Each joint's law: its compliant law, or empty for the impact law; the line of its law key.
-  std::vector<std::optional<CompliantJoint>> laws;
-  std::vector<Where> law_at;
+  // A joint without `law` takes the abutments' one law ("impact" when [abutments] gives none): a
+  // file whose abutments are compliant has compliant joints unless a joint says "impact". With a
+  // law per abutment, one of each, every joint names its own (none: the abutments' law, if any, is
+  // refused in its own place).
+  std::optional<std::string> default_law = "impact";
+  if (const toml::node* a = top.Get("abutments"); a != nullptr && a->is_table()) {
+    const toml::node* law = a->as_table()->get("law");
+    const auto value = [](const toml::node* n) {
+      return n != nullptr && n->is_string() ? *n->value<std::string>() : std::string("impact");
+    };
+    if (law != nullptr && law->is_table()) {
+      const std::string plus = value(law->as_table()->get("+x"));
+      const std::string minus = value(law->as_table()->get("-x"));
+      default_law = plus == minus ? std::optional<std::string>(plus) : std::nullopt;
+    } else {
+      default_law = value(law);
+    }
+  }
+  // Each joint's law: its compliant law, or law kImpact.
+  std::vector<CompliantJoint> laws;
   for (std::size_t i = 0; i < joints.size(); ++i) {
     Section s(*joints[i], Indexed("joint", i), source);
-    const bool compliant =
-        s.String("law", {"impact", "compliant"}).value_or("impact") == "compliant";
+    const std::optional<std::string> given = s.String("law", {"impact", "compliant"});
+    if (!given && !default_law) {
+      s.Missing("law",
+                "the abutments have a law per abutment, one of each: give each joint its law, "
+                "\"impact\" or \"compliant\"");
+    }
+    const bool compliant = given.value_or(*default_law) == "compliant";
     s.Expect(compliant ? kCompliantJointKeys : kImpactJointKeys,
              {{compliant ? "law = \"impact\"" : "law = \"compliant\"",
                compliant ? "eps_N, mu" : "springs, backfill, spring_dashpot"}});
@@ -160,15 +189,14 @@ MultiDeckSpec ReadMultiDeck(Section& top, std::string_view source,
     j.gap_m = s.RequiredNumber("gap_m", "joint gap along x, m");
     CheckNonNegative(j.gap_m, s.Field("gap_m"), s.At("gap_m"));
     if (compliant) {
-      laws.push_back(ReadCompliantJoint(s));
+      laws.push_back(ReadCompliantJoint(s, !given));
     } else {
       j.restitution = s.Number("eps_N").value_or(0.5);
       CheckRange(j.restitution, 0.0, 1.0, false, s.Field("eps_N"), s.At("eps_N"));
       j.friction = s.Number("mu").value_or(0.0);
       CheckNonNegative(j.friction, s.Field("mu"), s.At("mu"));
-      laws.emplace_back();
+      laws.emplace_back().law = JointLaw::kImpact;
     }
-    law_at.push_back(s.At("law"));
     if (spec.decks[i].geometry.skew_rad != spec.decks[i + 1].geometry.skew_rad) {
       Fail(s.At("gap_m"), s.Field("gap_m"),
            "decks " + std::to_string(i) + " and " + std::to_string(i + 1) +
@@ -189,22 +217,20 @@ MultiDeckSpec ReadMultiDeck(Section& top, std::string_view source,
     spec.restitution = a.restitution;
     spec.friction = a.friction;
     compliant = a.compliant;
-    // A compliant run has no rigid contact: the abutments and every joint share the law's kind.
-    for (std::size_t i = 0; i < laws.size(); ++i) {
-      if (compliant && !laws[i]) {
-        Fail(law_at[i], Indexed("joint", i) + ".law",
-             "must be \"compliant\" with [abutments] law = \"compliant\" (a compliant run has "
-             "no rigid contact; allowed: \"compliant\")");
-      }
-      if (!compliant && laws[i]) {
-        Fail(law_at[i], Indexed("joint", i) + ".law",
-             "law = \"compliant\" on a deck-deck joint needs [abutments] law = \"compliant\" "
-             "too (a compliant run has no rigid contact; allowed here: \"impact\")");
+    // Rigid abutments beside a compliant joint: both walls keep their corners' contacts (eps_N
+    // and mu the abutments').
+    const bool compliant_joint = std::any_of(laws.begin(), laws.end(), [](const CompliantJoint& j) {
+      return j.law == JointLaw::kCompliant;
+    });
+    if (!compliant && compliant_joint) {
+      compliant.emplace();
+      compliant->walls.resize(2);
+      for (CompliantWall& w : compliant->walls) {
+        w.law = JointLaw::kImpact;
+        w.friction = a.friction;
       }
     }
-    if (compliant) {
-      for (const std::optional<CompliantJoint>& law : laws) compliant->joints.push_back(*law);
-    }
+    if (compliant) compliant->joints = laws;
   }
   const std::vector<const toml::table*> supports = ArrayOfTables(top, "support");
   for (std::size_t i = 0; i < supports.size(); ++i) {

@@ -51,8 +51,9 @@ BackfillSpec ReadBackfillTable(Section& b);
 // [[deck]], [[joint]] and [[support]] (model_file_multi_deck.cpp).
 
 /// The [[deck]] form: decks in a row along x, joints between consecutive decks, supports.
-/// `compliant` takes the compliant law of the abutments and of every joint (law = "compliant" on
-/// both, or neither: a compliant run has no rigid contact); empty for the impact law.
+/// `compliant` takes the law of each abutment and of each joint when one of them is compliant
+/// ([abutments] law, [[joint]] law; a joint without one takes the abutments' one law); empty when
+/// every one is rigid.
 MultiDeckSpec ReadMultiDeck(Section& top, std::string_view source,
                             std::optional<CompliantAbutments>& compliant);
 

@@ -185,8 +185,23 @@ expect "law_ts.toml:48: run.method: a law per abutment (abutments.law, one wall 
   run law_ts.toml --out run.h5
 sed 's/^\[abutments\].*/&\nlaw = { "+x" = "impact", "-x" = "compliant" }/' "$root/docs/examples/three-span.toml" \
   > law_decks.toml
-expect "law_decks.toml:36: abutments.law: a law per abutment is for a single deck; a row of [[deck]] tables takes one law for both abutments and every joint (allowed: \"impact\", \"compliant\")" \
+expect "law_decks.toml:25: joint[0].law: missing required key (the abutments have a law per abutment, one of each: give each joint its law, \"impact\" or \"compliant\")" \
   run law_decks.toml --out run.h5
+# A row with a rigid joint[0] and a compliant joint[1] (a spring-dashpot), the abutments rigid.
+sed '32,33c law = "compliant"\n\n[joint.spring_dashpot]\nk_Npm = 1.0e9\nc_Nspm = 7.4e6' \
+  "$root/docs/examples/three-span.toml" > law_row.toml
+sed 's/^tail_s = .*/&\nmethod = "time-stepping"/' law_row.toml > law_row_ts.toml
+expect "law_row_ts.toml:76: run.method: a row with compliant joints (abutments.law, joint[i].law) runs with the event-driven method only (allowed: \"event-driven\")" \
+  run law_row_ts.toml --out run.h5
+sed -e '26a law = "impact"' \
+  -e '41a law = { "+x" = "impact", "-x" = "compliant" }\nsprings = 5\n\n[abutments.backfill]\nform = "caltrans"\nwidth_m = 12.0\nheight_m = 2.0\n\n[abutments.contacts.P1]\neps_N = 0.6' \
+  law_row.toml > law_row_p1.toml
+expect "law_row_p1.toml:51: abutments.contacts: unknown key (allowed: set, gap_m, law, eps_N, mu, springs, backfill, stick_stiffness_Npm, shear_keys (with [[deck]] tables))" \
+  run law_row_p1.toml --out run.h5
+sed '41a law = "compliant"\nsprings = 5\n\n[abutments.backfill]\nform = "caltrans"\nwidth_m = 12.0\nheight_m = 2.0' \
+  law_row.toml | sed '/^eps_N = 0.5$/d; /^mu = 0.2$/d' > law_row_taken.toml
+expect "law_row_taken.toml:25: joint[0].backfill: missing required key (the joint's law, compliant as [abutments] law is: a table [joint.backfill] or [joint.spring_dashpot] with k_Npm and c_Nspm, or law = \"impact\" for a rigid joint)" \
+  run law_row_taken.toml --out run.h5
 # --- the wrong kind of file, named as what it is ---
 cp "$spec" spec.toml
 for command in run modes; do
