@@ -7,7 +7,8 @@
 # joint_force_j1, joint_def_j1 only; each cell equals `skewbridge run` of the file with that mu and
 # eps_N written on the rigid abutment and the rigid joint (and mu on the backwall), bit for bit;
 # the run file's group `joints` holds the -x wall's and joint[1]'s springs only; rigid corners are
-# struck (impact_J > 0) and the ledger closes to 1e-6 of the input.
+# struck (impact_J > 0) and the ledger closes to 1e-6 of the input; `run --from-cube` re-runs a
+# cell with the cube's bits.
 # usage: mixed_row_test.sh SKEWBRIDGE MPIEXEC SOURCE_DIR
 source "$(dirname "${BASH_SOURCE[0]}")/../support/prologue.sh"
 args exe mpiexec src -- "$@"
@@ -81,5 +82,23 @@ for i, eps in enumerate(("0.5", "0.8")):
         assert "spring_force_px" not in j.attrs and "joint_force_j0" not in j.attrs, dict(j.attrs)
 assert r["x_m_d0"][0, 0] != r["x_m_d0"][0, 1], "mu changes nothing"
 assert r["x_m_d2"][0, 1] != r["x_m_d2"][1, 1], "eps_N changes nothing"
+PY
+
+# A cell run again from the cube (eps_N = 0.8, mu = 0.3): the same bits, the same compliant parts.
+"$exe" run --from-cube cube_mixed.h5 --cell-index 3 --out rerun.h5 >rerun.out 2>&1 ||
+  fail "run --from-cube: exit $? ($(cat rerun.out))"
+grep -q "compliant parts -x wall (5 springs), J1 (5 springs); rigid: +x wall, J0; " rerun.out ||
+  fail "run --from-cube ran other parts: $(cat rerun.out)"
+/usr/bin/python3 - <<'PY' || fail "run --from-cube against the cube (above)"
+import h5py
+r = h5py.File("cube_mixed.h5", "r")["sweeps/row/responses"]
+s = h5py.File("rerun.h5", "r")["summary"]
+j = h5py.File("rerun.h5", "r")["joints"]
+for d in range(3):
+    for c, n in enumerate(("x", "y", "theta")):
+        assert s["max_abs_q"][3 * d + c] == r[f"{n}_m_d{d}"][1, 1], (n, d)
+assert s.attrs["impacts"] == r["impacts"][1, 1]
+assert j.attrs["joint_force_j1"] == r["joint_force_j1"][1, 1]
+assert j.attrs["spring_force_mx"] == r["spring_force_mx"][1, 1]
 PY
 echo "ok"
