@@ -85,6 +85,17 @@ struct DeckLanes {
   Lanes2 PhiTM[9], Phi[9], negL[6];
 };
 
+// DeckRecordLanes' modal transform (below) alone: qu and ab from zq, gx and gy.
+inline void DeckModalLanes(const DeckLanes& d, const Lanes2 zq[3], Lanes2 gx, Lanes2 gy,
+                           Lanes2 qu[3], Lanes2 ab[3]) {
+  for (int i = 0; i < 3; ++i) {
+    Lanes2 s = {0.0, 0.0};
+    for (int j = 0; j < 3; ++j) s += d.PhiTM[i + 3 * j] * zq[j];
+    qu[i] = s;
+    ab[i] = d.negL[i] * gx + d.negL[3 + i] * gy;
+  }
+}
+
 // ApplyMotion of a deck's three modes on a piece without harmonic part with two lanes per
 // operation, in registers: ToModalFixed<3, false> of the state zq (the pairs (q_i, u_i)) and the
 // generator's (a, slope) gx of x and gy of y into qu[k] = (eta_k, eta_k') and ab[k] = (a_k,
@@ -97,12 +108,7 @@ inline void DeckRecordLanes(const DeckLanes& d, const double* __restrict pairs, 
   Lanes2 ed[3];
   // Eigen's storage is aligned to 16 bytes: a pair loads as one operand.
   const auto* T = static_cast<const double*>(__builtin_assume_aligned(pairs, 16));
-  for (int i = 0; i < 3; ++i) {
-    Lanes2 s = {0.0, 0.0};
-    for (int j = 0; j < 3; ++j) s += d.PhiTM[i + 3 * j] * zq[j];
-    qu[i] = s;
-    ab[i] = d.negL[i] * gx + d.negL[3 + i] * gy;
-  }
+  DeckModalLanes(d, zq, gx, gy, qu, ab);
   for (int k = 0; k < 3; ++k) {
     const Lanes2 y[4] = {
         {qu[k][0], qu[k][0]}, {qu[k][1], qu[k][1]}, {ab[k][0], ab[k][0]}, {ab[k][1], ab[k][1]}};
@@ -121,15 +127,10 @@ inline void DeckRecordLanes(const DeckLanes& d, const double* __restrict pairs, 
   }
 }
 
-// DeckRecordLanes from the augmented state z (q, u, then the generator's a and slope) into
-// z_next's (q, u) and the modal coordinates Y (n x 6, the harmonic columns +0).
-inline void DeckRecordStep(const DeckLanes& d, const double* __restrict pairs,
-                           const double* __restrict z, double* __restrict Y,
-                           double* __restrict z_next) {
-  Lanes2 qu[3], ab[3], next[3];
-  const Lanes2 zq[3] = {{z[0], z[3]}, {z[1], z[4]}, {z[2], z[5]}};
-  const Lanes2 gx = {z[6], z[8]}, gy = {z[7], z[9]};  // (a, slope) of x, of y
-  DeckRecordLanes(d, pairs, zq, gx, gy, qu, ab, next);
+// DeckRecordLanes' results stored: the modal coordinates Y (n x 6, the harmonic columns +0)
+// from qu and ab, and the step's end (q, u) into z_next's head from next.
+inline void DeckRecordStore(const Lanes2 qu[3], const Lanes2 ab[3], const Lanes2 next[3],
+                            double* __restrict Y, double* __restrict z_next) {
   for (int i = 0; i < 3; ++i) {
     z_next[i] = next[i][0];
     z_next[3 + i] = next[i][1];
@@ -141,6 +142,18 @@ inline void DeckRecordStep(const DeckLanes& d, const double* __restrict pairs,
     Y[9 + i] = ab[i][1];
   }
   for (int k = 12; k < 18; ++k) Y[k] = 0.0;
+}
+
+// DeckRecordLanes from the augmented state z (q, u, then the generator's a and slope) into
+// z_next's (q, u) and the modal coordinates Y (n x 6, the harmonic columns +0).
+inline void DeckRecordStep(const DeckLanes& d, const double* __restrict pairs,
+                           const double* __restrict z, double* __restrict Y,
+                           double* __restrict z_next) {
+  Lanes2 qu[3], ab[3], next[3];
+  const Lanes2 zq[3] = {{z[0], z[3]}, {z[1], z[4]}, {z[2], z[5]}};
+  const Lanes2 gx = {z[6], z[8]}, gy = {z[7], z[9]};  // (a, slope) of x, of y
+  DeckRecordLanes(d, pairs, zq, gx, gy, qu, ab, next);
+  DeckRecordStore(qu, ab, next, Y, z_next);
 }
 
 }  // namespace detail
@@ -246,6 +259,17 @@ class LinearFlow {
   /// A deck's transforms in both lanes (detail::DeckRecordLanes), for a caller that steps a
   /// deck's record in registers. @pre modal() and three degrees of freedom.
   const detail::DeckLanes& deck_lanes() const { return deck_; }
+
+  /// What ApplyRecordMotion leaves of a deck's step that a caller took in registers with
+  /// detail::DeckRecordLanes from zq, gx and gy to `next`: the modal coordinates (the modal
+  /// transform taken again, not the step) and z_next's (q, u), the same bits. @pre modal() and
+  /// three degrees of freedom; z_next of the augmented size.
+  void StoreDeckRecord(const detail::Lanes2 zq[3], detail::Lanes2 gx, detail::Lanes2 gy,
+                       const detail::Lanes2 next[3], Eigen::VectorXd& z_next) {
+    detail::Lanes2 qu[3], ab[3];
+    detail::DeckModalLanes(deck_, zq, gx, gy, qu, ab);
+    detail::DeckRecordStore(qu, ab, next, Y_.data(), z_next.data());
+  }
 
   /// The modal coordinates (n x 6, rows y_k as ModalFlow::ToModal) of the state the last Apply
   /// started from. @pre modal(), and Apply was called.

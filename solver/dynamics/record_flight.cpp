@@ -206,6 +206,7 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
   enum class Exit { kOther, kEnded, kPartial, kClosing, kRare };
   Exit exit = Exit::kOther;
   FreeStepPlan step;
+  Lanes2 next[3];  // the last step's end (q_i, u_i)
   // NextSampledPiece's tests of the piece's number and end: a ramp this loop reads ends at
   // (k + 1) dt of its own k, the next ramp's start, so they hold for every later ramp.
   if (index < 0 || te != static_cast<double>(index + 1) * dt) {
@@ -254,7 +255,7 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
     g[2] = sx;
     g[3] = sy;
     generated = true;
-    Lanes2 qu[3], ab[3], next[3];
+    Lanes2 qu[3], ab[3];
     detail::DeckRecordLanes(lanes, p->record_pairs.data(), x, Lanes2{g[0], g[2]},
                             Lanes2{g[1], g[3]}, qu, ab, next);
     ++free_steps;
@@ -319,8 +320,9 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
       return true;
     case Exit::kClosing:
     case Exit::kRare:
-      // The step's transition again (the flow's modal coordinates and z_new_, the same bits).
-      flow.ApplyRecordMotion(*p, z_, z_new_);
+      // The flow's modal coordinates (the modal transform of the step's start taken again) and
+      // z_new_ as the step's transition would leave them.
+      flow.StoreDeckRecord(x, Lanes2{g[0], g[2]}, Lanes2{g[1], g[3]}, next, z_new_);
       FinishFreeStep(piece, step, exit == Exit::kRare, false, 0.0, 0.0);
       return true;
   }

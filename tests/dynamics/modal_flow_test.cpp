@@ -524,6 +524,29 @@ TEST(LinearFlow, RecordMotionIsTheBitsOfApplyMotion) {
           EXPECT_EQ(std::signbit(flow.modal_coordinates()(k, j)), std::signbit(Y_want(k, j)));
         }
       }
+      if (n == 3) {
+        // A step taken in registers (detail::DeckRecordLanes) and stored by StoreDeckRecord,
+        // which takes the modal transform again: ApplyMotion's bits too.
+        using detail::Lanes2;
+        const Lanes2 zq[3] = {{z[0], z[3]}, {z[1], z[4]}, {z[2], z[5]}};
+        const Lanes2 gx = {z[6], z[8]}, gy = {z[7], z[9]};
+        Lanes2 qu[3], ab[3], next[3];
+        detail::DeckRecordLanes(flow.deck_lanes(), p.record_pairs.data(), zq, gx, gy, qu, ab, next);
+        flow.ApplyMotion(p, -z, got);  // other modal coordinates in between
+        got.setConstant(-3.5);
+        flow.StoreDeckRecord(zq, gx, gy, next, got);
+        for (int i = 0; i < 2 * n; ++i) {
+          EXPECT_EQ(std::signbit(got[i]), std::signbit(want[i])) << "stored, entry " << i;
+          EXPECT_EQ(got[i], want[i]) << "stored, entry " << i << ", trial " << trial;
+        }
+        for (int j = 0; j < 6; ++j) {
+          for (int k = 0; k < n; ++k) {
+            EXPECT_EQ(flow.modal_coordinates()(k, j), Y_want(k, j))
+                << "stored, Y(" << k << ", " << j << ")";
+            EXPECT_EQ(std::signbit(flow.modal_coordinates()(k, j)), std::signbit(Y_want(k, j)));
+          }
+        }
+      }
     }
   }
 }
