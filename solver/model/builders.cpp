@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <numbers>
 
 #include "solver/common/error.h"
@@ -202,6 +203,72 @@ std::vector<Contact> AbutmentContacts(const Body& body, int body_index, Abutment
   return contacts;
 }
 
+DeckModesMemo::Key DeckModesMemo::KeyOf(const Eigen::MatrixXd& M, const Eigen::Matrix3d& K,
+                                        double xi) {
+  SB_DEMAND(M.rows() == 3 && M.cols() == 3, "DeckModesMemo: a deck's M is 3 x 3");
+  Key key{};
+  std::memcpy(key.data(), M.data(), 9 * sizeof(double));
+  std::memcpy(key.data() + 9, K.data(), 9 * sizeof(double));
+  std::memcpy(key.data() + 18, &xi, sizeof(double));
+  return key;
+}
+
+std::size_t DeckModesMemo::SlotOf(const Key& key) {
+  std::uint64_t h = 0x9e3779b97f4a7c15ULL;
+  for (const std::uint64_t word : key) {
+    h ^= word + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2);
+  }
+  return static_cast<std::size_t>(h ^ (h >> 29)) & (kSlots - 1);
+}
+
+std::size_t DeckModesMemo::Probe(const Key& key) const {
+  std::size_t slot = SlotOf(key);
+  // At most half the slots are used: an empty one ends every probe.
+  while (slots_[slot] != 0 && entries_[slots_[slot] - 1].key != key) {
+    slot = (slot + 1) & (kSlots - 1);
+  }
+  return slot;
+}
+
+bool DeckModesMemo::Find(const Eigen::MatrixXd& M, const Eigen::Matrix3d& K, double xi,
+                         Modes& modes, Eigen::MatrixXd& C) const {
+  if (entries_.empty()) return false;
+  const std::size_t slot = Probe(KeyOf(M, K, xi));
+  if (slots_[slot] == 0) return false;
+  const Entry& e = entries_[slots_[slot] - 1];
+  modes.omega_radps = Eigen::Map<const Eigen::Vector3d>(e.omega);
+  modes.phi = Eigen::Map<const Eigen::Matrix3d>(e.phi);
+  modes.eigenvalues = Eigen::Map<const Eigen::Vector3d>(e.eigenvalues);
+  C = Eigen::Map<const Eigen::Matrix3d>(e.C);
+  return true;
+}
+
+void DeckModesMemo::Compute(const Eigen::MatrixXd& M, const Eigen::Matrix3d& K, double xi,
+                            Modes& modes, Eigen::MatrixXd& C) {
+  modes = ComputeModes(M, K);
+  C = ClassicalDamping(M, modes, xi);
+  SB_DEMAND(modes.phi.rows() == 3 && modes.phi.cols() == 3 && C.rows() == 3 && C.cols() == 3,
+            "DeckModesMemo: a deck's modes are 3 x 3");
+  if (slots_.empty()) {
+    slots_.assign(kSlots, 0);
+    entries_.reserve(kCapacity);
+  }
+  if (entries_.size() >= kCapacity) {
+    entries_.clear();
+    std::fill(slots_.begin(), slots_.end(), 0);
+  }
+  Entry e;
+  e.key = KeyOf(M, K, xi);
+  const std::size_t slot = Probe(e.key);
+  if (slots_[slot] != 0) return;  // held already
+  std::memcpy(e.omega, modes.omega_radps.data(), sizeof e.omega);
+  std::memcpy(e.phi, modes.phi.data(), sizeof e.phi);
+  std::memcpy(e.eigenvalues, modes.eigenvalues.data(), sizeof e.eigenvalues);
+  std::memcpy(e.C, C.data(), sizeof e.C);
+  entries_.push_back(e);
+  slots_[slot] = static_cast<std::uint32_t>(entries_.size());
+}
+
 Model BuildDeckModel(const DeckSpec& spec, const std::string& source) {
   const Where where{source, 0};
   CheckPositive(spec.mass_kg, "deck.m", where);
@@ -263,9 +330,15 @@ Model BuildDeckModel(const DeckSpec& spec, const std::string& source) {
     // the modes meaningless, so report it here first. The deck's fields are checked above but
     // for a computed I_m, which the Model would name first.
     detail::CheckPositive(body.inertia_kgm2, "deck.I_m", where);
-    detail::CheckSymmetricPsd(K, 3, "substructure.K", where, true);
-    modes = ComputeModes(M, K);
-    C = ClassicalDamping(M, *modes, spec.xi);
+    // A deck of the same (M, K, xi) bits as one built before on this thread (a sweep's cells
+    // that differ only in their excitation): its K passed the check, its modes and damping are
+    // those bits' (DeckModesMemo).
+    thread_local DeckModesMemo memo;
+    modes.emplace();
+    if (!memo.Find(M, K, spec.xi, *modes, C)) {
+      detail::CheckSymmetricPsd(K, 3, "substructure.K", where, true);
+      memo.Compute(M, K, spec.xi, *modes, C);
+    }
   }
 
   CheckNonNegative(spec.gap_plus_m, "abutments.gap_m", where);

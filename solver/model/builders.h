@@ -5,6 +5,8 @@
 /// [docs/theory.md §2, §6].
 
 #include <Eigen/Core>
+#include <array>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -118,6 +120,42 @@ struct DeckSpec {
   double restitution = 0.5;                     ///< abutments.eps_N
   double friction = 0.0;                        ///< abutments.mu
   std::vector<ContactOverride> overrides;       ///< abutments.contacts.<name>
+};
+
+/// The modes and classical damping of single-deck models (3 DOFs) by the bits of (M, K, xi),
+/// what BuildDeckModel keeps on its thread: a sweep's cells that differ only in their excitation
+/// (a pulse's shape, a record, a stripe) build the same deck, and its modes and damping are a
+/// function of those bits alone. Holds at most kCapacity entries in storage allocated once, on
+/// first use (all dropped when full), so that it leaves the heap of the cells alone.
+class DeckModesMemo {
+ public:
+  static constexpr std::size_t kCapacity = 8192;
+
+  /// Writes the modes and damping held for (M, K, xi) (3 x 3 each) into `modes` and `C`; false
+  /// (nothing written) when none is held.
+  bool Find(const Eigen::MatrixXd& M, const Eigen::Matrix3d& K, double xi, Modes& modes,
+            Eigen::MatrixXd& C) const;
+  /// Writes ComputeModes(M, K) and ClassicalDamping(M, modes, xi) into `modes` and `C`, and
+  /// holds them for (M, K, xi). @pre K passed CheckSymmetricPsd, xi in [0, 1).
+  void Compute(const Eigen::MatrixXd& M, const Eigen::Matrix3d& K, double xi, Modes& modes,
+               Eigen::MatrixXd& C);
+  /// Number of entries held.
+  std::size_t size() const { return entries_.size(); }
+
+ private:
+  // The bits of M (9), K (9) and xi.
+  using Key = std::array<std::uint64_t, 19>;
+  struct Entry {
+    Key key;
+    double omega[3], phi[9], eigenvalues[3], C[9];
+  };
+  static constexpr std::size_t kSlots = 2 * kCapacity;  // open addressing, a power of 2
+  static Key KeyOf(const Eigen::MatrixXd& M, const Eigen::Matrix3d& K, double xi);
+  static std::size_t SlotOf(const Key& key);
+  // The slot of `key`: the one holding it or the empty one where it would go.
+  std::size_t Probe(const Key& key) const;
+  std::vector<Entry> entries_;      // reserved to kCapacity on first use
+  std::vector<std::uint32_t> slots_;  // per slot, 1 + its entry's index (0: empty)
 };
 
 /// Builds and validates the Model described by a DeckSpec.

@@ -6,6 +6,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <iostream>
 #include <limits>
@@ -125,6 +126,64 @@ TEST(Builders, DeckModelCarriesTheModesItsDampingWasBuiltFrom) {
   EXPECT_TRUE(m.C() == ClassicalDamping(m.M(), m.K(), deck.xi));
   deck.C = m.C();
   EXPECT_EQ(BuildDeckModel(deck).modes(), nullptr) << "a given C: nothing was solved";
+}
+
+// Whether two matrices hold the same bits.
+bool SameBits(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+  return a.rows() == b.rows() && a.cols() == b.cols() &&
+         std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0;
+}
+
+TEST(Builders, DeckModelsFromTheMemoAreTheBitsOfTheirComputation) {
+  // Decks that share all but one number of (M, K, xi): K's off-diagonal entry alone, M's
+  // inertia alone, xi alone. Built twice over in turns (the second time from the thread's memo),
+  // each model's modes and damping are the bits of ComputeModes and ClassicalDamping of its own
+  // M, K and xi. A memo keyed on fewer of those numbers would hand one deck's to another.
+  DeckSpec base;
+  base.mass_kg = 3e5;
+  base.geometry = {45.0, 14.0, 0.5};
+  base.stiffness = DeckSpec::StiffnessKind::kMatrix;
+  base.K = Eigen::Matrix3d::Zero();
+  base.K.diagonal() << 1.2e6, 1.9e6, 3.1e8;
+  base.K(0, 1) = base.K(1, 0) = 2.0e5;
+  base.xi = 0.05;
+  std::vector<DeckSpec> decks(4, base);
+  decks[1].K(0, 1) = decks[1].K(1, 0) = 2.5e5;  // the off-diagonal entry alone
+  decks[2].inertia_kgm2 = 6.1e7;                 // M(2, 2) alone
+  decks[3].xi = 0.02;                            // xi alone
+  decks.push_back(PilotSpec());
+  for (int pass = 0; pass < 2; ++pass) {
+    for (std::size_t i = 0; i < decks.size(); ++i) {
+      const Model m = BuildDeckModel(decks[(i + pass) % decks.size()]);
+      ASSERT_NE(m.modes(), nullptr);
+      const Modes solved = ComputeModes(m.M(), m.K());
+      EXPECT_TRUE(SameBits(m.modes()->phi, solved.phi)) << "pass " << pass << " deck " << i;
+      EXPECT_TRUE(SameBits(m.modes()->eigenvalues, solved.eigenvalues));
+      EXPECT_TRUE(SameBits(m.modes()->omega_radps, solved.omega_radps));
+      EXPECT_TRUE(SameBits(m.C(), ClassicalDamping(m.M(), solved, decks[(i + pass) % decks.size()].xi)));
+    }
+  }
+  // The memo itself: held after its computation, not found for a key one number away.
+  DeckModesMemo memo;
+  const Eigen::MatrixXd M = Eigen::Vector3d(3e5, 3e5, 5.0e7).asDiagonal();
+  Eigen::Matrix3d K = base.K;
+  Modes modes, found;
+  Eigen::MatrixXd C, found_C;
+  ASSERT_FALSE(memo.Find(M, K, 0.05, found, found_C));
+  memo.Compute(M, K, 0.05, modes, C);
+  ASSERT_TRUE(memo.Find(M, K, 0.05, found, found_C));
+  EXPECT_TRUE(SameBits(found.phi, ComputeModes(M, K).phi));
+  EXPECT_TRUE(SameBits(found.phi, modes.phi));
+  EXPECT_TRUE(SameBits(found.omega_radps, modes.omega_radps));
+  EXPECT_TRUE(SameBits(found.eigenvalues, modes.eigenvalues));
+  EXPECT_TRUE(SameBits(found_C, C));
+  EXPECT_FALSE(memo.Find(M, K, 0.02, found, found_C));
+  Eigen::MatrixXd M2 = M;
+  M2(2, 2) = 5.1e7;
+  EXPECT_FALSE(memo.Find(M2, K, 0.05, found, found_C));
+  K(1, 0) = K(0, 1) = 2.5e5;
+  EXPECT_FALSE(memo.Find(M, K, 0.05, found, found_C));
+  EXPECT_EQ(memo.size(), 1u);
 }
 
 TEST(Builders, AbutmentSetsCarryTheNamedCornersAgainstTheirFaces) {
