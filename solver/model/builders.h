@@ -154,7 +154,7 @@ class DeckModesMemo {
   static std::size_t SlotOf(const Key& key);
   // The slot of `key`: the one holding it or the empty one where it would go.
   std::size_t Probe(const Key& key) const;
-  std::vector<Entry> entries_;      // reserved to kCapacity on first use
+  std::vector<Entry> entries_;        // reserved to kCapacity on first use
   std::vector<std::uint32_t> slots_;  // per slot, 1 + its entry's index (0: empty)
 };
 

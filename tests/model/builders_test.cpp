@@ -149,8 +149,8 @@ TEST(Builders, DeckModelsFromTheMemoAreTheBitsOfTheirComputation) {
   base.xi = 0.05;
   std::vector<DeckSpec> decks(4, base);
   decks[1].K(0, 1) = decks[1].K(1, 0) = 2.5e5;  // the off-diagonal entry alone
-  decks[2].inertia_kgm2 = 6.1e7;                 // M(2, 2) alone
-  decks[3].xi = 0.02;                            // xi alone
+  decks[2].inertia_kgm2 = 6.1e7;                // M(2, 2) alone
+  decks[3].xi = 0.02;                           // xi alone
   decks.push_back(PilotSpec());
   for (int pass = 0; pass < 2; ++pass) {
     for (std::size_t i = 0; i < decks.size(); ++i) {
@@ -160,7 +160,8 @@ TEST(Builders, DeckModelsFromTheMemoAreTheBitsOfTheirComputation) {
       EXPECT_TRUE(SameBits(m.modes()->phi, solved.phi)) << "pass " << pass << " deck " << i;
       EXPECT_TRUE(SameBits(m.modes()->eigenvalues, solved.eigenvalues));
       EXPECT_TRUE(SameBits(m.modes()->omega_radps, solved.omega_radps));
-      EXPECT_TRUE(SameBits(m.C(), ClassicalDamping(m.M(), solved, decks[(i + pass) % decks.size()].xi)));
+      EXPECT_TRUE(
+          SameBits(m.C(), ClassicalDamping(m.M(), solved, decks[(i + pass) % decks.size()].xi)));
     }
   }
   // The memo itself: held after its computation, not found for a key one number away.
