@@ -657,23 +657,28 @@ void ScaleAttacher::Write() {
   for (auto& [ref, added] : pending_) {
     Id scale(H5Rdereference2(file_.get(), H5P_DEFAULT, H5R_OBJECT, &ref), H5Dclose,
              "open a dimension scale by reference");
-    const std::string name = ObjectName(scale.get());
-    if (Check(H5DSis_scale(scale.get()), "H5DSis_scale " + name) <= 0) {
-      throw H5Error("attach " + name + ": not a dimension scale");
+    // The scale's name only for a failure: H5Iget_name searches the file for an object opened
+    // by reference.
+    try {
+      if (Check(H5DSis_scale(scale.get()), "H5DSis_scale") <= 0) {
+        throw H5Error("not a dimension scale");
+      }
+      std::vector<BackReference> entries;
+      if (HasAttr(scale.get(), kReferenceList)) {
+        Id old = OpenAttr(scale.get(), kReferenceList);
+        entries.resize(AttrCount(old.get()));
+        Check(H5Aread(old.get(), type.get(), entries.data()), "read REFERENCE_LIST");
+        old = Id();
+        Check(H5Adelete(scale.get(), kReferenceList), "delete REFERENCE_LIST");
+      }
+      entries.insert(entries.end(), added.begin(), added.end());
+      const hsize_t n = entries.size();
+      Id space = Dataspace(std::span<const hsize_t>(&n, 1));
+      Id list = CreateAttr(scale.get(), kReferenceList, type.get(), space.get());
+      Check(H5Awrite(list.get(), type.get(), entries.data()), "write REFERENCE_LIST");
+    } catch (const H5Error& e) {
+      throw H5Error("attach " + ObjectName(scale.get()) + " as a scale: " + e.what());
     }
-    std::vector<BackReference> entries;
-    if (HasAttr(scale.get(), kReferenceList)) {
-      Id old = OpenAttr(scale.get(), kReferenceList);
-      entries.resize(AttrCount(old.get()));
-      Check(H5Aread(old.get(), type.get(), entries.data()), "read REFERENCE_LIST of " + name);
-      old = Id();
-      Check(H5Adelete(scale.get(), kReferenceList), "delete REFERENCE_LIST of " + name);
-    }
-    entries.insert(entries.end(), added.begin(), added.end());
-    const hsize_t n = entries.size();
-    Id space = Dataspace(std::span<const hsize_t>(&n, 1));
-    Id list = CreateAttr(scale.get(), kReferenceList, type.get(), space.get());
-    Check(H5Awrite(list.get(), type.get(), entries.data()), "write REFERENCE_LIST of " + name);
   }
   pending_.clear();
   file_ = Id();
