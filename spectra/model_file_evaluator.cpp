@@ -721,8 +721,8 @@ dynamics::LawRun ModelFileEvaluator::CellRun(std::span<const std::size_t> axis_i
   }
   if (!stripe_axis_) {  // a stripe of its own
     const ModelFileCell trace = MakeCell(axis_index, true, dynamics::kStripeTraceFactor);
-    return dynamics::LawRun{dynamics::RunScaledRecord(*c.model, *c.excitation, *trace.excitation,
-                                                      c.scale, c.control, policies())};
+    return dynamics::RigidLawRun(dynamics::RunScaledRecord(
+        *c.model, *c.excitation, *trace.excitation, c.scale, c.control, policies()));
   }
   std::uint64_t key = 0;  // the cell with its stripe and limit-only axes at 0, row-major
   for (std::size_t k = 0; k < spec_.axes.size(); ++k) {
@@ -750,8 +750,8 @@ dynamics::LawRun ModelFileEvaluator::CellRun(std::span<const std::size_t> axis_i
   }
   const dynamics::StripeStart& start = group->starts[axis_index[*stripe_axis_]];
   SB_DEMAND(start.factor == c.scale, "a stripe's factor is not its cell's");
-  return dynamics::LawRun{
-      dynamics::RunStripe(*c.model, *c.excitation, c.control, policies(), start)};
+  return dynamics::RigidLawRun(
+      dynamics::RunStripe(*c.model, *c.excitation, c.control, policies(), start));
 }
 
 CellOutcome ModelFileEvaluator::Outcome(std::span<const std::size_t> axis_index,

@@ -141,8 +141,8 @@ void LoadPath(const std::string& text, const InfoArgs& args, std::string_view co
   if (std::filesystem::is_directory(path, ec)) {
     records::RecordEntry defaults;
     defaults.options = ReadOptionsOf(args, command);
-    const records::RecordSet set = records::MakeFolderSet(path, args.pattern, defaults,
-                                                          {text, text, std::string(command) + " "});
+    const records::RecordSet set = records::MakeFolderSet(
+        path, args.pattern, defaults, {text, text, std::string(command) + " ", ""});
     const std::string name = path.lexically_normal().filename().empty()
                                  ? path.lexically_normal().parent_path().filename().string()
                                  : path.lexically_normal().filename().string();

@@ -458,8 +458,8 @@ void Execute(const RunInput& in, const RunOptions& o) {
   const dynamics::LawRun law_run =
       in.trace_excitation != nullptr && !in.compliant &&
               control.method == model::Method::kEventDriven
-          ? dynamics::LawRun{dynamics::RunScaledRecord(
-                *in.model, *in.excitation, *in.trace_excitation, in.factor, control, in.policies)}
+          ? dynamics::RigidLawRun(dynamics::RunScaledRecord(
+                *in.model, *in.excitation, *in.trace_excitation, in.factor, control, in.policies))
           : dynamics::RunUnderLaw(*in.model, in.compliant, *in.excitation, control, in.policies);
   const dynamics::RunResult& r = law_run.run;
   // A compliant run's histories and files describe the deck without its rigid contacts (with a

@@ -8,6 +8,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "solver/common/excitation.h"
@@ -76,6 +77,13 @@ struct LawRun {
   double joint_stored_J = 0.0;      ///< compliant: CompliantRunResult::joint_stored_J
   double joint_dissipated_J = 0.0;  ///< compliant: CompliantRunResult::joint_dissipated_J
 };
+
+/// A run of the rigid law as a LawRun: no walls, joints, keys or springs.
+inline LawRun RigidLawRun(RunResult run) {
+  LawRun law;
+  law.run = std::move(run);
+  return law;
+}
 
 /// One stored response of a compliant run's joints: a cube's response of a model-file sweep and an
 /// attribute of a run file's group `joints` (docs/sweep-format.md, docs/run-output.md).
