@@ -157,20 +157,14 @@ Datasets CreateLayout(const std::string& path, const SweepSpec& spec, const Cube
   // Both files use the same chunks, each with a Fletcher-32 checksum; the checkpoint's are
   // uncompressed and allocated at creation so that writes rewrite them in place.
   const int level = final ? kDeflateLevel : 0;
-  // The scales are attached as the datasets are made, each scale's list written at the end.
-  ScaleAttacher attacher;
-  std::vector<hid_t> scale_ids;
-  std::vector<std::string> labels;
-  for (std::size_t k = 0; k < scales.size(); ++k) {
-    scale_ids.push_back(scales[k].get());
-    labels.push_back(spec.axes[k].key);
-  }
   auto make = [&](hid_t parent, const std::string& name, hid_t type, const void* fill,
                   const std::string& units, const std::string& description) {
     Id ds = CreateDataset(parent, name, type, shape, {}, level, fill);
     SetAttr(ds.get(), "units", units);
     SetAttr(ds.get(), "description", description);
-    attacher.Attach(ds.get(), scale_ids, labels);
+    for (std::size_t k = 0; k < scales.size(); ++k) {
+      AttachScale(ds.get(), scales[k].get(), static_cast<unsigned>(k), spec.axes[k].key);
+    }
     return ds;
   };
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -211,7 +205,6 @@ Datasets CreateLayout(const std::string& path, const SweepSpec& spec, const Cube
                  "integration steps of the cell's solver run");
   d.wall_s = make(stats.get(), "wall_s", H5T_IEEE_F64LE, &zero, "s",
                   "wall-clock time of the cell's evaluation");
-  attacher.Write();
   return d;
 }
 

@@ -11,27 +11,6 @@
 namespace skewbridge::jobs::h5 {
 namespace {
 
-// The scales axes/<key> of a sweep group, open, with their keys as the dimensions' labels.
-struct Scales {
-  Scales(hid_t sweep_group, const std::vector<std::string>& keys) {
-    for (const std::string& key : keys) Add(sweep_group, key);
-  }
-  // Adds axes/<key> as the next dimension's scale.
-  void Add(hid_t sweep_group, const std::string& key) {
-    open.push_back(OpenDataset(sweep_group, "axes/" + key));
-    ids.push_back(open.back().get());
-    labels.push_back(key);
-  }
-  // Leaves the next dimension without a scale.
-  void Skip() {
-    ids.push_back(-1);
-    labels.emplace_back();
-  }
-  std::vector<Id> open;             // the scales
-  std::vector<hid_t> ids;           // their identifiers in dimension order (-1: none)
-  std::vector<std::string> labels;  // the labels of the dimensions
-};
-
 void SetDoublesAttr(hid_t obj, const std::string& name, const std::vector<double>& values) {
   const hsize_t n = values.size();
   Id space = Dataspace(std::span<const hsize_t>(&n, 1));
@@ -104,7 +83,7 @@ void WritePairColumns(hid_t table, const StudyTables& study) {
   WriteArray(table, "GM_T1_mps2", shape, gm, "m/s^2", "geometric mean sqrt(Sa_H1 Sa_H2)" + at_t1);
 }
 
-void WriteRecordTable(hid_t sweep_group, const StudyTables& study, ScaleAttacher& attacher) {
+void WriteRecordTable(hid_t sweep_group, const StudyTables& study) {
   Id g = CreateGroup(sweep_group, "records");
   SetAttr(g.get(), "source", study.records_source);
   SetAttr(g.get(), "set", study.records_set);
@@ -166,17 +145,15 @@ void WriteRecordTable(hid_t sweep_group, const StudyTables& study, ScaleAttacher
   // The table's rows are the record axis: attach its scale to every column (select by label).
   if (Exists(sweep_group, "axes/record")) {
     Id record_axis = OpenDataset(sweep_group, "axes/record");
-    const hid_t scale = record_axis.get();
-    const std::string label = "record";
     for (const std::string& column : ListChildren(g.get())) {
       Id ds = OpenDataset(g.get(), column);
-      attacher.Attach(ds.get(), {&scale, 1}, {&label, 1});
+      AttachScale(ds.get(), record_axis.get(), 0, "record");
     }
   }
 }
 
 void WriteCorrelation(hid_t sweep_group, const CorrelationTable& table,
-                      const std::vector<double>& band_edges, ScaleAttacher& attacher) {
+                      const std::vector<double>& band_edges) {
   Id g = CreateGroup(sweep_group, "correlation");
   SetAttr(g.get(), "x", std::string("L_e"));
   SetAttr(g.get(), "y", table.y);
@@ -191,8 +168,15 @@ void WriteCorrelation(hid_t sweep_group, const CorrelationTable& table,
   std::vector<hsize_t> shape(table.shape.begin(), table.shape.end());
   std::vector<hsize_t> band_shape = shape;
   band_shape.push_back(table.bands);
-  const Scales scales(sweep_group, table.axis_order);
-  auto attach = [&](const Id& ds) { attacher.Attach(ds.get(), scales.ids, scales.labels); };
+  std::vector<Id> scales;
+  for (const std::string& key : table.axis_order) {
+    scales.push_back(OpenDataset(sweep_group, "axes/" + key));
+  }
+  auto attach = [&](const Id& ds) {
+    for (std::size_t k = 0; k < scales.size(); ++k) {
+      AttachScale(ds.get(), scales[k].get(), static_cast<unsigned>(k), table.axis_order[k]);
+    }
+  };
   attach(WriteArray(g.get(), "n", shape, table.n, "1",
                     "cells used: status ok, theta_m and L_e finite"));
   attach(WriteArray(g.get(), "pearson_theta_Le", shape, table.pearson, "1",
@@ -227,7 +211,7 @@ void WriteCorrelation(hid_t sweep_group, const CorrelationTable& table,
 // The fragility/ group, or with `angles` the fragility_worst_incidence/ group: the same fits over
 // the grid without the incidence_deg axis, at the worst of those angles.
 void WriteFragility(hid_t sweep_group, const std::vector<FragilityStudy>& studies,
-                    ScaleAttacher& attacher, const std::vector<double>* angles = nullptr) {
+                    const std::vector<double>* angles = nullptr) {
   Id g = CreateGroup(sweep_group, angles == nullptr ? "fragility" : "fragility_worst_incidence");
   const FragilityStudy& first = studies.front();
   if (angles != nullptr) {
@@ -268,13 +252,9 @@ void WriteFragility(hid_t sweep_group, const std::vector<FragilityStudy>& studie
           static_cast<std::int64_t>(first.table.bootstrap_resamples));
   SetAttr(g.get(), "bootstrap_seed", static_cast<std::int64_t>(first.table.bootstrap_seed));
   SetAttr(g.get(), "confidence", 0.95);
-  const Scales scales(sweep_group, first.table.axis_order);
-  // The stripe datasets: the combination axes' scales, then the stripe axis's.
-  Scales stripe_scales(sweep_group, first.table.axis_order);
-  if (first.table.stripes > 0) {
-    // Without combination axes the datasets are [1, S]: the stripes are dimension 1.
-    if (first.table.axis_order.empty()) stripe_scales.Skip();
-    stripe_scales.Add(sweep_group, first.table.stripe_axis);
+  std::vector<Id> scales;
+  for (const std::string& key : first.table.axis_order) {
+    scales.push_back(OpenDataset(sweep_group, "axes/" + key));
   }
   for (const FragilityStudy& f : studies) {
     const FragilityTable& t = f.table;
@@ -291,11 +271,15 @@ void WriteFragility(hid_t sweep_group, const std::vector<FragilityStudy>& studie
     std::vector<hsize_t> shape;
     for (const std::size_t n : t.shape) shape.push_back(n);
     if (shape.empty()) shape.push_back(1);
+    auto attach = [&](const Id& ds) {
+      for (std::size_t k = 0; k < scales.size(); ++k) {
+        AttachScale(ds.get(), scales[k].get(), static_cast<unsigned>(k), t.axis_order[k]);
+      }
+    };
     auto put = [&](const std::string& name, const auto& values, std::string units,
                    const std::string& description) {
       if (units == "g") units = f.im_units;  // the unit of the IM
-      Id ds = WriteArray(ls.get(), name, shape, values, units, description);
-      attacher.Attach(ds.get(), scales.ids, scales.labels);
+      attach(WriteArray(ls.get(), name, shape, values, units, description));
     };
     put("theta", t.theta, "g", "maximum-likelihood median IM of exceedance");
     put("beta", t.beta, "1", "maximum-likelihood dispersion (log standard deviation)");
@@ -332,11 +316,13 @@ void WriteFragility(hid_t sweep_group, const std::vector<FragilityStudy>& studie
     // [1, S] without combination axes, as the per-combination datasets are [1].
     std::vector<hsize_t> stripe_shape = shape;
     stripe_shape.push_back(t.stripes);
+    Id stripe_scale = OpenDataset(sweep_group, "axes/" + t.stripe_axis);
     auto put_stripes = [&](const std::string& name, const auto& values, std::string units,
                            const std::string& description) {
       if (units == "g") units = f.im_units;
       Id ds = WriteArray(ls.get(), name, stripe_shape, values, units, description);
-      attacher.Attach(ds.get(), stripe_scales.ids, stripe_scales.labels);
+      attach(ds);
+      AttachScale(ds.get(), stripe_scale.get(), static_cast<unsigned>(shape.size()), t.stripe_axis);
     };
     put_stripes("stripe_im", t.stripe_im, "g", "geometric mean IM of the stripe's cells");
     put_stripes("stripe_n", t.stripe_n, "1", "cells of the stripe used");
@@ -350,7 +336,7 @@ void WriteFragility(hid_t sweep_group, const std::vector<FragilityStudy>& studie
 
 // over_incidence/max, median and angle_of_max_deg: one dataset per response of the bridge over
 // the grid without the incidence_deg axis, its remaining axis scales attached.
-void WriteOverIncidence(hid_t sweep_group, const OverIncidence& over, ScaleAttacher& attacher) {
+void WriteOverIncidence(hid_t sweep_group, const OverIncidence& over) {
   Id g = CreateGroup(sweep_group, "over_incidence");
   SetAttr(g.get(), "reduces", std::string("incidence_deg"));
   SetDoublesAttr(g.get(), "incidence_deg", over.angles_deg);
@@ -367,7 +353,10 @@ void WriteOverIncidence(hid_t sweep_group, const OverIncidence& over, ScaleAttac
   const std::vector<hsize_t> shape =
       over.shape.empty() ? std::vector<hsize_t>{1}
                          : std::vector<hsize_t>(over.shape.begin(), over.shape.end());
-  const Scales scales(sweep_group, over.axis_order);
+  std::vector<Id> scales;
+  for (const std::string& key : over.axis_order) {
+    scales.push_back(OpenDataset(sweep_group, "axes/" + key));
+  }
   struct Statistic {
     const char* group;
     const char* what;
@@ -399,7 +388,9 @@ void WriteOverIncidence(hid_t sweep_group, const OverIncidence& over, ScaleAttac
       SetAttr(ds.get(), "reduces", std::string("incidence_deg"));
       SetAttr(ds.get(), "statistic", std::string(st.group));
       SetAttr(ds.get(), "response", info.name);
-      attacher.Attach(ds.get(), scales.ids, scales.labels);
+      for (std::size_t k = 0; k < scales.size(); ++k) {
+        AttachScale(ds.get(), scales[k].get(), static_cast<unsigned>(k), over.axis_order[k]);
+      }
     }
   }
 }
@@ -408,8 +399,7 @@ void WriteOverIncidence(hid_t sweep_group, const OverIncidence& over, ScaleAttac
 // `angles`, the fragility_worst_incidence/ group: the fits of each record's capacity at its
 // worst angle of those, over the combinations without the incidence_deg axis.
 void WriteIdaFragility(hid_t sweep_group, const std::vector<IdaFragilityStudy>& studies,
-                       bool exclude, ScaleAttacher& attacher,
-                       const std::vector<double>* angles = nullptr) {
+                       bool exclude, const std::vector<double>* angles = nullptr) {
   Id g = CreateGroup(sweep_group, angles == nullptr ? "fragility" : "fragility_worst_incidence");
   const IdaFragilityStudy& first = studies.front();
   if (angles != nullptr) {
@@ -446,7 +436,10 @@ void WriteIdaFragility(hid_t sweep_group, const std::vector<IdaFragilityStudy>& 
                   "that never reach the limit state right-censored at their highest run "
                   "(note), a capacity beyond records.max_scale censored at it (n_scaled_too_far); "
                   "NaN (with the reason) when fewer than 2 capacities are finite"));
-  const Scales scales(sweep_group, first.axis_order);
+  std::vector<Id> scales;
+  for (const std::string& key : first.axis_order) {
+    scales.push_back(OpenDataset(sweep_group, "axes/" + key));
+  }
   for (const IdaFragilityStudy& f : studies) {
     Id ls = CreateGroup(g.get(), f.ls.name);
     SetAttr(ls.get(), "kind", spectra::LimitStateKindName(f.ls.kind));
@@ -460,7 +453,9 @@ void WriteIdaFragility(hid_t sweep_group, const std::vector<IdaFragilityStudy>& 
     auto put = [&](const std::string& name, const auto& values, const std::string& units,
                    const std::string& description) {
       Id ds = WriteArray(ls.get(), name, shape, values, units, description);
-      attacher.Attach(ds.get(), scales.ids, scales.labels);
+      for (std::size_t k = 0; k < scales.size(); ++k) {
+        AttachScale(ds.get(), scales[k].get(), static_cast<unsigned>(k), f.axis_order[k]);
+      }
     };
     put("theta", f.theta, f.im_units,
         "median capacity: exp(mean ln IM_c), or the censored maximum likelihood's");
@@ -496,9 +491,7 @@ void WriteStudyTables(const Datasets& d, const CubeLayout& layout, const StudyTa
       SetDoublesAttr(d.responses[r].get(), "band_edges", study.band_edges);
     }
   }
-  // Every table's scales are attached at the end, each scale's list written once.
-  ScaleAttacher attacher;
-  if (!study.records.empty()) WriteRecordTable(d.group.get(), study, attacher);
+  if (!study.records.empty()) WriteRecordTable(d.group.get(), study);
   if (!study.im.measure.empty()) {
     SetAttr(d.group.get(), "im_measure", study.im.measure);
     SetAttr(d.group.get(), "im_description", spectra::IntensityDescription(study.im));
@@ -514,25 +507,19 @@ void WriteStudyTables(const Datasets& d, const CubeLayout& layout, const StudyTa
               std::string(study.im.exclude_beyond_max_scale ? "exclude" : "keep"));
     }
   }
-  if (study.correlation) {
-    WriteCorrelation(d.group.get(), *study.correlation, study.band_edges, attacher);
-  }
-  if (!study.fragility.empty()) WriteFragility(d.group.get(), study.fragility, attacher);
+  if (study.correlation) WriteCorrelation(d.group.get(), *study.correlation, study.band_edges);
+  if (!study.fragility.empty()) WriteFragility(d.group.get(), study.fragility);
   if (!study.fragility_worst_incidence.empty() && study.over_incidence) {
-    WriteFragility(d.group.get(), study.fragility_worst_incidence, attacher,
+    WriteFragility(d.group.get(), study.fragility_worst_incidence,
                    &study.over_incidence->angles_deg);
   }
-  if (study.over_incidence) WriteOverIncidence(d.group.get(), *study.over_incidence, attacher);
-  if (!study.ida_fragility.empty()) {
-    WriteIdaFragility(d.group.get(), study.ida_fragility, study.im.exclude_beyond_max_scale,
-                      attacher);
-  }
+  if (study.over_incidence) WriteOverIncidence(d.group.get(), *study.over_incidence);
+  if (!study.ida_fragility.empty())
+    WriteIdaFragility(d.group.get(), study.ida_fragility, study.im.exclude_beyond_max_scale);
   if (!study.ida_fragility_worst_incidence.empty() && study.over_incidence) {
     WriteIdaFragility(d.group.get(), study.ida_fragility_worst_incidence,
-                      study.im.exclude_beyond_max_scale, attacher,
-                      &study.over_incidence->angles_deg);
+                      study.im.exclude_beyond_max_scale, &study.over_incidence->angles_deg);
   }
-  attacher.Write();
 }
 
 }  // namespace skewbridge::jobs::h5

@@ -170,34 +170,6 @@ void AttachScale(hid_t dataset, hid_t scale, unsigned dim, const std::string& la
 /// Marks a dataset as a dimension scale.
 void SetScale(hid_t scale, const std::string& name);
 
-/// Dimension scales attached to many datasets at a cost linear in the attachments. The
-/// attributes are those that AttachScale (H5DSattach_scale, H5DSset_label) leaves after the same
-/// attachments in the same order: each dataset's DIMENSION_LIST and DIMENSION_LABELS, written
-/// once by Attach, and each scale's REFERENCE_LIST (the datasets and dimensions it is attached
-/// to), written once by Write; H5DSattach_scale reads and rewrites the scale's whole list at
-/// every call, so that n attachments to one scale cost n^2 / 2 entries.
-class ScaleAttacher {
- public:
-  /// Attaches scales[k] (marked by SetScale) to dimension k of `dataset`, labelled labels[k];
-  /// a dimension whose scale is -1, or beyond scales.size(), gets none (and no label); nothing
-  /// is written without a scale. The dataset has no scales yet, and is none.
-  /// @throws H5Error when a call fails or the dataset already has scales.
-  void Attach(hid_t dataset, std::span<const hid_t> scales, std::span<const std::string> labels);
-  /// Adds the attachments to the scales' REFERENCE_LIST (after the entries already there) and
-  /// forgets them. Without it the scales do not list their datasets. @throws H5Error.
-  void Write();
-
- private:
-  /// An entry of a scale's REFERENCE_LIST: as H5DS lays it out (16 bytes, padded).
-  struct BackReference {
-    hobj_ref_t dataset;  ///< the dataset the scale is attached to
-    unsigned int dim;    ///< the dimension of the dataset
-  };
-  Id file_;  ///< the file of the datasets (to open the scales again in Write)
-  /// Per scale (by its reference), its new entries in the order attached.
-  std::vector<std::pair<hobj_ref_t, std::vector<BackReference>>> pending_;
-};
-
 /// Opens every object of a file and reads every attribute, so that damaged metadata (whose
 /// checksums HDF5 verifies on read) is found before a file is opened for writing.
 /// @throws H5Error naming the failure.
