@@ -1,9 +1,10 @@
 #pragma once
-// The energy ledger of a mixed run (rigid corners struck beside compliant springs), shared by
-// the mixed-law and mixed-row tests.
+// Checks shared by the mixed-law and mixed-row tests: a mixed run's energy ledger (rigid corners
+// struck beside compliant springs) and its maxima against another integrator's to a tolerance.
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -23,6 +24,19 @@ inline void ExpectMixedLedgerCloses(const LawRun& mixed) {
       << mixed.joint_dissipated_J << " stored " << mixed.joint_stored_J;
   std::printf("balance error / input: %.3e\n",
               std::abs(r.energy.balance_error_J) / r.energy.input_J);
+}
+
+/// Expects every max|q_i| of `a` within rel_tol of `b`'s, relative to `b`'s (runs of two
+/// integrators whose step controls differ agree to their Runge-Kutta tolerance's order, not to
+/// the bit); returns the largest relative difference, for the log.
+inline double ExpectMaximaWithin(const RunResult& a, const RunResult& b, double rel_tol) {
+  double worst = 0.0;
+  for (int i = 0; i < b.max_abs_q.size(); ++i) {
+    const double x = a.max_abs_q[i], y = b.max_abs_q[i];
+    worst = std::max(worst, std::abs(x - y) / y);
+    EXPECT_NEAR(x, y, rel_tol * y) << "dof " << i;
+  }
+  return worst;
 }
 
 }  // namespace skewbridge::dynamics::testing
