@@ -146,6 +146,14 @@ class Decider {
   void Transitions();
   void Project();
   bool OpenContactApproaching();
+  // kin_ at the current (q_, u_): evaluated unless nothing changed q_, u_ or kin_ since the last
+  // evaluation (Evaluate is a function of (q, u) alone: the same bits either way).
+  void EvaluateKinematics() {
+    if (!kin_current_) {
+      contact::Evaluate(model_, q_, u_, kin_);
+      kin_current_ = true;
+    }
+  }
 
   const model::Model& model_;
   const EventPolicy& policy_;
@@ -162,6 +170,9 @@ class Decider {
   DecisionLog& log_;
   AddedForces* added_;  // forces added to the applied forces (AppliedForces); null: none
   const int nc_;
+  // Whether kin_ holds the kinematics of (q_, u_): cleared where u_ or q_ change (the impact,
+  // the projection, which also evaluates into kin_).
+  bool kin_current_ = false;
 };
 
 DecisionOutcome Decider::Decide(std::span<const int> forced) {
@@ -244,6 +255,7 @@ bool Decider::ImpactLevel(bool impact, DecisionOutcome& outcome) {
   }
   const contact::ImpactResult& ir = ws_.impact_result;
   u_ = ir.u_E;
+  kin_current_ = false;
   const double loss = kinetic_before - Kinetic();
   if (!impact) {
     ++log_.plastic_closures;
@@ -280,7 +292,7 @@ bool Decider::ImpactLevel(bool impact, DecisionOutcome& outcome) {
 }
 
 Decider::PassEnd Decider::Pass(std::span<const int> forced, DecisionOutcome& outcome) {
-  contact::Evaluate(model_, q_, u_, kin_);
+  EvaluateKinematics();
   const contact::ContactKinematics& kin = kin_;
   const AccumulationScales acc{s_.period_min_s, s_.gap_tol_m, s_.v_acc_mps};
   // Candidates [§3.3]: closed contacts, touching ones not separating, and the simultaneous ones;
@@ -326,7 +338,7 @@ Decider::PassEnd Decider::Pass(std::span<const int> forced, DecisionOutcome& out
   // only when every candidate leaves: a deck clamped between two faces, or resting on another
   // corner, returns at a time the free motion does not give. A contact separating slower than
   // the thresholds stays a candidate: it is where an accumulation converges.
-  contact::Evaluate(model_, q_, u_, kin_);
+  EvaluateKinematics();
   const auto leaves = [&](int c) {
     const bool rocking = settling && modes_.closed(c);
     return kin.gamma_N[c] > std::max(s_.v_tol_mps, s_.v_acc_mps) && !rocking;
@@ -495,6 +507,7 @@ void Decider::Transitions() {
 }
 
 void Decider::Project() {
+  kin_current_ = false;
   ProjectOntoContacts(model_, modes_, policy_, {s_.length_scale_m, s_.gap_tol_m, s_.v_tol_mps}, q_,
                       u_, ws_.projection);
 }
@@ -502,7 +515,7 @@ void Decider::Project() {
 bool Decider::OpenContactApproaching() {
   // Re-decision [§3.11]: an open contact at its face approaching it faster than v_tol. Leaves
   // the kinematics of every contact at the final state.
-  contact::Evaluate(model_, q_, u_, kin_);
+  EvaluateKinematics();
   for (int c = 0; c < nc_; ++c) {
     if (!modes_.closed(c) && kin_.gap_m[c] <= s_.gap_tol_m && kin_.gamma_N[c] < -s_.v_tol_mps) {
       return true;
