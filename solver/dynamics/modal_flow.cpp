@@ -289,12 +289,35 @@ std::size_t TransitionMemo::SlotOf(const double (&key)[4]) {
   return static_cast<std::size_t>(h % kSlots);
 }
 
+TransitionMemo::TransitionMemo(const TransitionMemo& other) { *this = other; }
+
+TransitionMemo& TransitionMemo::operator=(const TransitionMemo& other) {
+  if (this == &other) {
+    return *this;
+  }
+  std::memcpy(used_, other.used_, sizeof used_);
+  if (other.slots_ == nullptr) {
+    slots_.reset();
+    return *this;
+  }
+  if (slots_ == nullptr) {
+    slots_ = std::make_unique_for_overwrite<Slot[]>(kSlots);
+  }
+  for (std::size_t s = 0; s < kSlots; ++s) {
+    if (other.Used(s)) {
+      slots_[s] = other.slots_[s];
+    }
+  }
+  return *this;
+}
+
 bool TransitionMemo::Find(const double (&key)[4], double* row) const {
-  if (slots_.empty()) {
+  const std::size_t s = SlotOf(key);
+  if (!Used(s)) {
     return false;
   }
-  const Slot& slot = slots_[SlotOf(key)];
-  if (!slot.used || std::memcmp(slot.key, key, sizeof slot.key) != 0) {
+  const Slot& slot = slots_[s];
+  if (std::memcmp(slot.key, key, sizeof slot.key) != 0) {
     return false;
   }
   std::memcpy(row, slot.row, sizeof slot.row);
@@ -302,13 +325,14 @@ bool TransitionMemo::Find(const double (&key)[4], double* row) const {
 }
 
 void TransitionMemo::Store(const double (&key)[4], const double* row) {
-  if (slots_.empty()) {
-    slots_.resize(kSlots);
+  if (slots_ == nullptr) {
+    slots_ = std::make_unique_for_overwrite<Slot[]>(kSlots);
   }
-  Slot& slot = slots_[SlotOf(key)];
+  const std::size_t s = SlotOf(key);
+  Slot& slot = slots_[s];
   std::memcpy(slot.key, key, sizeof slot.key);
   std::memcpy(slot.row, row, sizeof slot.row);
-  slot.used = true;
+  used_[s / 64] |= std::uint64_t{1} << (s % 64);
 }
 
 void ModalFlow::Transitions(double tau_s, double omega_radps, Eigen::Ref<Eigen::MatrixXd> rows,

@@ -31,7 +31,9 @@
 #include <Eigen/Core>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "solver/model/model.h"
@@ -86,9 +88,28 @@ inline void ToModalFixed(const double* __restrict PhiTM, const double* __restric
 /// a function of these alone (ModalFlow::Transitions), so a sweep's next model whose mode has
 /// the same frequency and damping (or another mode of the same model) takes its T_k from here,
 /// the same bits. Direct-mapped: a new key takes its slot from the one before. Its storage
-/// (kSlots slots) is allocated on first use.
+/// (kSlots slots) is allocated on first use and not cleared: a slot holds a row only once its
+/// bit in `used_` is set, so a new memo costs an allocation and 64 bytes of zeros.
 class TransitionMemo {
  public:
+  TransitionMemo() = default;
+  /// A copy holds the same rows.
+  TransitionMemo(const TransitionMemo& other);
+  TransitionMemo& operator=(const TransitionMemo& other);
+  /// A move leaves `other` empty.
+  TransitionMemo(TransitionMemo&& other) noexcept { *this = std::move(other); }
+  TransitionMemo& operator=(TransitionMemo&& other) noexcept {
+    if (this != &other) {
+      slots_ = std::move(other.slots_);
+      for (std::size_t w = 0; w < kSlots / 64; ++w) {
+        used_[w] = other.used_[w];
+        other.used_[w] = 0;
+      }
+    }
+    return *this;
+  }
+  ~TransitionMemo() = default;
+
   /// Copies the 12 entries of T_k held for `key` into `row`; false when none is held.
   bool Find(const double (&key)[4], double* row) const;
   /// Holds `row` (12 entries) for `key`.
@@ -97,12 +118,13 @@ class TransitionMemo {
  private:
   static constexpr std::size_t kSlots = 512;
   struct Slot {
-    std::uint64_t key[4] = {};
-    double row[12] = {};
-    bool used = false;
+    std::uint64_t key[4];
+    double row[12];
   };
   static std::size_t SlotOf(const double (&key)[4]);
-  std::vector<Slot> slots_;
+  bool Used(std::size_t s) const { return ((used_[s / 64] >> (s % 64)) & 1U) != 0; }
+  std::unique_ptr<Slot[]> slots_;         // kSlots slots, their bytes unset until Store
+  std::uint64_t used_[kSlots / 64] = {};  // bit s: slot s holds a row
 };
 
 /// The modes of a classically damped model and the per-mode transitions.

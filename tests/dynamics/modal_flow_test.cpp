@@ -11,6 +11,7 @@
 #include <numbers>
 #include <optional>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "solver/dynamics/linear_flow.h"
@@ -369,6 +370,29 @@ TEST(ModalFlow, TransitionsFromTheMemoAreTheBitsOfTheirComputation) {
     }
   }
   EXPECT_GT(held, 100);  // the second pass found some in the memo
+}
+
+TEST(TransitionMemo, ACopyHoldsTheRowsAndAMovedFromMemoNone) {
+  // Slots start empty by their bit, whatever bytes the allocation left in them: a new memo holds
+  // nothing, a copy the same rows as its source, and a memo moved from nothing.
+  TransitionMemo memo;
+  double row[12];
+  const double key[4] = {4.0, 0.1, 0.01, 0.0}, other[4] = {9.0, 0.2, 0.01, 0.0};
+  EXPECT_FALSE(memo.Find(key, row));
+  double stored[12];
+  for (int j = 0; j < 12; ++j) stored[j] = 0.5 + j;
+  memo.Store(key, stored);
+  EXPECT_FALSE(memo.Find(other, row));
+  TransitionMemo copy(memo);
+  ASSERT_TRUE(copy.Find(key, row));
+  EXPECT_EQ(0, std::memcmp(row, stored, sizeof row));
+  EXPECT_FALSE(copy.Find(other, row));
+  TransitionMemo moved(std::move(memo));
+  EXPECT_TRUE(moved.Find(key, row));
+  EXPECT_FALSE(memo.Find(key, row));  // NOLINT(bugprone-use-after-move): moved from is empty
+  TransitionMemo assigned;
+  assigned = copy;
+  EXPECT_TRUE(assigned.Find(key, row));
 }
 
 TEST(ModalFlow, ProductsSumEachRowInColumnOrder) {
