@@ -206,7 +206,7 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
   enum class Exit { kOther, kEnded, kPartial, kClosing, kRare };
   Exit exit = Exit::kOther;
   FreeStepPlan step;
-  Lanes2 next[3];  // the last step's end (q_i, u_i)
+  Lanes2 next[3] = {};  // the last step's end (q_i, u_i): zeros until a step
   // NextSampledPiece's tests of the piece's number and end: a ramp this loop reads ends at
   // (k + 1) dt of its own k, the next ramp's start, so they hold for every later ramp.
   if (index < 0 || te != static_cast<double>(index + 1) * dt) {
