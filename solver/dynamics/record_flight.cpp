@@ -23,7 +23,7 @@ bool Integrator::RecordFlight(long& steps, double& t_finite) {
   const double gap_margin = 2.0 * scales_.gap_tol_m;
   const double* modal_y = flow.modal_coordinates().data();
   // The history grid's next sample moves only in a step this loop leaves by.
-  const bool outputs = next_output_t_ <= output_reach;
+  bool outputs = next_output_t_ <= output_reach;
   // One deck's corner-reach terms at the step's start (CornerTravelTracker::EndReach).
   double reach0 = 0.0, speed0 = 0.0;
   if (decks == 1) {
@@ -34,7 +34,24 @@ bool Integrator::RecordFlight(long& steps, double& t_finite) {
       !observe && n_ == 3 && decks == 1 && samples.count > 0 && ws_.gap_bound_.n_modes == 3;
   for (;;) {
     if (deck && DeckRecordSteps(steps, t_finite, samples, reach0, speed0)) {
-      return true;
+      // Run's work after the step that ended it (the finite check, the run's end, the next
+      // step's count), and while no contact closed the next step here: Run would come back.
+      if (Failed() || AnyClosed()) {
+        return true;
+      }
+      if ((steps & check_mask) == 0) {
+        if (!StateFinite(z_) || !std::isfinite(t_)) {
+          return true;  // Run's check stops the run
+        }
+        t_finite = t_;
+      }
+      if (!(t_ < t_end_) || steps >= control_.max_steps) {
+        return true;  // Run ends the run, or counts the step and stops at the limit
+      }
+      ++steps;
+      travel_.EndReach(0, z_.data(), z_.data() + n_, reach0, speed0);
+      outputs = next_output_t_ <= output_reach;
+      continue;
     }
     // FreeStep's plan, the same operations.
     const double t0 = t_, h0 = h_free_;
