@@ -13,21 +13,26 @@
 namespace skewbridge::dynamics {
 
 /// The gap bounds a free step carries over the steps that skipped their gaps (ModalGapBound).
-/// Sized once per run; Restart and StaysOpen allocate nothing.
+/// Sized and reset once per run (Reset); Restart and StaysOpen allocate nothing.
 class GapFloors {
  public:
   /// Storage for `bound`'s contacts and modes, and its largest weight per mode.
-  explicit GapFloors(const ModalGapBound& bound)
-      : bound_(bound),
-        base_(Eigen::VectorXd::Zero(bound.n_contacts)),
-        sum_(Eigen::VectorXd::Zero(bound.n_modes)),
-        trial_(Eigen::VectorXd::Zero(bound.n_modes)),
-        weight_max_(Eigen::VectorXd::Zero(bound.n_modes)) {
-    const int n = bound.n_modes;
-    for (int c = 0; c < bound.n_contacts; ++c) {
+  explicit GapFloors(const ModalGapBound& bound) : bound_(bound) { Reset(); }
+
+  /// What a new GapFloors of the bound would be, after the bound was given other values: the
+  /// storage kept when its sizes are the same.
+  void Reset() {
+    base_.setZero(bound_.n_contacts);
+    base_min_ = 0.0;
+    sum_.setZero(bound_.n_modes);
+    trial_.setZero(bound_.n_modes);
+    weight_max_.setZero(bound_.n_modes);
+    steps_ = 0;
+    const int n = bound_.n_modes;
+    for (int c = 0; c < bound_.n_contacts; ++c) {
       for (int k = 0; k < n; ++k) {
         weight_max_[k] =
-            std::max(weight_max_[k], bound.weights[static_cast<std::size_t>(c * n + k)]);
+            std::max(weight_max_[k], bound_.weights[static_cast<std::size_t>(c * n + k)]);
       }
     }
   }

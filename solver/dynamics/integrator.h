@@ -32,6 +32,10 @@ class Integrator final : private ConstrainedForces {
   Integrator(const model::Model& model, const Excitation& excitation,
              const model::RunControl& control, SimulationWorkspace& ws, const InitialState& initial,
              const EventPolicy& policy, FreeStepObserver* observer, SpringSet* springs = nullptr);
+  // Gives the workspace its run storage back (RunStorage).
+  ~Integrator();
+  Integrator(const Integrator&) = delete;
+  Integrator& operator=(const Integrator&) = delete;
 
   // The springs' stored energy at the end and their work less it (J), after Run with springs.
   double joint_stored_J() const { return joint_stored_J_; }
@@ -56,6 +60,9 @@ class Integrator final : private ConstrainedForces {
   // energy ledger, and the non-finite status if the state or its energy is no number;
   // `t_finite_s` is the last time the state was checked finite.
   RunResult Finish(double t_finite_s);
+  // Exchanges the state's storage with the workspace's RunStorage (the constructor borrows it,
+  // the destructor gives it back).
+  void SwapStorage();
   // Contact-free phase: one exact step of the flow, up to its end or its first impact; there
   // the decision.
   void FreeStep();
@@ -281,7 +288,7 @@ class Integrator final : private ConstrainedForces {
   // ends_.gap0 and gN0 hold the gaps and rates at t_; when false, free steps skipped them and
   // gap_floors_ bounds the gaps at t_ from below instead.
   bool gaps_exact_ = true;
-  GapFloors gap_floors_;
+  GapFloors& gap_floors_;  // the workspace's, reset for the run
   // Spares ScanCoordinateMaxima's and travel_'s root searches of a full free step [docs/theory.md
   // §3.20].
   FreeStepPeaks peaks_;

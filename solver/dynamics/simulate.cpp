@@ -53,13 +53,21 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
       ws_(ws),
       n_(model.n_dof()),
       nc_(model.n_contacts()),
-      gap_floors_(ws.gap_bound_),
+      gap_floors_(ws.gap_floors_),
       peaks_(ws.flow_.modal() ? &ws.flow_.modal_flow() : nullptr),
-      modes_(model.n_contacts()),
+      modes_(0),
       travel_(model),
-      memory_(model.n_contacts()),
+      memory_(0),
       observer_(observer) {
   SB_DEMAND(&ws.model() == &model, "Simulate: workspace built for another model");
+  // The state's storage is the workspace's (RunStorage): the assignments below size and write
+  // every entry a new run's would have, allocating only when the sizes differ.
+  SwapStorage();
+  modes_ = ws.run_storage_.fresh_modes;
+  memory_ = ws.run_storage_.fresh_memory;
+  log_.events.clear();
+  forced_.clear();
+  gap_floors_.Reset();
   // A sweep's runs share one policy: its members are checked once per workspace, and again
   // whenever a run brings other bytes (the verdict depends on the bytes alone).
   static_assert(std::is_trivially_copyable_v<EventPolicy>);
@@ -176,6 +184,36 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   }
 }
 
+Integrator::~Integrator() { SwapStorage(); }
+
+void Integrator::SwapStorage() {
+  RunStorage& s = ws_.run_storage_;
+  for (auto [own, kept] : {std::pair{&z_, &s.z},
+                           {&z_new_, &s.z_new},
+                           {&z_eval_, &s.z_eval},
+                           {&y_, &s.y},
+                           {&dy_, &s.dy},
+                           {&y_eval_, &s.y_eval},
+                           {&atol_, &s.atol},
+                           {&cu_, &s.cu},
+                           {&du_, &s.du},
+                           {&ends_.gap0, &s.gap0},
+                           {&ends_.gN0, &s.gN0},
+                           {&ends_.gap1, &s.gap1},
+                           {&ends_.gN1, &s.gN1},
+                           {&events_.f0, &s.f0},
+                           {&events_.f1, &s.f1},
+                           {&events_.f_eval, &s.f_eval},
+                           {&observed_z0_, &s.observed_z0}}) {
+    own->swap(*kept);
+  }
+  forced_.swap(s.forced);
+  std::swap(rates_, s.rates);
+  std::swap(modes_, s.modes);
+  std::swap(memory_, s.memory);
+  log_.events.swap(s.events);
+}
+
 RunResult Integrator::Run() {
   // The step loop [docs/theory.md §3.1]: the mode decision at t = 0, then one free step (no
   // contact closed) or one constrained step at a time, each ending at its end or at its first
@@ -239,7 +277,8 @@ RunResult Integrator::Finish(double t_finite_s) {
   result_.stick_transitions = log_.stick_transitions;
   result_.slip_transitions = log_.slip_transitions;
   result_.min_impact_separation_s = log_.min_impact_separation_s;
-  result_.events = std::move(log_.events);
+  // A copy: the log's storage goes back to the workspace for the next run.
+  result_.events = log_.events;
   EnergyLedger& e = result_.energy;
   e.impact_J = log_.impact_J;
   e.kinetic_J = Kinetic();

@@ -34,8 +34,10 @@
 #include "solver/contact/impact_problem.h"
 #include "solver/contact/kinematics.h"
 #include "solver/dynamics/active_forces.h"
+#include "solver/dynamics/contact_modes.h"
 #include "solver/dynamics/event_policy.h"
 #include "solver/dynamics/gap_bound.h"
+#include "solver/dynamics/gap_floors.h"
 #include "solver/dynamics/linear_flow.h"
 #include "solver/dynamics/mode_decision.h"
 #include "solver/dynamics/run_result.h"
@@ -80,6 +82,29 @@ class FreeStepObserver {
   FreeStepObserver& operator=(const FreeStepObserver&) = default;
 };
 
+/// The storage of a run's state that a workspace keeps from one run to the next (the integrator
+/// lends it for a run and gives it back), so that a run of the workspace's shape allocates none
+/// of it: what a run finds there is overwritten before it is read, so results never depend on
+/// it. Internal to the integrator.
+struct RunStorage {
+  /// Empty storage, and the contacts' modes and decision memory a run of a model with
+  /// `n_contacts` contacts starts from.
+  explicit RunStorage(int n_contacts) : fresh_modes(n_contacts), fresh_memory(n_contacts) {}
+
+  // The state vectors: z, its step end and dense value; y, its rate and dense value, its
+  // tolerances; C u and du/dt; the open contacts' gaps and rates at a step's ends; the closed
+  // contacts' event functions at a step's ends and inside.
+  Eigen::VectorXd z, z_new, z_eval, y, dy, y_eval, atol, cu, du;
+  Eigen::VectorXd gap0, gN0, gap1, gN1, f0, f1, f_eval, observed_z0;
+  std::vector<int> forced;            // contacts striking together
+  contact::GapRateScratch rates;      // the gaps' and rates' scratch
+  ContactModes modes{0};              // the last run's modes (storage only)
+  DecisionMemory memory{0};           // the last run's decision memory (storage only)
+  std::vector<EventRecord> events;    // the last run's event log (storage only)
+  const ContactModes fresh_modes;     // every contact open: a run's first modes
+  const DecisionMemory fresh_memory;  // no impact yet: a run's first memory
+};
+
 /// Scratch memory and caches of one model: build once, reuse for every run of that model (a
 /// sweep does thousands). Results never depend on what ran before (the caches are pure
 /// functions of the model). Keeps a reference to the model.
@@ -120,6 +145,10 @@ class SimulationWorkspace {
   // The free step's bound on the gaps' closure over a step (applies() false: every step
   // computes its gaps).
   ModalGapBound gap_bound_;
+  // The free steps' gap floors over gap_bound_ (a run resets them: GapFloors::Reset).
+  GapFloors gap_floors_{gap_bound_};
+  // The integrator's state storage, lent to each run (RunStorage).
+  RunStorage run_storage_{model_.n_contacts()};
   double omega_min_radps_ = 0.0;  // lowest natural frequency (0 for a free body)
   double omega_max_radps_ = 0.0;  // highest natural frequency
   double length_scale_m_ = 1.0;   // largest deck dimension or distance from the origin
