@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -44,10 +45,10 @@ struct Reciprocals {
 };
 constexpr Reciprocals kInverseOf{};
 
-}  // namespace
-
-int ModalTermCount(double rho) {
-  // At least up to tau^3: the ramp's response of an undamped rigid mode is a cubic.
+// ModalTermCount by its definition: the terms rho^m / m! (the product of the rounded rho / j) up
+// to the first m >= 4 at or below 1e-18, at most kModalMaxTerms. At least up to tau^3: the
+// ramp's response of an undamped rigid mode is a cubic.
+constexpr int TermCountLoop(double rho) {
   double term = 1.0;
   int m = 0;
   do {
@@ -55,6 +56,52 @@ int ModalTermCount(double rho) {
     term *= rho / m;
   } while ((term > 1e-18 || m < 4) && m < kModalMaxTerms - 1);
   return m + 1;
+}
+
+// TermCountLoop on rho >= 0 is monotone in rho: each rounded rho / j and each rounded product of
+// non-negative factors is monotone in them, so every term is, and so is the first m whose term
+// is small enough. Its value on [0, kTableRho] is therefore 5 plus the number of thresholds at or
+// below rho, the threshold of count N (6 <= N <= kModalMaxTerms) being the smallest double rho
+// with TermCountLoop(rho) >= N: found here by bisection on the bit patterns of the non-negative
+// doubles (ordered as their values) at compile time, where the arithmetic is the same IEEE
+// double arithmetic as at run time, over [0, kTableRho] (no term overflows there). Entries past
+// the last count are NaN (no rho is at or above them).
+constexpr double kTableRho = 64.0;
+static_assert(TermCountLoop(kTableRho) == kModalMaxTerms);
+struct TermThresholds {
+  double value[64];
+  constexpr TermThresholds() : value() {
+    for (double& v : value) v = std::numeric_limits<double>::quiet_NaN();
+    for (int N = 6; N <= kModalMaxTerms; ++N) {
+      std::uint64_t lo = 0;                                        // the bits of +0.0: count 5 < N
+      std::uint64_t hi = std::bit_cast<std::uint64_t>(kTableRho);  // count kModalMaxTerms
+      while (hi - lo > 1) {
+        const std::uint64_t mid = lo + (hi - lo) / 2;
+        if (TermCountLoop(std::bit_cast<double>(mid)) >= N) {
+          hi = mid;
+        } else {
+          lo = mid;
+        }
+      }
+      value[N - 6] = std::bit_cast<double>(hi);
+    }
+  }
+};
+constexpr TermThresholds kTermThresholds{};
+
+}  // namespace
+
+int ModalTermCount(double rho) {
+  // Negative, NaN or past the table: the loop itself.
+  if (!(rho >= 0.0 && rho <= kTableRho)) return TermCountLoop(rho);
+  // The count is 5 plus the number of thresholds at or below rho: a branch-free binary search
+  // over the table padded to 64 entries.
+  const double* t = kTermThresholds.value;
+  int i = 0;
+  for (int half = 32; half > 0; half /= 2) {
+    i += t[i + half - 1] <= rho ? half : 0;
+  }
+  return 5 + i;
 }
 
 void ModalProduct(const Eigen::MatrixXd& A, int rows, const double* x1, const double* x2,
@@ -191,10 +238,19 @@ void ModalFlow::ModeCoefficients(int k, double omega_radps, const double* y, int
 
 namespace {
 
-// ModeCoefficients' recursion for one mode, a term at a time, so that two modes can share a loop
-// with each mode's operations unchanged.
+// ModeCoefficients' recursion for one mode, a term at a time, so that two or three modes can
+// share a loop with each mode's operations unchanged; the last coefficients in registers.
+// Step<kPhase> is term m = kPhase (0, 1) or any m >= 2 (kPhase 2), whose forcing
+// g + (m == 0 ? y2 : 0) + (m == 1 ? y3 : 0) is (g + y2) + 0, (g + 0) + y3 or (g + 0) + 0 = g + 0
+// (x + 0 is never -0, so a second + 0 changes nothing).
+//
+// kHarmonic false: the harmonic inputs y[4], y[5] are zeros and omega is finite, so g and gt
+// stay zeros (of either sign: omega times a zero) and are not carried; the forcing is then the
+// same bits as y2 + 0, 0 + y3 and +0 (any zero plus y2 then plus +0 is y2, or +0 when y2 is a
+// zero; a zero plus +0 is +0).
+template <bool kHarmonic>
 struct ModeRecursion {
-  double w2, c, omega, y2, y3, g, gt;
+  double w2, c, omega, y2, y3, g, gt, e, d;
   double* eta;
   double* deta;
   void Start(double w2_k, double c_k, double omega_radps, const double y[6], double* eta_k,
@@ -208,19 +264,101 @@ struct ModeRecursion {
     gt = y[5];
     eta = eta_k;
     deta = deta_k;
-    eta[0] = y[0];
-    deta[0] = y[1];
+    e = y[0];
+    d = y[1];
+    eta[0] = e;
+    deta[0] = d;
   }
+  template <int kPhase>
+  double Forcing() const {
+    if constexpr (kHarmonic) {
+      if constexpr (kPhase == 0) return g + y2 + 0.0;
+      if constexpr (kPhase == 1) return g + 0.0 + y3;
+      return g + 0.0;
+    } else {
+      if constexpr (kPhase == 0) return y2 + 0.0;
+      if constexpr (kPhase == 1) return 0.0 + y3;
+      return 0.0;
+    }
+  }
+  template <int kPhase>
   void Step(int m) {
-    const double f = g + (m == 0 ? y2 : 0.0) + (m == 1 ? y3 : 0.0);
+    const double f = Forcing<kPhase>();
     const double inv = kInverseOf.value[m];
-    eta[m + 1] = deta[m] * inv;
-    deta[m + 1] = (f - w2 * eta[m] - c * deta[m]) * inv;
-    const double g_next = omega * gt * inv;
-    gt = -omega * g * inv;
-    g = g_next;
+    const double e_next = d * inv;
+    const double d_next = (f - w2 * e - c * d) * inv;
+    eta[m + 1] = e_next;
+    deta[m + 1] = d_next;
+    e = e_next;
+    d = d_next;
+    if constexpr (kHarmonic) {
+      const double g_next = omega * gt * inv;
+      gt = -omega * g * inv;
+      g = g_next;
+    }
+  }
+  void StepAny(int m) {
+    if (m == 0) {
+      Step<0>(m);
+    } else if (m == 1) {
+      Step<1>(m);
+    } else {
+      Step<2>(m);
+    }
   }
 };
+
+// kCount modes' recursions (terms t[j] each) in one loop up to the shortest, then each alone.
+template <int kCount, bool kHarmonic>
+void RunRecursions(ModeRecursion<kHarmonic> (&r)[kCount], const int (&t)[kCount]) {
+  int common = t[0];
+  for (int j = 1; j < kCount; ++j) common = std::min(common, t[j]);
+  int m = 0;
+  if (m + 1 < common) {
+    for (int j = 0; j < kCount; ++j) r[j].template Step<0>(m);
+    ++m;
+  }
+  if (m == 1 && m + 1 < common) {
+    for (int j = 0; j < kCount; ++j) r[j].template Step<1>(m);
+    ++m;
+  }
+  if (m == 2) {
+    for (; m + 1 < common; ++m) {
+      for (int j = 0; j < kCount; ++j) r[j].template Step<2>(m);
+    }
+  }
+  for (int j = 0; j < kCount; ++j) {
+    for (int mj = m; mj + 1 < t[j]; ++mj) r[j].StepAny(mj);
+  }
+}
+
+// AllModeCoefficients' modes k0 .. k0 + kCount - 1.
+template <int kCount, bool kHarmonic>
+void ModeGroup(const Eigen::VectorXd& w2, const Eigen::VectorXd& c, double omega_radps,
+               const Eigen::Ref<const Eigen::MatrixXd>& Y, const int* terms, int k0, double* eta,
+               double* deta, Eigen::Index stride) {
+  ModeRecursion<kHarmonic> r[kCount];
+  int t[kCount];
+  for (int j = 0; j < kCount; ++j) {
+    const int k = k0 + j;
+    SB_ASSERT(terms[k] <= kModalMaxTerms, "ModalFlow: too many terms");
+    const double y[6] = {Y(k, 0), Y(k, 1), Y(k, 2), Y(k, 3), Y(k, 4), Y(k, 5)};
+    r[j].Start(w2[k], c[k], omega_radps, y, eta + k * stride, deta + k * stride);
+    t[j] = terms[k];
+  }
+  RunRecursions(r, t);
+}
+
+template <int kCount>
+void ModeGroup(bool harmonic, const Eigen::VectorXd& w2, const Eigen::VectorXd& c,
+               double omega_radps, const Eigen::Ref<const Eigen::MatrixXd>& Y, const int* terms,
+               int k0, double* eta, double* deta, Eigen::Index stride) {
+  if (harmonic) {
+    ModeGroup<kCount, true>(w2, c, omega_radps, Y, terms, k0, eta, deta, stride);
+  } else {
+    ModeGroup<kCount, false>(w2, c, omega_radps, Y, terms, k0, eta, deta, stride);
+  }
+}
 
 }  // namespace
 
@@ -229,48 +367,17 @@ void ModalFlow::AllModeCoefficients(double omega_radps, const Eigen::Ref<const E
                                     Eigen::Index stride) const {
   const int n = n_modes();
   SB_ASSERT(Y.rows() == n && Y.cols() == 6, "ModalFlow: Y must be n x 6");
+  // Harmonic inputs all zeros (a record's piece, or a pulse's end): the recursions without them.
+  bool harmonic = !std::isfinite(omega_radps);
+  for (int k = 0; k < n && !harmonic; ++k) harmonic = Y(k, 4) != 0.0 || Y(k, 5) != 0.0;
   int k = 0;
   if (n % 2 == 1 && n >= 3) {
     // An odd count (a deck's 3 modes): the first three in one loop, the rest in pairs.
-    ModeRecursion r[3];
-    int t[3];
-    for (int j = 0; j < 3; ++j) {
-      SB_ASSERT(terms[j] <= kModalMaxTerms, "ModalFlow: too many terms");
-      const double y[6] = {Y(j, 0), Y(j, 1), Y(j, 2), Y(j, 3), Y(j, 4), Y(j, 5)};
-      r[j].Start(w2_[j], c_[j], omega_radps, y, eta + j * stride, deta + j * stride);
-      t[j] = terms[j];
-    }
-    const int common = std::min({t[0], t[1], t[2]});
-    int m = 0;
-    for (; m + 1 < common; ++m) {
-      r[0].Step(m);
-      r[1].Step(m);
-      r[2].Step(m);
-    }
-    for (int j = 0; j < 3; ++j) {
-      for (int mj = m; mj + 1 < t[j]; ++mj) r[j].Step(mj);
-    }
+    ModeGroup<3>(harmonic, w2_, c_, omega_radps, Y, terms, 0, eta, deta, stride);
     k = 3;
   }
   for (; k + 1 < n; k += 2) {
-    SB_ASSERT(terms[k] <= kModalMaxTerms && terms[k + 1] <= kModalMaxTerms,
-              "ModalFlow: too many terms");
-    const double ya[6] = {Y(k, 0), Y(k, 1), Y(k, 2), Y(k, 3), Y(k, 4), Y(k, 5)};
-    const double yb[6] = {Y(k + 1, 0), Y(k + 1, 1), Y(k + 1, 2),
-                          Y(k + 1, 3), Y(k + 1, 4), Y(k + 1, 5)};
-    ModeRecursion a, b;
-    a.Start(w2_[k], c_[k], omega_radps, ya, eta + k * stride, deta + k * stride);
-    b.Start(w2_[k + 1], c_[k + 1], omega_radps, yb, eta + (k + 1) * stride,
-            deta + (k + 1) * stride);
-    const int ta = terms[k], tb = terms[k + 1];
-    const int common = std::min(ta, tb);
-    int m = 0;
-    for (; m + 1 < common; ++m) {
-      a.Step(m);
-      b.Step(m);
-    }
-    for (int ma = m; ma + 1 < ta; ++ma) a.Step(ma);
-    for (int mb = m; mb + 1 < tb; ++mb) b.Step(mb);
+    ModeGroup<2>(harmonic, w2_, c_, omega_radps, Y, terms, k, eta, deta, stride);
   }
   if (k < n) {
     const double y[6] = {Y(k, 0), Y(k, 1), Y(k, 2), Y(k, 3), Y(k, 4), Y(k, 5)};

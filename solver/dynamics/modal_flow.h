@@ -45,7 +45,10 @@ inline constexpr double kModalSeriesRadius = 4.0;
 /// Most Taylor terms a mode uses (rho = kModalSeriesRadius needs 34).
 inline constexpr int kModalMaxTerms = 48;
 
-/// Number of Taylor terms (coefficients 0 .. N - 1) that bring rho^N / N! below 1e-18.
+/// Number of Taylor terms (coefficients 0 .. N - 1) that bring rho^N / N! below 1e-18: the
+/// product of the rounded rho / j up to the first j >= 4 at most 1e-18 (or j = kModalMaxTerms -
+/// 1), the count j + 1; for rho >= 0 from a table of the rho where the count grows, built at
+/// compile time from that product (the same count for every rho).
 int ModalTermCount(double rho);
 
 /// y1 = A.topRows(rows) x1 and y2 = A.topRows(rows) x2 in one pass over the column-major A, as

@@ -6,8 +6,11 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
+#include <limits>
 #include <numbers>
 #include <optional>
 #include <random>
@@ -299,20 +302,41 @@ TEST(ModalFlow, ClassicalFromASolvedBasisIsTheSameBits) {
 }
 
 TEST(ModalFlow, AllModeCoefficientsAreEachModesOwnBits) {
-  // The dense output builds every mode's series with AllModeCoefficients (two modes per loop);
-  // each mode must get ModeCoefficients' bits, whatever the two modes' term counts.
+  // The dense output builds every mode's series with AllModeCoefficients (two or three modes per
+  // loop, without the harmonic recursion when its inputs are zeros); each mode must get
+  // ModeCoefficients' bits, zeros' signs included, whatever the modes' term counts and whichever
+  // inputs are zeros of either sign.
   std::mt19937 rng(17u);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   std::uniform_int_distribution<int> term_count(1, kModalMaxTerms);
+  const auto zero = [&] { return unit(rng) < 0.0 ? -0.0 : 0.0; };
+  const auto bits = [](double x) { return std::bit_cast<std::uint64_t>(x); };
+  int harmonic_free = 0;
   for (int n : {1, 2, 3, 5}) {
     const RandomModel m = MakeModel(rng, n, n > 2 ? 1 : 0, {0.05, 0.4});
     const auto flow = ModalFlow::Classical(m.M, m.K, m.C, m.r);
     ASSERT_TRUE(flow.has_value());
-    for (int trial = 0; trial < 20; ++trial) {
+    for (int trial = 0; trial < 60; ++trial) {
       const double omega = trial % 4 == 0 ? 0.0 : 30.0 * unit(rng);
       Eigen::MatrixXd Y(n, 6);
       for (int k = 0; k < n; ++k)
         for (int j = 0; j < 6; ++j) Y(k, j) = unit(rng) * std::pow(10.0, 3.0 * unit(rng));
+      // Zeros of either sign: the harmonic inputs (a record's piece, a pulse's end), or with
+      // them the constant and ramp inputs (the forcing's zeros), or the whole state (at rest).
+      const int zeros = trial % 5;
+      if (zeros >= 1) {
+        harmonic_free += 1;
+        for (int k = 0; k < n; ++k) Y(k, 4) = zero(), Y(k, 5) = zero();
+      }
+      if (zeros == 2 || zeros == 4) {
+        for (int k = 0; k < n; ++k) Y(k, 2) = zero(), Y(k, 3) = zero();
+      }
+      if (zeros == 3) {
+        for (int k = 0; k < n; ++k) Y(k, 2) = zero();
+      }
+      if (zeros == 4) {
+        for (int k = 0; k < n; ++k) Y(k, 0) = zero(), Y(k, 1) = zero();
+      }
       std::vector<int> terms(static_cast<std::size_t>(n));
       for (int& t : terms) t = term_count(rng);
       const int stride = kModalMaxTerms + 1;  // one guard entry after each mode's series
@@ -324,14 +348,17 @@ TEST(ModalFlow, AllModeCoefficientsAreEachModesOwnBits) {
         const double y[6] = {Y(k, 0), Y(k, 1), Y(k, 2), Y(k, 3), Y(k, 4), Y(k, 5)};
         flow->ModeCoefficients(k, omega, y, t, one_eta, one_deta);
         for (int i = 0; i < t; ++i) {
-          EXPECT_EQ(eta(i, k), one_eta[i]) << n << " modes, mode " << k << ", term " << i;
-          EXPECT_EQ(deta(i, k), one_deta[i]) << n << " modes, mode " << k << ", term " << i;
+          EXPECT_EQ(bits(eta(i, k)), bits(one_eta[i]))
+              << n << " modes, mode " << k << ", term " << i << ", zeros " << zeros;
+          EXPECT_EQ(bits(deta(i, k)), bits(one_deta[i]))
+              << n << " modes, mode " << k << ", term " << i << ", zeros " << zeros;
         }
         EXPECT_EQ(eta(t, k), 7.0) << "wrote past mode " << k << "'s terms";
         EXPECT_EQ(deta(t, k), 7.0) << "wrote past mode " << k << "'s terms";
       }
     }
   }
+  EXPECT_EQ(harmonic_free, 4 * 48);
 }
 
 TEST(ModalFlow, TransitionsFromTheMemoAreTheBitsOfTheirComputation) {
@@ -606,6 +633,51 @@ TEST(LinearFlow, AugmentedPartsOfAModalFlowAreBuiltOnDemandAndMatchTheGeneralPat
   oracle.Apply(oracle.Propagator(tau, 2.5, false), z, b);
   dense.Evaluate(tau, a);
   ExpectStatesAgree(a, b, 4, "augmented series of a modal flow");
+}
+
+// ModalTermCount's definition, term by term.
+int TermCountByTerms(double rho) {
+  double term = 1.0;
+  int m = 0;
+  do {
+    ++m;
+    term *= rho / m;
+  } while ((term > 1e-18 || m < 4) && m < kModalMaxTerms - 1);
+  return m + 1;
+}
+
+TEST(ModalFlow, TermCountIsItsDefinitionTermByTerm) {
+  // ModalTermCount reads a table of the rho where the count grows: at every such rho found here
+  // by bisection of the definition, at the doubles on either side, and at random rho over 30
+  // decades (and outside the table: negative, past it, inf and NaN), the same count.
+  int checked = 0;
+  for (int N = 6; N <= kModalMaxTerms; ++N) {
+    double lo = 0.0, hi = 64.0;  // counts 5 and kModalMaxTerms
+    ASSERT_EQ(TermCountByTerms(hi), kModalMaxTerms);
+    while (std::nextafter(lo, hi) < hi) {
+      const double mid = std::bit_cast<double>(
+          std::bit_cast<std::uint64_t>(lo) / 2 + std::bit_cast<std::uint64_t>(hi) / 2 +
+          (std::bit_cast<std::uint64_t>(lo) % 2 + std::bit_cast<std::uint64_t>(hi) % 2) / 2);
+      (TermCountByTerms(mid) >= N ? hi : lo) = mid;
+    }
+    for (double rho : {lo, hi, std::nextafter(hi, 100.0)}) {
+      EXPECT_EQ(ModalTermCount(rho), TermCountByTerms(rho)) << rho;
+      ++checked;
+    }
+    EXPECT_LT(TermCountByTerms(lo), N);
+    EXPECT_GE(TermCountByTerms(hi), N);
+  }
+  std::mt19937 rng(5u);
+  std::uniform_real_distribution<double> decade(-24.0, 6.0);
+  for (int i = 0; i < 200000; ++i) {
+    const double rho = std::pow(10.0, decade(rng));
+    ASSERT_EQ(ModalTermCount(rho), TermCountByTerms(rho)) << rho;
+  }
+  for (double rho : {0.0, -0.0, 4.0, 64.0, 64.5, 1e6, -1.0, std::numeric_limits<double>::infinity(),
+                     std::numeric_limits<double>::quiet_NaN()}) {
+    EXPECT_EQ(ModalTermCount(rho), TermCountByTerms(rho)) << rho;
+  }
+  EXPECT_EQ(checked, 3 * (kModalMaxTerms - 5));
 }
 
 TEST(ModalFlow, TermCountBoundsTheFirstOmittedTerm) {
