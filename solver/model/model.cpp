@@ -2,7 +2,9 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
+#include <array>
 #include <cmath>
+#include <cstring>
 #include <numbers>
 
 #include "solver/common/error.h"
@@ -43,12 +45,70 @@ Face MinusXAbutmentFace(const DeckGeometry& deck, double gap_m) {
 
 namespace detail {
 
+namespace {
+
+// The last matrices of at most kMaxSize x kMaxSize that passed CheckSymmetricPsd with the
+// semi-definiteness check on this thread, by their bits: the verdict is a function of the bits
+// alone (and a pass with the check implies one without), so a matrix with the same bits passes
+// again without its factorisation. A sweep builds a model per cell, and its builder checks K
+// before the model checks K and C again.
+class PassedMatrices {
+ public:
+  static constexpr int kMaxSize = 6;
+  bool Has(const Eigen::MatrixXd& A) const {
+    const auto bytes = static_cast<std::size_t>(A.size()) * sizeof(double);
+    for (const Slot& slot : slots_) {
+      if (slot.n == A.rows() && std::memcmp(slot.a.data(), A.data(), bytes) == 0) return true;
+    }
+    return false;
+  }
+  void Add(const Eigen::MatrixXd& A) {
+    if (A.rows() > kMaxSize || A.rows() != A.cols()) return;
+    Slot& slot = slots_[next_];
+    next_ = (next_ + 1) % kSlots;
+    slot.n = static_cast<int>(A.rows());
+    std::memcpy(slot.a.data(), A.data(), static_cast<std::size_t>(A.size()) * sizeof(double));
+  }
+
+ private:
+  static constexpr int kSlots = 2;  // K and C of one model
+  struct Slot {
+    int n = -1;  // -1: empty
+    std::array<double, kMaxSize * kMaxSize> a{};
+  };
+  std::array<Slot, kSlots> slots_{};
+  int next_ = 0;
+};
+
+}  // namespace
+
 void CheckSymmetricPsd(const Eigen::MatrixXd& A, int n, std::string_view field, const Where& where,
                        bool require_psd) {
+  thread_local PassedMatrices passed;
+  if (A.rows() == n && A.cols() == n && passed.Has(A)) {
+    return;
+  }
   if (A.rows() != n || A.cols() != n) {
     Fail(where, field,
          "must be " + std::to_string(n) + " x " + std::to_string(n) + " (got " +
              std::to_string(A.rows()) + " x " + std::to_string(A.cols()) + ")");
+  }
+  if (n == 3 && require_psd) {
+    // A deck's matrices: the same checks in fixed-size arithmetic (the same maxima, and a
+    // Cholesky verdict that could differ only within its rounding of a matrix at the bound).
+    const Eigen::Matrix3d a = A;
+    if (a.allFinite()) {
+      const double scale3 = a.cwiseAbs().maxCoeff();
+      if (!((a - a.transpose()).cwiseAbs().maxCoeff() > 1e-9 * scale3)) {
+        Eigen::Matrix3d shifted3 = 0.5 * (a + a.transpose());
+        shifted3.diagonal().array() += 1e-9 * scale3;
+        if (scale3 == 0.0 || Eigen::LLT<Eigen::Matrix3d>(shifted3).info() == Eigen::Success) {
+          passed.Add(A);
+          return;
+        }
+      }
+    }
+    // A failure: the general checks below name it.
   }
   if (!A.allFinite()) {
     Fail(where, field, "must contain finite numbers only (got NaN or Inf)");
@@ -63,10 +123,14 @@ void CheckSymmetricPsd(const Eigen::MatrixXd& A, int n, std::string_view field, 
     // Asked: every eigenvalue >= -1e-9 max|A|. A Cholesky factor of A + 1e-9 max|A| I exists
     // exactly when that holds (up to the factorisation's rounding, ~1e-16 max|A|), at a small
     // part of an eigenvalue solve's cost: a sweep builds a model per cell. The solve stays for
-    // a failure, whose message gives the smallest eigenvalue.
-    Eigen::MatrixXd shifted = 0.5 * (A + A.transpose());
+    // a failure, whose message gives the smallest eigenvalue. The matrix and the factorisation
+    // are this thread's, kept from call to call: at the same size they allocate nothing.
+    thread_local Eigen::MatrixXd shifted;
+    thread_local Eigen::LLT<Eigen::MatrixXd> llt;
+    shifted = 0.5 * (A + A.transpose());
     shifted.diagonal().array() += 1e-9 * scale;
-    if (Eigen::LLT<Eigen::MatrixXd>(shifted).info() == Eigen::Success) {
+    if (llt.compute(shifted).info() == Eigen::Success) {
+      passed.Add(A);
       return;
     }
     const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(0.5 * (A + A.transpose()),
@@ -76,6 +140,7 @@ void CheckSymmetricPsd(const Eigen::MatrixXd& A, int n, std::string_view field, 
       Fail(where, field,
            "must be positive semi-definite (smallest eigenvalue " + Show(smallest) + ")");
     }
+    passed.Add(A);
   }
 }
 
