@@ -22,6 +22,11 @@ struct SpectraEvaluator::CellValues {
 
 SpectraEvaluator::SpectraEvaluator(const CellGrid& spec)
     : CellEvaluator(spec.policies), spec_(spec), shared_(spec) {
+  sources_ = {SourceOf("w0_over_wg"),   SourceOf("Pi_delta"),  SourceOf("a_deg"),
+              SourceOf("eta0"),         SourceOf("W_over_L"),  SourceOf("W0_over_w0"),
+              SourceOf("xi"),           SourceOf("eps_N"),     SourceOf("mu"),
+              SourceOf("delta_over_L"), SourceOf("L_over_Le"), SourceOf("a_g_g"),
+              SourceOf("incidence_deg")};
   if (spec.family == "subsystem") {
     family_ = spectra::Family::kSubsystem;
   } else if (spec.family == "pilot-bridge") {
@@ -153,6 +158,21 @@ SpectraEvaluator::SpectraEvaluator(const CellGrid& spec)
   }
 }
 
+SpectraEvaluator::NumberSource SpectraEvaluator::SourceOf(std::string_view key) const {
+  NumberSource source;
+  for (std::size_t k = 0; k < spec_.axes.size(); ++k) {
+    if (spec_.axes[k].key == key) {
+      source.axis = static_cast<int>(k);
+      return source;
+    }
+  }
+  if (const FixedValue* fixed = spec_.FindFixed(key)) {
+    source.fixed = true;
+    source.value = fixed->value;
+  }
+  return source;
+}
+
 spectra::PointParameters SpectraEvaluator::Parameters(std::span<const std::size_t> index,
                                                       const SweepRecord** record) const {
   spectra::PointParameters p;
@@ -160,28 +180,28 @@ spectra::PointParameters SpectraEvaluator::Parameters(std::span<const std::size_
   if (family_ == spectra::Family::kPilotBridge) {
     p.mu = 0.3;  // the published pilot bridge [docs/theory.md §6]
   }
-  p.w0_over_wg = NumberOf(spec_, index, "w0_over_wg", p.w0_over_wg);
-  p.Pi_delta = NumberOf(spec_, index, "Pi_delta", p.Pi_delta);
+  p.w0_over_wg = Number(sources_.w0_over_wg, index, p.w0_over_wg);
+  p.Pi_delta = Number(sources_.Pi_delta, index, p.Pi_delta);
   bool given = false;
-  const double a_deg = NumberOf(spec_, index, "a_deg", p.skew_deg, &given);
+  const double a_deg = Number(sources_.a_deg, index, p.skew_deg, &given);
   if (family_ == spectra::Family::kPilotBridge) {
     if (given) p.pilot_skew_deg = a_deg;
   } else {
     p.skew_deg = a_deg;
   }
-  const double eta0 = NumberOf(spec_, index, "eta0", 0.0, &given);
+  const double eta0 = Number(sources_.eta0, index, 0.0, &given);
   if (given) p.eta0 = eta0;
-  const double w_over_l = NumberOf(spec_, index, "W_over_L", 0.0, &given);
+  const double w_over_l = Number(sources_.W_over_L, index, 0.0, &given);
   if (given) p.W_over_L = w_over_l;
   if (family_ == spectra::Family::kSubsystem && !p.eta0 && !p.W_over_L) p.eta0 = 1.0;
-  p.W0_over_w0 = NumberOf(spec_, index, "W0_over_w0", p.W0_over_w0);
-  p.xi = NumberOf(spec_, index, "xi", p.xi);
-  p.eps_N = NumberOf(spec_, index, "eps_N", p.eps_N);
-  p.mu = NumberOf(spec_, index, "mu", p.mu);
-  const double delta_over_l = NumberOf(spec_, index, "delta_over_L", 0.0, &given);
+  p.W0_over_w0 = Number(sources_.W0_over_w0, index, p.W0_over_w0);
+  p.xi = Number(sources_.xi, index, p.xi);
+  p.eps_N = Number(sources_.eps_N, index, p.eps_N);
+  p.mu = Number(sources_.mu, index, p.mu);
+  const double delta_over_l = Number(sources_.delta_over_L, index, 0.0, &given);
   if (given) p.delta_over_L = delta_over_l;
-  p.L_over_Le = NumberOf(spec_, index, "L_over_Le", p.L_over_Le);
-  p.pulse_a_g_mps2 = NumberOf(spec_, index, "a_g_g", 0.5) * kStandardGravity_mps2;
+  p.L_over_Le = Number(sources_.L_over_Le, index, p.L_over_Le);
+  p.pulse_a_g_mps2 = Number(sources_.a_g_g, index, 0.5) * kStandardGravity_mps2;
   p.pulse = LabelOf(spec_, index, "pulse") == "sine" ? records::PulseShape::kSine
                                                      : records::PulseShape::kCosine;
   p.method = MethodOf(spec_, index, spectra::Method::kEventDriven);
@@ -216,7 +236,7 @@ std::unique_ptr<Excitation> SpectraEvaluator::MakeExcitation(
     std::span<const std::size_t> axis_index, const spectra::PointParameters& p,
     const SweepRecord* record, const spectra::ExcitationScales& scales) const {
   bool turned = false;
-  const double incidence_deg = NumberOf(spec_, axis_index, "incidence_deg", 0.0, &turned);
+  const double incidence_deg = Number(sources_.incidence_deg, axis_index, 0.0, &turned);
   // Without incidence_deg the default direction x, as the excitations make it.
   const Eigen::Vector2d direction =
       turned ? records::DirectionAt(incidence_deg) : Eigen::Vector2d::UnitX();

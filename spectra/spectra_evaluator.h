@@ -88,6 +88,30 @@ class SpectraEvaluator final : public CellEvaluator {
   std::shared_ptr<const records::PeakPieces> RecordPeakPieces(const SweepRecord& record) const;
   /// Per record of records_, its RecordPeakPieces once found.
   RecordPeakCache peak_pieces_;
+  /// Where a numeric parameter of a cell comes from, found once in spec_ as NumberOf finds it:
+  /// an axis (its value at the cell's index), a fixed value, or neither (the caller's default).
+  struct NumberSource {
+    int axis = -1;       ///< the axis of the key, or -1
+    bool fixed = false;  ///< no axis, a fixed value
+    double value = 0.0;  ///< the fixed value
+  };
+  /// The source of `key` in spec_.
+  NumberSource SourceOf(std::string_view key) const;
+  /// NumberOf(spec_, index, key, fallback, given) for the key of `source`.
+  double Number(const NumberSource& source, std::span<const std::size_t> index, double fallback,
+                bool* given = nullptr) const {
+    if (given != nullptr) *given = source.axis >= 0 || source.fixed;
+    if (source.axis >= 0) {
+      const auto k = static_cast<std::size_t>(source.axis);
+      return spec_.axes[k].values[index[k]];
+    }
+    return source.fixed ? source.value : fallback;
+  }
+  /// The sources of the parameters Parameters and MakeExcitation read, one per key.
+  struct Sources {
+    NumberSource w0_over_wg, Pi_delta, a_deg, eta0, W_over_L, W0_over_w0, xi, eps_N, mu,
+        delta_over_L, L_over_Le, a_g_g, incidence_deg;
+  } sources_;
 };
 
 }  // namespace skewbridge::spectra
