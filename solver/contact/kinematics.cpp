@@ -87,10 +87,55 @@ double BodyFaceGap(const model::Model& model, int c, const Eigen::Ref<const Eige
 }
 
 void GapRateScratch::Resize(const model::Model& model) {
+  deck_corners = 0;
+  bool deck =
+      model.n_bodies() == 1 && model.n_contacts() > 0 && model.n_contacts() <= kMaxDeckCorners;
+  for (int c = 0; deck && c < model.n_contacts(); ++c) {
+    deck = model.contact(c).face.body == model::kGround;
+  }
+  if (deck) {
+    const Eigen::Vector2d& X = model.body(0).rest_position_m;
+    for (int c = 0; c < model.n_contacts(); ++c) {
+      const model::Contact& contact = model.contact(c);
+      corners.X_x[c] = X.x();
+      corners.X_y[c] = X.y();
+      corners.p_x[c] = contact.point_m.x();
+      corners.p_y[c] = contact.point_m.y();
+      corners.n_x[c] = contact.face.normal.x();
+      corners.n_y[c] = contact.face.normal.y();
+      corners.A_x[c] = contact.face.point_m.x();
+      corners.A_y[c] = contact.face.point_m.y();
+    }
+    deck_corners = model.n_contacts();
+    return;
+  }
   cos.assign(static_cast<std::size_t>(model.n_bodies()), 1.0);
   sin.assign(static_cast<std::size_t>(model.n_bodies()), 0.0);
   w_N.setZero(model.n_dof());
   w_T.setZero(model.n_dof());
+}
+
+void GeneralGapsAndRates(const model::Model& model, const Eigen::Ref<const Eigen::VectorXd>& q,
+                         const Eigen::Ref<const Eigen::VectorXd>& u, Eigen::VectorXd& gap,
+                         Eigen::VectorXd& gamma_N, GapRateScratch& scratch) {
+  const int nb = model.n_bodies();
+  for (int b = 0; b < nb; ++b) {
+    scratch.cos[static_cast<std::size_t>(b)] = std::cos(q[3 * b + 2]);
+    scratch.sin[static_cast<std::size_t>(b)] = std::sin(q[3 * b + 2]);
+  }
+  for (int c = 0; c < model.n_contacts(); ++c) {
+    const model::Contact& contact = model.contact(c);
+    if (contact.face.body != model::kGround) {
+      gap[c] = BodyFaceGap(model, c, q);
+      Jacobians(model, c, q, scratch.w_N, scratch.w_T);
+      gamma_N[c] = scratch.w_N.dot(u);
+      continue;
+    }
+    const auto b = static_cast<std::size_t>(contact.body);
+    const Eigen::Vector2d arm = RotatedArm(scratch.cos[b], scratch.sin[b], contact.point_m);
+    gap[c] = GroundFaceGap(model, contact, q, arm);
+    gamma_N[c] = GroundFaceNormalRate(contact, u, arm);
+  }
 }
 
 Eigen::Vector2d PointPosition(const model::Model& model, int c,

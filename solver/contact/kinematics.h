@@ -67,12 +67,28 @@ double ColumnDot(const model::Model& model, int c, const Eigen::Ref<const Eigen:
                  const Eigen::Ref<const Eigen::VectorXd>& u);
 
 /// Scratch of the gap-and-rate path (GapsAndRates, NormalRate): a sine and cosine per body and
-/// two Jacobian columns; sized once per model.
+/// two Jacobian columns; sized once per model. A single deck whose contacts all face the ground
+/// (at most kMaxDeckCorners) keeps its corners' data here instead, in the order GroundFaceGap and
+/// GroundFaceNormalRate read it, and allocates nothing.
 struct GapRateScratch {
+  static constexpr int kMaxDeckCorners = 8;  ///< the most corners of the deck path
+  /// The corners of a single deck against ground faces, one array per coordinate indexed by
+  /// contact (the corners side by side in a vector register): the body's rest position X (m),
+  /// the point p in the body frame (m), the face's normal n and point A (m).
+  struct DeckCorners {
+    double X_x[kMaxDeckCorners], X_y[kMaxDeckCorners];
+    double p_x[kMaxDeckCorners], p_y[kMaxDeckCorners];
+    double n_x[kMaxDeckCorners], n_y[kMaxDeckCorners];
+    double A_x[kMaxDeckCorners], A_y[kMaxDeckCorners];
+  };
+
   std::vector<double> cos, sin;  ///< per body, of theta at the last GapsAndRates
   Eigen::VectorXd w_N, w_T;      ///< n_dof: Jacobian columns for a face on a body
+  int deck_corners = 0;          ///< > 0: the model is a single deck with this many corners
+  DeckCorners corners;           ///< the deck's corners (deck_corners of each array)
 
-  /// Allocates for a model (bodies, n_dof).
+  /// Sizes for a model (bodies, n_dof), or copies its corners when it is a single deck against
+  /// ground faces. Called again after the model changes.
   void Resize(const model::Model& model);
 };
 
@@ -104,7 +120,8 @@ inline double GroundFaceNormalRate(const model::Contact& contact,
 
 // Gap, GapsAndRates and NormalRate are defined here, not in kinematics.cpp, so that the event
 // searches of the integrator (every step, every root-finding iteration) compile them in place
-// rather than call across libraries. A face on a body calls out to the general path.
+// rather than call across libraries. A face on a body calls out to the general path, and so do
+// the gaps and rates of every model but a single deck against ground faces.
 
 /// The gap g (m) of contact c at q. No allocation.
 inline double Gap(const model::Model& model, int c, const Eigen::Ref<const Eigen::VectorXd>& q) {
@@ -119,31 +136,43 @@ inline double Gap(const model::Model& model, int c, const Eigen::Ref<const Eigen
                        RotatedArm(std::cos(theta), std::sin(theta), contact.point_m));
 }
 
+/// GapsAndRates of a single deck against ground faces (GapRateScratch::deck_corners > 0): q, u
+/// its 3 positions and velocities, `gap` and `gamma_N` one entry per corner. GroundFaceGap's and
+/// GroundFaceNormalRate's operations in their order on the corners' copied data, one sine and
+/// cosine (the same bits).
+inline void DeckGapsAndRates(const GapRateScratch& scratch, const double* q, const double* u,
+                             double* __restrict gap, double* __restrict gamma_N) {
+  const double cos_theta = std::cos(q[2]);
+  const double sin_theta = std::sin(q[2]);
+  const double x = q[0], y = q[1], ux = u[0], uy = u[1], w = u[2];
+  const GapRateScratch::DeckCorners& k = scratch.corners;
+  for (int c = 0; c < scratch.deck_corners; ++c) {
+    const double arm_x = cos_theta * k.p_x[c] - sin_theta * k.p_y[c];
+    const double arm_y = sin_theta * k.p_x[c] + cos_theta * k.p_y[c];
+    gap[c] = k.n_x[c] * (((k.X_x[c] + x) + arm_x) - k.A_x[c]) +
+             k.n_y[c] * (((k.X_y[c] + y) + arm_y) - k.A_y[c]);
+    gamma_N[c] = (k.n_x[c] * ux + k.n_y[c] * uy) + w * (k.n_y[c] * arm_x - k.n_x[c] * arm_y);
+  }
+}
+
+/// GapsAndRates of any model: a sine and cosine per body, a ground face without its rotation
+/// matrix, face frame or Jacobian columns, a face on a body by the general path.
+void GeneralGapsAndRates(const model::Model& model, const Eigen::Ref<const Eigen::VectorXd>& q,
+                         const Eigen::Ref<const Eigen::VectorXd>& u, Eigen::VectorXd& gap,
+                         Eigen::VectorXd& gamma_N, GapRateScratch& scratch);
+
 /// The gap g (m) and normal rate gamma_N (m/s) of every contact at (q, u), the same bits as Gap
-/// and Evaluate's gamma_N, for the event searches of the integrator: one sine and cosine per
-/// body, and a ground face without its rotation matrix, face frame or Jacobian columns. A face
-/// on a body takes the general path. No allocation once `scratch` is sized.
+/// and NormalRate (and for a single deck as Evaluate's gamma_N), for the event searches of the
+/// integrator: a single deck against ground faces by DeckGapsAndRates, any other model by
+/// GeneralGapsAndRates. No allocation once `scratch` is sized.
 inline void GapsAndRates(const model::Model& model, const Eigen::Ref<const Eigen::VectorXd>& q,
                          const Eigen::Ref<const Eigen::VectorXd>& u, Eigen::VectorXd& gap,
                          Eigen::VectorXd& gamma_N, GapRateScratch& scratch) {
-  const int nb = model.n_bodies();
-  for (int b = 0; b < nb; ++b) {
-    scratch.cos[static_cast<std::size_t>(b)] = std::cos(q[3 * b + 2]);
-    scratch.sin[static_cast<std::size_t>(b)] = std::sin(q[3 * b + 2]);
+  if (scratch.deck_corners > 0) {
+    DeckGapsAndRates(scratch, q.data(), u.data(), gap.data(), gamma_N.data());
+    return;
   }
-  for (int c = 0; c < model.n_contacts(); ++c) {
-    const model::Contact& contact = model.contact(c);
-    if (contact.face.body != model::kGround) {
-      gap[c] = BodyFaceGap(model, c, q);
-      Jacobians(model, c, q, scratch.w_N, scratch.w_T);
-      gamma_N[c] = scratch.w_N.dot(u);
-      continue;
-    }
-    const auto b = static_cast<std::size_t>(contact.body);
-    const Eigen::Vector2d arm = RotatedArm(scratch.cos[b], scratch.sin[b], contact.point_m);
-    gap[c] = GroundFaceGap(model, contact, q, arm);
-    gamma_N[c] = GroundFaceNormalRate(contact, u, arm);
-  }
+  GeneralGapsAndRates(model, q, u, gap, gamma_N, scratch);
 }
 
 /// The normal rate gamma_N (m/s) of contact c at (q, u): a single deck against a ground face

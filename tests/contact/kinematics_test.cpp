@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <random>
 #include <vector>
 
@@ -228,6 +230,75 @@ TEST(ContactKinematics, EvaluateContactsRefillsTheListedContactsOnly) {
     EXPECT_EQ(subset.W_N.col(c), expected.W_N.col(c)) << "contact " << c;
     EXPECT_EQ(subset.W_T.col(c), expected.W_T.col(c)) << "contact " << c;
   }
+}
+
+// GapsAndRates against Gap, NormalRate and Evaluate, bit for bit, at random states: a single deck
+// (its own path, from the corners' data copied by Resize, with and without a rest position off
+// the origin) and two decks with a face on a body (the general path, whose rate sums the whole
+// Jacobian column: Evaluate's to rounding).
+void CheckGapsAndRatesAreTheBitsOfGapAndEvaluate(const model::Model& model, bool deck_path,
+                                                 std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  GapRateScratch scratch;
+  scratch.Resize(model);
+  EXPECT_EQ(scratch.deck_corners > 0, deck_path) << model.source();
+  ContactKinematics kin;
+  kin.Resize(model);
+  const int n = model.n_dof();
+  Eigen::VectorXd gap(model.n_contacts()), gamma_N(model.n_contacts());
+  for (int trial = 0; trial < 200; ++trial) {
+    Eigen::VectorXd q(n), u(n);
+    for (int i = 0; i < n; ++i) {
+      q[i] = (i % 3 == 2 ? 0.4 : 2.0) * unit(rng);
+      u[i] = 3.0 * unit(rng);
+    }
+    if (trial == 0) {
+      q.setZero();  // the rest state, with its exact zeros
+      q[0] = -0.0;
+    }
+    GapsAndRates(model, q, u, gap, gamma_N, scratch);
+    Evaluate(model, q, u, kin);
+    for (int c = 0; c < model.n_contacts(); ++c) {
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(gap[c]),
+                std::bit_cast<std::uint64_t>(Gap(model, c, q)))
+          << model.source() << " contact " << c << " trial " << trial;
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(gap[c]), std::bit_cast<std::uint64_t>(kin.gap_m[c]))
+          << model.source() << " contact " << c << " trial " << trial;
+      if (deck_path) {
+        // Evaluate's rate sums the rows of the contact's bodies only: the same sum for one deck.
+        EXPECT_EQ(std::bit_cast<std::uint64_t>(gamma_N[c]),
+                  std::bit_cast<std::uint64_t>(kin.gamma_N[c]))
+            << model.source() << " contact " << c << " trial " << trial;
+      } else {
+        EXPECT_NEAR(gamma_N[c], kin.gamma_N[c], 1e-14 * (1.0 + std::abs(kin.gamma_N[c])))
+            << model.source() << " contact " << c << " trial " << trial;
+      }
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(gamma_N[c]),
+                std::bit_cast<std::uint64_t>(NormalRate(model, c, q, u, scratch)))
+          << model.source() << " contact " << c << " trial " << trial;
+    }
+  }
+}
+
+TEST(ContactKinematics, GapsAndRatesAreTheBitsOfGapAndEvaluate) {
+  std::mt19937_64 rng(33);
+  CheckGapsAndRatesAreTheBitsOfGapAndEvaluate(
+      testing::FreeDeck(30.0, 2.0, 20.0, 0.04, 0.5, 0.0, model::AbutmentSet::kPlusX), true, rng);
+  CheckGapsAndRatesAreTheBitsOfGapAndEvaluate(
+      testing::FreeDeck(65.0, 1.3, 89.14, 0.03, 0.5, 0.3, model::AbutmentSet::kBoth), true, rng);
+  // One deck resting away from the origin: X enters the gaps.
+  const model::Model base =
+      testing::FreeDeck(20.0, 1.48, 30.0, 0.05, 0.5, 0.2, model::AbutmentSet::kBoth);
+  const Eigen::Vector2d X(3.25, -1.5);
+  std::vector<model::Body> bodies = base.bodies();
+  bodies[0].rest_position_m = X;
+  std::vector<model::Contact> contacts = base.contacts();
+  for (model::Contact& contact : contacts) {
+    contact.face.point_m += X;  // the abutments move with the deck: the same gaps at rest
+  }
+  const model::Model moved(bodies, base.K(), base.C(), base.r(), contacts, "moved-deck");
+  CheckGapsAndRatesAreTheBitsOfGapAndEvaluate(moved, true, rng);
+  CheckGapsAndRatesAreTheBitsOfGapAndEvaluate(testing::TwoDecks(), false, rng);
 }
 
 }  // namespace
