@@ -352,6 +352,7 @@ void FreeDenseOutput::Build(const LinearFlow& flow, double omega_radps,
   }
   if (modal_) {
     const ModalFlow& modal = flow.modal_flow();
+    phi_ = modal.Phi().data();
     modal.ToModal(z0, Y_);
     generator_ = z0.tail(kGeneratorSize);
     terms_ = 0;
@@ -446,6 +447,35 @@ inline void Horner3(const double* const c[3], const int t[3], double tau, double
   x[2] = x2;
 }
 
+// Horner on kCount modes' series of eta and eta' at once, each mode's pair (eta_k, eta_k') in
+// the two lanes of one operand: mode j's series at c_eta[j] and c_deta[j], t[j] terms each (the
+// same for both). Each lane runs Horner's operations in Horner's order, so the same bits as
+// Horner on each series; the longer series first, down to the common length, then all together.
+template <int kCount>
+inline void HornerPairs(const double* const (&c_eta)[kCount], const double* const (&c_deta)[kCount],
+                        const int (&t)[kCount], double tau, double* eta, double* deta) {
+  using detail::Lanes2;
+  const Lanes2 tt = {tau, tau};
+  Lanes2 x[kCount];
+  int common = t[0];
+  for (int j = 0; j < kCount; ++j) {
+    x[j] = Lanes2{c_eta[j][t[j] - 1], c_deta[j][t[j] - 1]};
+    common = std::min(common, t[j]);
+  }
+  for (int j = 0; j < kCount; ++j) {
+    for (int m = t[j] - 2; m >= common - 1; --m) {
+      x[j] = x[j] * tt + Lanes2{c_eta[j][m], c_deta[j][m]};
+    }
+  }
+  for (int m = common - 2; m >= 0; --m) {
+    for (int j = 0; j < kCount; ++j) x[j] = x[j] * tt + Lanes2{c_eta[j][m], c_deta[j][m]};
+  }
+  for (int j = 0; j < kCount; ++j) {
+    eta[j] = x[j][0];
+    deta[j] = x[j][1];
+  }
+}
+
 }  // namespace
 
 void FreeDenseOutput::ModalAt(double tau_s, bool velocities) {
@@ -528,43 +558,33 @@ void FreeDenseOutput::EvaluateHead(double tau_s, int count, Eigen::Ref<Eigen::Ve
   }
 }
 
-double FreeDenseOutput::EvaluateComponent(double tau_s, int i) const {
+double FreeDenseOutput::EvaluateComponentAt(double tau_s, int i) const {
   SB_ASSERT(i >= 0 && i < n_aug_, "FreeDenseOutput: bad component");
   if (modal_) {
     if (i < 2 * n_) {
-      // One row of Phi against the modes' series of eta (i < n) or eta' (n <= i < 2 n).
-      const Eigen::MatrixXd& Phi = flow_->modal_flow().Phi();
-      const int half = i < n_ ? 0 : 1;  // eta's series or eta''s
-      const int row = i - half * n_;
-      const int offset = half * n_;
-      double* h = series_.data() + offset;
-      if (!(series_tau_s_[half] == tau_s)) {
-        // The modes' series at tau, two at a time (Horner2), once per instant: the other
-        // components at the same instant (a corner's rate reads four) take the same values.
-        const Eigen::Index stride = modal_coefficients_.rows();
-        const double* c = modal_coefficients_.data();
-        int k = 0;
-        for (; k + 1 < n_; k += 2) {
-          Horner2(c + (offset + k) * stride, mode_terms_[static_cast<std::size_t>(k)],
-                  c + (offset + k + 1) * stride, mode_terms_[static_cast<std::size_t>(k + 1)],
-                  tau_s, h[k], h[k + 1]);
-        }
-        if (k < n_) {
-          h[k] = Horner(c + (offset + k) * stride, mode_terms_[static_cast<std::size_t>(k)], tau_s);
-        }
-        series_tau_s_[half] = tau_s;
-      }
-      // Summed in mode order.
-      double x = 0.0;
+      // The modes' series of eta and eta' at tau, once per instant, both at once (a corner's
+      // rate reads positions and velocities; a peak's search ends with a position at the
+      // instant of its last velocity): the components at the same instant take them inline.
+      const Eigen::Index stride = modal_coefficients_.rows();
+      const double* c = modal_coefficients_.data();
+      double* h = series_.data();
       int k = 0;
-      for (; k + 1 < n_; k += 2) {
-        x += Phi(row, k) * h[k];
-        x += Phi(row, k + 1) * h[k + 1];
+      if (n_ == 3) {
+        const double* const ce[3] = {c, c + stride, c + 2 * stride};
+        const double* const cd[3] = {c + 3 * stride, c + 4 * stride, c + 5 * stride};
+        const int t[3] = {mode_terms_[0], mode_terms_[1], mode_terms_[2]};
+        HornerPairs<3>(ce, cd, t, tau_s, h, h + 3);
+        k = 3;
       }
-      if (k < n_) {
-        x += Phi(row, k) * h[k];
+      for (; k < n_; ++k) {
+        const double* const ce[1] = {c + k * stride};
+        const double* const cd[1] = {c + (n_ + k) * stride};
+        const int t[1] = {mode_terms_[static_cast<std::size_t>(k)]};
+        HornerPairs<1>(ce, cd, t, tau_s, h + k, h + n_ + k);
       }
-      return x;
+      series_tau_s_[0] = series_tau_s_[1] = tau_s;
+      const int half = i < n_ ? 0 : 1;
+      return ModalComponent(i - half * n_, half);
     }
     const int j = i - 2 * n_;
     const double co = std::cos(omega_radps_ * tau_s), si = std::sin(omega_radps_ * tau_s);

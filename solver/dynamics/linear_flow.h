@@ -374,7 +374,16 @@ class FreeDenseOutput {
   void EvaluateHead(double tau_s, int count, Eigen::Ref<Eigen::VectorXd> z);
 
   /// Component i of z(tau). @pre 0 <= i < the augmented size.
-  double EvaluateComponent(double tau_s, int i) const;
+  /// Inline when the modes' series at tau are already summed (the other components of an
+  /// instant: a corner's rate reads four), out of line otherwise.
+  double EvaluateComponent(double tau_s, int i) const {
+    if (i < 2 * n_) {
+      const int half = i < n_ ? 0 : 1;  // eta's series or eta''s
+      // NaN on the augmented path: never equal.
+      if (series_tau_s_[half] == tau_s) return ModalComponent(i - half * n_, half);
+    }
+    return EvaluateComponentAt(tau_s, i);
+  }
 
   /// dz/dtau at tau.
   void EvaluateDerivative(double tau_s, Eigen::Ref<Eigen::VectorXd> dz);
@@ -384,6 +393,24 @@ class FreeDenseOutput {
 
  private:
   void ModalAt(double tau_s, bool velocities);
+  // EvaluateComponent past its inline test: the modes' series at tau (both halves) or the
+  // generator's entries or the augmented series.
+  double EvaluateComponentAt(double tau_s, int i) const;
+  // Row `row` of Phi against the modes' series of eta (half 0) or eta' (half 1) in series_,
+  // summed in mode order from 0.0.
+  double ModalComponent(int row, int half) const {
+    const double* h = series_.data() + half * n_;
+    const double* p = phi_ + row;
+    double x = 0.0;
+    if (n_ == 3) {
+      x += p[0] * h[0];
+      x += p[3] * h[1];
+      x += p[6] * h[2];
+      return x;
+    }
+    for (int k = 0; k < n_; ++k) x += p[k * n_] * h[k];
+    return x;
+  }
   void GeneratorAt(double tau_s, Eigen::Ref<Eigen::VectorXd> z) const;
 
   const LinearFlow* flow_ = nullptr;
@@ -399,6 +426,7 @@ class FreeDenseOutput {
   Eigen::MatrixXd Y_;                   // modal: n x 6 modal coordinates of z0
   Eigen::VectorXd eta_, deta_;          // modal: eta(tau), eta'(tau) of the last ModalAt
   Eigen::VectorXd z_scratch_;           // for EvaluateDerivative
+  const double* phi_ = nullptr;         // modal: Phi's entries (n x n, column-major), from the flow
   // modal: the modes' series of eta (first n) and eta' (last n) at the instants series_tau_s_
   // (NaN: none since the last Build), for EvaluateComponent.
   mutable Eigen::VectorXd series_;
