@@ -39,6 +39,11 @@ struct ModalGapBound {
   /// The bound of `model` with its modal flow.
   ModalGapBound(const model::Model& model, const ModalFlow& modal);
   ModalGapBound() = default;
+  /// Makes this the bound of `model` with its modal flow, ModalGapBound(model, modal)'s values,
+  /// in the storage it holds: a model of the last one's sizes allocates nothing.
+  void Assign(const model::Model& model, const ModalFlow& modal);
+  /// Makes this the empty bound (applies() false), keeping its storage.
+  void Clear();
   /// True when the bound applies to the model.
   bool applies() const { return !weights.empty(); }
   /// Takes the weights W of `count` gaps (row-major, count x n_modes) and the modes' frequencies

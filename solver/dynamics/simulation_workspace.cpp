@@ -21,11 +21,11 @@ SimulationWorkspace::SimulationWorkspace(const model::Model& model)
 
 void SimulationWorkspace::ComputeScales() {
   const model::Model& model = model_;
-  gap_bound_ = ModalGapBound();
+  gap_bound_.Clear();
   omega_max_radps_ = omega_min_radps_ = 0.0;
   length_scale_m_ = 1.0;
   if (flow_.modal()) {
-    gap_bound_ = ModalGapBound(model, flow_.modal_flow());
+    gap_bound_.Assign(model, flow_.modal_flow());
     // The modal flow's w_k^2 are the eigenvalues below, clamped at 0: one solve, same bits.
     const Eigen::VectorXd& w2 = flow_.modal_flow().w2();
     omega_max_radps_ = std::sqrt(w2.maxCoeff());

@@ -228,5 +228,65 @@ TEST(GapBound, DoesNotApplyToAJointBetweenBodiesOrNegativeDamping) {
   EXPECT_FALSE(ModalGapBound(spans, spans_flow.modal_flow()).applies());
 }
 
+// One bound assigned model after model (a deck, the same deck with negative damping, two spans,
+// the deck again) holds each time what the definition gives for that model alone: the weights
+// W_ck = |n_x Phi_xk + n_y Phi_yk| + |n| |p| |Phi_theta,k| and w_k = sqrt(w_k^2) bit for bit
+// where the bound applies, nothing where it does not.
+TEST(GapBound, AnAssignedBoundIsTheDefinitionOfEachModelInTurn) {
+  const model::Model deck = testing::EccentricDeck(0.05);
+  model::MultiSpanSpec spec;
+  spec.n_spans = 2;
+  spec.span_lengths_m = {30.0};
+  spec.width_m = 12.0;
+  spec.skew_rad = 0.5;
+  spec.mass_per_length_kgpm = 5e4;
+  spec.w0x_radps = spec.w0y_radps = spec.W0_radps = 20.0;
+  spec.abutment_gap_m = spec.joint_gap_m = 0.05;
+  const model::Model spans = model::BuildMultiSpanBridge(spec);
+  const LinearFlow deck_flow(deck.M(), deck.K(), deck.C(), deck.r());
+  const LinearFlow source_flow(deck.M(), deck.K(), -deck.C(), deck.r());
+  const LinearFlow spans_flow(spans.M(), spans.K(), spans.C(), spans.r());
+  struct Case {
+    const model::Model& model;
+    const LinearFlow& flow;
+    bool applies;
+  };
+  const Case cases[] = {{deck, deck_flow, true},
+                        {deck, source_flow, false},
+                        {spans, spans_flow, false},
+                        {deck, deck_flow, true}};
+  ModalGapBound bound;
+  for (const Case& c : cases) {
+    bound.Assign(c.model, c.flow.modal_flow());
+    const ModalFlow& modal = c.flow.modal_flow();
+    ASSERT_EQ(bound.applies(), c.applies);
+    if (!c.applies) {
+      EXPECT_TRUE(bound.weights.empty());
+      continue;
+    }
+    const int n = modal.n_modes();
+    ASSERT_EQ(bound.n_modes, n);
+    ASSERT_EQ(bound.n_contacts, c.model.n_contacts());
+    ASSERT_EQ(bound.weights.size(), static_cast<std::size_t>(n * c.model.n_contacts()));
+    for (int k = 0; k < n; ++k) {
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(bound.w_radps[static_cast<std::size_t>(k)]),
+                std::bit_cast<std::uint64_t>(std::sqrt(modal.w2()[k])));
+    }
+    const Eigen::MatrixXd& Phi = modal.Phi();
+    for (int j = 0; j < c.model.n_contacts(); ++j) {
+      const model::Contact& contact = c.model.contact(j);
+      const Eigen::Vector2d& nrm = contact.face.normal;
+      const int r = 3 * contact.body;
+      for (int k = 0; k < n; ++k) {
+        const double expected = std::abs(nrm.x() * Phi(r, k) + nrm.y() * Phi(r + 1, k)) +
+                                nrm.norm() * contact.point_m.norm() * std::abs(Phi(r + 2, k));
+        EXPECT_EQ(std::bit_cast<std::uint64_t>(bound.weights[static_cast<std::size_t>(j * n + k)]),
+                  std::bit_cast<std::uint64_t>(expected))
+            << "contact " << j << " mode " << k;
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace skewbridge::dynamics::gap_bound_test
