@@ -223,9 +223,10 @@ PointRun MakePointRun(const DimensionalPoint& point, const Excitation& excitatio
 
 PointResult EvaluatePoint(const DimensionalPoint& point, const Excitation& excitation,
                           const dynamics::RunPolicies& policies) {
-  const model::Model model = model::BuildDeckModel(point.deck, "point");
+  model::Model model = model::BuildDeckModel(point.deck, "point");
   const model::RunControl control = PointControl(point, excitation, model::LowestFrequency(model));
-  const dynamics::RunResult run = dynamics::Run(model, excitation, control, policies);
+  // Moved into the thread's reused workspace: the model is not needed after the run.
+  const dynamics::RunResult run = dynamics::Run(std::move(model), excitation, control, policies);
 
   PointResult r;
   r.status = run.status;

@@ -30,12 +30,29 @@ class RunReuse {
                 const model::RunControl& control, const RunPolicies& policies = {},
                 const InitialState& initial = {});
 
+  /// Run with `model` moved into the workspace's storage instead of copied: the same results.
+  RunResult Run(model::Model&& model, const Excitation& excitation,
+                const model::RunControl& control, const RunPolicies& policies = {},
+                const InitialState& initial = {});
+
   /// The workspace fitted to a copy of `model` (model() afterwards), for a caller's own Simulate.
   SimulationWorkspace& Fit(const model::Model& model);
+  /// Fit with `model` moved in: its values, without copying its matrices.
+  SimulationWorkspace& Fit(model::Model&& model);
   /// The copy of the model the workspace refers to. @pre Fit was called.
   const model::Model& model() const { return *model_; }
 
  private:
+  // Fit's work for a model given by const reference (copied) or by rvalue (moved).
+  template <class ModelArg>
+  SimulationWorkspace& FitFrom(ModelArg&& model);
+  // Simulate of model() in the fitted workspace, or of `model` in one of its own when a run is
+  // under way.
+  template <class ModelArg>
+  RunResult RunFrom(ModelArg&& model, const Excitation& excitation,
+                    const model::RunControl& control, const RunPolicies& policies,
+                    const InitialState& initial);
+
   std::optional<model::Model> model_;
   std::unique_ptr<SimulationWorkspace> workspace_;
   bool busy_ = false;  // a Run is under way
@@ -49,5 +66,10 @@ class RunReuse {
 RunResult Run(const model::Model& model, const Excitation& excitation,
               const model::RunControl& control, const RunPolicies& policies = {},
               const InitialState& initial = {});
+
+/// Run with `model` moved into the thread's reused workspace (event-driven) instead of copied:
+/// the same results. A caller that needs the model no longer (a sweep's cell) passes it so.
+RunResult Run(model::Model&& model, const Excitation& excitation, const model::RunControl& control,
+              const RunPolicies& policies = {}, const InitialState& initial = {});
 
 }  // namespace skewbridge::dynamics

@@ -114,6 +114,20 @@ TEST(RunReuse, RefittedWorkspaceGivesTheBitsOfANewOneOverShapesInOrderAndShuffle
     testing::ExpectSameRunBits(dynamics::Run(models[static_cast<std::size_t>(i)], pulse, control),
                                fresh[static_cast<std::size_t>(i)]);
   }
+  // A model moved into the workspace (a sweep's cell) instead of copied, in both entries.
+  for (int i : shuffled) {
+    SCOPED_TRACE(i);
+    model::Model copy = models[static_cast<std::size_t>(i)];
+    testing::ExpectSameRunBits(dynamics::Run(std::move(copy), pulse, control),
+                               fresh[static_cast<std::size_t>(i)]);
+  }
+  RunReuse moved;
+  for (int i : shuffled) {
+    SCOPED_TRACE(i);
+    model::Model copy = models[static_cast<std::size_t>(i)];
+    testing::ExpectSameRunBits(moved.Run(std::move(copy), pulse, control),
+                               fresh[static_cast<std::size_t>(i)]);
+  }
 }
 
 // The workspace checks a policy once for runs that bring the same bytes: a policy outside its
