@@ -187,18 +187,20 @@ Eigen::MatrixXd ClassicalDamping(const Eigen::Ref<const Eigen::MatrixXd>& M, con
 std::vector<Contact> AbutmentContacts(const Body& body, int body_index, AbutmentSet set,
                                       double gap_plus_m, double gap_minus_m, double restitution,
                                       double friction) {
-  std::vector<Contact> contacts;
+  const int count = set == AbutmentSet::kBoth ? 4 : 2;
+  std::vector<Contact> contacts(static_cast<std::size_t>(count));
   const Face plus = PlusXAbutmentFace(body.geometry, gap_plus_m);
-  const Face minus = MinusXAbutmentFace(body.geometry, gap_minus_m);
-  for (int k = 1; k <= (set == AbutmentSet::kBoth ? 4 : 2); ++k) {
-    Contact c;
-    c.name = std::string("P").append(std::to_string(k));
+  // The -x face only for the contacts that strike it (a sweep builds a deck per cell).
+  const Face minus = count > 2 ? MinusXAbutmentFace(body.geometry, gap_minus_m) : Face{};
+  constexpr const char* kNames[] = {"P1", "P2", "P3", "P4"};
+  for (int k = 1; k <= count; ++k) {
+    Contact& c = contacts[static_cast<std::size_t>(k - 1)];
+    c.name = kNames[k - 1];
     c.body = body_index;
     c.point_m = Corner(body.geometry, k);
     c.face = k <= 2 ? plus : minus;
     c.restitution = restitution;
     c.friction = friction;
-    contacts.push_back(c);
   }
   return contacts;
 }
