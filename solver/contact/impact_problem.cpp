@@ -75,6 +75,11 @@ ImpactProblem::ImpactProblem(const model::Model& model, lcp::LemkeOptions option
 }
 
 void ImpactProblem::SetPolicy(const ContactPolicy& policy) {
+  // The policy held was checked when it was set (the default is within its ranges), so the same
+  // bytes again, as every run of a sweep brings, need no second check.
+  if (SameBytes(policy, policy_)) {
+    return;
+  }
   CheckContactPolicy(policy);
   policy_ = policy;
 }

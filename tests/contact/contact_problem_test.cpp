@@ -9,6 +9,7 @@
 #include <cmath>
 #include <vector>
 
+#include "solver/contact/impact_problem.h"
 #include "tests/contact/test_models.h"
 
 namespace skewbridge::contact {
@@ -191,6 +192,31 @@ TEST(ContactProblem, TieToleranceDecidesBetweenStayingClosedAndDetaching) {
     EXPECT_EQ(res.lambda_N(0), 0.0);
     EXPECT_NEAR(res.gammadot_N(0), separation, 1e-6 * separation);
   }
+}
+
+TEST(ContactPolicy, DefaultIsWithinItsRanges) {
+  // The problems start from ContactPolicy{} unchecked: it must pass the check SetPolicy makes.
+  EXPECT_FALSE(schema::FirstViolation(ContactPolicy{}).has_value());
+}
+
+TEST(ContactPolicy, SetPolicyChecksEveryPolicyOtherThanTheOneHeld) {
+  // Both problems skip the check for the bytes they hold: a policy out of range still aborts
+  // after the same valid policy was set twice.
+  Resting r = RestingDeck(30.0, 1.2, 0.0);
+  ContactProblem problem(r.model);
+  ImpactProblem impact(r.model);
+  ContactPolicy good;
+  good.tie_tolerance = 2e-9;
+  for (int i = 0; i < 2; ++i) {
+    problem.SetPolicy(good);
+    impact.SetPolicy(good);
+  }
+  ContactPolicy bad = good;
+  bad.impact_compliance = -1.0;
+  EXPECT_DEATH(problem.SetPolicy(bad), "ContactPolicy: impact_compliance");
+  EXPECT_DEATH(impact.SetPolicy(bad), "ContactPolicy: impact_compliance");
+  EXPECT_TRUE(SameBytes(good, good));
+  EXPECT_FALSE(SameBytes(good, bad));
 }
 
 TEST(ContactProblem, NoClosedContactGivesTheFreeAcceleration) {
