@@ -25,4 +25,15 @@ LcpCheck CheckSolution(const Eigen::Ref<const Eigen::MatrixXd>& M,
                        const Eigen::Ref<const Eigen::VectorXd>& q,
                        const Eigen::Ref<const Eigen::VectorXd>& z, double tolerance);
 
+/// CheckSolution of a problem known to be finite, given its max|M| and max|q| (as
+/// M.cwiseAbs().maxCoeff() and q.cwiseAbs().maxCoeff() give them): the same result without
+/// reading M and q for their finiteness and sizes again. For a solver that has checked and
+/// measured its input (LemkeSolver::Solve).
+/// @pre as CheckSolution (SB_DEMAND); M and q finite, max_abs_M and max_abs_q their largest
+/// magnitudes.
+LcpCheck CheckSolutionOfFinite(const Eigen::Ref<const Eigen::MatrixXd>& M,
+                               const Eigen::Ref<const Eigen::VectorXd>& q,
+                               const Eigen::Ref<const Eigen::VectorXd>& z, double max_abs_M,
+                               double max_abs_q, double tolerance);
+
 }  // namespace skewbridge::lcp

@@ -262,8 +262,10 @@ LcpStatus LemkeSolver::Solve(const Eigen::Ref<const Eigen::MatrixXd>& M,
   // by powers of two changes no mantissa, so the pivots follow the same path for any units.
   // q is scaled by ldexp rather than by 1 / s_q, which overflows when q is subnormal (a q of
   // rounding residue only, as for a deck at rest).
-  const double inv_s_m = TwoToThe(-ExponentAtLeast(M.cwiseAbs().maxCoeff()));
-  const int q_exponent = ExponentAtLeast(q.cwiseAbs().maxCoeff());
+  const double max_abs_M = M.cwiseAbs().maxCoeff();
+  const double max_abs_q = q.cwiseAbs().maxCoeff();
+  const double inv_s_m = TwoToThe(-ExponentAtLeast(max_abs_M));
+  const int q_exponent = ExponentAtLeast(max_abs_q);
   const PowerOfTwo to_scaled(-q_exponent), from_scaled(q_exponent);
   // Entries of q' within twice the pivot tolerance of zero are zero to the solver. The first
   // pivot's tie test (tolerance tol (1 + |min q'|)) cannot tell them from 0: a tiny negative
@@ -283,8 +285,9 @@ LcpStatus LemkeSolver::Solve(const Eigen::Ref<const Eigen::MatrixXd>& M,
     const double min_q = q.minCoeff();
     if (min_q < 0.0) {  // only snapped entries are negative
       solution.complementarity = -min_q;
-      solution.worst_violation =
-          CheckSolution(M, q, solution.z, options_.acceptance_tolerance).worst_violation;
+      solution.worst_violation = CheckSolutionOfFinite(M, q, solution.z, max_abs_M, max_abs_q,
+                                                       options_.acceptance_tolerance)
+                                     .worst_violation;
     }
     solution.status = LcpStatus::kSolved;
     return solution.status;
@@ -403,7 +406,9 @@ LcpStatus LemkeSolver::Solve(const Eigen::Ref<const Eigen::MatrixXd>& M,
   solution.w.noalias() = M * solution.z;
   solution.w += q;
   solution.complementarity = solution.z.cwiseMin(solution.w).cwiseAbs().maxCoeff();
-  const LcpCheck check = CheckSolution(M, q, solution.z, options_.acceptance_tolerance);
+  // (M, q) passed WellFormed and were measured above: the check need not read them again.
+  const LcpCheck check =
+      CheckSolutionOfFinite(M, q, solution.z, max_abs_M, max_abs_q, options_.acceptance_tolerance);
   solution.worst_violation = check.worst_violation;
   if (!check.is_solution) {
     status = LcpStatus::kInaccurate;

@@ -1,7 +1,10 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
+#include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <random>
 #include <utility>
@@ -541,6 +544,45 @@ TEST(CheckSolution, MeasuresEachViolationOnItsOwnScale) {
   VectorXd nan_z = VectorXd::Zero(2);
   nan_z(0) = std::numeric_limits<double>::quiet_NaN();
   EXPECT_FALSE(CheckSolution(M, q, nan_z, 1.0).is_solution);
+}
+
+TEST(CheckSolution, IsItsDefinitionRowByRowBitForBit) {
+  // The definition of the header evaluated row by row, w_i = q_i + M_i0 z_0 + M_i1 z_1 + ...,
+  // against CheckSolution (which sums blocks of rows column by column) and CheckSolutionOfFinite
+  // (given max|M| and max|q|): the same bits for random problems of 1 to 40 unknowns (more than
+  // one block of rows), with negative, zero and complementarity violations.
+  std::mt19937_64 rng(77);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (int trial = 0; trial < 400; ++trial) {
+    const Eigen::Index n = 1 + trial % 40;
+    const MatrixXd M = MatrixXd::NullaryExpr(n, n, [&] { return unit(rng); });
+    const VectorXd q = VectorXd::NullaryExpr(n, [&] { return unit(rng); });
+    VectorXd z = VectorXd::NullaryExpr(n, [&] { return unit(rng); });
+    z = z.cwiseMax(trial % 2 == 0 ? 0.0 : -0.1);
+    const double max_z = z.cwiseAbs().maxCoeff();
+    const double s_z = max_z > 0.0 ? max_z : 1.0;
+    const double s_w_raw = M.cwiseAbs().maxCoeff() * max_z + q.cwiseAbs().maxCoeff();
+    const double s_w = s_w_raw > 0.0 ? s_w_raw : 1.0;
+    double worst = 0.0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      double w_i = q(i);
+      for (Eigen::Index j = 0; j < n; ++j) w_i += M(i, j) * z(j);
+      worst = std::max(worst, -z(i) / s_z);
+      worst = std::max(worst, -w_i / s_w);
+      worst = std::max(worst, std::abs(z(i) * w_i) / (s_z * s_w));
+    }
+    const LcpCheck check = CheckSolution(M, q, z, 1e-3);
+    const LcpCheck given =
+        CheckSolutionOfFinite(M, q, z, M.cwiseAbs().maxCoeff(), q.cwiseAbs().maxCoeff(), 1e-3);
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(check.worst_violation),
+              std::bit_cast<std::uint64_t>(worst))
+        << "n " << n;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(given.worst_violation),
+              std::bit_cast<std::uint64_t>(worst))
+        << "n " << n;
+    EXPECT_EQ(check.is_solution, worst <= 1e-3);
+    EXPECT_EQ(given.is_solution, worst <= 1e-3);
+  }
 }
 
 }  // namespace
