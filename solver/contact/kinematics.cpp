@@ -265,10 +265,61 @@ void EvaluateOne(const model::Model& model, int c, const Eigen::Ref<const Eigen:
 
 }  // namespace
 
+namespace {
+
+// EvaluateOne of a single deck's contact against a ground face, given the deck's cos(theta) and
+// sin(theta): Compute's, JacobiansAt's and VelocityTermsAt's operations in their order on
+// scalars (R p = (c p_x - s p_y, s p_x + c p_y) as RotatedArm; the same bits).
+void EvaluateDeckCorner(const model::Model& model, int c, double cos_theta, double sin_theta,
+                        const double* q, const double* u, ContactKinematics& out) {
+  const model::Contact& contact = model.contact(c);
+  const Eigen::Vector2d& X = model.body(0).rest_position_m;
+  const Eigen::Vector2d& p = contact.point_m;
+  const Eigen::Vector2d& n = contact.face.normal;
+  const Eigen::Vector2d& t = contact.face.tangent;
+  const Eigen::Vector2d& A = contact.face.point_m;
+  const double arm_x = cos_theta * p.x() - sin_theta * p.y();
+  const double arm_y = sin_theta * p.x() + cos_theta * p.y();
+  const double P_x = (X.x() + q[0]) + arm_x;
+  const double P_y = (X.y() + q[1]) + arm_y;
+  out.gap_m(c) = n.x() * (P_x - A.x()) + n.y() * (P_y - A.y());
+  // w = (n, n . J arm), J arm = (-arm_y, arm_x).
+  double* w_N = out.W_N.col(c).data();
+  double* w_T = out.W_T.col(c).data();
+  w_N[0] = n.x();
+  w_N[1] = n.y();
+  w_N[2] = n.x() * -arm_y + n.y() * arm_x;
+  w_T[0] = t.x();
+  w_T[1] = t.y();
+  w_T[2] = t.x() * -arm_y + t.y() * arm_x;
+  out.gamma_N(c) = (w_N[0] * u[0] + w_N[1] * u[1]) + w_N[2] * u[2];
+  out.gamma_T(c) = (w_T[0] * u[0] + w_T[1] * u[1]) + w_T[2] * u[2];
+  // The centripetal term -thetadot^2 R p.
+  const double square = -u[2] * u[2];
+  const double centripetal_x = square * arm_x;
+  const double centripetal_y = square * arm_y;
+  out.what_N(c) = n.x() * centripetal_x + n.y() * centripetal_y;
+  out.what_T(c) = t.x() * centripetal_x + t.y() * centripetal_y;
+}
+
+}  // namespace
+
 void Evaluate(const model::Model& model, const Eigen::Ref<const Eigen::VectorXd>& q,
               const Eigen::Ref<const Eigen::VectorXd>& u, ContactKinematics& out) {
   SB_ASSERT(out.W_N.rows() == model.n_dof() && out.W_N.cols() == model.n_contacts(),
             "ContactKinematics not sized for this model");
+  if (model.n_bodies() == 1) {
+    // A single deck: one rotation for its contacts, a ground face's on scalars.
+    const Eigen::Matrix2d R = Rotation(q(2));
+    for (int c = 0; c < model.n_contacts(); ++c) {
+      if (model.contact(c).face.body == model::kGround) {
+        EvaluateDeckCorner(model, c, R(0, 0), R(1, 0), q.data(), u.data(), out);
+      } else {
+        EvaluateOne(model, c, q, u, out);
+      }
+    }
+    return;
+  }
   for (int c = 0; c < model.n_contacts(); ++c) {
     EvaluateOne(model, c, q, u, out);
   }

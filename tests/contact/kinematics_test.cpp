@@ -232,6 +232,45 @@ TEST(ContactKinematics, EvaluateContactsRefillsTheListedContactsOnly) {
   }
 }
 
+TEST(ContactKinematics, EvaluateOfASingleDeckIsTheBitsOfEachContactsEvaluation) {
+  // Evaluate takes a single deck's corners together (one rotation, scalar sums); EvaluateContacts
+  // evaluates each contact alone through its geometry, Jacobians and velocity terms. Every field
+  // is the same bits, zeros' signs included, at random states and at rest.
+  std::mt19937_64 rng(44);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (const model::Model& deck :
+       {testing::FreeDeck(30.0, 2.0, 20.0, 0.04, 0.5, 0.0, model::AbutmentSet::kPlusX),
+        testing::FreeDeck(65.0, 1.3, 89.14, 0.03, 0.5, 0.3, model::AbutmentSet::kBoth)}) {
+    ContactKinematics together, alone;
+    together.Resize(deck);
+    alone.Resize(deck);
+    std::vector<int> all(static_cast<std::size_t>(deck.n_contacts()));
+    for (int c = 0; c < deck.n_contacts(); ++c) all[static_cast<std::size_t>(c)] = c;
+    const auto bits = [](double x) { return std::bit_cast<std::uint64_t>(x); };
+    for (int trial = 0; trial < 300; ++trial) {
+      Eigen::Vector3d q(0.5 * unit(rng), 0.5 * unit(rng), 0.3 * unit(rng));
+      Eigen::Vector3d u(3.0 * unit(rng), 3.0 * unit(rng), unit(rng));
+      if (trial % 10 == 0) {
+        q << -0.0, 0.0, trial % 20 == 0 ? -0.0 : 0.0;
+        u(trial % 3) = -0.0;
+      }
+      Evaluate(deck, q, u, together);
+      EvaluateContacts(deck, q, u, all, alone);
+      for (int c = 0; c < deck.n_contacts(); ++c) {
+        EXPECT_EQ(bits(together.gap_m[c]), bits(alone.gap_m[c])) << c << " trial " << trial;
+        EXPECT_EQ(bits(together.gamma_N[c]), bits(alone.gamma_N[c])) << c << " trial " << trial;
+        EXPECT_EQ(bits(together.gamma_T[c]), bits(alone.gamma_T[c])) << c << " trial " << trial;
+        EXPECT_EQ(bits(together.what_N[c]), bits(alone.what_N[c])) << c << " trial " << trial;
+        EXPECT_EQ(bits(together.what_T[c]), bits(alone.what_T[c])) << c << " trial " << trial;
+        for (int i = 0; i < 3; ++i) {
+          EXPECT_EQ(bits(together.W_N(i, c)), bits(alone.W_N(i, c))) << c << " trial " << trial;
+          EXPECT_EQ(bits(together.W_T(i, c)), bits(alone.W_T(i, c))) << c << " trial " << trial;
+        }
+      }
+    }
+  }
+}
+
 // GapsAndRates against Gap, NormalRate and Evaluate, bit for bit, at random states: a single deck
 // (its own path, from the corners' data copied by Resize, with and without a rest position off
 // the origin) and two decks with a face on a body (the general path, whose rate sums the whole
