@@ -60,7 +60,10 @@ bool SolveSingleImpact(double G_nn, double G_nt, double G_tt, double mu, double 
 
 ImpactProblem::ImpactProblem(const model::Model& model, lcp::LemkeOptions options,
                              Assembly assembly)
-    : model_(model), solver_(options), sparse_(UsesSparseAssembly(model, assembly)) {
+    : model_(model),
+      solver_(options),
+      sparse_(UsesSparseAssembly(model, assembly)),
+      pairs_(assembly == Assembly::kAuto && model.n_dof() == 3) {
   const int n = model.n_dof();
   const int nc = model.n_contacts();
   WN_.setZero(n, nc);
@@ -119,7 +122,6 @@ lcp::LcpStatus ImpactProblem::Solve(const ContactKinematics& kinematics,
   result.Lambda_N.head(k).setZero();
   result.Lambda_T.head(k).setZero();
 
-  const Eigen::VectorXd& Minv = model_.inverse_mass_diagonal();
   for (int j = 0; j < k; ++j) {
     const int c = index_set[static_cast<std::size_t>(j)];
     SB_ASSERT(c >= 0 && c < model_.n_contacts(), "contact index out of range");
@@ -141,6 +143,21 @@ lcp::LcpStatus ImpactProblem::Solve(const ContactKinematics& kinematics,
   if (k == 1 && SolveOne(result)) {
     return result.status;
   }
+  // Two contacts of a single deck (a deck against one face at two corners, or one corner at each
+  // abutment): the general path's operations in fixed size.
+  const bool pair = k == 2 && pairs_;
+  if (pair) {
+    AssemblePair(u_A, result);
+  } else {
+    AssembleGeneral(u_A, index_set, result);
+  }
+  return SolveAssembled(pair, result);
+}
+
+void ImpactProblem::AssembleGeneral(const Eigen::Ref<const Eigen::VectorXd>& u_A,
+                                    std::span<const int> index_set, ImpactResult& result) {
+  const int k = k_;
+  const Eigen::VectorXd& Minv = model_.inverse_mass_diagonal();
   auto WN = WN_.leftCols(k);
   auto WT = WT_.leftCols(k);
   MinvWN_.leftCols(k).noalias() = Minv.asDiagonal() * WN;
@@ -175,6 +192,65 @@ lcp::LcpStatus ImpactProblem::Solve(const ContactKinematics& kinematics,
   b.head(k) = (1.0 + eps.array()) * result.gamma_N_A.head(k).array();
   b.segment(k, k).noalias() = WT.transpose() * u_A;
   b.tail(k).setZero();
+}
+
+void ImpactProblem::AssemblePair(const Eigen::Ref<const Eigen::VectorXd>& u_A,
+                                 ImpactResult& result) {
+  // Entry by entry what AssembleGeneral's Eigen expressions compute at k = 2, n_dof = 3: a
+  // Delassus entry is the dot product (w_0 m_0 + w_1 m_1) + w_2 m_2 (the lazy product's sum),
+  // a product by a vector 0 + ((w_0 u_0 + w_1 u_1) + w_2 u_2) (the matrix-vector kernel's sum
+  // from zero added to a zeroed result), and the friction columns are taken off as
+  // G_nn - G_nt mu. tests/contact/impact_test.cpp holds both paths to the same bits.
+  const double* inv_m = model_.inverse_mass_diagonal().data();
+  const double* w_n = WN_.data();  // column j at w_n + 3 j
+  const double* w_t = WT_.data();
+  double* m_n = MinvWN_.data();
+  double* m_t = MinvWT_.data();
+  for (int j = 0; j < 2; ++j) {
+    for (int i = 0; i < 3; ++i) {
+      m_n[3 * j + i] = inv_m[i] * w_n[3 * j + i];
+      m_t[3 * j + i] = inv_m[i] * w_t[3 * j + i];
+    }
+  }
+  const auto dot = [](const double* x, const double* y) {
+    return (x[0] * y[0] + x[1] * y[1]) + x[2] * y[2];
+  };
+  const double mu[2] = {mu_(0), mu_(1)};
+  double* a = A_.data();
+  const Eigen::Index ld = A_.outerStride();
+  for (int s = 0; s < 6; ++s) {
+    for (int r = 0; r < 6; ++r) a[s * ld + r] = 0.0;
+  }
+  for (int r = 0; r < 2; ++r) {
+    for (int s = 0; s < 2; ++s) {
+      const double G_nn = dot(w_n + 3 * r, m_n + 3 * s);
+      const double G_nt = dot(w_n + 3 * r, m_t + 3 * s);
+      const double G_tn = dot(w_t + 3 * r, m_n + 3 * s);
+      const double G_tt = dot(w_t + 3 * r, m_t + 3 * s);
+      a[s * ld + r] = G_nn - G_nt * mu[s];
+      a[(2 + s) * ld + r] = G_nt;
+      a[s * ld + 2 + r] = G_tn - G_tt * mu[s];
+      a[(2 + s) * ld + 2 + r] = G_tt;
+    }
+  }
+  for (int j = 0; j < 2; ++j) {
+    a[(4 + j) * ld + 2 + j] = 1.0;
+    a[j * ld + 4 + j] = 2.0 * mu[j];
+    a[(2 + j) * ld + 4 + j] = -1.0;
+  }
+  const double* u = u_A.data();
+  double* b = b_.data();
+  for (int j = 0; j < 2; ++j) {
+    b[j] = (1.0 + eps_(j)) * result.gamma_N_A(j);
+    b[2 + j] = 0.0 + dot(w_t + 3 * j, u);
+    b[4 + j] = 0.0;
+  }
+}
+
+lcp::LcpStatus ImpactProblem::SolveAssembled(bool pair, ImpactResult& result) {
+  const int k = k_;
+  auto A = A_.topLeftCorner(3 * k, 3 * k);
+  auto b = b_.head(3 * k);
 
   result.status = solver_.Solve(A, b, solutions_[static_cast<std::size_t>(A.rows())]);
   if (result.status != lcp::LcpStatus::kSolved && 3 * k <= policy_.enumeration_unknowns) {
@@ -208,11 +284,44 @@ lcp::LcpStatus ImpactProblem::Solve(const ContactKinematics& kinematics,
     return result.status;
   }
   // Lambda_T = Lambda_R - mu Lambda_N; u_E = u_A + M^-1 (W_N Lambda_N + W_T Lambda_T).
+  auto mu = mu_.head(k);
   result.Lambda_N.head(k) = solution.z.head(k);
   result.Lambda_T.head(k) =
       solution.z.segment(k, k).array() - mu.array() * solution.z.head(k).array();
-  result.u_E.noalias() += MinvWN * result.Lambda_N.head(k);
-  result.u_E.noalias() += MinvWT * result.Lambda_T.head(k);
+  if (pair) {
+    // The matrix-vector kernel's sums as in AssemblePair: each row of M^-1 W Lambda from zero,
+    // then added to u_E; gamma_E = 0 + w^T u_E.
+    const double* m_n = MinvWN_.data();
+    const double* m_t = MinvWT_.data();
+    const double L_n[2] = {result.Lambda_N(0), result.Lambda_N(1)};
+    const double L_t[2] = {result.Lambda_T(0), result.Lambda_T(1)};
+    double* u = result.u_E.data();
+    for (int i = 0; i < 3; ++i) {
+      double c = 0.0;
+      c += m_n[i] * L_n[0];
+      c += m_n[3 + i] * L_n[1];
+      u[i] += c;
+    }
+    for (int i = 0; i < 3; ++i) {
+      double c = 0.0;
+      c += m_t[i] * L_t[0];
+      c += m_t[3 + i] * L_t[1];
+      u[i] += c;
+    }
+    const double* w_n = WN_.data();
+    const double* w_t = WT_.data();
+    for (int j = 0; j < 2; ++j) {
+      const double* wn = w_n + 3 * j;
+      const double* wt = w_t + 3 * j;
+      result.gamma_N_E(j) = 0.0 + ((wn[0] * u[0] + wn[1] * u[1]) + wn[2] * u[2]);
+      result.gamma_T_E(j) = 0.0 + ((wt[0] * u[0] + wt[1] * u[1]) + wt[2] * u[2]);
+    }
+    return result.status;
+  }
+  auto WN = WN_.leftCols(k);
+  auto WT = WT_.leftCols(k);
+  result.u_E.noalias() += MinvWN_.leftCols(k) * result.Lambda_N.head(k);
+  result.u_E.noalias() += MinvWT_.leftCols(k) * result.Lambda_T.head(k);
   result.gamma_N_E.head(k).noalias() = WN.transpose() * result.u_E;
   result.gamma_T_E.head(k).noalias() = WT.transpose() * result.u_E;
   return result.status;

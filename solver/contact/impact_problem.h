@@ -50,7 +50,8 @@ struct ImpactResult {
 class ImpactProblem {
  public:
   /// Sizes the workspace for up to model.n_contacts() contacts. Keeps a reference to `model`.
-  /// `assembly` chooses how W^T M^-1 W is formed (solver/contact/delassus.h).
+  /// `assembly` chooses how W^T M^-1 W is formed (solver/contact/delassus.h); kAuto forms a
+  /// single deck's two-contact problems by fixed-size sums, the bits of kDense's products.
   explicit ImpactProblem(const model::Model& model, lcp::LemkeOptions options = {},
                          Assembly assembly = Assembly::kAuto);
 
@@ -84,6 +85,15 @@ class ImpactProblem {
   // One contact in closed form (the index set's columns, mu_, eps_ and result.gamma_N_A set);
   // false where Lemke must decide.
   bool SolveOne(ImpactResult& result);
+  // A_, b_ and M^-1 W of the k_ contacts by Eigen's products (dense or sparse), and the same
+  // bits for two contacts of a single deck by fixed-size sums (the index set's columns, mu_,
+  // eps_ and result.gamma_N_A set).
+  void AssembleGeneral(const Eigen::Ref<const Eigen::VectorXd>& u_A, std::span<const int> index_set,
+                       ImpactResult& result);
+  void AssemblePair(const Eigen::Ref<const Eigen::VectorXd>& u_A, ImpactResult& result);
+  // Lemke (then the enumeration, then the compliance) on the assembled problem, and the
+  // impulses and post-impact velocities from its solution; `pair` as AssemblePair.
+  lcp::LcpStatus SolveAssembled(bool pair, ImpactResult& result);
 
   const model::Model& model_;
   ContactPolicy policy_;
@@ -93,6 +103,7 @@ class ImpactProblem {
   std::vector<lcp::LcpSolution> solutions_;
   int k_ = 0;
   bool sparse_ = false;              // UsesSparseAssembly
+  bool pairs_ = false;               // kAuto on a single deck: two contacts by AssemblePair
   Eigen::MatrixXd WN_, WT_;          // n_dof x k columns of the index set
   Eigen::MatrixXd MinvWN_, MinvWT_;  // M^-1 W_N, M^-1 W_T
   Eigen::VectorXd mu_, eps_;         // per index-set entry
