@@ -506,6 +506,27 @@ void FreeDenseOutput::ModalAt(double tau_s, bool velocities) {
   }
 }
 
+void FreeDenseOutput::DeckSeriesAt(double tau_s, bool velocities) const {
+  const Eigen::Index stride = modal_coefficients_.rows();
+  const double* c = modal_coefficients_.data();
+  double* h = series_.data();
+  const double* const ce[3] = {c, c + stride, c + 2 * stride};
+  const double* const cd[3] = {c + 3 * stride, c + 4 * stride, c + 5 * stride};
+  const int t[3] = {mode_terms_[0], mode_terms_[1], mode_terms_[2]};
+  if (!velocities || series_tau_s_[1] == tau_s) {
+    // eta's series alone are missing.
+    Horner3(ce, t, tau_s, h);
+    series_tau_s_[0] = tau_s;
+  } else if (series_tau_s_[0] == tau_s) {
+    // eta''s alone.
+    Horner3(cd, t, tau_s, h + 3);
+    series_tau_s_[1] = tau_s;
+  } else {
+    HornerPairs<3>(ce, cd, t, tau_s, h, h + 3);
+    series_tau_s_[0] = series_tau_s_[1] = tau_s;
+  }
+}
+
 void FreeDenseOutput::GeneratorAt(double tau_s, Eigen::Ref<Eigen::VectorXd> z) const {
   const int ia = 2 * n_;
   z.segment<2>(ia) = generator_.segment<2>(0) + tau_s * generator_.segment<2>(2);
@@ -517,6 +538,11 @@ void FreeDenseOutput::GeneratorAt(double tau_s, Eigen::Ref<Eigen::VectorXd> z) c
 
 void FreeDenseOutput::Evaluate(double tau_s, Eigen::Ref<Eigen::VectorXd> z) {
   if (modal_) {
+    if (n_ == 3) {
+      DeckHead(tau_s, 6, z.data());
+      GeneratorAt(tau_s, z);
+      return;
+    }
     ModalAt(tau_s, true);
     ModalProduct(flow_->modal_flow().Phi(), n_, eta_.data(), deta_.data(), z.data(), z.data() + n_);
     GeneratorAt(tau_s, z);
@@ -528,6 +554,10 @@ void FreeDenseOutput::Evaluate(double tau_s, Eigen::Ref<Eigen::VectorXd> z) {
 void FreeDenseOutput::EvaluateHead(double tau_s, int count, Eigen::Ref<Eigen::VectorXd> z) {
   SB_ASSERT(count <= n_aug_ && z.size() >= count, "FreeDenseOutput: bad count");
   if (modal_) {
+    if (n_ == 3 && count <= 6) {
+      DeckHead(tau_s, count, z.data());
+      return;
+    }
     const Eigen::MatrixXd& Phi = flow_->modal_flow().Phi();
     if (count > 2 * n_) {
       Evaluate(tau_s, z_scratch_);

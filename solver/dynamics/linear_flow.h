@@ -369,7 +369,9 @@ class FreeDenseOutput {
   /// z(tau) (s since the step start).
   void Evaluate(double tau_s, Eigen::Ref<Eigen::VectorXd> z);
 
-  /// The first `count` components of z(tau) (the rest of z untouched).
+  /// The first `count` components of z(tau) (the rest of z untouched). A deck's three modes
+  /// share the modes' series summed at tau with EvaluateComponent: positions sum eta's series
+  /// alone, and a read at an instant whose halves are summed already sums nothing.
   /// @pre count <= the augmented size, z.size() >= count.
   void EvaluateHead(double tau_s, int count, Eigen::Ref<Eigen::VectorXd> z);
 
@@ -412,6 +414,41 @@ class FreeDenseOutput {
     return x;
   }
   void GeneratorAt(double tau_s, Eigen::Ref<Eigen::VectorXd> z) const;
+  // Three modes (a deck): the modes' series at tau into series_ for the halves that are not
+  // summed there already: eta's alone, or with `velocities` eta''s too (both at once in pairs
+  // of lanes when both are missing). Each series is Horner's operations in Horner's order, so
+  // the same bits however the halves are taken. @pre a half it is asked for is missing.
+  void DeckSeriesAt(double tau_s, bool velocities) const;
+  // Three modes: the first `count` (<= 6) components of z(tau) into out, from the series
+  // summed at tau (DeckSeriesAt for the missing halves), each row of Phi as ModalComponent,
+  // ModalProduct's sums (the same bits).
+  void DeckHead(double tau_s, int count, double* out) const {
+    const bool velocities = count > 3;
+    if (!(series_tau_s_[0] == tau_s && (!velocities || series_tau_s_[1] == tau_s))) {
+      DeckSeriesAt(tau_s, velocities);
+    }
+    const double* h = series_.data();
+    const double* p = phi_;
+    const auto row = [p](int i, const double* e) {
+      double x = 0.0;
+      x += p[i] * e[0];
+      x += p[i + 3] * e[1];
+      x += p[i + 6] * e[2];
+      return x;
+    };
+    if (count == 3 || count == 6) {
+      out[0] = row(0, h);
+      out[1] = row(1, h);
+      out[2] = row(2, h);
+      if (count == 6) {
+        out[3] = row(0, h + 3);
+        out[4] = row(1, h + 3);
+        out[5] = row(2, h + 3);
+      }
+      return;
+    }
+    for (int i = 0; i < count; ++i) out[i] = i < 3 ? row(i, h) : row(i - 3, h + 3);
+  }
 
   const LinearFlow* flow_ = nullptr;
   bool modal_ = false;

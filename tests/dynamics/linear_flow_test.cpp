@@ -272,5 +272,82 @@ TEST(LinearFlow, ModalStepOfTwoHIsTwoStepsOfH) {
             1e-13 * once.head(6).cwiseAbs().maxCoeff());
 }
 
+// A deck's dense output read in any order (positions, states, single components, whole states,
+// at instants met before or not) gives at every read the bits of the definition: per mode
+// Horner's rule on ModalFlow::ModeCoefficients' series, then q = Phi eta and u = Phi eta' summed
+// in mode order from 0.0.
+TEST(FreeDenseOutput, ADecksReadsInAnyOrderAreHornerThenPhi) {
+  const TestSystem sys(0.05);
+  for (const double omega : {0.0, 9.0}) {
+    LinearFlow flow(sys.M, sys.K, sys.C, sys.r);
+    ASSERT_TRUE(flow.modal());
+    const ModalFlow& modal = flow.modal_flow();
+    const int N = flow.augmented_size();
+    Eigen::VectorXd z0(N);
+    z0.head(6) << 0.012, -0.007, 0.0031, 0.21, 0.05, -0.017;
+    flow.SetGenerator(TestPiece(omega), 0.45, z0);
+    const double tau_max = 0.02;
+    FreeDenseOutput dense(N);
+    dense.Build(flow, omega, z0, tau_max);
+    // The definition, from the modes' own series.
+    Eigen::MatrixXd Y(3, 6);
+    modal.ToModal(z0, Y);
+    std::vector<std::vector<double>> eta(3), deta(3);
+    for (int k = 0; k < 3; ++k) {
+      const double rho =
+          tau_max * (std::sqrt(modal.w2()[k]) + std::abs(modal.c()[k]) + std::abs(omega));
+      const int terms = ModalTermCount(rho);
+      eta[k].resize(terms);
+      deta[k].resize(terms);
+      const Eigen::Matrix<double, 6, 1> y = Y.row(k).transpose();
+      modal.ModeCoefficients(k, omega, y.data(), terms, eta[k].data(), deta[k].data());
+    }
+    const auto horner = [](const std::vector<double>& c, double tau) {
+      double x = c.back();
+      for (int m = static_cast<int>(c.size()) - 2; m >= 0; --m) x = x * tau + c[m];
+      return x;
+    };
+    const auto expected = [&](double tau, int i) {
+      const bool velocity = i >= 3;
+      double x = 0.0;
+      for (int k = 0; k < 3; ++k) {
+        x += modal.Phi()(i % 3, k) * horner(velocity ? deta[k] : eta[k], tau);
+      }
+      return x;
+    };
+    Eigen::VectorXd z(N);
+    const auto expect_head = [&](double tau, int count, const char* what) {
+      z.setConstant(7.0);
+      dense.EvaluateHead(tau, count, z);
+      for (int i = 0; i < count; ++i) EXPECT_EQ(z[i], expected(tau, i)) << what << " " << i;
+      EXPECT_EQ(z[count], 7.0) << what << ": written past its count";
+    };
+    const double t1 = 0.3 * tau_max, t2 = 0.71 * tau_max, t3 = tau_max;
+    expect_head(t1, 3, "positions, a new instant");
+    expect_head(t1, 6, "the state where the positions were summed");
+    expect_head(t1, 3, "positions again");
+    EXPECT_EQ(dense.EvaluateComponent(t1, 4), expected(t1, 4)) << "a velocity there";
+    EXPECT_EQ(dense.EvaluateComponent(t2, 5), expected(t2, 5)) << "a velocity, a new instant";
+    expect_head(t2, 3, "positions where a component read summed both");
+    expect_head(t3, 6, "a state, a new instant");
+    expect_head(t1, 5, "part of the velocities, an instant met before");
+    expect_head(t2, 3, "positions");
+    EXPECT_EQ(dense.EvaluateComponent(t2, 3), expected(t2, 3)) << "a velocity after positions";
+    EXPECT_EQ(dense.EvaluateComponent(t2, 0), expected(t2, 0)) << "a position there";
+    dense.Evaluate(t3, z);
+    for (int i = 0; i < 6; ++i) EXPECT_EQ(z[i], expected(t3, i)) << "the whole state " << i;
+    // A new build forgets the instants summed before.
+    Eigen::VectorXd z1 = z0;
+    z1.head(6) *= -0.5;
+    dense.Build(flow, omega, z1, tau_max);
+    Eigen::VectorXd fresh(N);
+    FreeDenseOutput other(N);
+    other.Build(flow, omega, z1, tau_max);
+    other.Evaluate(t3, fresh);
+    dense.EvaluateHead(t3, 6, z);
+    EXPECT_TRUE(z.head(6) == fresh.head(6)) << "after a new build";
+  }
+}
+
 }  // namespace
 }  // namespace skewbridge::dynamics::linear_flow_test
