@@ -2,7 +2,9 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <numbers>
 
@@ -245,10 +247,74 @@ bool DeckModesMemo::Find(const Eigen::MatrixXd& M, const Eigen::Matrix3d& K, dou
   return true;
 }
 
+bool DiagonalDeckModes(const Eigen::MatrixXd& M, const Eigen::Matrix3d& K, double xi, Modes& modes,
+                       Eigen::MatrixXd& C) {
+  if (M.rows() != 3 || M.cols() != 3 || !(xi >= 0.0 && xi < 1.0)) return false;
+  for (int j = 0; j < 3; ++j) {
+    for (int i = 0; i < 3; ++i) {
+      if (i == j) continue;
+      if (std::bit_cast<std::uint64_t>(M(i, j)) != 0 ||
+          std::bit_cast<std::uint64_t>(K(i, j)) != 0) {
+        return false;
+      }
+    }
+    const double m = M(j, j), k = K(j, j);
+    if (!(std::isfinite(m) && m > 0.0 && std::isfinite(k) &&
+          (k > 0.0 || std::bit_cast<std::uint64_t>(k) == 0))) {
+      return false;
+    }
+  }
+  // The Cholesky factor's diagonal, and the triangular solves' multiplications by its inverse:
+  // L^-1 K L^-T, whose off-diagonal entries stay +0 (0 - 0 x, x >= 0).
+  double inv_l[3], c[3];
+  for (int i = 0; i < 3; ++i) {
+    inv_l[i] = 1.0 / std::sqrt(M(i, i));
+    c[i] = (K(i, i) * inv_l[i]) * inv_l[i];
+  }
+  // The eigensolver scales by the largest magnitude; the tridiagonalisation of a diagonal matrix
+  // is the identity (Householder coefficients 0), the QR sweeps find every sub-diagonal zero.
+  double scale = std::max(std::max(c[0], c[1]), c[2]);
+  if (scale == 0.0) scale = 1.0;
+  double d[3];
+  int row[3] = {0, 1, 2};  // the row of column k's non-zero entry
+  for (int i = 0; i < 3; ++i) d[i] = c[i] / scale;
+  // Selection sort as the solver does it: the first smallest of d[i..2] to position i.
+  for (int i = 0; i < 2; ++i) {
+    int k = i;
+    for (int j = i + 1; j < 3; ++j) {
+      if (d[j] < d[k]) k = j;
+    }
+    if (k != i) {
+      std::swap(d[i], d[k]);
+      std::swap(row[i], row[k]);
+    }
+  }
+  modes.eigenvalues.resize(3);
+  modes.omega_radps.resize(3);
+  modes.phi.setZero(3, 3);
+  C.setZero(3, 3);
+  const double two_xi = 2.0 * xi;
+  for (int k = 0; k < 3; ++k) {
+    const int r = row[k];
+    const double lambda = d[k] * scale;
+    const double omega = std::sqrt(std::max(lambda, 0.0));
+    modes.eigenvalues[k] = lambda;
+    modes.omega_radps[k] = omega;
+    modes.phi(r, k) = 1.0 * inv_l[r];
+    // M Phi has M_rr Phi_rk alone in row r; (M Phi diag(2 xi w) (M Phi)^T)_rr its one term.
+    const double mphi = M(r, r) * modes.phi(r, k);
+    const double d_rr = (mphi * (two_xi * omega)) * mphi;
+    C(r, r) = 0.5 * (d_rr + d_rr);
+  }
+  return true;
+}
+
 void DeckModesMemo::Compute(const Eigen::MatrixXd& M, const Eigen::Matrix3d& K, double xi,
                             Modes& modes, Eigen::MatrixXd& C) {
-  modes = ComputeModes(M, K);
-  C = ClassicalDamping(M, modes, xi);
+  if (!DiagonalDeckModes(M, K, xi, modes, C)) {
+    modes = ComputeModes(M, K);
+    C = ClassicalDamping(M, modes, xi);
+  }
   SB_DEMAND(modes.phi.rows() == 3 && modes.phi.cols() == 3 && C.rows() == 3 && C.cols() == 3,
             "DeckModesMemo: a deck's modes are 3 x 3");
   if (slots_.empty()) {

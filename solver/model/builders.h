@@ -158,6 +158,17 @@ class DeckModesMemo {
   std::vector<std::uint32_t> slots_;  // per slot, 1 + its entry's index (0: empty)
 };
 
+/// ComputeModes(M, K) and ClassicalDamping(M, modes, xi), bit for bit, of a deck whose M and K
+/// are diagonal (every off-diagonal entry +0; M_ii > 0, K_ii >= 0 finite, xi in [0, 1)), by the
+/// floating-point operations the generalised eigensolver performs on such a pair: L = diag(l_i),
+/// l_i = sqrt(M_ii); c_i = (K_ii (1 / l_i)) (1 / l_i); the scaled c_i / s (s = max c_i, or 1)
+/// need no rotation and are sorted ascending by selection (the first of equal ones first),
+/// lambda = (c_i / s) s; Phi's column of c_i holds 1 / l_i in row i. The damping's products then
+/// have one non-zero term each: C_ii = 0.5 (d_i + d_i), d_i = ((M_ii / l_i) 2 xi w) (M_ii / l_i).
+/// @return false (nothing written) when M or K is not of that form: the general solve applies.
+bool DiagonalDeckModes(const Eigen::MatrixXd& M, const Eigen::Matrix3d& K, double xi, Modes& modes,
+                       Eigen::MatrixXd& C);
+
 /// Builds and validates the Model described by a DeckSpec.
 /// @throws InputError naming the model-file key (e.g. "deck.W: must be > 0 (got -1)") for any
 /// value outside its range; `source` prefixes the message.

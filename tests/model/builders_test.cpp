@@ -11,6 +11,7 @@
 #include <iostream>
 #include <limits>
 #include <numbers>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -132,6 +133,77 @@ TEST(Builders, DeckModelCarriesTheModesItsDampingWasBuiltFrom) {
 bool SameBits(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
   return a.rows() == b.rows() && a.cols() == b.cols() &&
          std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0;
+}
+
+TEST(Builders, ADiagonalDecksModesAreTheBitsOfTheGeneralSolve) {
+  // Random decks with diagonal M and K over many orders of magnitude, with equal frequencies
+  // (the subsystem's w0x = w0y, and all three), a zero stiffness, and the default spec's own
+  // decks: DiagonalDeckModes gives the bits of ComputeModes and ClassicalDamping every time.
+  std::mt19937_64 rng(20261130);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int checked = 0;
+  const auto check = [&](const Eigen::Vector3d& m, const Eigen::Vector3d& k, double xi) {
+    const Eigen::MatrixXd M = m.asDiagonal();
+    const Eigen::Matrix3d K = k.asDiagonal();
+    Modes modes;
+    Eigen::MatrixXd C;
+    ASSERT_TRUE(DiagonalDeckModes(M, K, xi, modes, C)) << m.transpose() << " " << k.transpose();
+    const Modes solved = ComputeModes(M, K);
+    EXPECT_TRUE(SameBits(modes.eigenvalues, solved.eigenvalues))
+        << m.transpose() << " / " << k.transpose();
+    EXPECT_TRUE(SameBits(modes.omega_radps, solved.omega_radps));
+    EXPECT_TRUE(SameBits(modes.phi, solved.phi)) << m.transpose() << " / " << k.transpose();
+    EXPECT_TRUE(SameBits(C, ClassicalDamping(M, solved, xi)));
+    ++checked;
+  };
+  for (int n = 0; n < 20000; ++n) {
+    const double mass = std::pow(10.0, 2.0 + 6.0 * unit(rng));
+    const double inertia = mass * std::pow(10.0, -1.0 + 5.0 * unit(rng));
+    double w[3];
+    for (double& v : w) v = std::pow(10.0, -2.0 + 4.0 * unit(rng));
+    switch (n % 5) {
+      case 1:
+        w[1] = w[0];
+        break;  // w0x = w0y
+      case 2:
+        w[1] = w[2] = w[0];
+        break;  // all three equal
+      case 3:
+        w[static_cast<int>(n / 5) % 3] = 0.0;
+        break;  // a free direction
+      default:
+        break;
+    }
+    const Eigen::Vector3d m(mass, mass, inertia);
+    check(m, Eigen::Vector3d(mass * w[0] * w[0], mass * w[1] * w[1], inertia * w[2] * w[2]),
+          0.2 * unit(rng));
+  }
+  // The default spec's decks (eta0 = 2, W0 = w0, xi = 0.05) at its skews and frequencies.
+  for (int a = 10; a <= 80; a += 10) {
+    for (int j = 0; j < 81; ++j) {
+      DeckGeometry g{1.0, WidthFromEta0(2.0, a * std::numbers::pi / 180.0, 1.0),
+                     a * std::numbers::pi / 180.0};
+      const double inertia = UniformDeckInertia(1.0, g);
+      const double w0 = std::pow(10.0, std::log10(0.2) + j * (std::log10(25.0) / 80.0));
+      check(Eigen::Vector3d(1.0, 1.0, inertia),
+            Eigen::Vector3d(w0 * w0, w0 * w0, inertia * w0 * w0), 0.05);
+    }
+  }
+  EXPECT_EQ(checked, 20000 + 8 * 81);
+  // Not of the form: an off-diagonal entry (even -0), a zero mass: the general solve's.
+  Modes modes;
+  Eigen::MatrixXd C;
+  const Eigen::MatrixXd M = Eigen::Vector3d(3e5, 3e5, 5.0e7).asDiagonal();
+  Eigen::Matrix3d K = Eigen::Vector3d(1.2e6, 1.9e6, 3.1e8).asDiagonal();
+  K(0, 1) = K(1, 0) = 2.0e5;
+  EXPECT_FALSE(DiagonalDeckModes(M, K, 0.05, modes, C));
+  K(0, 1) = K(1, 0) = -0.0;
+  EXPECT_FALSE(DiagonalDeckModes(M, K, 0.05, modes, C));
+  K(0, 1) = K(1, 0) = 0.0;
+  EXPECT_TRUE(DiagonalDeckModes(M, K, 0.05, modes, C));
+  Eigen::MatrixXd M0 = M;
+  M0(1, 1) = 0.0;
+  EXPECT_FALSE(DiagonalDeckModes(M0, K, 0.05, modes, C));
 }
 
 TEST(Builders, DeckModelsFromTheMemoAreTheBitsOfTheirComputation) {
