@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include "solver/dynamics/peak_bound.h"
@@ -65,6 +66,53 @@ inline bool RaiseMaximaAtEnd(int n, const double* q0, const double* u0, double t
     if (u0[i] * u1[i] < 0.0) {
       const double bound = std::max(std::abs(q0[i]), std::abs(q1[i])) +
                            0.5 * h_s * std::max(std::abs(u0[i]), std::abs(u1[i]));
+      search = search || bound > max_abs_q[i];
+    }
+  }
+  return search;
+}
+
+/// A coordinate's (q_i, u_i) side by side in two lanes: each operation on it is the IEEE operation
+/// on each lane.
+using CoordinateLanes = double __attribute__((vector_size(16)));
+
+/// RaiseMaximaAtEnd of three coordinates held as lanes, x0[i] = (q_i, u_i) at the step's start
+/// and x1[i] at its end t1 (h_s the step's length): every coordinate's two tests,
+/// max_abs_q[i] < |q1_i| and u0_i u1_i < +0 (RaiseMaximaAtEnd's comparisons with their operands
+/// swapped, the same outcome), side by side first; when none holds nothing is raised and there
+/// is nothing to search. Else RaiseMaximaAtEnd's operations on the lanes in its order, so the
+/// same maxima and the same answer.
+inline bool RaiseMaximaAtEnd3(const CoordinateLanes x0[3], const CoordinateLanes x1[3], double t1,
+                              double h_s, double max_abs_q[3], double time_of_max_s[3]) {
+  using Bits2 = long long __attribute__((vector_size(16)));
+  const auto magnitude = [](CoordinateLanes v) {
+    return std::bit_cast<CoordinateLanes>(std::bit_cast<Bits2>(v) &
+                                          Bits2{0x7fffffffffffffffLL, 0x7fffffffffffffffLL});
+  };
+  // (max_abs_q[i], u0_i u1_i) < (|q1_i|, +0), lane by lane.
+  const Bits2 q_magnitude = {0x7fffffffffffffffLL, 0};
+  Bits2 any = {0, 0};
+  for (int i = 0; i < 3; ++i) {
+    const CoordinateLanes end =
+        std::bit_cast<CoordinateLanes>(std::bit_cast<Bits2>(x1[i]) & q_magnitude);
+    const CoordinateLanes product = x0[i] * x1[i];
+    const CoordinateLanes reference = {max_abs_q[i], product[1]};
+    any |= reference < end;
+  }
+  if ((any | __builtin_shufflevector(any, any, 1, 0))[0] == 0) {
+    return false;
+  }
+  bool search = false;
+  for (int i = 0; i < 3; ++i) {
+    const CoordinateLanes a0 = magnitude(x0[i]), a1 = magnitude(x1[i]);
+    if (a1[0] > max_abs_q[i]) {
+      max_abs_q[i] = a1[0];
+      time_of_max_s[i] = t1;
+    }
+    if (x0[i][1] * x1[i][1] < 0.0) {
+      // (max(|q0|, |q1|), max(|u0|, |u1|)) as std::max takes them.
+      const CoordinateLanes larger = a0 < a1 ? a1 : a0;
+      const double bound = larger[0] + 0.5 * h_s * larger[1];
       search = search || bound > max_abs_q[i];
     }
   }

@@ -20,6 +20,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -114,6 +115,44 @@ class CornerTravelTracker {
     const double r = deck.radius;
     reach = std::abs(deck.nx * x[b] + deck.ny * x[b + 1]) + r * std::abs(x[b + 2]);
     speed = std::abs(deck.nx * v[b] + deck.ny * v[b + 1]) + r * std::abs(v[b + 2]);
+  }
+
+  /// A deck's coordinate and its velocity side by side in two lanes, (q_i, u_i): each operation
+  /// on it is the IEEE operation on each lane.
+  using ReachLanes = double __attribute__((vector_size(16)));
+  /// EndReach's constants of one deck, each in both lanes: the end-line normal (n_x, n_y) and
+  /// the radius r (m).
+  struct ReachConstants {
+    ReachLanes nx, ny, r;
+  };
+  /// Deck d's EndReach constants.
+  ReachConstants reach_constants(int d) const {
+    const Deck& deck = decks_[static_cast<std::size_t>(d)];
+    ReachConstants c;
+    c.nx = ReachLanes{deck.nx, deck.nx};
+    c.ny = ReachLanes{deck.ny, deck.ny};
+    c.r = ReachLanes{deck.radius, deck.radius};
+    return c;
+  }
+  /// EndReach with the deck's (x, u_x), (y, u_y), (theta, u_theta) in x[0], x[1], x[2]: (reach,
+  /// speed) in the two lanes, each lane EndReach's operations in its order (a magnitude by
+  /// clearing the sign bit, as std::abs does), so the same bits.
+  static ReachLanes EndReach(const ReachConstants& c, const ReachLanes x[3]) {
+    using Bits2 = long long __attribute__((vector_size(16)));
+    const auto magnitude = [](ReachLanes v) {
+      return std::bit_cast<ReachLanes>(std::bit_cast<Bits2>(v) &
+                                       Bits2{0x7fffffffffffffffLL, 0x7fffffffffffffffLL});
+    };
+    return magnitude(c.nx * x[0] + c.ny * x[1]) + c.r * magnitude(x[2]);
+  }
+
+  /// MayReach from its ends' terms in lanes (EndReach's (reach, speed)): the larger reach and the
+  /// smaller speed as std::max and std::min take them, then MayReach's operations, the same
+  /// answer.
+  static bool MayReach(ReachLanes end0, ReachLanes end1, double h_s, double best) {
+    const ReachLanes larger = end0 < end1 ? end1 : end0, smaller = end1 < end0 ? end1 : end0;
+    const double reach = larger[0] + 0.5 * h_s * smaller[1];
+    return !(reach * (1.0 + 1e-12) < best);
   }
 
   /// MayReach from its ends' terms (EndReach): when neither end nor the interior peak that

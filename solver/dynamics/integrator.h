@@ -121,6 +121,14 @@ class Integrator final : private ConstrainedForces {
   // (the step limit, the finite check every finite_check_steps steps into `t_finite`, the
   // observer); returns false when the observer stops the run.
   bool RecordFlight(long& steps, double& t_finite);
+  // What DeckRecordSteps takes from RecordFlight once per flight: deck 0's corner-reach
+  // constants, a ramp's longest free step h_max_s (FreeStepMax, s), and lengths (s) between
+  // one_step_min_s and one_step_max_s, for which FreeStepOfLength is the length itself.
+  struct DeckFlight {
+    CornerTravelTracker::ReachConstants reach;
+    double h_max_s = 0.0;
+    double one_step_min_s = std::numeric_limits<double>::infinity(), one_step_max_s = 0.0;
+  };
   // RecordFlight's steps of one deck (three coordinates) on the ramps of a sampled record
   // (`samples`), without an observer: each step's operations in RecordFlight's order, with the
   // state, the piece, the plan's nominal step, the maxima and the counts held in locals and
@@ -129,8 +137,8 @@ class Integrator final : private ConstrainedForces {
   // start. Returns true when the flight ends (a step finished by FinishFreeStep or FreeStepOf,
   // the run's end, the step limit or the finite check), false before a step that is not the
   // record's next ramp (RecordFlight takes that one).
-  bool DeckRecordSteps(long& steps, double& t_finite, const SampleView& samples, double& reach0,
-                       double& speed0);
+  bool DeckRecordSteps(long& steps, double& t_finite, const SampleView& samples,
+                       const DeckFlight& flight, double& reach0, double& speed0);
   // Whether every gap provably stays above twice the touch band over the full free step of
   // length tau_s just applied (GapFloors, [docs/theory.md §3.18]); `harmonic` false when the
   // step's piece has no harmonic part (omega 0: the modal coordinates' harmonic columns zeros).

@@ -32,23 +32,42 @@ bool Integrator::RecordFlight(long& steps, double& t_finite) {
   // A deck's steps on a record's ramps go through DeckRecordSteps, the rest through this loop.
   const bool deck =
       !observe && n_ == 3 && decks == 1 && samples.count > 0 && ws_.gap_bound_.n_modes == 3;
+  DeckFlight deck_flight;
+  if (deck) {
+    deck_flight.reach = travel_.reach_constants(0);
+    // FreeStepOfLength's one-step case without its division: its quotient length / h_max rounds
+    // monotonically in the length, so every length in [one_step_min, one_step_max] whose ends'
+    // quotients lie in (0, 1] has its quotient there too, and the step is the length itself.
+    const double h_max = FreeStepMax(0.0, ws_.omega_max_radps_, policy_);  // a ramp's (omega 0)
+    deck_flight.h_max_s = h_max;
+    deck_flight.one_step_min_s = h_max * 0x1p-500;
+    deck_flight.one_step_max_s = h_max;
+    if (!(deck_flight.one_step_min_s / h_max > 0.0 && deck_flight.one_step_max_s / h_max <= 1.0)) {
+      deck_flight.one_step_min_s = std::numeric_limits<double>::infinity();  // always divide
+    }
+  }
+  // Run's work after a step: the finite check, the run's end and the step limit; true when the
+  // run goes on (the next step counted), false when Run would stop it.
+  const auto goes_on = [&]() {
+    if ((steps & check_mask) == 0) {
+      if (!StateFinite(z_) || !std::isfinite(t_)) {
+        return false;  // Run's check stops the run
+      }
+      t_finite = t_;
+    }
+    if (!(t_ < t_end_) || steps >= control_.max_steps) {
+      return false;  // Run ends the run, or counts the step and stops at the limit
+    }
+    ++steps;
+    return true;
+  };
   for (;;) {
-    if (deck && DeckRecordSteps(steps, t_finite, samples, reach0, speed0)) {
-      // Run's work after the step that ended it (the finite check, the run's end, the next
-      // step's count), and while no contact closed the next step here: Run would come back.
-      if (Failed() || AnyClosed()) {
+    if (deck && DeckRecordSteps(steps, t_finite, samples, deck_flight, reach0, speed0)) {
+      // After the step that ended it, while no contact closed, the next step is this loop's:
+      // Run would come back.
+      if (Failed() || AnyClosed() || !goes_on()) {
         return true;
       }
-      if ((steps & check_mask) == 0) {
-        if (!StateFinite(z_) || !std::isfinite(t_)) {
-          return true;  // Run's check stops the run
-        }
-        t_finite = t_;
-      }
-      if (!(t_ < t_end_) || steps >= control_.max_steps) {
-        return true;  // Run ends the run, or counts the step and stops at the limit
-      }
-      ++steps;
       travel_.EndReach(0, z_.data(), z_.data() + n_, reach0, speed0);
       outputs = next_output_t_ <= output_reach;
       continue;
@@ -121,30 +140,19 @@ bool Integrator::RecordFlight(long& steps, double& t_finite) {
     } else {
       FreeStepOf(piece, step);
     }
-    // Run's work after a free step: the observer, then (for a step of this loop) the finite
-    // check, the run's end and the next step's count.
+    // Run's work after a free step: the observer, then for a step of this loop the rest.
     if (observe && !Failed() && log_.events.empty() && !AnyClosed() &&
         !observer_->Step(t0, observed_z0_, h0, t_, z_.head(2 * n_), result_)) {
       return false;
     }
-    if (!common) {
+    if (!common || !goes_on()) {
       return true;
     }
-    if ((steps & check_mask) == 0) {
-      if (!StateFinite(z_) || !std::isfinite(t_)) {
-        return true;  // Run's check stops the run
-      }
-      t_finite = t_;
-    }
-    if (!(t_ < t_end_) || steps >= control_.max_steps) {
-      return true;  // Run ends the run, or counts the step and stops at the limit
-    }
-    ++steps;
   }
 }
 
 bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleView& samples,
-                                 double& reach0, double& speed0) {
+                                 const DeckFlight& flight, double& reach0_io, double& speed0_io) {
   using detail::Lanes2;
   ExcitationPiece& piece = pieces_.last();
   if (!(piece.omega == 0.0)) {
@@ -156,7 +164,8 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
   const long check_mask = policy_.finite_check_steps - 1;
   const double gap_margin = 2.0 * scales_.gap_tol_m;
   const bool outputs = next_output_t_ <= t_end_ + policy_.output_time_band;
-  const double h_max = FreeStepMax(0.0, ws_.omega_max_radps_, policy_);  // a ramp's (omega 0)
+  const double h_max = flight.h_max_s;
+  const double one_step_min = flight.one_step_min_s, one_step_max = flight.one_step_max_s;
   const long max_steps = control_.max_steps;
   const double t_end = t_end_;
   const double dt = samples.dt_s;
@@ -181,6 +190,9 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
   double max_travel = result_.max_travel_m[0];
   long steps = steps_io, free_steps = result_.free_steps;
   GapFloors::DeckSums floors = gap_floors_.Deck();
+  // The corners' reach terms (reach, speed) at the step's start, and the deck's constants.
+  Lanes2 reach0 = {reach0_io, speed0_io};
+  const CornerTravelTracker::ReachConstants reach_constants = flight.reach;
   // StepPropagator's key of propagator_ (NaN: none, or not a ramp's).
   const FreePropagator* p = propagator_;
   double p_tau =
@@ -216,6 +228,8 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
     result_.max_travel_m[0] = max_travel;
     result_.free_steps = free_steps;
     steps_io = steps;
+    reach0_io = reach0[0];
+    speed0_io = reach0[1];
     gap_floors_.Store(floors);
   };
   // How the loop ends: the next step is RecordFlight's, the flight ends, or the step is
@@ -250,7 +264,9 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
     // NominalFreeStep (a finite piece of rate 0) and the plan.
     const double length = te - tb;
     if (!(length == nominal_length && 0.0 == nominal_omega)) {
-      nominal_h = FreeStepOfLength(length, h_max);
+      nominal_h = length >= one_step_min && length <= one_step_max
+                      ? length
+                      : FreeStepOfLength(length, h_max);
       nominal_length = length;
       nominal_omega = 0.0;
     }
@@ -294,15 +310,10 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
     }
     // RecordFlight's tests that need no dense output.
     const double t1 = step.t_next_s;
-    const double x0s[6] = {x[0][0], x[1][0], x[2][0], x[0][1], x[1][1], x[2][1]};
-    const double x1s[6] = {next[0][0], next[1][0], next[2][0], next[0][1], next[1][1], next[2][1]};
-    bool rare = RaiseMaximaAtEnd(3, x0s, x0s + 3, t1, x1s, x1s + 3, t1 - t, max_q, time_of_max);
-    double reach1, speed1;
-    travel_.EndReach(0, x1s, x1s + 3, reach1, speed1);
-    rare =
-        rare || CornerTravelTracker::MayReach(reach0, speed0, reach1, speed1, t1 - t, max_travel);
+    bool rare = RaiseMaximaAtEnd3(x, next, t1, t1 - t, max_q, time_of_max);
+    const Lanes2 reach1 = CornerTravelTracker::EndReach(reach_constants, next);
+    rare = rare || CornerTravelTracker::MayReach(reach0, reach1, t1 - t, max_travel);
     reach0 = reach1;
-    speed0 = speed1;
     rare = rare || (outputs && next_output_t_ <= t1 + policy_.output_time_band * std::max(1.0, t1));
     if (rare) {
       exit = Exit::kRare;

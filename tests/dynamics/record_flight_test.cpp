@@ -3,15 +3,21 @@
 // general flight loop, which a run takes while an observer sees its free steps: every result's
 // bits (maxima and their times, the end state, the corner travel, the counts, the events), for the
 // pilot bridge without contacts and at two gaps, under records along x and at an angle (y samples
-// too), with and without history samples.
+// too), with and without history samples; and its tests in lanes (the coordinates' maxima, the
+// corners' reach) against the scalar functions they stand for, on drawn and tied values.
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstring>
 #include <memory>
+#include <random>
 #include <string>
 
 #include "records/excitations.h"
 #include "records/incidence.h"
+#include "solver/dynamics/coordinate_maxima.h"
+#include "solver/dynamics/corner_travel.h"
 #include "solver/dynamics/simulate.h"
 #include "tests/dynamics/benchmark_cases.h"
 #include "tests/dynamics/run_bits.h"
@@ -69,6 +75,91 @@ TEST(RecordFlight, ADecksStepsAreTheBitsOfTheGeneralLoop) {
       }
     }
   }
+}
+
+// A value from a small pool (so that ends, maxima and products tie, and signed zeros meet) or
+// drawn over decades.
+double Draw(std::mt19937_64& rng) {
+  static constexpr double kPool[] = {0.0, -0.0, 1.0, -1.0, 0.5, -0.5, 1e-300, -1e-300, 2.0};
+  std::uniform_int_distribution<int> pick(0, 12);
+  const int k = pick(rng);
+  if (k < 9) {
+    return kPool[k];
+  }
+  std::uniform_real_distribution<double> mantissa(-1.0, 1.0);
+  std::uniform_int_distribution<int> decade(-6, 2);
+  return mantissa(rng) * std::pow(10.0, decade(rng));
+}
+
+bool SameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+TEST(RecordFlight, LaneMaximaAreTheScalarMaxima) {
+  std::mt19937_64 rng(2011);
+  long searched = 0, raised = 0;
+  for (int trial = 0; trial < 200000; ++trial) {
+    double q0[3], u0[3], q1[3], u1[3], max_scalar[3], time_scalar[3];
+    CoordinateLanes x0[3], x1[3];
+    for (int i = 0; i < 3; ++i) {
+      q0[i] = Draw(rng);
+      u0[i] = Draw(rng);
+      q1[i] = Draw(rng);
+      u1[i] = Draw(rng);
+      max_scalar[i] = std::abs(Draw(rng));
+      time_scalar[i] = -1.0;
+      x0[i] = CoordinateLanes{q0[i], u0[i]};
+      x1[i] = CoordinateLanes{q1[i], u1[i]};
+    }
+    double max_lanes[3], time_lanes[3];
+    std::memcpy(max_lanes, max_scalar, sizeof max_lanes);
+    std::memcpy(time_lanes, time_scalar, sizeof time_lanes);
+    const double t1 = 3.0, h = Draw(rng) == 0.0 ? 0.0 : 0.01;
+    const bool scalar = RaiseMaximaAtEnd(3, q0, u0, t1, q1, u1, h, max_scalar, time_scalar);
+    const bool lanes = RaiseMaximaAtEnd3(x0, x1, t1, h, max_lanes, time_lanes);
+    ASSERT_EQ(lanes, scalar) << "trial " << trial;
+    for (int i = 0; i < 3; ++i) {
+      ASSERT_TRUE(SameBits(max_lanes[i], max_scalar[i])) << "trial " << trial << ", q" << i;
+      ASSERT_TRUE(SameBits(time_lanes[i], time_scalar[i])) << "trial " << trial << ", q" << i;
+      raised += time_scalar[i] == t1;
+    }
+    searched += scalar;
+  }
+  // Both outcomes of every test were met.
+  EXPECT_GT(searched, 1000);
+  EXPECT_LT(searched, 199000);
+  EXPECT_GT(raised, 1000);
+}
+
+TEST(RecordFlight, LaneReachIsTheScalarReach) {
+  const model::Model model = bench::PilotBridge(true, bench::kPilotStudyGap_m);
+  const CornerTravelTracker travel(model);
+  ASSERT_EQ(travel.decks(), 1);
+  const CornerTravelTracker::ReachConstants constants = travel.reach_constants(0);
+  std::mt19937_64 rng(62);
+  long may = 0;
+  for (int trial = 0; trial < 100000; ++trial) {
+    double x[2][3], v[2][3];
+    CornerTravelTracker::ReachLanes lanes[2][3];
+    double reach[2], speed[2];
+    CornerTravelTracker::ReachLanes end[2];
+    for (int e = 0; e < 2; ++e) {
+      for (int i = 0; i < 3; ++i) {
+        x[e][i] = 0.01 * Draw(rng);
+        v[e][i] = 0.1 * Draw(rng);
+        lanes[e][i] = CornerTravelTracker::ReachLanes{x[e][i], v[e][i]};
+      }
+      travel.EndReach(0, x[e], v[e], reach[e], speed[e]);
+      end[e] = CornerTravelTracker::EndReach(constants, lanes[e]);
+      ASSERT_TRUE(SameBits(end[e][0], reach[e])) << "trial " << trial;
+      ASSERT_TRUE(SameBits(end[e][1], speed[e])) << "trial " << trial;
+    }
+    const double best = std::abs(0.02 * Draw(rng)), h = 0.01;
+    const bool scalar =
+        CornerTravelTracker::MayReach(reach[0], speed[0], reach[1], speed[1], h, best);
+    ASSERT_EQ(CornerTravelTracker::MayReach(end[0], end[1], h, best), scalar) << "trial " << trial;
+    may += scalar;
+  }
+  EXPECT_GT(may, 1000);
+  EXPECT_LT(may, 99000);
 }
 
 }  // namespace
