@@ -118,15 +118,41 @@ lcp::LcpStatus ImpactProblem::Solve(const ContactKinematics& kinematics,
   k_ = k;
   result.k = k;
   result.pivots = 0;
-  result.u_E = u_A;
-  result.Lambda_N.head(k).setZero();
-  result.Lambda_T.head(k).setZero();
-
+  for (int j = 0; j < k; ++j) {
+    result.Lambda_N(j) = 0.0;
+    result.Lambda_T(j) = 0.0;
+  }
+  // A single deck (kAuto): its 3 rows copied and gamma_N,A = (w_0 u_0 + w_1 u_1) + w_2 u_2, the
+  // sum of Eigen's dot product, without dynamic-size expressions.
+  const bool deck = pairs_;
+  if (deck) {
+    const double* u = u_A.data();
+    double* u_E = result.u_E.data();
+    u_E[0] = u[0];
+    u_E[1] = u[1];
+    u_E[2] = u[2];
+  } else {
+    result.u_E = u_A;
+  }
   for (int j = 0; j < k; ++j) {
     const int c = index_set[static_cast<std::size_t>(j)];
     SB_ASSERT(c >= 0 && c < model_.n_contacts(), "contact index out of range");
-    WN_.col(j) = kinematics.W_N.col(c);
-    WT_.col(j) = kinematics.W_T.col(c);
+    if (deck) {
+      const double* w_n = kinematics.W_N.col(c).data();
+      const double* w_t = kinematics.W_T.col(c).data();
+      double* to_n = WN_.col(j).data();
+      double* to_t = WT_.col(j).data();
+      for (int i = 0; i < 3; ++i) {
+        to_n[i] = w_n[i];
+        to_t[i] = w_t[i];
+      }
+      const double* u = u_A.data();
+      result.gamma_N_A(j) = (w_n[0] * u[0] + w_n[1] * u[1]) + w_n[2] * u[2];
+    } else {
+      WN_.col(j) = kinematics.W_N.col(c);
+      WT_.col(j) = kinematics.W_T.col(c);
+      result.gamma_N_A(j) = WN_.col(j).dot(u_A);
+    }
     mu_(j) = frictionless ? 0.0 : model_.contact(c).friction;
     // A persistent contact takes part with its own (tiny) gamma_N,A and no restitution, so that
     // after the impact it neither approaches (gamma_N,E >= 0 for the real velocities, not for a
@@ -134,7 +160,6 @@ lcp::LcpStatus ImpactProblem::Solve(const ContactKinematics& kinematics,
     const bool is_persistent =
         std::find(persistent.begin(), persistent.end(), c) != persistent.end();
     eps_(j) = is_persistent ? 0.0 : model_.contact(c).restitution;
-    result.gamma_N_A(j) = WN_.col(j).dot(u_A);
   }
   if (k == 0) {
     result.status = lcp::LcpStatus::kSolved;
