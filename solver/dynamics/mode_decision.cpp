@@ -31,6 +31,15 @@ DecisionWorkspace::DecisionWorkspace(const model::Model& model, double rank_thre
       projection(model, rank_threshold),
       scratch(model.n_dof(), model.n_contacts()) {}
 
+double KineticEnergy(const model::Model& model, const Eigen::Ref<const Eigen::VectorXd>& u) {
+  const Eigen::VectorXd& m = model.mass_diagonal();
+  if (u.size() == 3) {
+    // Eigen's dot product of three entries sums the first two, then the third.
+    return 0.5 * ((u[0] * (m[0] * u[0]) + u[1] * (m[1] * u[1])) + u[2] * (m[2] * u[2]));
+  }
+  return 0.5 * u.dot(m.cwiseProduct(u));
+}
+
 bool Wedged(const model::Model& model, std::span<const contact::ClosedContact> closed) {
   bool sliding = false, opposing = false;
   for (std::size_t i = 0; i < closed.size(); ++i) {
@@ -134,7 +143,7 @@ class Decider {
   enum class PassEnd { kDone, kJammed, kFailed };
 
   // 1/2 u^T M u (J), M diagonal.
-  double Kinetic() const { return 0.5 * u_.dot(model_.mass_diagonal().cwiseProduct(u_)); }
+  double Kinetic() const { return KineticEnergy(model_, u_); }
   DecisionOutcome Fail(RunStatus status, const std::string& what) const {
     return {status, fmt::format("{} at t = {:g} s", what, t_)};
   }

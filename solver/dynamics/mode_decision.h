@@ -158,6 +158,11 @@ DecisionOutcome DecideModes(const model::Model& model, const EventPolicy& policy
                             ContactModes& modes, DecisionMemory& memory, ConstrainedForces& forces,
                             DecisionWorkspace& ws, DecisionLog& log, AddedForces* added = nullptr);
 
+/// The kinetic energy 1/2 u^T M u (J) of `model` (M diagonal) at the velocities u, the value of
+/// 0.5 * u.dot(M u) with Eigen's sum ((t_0 + t_1) + t_2 for 3 DOF, on scalars).
+/// @pre u of size n_dof.
+double KineticEnergy(const model::Model& model, const Eigen::Ref<const Eigen::VectorXd>& u);
+
 /// The jam test [§3.9]: true when the contact problem's contacts `closed` include two on
 /// opposing faces (normals at more than 90 deg) and at least one of them slides: a deck that
 /// can wedge between its abutments.

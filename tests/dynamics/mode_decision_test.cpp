@@ -17,7 +17,10 @@
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -167,6 +170,24 @@ struct NewtonRow {
 // A single corner (P1, frictionless) striking its face at v leaves at e v; one impact event
 // with the normal impulse (1 + e) v / G, the kinetic energy lost (1 - e^2) v^2 / (2 G), and the
 // corner opens (nothing presses it back).
+TEST(ModeDecision, KineticEnergyIsTheBitsOfEigensDotProduct) {
+  // KineticEnergy sums a deck's three terms on scalars: the same bits as
+  // 0.5 * u.dot(M u) at random velocities, with exact zeros of either sign.
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const model::Model deck = contact::testing::FreeDeck(30.0, 1.5, 25.0, 0.02, 0.5, 0.3,
+                                                       model::AbutmentSet::kBoth, 1234.5);
+  for (int trial = 0; trial < 1000; ++trial) {
+    Eigen::VectorXd u(3);
+    u << 3.0 * unit(rng), 3.0 * unit(rng), unit(rng);
+    if (trial % 10 == 0) u(trial % 3) = trial % 20 == 0 ? -0.0 : 0.0;
+    const double eigen = 0.5 * u.dot(deck.mass_diagonal().cwiseProduct(u));
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(KineticEnergy(deck, u)),
+              std::bit_cast<std::uint64_t>(eigen))
+        << "trial " << trial;
+  }
+}
+
 TEST(ModeDecision, NewtonImpactOfOneCornerLeavesAtRestitutionTimesApproach) {
   for (const NewtonRow row : {NewtonRow{0.3, 0.1}, NewtonRow{0.5, 1e-3}, NewtonRow{0.8, 2.0}}) {
     SCOPED_TRACE("eps " + std::to_string(row.eps) + " v " + std::to_string(row.v_mps));
