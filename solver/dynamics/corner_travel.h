@@ -52,7 +52,8 @@ class CornerTravelTracker {
   /// the rise of a linear rate), at the root of its rate located by Brent's method to
   /// `time_tolerance_s`.
   /// @param component_at (t, i) -> entry i of the state (q, u) (n_dof + n_dof entries) at t in
-  /// [t0, t1], from the step's dense output.
+  /// [t0, t1], from the step's dense output; where (t, const int (&i)[4], double (&out)[4])
+  /// is a call too, it reads a corner's rate's four entries at once (the same values).
   template <class ComponentAt>
   void Scan(double t0, const Eigen::Ref<const Eigen::VectorXd>& q0,
             const Eigen::Ref<const Eigen::VectorXd>& u0, double t1,
@@ -185,9 +186,16 @@ class CornerTravelTracker {
                                       double r0, double r1, double time_tolerance_s,
                                       ComponentAt& component_at, bool& turned) const {
     const auto rate = [&](double t) {
-      const double th = component_at(t, b + 2), uth = component_at(t, n_ + b + 2);
-      turned = turned || th != 0.0 || uth != 0.0;
-      return Rate(deck, k, component_at(t, n_ + b), component_at(t, n_ + b + 1), th, uth);
+      // theta, u_x, u_y, u_theta: in one read where component_at reads four at once.
+      const int at[4] = {b + 2, n_ + b, n_ + b + 1, n_ + b + 2};
+      double s[4];
+      if constexpr (requires { component_at(t, at, s); }) {
+        component_at(t, at, s);
+      } else {
+        for (int j = 0; j < 4; ++j) s[j] = component_at(t, at[j]);
+      }
+      turned = turned || s[0] != 0.0 || s[3] != 0.0;
+      return Rate(deck, k, s[1], s[2], s[0], s[3]);
     };
     const double x = FindRootBrent(rate, t0, t1, r0, r1, time_tolerance_s).x;
     const double th = component_at(x, b + 2);

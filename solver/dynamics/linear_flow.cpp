@@ -592,21 +592,25 @@ double FreeDenseOutput::EvaluateComponentAt(double tau_s, int i) const {
   SB_ASSERT(i >= 0 && i < n_aug_, "FreeDenseOutput: bad component");
   if (modal_) {
     if (i < 2 * n_) {
-      // The modes' series of eta and eta' at tau, once per instant, both at once (a corner's
-      // rate reads positions and velocities; a peak's search ends with a position at the
-      // instant of its last velocity): the components at the same instant take them inline.
+      // The modes' series at tau, once per instant and half: the components at the same
+      // instant take them inline. A deck sums this component's half alone (a velocity root's
+      // search reads velocities only; EvaluateComponents sums both halves for a corner's rate),
+      // more modes both halves at once.
       const Eigen::Index stride = modal_coefficients_.rows();
       const double* c = modal_coefficients_.data();
       double* h = series_.data();
-      int k = 0;
       if (n_ == 3) {
-        const double* const ce[3] = {c, c + stride, c + 2 * stride};
-        const double* const cd[3] = {c + 3 * stride, c + 4 * stride, c + 5 * stride};
+        // A deck: the series of this component's half alone (a velocity root's search reads
+        // velocities only; EvaluateComponents sums both halves for a corner's rate).
+        const int half = i < n_ ? 0 : 1;
+        const double* const cs[3] = {c + 3 * half * stride, c + (3 * half + 1) * stride,
+                                     c + (3 * half + 2) * stride};
         const int t[3] = {mode_terms_[0], mode_terms_[1], mode_terms_[2]};
-        HornerPairs<3>(ce, cd, t, tau_s, h, h + 3);
-        k = 3;
+        Horner3(cs, t, tau_s, h + 3 * half);
+        series_tau_s_[half] = tau_s;
+        return ModalComponent(i - half * n_, half);
       }
-      for (; k < n_; ++k) {
+      for (int k = 0; k < n_; ++k) {
         const double* const ce[1] = {c + k * stride};
         const double* const cd[1] = {c + (n_ + k) * stride};
         const int t[1] = {mode_terms_[static_cast<std::size_t>(k)]};

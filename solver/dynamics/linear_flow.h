@@ -376,8 +376,8 @@ class FreeDenseOutput {
   void EvaluateHead(double tau_s, int count, Eigen::Ref<Eigen::VectorXd> z);
 
   /// Component i of z(tau). @pre 0 <= i < the augmented size.
-  /// Inline when the modes' series at tau are already summed (the other components of an
-  /// instant: a corner's rate reads four), out of line otherwise.
+  /// Inline when the modes' series of its half (eta's or eta''s) at tau are already summed
+  /// (the other components of an instant), out of line otherwise.
   double EvaluateComponent(double tau_s, int i) const {
     if (i < 2 * n_) {
       const int half = i < n_ ? 0 : 1;  // eta's series or eta''s
@@ -385,6 +385,21 @@ class FreeDenseOutput {
       if (series_tau_s_[half] == tau_s) return ModalComponent(i - half * n_, half);
     }
     return EvaluateComponentAt(tau_s, i);
+  }
+
+  /// Components i[0..3] of z(tau) into out, each < 2 n (a corner's rate: positions and
+  /// velocities at one instant): EvaluateComponent of each, the same bits, with the modes'
+  /// series of both halves summed at most once, together.
+  void EvaluateComponents(double tau_s, const int (&i)[4], double (&out)[4]) const {
+    if (modal_ && n_ == 3) {
+      if (!(series_tau_s_[0] == tau_s && series_tau_s_[1] == tau_s)) DeckSeriesAt(tau_s, true);
+      for (int j = 0; j < 4; ++j) {
+        const int half = i[j] < 3 ? 0 : 1;
+        out[j] = ModalComponent(i[j] - 3 * half, half);
+      }
+      return;
+    }
+    for (int j = 0; j < 4; ++j) out[j] = EvaluateComponent(tau_s, i[j]);
   }
 
   /// dz/dtau at tau.

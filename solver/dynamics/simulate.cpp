@@ -411,10 +411,15 @@ void Integrator::FinishFreeStep(const ExcitationPiece& piece, const FreeStepPlan
   }
   result_.energy.input_J += input;
   result_.energy.damping_J += damping;
-  // The velocity-zero and corner-rate searches read the dense output only.
-  const auto component_at = [&](double t, int i) {
+  // The velocity-zero and corner-rate searches read the dense output only: one entry, or a
+  // corner rate's four at once.
+  const auto component_at = [&](double t, const auto& i, auto&... out) {
     ensure_dense();
-    return ws_.free_dense_.EvaluateComponent(t - t_, i);
+    if constexpr (sizeof...(out) == 0) {
+      return ws_.free_dense_.EvaluateComponent(t - t_, i);
+    } else {
+      ws_.free_dense_.EvaluateComponents(t - t_, i, out...);
+    }
   };
   peaks_.Arm(step.full, flow.modal_coordinates().data(), std::max(tau, step.h_s), piece.omega);
   RecordStep(t1, component_at, state_at);

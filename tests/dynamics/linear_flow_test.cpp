@@ -272,10 +272,10 @@ TEST(LinearFlow, ModalStepOfTwoHIsTwoStepsOfH) {
             1e-13 * once.head(6).cwiseAbs().maxCoeff());
 }
 
-// A deck's dense output read in any order (positions, states, single components, whole states,
-// at instants met before or not) gives at every read the bits of the definition: per mode
-// Horner's rule on ModalFlow::ModeCoefficients' series, then q = Phi eta and u = Phi eta' summed
-// in mode order from 0.0.
+// A deck's dense output read in any order (positions, states, single components, a corner
+// rate's four, whole states, at instants met before or not) gives at every read the bits of the
+// definition: per mode Horner's rule on ModalFlow::ModeCoefficients' series, then q = Phi eta and u
+// = Phi eta' summed in mode order from 0.0.
 TEST(FreeDenseOutput, ADecksReadsInAnyOrderAreHornerThenPhi) {
   const TestSystem sys(0.05);
   for (const double omega : {0.0, 9.0}) {
@@ -334,6 +334,22 @@ TEST(FreeDenseOutput, ADecksReadsInAnyOrderAreHornerThenPhi) {
     expect_head(t2, 3, "positions");
     EXPECT_EQ(dense.EvaluateComponent(t2, 3), expected(t2, 3)) << "a velocity after positions";
     EXPECT_EQ(dense.EvaluateComponent(t2, 0), expected(t2, 0)) << "a position there";
+    // A corner's rate: a position and three velocities at once, at a new instant, where the
+    // positions alone or the velocities alone are summed, and where both are.
+    const int at[4] = {2, 3, 4, 5};
+    const auto expect_four = [&](double tau, const char* what) {
+      double out[4];
+      dense.EvaluateComponents(tau, at, out);
+      for (int j = 0; j < 4; ++j) EXPECT_EQ(out[j], expected(tau, at[j])) << what << " " << j;
+    };
+    const double t4 = 0.13 * tau_max, t5 = 0.52 * tau_max, t6 = 0.9 * tau_max;
+    expect_four(t4, "four, a new instant");
+    expect_four(t4, "four again");
+    expect_head(t5, 3, "positions");
+    expect_four(t5, "four where the positions were summed");
+    EXPECT_EQ(dense.EvaluateComponent(t6, 4), expected(t6, 4)) << "a velocity, a new instant";
+    expect_four(t6, "four where the velocities were summed");
+    EXPECT_EQ(dense.EvaluateComponent(t6, 1), expected(t6, 1)) << "a position there";
     dense.Evaluate(t3, z);
     for (int i = 0; i < 6; ++i) EXPECT_EQ(z[i], expected(t3, i)) << "the whole state " << i;
     // A new build forgets the instants summed before.
