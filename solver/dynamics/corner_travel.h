@@ -223,21 +223,46 @@ class CornerTravelTracker {
     s = std::sin(th);
     c_minus_1 = std::cos(th) - 1.0;
   }
-  // f_k and df_k/dt of deck d at (x, y, theta, u_x, u_y, u_theta).
+  // f_k and df_k/dt of deck d at (x, y, theta, u_x, u_y, u_theta). Inline: every scanned
+  // step's end.
   static void Evaluate(const Deck& d, double x, double y, double th, double ux, double uy,
-                       double uth, CornerState& out);
-  // The rate of corner k alone.
-  static double Rate(const Deck& d, int k, double ux, double uy, double th, double uth);
+                       double uth, CornerState& out) {
+    double s = 0.0, c = 0.0;
+    SinCosMinusOne(th, s, c);
+    const double cos_th = 1.0 + c;
+    const double T = d.nx * x + d.ny * y;
+    const double T_rate = d.nx * ux + d.ny * uy;
+    for (int k = 0; k < 2; ++k) {
+      const double g = c * d.A[k] + s * d.B[k];
+      const double g_rate = uth * (-s * d.A[k] + cos_th * d.B[k]);
+      // Corners k and k + 2 are opposite: P_{k+2} = -P_k.
+      out.f[static_cast<std::size_t>(k)] = T + g;
+      out.f[static_cast<std::size_t>(k + 2)] = T - g;
+      out.rate[static_cast<std::size_t>(k)] = T_rate + g_rate;
+      out.rate[static_cast<std::size_t>(k + 2)] = T_rate - g_rate;
+    }
+  }
+  // The rate of corner k alone. Inline: every iteration of a rate's root search.
+  static double Rate(const Deck& d, int k, double ux, double uy, double th, double uth) {
+    const int j = k % 2;
+    const double sign = k < 2 ? 1.0 : -1.0;
+    double s = 0.0, c = 0.0;
+    SinCosMinusOne(th, s, c);
+    return d.nx * ux + d.ny * uy + sign * uth * (-s * d.A[j] + (1.0 + c) * d.B[j]);
+  }
   // The travel of corner k alone.
   static double Travel(const Deck& d, int k, double x, double y, double th);
 
   std::vector<Deck> decks_;
   int n_ = 0;  // n_dof
-  // Per deck: the corner states at the last step's end and the deck's state there (x, y, theta,
-  // u_x, u_y, u_theta), reused as the next step's start when that state is the same bits (no
-  // impact or projection in between).
-  std::vector<CornerState> end_;
-  std::vector<std::array<double, 6>> end_state_;
+  // A deck's corner states at the last step's end and its state there (x, y, theta, u_x, u_y,
+  // u_theta), reused as the next step's start when that state is the same bits (no impact or
+  // projection in between).
+  struct DeckEnd {
+    CornerState corners;
+    std::array<double, 6> state{};
+  };
+  std::vector<DeckEnd> end_;  // per deck, in one block
 };
 
 template <class ComponentAt, class TravelBound>
@@ -253,10 +278,11 @@ void CornerTravelTracker::ScanDeck(int d, double t0, const Eigen::Map<const Eige
   const double r = deck.radius;
   // The step's start: the last step's end unless an impact or a projection moved the state.
   const std::array<double, 6> s0{q0[b], q0[b + 1], q0[b + 2], u0[b], u0[b + 1], u0[b + 2]};
-  if (s0 != end_state_[di]) {
-    Evaluate(deck, s0[0], s0[1], s0[2], s0[3], s0[4], s0[5], end_[di]);
+  DeckEnd& end = end_[di];
+  if (s0 != end.state) {
+    Evaluate(deck, s0[0], s0[1], s0[2], s0[3], s0[4], s0[5], end.corners);
   }
-  const CornerState& c0 = end_[di];
+  const CornerState& c0 = end.corners;
   const std::array<double, 6> s1{q1[b], q1[b + 1], q1[b + 2], u1[b], u1[b + 1], u1[b + 2]};
   CornerState c1;
   Evaluate(deck, s1[0], s1[1], s1[2], s1[3], s1[4], s1[5], c1);
@@ -289,8 +315,8 @@ void CornerTravelTracker::ScanDeck(int d, double t0, const Eigen::Map<const Eige
                     PeakTravel(deck, b, k, t0, t1, r0, r1, time_tolerance_s, component_at, turned));
     if (!turned && still < 0) still = k;
   }
-  end_[di] = c1;
-  end_state_[di] = s1;
+  end.corners = c1;
+  end.state = s1;
 }
 
 }  // namespace skewbridge::dynamics
