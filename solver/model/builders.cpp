@@ -398,12 +398,14 @@ Model BuildDeckModel(const DeckSpec& spec, const std::string& source) {
     // the modes meaningless, so report it here first. The deck's fields are checked above but
     // for a computed I_m, which the Model would name first.
     detail::CheckPositive(body.inertia_kgm2, "deck.I_m", where);
-    // A deck of the same (M, K, xi) bits as one built before on this thread (a sweep's cells
-    // that differ only in their excitation): its K passed the check, its modes and damping are
-    // those bits' (DeckModesMemo).
+    // A diagonal K (a subsystem's) of finite entries >= 0 passes the check, and its modes and
+    // damping cost less than a look-up (DiagonalDeckModes). Otherwise a deck of the same
+    // (M, K, xi) bits as one built before on this thread (a sweep's cells that differ only in
+    // their excitation): its K passed the check, its modes and damping are those bits'
+    // (DeckModesMemo).
     thread_local DeckModesMemo memo;
     modes.emplace();
-    if (!memo.Find(M, K, spec.xi, *modes, C)) {
+    if (!DiagonalDeckModes(M, K, spec.xi, *modes, C) && !memo.Find(M, K, spec.xi, *modes, C)) {
       detail::CheckSymmetricPsd(K, 3, "substructure.K", where, true);
       memo.Compute(M, K, spec.xi, *modes, C);
     }

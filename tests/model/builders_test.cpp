@@ -378,6 +378,39 @@ TEST(Builders, ModelRejectsBrokenContactsAndMatrices) {
       {"substructure.K", "finite"});
 }
 
+TEST(Builders, ADiagonalMatrixIsCheckedByItsEigenvaluesItsDiagonal) {
+  // A diagonal K or C's eigenvalues are its entries: entries >= 0 (zeros, a subnormal, eight
+  // hundred decades apart) pass; a negative entry passes within -1e-9 of the largest and fails
+  // beyond it, a NaN fails as not finite.
+  Body body;
+  body.mass_kg = 1.0;
+  body.inertia_kgm2 = 1.0;
+  body.geometry = {10.0, 2.0, 0.3};
+  const auto diag = [](double a, double b, double c) {
+    return Eigen::Matrix3d(Eigen::Vector3d(a, b, c).asDiagonal());
+  };
+  for (const Eigen::Matrix3d& A : {diag(1e6, 3e5, 0.0), diag(0.0, 0.0, 0.0),
+                                   diag(5e-324, 1.0, 1e300), diag(1.0, 1.0, -0.5e-9)}) {
+    EXPECT_NO_THROW(Model({body}, A, Eigen::Matrix3d::Zero(), GroundInfluence(1), {}, "m.toml"))
+        << A.diagonal().transpose();
+    EXPECT_NO_THROW(Model({body}, Eigen::Matrix3d::Identity(), A, GroundInfluence(1), {}, "m.toml"))
+        << A.diagonal().transpose();
+  }
+  ExpectMessage(
+      [&] {
+        Model({body}, diag(1.0, 1.0, -2e-9), Eigen::Matrix3d::Zero(), GroundInfluence(1), {},
+              "m.toml");
+      },
+      {"substructure.K", "positive semi-definite", "smallest eigenvalue -"});
+  ExpectMessage(
+      [&] {
+        Model({body}, Eigen::Matrix3d::Identity(),
+              diag(1.0, std::numeric_limits<double>::quiet_NaN(), 1.0), GroundInfluence(1), {},
+              "m.toml");
+      },
+      {"substructure.C", "finite"});
+}
+
 TEST(Builders, SemiDefinitenessAllowsOneBillionthOfTheLargestEntryBelowZero) {
   // The check's bound: every eigenvalue >= -1e-9 max|A| (a rotated diagonal, so that the
   // eigenvalues are known and the matrix is full). Just inside passes; just outside fails and
