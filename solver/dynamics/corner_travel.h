@@ -147,6 +147,44 @@ class CornerTravelTracker {
     return magnitude(c.nx * x[0] + c.ny * x[1]) + c.r * magnitude(x[2]);
   }
 
+  /// Scan's work on deck d when it searches no corner, for a caller that steps the deck itself
+  /// and whose reach test (MayReach) passed: s0 and s1 the deck's (x, y, theta, u_x, u_y,
+  /// u_theta) at the ends of a step of h_s (s). Returns false and changes nothing when some
+  /// corner's rate changes sign inside the step with Scan's peak bound above the maximum raised
+  /// by the step's end (Scan would go on to the travel bound and the search); else raises `best`
+  /// (m) to the corners' travels at the step's end and keeps that end as Scan does (the same
+  /// evaluations, the same bits), and returns true.
+  bool ScanEnd(int d, const std::array<double, 6>& s0, const std::array<double, 6>& s1, double h_s,
+               double& best) {
+    const auto di = static_cast<std::size_t>(d);
+    const Deck& deck = decks_[di];
+    DeckEnd& end = end_[di];
+    CornerState start;
+    const CornerState* c0 = &end.corners;
+    if (s0 != end.state) {
+      Evaluate(deck, s0[0], s0[1], s0[2], s0[3], s0[4], s0[5], start);
+      c0 = &start;
+    }
+    CornerState c1;
+    Evaluate(deck, s1[0], s1[1], s1[2], s1[3], s1[4], s1[5], c1);
+    double raised = best;
+    for (int k = 0; k < 4; ++k) {
+      raised = std::max(raised, std::abs(c1.f[static_cast<std::size_t>(k)]));
+    }
+    for (int k = 0; k < 4; ++k) {
+      const auto ki = static_cast<std::size_t>(k);
+      const double r0 = c0->rate[ki], r1 = c1.rate[ki];
+      if (!(r0 * r1 < 0.0)) continue;
+      const double bound = std::max(std::abs(c0->f[ki]), std::abs(c1.f[ki])) +
+                           0.5 * h_s * std::min(std::abs(r0), std::abs(r1));
+      if (bound > raised) return false;
+    }
+    best = raised;
+    end.corners = c1;
+    end.state = s1;
+    return true;
+  }
+
   /// MayReach from its ends' terms in lanes (EndReach's (reach, speed)): the larger reach and the
   /// smaller speed as std::max and std::min take them, then MayReach's operations, the same
   /// answer.

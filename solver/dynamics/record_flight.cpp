@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -311,10 +312,16 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
     // RecordFlight's tests that need no dense output.
     const double t1 = step.t_next_s;
     bool rare = RaiseMaximaAtEnd3(x, next, t1, t1 - t, max_q, time_of_max);
-    const Lanes2 reach1 = CornerTravelTracker::EndReach(reach_constants, next);
-    rare = rare || CornerTravelTracker::MayReach(reach0, reach1, t1 - t, max_travel);
-    reach0 = reach1;
     rare = rare || (outputs && next_output_t_ <= t1 + policy_.output_time_band * std::max(1.0, t1));
+    const Lanes2 reach1 = CornerTravelTracker::EndReach(reach_constants, next);
+    if (!rare && CornerTravelTracker::MayReach(reach0, reach1, t1 - t, max_travel)) {
+      // The corners at the step's end, here when none needs a search (Scan's bits).
+      const std::array<double, 6> s0 = {x[0][0], x[1][0], x[2][0], x[0][1], x[1][1], x[2][1]};
+      const std::array<double, 6> s1 = {next[0][0], next[1][0], next[2][0],
+                                        next[0][1], next[1][1], next[2][1]};
+      rare = !travel_.ScanEnd(0, s0, s1, t1 - t, max_travel);
+    }
+    reach0 = reach1;
     if (rare) {
       exit = Exit::kRare;
       break;

@@ -8,8 +8,10 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <random>
 #include <string>
@@ -160,6 +162,73 @@ TEST(RecordFlight, LaneReachIsTheScalarReach) {
   }
   EXPECT_GT(may, 1000);
   EXPECT_LT(may, 99000);
+}
+
+TEST(RecordFlight, TheCornersAtAStepsEndAreScansWhenItSearchesNone) {
+  const model::Model model = bench::PilotBridge(true, bench::kPilotStudyGap_m);
+  CornerTravelTracker in_loop(model), scan(model);
+  Eigen::VectorXd best_scan = Eigen::VectorXd::Zero(1);
+  in_loop.Start(Eigen::VectorXd::Zero(3), best_scan);
+  scan.Start(Eigen::VectorXd::Zero(3), best_scan);
+  double best_in_loop = best_scan[0];
+  std::mt19937_64 rng(1971);
+  std::normal_distribution<double> draw(0.0, 1.0);
+  // A walk of states (a step's end starts the next step), so that the kept end is reused.
+  std::array<double, 6> s0 = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  long kept = 0, left = 0;
+  for (int step = 0; step < 20000; ++step) {
+    // An oscillation whose amplitude grows and shrinks, with noise: peaks inside steps that
+    // raise the maximum (a search) and ends that raise it alone.
+    const double h = 0.01, t = (step + 1) * h, w = 18.0;
+    const double a = 0.01 * (1.0 + 0.5 * std::sin(0.05 * t)) + 1e-5 * draw(rng);
+    std::array<double, 6> s1;
+    for (int i = 0; i < 3; ++i) {
+      const double scale = i == 2 ? 1e-3 : (i == 1 ? 0.3 : 1.0), phase = 0.7 * i;
+      s1[i] = scale * a * std::sin(w * t + phase);
+      s1[3 + i] = scale * a * w * std::cos(w * t + phase);
+    }
+    const double before = best_in_loop;
+    // The loop asks only when the reach test passes (Scan skips the deck otherwise).
+    if (!in_loop.MayReach(0, s0.data(), s0.data() + 3, s1.data(), s1.data() + 3, h, best_in_loop)) {
+      s0 = s1;
+      continue;
+    }
+    if (in_loop.ScanEnd(0, s0, s1, h, best_in_loop)) {
+      ++kept;
+      // Scan over the same step, its searches never asked (component_at would fail the test).
+      const Eigen::Map<const Eigen::VectorXd> q0(s0.data(), 3), u0(s0.data() + 3, 3),
+          q1(s1.data(), 3), u1(s1.data() + 3, 3);
+      bool searched = false;
+      scan.Scan(
+          0.0, q0, u0, h, q1, u1, 1e-12,
+          [&](double, int) {
+            searched = true;
+            return 0.0;
+          },
+          best_scan,
+          [](int, double, double, double, double, double, double, double, double) {
+            return std::numeric_limits<double>::infinity();
+          });
+      ASSERT_FALSE(searched) << "step " << step;
+      ASSERT_TRUE(SameBits(best_in_loop, best_scan[0])) << "step " << step;
+    } else {
+      ++left;
+      ASSERT_TRUE(SameBits(best_in_loop, before)) << "step " << step;  // nothing changed
+      // The caller leaves its loop and the general step scans: the trackers agree again.
+      const Eigen::Map<const Eigen::VectorXd> q0(s0.data(), 3), u0(s0.data() + 3, 3),
+          q1(s1.data(), 3), u1(s1.data() + 3, 3);
+      for (CornerTravelTracker* t : {&in_loop, &scan}) {
+        Eigen::VectorXd best(1);
+        best[0] = t == &in_loop ? best_in_loop : best_scan[0];
+        t->Scan(
+            0.0, q0, u0, h, q1, u1, 1e-12, [](double, int) { return 0.0; }, best);
+        (t == &in_loop ? best_in_loop : best_scan[0]) = best[0];
+      }
+    }
+    s0 = s1;
+  }
+  EXPECT_GT(kept, 100);
+  EXPECT_GT(left, 100);
 }
 
 }  // namespace
