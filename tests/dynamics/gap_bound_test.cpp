@@ -205,6 +205,20 @@ TEST(GapBound, NeverCallsAGrazingStepOpen) {
   EXPECT_EQ(grazes, 800);
 }
 
+// Two 30 m spans of a 12 m wide deck at 0.5 rad skew, 20 rad/s in every direction, 50 mm gaps:
+// the corners of one deck strike a face on the other, where the modal gap bound does not apply.
+model::Model TwoSpans() {
+  model::MultiSpanSpec spec;
+  spec.n_spans = 2;
+  spec.span_lengths_m = {30.0};
+  spec.width_m = 12.0;
+  spec.skew_rad = 0.5;
+  spec.mass_per_length_kgpm = 5e4;
+  spec.w0x_radps = spec.w0y_radps = spec.W0_radps = 20.0;
+  spec.abutment_gap_m = spec.joint_gap_m = 0.05;
+  return model::BuildMultiSpanBridge(spec);
+}
+
 TEST(GapBound, DoesNotApplyToAJointBetweenBodiesOrNegativeDamping) {
   model::Model deck = testing::EccentricDeck(0.05);
   LinearFlow modal(deck.M(), deck.K(), deck.C(), deck.r());
@@ -214,15 +228,7 @@ TEST(GapBound, DoesNotApplyToAJointBetweenBodiesOrNegativeDamping) {
   ASSERT_TRUE(source.modal());
   EXPECT_FALSE(ModalGapBound(deck, source.modal_flow()).applies());
   // Two spans: the corners of one deck against a face on the other.
-  model::MultiSpanSpec spec;
-  spec.n_spans = 2;
-  spec.span_lengths_m = {30.0};
-  spec.width_m = 12.0;
-  spec.skew_rad = 0.5;
-  spec.mass_per_length_kgpm = 5e4;
-  spec.w0x_radps = spec.w0y_radps = spec.W0_radps = 20.0;
-  spec.abutment_gap_m = spec.joint_gap_m = 0.05;
-  const model::Model spans = model::BuildMultiSpanBridge(spec);
+  const model::Model spans = TwoSpans();
   LinearFlow spans_flow(spans.M(), spans.K(), spans.C(), spans.r());
   ASSERT_TRUE(spans_flow.modal());
   EXPECT_FALSE(ModalGapBound(spans, spans_flow.modal_flow()).applies());
@@ -234,15 +240,7 @@ TEST(GapBound, DoesNotApplyToAJointBetweenBodiesOrNegativeDamping) {
 // where the bound applies, nothing where it does not.
 TEST(GapBound, AnAssignedBoundIsTheDefinitionOfEachModelInTurn) {
   const model::Model deck = testing::EccentricDeck(0.05);
-  model::MultiSpanSpec spec;
-  spec.n_spans = 2;
-  spec.span_lengths_m = {30.0};
-  spec.width_m = 12.0;
-  spec.skew_rad = 0.5;
-  spec.mass_per_length_kgpm = 5e4;
-  spec.w0x_radps = spec.w0y_radps = spec.W0_radps = 20.0;
-  spec.abutment_gap_m = spec.joint_gap_m = 0.05;
-  const model::Model spans = model::BuildMultiSpanBridge(spec);
+  const model::Model spans = TwoSpans();
   const LinearFlow deck_flow(deck.M(), deck.K(), deck.C(), deck.r());
   const LinearFlow source_flow(deck.M(), deck.K(), -deck.C(), deck.r());
   const LinearFlow spans_flow(spans.M(), spans.K(), spans.C(), spans.r());
