@@ -238,6 +238,10 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
   enum class Exit { kOther, kEnded, kPartial, kClosing, kRare };
   Exit exit = Exit::kOther;
   FreeStepPlan step;
+  // The ramps' planner, reset for the first ramp and whenever the nominal step changes; the
+  // length it was last reset for (NaN: none yet).
+  RampStepPlanner planner(policy_);
+  double nominal_key = std::numeric_limits<double>::quiet_NaN();
   Lanes2 next[3] = {};  // the last step's end (q_i, u_i): zeros until a step
   // NextSampledPiece's tests of the piece's number and end: a ramp this loop reads ends at
   // (k + 1) dt of its own k, the next ramp's start, so they hold for every later ramp.
@@ -262,27 +266,32 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
     sy = (y1 - y0) / dt;
     index = static_cast<long>(k);
     SB_DEMAND(te > t, "Excitation::PieceAt(t) returned a piece that ends at or before t");
-    // NominalFreeStep (a finite piece of rate 0) and the plan.
+    // NominalFreeStep (a finite piece of rate 0) and the plan (PlanFreeStep at the ramp's start,
+    // t == tb); the plan's length and StepPropagator's propagator change only with the nominal
+    // step, h_last being the planner's own length after the first step (RampStepPlanner).
     const double length = te - tb;
-    if (!(length == nominal_length && 0.0 == nominal_omega)) {
-      nominal_h = length >= one_step_min && length <= one_step_max
-                      ? length
-                      : FreeStepOfLength(length, h_max);
-      nominal_length = length;
-      nominal_omega = 0.0;
+    if (!(length == nominal_key)) {
+      if (!(length == nominal_length && 0.0 == nominal_omega)) {
+        nominal_h = length >= one_step_min && length <= one_step_max
+                        ? length
+                        : FreeStepOfLength(length, h_max);
+        nominal_length = length;
+        nominal_omega = 0.0;
+      }
+      nominal_key = length;
+      const double h = planner.Reset(nominal_h, h_last);
+      if (h != p_tau) {
+        p = &StepPropagator(h, 0.0, false);
+        p_tau = p->tau_s;
+      }
     }
-    step = PlanFreeStep(t, tb, std::min(te, t_end), nominal_h, h_last, policy_);
+    step = planner.At(t, tb, std::min(te, t_end));
     h_last = step.h_s;
     if (!step.full) {
       exit = Exit::kPartial;
       break;
     }
-    // StepPropagator, SetGenerator's generator, and ApplyRecordMotion's operations on the
-    // registers.
-    if (step.h_s != p_tau) {
-      p = &StepPropagator(step.h_s, 0.0, false);
-      p_tau = p->tau_s;
-    }
+    // SetGenerator's generator and ApplyRecordMotion's operations on the registers.
     const double tau_start = t - tb;
     g[0] = ax0 + sx * tau_start;
     g[1] = ay0 + sy * tau_start;

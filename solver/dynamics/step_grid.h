@@ -79,6 +79,50 @@ inline FreeStepPlan PlanFreeStep(double t_s, double piece_begin_s, double t_stop
   return plan;
 }
 
+/// PlanFreeStep at a piece's start (t_s == piece_begin_s, a record's step per sample) with the
+/// products that depend on the step alone taken once per step length: the same operations on the
+/// same operands, so the same plan. The length Reset gives is a fixed point of the reuse rule:
+/// PlanFreeStep(..., h_s, h_last_s) takes h_last_s or h_s, and with that length as h_last_s it
+/// takes the same bits again, so a loop whose nominal step stays h_s needs Reset only when h_s
+/// changes.
+class RampStepPlanner {
+ public:
+  /// The planner of `policy`'s bands (k at a piece's start and its successor, as PlanFreeStep
+  /// takes them).
+  explicit RampStepPlanner(const EventPolicy& policy)
+      : snap_(policy.step_snap_band),
+        reuse_(policy.step_reuse_band),
+        k_next_((snap_ < 1.0 ? 0.0 * snap_ : std::floor(snap_)) + 1.0) {}
+  /// The step length (s) for the nominal step h_s after a step of h_last_s (PlanFreeStep's
+  /// reuse), and its products (k + 1) h and step_snap_band h for At.
+  double Reset(double h_s, double h_last_s) {
+    h_ = std::abs(h_s - h_last_s) <= reuse_ * h_s ? h_last_s : h_s;
+    next_h_ = k_next_ * h_;
+    snap_h_ = snap_ * h_;
+    return h_;
+  }
+  /// PlanFreeStep(t_s, piece_begin_s, t_stop_s, h_s, h_last_s, policy) for Reset's h_s and
+  /// h_last_s (or its own length as h_last_s).
+  /// @pre t_s == piece_begin_s.
+  FreeStepPlan At(double t_s, double piece_begin_s, double t_stop_s) const {
+    FreeStepPlan plan;
+    plan.h_s = h_;
+    plan.t_next_s = piece_begin_s + next_h_;
+    if (plan.t_next_s > t_stop_s - snap_h_) {
+      plan.t_next_s = t_stop_s;
+    }
+    plan.full = std::abs((plan.t_next_s - t_s) - h_) <= snap_h_;
+    return plan;
+  }
+
+ private:
+  double snap_, reuse_;  // the policy's step_snap_band and step_reuse_band
+  double k_next_;        // k + 1 at a piece's start
+  double h_ = 0.0;       // the step's length (s)
+  double next_h_ = 0.0;  // (k + 1) h (s)
+  double snap_h_ = 0.0;  // step_snap_band h (s)
+};
+
 /// The excitation piece of the free steps: where the last step ended its piece (a record's step
 /// per sample), the next one by its number (Excitation::NextPiece, the bits of PieceAt there),
 /// else Excitation::PieceAt.

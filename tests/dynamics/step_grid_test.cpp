@@ -5,9 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
+#include <random>
 #include <set>
 
 namespace skewbridge::dynamics::step_grid_test {
@@ -112,6 +115,40 @@ TEST(StepGrid, StepsEndOnTheGridWithoutSliverSteps) {
     EXPECT_EQ(plan.full, r.full) << r.why;
     EXPECT_NEAR(PlanFreeStep(r.t, begin, r.stop, h, h, no_snap).t_next_s, r.t_next_off, 1e-15)
         << r.why << " (band off)";
+  }
+}
+
+// The bits of a double, so that +0 and -0 (and NaN payloads) count as different.
+std::uint64_t Bits(double x) { return std::bit_cast<std::uint64_t>(x); }
+
+TEST(StepGrid, RampPlannerIsPlanFreeStepAtAPiecesStartOverDrawnSteps) {
+  std::mt19937_64 rng(20261130);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  // Bands as ValidatePolicy takes them (0 to 1), the defaults, and 0 and 1 themselves.
+  const double bands[] = {0.0, 1e-12, 1e-9, 1e-6, 0.3, 1.0};
+  for (int draw = 0; draw < 20000; ++draw) {
+    EventPolicy policy;
+    policy.step_snap_band = bands[rng() % 6];
+    policy.step_reuse_band = bands[rng() % 6];
+    // A record's ramp [begin, end] of about dt, a nominal step near it, a last step within a
+    // few relative ulps to a few percent of it, and a stop at the ramp's end or the run's.
+    const double dt = std::ldexp(1.0 + unit(rng), -7 - static_cast<int>(rng() % 4));
+    const double begin = static_cast<double>(rng() % 100000) * dt;
+    const double end = begin + dt * (1.0 + (unit(rng) - 0.5) * std::ldexp(1.0, -40));
+    const double h = (rng() % 3 == 0) ? end - begin : (end - begin) / (1.0 + rng() % 3);
+    const double spread = std::ldexp(1.0, -50 + static_cast<int>(rng() % 46));
+    const double h_last = (rng() % 4 == 0) ? h : h * (1.0 + (unit(rng) - 0.5) * spread);
+    const double stop = (rng() % 4 == 0) ? begin + unit(rng) * 2.0 * dt : end;
+    RampStepPlanner planner(policy);
+    const double length = planner.Reset(h, h_last);
+    // The reuse rule's length, then the same plan for the step after (its last step `length`).
+    for (const double last : {h_last, length}) {
+      const FreeStepPlan expected = PlanFreeStep(begin, begin, stop, h, last, policy);
+      const FreeStepPlan plan = planner.At(begin, begin, stop);
+      ASSERT_EQ(Bits(plan.h_s), Bits(expected.h_s)) << draw;
+      ASSERT_EQ(Bits(plan.t_next_s), Bits(expected.t_next_s)) << draw;
+      ASSERT_EQ(plan.full, expected.full) << draw;
+    }
   }
 }
 
