@@ -306,13 +306,15 @@ class Integrator final : private ConstrainedForces {
   double nominal_h_s_ = 0.0;
   const FreePropagator* propagator_ = nullptr;  // the last full step's (StepPropagator)
   PieceCursor pieces_;                          // the free steps' excitation piece
-  contact::GapRateScratch rates_;               // scratch of the gaps and normal rates
-  ClosedEvents events_;                         // the closed contacts' event functions
-  ContactModes modes_;                          // every contact's mode and the closed set
-  std::vector<int> forced_;                     // contacts striking together at the located impact
+  // The gaps' and rates' scratch, every contact's mode and the closed set: the workspace's
+  // (RunStorage), so a run neither copies nor allocates them.
+  contact::GapRateScratch& rates_;
+  ClosedEvents events_;  // the closed contacts' event functions
+  ContactModes& modes_;
+  std::vector<int> forced_;  // contacts striking together at the located impact
   RunResult result_;
   CornerTravelTracker travel_;  // the decks' corner travels (result_.max_travel_m)
-  DecisionMemory memory_;       // what the mode decision remembers between instants
+  DecisionMemory& memory_;      // what the mode decision remembers (the workspace's RunStorage)
   DecisionLog log_;             // the events and counts the decisions add
   // A history sample's force evaluation (with histories only): recording leaves ws_.forces_ as
   // it was, so a run takes the same decisions whether it records histories or not.

@@ -8,7 +8,9 @@
 #include <Eigen/QR>
 #include <Eigen/SVD>
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <memory>
@@ -55,9 +57,10 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
       nc_(model.n_contacts()),
       gap_floors_(ws.gap_floors_),
       peaks_(ws.flow_.modal() ? &ws.flow_.modal_flow() : nullptr),
-      modes_(0),
+      rates_(ws.run_storage_.rates),
+      modes_(ws.run_storage_.modes),
       travel_(model),
-      memory_(0),
+      memory_(ws.run_storage_.memory),
       observer_(observer) {
   SB_DEMAND(&ws.model() == &model, "Simulate: workspace built for another model");
   // The state's storage is the workspace's (RunStorage): the assignments below size and write
@@ -208,9 +211,6 @@ void Integrator::SwapStorage() {
     own->swap(*kept);
   }
   forced_.swap(s.forced);
-  std::swap(rates_, s.rates);
-  std::swap(modes_, s.modes);
-  std::swap(memory_, s.memory);
   log_.events.swap(s.events);
 }
 
@@ -219,7 +219,11 @@ RunResult Integrator::Run() {
   // contact closed) or one constrained step at a time, each ending at its end or at its first
   // event, where the step calls the decision (ResolveContacts) again.
   ws_.flow_.SetGenerator(excitation_.PieceAt(t_), t_, z_);
-  result_.energy.initial_J = ws_.flow_.MechanicalEnergy(z_);
+  // From rest (every entry of q and u +0.0) the energy is +0.0: each product of the finite M and
+  // K with +0.0 is a zero, and a sum with a +0.0 in it is +0.0, so the forms give those bits.
+  const bool at_rest = std::all_of(z_.data(), z_.data() + 2 * n_,
+                                   [](double v) { return std::bit_cast<std::uint64_t>(v) == 0; });
+  result_.energy.initial_J = at_rest ? 0.0 : ws_.flow_.MechanicalEnergy(z_);
   RecordOutputs(0.0, 0.0, [&](double) -> const Vec& { return z_; });
   forced_.clear();
   ResolveContacts(forced_);
@@ -282,7 +286,9 @@ RunResult Integrator::Finish(double t_finite_s) {
   EnergyLedger& e = result_.energy;
   e.impact_J = log_.impact_J;
   e.kinetic_J = Kinetic();
-  e.strain_J = 0.5 * q().dot(model_.K() * q());
+  // K q into the scratch cu_ (no later step reads it): the product's kernel, no temporary.
+  cu_.noalias() = model_.K() * q();
+  e.strain_J = 0.5 * q().dot(cu_);
   if (springs_ == nullptr) {
     e.balance_error_J = (e.kinetic_J + e.strain_J) -
                         (e.initial_J + e.input_J - e.damping_J - e.impact_J - e.friction_J);

@@ -96,10 +96,13 @@ struct RunStorage {
   // contacts' event functions at a step's ends and inside.
   Eigen::VectorXd z, z_new, z_eval, y, dy, y_eval, atol, cu, du;
   Eigen::VectorXd gap0, gN0, gap1, gN1, f0, f1, f_eval, observed_z0;
-  std::vector<int> forced;            // contacts striking together
-  contact::GapRateScratch rates;      // the gaps' and rates' scratch
-  ContactModes modes{0};              // the last run's modes (storage only)
-  DecisionMemory memory{0};           // the last run's decision memory (storage only)
+  std::vector<int> forced;  // contacts striking together
+  // The gaps' and rates' scratch, the contacts' modes and the decision memory, which a run works
+  // in where they are (the integrator refers to them; a run sets the modes and the memory from
+  // fresh_modes and fresh_memory first).
+  contact::GapRateScratch rates;
+  ContactModes modes{0};
+  DecisionMemory memory{0};
   std::vector<EventRecord> events;    // the last run's event log (storage only)
   const ContactModes fresh_modes;     // every contact open: a run's first modes
   const DecisionMemory fresh_memory;  // no impact yet: a run's first memory

@@ -154,5 +154,37 @@ TEST(RunReuse, AWorkspaceStillRefusesABadPolicyAfterAGoodOne) {
   testing::ExpectSameRunBits(Simulate(model, pulse, control, ws), fresh);
 }
 
+// A run's energies at its ends are their definitions, 1/2 u^T M u + 1/2 q^T K q, with or without
+// the ledger and in a reused workspace: +0.0 from rest (every form of a zero state), the forms'
+// bits from a state given at the start, and the strain 1/2 q^T K q of the end state.
+TEST(RunReuse, TheEnergiesAtTheRunsEndsAreTheirForms) {
+  const model::Model model = Deck(2, model::AbutmentSet::kPlusX, false);
+  const records::PulseExcitation pulse(records::PulseShape::kCosine, 4.0, 2.0 * std::numbers::pi);
+  InitialState moving;
+  moving.q = Eigen::Vector3d(1.0e-3, -2.0e-3, 3.0e-5);
+  moving.u = Eigen::Vector3d(-4.0e-2, 5.0e-3, -6.0e-4);
+  const auto forms = [&](const Eigen::VectorXd& q, const Eigen::VectorXd& u) {
+    const Eigen::VectorXd Mu = model.M() * u, Kq = model.K() * q;
+    return 0.5 * u.dot(Mu) + 0.5 * q.dot(Kq);
+  };
+  RunReuse reuse;
+  for (const bool ledger : {false, true}) {
+    model::RunControl control;
+    control.end_time_s = 2.0;
+    control.energy_ledger = ledger;
+    for (int round = 0; round < 2; ++round) {
+      const RunResult rest = reuse.Run(model, pulse, control);
+      ASSERT_EQ(rest.status, RunStatus::kOk);
+      EXPECT_EQ(testing::Bits(rest.energy.initial_J), testing::Bits(0.0));
+      const Eigen::VectorXd zero = Eigen::VectorXd::Zero(3);
+      EXPECT_EQ(testing::Bits(rest.energy.strain_J), testing::Bits(forms(rest.q_end, zero)));
+      const RunResult run = reuse.Run(model, pulse, control, {}, moving);
+      ASSERT_EQ(run.status, RunStatus::kOk);
+      EXPECT_EQ(testing::Bits(run.energy.initial_J), testing::Bits(forms(moving.q, moving.u)));
+      EXPECT_EQ(testing::Bits(run.energy.strain_J), testing::Bits(forms(run.q_end, zero)));
+    }
+  }
+}
+
 }  // namespace
 }  // namespace skewbridge::dynamics::run_reuse_test
