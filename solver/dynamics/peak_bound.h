@@ -16,29 +16,43 @@
 
 namespace skewbridge::dynamics {
 
-/// The largest |control point| of the cubic with Bernstein control points b[0..3] after `depth`
-/// halvings by de Casteljau's construction: at least max |H(x)| over x in [0, 1] (each half's
-/// curve lies in the hull of its own control points), to within a few ulps of max |b| for the
-/// rounding of the midpoints.
-inline double BernsteinAbsBound(const double b[4], int depth) {
-  if (depth == 0) {
-    return std::max({std::abs(b[1]), std::abs(b[2]), std::abs(b[0]), std::abs(b[3])});
+/// The largest |control point| of the cubic with Bernstein control points b[0..3] over the
+/// pieces of `depth` halvings by de Casteljau's construction, `reached` (a value the curve
+/// reaches, at least max(|b[0]|, |b[3]|)) raised to every piece's end it forms: at least
+/// max |H(x)| over x in [0, 1] (each half's curve lies in the hull of its own control points),
+/// to within a few ulps of max |b| for the rounding of the midpoints. A piece whose control
+/// points all lie within `reached` is not halved: its curve does not exceed what the curve
+/// reaches elsewhere, so the bound is that of the pieces around the curve's peak.
+inline double BernsteinAbsBound(const double b[4], int depth, double& reached) {
+  const double hull = std::max({std::abs(b[1]), std::abs(b[2]), std::abs(b[0]), std::abs(b[3])});
+  if (depth == 0 || hull <= reached) {
+    return hull;
   }
   const double m01 = 0.5 * (b[0] + b[1]), m12 = 0.5 * (b[1] + b[2]), m23 = 0.5 * (b[2] + b[3]);
   const double m012 = 0.5 * (m01 + m12), m123 = 0.5 * (m12 + m23);
   const double mid = 0.5 * (m012 + m123);
+  reached = std::max(reached, std::abs(mid));
   const double left[4] = {b[0], m01, m012, mid};
   const double right[4] = {mid, m123, m23, b[3]};
-  return std::max(BernsteinAbsBound(left, depth - 1), BernsteinAbsBound(right, depth - 1));
+  const double l = BernsteinAbsBound(left, depth - 1, reached);
+  return std::max(l, BernsteinAbsBound(right, depth - 1, reached));
+}
+
+/// BernsteinAbsBound from the curve's ends alone: an upper bound of max |H(x)| over x in [0, 1].
+inline double BernsteinAbsBound(const double b[4], int depth) {
+  double reached = std::max(std::abs(b[0]), std::abs(b[3]));
+  return BernsteinAbsBound(b, depth, reached);
 }
 
 /// An upper bound of max |H(s)| over s in [0, h] for the cubic Hermite interpolant with
 /// H(0) = q0, H'(0) = u0, H(h) = q1, H'(h) = u1 (control points q0, q0 + h u0 / 3,
-/// q1 - h u1 / 3, q1; two halvings), rounded up by a relative 1e-12 of its terms.
-inline double HermiteAbsBound(double q0, double u0, double q1, double u1, double h_s) {
+/// q1 - h u1 / 3, q1; `halvings` halvings, two unless told), rounded up by a relative 1e-12 of
+/// its terms.
+inline double HermiteAbsBound(double q0, double u0, double q1, double u1, double h_s,
+                              int halvings = 2) {
   const double b[4] = {q0, q0 + h_s * u0 / 3.0, q1 - h_s * u1 / 3.0, q1};
   const double scale = std::abs(q0) + std::abs(q1) + h_s * (std::abs(u0) + std::abs(u1));
-  return BernsteinAbsBound(b, 2) + 1e-12 * scale;
+  return BernsteinAbsBound(b, halvings) + 1e-12 * scale;
 }
 
 /// Per mode the bounds over a step [0, tau_s] of the mode eta'' + c eta' + w^2 eta = f(s),
@@ -151,13 +165,20 @@ class ModalPeakBound {
   Eigen::VectorXd data_;
 };
 
+/// CornerPeakBound's halvings of the Hermite hull: four leave about 1/256 of the curve's bulge
+/// (two, 1/16). The corners' bound is asked only where a search would follow, and
+/// BernsteinAbsBound halves only the pieces around the peak, so the two more halvings cost
+/// little beside the searches they spare.
+inline constexpr int kCornerHalvings = 4;
+
 /// An upper bound of a deck corner's travel |f| over an interval of length h_s inside a free
 /// step [docs/theory.md §3.20], f = n_e . (x, y) +- ((cos theta - 1) A + sin theta B) with
 /// |P| = sqrt(A^2 + B^2) the corner's radius (m), from f and df/dt at the two ends, the bounds
 /// dx, dy, dth of the first four derivatives of x, y, theta (ModalPeakBound::Derivatives) and
-/// the terms' size `size_m`: HermiteAbsBound plus M4 h^4 / 384 with M4 = |n_x| X4 + |n_y| Y4 +
-/// |P| (T4 + 4 T1 T3 + 3 T2^2 + 6 T1^2 T2 + T1^4) (Faa di Bruno; every derivative of
-/// (cos - 1) A + sin B is at most |P| in magnitude), and a relative 1e-12 of `size_m`.
+/// the terms' size `size_m`: HermiteAbsBound (kCornerHalvings halvings) plus M4 h^4 / 384 with M4 =
+/// |n_x| X4 + |n_y| Y4 + |P| (T4 + 4 T1 T3 + 3 T2^2 + 6 T1^2 T2 + T1^4) (Faa di Bruno; every
+/// derivative of (cos - 1) A + sin B is at most |P| in magnitude), and a relative 1e-12 of
+/// `size_m`.
 inline double CornerPeakBound(double nx, double ny, double radius_m, const double dx[4],
                               const double dy[4], const double dth[4], double size_m, double f0,
                               double r0, double f1, double r1, double h_s) {
@@ -165,7 +186,8 @@ inline double CornerPeakBound(double nx, double ny, double radius_m, const doubl
   const double turn = t4 + 4.0 * t1 * t3 + 3.0 * t2 * t2 + 6.0 * t1 * t1 * t2 + t1 * t1 * t1 * t1;
   const double m4 = std::abs(nx) * dx[3] + std::abs(ny) * dy[3] + radius_m * turn;
   const double h2 = h_s * h_s;
-  return (HermiteAbsBound(f0, r0, f1, r1, h_s) + m4 * (h2 * h2 / 384.0)) * (1.0 + 1e-12) +
+  return (HermiteAbsBound(f0, r0, f1, r1, h_s, kCornerHalvings) + m4 * (h2 * h2 / 384.0)) *
+             (1.0 + 1e-12) +
          1e-12 * size_m;
 }
 

@@ -48,6 +48,50 @@ TEST(HermiteAbsBound, BoundsRandomCubicsAndIsTightAtTheirPeaks) {
   EXPECT_LT(ratios[ratios.size() / 2], 0.15);
 }
 
+// BernsteinAbsBound with every piece halved (no piece left whole below what the curve reaches).
+double FullHull(const double b[4], int depth) {
+  if (depth == 0) return std::max({std::abs(b[0]), std::abs(b[1]), std::abs(b[2]), std::abs(b[3])});
+  const double m01 = 0.5 * (b[0] + b[1]), m12 = 0.5 * (b[1] + b[2]), m23 = 0.5 * (b[2] + b[3]);
+  const double m012 = 0.5 * (m01 + m12), m123 = 0.5 * (m12 + m23);
+  const double mid = 0.5 * (m012 + m123);
+  const double left[4] = {b[0], m01, m012, mid};
+  const double right[4] = {mid, m123, m23, b[3]};
+  return std::max(FullHull(left, depth - 1), FullHull(right, depth - 1));
+}
+
+TEST(BernsteinAbsBound, HalvesOnlyAroundThePeakAndBoundsRandomCubics) {
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::vector<double> ratios;  // four halvings: (bound - max |H|) / (the unhalved hull - max |H|)
+  for (int s = 0; s < 2000; ++s) {
+    const double h = 0.01 * (1.0 + unit(rng));
+    const double q0 = unit(rng), q1 = unit(rng);
+    const double u0 = 400.0 * unit(rng), u1 = 400.0 * unit(rng);
+    const double b[4] = {q0, q0 + h * u0 / 3.0, q1 - h * u1 / 3.0, q1};
+    double peak = 0.0;  // max |H| by dense evaluation of the Hermite form
+    for (int j = 0; j <= 4000; ++j) {
+      const double x = j / 4000.0;
+      const double H = q0 * (2 * x * x * x - 3 * x * x + 1) + h * u0 * (x * x * x - 2 * x * x + x) +
+                       q1 * (-2 * x * x * x + 3 * x * x) + h * u1 * (x * x * x - x * x);
+      peak = std::max(peak, std::abs(H));
+    }
+    for (int depth = 0; depth <= 6; ++depth) {
+      const double bound = BernsteinAbsBound(b, depth), full = FullHull(b, depth);
+      // Rounding of the midpoints: a few ulps of the control points.
+      ASSERT_GE(bound, peak * (1.0 - 1e-14)) << "cubic " << s << " depth " << depth;
+      // Never looser than halving every piece.
+      ASSERT_LE(bound, full) << "cubic " << s << " depth " << depth;
+    }
+    const double full = FullHull(b, 0), bound = HermiteAbsBound(q0, u0, q1, u1, h, 4);
+    ASSERT_GE(bound, peak) << "cubic " << s;
+    if (full - peak > 1e-3 * peak) ratios.push_back((bound - peak) / (full - peak));
+  }
+  ASSERT_GT(ratios.size(), 500u);
+  std::nth_element(ratios.begin(), ratios.begin() + ratios.size() / 2, ratios.end());
+  // Four halvings leave about 1/256 of the hull's excess (two, about 1/16).
+  EXPECT_LT(ratios[ratios.size() / 2], 0.01);
+}
+
 struct Step {
   Eigen::VectorXd z;  // (q, u, a, slope, p, k) at the step's start
   double tau_s = 0.01;
