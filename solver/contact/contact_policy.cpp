@@ -1,9 +1,9 @@
 #include "solver/contact/contact_policy.h"
 
-#include <cstring>
+#include <bit>
+#include <cstdint>
 #include <optional>
 #include <string>
-#include <type_traits>
 
 #include "solver/common/error.h"
 
@@ -17,8 +17,15 @@ void CheckContactPolicy(const ContactPolicy& policy) {
 }
 
 bool SameBytes(const ContactPolicy& a, const ContactPolicy& b) {
-  static_assert(std::is_trivially_copyable_v<ContactPolicy>);
-  return std::memcmp(&a, &b, sizeof(ContactPolicy)) == 0;
+  // Member by member: the struct's trailing padding is whatever the copy or the stack left
+  // there, and a memcmp over it would say unequal for equal policies.
+  static_assert(sizeof(ContactPolicy) == 3 * sizeof(double) + alignof(double),
+                "SameBytes compares each member: list a new one here");
+  const auto bits = [](double x) { return std::bit_cast<std::uint64_t>(x); };
+  return bits(a.tie_tolerance) == bits(b.tie_tolerance) &&
+         bits(a.contact_compliance) == bits(b.contact_compliance) &&
+         bits(a.impact_compliance) == bits(b.impact_compliance) &&
+         a.enumeration_unknowns == b.enumeration_unknowns;
 }
 
 }  // namespace skewbridge::contact

@@ -62,9 +62,9 @@ struct ContactPolicy {
 /// here is a bug.
 void CheckContactPolicy(const ContactPolicy& policy);
 
-/// Whether `a` and `b` are the same bytes (memcmp of the trivially copyable struct): two such
-/// policies get the same verdict from CheckContactPolicy, so a problem that holds a checked
-/// policy need not check one with its bytes again. Unequal padding only makes it false.
+/// Whether every member of `a` has the bytes of the same member of `b` (the padding between
+/// them aside): two such policies get the same verdict from CheckContactPolicy, so a problem
+/// that holds a checked policy need not check one with its bytes again.
 bool SameBytes(const ContactPolicy& a, const ContactPolicy& b);
 
 }  // namespace skewbridge::contact

@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <new>
 #include <vector>
 
 #include "solver/contact/impact_problem.h"
@@ -197,6 +199,31 @@ TEST(ContactProblem, TieToleranceDecidesBetweenStayingClosedAndDetaching) {
 TEST(ContactPolicy, DefaultIsWithinItsRanges) {
   // The problems start from ContactPolicy{} unchecked: it must pass the check SetPolicy makes.
   EXPECT_FALSE(schema::FirstViolation(ContactPolicy{}).has_value());
+}
+
+TEST(ContactPolicy, SameBytesComparesTheMembersNotThePadding) {
+  // Two equal policies in storage whose padding differs (all ones against all zeros) are the
+  // same bytes; a change of any one member's bits (a sign of zero included) is not.
+  alignas(ContactPolicy) unsigned char ones[sizeof(ContactPolicy)], zeros[sizeof(ContactPolicy)];
+  std::memset(ones, 0xff, sizeof ones);
+  std::memset(zeros, 0x00, sizeof zeros);
+  ContactPolicy* a = new (ones) ContactPolicy{};
+  ContactPolicy* b = new (zeros) ContactPolicy{};
+  EXPECT_TRUE(SameBytes(*a, *b));
+  EXPECT_TRUE(SameBytes(*b, *a));
+  const auto differs = [&](auto change) {
+    ContactPolicy c = *a;
+    change(c);
+    return !SameBytes(*a, c) && !SameBytes(c, *a);
+  };
+  EXPECT_TRUE(differs([](ContactPolicy& p) { p.tie_tolerance *= 2.0; }));
+  EXPECT_TRUE(differs([](ContactPolicy& p) { p.contact_compliance = 0.0; }));
+  EXPECT_TRUE(differs([](ContactPolicy& p) { p.impact_compliance = 3e-9; }));
+  EXPECT_TRUE(differs([](ContactPolicy& p) { p.enumeration_unknowns = 0; }));
+  ContactPolicy plus_zero, minus_zero;
+  plus_zero.tie_tolerance = 0.0;
+  minus_zero.tie_tolerance = -0.0;
+  EXPECT_FALSE(SameBytes(plus_zero, minus_zero));
 }
 
 TEST(ContactPolicy, SetPolicyChecksEveryPolicyOtherThanTheOneHeld) {
