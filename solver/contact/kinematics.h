@@ -155,6 +155,29 @@ inline void DeckGapsAndRates(const GapRateScratch& scratch, const double* q, con
   }
 }
 
+/// The gap g (m) of corner c of a single deck against ground faces (GapRateScratch::deck_corners
+/// > c) at the deck's positions q = (x, y, theta): DeckGapsAndRates's gap alone, GroundFaceGap's
+/// operations in their order on the corner's copied data (the same bits as Gap).
+inline double DeckGap(const GapRateScratch& scratch, int c, const double* q) {
+  const double cos_theta = std::cos(q[2]);
+  const double sin_theta = std::sin(q[2]);
+  const GapRateScratch::DeckCorners& k = scratch.corners;
+  const double arm_x = cos_theta * k.p_x[c] - sin_theta * k.p_y[c];
+  const double arm_y = sin_theta * k.p_x[c] + cos_theta * k.p_y[c];
+  return k.n_x[c] * (((k.X_x[c] + q[0]) + arm_x) - k.A_x[c]) +
+         k.n_y[c] * (((k.X_y[c] + q[1]) + arm_y) - k.A_y[c]);
+}
+
+/// The gap g (m) of contact c at q, the same bits as Gap: a single deck against ground faces by
+/// DeckGap from the corners of `scratch` (sized for the model), any other model by Gap.
+inline double Gap(const model::Model& model, int c, const Eigen::Ref<const Eigen::VectorXd>& q,
+                  const GapRateScratch& scratch) {
+  if (scratch.deck_corners > 0) {
+    return DeckGap(scratch, c, q.data());
+  }
+  return Gap(model, c, q);
+}
+
 /// GapsAndRates of any model: a sine and cosine per body, a ground face without its rotation
 /// matrix, face frame or Jacobian columns, a face on a body by the general path.
 void GeneralGapsAndRates(const model::Model& model, const Eigen::Ref<const Eigen::VectorXd>& q,

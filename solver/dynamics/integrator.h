@@ -232,7 +232,9 @@ class Integrator final : private ConstrainedForces {
   // 1/2 u^T M u (J), M diagonal.
   double Kinetic() { return 0.5 * u().dot(model_.mass_diagonal().cwiseProduct(u())); }
   // The gap of contact c at q, and its normal rate gamma_N at (q, u), for the event searches.
-  double GapAt(int c, const Eigen::Ref<const Vec>& q) const { return contact::Gap(model_, c, q); }
+  double GapAt(int c, const Eigen::Ref<const Vec>& q) const {
+    return contact::Gap(model_, c, q, rates_);
+  }
   double NormalRateAt(int c, const Eigen::Ref<const Vec>& q, const Eigen::Ref<const Vec>& u) {
     return contact::NormalRate(model_, c, q, u, rates_);
   }

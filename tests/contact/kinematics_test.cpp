@@ -303,6 +303,10 @@ void CheckGapsAndRatesAreTheBitsOfGapAndEvaluate(const model::Model& model, bool
           << model.source() << " contact " << c << " trial " << trial;
       EXPECT_EQ(std::bit_cast<std::uint64_t>(gap[c]), std::bit_cast<std::uint64_t>(kin.gap_m[c]))
           << model.source() << " contact " << c << " trial " << trial;
+      // The event searches' gap (DeckGap on a single deck, Gap otherwise).
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(Gap(model, c, q, scratch)),
+                std::bit_cast<std::uint64_t>(Gap(model, c, q)))
+          << model.source() << " contact " << c << " trial " << trial;
       if (deck_path) {
         // Evaluate's rate sums the rows of the contact's bodies only: the same sum for one deck.
         EXPECT_EQ(std::bit_cast<std::uint64_t>(gamma_N[c]),
