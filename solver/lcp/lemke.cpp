@@ -68,12 +68,35 @@ std::string ValidationMessage(const Eigen::Ref<const Eigen::MatrixXd>& M,
   return {};
 }
 
-/// True when (M, q) is a well-formed problem: the check of ValidationMessage without building a
-/// string, for the solve of every impact and contact problem.
+/// The largest magnitude of the `rows` x `cols` entries at `a` (column-major, columns `ld`
+/// apart) into `max_abs`, and whether every entry is finite, in one pass: an entry's magnitude
+/// is at most the largest double exactly when it is finite. When all are, max_abs is the value
+/// cwiseAbs().maxCoeff() gives (the maximum of magnitudes is exact in any order).
+bool MaxAbsOfFinite(const double* a, Eigen::Index rows, Eigen::Index cols, Eigen::Index ld,
+                    double& max_abs) {
+  constexpr double kLargest = std::numeric_limits<double>::max();
+  double largest = 0.0;
+  bool finite = true;
+  for (Eigen::Index j = 0; j < cols; ++j) {
+    const double* col = a + j * ld;
+    for (Eigen::Index i = 0; i < rows; ++i) {
+      const double m = std::abs(col[i]);
+      finite = finite & (m <= kLargest);
+      largest = m > largest ? m : largest;
+    }
+  }
+  max_abs = largest;
+  return finite;
+}
+
+/// True when (M, q) is a well-formed problem (the check of ValidationMessage without building a
+/// string, for the solve of every impact and contact problem), with the largest magnitudes of
+/// the entries of M and q (in their units) into `max_abs_M` and `max_abs_q` when it is.
 bool WellFormed(const Eigen::Ref<const Eigen::MatrixXd>& M,
-                const Eigen::Ref<const Eigen::VectorXd>& q) {
-  return M.rows() == M.cols() && q.size() == M.rows() && M.rows() != 0 && M.allFinite() &&
-         q.allFinite();
+                const Eigen::Ref<const Eigen::VectorXd>& q, double& max_abs_M, double& max_abs_q) {
+  if (!(M.rows() == M.cols() && q.size() == M.rows() && M.rows() != 0)) return false;
+  const bool m_finite = MaxAbsOfFinite(M.data(), M.rows(), M.cols(), M.outerStride(), max_abs_M);
+  return m_finite && MaxAbsOfFinite(q.data(), q.size(), 1, q.size(), max_abs_q);
 }
 
 /// x 2^exponent: a product by the exact power of two when that power is a normal double (the
@@ -246,7 +269,8 @@ LcpStatus LemkeSolver::Solve(const Eigen::Ref<const Eigen::MatrixXd>& M,
   solution.complementarity = 0.0;
   solution.worst_violation = 0.0;
   solution.message.clear();
-  if (!WellFormed(M, q)) {
+  double max_abs_M = 0.0, max_abs_q = 0.0;
+  if (!WellFormed(M, q, max_abs_M, max_abs_q)) {
     solution.status = LcpStatus::kInvalidInput;
     solution.message = ValidationMessage(M, q);
     return solution.status;
@@ -262,8 +286,6 @@ LcpStatus LemkeSolver::Solve(const Eigen::Ref<const Eigen::MatrixXd>& M,
   // by powers of two changes no mantissa, so the pivots follow the same path for any units.
   // q is scaled by ldexp rather than by 1 / s_q, which overflows when q is subnormal (a q of
   // rounding residue only, as for a deck at rest).
-  const double max_abs_M = M.cwiseAbs().maxCoeff();
-  const double max_abs_q = q.cwiseAbs().maxCoeff();
   const double inv_s_m = TwoToThe(-ExponentAtLeast(max_abs_M));
   const int q_exponent = ExponentAtLeast(max_abs_q);
   const PowerOfTwo to_scaled(-q_exponent), from_scaled(q_exponent);
@@ -303,8 +325,9 @@ LcpStatus LemkeSolver::Solve(const Eigen::Ref<const Eigen::MatrixXd>& M,
   double* x = basic_values_.data();
   double* d = column_.data();
   int* basis = basis_.data();
+  std::fill_n(binv, (n - 1) * ld + n, 0.0);  // B^-1 = I: its n columns of stride ld
   for (Eigen::Index j = 0; j < n; ++j) {
-    for (Eigen::Index i = 0; i < n; ++i) binv[j * ld + i] = (i == j) ? 1.0 : 0.0;
+    binv[j * ld + j] = 1.0;
     x[j] = scaled_q(j);
     basis[j] = static_cast<int>(j);
     row_size_(j) = 1.0;  // [I | q'] has entries of size <= 1

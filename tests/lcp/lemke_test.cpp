@@ -518,6 +518,47 @@ TEST(LemkeSolver, RejectsInvalidInputWithAMessage) {
   expect_invalid(MatrixXd::Identity(3, 3), q, "q(2) is not finite");
 }
 
+TEST(LemkeSolver, FindsEveryNonFiniteEntryOfABlock) {
+  // The finiteness check against std::isfinite entry by entry: a NaN or an infinity at any
+  // position of M or q is invalid input, M read as a block of a larger matrix (its columns
+  // further apart than its rows); with every entry finite the block solves to the bits of a
+  // compact copy.
+  std::mt19937 rng(11);
+  LemkeSolver solver;
+  LcpSolution s, compact;
+  const double bad[3] = {std::numeric_limits<double>::quiet_NaN(),
+                         std::numeric_limits<double>::infinity(),
+                         -std::numeric_limits<double>::infinity()};
+  const auto bits = [](double x) { return std::bit_cast<std::uint64_t>(x); };
+  for (int n = 1; n <= 7; ++n) {
+    MatrixXd big = MatrixXd::Zero(n + 3, n + 1);
+    big.topLeftCorner(n, n) = testing::RandomSpd(n, rng);
+    big.bottomRows(3).setConstant(bad[0]);  // outside the block: never read
+    const VectorXd q = testing::RandomVector(n, rng);
+    const Eigen::Ref<const MatrixXd> block = big.topLeftCorner(n, n);
+    ASSERT_EQ(solver.Solve(block, q, s), LcpStatus::kSolved) << n;
+    ASSERT_EQ(solver.Solve(MatrixXd(block), q, compact), LcpStatus::kSolved) << n;
+    for (int i = 0; i < n; ++i) {
+      EXPECT_EQ(bits(s.z[i]), bits(compact.z[i])) << n << " " << i;
+      EXPECT_EQ(bits(s.w[i]), bits(compact.w[i])) << n << " " << i;
+    }
+    for (const double v : bad) {
+      for (int j = 0; j < n; ++j) {
+        for (int i = 0; i < n; ++i) {
+          MatrixXd m = big;
+          m(i, j) = v;
+          EXPECT_EQ(solver.Solve(m.topLeftCorner(n, n), q, s), LcpStatus::kInvalidInput)
+              << n << " M(" << i << ", " << j << ") = " << v;
+        }
+        VectorXd r = q;
+        r(j) = v;
+        EXPECT_EQ(solver.Solve(big.topLeftCorner(n, n), r, s), LcpStatus::kInvalidInput)
+            << n << " q(" << j << ") = " << v;
+      }
+    }
+  }
+}
+
 TEST(LemkeSolver, StatusNamesAreDistinct) {
   EXPECT_STREQ(ToString(LcpStatus::kSolved), "solved");
   EXPECT_STREQ(ToString(LcpStatus::kSecondaryRay), "secondary-ray");
