@@ -139,6 +139,13 @@ class ModalPeakBound {
   /// 1e-12 of the coordinate's modal size for the rounding of the ends and of a dense output's
   /// evaluation.
   double PeakBound(int i, double q0, double u0, double q1, double u1, double h_s) const {
+    return PeakBoundOfHull(i, HermiteAbsBound(q0, u0, q1, u1, h_s), h_s);
+  }
+
+  /// PeakBound from its HermiteAbsBound term `hull` (the ends' cubic's bound): hull plus
+  /// M4 h^4 / 384, rounded up as PeakBound rounds it. Never below `hull` (the added terms are
+  /// non-negative and each rounding is monotone).
+  double PeakBoundOfHull(int i, double hull, double h_s) const {
     const double* phi = data_.data() + static_cast<Eigen::Index>(i) * n_;  // |Phi_ik| over k
     const double* a4 = Mode(5);
     const double* sz = Mode(6);
@@ -148,8 +155,7 @@ class ModalPeakBound {
       size += phi[k] * sz[k];
     }
     const double h2 = h_s * h_s;
-    return (HermiteAbsBound(q0, u0, q1, u1, h_s) + m4 * (h2 * h2 / 384.0)) * (1.0 + 1e-12) +
-           1e-12 * size;
+    return (hull + m4 * (h2 * h2 / 384.0)) * (1.0 + 1e-12) + 1e-12 * size;
   }
 
  private:
@@ -215,10 +221,13 @@ class FreeStepPeaks {
   void Disarm() { Y_ = nullptr; }
 
   /// Whether |q_i| provably stays below `best` over an interval of length h_s of the armed step
-  /// with the ends (q0, u0), (q1, u1). Out of line: asked at candidate roots only.
+  /// with the ends (q0, u0), (q1, u1). The ends' cubic first: where its hull alone reaches
+  /// `best` the whole bound does too (PeakBoundOfHull), and the step's per-mode terms are not
+  /// computed for it. Out of line: asked at candidate roots only.
   [[gnu::noinline]] bool PeakBelow(int i, double q0, double u0, double q1, double u1, double h_s,
                                    double best) {
-    return Prepare() && bound_.PeakBound(i, q0, u0, q1, u1, h_s) < best;
+    const double hull = HermiteAbsBound(q0, u0, q1, u1, h_s);
+    return hull < best && Prepare() && bound_.PeakBoundOfHull(i, hull, h_s) < best;
   }
 
   /// CornerTravelTracker::Scan's travel bound: CornerPeakBound of a corner of the deck at DOF b

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -250,6 +251,66 @@ TEST(CornerPeakBound, HoldsOnRandomStepsOfADampedDeck) {
 TEST(CornerPeakBound, HoldsOnLargeTurnsAndLongSteps) {
   // Rotations of a few tenths of a radian: the turn's products in the fourth derivative count.
   CheckCorners(0.0, 300, 8, 0.3, 3.0, 5.0, 0.08);
+}
+
+// FreeStepPeaks::PeakBelow against its definition, the whole bound written out from
+// ModalPeakBound::Derivatives (HermiteAbsBound + M4 h^4 / 384, rounded up) compared with the
+// running maximum, on random steps and maxima at, just around and far from the bound and the
+// ends' hull.
+TEST(FreeStepPeaks, PeakBelowIsTheWholeBoundBelowTheMaximum) {
+  const model::Model model = testing::EccentricDeck(0.05);
+  LinearFlow modal(model.M(), model.K(), model.C(), model.r());
+  ModalPeakBound bound(modal.modal_flow());
+  FreeStepPeaks peaks(&modal.modal_flow());
+  const int n = model.n_dof();
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  long below = 0, not_below = 0;
+  for (int s = 0; s < 400; ++s) {
+    const double tau_s = 0.01 * (1.0 + 0.5 * unit(rng));
+    Eigen::VectorXd z = Eigen::VectorXd::Zero(modal.augmented_size());
+    for (int i = 0; i < n; ++i) {
+      const double length = i % 3 == 2 ? 1.0 / 15.0 : 1.0;
+      z[i] = 0.05 * length * unit(rng);
+      z[n + i] = 0.5 * length * unit(rng);
+    }
+    for (int j = 0; j < 4; ++j) z[2 * n + j] = 5.0 * unit(rng) * (j >= 2 ? 50.0 : 1.0);
+    Eigen::VectorXd z1 = z;
+    modal.Apply(modal.Propagator(tau_s, 0.0, false), z, z1);
+    const double* Y = modal.modal_coordinates().data();
+    bound.Step(Y, tau_s, 0.0);
+    peaks.Arm(true, Y, tau_s, 0.0);
+    for (int i = 0; i < n; ++i) {
+      const double q0 = z[i], u0 = z[n + i], q1 = z1[i], u1 = z1[n + i];
+      double d[4];
+      const double size = bound.Derivatives(i, d);
+      const double h2 = tau_s * tau_s;
+      const double hull = HermiteAbsBound(q0, u0, q1, u1, tau_s);
+      const double whole = (hull + d[3] * (h2 * h2 / 384.0)) * (1.0 + 1e-12) + 1e-12 * size;
+      const double inf = std::numeric_limits<double>::infinity();
+      const double bests[] = {whole,
+                              std::nextafter(whole, inf),
+                              std::nextafter(whole, 0.0),
+                              hull,
+                              std::nextafter(hull, inf),
+                              std::nextafter(hull, 0.0),
+                              std::max(std::abs(q0), std::abs(q1)),
+                              whole * (1.0 + std::abs(unit(rng))),
+                              whole * std::abs(unit(rng)),
+                              0.0};
+      for (const double best : bests) {
+        const bool expected = whole < best;
+        ASSERT_EQ(peaks.PeakBelow(i, q0, u0, q1, u1, tau_s, best), expected)
+            << "step " << s << " coordinate " << i << " best " << best;
+        (expected ? below : not_below) += 1;
+      }
+    }
+    peaks.Disarm();
+    // Unarmed, nothing is proved.
+    ASSERT_FALSE(peaks.PeakBelow(0, z[0], z[n], z1[0], z1[n], tau_s, 1e300));
+  }
+  EXPECT_GT(below, 1000);
+  EXPECT_GT(not_below, 1000);
 }
 
 TEST(ModalPeakBound, HoldsOnRandomStepsOfADampedDeck) {
