@@ -22,11 +22,22 @@ struct SpectraEvaluator::CellValues {
 
 SpectraEvaluator::SpectraEvaluator(const CellGrid& spec)
     : CellEvaluator(spec.policies), spec_(spec), shared_(spec) {
-  sources_ = {SourceOf("w0_over_wg"),   SourceOf("Pi_delta"),  SourceOf("a_deg"),
-              SourceOf("eta0"),         SourceOf("W_over_L"),  SourceOf("W0_over_w0"),
-              SourceOf("xi"),           SourceOf("eps_N"),     SourceOf("mu"),
-              SourceOf("delta_over_L"), SourceOf("L_over_Le"), SourceOf("a_g_g"),
-              SourceOf("incidence_deg")};
+  sources_ = {SourceOf("w0_over_wg"),
+              SourceOf("Pi_delta"),
+              SourceOf("a_deg"),
+              SourceOf("eta0"),
+              SourceOf("W_over_L"),
+              SourceOf("W0_over_w0"),
+              SourceOf("xi"),
+              SourceOf("eps_N"),
+              SourceOf("mu"),
+              SourceOf("delta_over_L"),
+              SourceOf("L_over_Le"),
+              SourceOf("a_g_g"),
+              SourceOf("incidence_deg"),
+              LabelSourceOf("pulse"),
+              LabelSourceOf("record"),
+              Mentions(spec, "method")};
   if (spec.family == "subsystem") {
     family_ = spectra::Family::kSubsystem;
   } else if (spec.family == "pilot-bridge") {
@@ -173,6 +184,21 @@ SpectraEvaluator::NumberSource SpectraEvaluator::SourceOf(std::string_view key) 
   return source;
 }
 
+SpectraEvaluator::LabelSource SpectraEvaluator::LabelSourceOf(std::string_view key) const {
+  LabelSource source;
+  for (std::size_t k = 0; k < spec_.axes.size(); ++k) {
+    if (spec_.axes[k].key == key) {
+      source.axis = static_cast<int>(k);
+      return source;
+    }
+  }
+  if (const FixedValue* fixed = spec_.FindFixed(key)) {
+    source.fixed = true;
+    source.label = fixed->label;
+  }
+  return source;
+}
+
 spectra::PointParameters SpectraEvaluator::Parameters(std::span<const std::size_t> index,
                                                       const SweepRecord** record) const {
   spectra::PointParameters p;
@@ -202,12 +228,14 @@ spectra::PointParameters SpectraEvaluator::Parameters(std::span<const std::size_
   if (given) p.delta_over_L = delta_over_l;
   p.L_over_Le = Number(sources_.L_over_Le, index, p.L_over_Le);
   p.pulse_a_g_mps2 = Number(sources_.a_g_g, index, 0.5) * kStandardGravity_mps2;
-  p.pulse = LabelOf(spec_, index, "pulse") == "sine" ? records::PulseShape::kSine
-                                                     : records::PulseShape::kCosine;
-  p.method = MethodOf(spec_, index, spectra::Method::kEventDriven);
+  p.pulse = Label(sources_.pulse, index) == "sine" ? records::PulseShape::kSine
+                                                   : records::PulseShape::kCosine;
+  // Without a method key MethodOf gives its fallback.
+  p.method = sources_.method ? MethodOf(spec_, index, spectra::Method::kEventDriven)
+                             : spectra::Method::kEventDriven;
   *record = nullptr;
   if (!records_.empty()) {
-    const std::string label = LabelOf(spec_, index, "record");
+    const std::string& label = Label(sources_.record, index);
     for (const SweepRecord& r : records_) {
       if (r.label == label) *record = &r;
     }
@@ -235,11 +263,7 @@ SpectraEvaluator::CellRun SpectraEvaluator::MakeRun(std::span<const std::size_t>
 std::unique_ptr<Excitation> SpectraEvaluator::MakeExcitation(
     std::span<const std::size_t> axis_index, const spectra::PointParameters& p,
     const SweepRecord* record, const spectra::ExcitationScales& scales) const {
-  bool turned = false;
-  const double incidence_deg = Number(sources_.incidence_deg, axis_index, 0.0, &turned);
-  // Without incidence_deg the default direction x, as the excitations make it.
-  const Eigen::Vector2d direction =
-      turned ? records::DirectionAt(incidence_deg) : Eigen::Vector2d::UnitX();
+  const Eigen::Vector2d direction = DirectionOf(axis_index);
   if (record != nullptr && record->IsPair()) {
     return std::make_unique<records::SampledExcitation>(
         records::PairExcitation(record->motion, *record->motion_h2, direction));
@@ -252,6 +276,13 @@ std::unique_ptr<Excitation> SpectraEvaluator::MakeExcitation(
   }
   return std::make_unique<records::PulseExcitation>(p.pulse, scales.a_g_mps2, scales.w_g_radps,
                                                     direction);
+}
+
+Eigen::Vector2d SpectraEvaluator::DirectionOf(std::span<const std::size_t> axis_index) const {
+  bool turned = false;
+  const double incidence_deg = Number(sources_.incidence_deg, axis_index, 0.0, &turned);
+  // Without incidence_deg the default direction x, as the excitations make it.
+  return turned ? records::DirectionAt(incidence_deg) : Eigen::Vector2d::UnitX();
 }
 
 std::shared_ptr<const records::PeakPieces> SpectraEvaluator::RecordPeakPieces(
@@ -268,8 +299,15 @@ SpectraEvaluator::SeatRun SpectraEvaluator::RunOf(std::span<const std::size_t> a
           : spectra::PulseScales(p);
   SeatRun out;
   out.point = spectra::ToDimensional(p, scales);
-  out.result =
-      spectra::EvaluatePoint(out.point, *MakeExcitation(axis_index, p, record, scales), policies());
+  if (record == nullptr) {
+    // MakeExcitation's pulse, on the stack.
+    const records::PulseExcitation pulse(p.pulse, scales.a_g_mps2, scales.w_g_radps,
+                                         DirectionOf(axis_index));
+    out.result = spectra::EvaluatePoint(out.point, pulse, policies());
+  } else {
+    out.result = spectra::EvaluatePoint(out.point, *MakeExcitation(axis_index, p, record, scales),
+                                        policies());
+  }
   return out;
 }
 

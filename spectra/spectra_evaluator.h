@@ -107,10 +107,32 @@ class SpectraEvaluator final : public CellEvaluator {
     }
     return source.fixed ? source.value : fallback;
   }
-  /// The sources of the parameters Parameters and MakeExcitation read, one per key.
+  /// Where a label parameter of a cell comes from, found once in spec_ as LabelOf finds it: an
+  /// axis (its label at the cell's index), a fixed label, or neither (the empty label).
+  struct LabelSource {
+    int axis = -1;       ///< the axis of the key, or -1
+    bool fixed = false;  ///< no axis, a fixed label
+    std::string label;   ///< the fixed label
+  };
+  /// The source of label `key` in spec_.
+  LabelSource LabelSourceOf(std::string_view key) const;
+  /// LabelOf(spec_, index, key) for the key of `source`, without copying it.
+  const std::string& Label(const LabelSource& source, std::span<const std::size_t> index) const {
+    if (source.axis >= 0) {
+      const auto k = static_cast<std::size_t>(source.axis);
+      return spec_.axes[k].labels[index[k]];
+    }
+    return source.label;  // empty unless fixed
+  }
+  /// The direction of a cell's ground motion: incidence_deg from the bridge's x axis, or x.
+  Eigen::Vector2d DirectionOf(std::span<const std::size_t> axis_index) const;
+  /// The sources of the parameters Parameters and MakeExcitation read, one per key; `method`
+  /// says whether spec_ names the method (else every cell is event-driven).
   struct Sources {
     NumberSource w0_over_wg, Pi_delta, a_deg, eta0, W_over_L, W0_over_w0, xi, eps_N, mu,
         delta_over_L, L_over_Le, a_g_g, incidence_deg;
+    LabelSource pulse, record;
+    bool method = false;
   } sources_;
 };
 

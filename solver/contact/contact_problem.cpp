@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "solver/common/error.h"
 #include "solver/lcp/enumeration.h"
@@ -46,7 +47,8 @@ void ContactProblem::SetPolicy(const ContactPolicy& policy) {
     return;
   }
   CheckContactPolicy(policy);
-  policy_ = policy;
+  // Every byte, the padding too: the next run's same policy then compares equal.
+  std::memcpy(&policy_, &policy, sizeof(ContactPolicy));
 }
 
 ContactResult ContactProblem::MakeResult() const {

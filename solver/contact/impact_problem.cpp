@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "solver/common/error.h"
 #include "solver/lcp/enumeration.h"
@@ -84,7 +85,8 @@ void ImpactProblem::SetPolicy(const ContactPolicy& policy) {
     return;
   }
   CheckContactPolicy(policy);
-  policy_ = policy;
+  // Every byte, the padding too: the next run's same policy then compares equal.
+  std::memcpy(&policy_, &policy, sizeof(ContactPolicy));
 }
 
 ImpactResult ImpactProblem::MakeResult() const {

@@ -7,7 +7,9 @@
 
 namespace skewbridge::dynamics {
 
-CornerTravelTracker::CornerTravelTracker(const model::Model& model) : n_(model.n_dof()) {
+void CornerTravelTracker::Assign(const model::Model& model) {
+  n_ = model.n_dof();
+  decks_.clear();
   decks_.reserve(model.bodies().size());
   for (const model::Body& body : model.bodies()) {
     Deck d;

@@ -35,7 +35,11 @@ namespace skewbridge::dynamics {
 class CornerTravelTracker {
  public:
   /// The decks of `model`: deck i occupies DOFs 3 i .. 3 i + 2 (x, y, theta).
-  explicit CornerTravelTracker(const model::Model& model);
+  explicit CornerTravelTracker(const model::Model& model) { Assign(model); }
+  /// No decks (Assign gives it some).
+  CornerTravelTracker() = default;
+  /// Tracks the decks of `model` instead, in the storage it has (no allocation for as many decks).
+  void Assign(const model::Model& model);
 
   /// Number of decks tracked.
   int decks() const { return static_cast<int>(decks_.size()); }

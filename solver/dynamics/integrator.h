@@ -315,9 +315,10 @@ class Integrator final : private ConstrainedForces {
   ContactModes& modes_;
   std::vector<int> forced_;  // contacts striking together at the located impact
   RunResult result_;
-  CornerTravelTracker travel_;  // the decks' corner travels (result_.max_travel_m)
-  DecisionMemory& memory_;      // what the mode decision remembers (the workspace's RunStorage)
-  DecisionLog log_;             // the events and counts the decisions add
+  // The decks' corner travels (result_.max_travel_m): the workspace's, moved in for the run.
+  CornerTravelTracker travel_;
+  DecisionMemory& memory_;  // what the mode decision remembers (the workspace's RunStorage)
+  DecisionLog log_;         // the events and counts the decisions add
   // A history sample's force evaluation (with histories only): recording leaves ws_.forces_ as
   // it was, so a run takes the same decisions whether it records histories or not.
   std::unique_ptr<ActiveForcesStorage> sample_forces_;

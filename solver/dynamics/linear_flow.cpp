@@ -15,6 +15,18 @@ namespace {
 
 constexpr std::size_t kCacheCapacity = 8;
 
+// Whether M is diagonal with finite entries > 0: then it is symmetric positive definite (the
+// Cholesky factorisation, whose verdict it is otherwise, succeeds on it) without factorising.
+bool PositiveDiagonal(const Eigen::MatrixXd& M) {
+  for (Eigen::Index j = 0; j < M.cols(); ++j) {
+    for (Eigen::Index i = 0; i < M.rows(); ++i) {
+      const double m = M(i, j);
+      if (i == j ? !(std::isfinite(m) && m > 0.0) : m != 0.0) return false;
+    }
+  }
+  return M.rows() == M.cols();
+}
+
 }  // namespace
 
 LinearFlow::LinearFlow(const Eigen::Ref<const Eigen::MatrixXd>& M,
@@ -48,8 +60,8 @@ void LinearFlow::Setup(const model::Modes* modes) {
   SB_DEMAND(M_.cols() == n_ && K_.rows() == n_ && K_.cols() == n_ && C_.rows() == n_ &&
                 C_.cols() == n_ && r_.rows() == n_ && r_.cols() == 2,
             "LinearFlow: inconsistent matrix sizes");
-  const Eigen::LLT<Eigen::MatrixXd> llt(M_);
-  SB_DEMAND(llt.info() == Eigen::Success, "LinearFlow: M must be symmetric positive definite");
+  SB_DEMAND(PositiveDiagonal(M_) || Eigen::LLT<Eigen::MatrixXd>(M_).info() == Eigen::Success,
+            "LinearFlow: M must be symmetric positive definite");
   Mr_.noalias() = M_ * r_;
   bool modal = false;
   if (path_ == FlowPath::kAuto) {

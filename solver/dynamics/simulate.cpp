@@ -59,7 +59,6 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
       peaks_(ws.flow_.modal() ? &ws.flow_.modal_flow() : nullptr),
       rates_(ws.run_storage_.rates),
       modes_(ws.run_storage_.modes),
-      travel_(model),
       memory_(ws.run_storage_.memory),
       observer_(observer) {
   SB_DEMAND(&ws.model() == &model, "Simulate: workspace built for another model");
@@ -160,7 +159,6 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   result_.max_abs_q = z_.head(n_).cwiseAbs();
   result_.time_of_max_s = Vec::Constant(n_, t_);
   result_.free_steps = initial_steps_;
-  travel_.Start(z_.head(n_), result_.max_travel_m);
   log_.events.reserve(1024);
   if (control.output_interval_s > 0.0) {
     const auto samples = static_cast<std::size_t>(t_end_ / control.output_interval_s) + 2;
@@ -185,9 +183,16 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
       next_output_t_ = dt * static_cast<double>(output_offset_);
     }
   }
+  // The workspace's tracker, taken last, when nothing can throw any more (the destructor gives it
+  // back).
+  travel_ = std::move(ws.travel_);
+  travel_.Start(z_.head(n_), result_.max_travel_m);
 }
 
-Integrator::~Integrator() { SwapStorage(); }
+Integrator::~Integrator() {
+  SwapStorage();
+  ws_.travel_ = std::move(travel_);
+}
 
 void Integrator::SwapStorage() {
   RunStorage& s = ws_.run_storage_;

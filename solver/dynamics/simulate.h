@@ -35,6 +35,7 @@
 #include "solver/contact/kinematics.h"
 #include "solver/dynamics/active_forces.h"
 #include "solver/dynamics/contact_modes.h"
+#include "solver/dynamics/corner_travel.h"
 #include "solver/dynamics/event_policy.h"
 #include "solver/dynamics/gap_bound.h"
 #include "solver/dynamics/gap_floors.h"
@@ -152,6 +153,9 @@ class SimulationWorkspace {
   GapFloors gap_floors_{gap_bound_};
   // The integrator's state storage, lent to each run (RunStorage).
   RunStorage run_storage_{model_.n_contacts()};
+  // The decks' corner geometry for their travels, which each run starts again: a run's
+  // integrator holds it (moved in and back, no allocation).
+  CornerTravelTracker travel_{model_};
   double omega_min_radps_ = 0.0;  // lowest natural frequency (0 for a free body)
   double omega_max_radps_ = 0.0;  // highest natural frequency
   double length_scale_m_ = 1.0;   // largest deck dimension or distance from the origin

@@ -65,6 +65,7 @@ void SimulationWorkspace::Refit() {
   // would be in a new workspace. The rest of the storage is written before it is read in a run.
   forces_.kin.Resize(model);
   decision_.projection.kin.Resize(model);
+  travel_.Assign(model);
   ComputeScales();
 }
 
