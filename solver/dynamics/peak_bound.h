@@ -177,6 +177,19 @@ class ModalPeakBound {
 /// little beside the searches they spare.
 inline constexpr int kCornerHalvings = 4;
 
+/// CornerPeakBound from its HermiteAbsBound term `hull` (kCornerHalvings halvings of the ends'
+/// cubic): hull plus M4 h^4 / 384, rounded up as CornerPeakBound rounds it. Never below `hull`
+/// (the added terms are non-negative and each rounding is monotone).
+inline double CornerPeakBoundOfHull(double nx, double ny, double radius_m, const double dx[4],
+                                    const double dy[4], const double dth[4], double size_m,
+                                    double hull, double h_s) {
+  const double t1 = dth[0], t2 = dth[1], t3 = dth[2], t4 = dth[3];
+  const double turn = t4 + 4.0 * t1 * t3 + 3.0 * t2 * t2 + 6.0 * t1 * t1 * t2 + t1 * t1 * t1 * t1;
+  const double m4 = std::abs(nx) * dx[3] + std::abs(ny) * dy[3] + radius_m * turn;
+  const double h2 = h_s * h_s;
+  return (hull + m4 * (h2 * h2 / 384.0)) * (1.0 + 1e-12) + 1e-12 * size_m;
+}
+
 /// An upper bound of a deck corner's travel |f| over an interval of length h_s inside a free
 /// step [docs/theory.md §3.20], f = n_e . (x, y) +- ((cos theta - 1) A + sin theta B) with
 /// |P| = sqrt(A^2 + B^2) the corner's radius (m), from f and df/dt at the two ends, the bounds
@@ -188,13 +201,8 @@ inline constexpr int kCornerHalvings = 4;
 inline double CornerPeakBound(double nx, double ny, double radius_m, const double dx[4],
                               const double dy[4], const double dth[4], double size_m, double f0,
                               double r0, double f1, double r1, double h_s) {
-  const double t1 = dth[0], t2 = dth[1], t3 = dth[2], t4 = dth[3];
-  const double turn = t4 + 4.0 * t1 * t3 + 3.0 * t2 * t2 + 6.0 * t1 * t1 * t2 + t1 * t1 * t1 * t1;
-  const double m4 = std::abs(nx) * dx[3] + std::abs(ny) * dy[3] + radius_m * turn;
-  const double h2 = h_s * h_s;
-  return (HermiteAbsBound(f0, r0, f1, r1, h_s, kCornerHalvings) + m4 * (h2 * h2 / 384.0)) *
-             (1.0 + 1e-12) +
-         1e-12 * size_m;
+  return CornerPeakBoundOfHull(nx, ny, radius_m, dx, dy, dth, size_m,
+                               HermiteAbsBound(f0, r0, f1, r1, h_s, kCornerHalvings), h_s);
 }
 
 /// The peak bound of the free step being recorded (ModalPeakBound): armed by the free step after
@@ -209,16 +217,23 @@ class FreeStepPeaks {
   /// Arms the bound for a step [0, tau_s] at omega_radps from the modal coordinates Y of its
   /// start (ModalPeakBound::Step's layout; the storage must outlive the step), when `full` and
   /// the bound applies.
-  void Arm(bool full, const double* Y, double tau_s, double omega_radps) {
+  /// max_travel_m (null: none) holds the decks' running maxima of the corners' travel (m) that
+  /// the travel bound is compared with (the deck at DOF b is max_travel_m[b / 3]).
+  void Arm(bool full, const double* Y, double tau_s, double omega_radps,
+           const double* max_travel_m = nullptr) {
     if (full && bound_.applies()) {
       Y_ = Y;
+      max_travel_m_ = max_travel_m;
       tau_s_ = tau_s;
       omega_radps_ = omega_radps;
       ready_ = false;
     }
   }
   /// Ends the step: no bound until the next Arm.
-  void Disarm() { Y_ = nullptr; }
+  void Disarm() {
+    Y_ = nullptr;
+    max_travel_m_ = nullptr;
+  }
 
   /// Whether |q_i| provably stays below `best` over an interval of length h_s of the armed step
   /// with the ends (q0, u0), (q1, u1). The ends' cubic first: where its hull alone reaches
@@ -232,15 +247,22 @@ class FreeStepPeaks {
 
   /// CornerTravelTracker::Scan's travel bound: CornerPeakBound of a corner of the deck at DOF b
   /// over an interval of length h_s of the armed step (+inf unarmed): end-line normal (nx, ny),
-  /// corner radius (m), travel (m) and rate (m/s) at the ends.
+  /// corner radius (m), travel (m) and rate (m/s) at the ends. +inf also where the ends' hull
+  /// alone reaches the deck's running maximum (Arm's max_travel_m): the whole bound would reach
+  /// it too (CornerPeakBoundOfHull), and the step's per-mode terms are not computed for it.
   [[gnu::noinline]] double operator()(int b, double nx, double ny, double radius, double f0,
                                       double r0, double f1, double r1, double h_s) {
-    if (!Prepare()) return std::numeric_limits<double>::infinity();
+    if (Y_ == nullptr) return std::numeric_limits<double>::infinity();
+    const double hull = HermiteAbsBound(f0, r0, f1, r1, h_s, kCornerHalvings);
+    if (max_travel_m_ != nullptr && !(hull < max_travel_m_[b / 3])) {
+      return std::numeric_limits<double>::infinity();
+    }
+    Prepare();
     double dx[4], dy[4], dth[4];
     const double size = std::abs(nx) * bound_.Derivatives(b, dx) +
                         std::abs(ny) * bound_.Derivatives(b + 1, dy) +
                         radius * bound_.Derivatives(b + 2, dth);
-    return CornerPeakBound(nx, ny, radius, dx, dy, dth, size, f0, r0, f1, r1, h_s);
+    return CornerPeakBoundOfHull(nx, ny, radius, dx, dy, dth, size, hull, h_s);
   }
 
  private:
@@ -254,10 +276,11 @@ class FreeStepPeaks {
   }
 
   ModalPeakBound bound_;
-  const double* Y_ = nullptr;  // the armed step's modal coordinates at its start
-  double tau_s_ = 0.0;         // its length (s)
-  double omega_radps_ = 0.0;   // its harmonic rate (rad/s)
-  bool ready_ = false;         // bound_.Step done for it
+  const double* Y_ = nullptr;             // the armed step's modal coordinates at its start
+  const double* max_travel_m_ = nullptr;  // the decks' running maxima of the travel (m)
+  double tau_s_ = 0.0;                    // its length (s)
+  double omega_radps_ = 0.0;              // its harmonic rate (rad/s)
+  bool ready_ = false;                    // bound_.Step done for it
 };
 
 }  // namespace skewbridge::dynamics

@@ -432,7 +432,8 @@ void Integrator::FinishFreeStep(const ExcitationPiece& piece, const FreeStepPlan
       ws_.free_dense_.EvaluateComponents(t - t_, i, out...);
     }
   };
-  peaks_.Arm(step.full, flow.modal_coordinates().data(), std::max(tau, step.h_s), piece.omega);
+  peaks_.Arm(step.full, flow.modal_coordinates().data(), std::max(tau, step.h_s), piece.omega,
+             result_.max_travel_m.data());
   RecordStep(t1, component_at, state_at);
   peaks_.Disarm();
 

@@ -313,6 +313,81 @@ TEST(FreeStepPeaks, PeakBelowIsTheWholeBoundBelowTheMaximum) {
   EXPECT_GT(not_below, 1000);
 }
 
+// FreeStepPeaks' travel bound armed with the decks' running maxima against CornerPeakBound
+// written out from ModalPeakBound::Derivatives: compared with the deck's maximum it gives the
+// same answer for maxima at, just around and far from the bound and the ends' hull, and where it
+// is finite it is CornerPeakBound's value.
+TEST(FreeStepPeaks, TheTravelBoundAgainstTheMaximumIsCornerPeakBounds) {
+  const model::Model model = testing::EccentricDeck(0.05);
+  LinearFlow modal(model.M(), model.K(), model.C(), model.r());
+  ModalPeakBound bound(modal.modal_flow());
+  FreeStepPeaks peaks(&modal.modal_flow());
+  const model::Body& body = model.bodies()[0];
+  const double nx = std::cos(body.geometry.skew_rad), ny = -std::sin(body.geometry.skew_rad);
+  const Eigen::Vector2d P = model::Corner(body.geometry, 1);
+  const double A = nx * P.x() + ny * P.y(), B = -nx * P.y() + ny * P.x(), radius = P.norm();
+  // Corner 1's travel and rate at the state z.
+  const auto travel = [&](const Eigen::VectorXd& z, double& rate) {
+    const double th = z[2], uth = z[5];
+    rate = nx * z[3] + ny * z[4] + uth * (-std::sin(th) * A + std::cos(th) * B);
+    return nx * z[0] + ny * z[1] + (std::cos(th) - 1.0) * A + std::sin(th) * B;
+  };
+  const int n = model.n_dof();
+  std::mt19937 rng(22);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  long below = 0, not_below = 0;
+  for (int s = 0; s < 400; ++s) {
+    const double tau_s = 0.01 * (1.0 + 0.5 * unit(rng));
+    Eigen::VectorXd z = Eigen::VectorXd::Zero(modal.augmented_size());
+    for (int i = 0; i < n; ++i) {
+      const double length = i % 3 == 2 ? 1.0 / 15.0 : 1.0;
+      z[i] = 0.05 * length * unit(rng);
+      z[n + i] = 0.5 * length * unit(rng);
+    }
+    for (int j = 0; j < 4; ++j) z[2 * n + j] = 5.0 * unit(rng) * (j >= 2 ? 50.0 : 1.0);
+    Eigen::VectorXd z1 = z;
+    modal.Apply(modal.Propagator(tau_s, 0.0, false), z, z1);
+    const double* Y = modal.modal_coordinates().data();
+    bound.Step(Y, tau_s, 0.0);
+    double r0, r1;
+    const double f0 = travel(z, r0), f1 = travel(z1, r1);
+    double dx[4], dy[4], dth[4];
+    const double size = std::abs(nx) * bound.Derivatives(0, dx) +
+                        std::abs(ny) * bound.Derivatives(1, dy) +
+                        radius * bound.Derivatives(2, dth);
+    const double whole = CornerPeakBound(nx, ny, radius, dx, dy, dth, size, f0, r0, f1, r1, tau_s);
+    const double hull = HermiteAbsBound(f0, r0, f1, r1, tau_s, kCornerHalvings);
+    const double inf = std::numeric_limits<double>::infinity();
+    const double maxima[] = {whole,
+                             std::nextafter(whole, inf),
+                             std::nextafter(whole, 0.0),
+                             hull,
+                             std::nextafter(hull, inf),
+                             std::nextafter(hull, 0.0),
+                             std::max(std::abs(f0), std::abs(f1)),
+                             whole * (1.0 + std::abs(unit(rng))),
+                             whole * std::abs(unit(rng)),
+                             0.0};
+    for (const double best : maxima) {
+      peaks.Arm(true, Y, tau_s, 0.0, &best);
+      const double b = peaks(0, nx, ny, radius, f0, r0, f1, r1, tau_s);
+      ASSERT_EQ(b < best, whole < best) << "step " << s << " maximum " << best;
+      if (b < inf) {
+        ASSERT_EQ(b, whole) << "step " << s;
+      }
+      (whole < best ? below : not_below) += 1;
+      peaks.Disarm();
+    }
+    // Without the maxima, and unarmed.
+    peaks.Arm(true, Y, tau_s, 0.0);
+    ASSERT_EQ(peaks(0, nx, ny, radius, f0, r0, f1, r1, tau_s), whole);
+    peaks.Disarm();
+    ASSERT_EQ(peaks(0, nx, ny, radius, f0, r0, f1, r1, tau_s), inf);
+  }
+  EXPECT_GT(below, 500);
+  EXPECT_GT(not_below, 500);
+}
+
 TEST(ModalPeakBound, HoldsOnRandomStepsOfADampedDeck) {
   Stats stats = CheckSteps(0.05, 400, 1, 0.05, 0.5, 5.0, 0.01, false);
   ASSERT_GT(stats.roots(), 20);
