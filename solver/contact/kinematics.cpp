@@ -330,6 +330,20 @@ void EvaluateContacts(const model::Model& model, const Eigen::Ref<const Eigen::V
                       ContactKinematics& out) {
   SB_ASSERT(out.W_N.rows() == model.n_dof() && out.W_N.cols() == model.n_contacts(),
             "ContactKinematics not sized for this model");
+  if (model.n_bodies() == 1 && !contacts.empty()) {
+    // A single deck: Evaluate's path for the listed contacts (one rotation, a ground face's on
+    // scalars), the same bits as EvaluateOne.
+    const Eigen::Matrix2d R = Rotation(q(2));
+    for (int c : contacts) {
+      SB_ASSERT(c >= 0 && c < model.n_contacts(), "contact index out of range");
+      if (model.contact(c).face.body == model::kGround) {
+        EvaluateDeckCorner(model, c, R(0, 0), R(1, 0), q.data(), u.data(), out);
+      } else {
+        EvaluateOne(model, c, q, u, out);
+      }
+    }
+    return;
+  }
   for (int c : contacts) {
     SB_ASSERT(c >= 0 && c < model.n_contacts(), "contact index out of range");
     EvaluateOne(model, c, q, u, out);

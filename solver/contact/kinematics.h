@@ -168,6 +168,20 @@ inline double DeckGap(const GapRateScratch& scratch, int c, const double* q) {
          k.n_y[c] * (((k.X_y[c] + q[1]) + arm_y) - k.A_y[c]);
 }
 
+/// The normal rate gamma_N (m/s) of corner c of a single deck against ground faces
+/// (GapRateScratch::deck_corners > c) at the deck's positions q and velocities u (3 each):
+/// DeckGapsAndRates's rate alone, GroundFaceNormalRate's operations in their order on the
+/// corner's copied data (the same bits as NormalRate's ground-face path).
+inline double DeckNormalRate(const GapRateScratch& scratch, int c, const double* q,
+                             const double* u) {
+  const double cos_theta = std::cos(q[2]);
+  const double sin_theta = std::sin(q[2]);
+  const GapRateScratch::DeckCorners& k = scratch.corners;
+  const double arm_x = cos_theta * k.p_x[c] - sin_theta * k.p_y[c];
+  const double arm_y = sin_theta * k.p_x[c] + cos_theta * k.p_y[c];
+  return (k.n_x[c] * u[0] + k.n_y[c] * u[1]) + u[2] * (k.n_y[c] * arm_x - k.n_x[c] * arm_y);
+}
+
 /// The gap g (m) of contact c at q, the same bits as Gap: a single deck against ground faces by
 /// DeckGap from the corners of `scratch` (sized for the model), any other model by Gap.
 inline double Gap(const model::Model& model, int c, const Eigen::Ref<const Eigen::VectorXd>& q,
@@ -203,6 +217,9 @@ inline void GapsAndRates(const model::Model& model, const Eigen::Ref<const Eigen
 inline double NormalRate(const model::Model& model, int c,
                          const Eigen::Ref<const Eigen::VectorXd>& q,
                          const Eigen::Ref<const Eigen::VectorXd>& u, GapRateScratch& scratch) {
+  if (scratch.deck_corners > 0) {
+    return DeckNormalRate(scratch, c, q.data(), u.data());
+  }
   const model::Contact& contact = model.contact(c);
   if (model.n_dof() != 3 || contact.face.body != model::kGround) {
     Jacobians(model, c, q, scratch.w_N, scratch.w_T);

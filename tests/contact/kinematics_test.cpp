@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -271,6 +272,63 @@ TEST(ContactKinematics, EvaluateOfASingleDeckIsTheBitsOfEachContactsEvaluation) 
   }
 }
 
+// EvaluateContacts of a single deck (its own path: one rotation, scalar sums) against the
+// general per-contact functions, bit for bit: the gap of BodyFaceGap (the geometry of any face),
+// the columns of Jacobians, w . u, and VelocityTerms, for random subsets of the contacts in
+// random order at random states and at rest; the contacts not listed keep their values.
+TEST(ContactKinematics, EvaluateContactsOfASingleDeckIsTheBitsOfTheGeneralPath) {
+  std::mt19937_64 rng(55);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const auto bits = [](double x) { return std::bit_cast<std::uint64_t>(x); };
+  for (const model::Model& deck :
+       {testing::FreeDeck(30.0, 2.0, 20.0, 0.04, 0.5, 0.0, model::AbutmentSet::kPlusX),
+        testing::FreeDeck(65.0, 1.3, 89.14, 0.03, 0.5, 0.3, model::AbutmentSet::kBoth),
+        testing::FreeDeck(10.0, 1.7, 45.0, 0.02, 0.5, 0.6, model::AbutmentSet::kBoth)}) {
+    const int nc = deck.n_contacts();
+    ContactKinematics kin;
+    kin.Resize(deck);
+    Eigen::VectorXd w_N(3), w_T(3);
+    for (int trial = 0; trial < 400; ++trial) {
+      Eigen::Vector3d q(0.5 * unit(rng), 0.5 * unit(rng), 0.3 * unit(rng));
+      Eigen::Vector3d u(3.0 * unit(rng), 3.0 * unit(rng), unit(rng));
+      if (trial % 10 == 0) {
+        q << -0.0, 0.0, trial % 20 == 0 ? -0.0 : 0.0;
+        u(trial % 3) = -0.0;
+      }
+      std::vector<int> listed;
+      for (int c = 0; c < nc; ++c) {
+        if (rng() % 2 == 0) listed.push_back(c);
+      }
+      std::shuffle(listed.begin(), listed.end(), rng);
+      constexpr double kMarker = 12345.0;  // in every entry a contact not listed must keep
+      kin.gap_m.setConstant(kMarker);
+      kin.gamma_N.setConstant(kMarker);
+      kin.what_T.setConstant(kMarker);
+      EvaluateContacts(deck, q, u, listed, kin);
+      for (int c = 0; c < nc; ++c) {
+        if (std::find(listed.begin(), listed.end(), c) == listed.end()) {
+          EXPECT_EQ(kin.gap_m[c], kMarker) << c;
+          EXPECT_EQ(kin.gamma_N[c], kMarker) << c;
+          EXPECT_EQ(kin.what_T[c], kMarker) << c;
+          continue;
+        }
+        Jacobians(deck, c, q, w_N, w_T);
+        double what_N = 0.0, what_T = 0.0;
+        VelocityTerms(deck, c, q, u, what_N, what_T);
+        EXPECT_EQ(bits(kin.gap_m[c]), bits(BodyFaceGap(deck, c, q))) << c << " trial " << trial;
+        EXPECT_EQ(bits(kin.gamma_N[c]), bits(w_N.dot(u))) << c << " trial " << trial;
+        EXPECT_EQ(bits(kin.gamma_T[c]), bits(w_T.dot(u))) << c << " trial " << trial;
+        EXPECT_EQ(bits(kin.what_N[c]), bits(what_N)) << c << " trial " << trial;
+        EXPECT_EQ(bits(kin.what_T[c]), bits(what_T)) << c << " trial " << trial;
+        for (int i = 0; i < 3; ++i) {
+          EXPECT_EQ(bits(kin.W_N(i, c)), bits(w_N[i])) << c << " trial " << trial;
+          EXPECT_EQ(bits(kin.W_T(i, c)), bits(w_T[i])) << c << " trial " << trial;
+        }
+      }
+    }
+  }
+}
+
 // GapsAndRates against Gap, NormalRate and Evaluate, bit for bit, at random states: a single deck
 // (its own path, from the corners' data copied by Resize, with and without a rest position off
 // the origin) and two decks with a face on a body (the general path, whose rate sums the whole
@@ -319,6 +377,14 @@ void CheckGapsAndRatesAreTheBitsOfGapAndEvaluate(const model::Model& model, bool
       EXPECT_EQ(std::bit_cast<std::uint64_t>(gamma_N[c]),
                 std::bit_cast<std::uint64_t>(NormalRate(model, c, q, u, scratch)))
           << model.source() << " contact " << c << " trial " << trial;
+      // The general form: w_N . u with the Jacobian column of the contact's geometry.
+      Eigen::VectorXd w_N(n), w_T(n);
+      Jacobians(model, c, q, w_N, w_T);
+      if (deck_path) {
+        EXPECT_EQ(std::bit_cast<std::uint64_t>(NormalRate(model, c, q, u, scratch)),
+                  std::bit_cast<std::uint64_t>(w_N.dot(u)))
+            << model.source() << " contact " << c << " trial " << trial;
+      }
     }
   }
 }
