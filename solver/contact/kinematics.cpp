@@ -269,9 +269,12 @@ namespace {
 
 // EvaluateOne of a single deck's contact against a ground face, given the deck's cos(theta) and
 // sin(theta): Compute's, JacobiansAt's and VelocityTermsAt's operations in their order on
-// scalars (R p = (c p_x - s p_y, s p_x + c p_y) as RotatedArm; the same bits).
-void EvaluateDeckCorner(const model::Model& model, int c, double cos_theta, double sin_theta,
-                        const double* q, const double* u, ContactKinematics& out) {
+// scalars (R p = (c p_x - s p_y, s p_x + c p_y) as RotatedArm; the same bits). Inlined into the
+// loops over the contacts, which share the body's and the output's addresses across corners.
+[[gnu::always_inline]] inline void EvaluateDeckCorner(const model::Model& model, int c,
+                                                      double cos_theta, double sin_theta,
+                                                      const double* q, const double* u,
+                                                      ContactKinematics& out) {
   const model::Contact& contact = model.contact(c);
   const Eigen::Vector2d& X = model.body(0).rest_position_m;
   const Eigen::Vector2d& p = contact.point_m;
