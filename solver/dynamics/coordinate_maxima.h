@@ -99,7 +99,8 @@ inline bool RaiseMaximaAtEnd3(const CoordinateLanes x0[3], const CoordinateLanes
     const CoordinateLanes reference = {max_abs_q[i], product[1]};
     any |= reference < end;
   }
-  if ((any | __builtin_shufflevector(any, any, 1, 0))[0] == 0) {
+  // No lane's comparison held: no lane's sign bit is set (one movmskpd).
+  if (__builtin_ia32_movmskpd(std::bit_cast<CoordinateLanes>(any)) == 0) {
     return false;
   }
   bool search = false;

@@ -127,6 +127,35 @@ inline void DeckRecordLanes(const DeckLanes& d, const double* __restrict pairs, 
   }
 }
 
+// DeckRecordLanes for a caller that reads qu only through magnitudes and the mode sums: qu
+// and each mode's sums (eta_k, eta_k') at the step's end start from their first product instead
+// of +0. A sum begun at +0 and one begun at its first product differ only when their value is
+// zero (+0 against -0): a term is zero of either sign in both or in neither, so every partial sum
+// has the same value in both. The step's end sums each mode's products from +0, where no partial
+// sum is -0, so a zero term adds the same bits whatever its sign: `next` and ab are
+// DeckRecordLanes' bits, qu its values (a zero's sign aside).
+inline void DeckStepLanes(const DeckLanes& d, const double* __restrict pairs, const Lanes2 zq[3],
+                          Lanes2 gx, Lanes2 gy, Lanes2 qu[3], Lanes2 ab[3], Lanes2 next[3]) {
+  Lanes2 ed[3];
+  const auto* T = static_cast<const double*>(__builtin_assume_aligned(pairs, 16));
+  for (int i = 0; i < 3; ++i) {
+    qu[i] = d.PhiTM[i] * zq[0] + d.PhiTM[i + 3] * zq[1] + d.PhiTM[i + 6] * zq[2];
+    ab[i] = d.negL[i] * gx + d.negL[3 + i] * gy;
+  }
+  for (int k = 0; k < 3; ++k) {
+    const Lanes2 y[4] = {
+        {qu[k][0], qu[k][0]}, {qu[k][1], qu[k][1]}, {ab[k][0], ab[k][0]}, {ab[k][1], ab[k][1]}};
+    Lanes2 t[4];
+    __builtin_memcpy(t, T + 8 * k, sizeof t);
+    ed[k] = t[0] * y[0] + t[1] * y[1] + t[2] * y[2] + t[3] * y[3];
+  }
+  for (int i = 0; i < 3; ++i) {
+    Lanes2 s = {0.0, 0.0};
+    for (int j = 0; j < 3; ++j) s += d.Phi[i + 3 * j] * ed[j];
+    next[i] = s;
+  }
+}
+
 // DeckRecordLanes' results stored: the modal coordinates Y (n x 6, the harmonic columns +0)
 // from qu and ab, and the step's end (q, u) into z_next's head from next.
 inline void DeckRecordStore(const Lanes2 qu[3], const Lanes2 ab[3], const Lanes2 next[3],

@@ -181,8 +181,9 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
   double nominal_length = nominal_length_s_, nominal_omega = nominal_omega_radps_;
   double nominal_h = nominal_h_s_;
   Lanes2 x[3] = {{z_[0], z_[3]}, {z_[1], z_[4]}, {z_[2], z_[5]}};
-  double g[4] = {0.0, 0.0, 0.0, 0.0};  // the generator SetGenerator gave the last step
-  bool generated = false;              // whether a step set g (z_'s generator is then g, +0)
+  // The generator SetGenerator gave the last step, (a, slope) of x and of y.
+  Lanes2 gx = {0.0, 0.0}, gy = {0.0, 0.0};
+  bool generated = false;  // whether a step set gx and gy (z_'s generator is then theirs, +0)
   double max_q[3], time_of_max[3];
   for (int i = 0; i < 3; ++i) {
     max_q[i] = result_.max_abs_q[i];
@@ -205,7 +206,10 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
       z_[3 + i] = x[i][1];
     }
     if (generated) {
-      for (int i = 0; i < 4; ++i) z_[6 + i] = g[i];
+      z_[6] = gx[0];
+      z_[7] = gy[0];
+      z_[8] = gx[1];
+      z_[9] = gy[1];
       for (int i = 10; i < 14; ++i) z_[i] = 0.0;
     }
   };
@@ -237,11 +241,12 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
   // finished by FreeStepOf or by FinishFreeStep (gaps not proved open, or open).
   enum class Exit { kOther, kEnded, kPartial, kClosing, kRare };
   Exit exit = Exit::kOther;
-  FreeStepPlan step;
+  FreeStepPlan step;  // the step the loop leaves in (kPartial, kClosing, kRare)
   // The ramps' planner, reset for the first ramp and whenever the nominal step changes; the
   // length it was last reset for (NaN: none yet).
   RampStepPlanner planner(policy_);
   double nominal_key = std::numeric_limits<double>::quiet_NaN();
+  const std::size_t count = samples.count;
   Lanes2 next[3] = {};  // the last step's end (q_i, u_i): zeros until a step
   // NextSampledPiece's tests of the piece's number and end: a ramp this loop reads ends at
   // (k + 1) dt of its own k, the next ramp's start, so they hold for every later ramp.
@@ -249,17 +254,21 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
     write_back();
     return false;
   }
+  // The next ramp's k + 1 as a double: k + 1 < 2^53, so adding 1 is exact and the conversion's
+  // value.
+  double end_samples = static_cast<double>(static_cast<std::size_t>(index) + 2);
   for (;;) {
     // The record's next ramp (PieceCursor::At, NextSampledPiece's operations); any other piece
     // is RecordFlight's.
     const std::size_t k = static_cast<std::size_t>(index) + 1;
-    if (!(t == te) || k + 1 >= samples.count) {
+    if (!(t == te) || k + 1 >= count) {
       break;
     }
     const double y0 = ay != nullptr ? ay[k] : 0.0;
     const double y1 = ay != nullptr ? ay[k + 1] : 0.0;
     tb = te;
-    te = static_cast<double>(k + 1) * dt;
+    te = end_samples * dt;
+    end_samples += 1.0;
     ax0 = ax[k];
     ay0 = y0;
     sx = (ax[k + 1] - ax[k]) / dt;
@@ -285,41 +294,41 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
         p_tau = p->tau_s;
       }
     }
-    step = planner.At(t, tb, std::min(te, t_end));
-    h_last = step.h_s;
-    if (!step.full) {
+    const FreeStepPlan plan = planner.At(t, tb, std::min(te, t_end));
+    h_last = plan.h_s;
+    if (!plan.full) {
+      step = plan;
       exit = Exit::kPartial;
       break;
     }
-    // SetGenerator's generator and ApplyRecordMotion's operations on the registers.
+    // SetGenerator's generator and ApplyRecordMotion's operations on the registers (the modal
+    // coordinates' zeros of either sign: DeckStepLanes).
     const double tau_start = t - tb;
-    g[0] = ax0 + sx * tau_start;
-    g[1] = ay0 + sy * tau_start;
-    g[2] = sx;
-    g[3] = sy;
+    gx = Lanes2{ax0 + sx * tau_start, sx};
+    gy = Lanes2{ay0 + sy * tau_start, sy};
     generated = true;
     Lanes2 qu[3], ab[3];
-    detail::DeckRecordLanes(lanes, p->record_pairs.data(), x, Lanes2{g[0], g[2]},
-                            Lanes2{g[1], g[3]}, qu, ab, next);
+    detail::DeckStepLanes(lanes, p->record_pairs.data(), x, gx, gy, qu, ab, next);
     ++free_steps;
     if (gaps_exact_) {
       gap_floors_.Restart(ends_.gap0);
       floors = gap_floors_.Deck();
     }
     // The gap floors' check (GapsStayOpen) with the drifts from the modal coordinates' lanes.
-    const double tau = step.t_next_s - t;
+    const double tau = plan.t_next_s - t;
     double drift[3];
     ModalDrift3Lanes(bound, __builtin_shufflevector(qu[0], qu[1], 0, 2),
                      __builtin_shufflevector(qu[0], qu[1], 1, 3),
                      __builtin_shufflevector(ab[0], ab[1], 0, 2),
                      __builtin_shufflevector(ab[0], ab[1], 1, 3), qu[2][0], qu[2][1], ab[2][0],
-                     ab[2][1], std::max(tau, step.h_s), drift);
+                     ab[2][1], std::max(tau, plan.h_s), drift);
     if (!gap_floors_.DeckStaysOpen(floors, drift, gap_margin)) {
+      step = plan;
       exit = Exit::kClosing;
       break;
     }
     // RecordFlight's tests that need no dense output.
-    const double t1 = step.t_next_s;
+    const double t1 = plan.t_next_s;
     bool rare = RaiseMaximaAtEnd3(x, next, t1, t1 - t, max_q, time_of_max);
     rare = rare || (outputs && next_output_t_ <= t1 + policy_.output_time_band * std::max(1.0, t1));
     const Lanes2 reach1 = CornerTravelTracker::EndReach(reach_constants, next);
@@ -332,6 +341,7 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
     }
     reach0 = reach1;
     if (rare) {
+      step = plan;
       exit = Exit::kRare;
       break;
     }
@@ -366,7 +376,7 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
     case Exit::kRare:
       // The flow's modal coordinates (the modal transform of the step's start taken again) and
       // z_new_ as the step's transition would leave them.
-      flow.StoreDeckRecord(x, Lanes2{g[0], g[2]}, Lanes2{g[1], g[3]}, next, z_new_);
+      flow.StoreDeckRecord(x, gx, gy, next, z_new_);
       FinishFreeStep(piece, step, exit == Exit::kRare, false, 0.0, 0.0);
       return true;
   }

@@ -6,7 +6,10 @@
 /// EventPolicy's bands.
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <numbers>
 
 #include "solver/common/excitation.h"
@@ -92,13 +95,19 @@ class RampStepPlanner {
   explicit RampStepPlanner(const EventPolicy& policy)
       : snap_(policy.step_snap_band),
         reuse_(policy.step_reuse_band),
-        k_next_((snap_ < 1.0 ? 0.0 * snap_ : std::floor(snap_)) + 1.0) {}
+        k_next_((snap_ < 1.0 ? 0.0 * snap_ : std::floor(snap_)) + 1.0),
+        next_h_(k_next_ * h_),
+        snap_h_(snap_ * h_) {}
   /// The step length (s) for the nominal step h_s after a step of h_last_s (PlanFreeStep's
-  /// reuse), and its products (k + 1) h and step_snap_band h for At.
+  /// reuse), and its products (k + 1) h and step_snap_band h for At (taken again only for a
+  /// length of other bits than the last one's).
   double Reset(double h_s, double h_last_s) {
-    h_ = std::abs(h_s - h_last_s) <= reuse_ * h_s ? h_last_s : h_s;
-    next_h_ = k_next_ * h_;
-    snap_h_ = snap_ * h_;
+    const double h = std::abs(h_s - h_last_s) <= reuse_ * h_s ? h_last_s : h_s;
+    if (std::bit_cast<std::uint64_t>(h) != std::bit_cast<std::uint64_t>(h_)) {
+      h_ = h;
+      next_h_ = k_next_ * h;
+      snap_h_ = snap_ * h;
+    }
     return h_;
   }
   /// PlanFreeStep(t_s, piece_begin_s, t_stop_s, h_s, h_last_s, policy) for Reset's h_s and
@@ -118,9 +127,9 @@ class RampStepPlanner {
  private:
   double snap_, reuse_;  // the policy's step_snap_band and step_reuse_band
   double k_next_;        // k + 1 at a piece's start
-  double h_ = 0.0;       // the step's length (s)
-  double next_h_ = 0.0;  // (k + 1) h (s)
-  double snap_h_ = 0.0;  // step_snap_band h (s)
+  double h_ = std::numeric_limits<double>::quiet_NaN();  // the step's length (s): none yet
+  double next_h_;                                        // (k + 1) h (s)
+  double snap_h_;                                        // step_snap_band h (s)
 };
 
 /// The excitation piece of the free steps: where the last step ended its piece (a record's step

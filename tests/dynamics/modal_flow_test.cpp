@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "solver/dynamics/gap_bound.h"
 #include "solver/dynamics/linear_flow.h"
 #include "solver/model/builders.h"
 #include "solver/model/multispan.h"
@@ -600,6 +601,66 @@ TEST(LinearFlow, RecordMotionIsTheBitsOfApplyMotion) {
       }
     }
   }
+}
+
+TEST(LinearFlow, DeckStepLanesIsDeckRecordLanesUpToTheSignOfAModalZero) {
+  // detail::DeckStepLanes against detail::DeckRecordLanes over drawn decks, states, generators
+  // and steps: the step's end and the input's modal columns the same bits, the modal
+  // coordinates the same values (a zero's sign aside), and a deck's drifts from them
+  // (ModalDrift3Lanes) the same bits. Entries are drawn at every scale and as zeros of either
+  // sign, so that sums of zero products occur.
+  std::mt19937 rng(2026u);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const auto draw = [&]() {
+    switch (rng() % 6) {
+      case 0:
+        return 0.0;
+      case 1:
+        return -0.0;
+      default:
+        return unit(rng) * std::pow(10.0, 6.0 * unit(rng));
+    }
+  };
+  using detail::Lanes2;
+  const auto bits = [](double x) { return std::bit_cast<std::uint64_t>(x); };
+  int signed_zeros = 0;
+  for (int deck = 0; deck < 20; ++deck) {
+    const RandomModel m = MakeModel(rng, 3, 1, {0.02, 0.3});
+    LinearFlow flow(m.M, m.K, m.C, m.r);
+    ASSERT_TRUE(flow.modal());
+    ModalGapBound bound;
+    bound.n_modes = 3;
+    bound.w_radps = {unit(rng) + 2.0, unit(rng) + 5.0, unit(rng) + 9.0};
+    for (int trial = 0; trial < 500; ++trial) {
+      const double h = std::pow(10.0, -3.0 + 2.0 * (unit(rng) + 1.0) / 2.0);
+      const FreePropagator& p = flow.Propagator(h, 0.0, false);
+      const Lanes2 zq[3] = {{draw(), draw()}, {draw(), draw()}, {draw(), draw()}};
+      const Lanes2 gx = {draw(), draw()}, gy = {draw(), draw()};
+      Lanes2 qu[3], ab[3], next[3], qu_ref[3], ab_ref[3], next_ref[3];
+      detail::DeckStepLanes(flow.deck_lanes(), p.record_pairs.data(), zq, gx, gy, qu, ab, next);
+      detail::DeckRecordLanes(flow.deck_lanes(), p.record_pairs.data(), zq, gx, gy, qu_ref, ab_ref,
+                              next_ref);
+      for (int i = 0; i < 3; ++i) {
+        for (int l = 0; l < 2; ++l) {
+          ASSERT_EQ(bits(next[i][l]), bits(next_ref[i][l])) << deck << " " << trial;
+          ASSERT_EQ(bits(ab[i][l]), bits(ab_ref[i][l])) << deck << " " << trial;
+          ASSERT_EQ(qu[i][l], qu_ref[i][l]) << deck << " " << trial;
+          signed_zeros += bits(qu[i][l]) != bits(qu_ref[i][l]);
+        }
+      }
+      const double tau = h * (1.0 + 0.5 * unit(rng));
+      double drift[3], drift_ref[3];
+      const auto drifts = [&](const Lanes2* y, const Lanes2* a, double* out) {
+        ModalDrift3Lanes(bound, Lanes2{y[0][0], y[1][0]}, Lanes2{y[0][1], y[1][1]},
+                         Lanes2{a[0][0], a[1][0]}, Lanes2{a[0][1], a[1][1]}, y[2][0], y[2][1],
+                         a[2][0], a[2][1], tau, out);
+      };
+      drifts(qu, ab, drift);
+      drifts(qu_ref, ab_ref, drift_ref);
+      for (int k = 0; k < 3; ++k) ASSERT_EQ(bits(drift[k]), bits(drift_ref[k]));
+    }
+  }
+  EXPECT_GT(signed_zeros, 0) << "no modal zero of the other sign was drawn";
 }
 
 TEST(LinearFlow, AugmentedPartsOfAModalFlowAreBuiltOnDemandAndMatchTheGeneralPath) {
