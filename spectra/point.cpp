@@ -226,7 +226,7 @@ PointResult EvaluatePoint(const DimensionalPoint& point, const Excitation& excit
   model::Model model = model::BuildDeckModel(point.deck, "point");
   const model::RunControl control = PointControl(point, excitation, model::LowestFrequency(model));
   // Moved into the thread's reused workspace: the model is not needed after the run.
-  const dynamics::RunResult run = dynamics::Run(std::move(model), excitation, control, policies);
+  dynamics::RunResult run = dynamics::Run(std::move(model), excitation, control, policies);
 
   PointResult r;
   r.status = run.status;
@@ -249,6 +249,8 @@ PointResult EvaluatePoint(const DimensionalPoint& point, const Excitation& excit
              run.slip_transitions;
   r.steps = run.free_steps + run.rk_steps;
   r.min_impact_separation_s = run.min_impact_separation_s;
+  // Read: its storage goes to the thread's next run.
+  dynamics::RecycleResult(std::move(run));
   return r;
 }
 

@@ -42,6 +42,8 @@ RunResult Run(model::Model&& model, const Excitation& excitation, const model::R
   return ThreadRunReuse().Run(std::move(model), excitation, control, policies, initial);
 }
 
+void RecycleResult(RunResult&& result) { ThreadRunReuse().Recycle(std::move(result)); }
+
 template <class ModelArg>
 SimulationWorkspace& RunReuse::FitFrom(ModelArg&& model) {
   if (model_ && workspace_ && workspace_->SameShape(model)) {

@@ -41,6 +41,11 @@ class RunReuse {
   SimulationWorkspace& Fit(model::Model&& model);
   /// The copy of the model the workspace refers to. @pre Fit was called.
   const model::Model& model() const { return *model_; }
+  /// Gives a finished result's storage to the next run (SimulationWorkspace::Recycle); dropped
+  /// before the first Fit.
+  void Recycle(RunResult&& result) {
+    if (workspace_) workspace_->Recycle(std::move(result));
+  }
 
  private:
   // Fit's work for a model given by const reference (copied) or by rvalue (moved).
@@ -71,5 +76,9 @@ RunResult Run(const model::Model& model, const Excitation& excitation,
 /// the same results. A caller that needs the model no longer (a sweep's cell) passes it so.
 RunResult Run(model::Model&& model, const Excitation& excitation, const model::RunControl& control,
               const RunPolicies& policies = {}, const InitialState& initial = {});
+
+/// Gives a result of Run that the caller has read to the thread's next event-driven run, whose
+/// result then takes its vectors' storage instead of allocating it (RunReuse::Recycle).
+void RecycleResult(RunResult&& result);
 
 }  // namespace skewbridge::dynamics

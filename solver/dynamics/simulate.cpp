@@ -65,6 +65,16 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   // The state's storage is the workspace's (RunStorage): the assignments below size and write
   // every entry a new run's would have, allocating only when the sizes differ.
   SwapStorage();
+  // A recycled result's vectors (SimulationWorkspace::Recycle): each is assigned whole below or
+  // in Finish; the rest of result_ is a new RunResult's.
+  RunResult& spare = ws.run_storage_.result;
+  result_.max_abs_q.swap(spare.max_abs_q);
+  result_.time_of_max_s.swap(spare.time_of_max_s);
+  result_.max_travel_m.swap(spare.max_travel_m);
+  result_.q_end.swap(spare.q_end);
+  result_.u_end.swap(spare.u_end);
+  result_.events.swap(spare.events);
+  result_.events.clear();
   modes_ = ws.run_storage_.fresh_modes;
   memory_ = ws.run_storage_.fresh_memory;
   log_.events.clear();

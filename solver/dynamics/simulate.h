@@ -104,7 +104,10 @@ struct RunStorage {
   contact::GapRateScratch rates;
   ContactModes modes{0};
   DecisionMemory memory{0};
-  std::vector<EventRecord> events;    // the last run's event log (storage only)
+  std::vector<EventRecord> events;  // the last run's event log (storage only)
+  // A caller's finished result (SimulationWorkspace::Recycle): the next run's result takes its
+  // vectors' storage, which that run's assignments size and overwrite.
+  RunResult result;
   const ContactModes fresh_modes;     // every contact open: a run's first modes
   const DecisionMemory fresh_memory;  // no impact yet: a run's first memory
 };
@@ -130,6 +133,10 @@ class SimulationWorkspace {
   /// the contact kinematics zeroed, the rest of the storage kept without allocating. A run in
   /// it gives the bits a run in a new workspace gives.
   void Refit();
+
+  /// Keeps a finished result's storage for the next run here: that run's result takes its maxima,
+  /// end state, corner travel and event vectors instead of allocating them (the same values).
+  void Recycle(RunResult&& result) { run_storage_.result = std::move(result); }
 
  private:
   friend class Integrator;

@@ -6,7 +6,7 @@
 // listed and in a shuffled order with repeats, so that every shape follows every other. The
 // reference is Simulate in a workspace built for that model alone; the results compared bit for
 // bit are the maxima and their times, the end state, the corner travels, the counts of steps and
-// events and every event's time.
+// events and every event's time, also when each result is given back to the next run's storage.
 
 #include <gtest/gtest.h>
 
@@ -127,6 +127,23 @@ TEST(RunReuse, RefittedWorkspaceGivesTheBitsOfANewOneOverShapesInOrderAndShuffle
     model::Model copy = models[static_cast<std::size_t>(i)];
     testing::ExpectSameRunBits(moved.Run(std::move(copy), pulse, control),
                                fresh[static_cast<std::size_t>(i)]);
+  }
+  // Each result given back once read (a sweep's cell): the next run's result, of another shape
+  // or the same, takes its storage and still has the bits of a new workspace's, its event log
+  // that run's alone.
+  RunReuse recycled;
+  for (int i : shuffled) {
+    SCOPED_TRACE(i);
+    RunResult run = recycled.Run(models[static_cast<std::size_t>(i)], pulse, control);
+    testing::ExpectSameRunBits(run, fresh[static_cast<std::size_t>(i)]);
+    recycled.Recycle(std::move(run));
+  }
+  for (int i : shuffled) {
+    SCOPED_TRACE(i);
+    model::Model copy = models[static_cast<std::size_t>(i)];
+    RunResult run = dynamics::Run(std::move(copy), pulse, control);
+    testing::ExpectSameRunBits(run, fresh[static_cast<std::size_t>(i)]);
+    RecycleResult(std::move(run));
   }
 }
 
