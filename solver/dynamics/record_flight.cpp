@@ -357,8 +357,13 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
       }
       t_finite = t;
     }
-    if (!(t < t_end) || steps >= max_steps) {
-      exit = Exit::kEnded;  // Run ends the run, or counts the step and stops at the limit
+    // Run ends the run, or counts the step and stops at the limit: two tests, each a branch.
+    if (!(t < t_end)) [[unlikely]] {
+      exit = Exit::kEnded;
+      break;
+    }
+    if (steps >= max_steps) [[unlikely]] {
+      exit = Exit::kEnded;
       break;
     }
     ++steps;
