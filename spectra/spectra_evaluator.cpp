@@ -193,7 +193,6 @@ SpectraEvaluator::LabelSource SpectraEvaluator::LabelSourceOf(std::string_view k
     }
   }
   if (const FixedValue* fixed = spec_.FindFixed(key)) {
-    source.fixed = true;
     source.label = fixed->label;
   }
   return source;

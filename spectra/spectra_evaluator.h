@@ -110,9 +110,8 @@ class SpectraEvaluator final : public CellEvaluator {
   /// Where a label parameter of a cell comes from, found once in spec_ as LabelOf finds it: an
   /// axis (its label at the cell's index), a fixed label, or neither (the empty label).
   struct LabelSource {
-    int axis = -1;       ///< the axis of the key, or -1
-    bool fixed = false;  ///< no axis, a fixed label
-    std::string label;   ///< the fixed label
+    int axis = -1;      ///< the axis of the key, or -1
+    std::string label;  ///< the fixed label, or empty
   };
   /// The source of label `key` in spec_.
   LabelSource LabelSourceOf(std::string_view key) const;
@@ -122,7 +121,7 @@ class SpectraEvaluator final : public CellEvaluator {
       const auto k = static_cast<std::size_t>(source.axis);
       return spec_.axes[k].labels[index[k]];
     }
-    return source.label;  // empty unless fixed
+    return source.label;
   }
   /// The direction of a cell's ground motion: incidence_deg from the bridge's x axis, or x.
   Eigen::Vector2d DirectionOf(std::span<const std::size_t> axis_index) const;

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 
 #include "solver/common/error.h"
 #include "solver/lcp/enumeration.h"
@@ -85,8 +84,7 @@ void ImpactProblem::SetPolicy(const ContactPolicy& policy) {
     return;
   }
   CheckContactPolicy(policy);
-  // Every byte, the padding too: the next run's same policy then compares equal.
-  std::memcpy(&policy_, &policy, sizeof(ContactPolicy));
+  policy_ = policy;
 }
 
 ImpactResult ImpactProblem::MakeResult() const {

@@ -293,7 +293,7 @@ class Integrator final : private ConstrainedForces {
   // The constrained phase's Runge-Kutta state y = (q, u, work integrals), its rate, its dense
   // output at a trial time, and its absolute tolerances.
   Vec y_, dy_, y_eval_, atol_;
-  Vec cu_, du_;    // C u; du/dt of the last force evaluation
+  Vec cu_, du_;    // C u (K q in Finish); du/dt of the last force evaluation
   StepEnds ends_;  // the open contacts' gaps and rates at the step's ends
   // ends_.gap0 and gN0 hold the gaps and rates at t_; when false, free steps skipped them and
   // gap_floors_ bounds the gaps at t_ from below instead.

@@ -209,6 +209,7 @@ TEST(ContactPolicy, SameBytesComparesTheMembersNotThePadding) {
   std::memset(zeros, 0x00, sizeof zeros);
   ContactPolicy* a = new (ones) ContactPolicy{};
   ContactPolicy* b = new (zeros) ContactPolicy{};
+  ASSERT_NE(std::memcmp(ones, zeros, sizeof ones), 0);  // the padding does differ
   EXPECT_TRUE(SameBytes(*a, *b));
   EXPECT_TRUE(SameBytes(*b, *a));
   const auto differs = [&](auto change) {
