@@ -99,8 +99,14 @@ inline bool RaiseMaximaAtEnd3(const CoordinateLanes x0[3], const CoordinateLanes
     const CoordinateLanes reference = {max_abs_q[i], product[1]};
     any |= reference < end;
   }
-  // No lane's comparison held: no lane's sign bit is set (one movmskpd).
-  if (__builtin_ia32_movmskpd(std::bit_cast<CoordinateLanes>(any)) == 0) {
+  // No lane's comparison held: no lane's sign bit is set (one movmskpd where SSE2 has it;
+  // elsewhere the lanes' OR).
+#if defined(__SSE2__)
+  const bool none = __builtin_ia32_movmskpd(std::bit_cast<CoordinateLanes>(any)) == 0;
+#else
+  const bool none = (any[0] | any[1]) == 0;
+#endif
+  if (none) {
     return false;
   }
   bool search = false;
