@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -253,6 +254,37 @@ TEST(CornerPeakBound, HoldsOnLargeTurnsAndLongSteps) {
   CheckCorners(0.0, 300, 8, 0.3, 3.0, 5.0, 0.08);
 }
 
+// A random record step of the deck's flow: its length tau_s (returned, s), the start z (positions
+// up to 0.05 of each coordinate's length, velocities up to 0.5, the generator's accelerations
+// and slopes) and the end z1 along the flow.
+double DrawRecordStep(LinearFlow& modal, std::mt19937& rng, Eigen::VectorXd& z,
+                      Eigen::VectorXd& z1) {
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const int n = modal.n_dof();
+  const double tau_s = 0.01 * (1.0 + 0.5 * unit(rng));
+  z = Eigen::VectorXd::Zero(modal.augmented_size());
+  for (int i = 0; i < n; ++i) {
+    const double length = i % 3 == 2 ? 1.0 / 15.0 : 1.0;
+    z[i] = 0.05 * length * unit(rng);
+    z[n + i] = 0.5 * length * unit(rng);
+  }
+  for (int j = 0; j < 4; ++j) z[2 * n + j] = 5.0 * unit(rng) * (j >= 2 ? 50.0 : 1.0);
+  z1 = z;
+  modal.Apply(modal.Propagator(tau_s, 0.0, false), z, z1);
+  return tau_s;
+}
+
+// Running maxima to test a bound `whole` against: at it and one double either side, at the ends'
+// `hull` and either side, at the larger end `ends`, a random one above and below it, and zero.
+std::array<double, 10> MaximaAround(double whole, double hull, double ends, std::mt19937& rng) {
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const double inf = std::numeric_limits<double>::infinity();
+  return {whole, std::nextafter(whole, inf),          std::nextafter(whole, 0.0),
+          hull,  std::nextafter(hull, inf),           std::nextafter(hull, 0.0),
+          ends,  whole * (1.0 + std::abs(unit(rng))), whole * std::abs(unit(rng)),
+          0.0};
+}
+
 // FreeStepPeaks::PeakBelow against its definition, the whole bound written out from
 // ModalPeakBound::Derivatives (HermiteAbsBound + M4 h^4 / 384, rounded up) compared with the
 // running maximum, on random steps and maxima at, just around and far from the bound and the
@@ -264,19 +296,10 @@ TEST(FreeStepPeaks, PeakBelowIsTheWholeBoundBelowTheMaximum) {
   FreeStepPeaks peaks(&modal.modal_flow());
   const int n = model.n_dof();
   std::mt19937 rng(21);
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
   long below = 0, not_below = 0;
   for (int s = 0; s < 400; ++s) {
-    const double tau_s = 0.01 * (1.0 + 0.5 * unit(rng));
-    Eigen::VectorXd z = Eigen::VectorXd::Zero(modal.augmented_size());
-    for (int i = 0; i < n; ++i) {
-      const double length = i % 3 == 2 ? 1.0 / 15.0 : 1.0;
-      z[i] = 0.05 * length * unit(rng);
-      z[n + i] = 0.5 * length * unit(rng);
-    }
-    for (int j = 0; j < 4; ++j) z[2 * n + j] = 5.0 * unit(rng) * (j >= 2 ? 50.0 : 1.0);
-    Eigen::VectorXd z1 = z;
-    modal.Apply(modal.Propagator(tau_s, 0.0, false), z, z1);
+    Eigen::VectorXd z, z1;
+    const double tau_s = DrawRecordStep(modal, rng, z, z1);
     const double* Y = modal.modal_coordinates().data();
     bound.Step(Y, tau_s, 0.0);
     peaks.Arm(true, Y, tau_s, 0.0);
@@ -287,18 +310,8 @@ TEST(FreeStepPeaks, PeakBelowIsTheWholeBoundBelowTheMaximum) {
       const double h2 = tau_s * tau_s;
       const double hull = HermiteAbsBound(q0, u0, q1, u1, tau_s);
       const double whole = (hull + d[3] * (h2 * h2 / 384.0)) * (1.0 + 1e-12) + 1e-12 * size;
-      const double inf = std::numeric_limits<double>::infinity();
-      const double bests[] = {whole,
-                              std::nextafter(whole, inf),
-                              std::nextafter(whole, 0.0),
-                              hull,
-                              std::nextafter(hull, inf),
-                              std::nextafter(hull, 0.0),
-                              std::max(std::abs(q0), std::abs(q1)),
-                              whole * (1.0 + std::abs(unit(rng))),
-                              whole * std::abs(unit(rng)),
-                              0.0};
-      for (const double best : bests) {
+      for (const double best :
+           MaximaAround(whole, hull, std::max(std::abs(q0), std::abs(q1)), rng)) {
         const bool expected = whole < best;
         ASSERT_EQ(peaks.PeakBelow(i, q0, u0, q1, u1, tau_s, best), expected)
             << "step " << s << " coordinate " << i << " best " << best;
@@ -332,21 +345,11 @@ TEST(FreeStepPeaks, TheTravelBoundAgainstTheMaximumIsCornerPeakBounds) {
     rate = nx * z[3] + ny * z[4] + uth * (-std::sin(th) * A + std::cos(th) * B);
     return nx * z[0] + ny * z[1] + (std::cos(th) - 1.0) * A + std::sin(th) * B;
   };
-  const int n = model.n_dof();
   std::mt19937 rng(22);
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
   long below = 0, not_below = 0;
   for (int s = 0; s < 400; ++s) {
-    const double tau_s = 0.01 * (1.0 + 0.5 * unit(rng));
-    Eigen::VectorXd z = Eigen::VectorXd::Zero(modal.augmented_size());
-    for (int i = 0; i < n; ++i) {
-      const double length = i % 3 == 2 ? 1.0 / 15.0 : 1.0;
-      z[i] = 0.05 * length * unit(rng);
-      z[n + i] = 0.5 * length * unit(rng);
-    }
-    for (int j = 0; j < 4; ++j) z[2 * n + j] = 5.0 * unit(rng) * (j >= 2 ? 50.0 : 1.0);
-    Eigen::VectorXd z1 = z;
-    modal.Apply(modal.Propagator(tau_s, 0.0, false), z, z1);
+    Eigen::VectorXd z, z1;
+    const double tau_s = DrawRecordStep(modal, rng, z, z1);
     const double* Y = modal.modal_coordinates().data();
     bound.Step(Y, tau_s, 0.0);
     double r0, r1;
@@ -358,17 +361,7 @@ TEST(FreeStepPeaks, TheTravelBoundAgainstTheMaximumIsCornerPeakBounds) {
     const double whole = CornerPeakBound(nx, ny, radius, dx, dy, dth, size, f0, r0, f1, r1, tau_s);
     const double hull = HermiteAbsBound(f0, r0, f1, r1, tau_s, kCornerHalvings);
     const double inf = std::numeric_limits<double>::infinity();
-    const double maxima[] = {whole,
-                             std::nextafter(whole, inf),
-                             std::nextafter(whole, 0.0),
-                             hull,
-                             std::nextafter(hull, inf),
-                             std::nextafter(hull, 0.0),
-                             std::max(std::abs(f0), std::abs(f1)),
-                             whole * (1.0 + std::abs(unit(rng))),
-                             whole * std::abs(unit(rng)),
-                             0.0};
-    for (const double best : maxima) {
+    for (const double best : MaximaAround(whole, hull, std::max(std::abs(f0), std::abs(f1)), rng)) {
       peaks.Arm(true, Y, tau_s, 0.0, &best);
       const double b = peaks(0, nx, ny, radius, f0, r0, f1, r1, tau_s);
       ASSERT_EQ(b < best, whole < best) << "step " << s << " maximum " << best;
