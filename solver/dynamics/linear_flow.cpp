@@ -144,10 +144,15 @@ void LinearFlow::Compute(double tau_s, double omega_radps, bool energy, FreeProp
                         energy ? &out.modal_damping : nullptr, &memo_);
     if (n_ == 3) {
       out.record_pairs.resize(24);
+      out.deck_pairs.resize(36);
       for (int k = 0; k < 3; ++k) {
-        for (int j = 0; j < 4; ++j) {
-          out.record_pairs[8 * k + 2 * j] = out.modal_rows(j, k);
-          out.record_pairs[8 * k + 2 * j + 1] = out.modal_rows(6 + j, k);
+        for (int j = 0; j < 6; ++j) {
+          if (j < 4) {
+            out.record_pairs[8 * k + 2 * j] = out.modal_rows(j, k);
+            out.record_pairs[8 * k + 2 * j + 1] = out.modal_rows(6 + j, k);
+          }
+          out.deck_pairs[12 * k + 2 * j] = out.modal_rows(j, k);
+          out.deck_pairs[12 * k + 2 * j + 1] = out.modal_rows(6 + j, k);
         }
       }
     }
@@ -242,22 +247,19 @@ void LinearFlow::ApplyMotion(const FreePropagator& p, const Eigen::Ref<const Eig
   // either gives the same bits, and the bounds read their magnitudes).
   const int ih = 2 * n_ + 4;
   const bool harmonic = z[ih] != 0.0 || z[ih + 1] != 0.0 || z[ih + 2] != 0.0 || z[ih + 3] != 0.0;
+  // z and z_next are distinct (the precondition): the (q, u) written here is read by nothing after.
   if (n_ == 3) {
-    modal_->ToModal3(z.data(), Y_.data(), harmonic);  // Y_ is 3 x 6, column-major
+    // A deck's three modes, two lanes per operation: ToModal's and ModalStep's operations in
+    // their order (the same bits), the harmonic columns left out when they are zeros.
+    if (harmonic) {
+      detail::DeckHarmonicStep(deck_, p.deck_pairs.data(), z.data(), Y_.data(), z_next.data());
+    } else {
+      detail::DeckRecordStep(deck_, p.record_pairs.data(), z.data(), Y_.data(), z_next.data());
+    }
   } else {
     modal_->ToModal(z, Y_, harmonic);
-  }
-  // z and z_next are distinct (the precondition): the (q, u) written here is read by nothing after.
-  const double* Phi = modal_->Phi().data();
-  if (n_ == 3 && !harmonic) {
-    detail::ModalStep<3, false>(Phi, n_, p.modal_rows.data(), Y_.data(), eta_.data(), deta_.data(),
-                                z_next.data(), z_next.data() + n_);
-  } else if (n_ == 3) {
-    detail::ModalStep<3, true>(Phi, n_, p.modal_rows.data(), Y_.data(), eta_.data(), deta_.data(),
-                               z_next.data(), z_next.data() + n_);
-  } else {
-    detail::ModalStep<0, true>(Phi, n_, p.modal_rows.data(), Y_.data(), eta_.data(), deta_.data(),
-                               z_next.data(), z_next.data() + n_);
+    detail::ModalStep<0, true>(modal_->Phi().data(), n_, p.modal_rows.data(), Y_.data(),
+                               eta_.data(), deta_.data(), z_next.data(), z_next.data() + n_);
   }
   if (energy) {
     SB_DEMAND(p.has_energy, "LinearFlow: the propagator was built without its energy forms");

@@ -185,6 +185,54 @@ inline void DeckRecordStep(const DeckLanes& d, const double* __restrict pairs,
   DeckRecordStore(qu, ab, next, Y, z_next);
 }
 
+// ApplyMotion of a deck's three modes on a piece with a harmonic part, with two lanes per
+// operation: ToModalFixed<3, true> of z (the pairs (q_i, u_i), the generator's (a, slope) and
+// (p, k) of x and of y) into Y (3 x 6, column-major), and ModalStep<3, true> with (eta_k,
+// eta_k') side by side (per mode k and column j < 6 the pair (T_k[j], T_k[6 + j]) at
+// pairs[12 k + 2 j]) into z_next's (q, u). Every lane runs the scalar path's operations in its
+// order from the same +0.0, so the same bits.
+inline void DeckHarmonicStep(const DeckLanes& d, const double* __restrict pairs,
+                             const double* __restrict z, double* __restrict Y,
+                             double* __restrict z_next) {
+  const Lanes2 zq[3] = {{z[0], z[3]}, {z[1], z[4]}, {z[2], z[5]}};
+  const Lanes2 gx = {z[6], z[8]}, gy = {z[7], z[9]};      // (a, slope) of x, of y
+  const Lanes2 hx = {z[10], z[12]}, hy = {z[11], z[13]};  // (p, k) of x, of y
+  Lanes2 qu[3], ab[3], pk[3], ed[3];
+  for (int i = 0; i < 3; ++i) {
+    Lanes2 s = {0.0, 0.0};
+    for (int j = 0; j < 3; ++j) s += d.PhiTM[i + 3 * j] * zq[j];
+    qu[i] = s;
+    ab[i] = d.negL[i] * gx + d.negL[3 + i] * gy;
+    pk[i] = d.negL[i] * hx + d.negL[3 + i] * hy;
+  }
+  const auto* T = static_cast<const double*>(__builtin_assume_aligned(pairs, 16));
+  for (int k = 0; k < 3; ++k) {
+    const Lanes2 y[6] = {{qu[k][0], qu[k][0]}, {qu[k][1], qu[k][1]}, {ab[k][0], ab[k][0]},
+                         {ab[k][1], ab[k][1]}, {pk[k][0], pk[k][0]}, {pk[k][1], pk[k][1]}};
+    Lanes2 e = {0.0, 0.0};
+    for (int j = 0; j < 6; ++j) {
+      Lanes2 t;
+      __builtin_memcpy(&t, T + 12 * k + 2 * j, sizeof t);
+      e += t * y[j];
+    }
+    ed[k] = e;
+  }
+  for (int i = 0; i < 3; ++i) {
+    Lanes2 s = {0.0, 0.0};
+    for (int j = 0; j < 3; ++j) s += d.Phi[i + 3 * j] * ed[j];
+    z_next[i] = s[0];
+    z_next[3 + i] = s[1];
+  }
+  for (int i = 0; i < 3; ++i) {
+    Y[i] = qu[i][0];
+    Y[3 + i] = qu[i][1];
+    Y[6 + i] = ab[i][0];
+    Y[9 + i] = ab[i][1];
+    Y[12 + i] = pk[i][0];
+    Y[15 + i] = pk[i][1];
+  }
+}
+
 }  // namespace detail
 
 /// Which transition a LinearFlow uses.
@@ -211,6 +259,9 @@ struct FreePropagator {
   /// (the eta and eta' rows side by side, 24 entries, 16-byte aligned), for
   /// LinearFlow::ApplyRecordMotion.
   Eigen::VectorXd record_pairs;
+  /// Modal path of three modes: per mode k and column j < 6 the pair (T_k[0][j], T_k[1][j])
+  /// (36 entries, 16-byte aligned), for the harmonic step detail::DeckHarmonicStep.
+  Eigen::VectorXd deck_pairs;
   double cos_wt = 1.0;  ///< cos(omega tau), the generator's rotation
   double sin_wt = 0.0;  ///< sin(omega tau)
 };
@@ -283,6 +334,23 @@ class LinearFlow {
       return;
     }
     detail::DeckRecordStep(deck_, p.record_pairs.data(), z.data(), Y_.data(), z_next.data());
+  }
+
+  /// ApplyMotion without energy: for a deck's three modes inline over plain arrays (the
+  /// harmonic step in two lanes, detail::DeckHarmonicStep, or a record's, ApplyRecordMotion's),
+  /// the same operations, so the same bits; any other flow through ApplyMotion.
+  /// @pre as ApplyMotion's.
+  void ApplyStepMotion(const FreePropagator& p, const Eigen::VectorXd& z, Eigen::VectorXd& z_next) {
+    if (n_ != 3 || !modal_) {
+      ApplyMotion(p, z, z_next);
+      return;
+    }
+    const double* h = z.data() + 10;  // the harmonic generator (p, k)
+    if (h[0] != 0.0 || h[1] != 0.0 || h[2] != 0.0 || h[3] != 0.0) {
+      detail::DeckHarmonicStep(deck_, p.deck_pairs.data(), z.data(), Y_.data(), z_next.data());
+    } else {
+      detail::DeckRecordStep(deck_, p.record_pairs.data(), z.data(), Y_.data(), z_next.data());
+    }
   }
 
   /// A deck's transforms in both lanes (detail::DeckRecordLanes), for a caller that steps a

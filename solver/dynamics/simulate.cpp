@@ -347,7 +347,11 @@ void Integrator::FreeStepOf(const ExcitationPiece& piece, const FreeStepPlan& st
   if (step.full) {
     const FreePropagator& p = StepPropagator(step.h_s, piece.omega, ledger);
     // z_new_'s generator is never read: the next step sets z_'s from its piece.
-    flow.ApplyMotion(p, z_, z_new_, ledger ? &input : nullptr, ledger ? &damping : nullptr);
+    if (ledger) {
+      flow.ApplyMotion(p, z_, z_new_, &input, &damping);
+    } else {
+      flow.ApplyStepMotion(p, z_, z_new_);
+    }
   } else {
     ws_.free_dense_.Build(flow, piece.omega, z_, tau);
     ws_.free_dense_.Evaluate(tau, z_new_);
