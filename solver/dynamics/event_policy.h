@@ -245,4 +245,10 @@ struct EventPolicy {
 /// outside.
 void ValidatePolicy(const EventPolicy& policy);
 
+/// Whether every member of `a` has the bits of the same member of `b` (the padding between them
+/// aside; the contact policy's by contact::SameBytes): two such policies get the same verdict
+/// from ValidatePolicy, so a workspace that holds a validated policy need not validate one with
+/// its members' bits again.
+bool SameMembers(const EventPolicy& a, const EventPolicy& b);
+
 }  // namespace skewbridge::dynamics

@@ -11,11 +11,9 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <limits>
 #include <memory>
 #include <string>
-#include <type_traits>
 
 #include "solver/common/error.h"
 #include "solver/dynamics/active_forces.h"
@@ -81,13 +79,12 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   forced_.clear();
   gap_floors_.Reset();
   // A sweep's runs share one policy: its members are checked once per workspace, and again
-  // whenever a run brings other bytes (the verdict depends on the bytes alone).
-  static_assert(std::is_trivially_copyable_v<EventPolicy>);
-  if (!ws.policy_validated_ ||
-      std::memcmp(ws.validated_policy_, &policy, sizeof(EventPolicy)) != 0) {
+  // whenever a run brings a member of other bits (the verdict depends on the members alone; the
+  // padding between them is not compared).
+  if (!ws.policy_validated_ || !SameMembers(ws.validated_policy_, policy)) {
     ws.policy_validated_ = false;
     ValidatePolicy(policy);
-    std::memcpy(ws.validated_policy_, &policy, sizeof(EventPolicy));
+    ws.validated_policy_ = policy;
     ws.policy_validated_ = true;
   }
   // The contact layer's thresholds of this run [docs/theory.md §3.15]: the workspace's problems

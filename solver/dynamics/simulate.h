@@ -166,9 +166,10 @@ class SimulationWorkspace {
   double omega_min_radps_ = 0.0;  // lowest natural frequency (0 for a free body)
   double omega_max_radps_ = 0.0;  // highest natural frequency
   double length_scale_m_ = 1.0;   // largest deck dimension or distance from the origin
-  // The bytes of the last policy a run in this workspace validated (valid: there was one): a
-  // run under the same bytes skips ValidatePolicy, whose verdict depends on them alone.
-  alignas(EventPolicy) unsigned char validated_policy_[sizeof(EventPolicy)] = {};
+  // The last policy a run in this workspace validated (valid: there was one): a run under a
+  // policy of the same members' bits (SameMembers) skips ValidatePolicy, whose verdict depends
+  // on them alone.
+  EventPolicy validated_policy_{};
   bool policy_validated_ = false;
 };
 

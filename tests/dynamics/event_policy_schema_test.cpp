@@ -8,9 +8,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <map>
+#include <new>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -138,6 +140,34 @@ int ExpectEveryMemberOutsideItsRangeRefused(const std::string& what) {
   }
   EXPECT_NO_THROW(ValidatePolicy(Policy{}));
   return refused;
+}
+
+TEST(EventPolicySchema, SameMembersComparesTheMembersNotThePadding) {
+  // Two default policies in storage whose padding differs (all ones against all zeros) have the
+  // same members; a change of any one described member's bits (set through the description, so
+  // a member SameMembers leaves out fails here) or of a zero's sign makes them differ.
+  alignas(EventPolicy) unsigned char ones[sizeof(EventPolicy)], zeros[sizeof(EventPolicy)];
+  std::memset(ones, 0xff, sizeof ones);
+  std::memset(zeros, 0x00, sizeof zeros);
+  const EventPolicy* a = new (ones) EventPolicy;  // default-initialised: the padding is left
+  const EventPolicy* b = new (zeros) EventPolicy;
+  ASSERT_NE(std::memcmp(a, b, sizeof(EventPolicy)), 0);  // the padding differs
+  EXPECT_TRUE(SameMembers(*a, *b));
+  EXPECT_TRUE(SameMembers(*b, *a));
+  int changed = 0;
+  for (const Entry& e : schema::Entries(EventPolicy{})) {
+    const double other = e.kind == schema::Kind::kRule    ? 1.0 - e.value
+                         : e.kind == schema::Kind::kCount ? e.value + 1.0
+                         : e.value == 0.0                 ? 1.0
+                                                          : 2.0 * e.value;
+    const EventPolicy c = With<EventPolicy>(e.name, other);
+    EXPECT_FALSE(SameMembers(*a, c)) << e.name;
+    EXPECT_FALSE(SameMembers(c, *a)) << e.name;
+    ++changed;
+  }
+  EXPECT_EQ(changed, 40 + 4);  // every number and rule, the contact policy's four
+  EXPECT_FALSE(SameMembers(With<EventPolicy>("gap_rounding_ulps", 0.0),
+                           With<EventPolicy>("gap_rounding_ulps", -0.0)));
 }
 
 TEST(EventPolicySchema, EveryMemberOutsideItsRangeIsRefusedByName) {
