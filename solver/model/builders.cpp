@@ -439,7 +439,7 @@ Model BuildDeckModel(const DeckSpec& spec, const std::string& source) {
       target->friction = *o.friction;
     }
   }
-  return Model(std::move(bodies), K, C, GroundInfluence(1), std::move(contacts), source,
+  return Model(std::move(bodies), K, std::move(C), GroundInfluence(1), std::move(contacts), source,
                std::move(modes));
 }
 
