@@ -16,7 +16,9 @@
 /// bodies, and w_N is the gradient of g.
 
 #include <Eigen/Core>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -87,9 +89,29 @@ struct GapRateScratch {
   int deck_corners = 0;          ///< > 0: the model is a single deck with this many corners
   DeckCorners corners;           ///< the deck's corners (deck_corners of each array)
 
+  /// cos(theta) and sin(theta) of the deck path, from the last theta taken when it is the same
+  /// bits (std::cos and std::sin are functions of their argument's bits, so the same values): a
+  /// search reads the gap and the rate at one instant, and every open corner's gap at another.
+  void SinCos(double theta, double& cos_theta, double& sin_theta) const {
+    const auto bits = std::bit_cast<std::uint64_t>(theta);
+    if (bits != last_theta_bits_) {
+      last_cos_ = std::cos(theta);
+      last_sin_ = std::sin(theta);
+      last_theta_bits_ = bits;
+    }
+    cos_theta = last_cos_;
+    sin_theta = last_sin_;
+  }
+
   /// Sizes for a model (bodies, n_dof), or copies its corners when it is a single deck against
   /// ground faces. Called again after the model changes.
   void Resize(const model::Model& model);
+
+ private:
+  // SinCos's last argument (its bits) and its cosine and sine: +0, cos(+0) = 1 and sin(+0) = +0
+  // exactly until the first call.
+  mutable std::uint64_t last_theta_bits_ = 0;
+  mutable double last_cos_ = 1.0, last_sin_ = 0.0;
 };
 
 /// The arm R(theta) p (m) from cos(theta) and sin(theta), entry by entry as Rotation(theta) p
@@ -142,8 +164,8 @@ inline double Gap(const model::Model& model, int c, const Eigen::Ref<const Eigen
 /// cosine (the same bits).
 inline void DeckGapsAndRates(const GapRateScratch& scratch, const double* q, const double* u,
                              double* __restrict gap, double* __restrict gamma_N) {
-  const double cos_theta = std::cos(q[2]);
-  const double sin_theta = std::sin(q[2]);
+  double cos_theta, sin_theta;
+  scratch.SinCos(q[2], cos_theta, sin_theta);
   const double x = q[0], y = q[1], ux = u[0], uy = u[1], w = u[2];
   const GapRateScratch::DeckCorners& k = scratch.corners;
   for (int c = 0; c < scratch.deck_corners; ++c) {
@@ -159,8 +181,8 @@ inline void DeckGapsAndRates(const GapRateScratch& scratch, const double* q, con
 /// > c) at the deck's positions q = (x, y, theta): DeckGapsAndRates's gap alone, GroundFaceGap's
 /// operations in their order on the corner's copied data (the same bits as Gap).
 inline double DeckGap(const GapRateScratch& scratch, int c, const double* q) {
-  const double cos_theta = std::cos(q[2]);
-  const double sin_theta = std::sin(q[2]);
+  double cos_theta, sin_theta;
+  scratch.SinCos(q[2], cos_theta, sin_theta);
   const GapRateScratch::DeckCorners& k = scratch.corners;
   const double arm_x = cos_theta * k.p_x[c] - sin_theta * k.p_y[c];
   const double arm_y = sin_theta * k.p_x[c] + cos_theta * k.p_y[c];
@@ -174,8 +196,8 @@ inline double DeckGap(const GapRateScratch& scratch, int c, const double* q) {
 /// corner's copied data (the same bits as NormalRate's ground-face path).
 inline double DeckNormalRate(const GapRateScratch& scratch, int c, const double* q,
                              const double* u) {
-  const double cos_theta = std::cos(q[2]);
-  const double sin_theta = std::sin(q[2]);
+  double cos_theta, sin_theta;
+  scratch.SinCos(q[2], cos_theta, sin_theta);
   const GapRateScratch::DeckCorners& k = scratch.corners;
   const double arm_x = cos_theta * k.p_x[c] - sin_theta * k.p_y[c];
   const double arm_y = sin_theta * k.p_x[c] + cos_theta * k.p_y[c];

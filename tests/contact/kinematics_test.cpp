@@ -8,6 +8,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -326,6 +327,31 @@ TEST(ContactKinematics, EvaluateContactsOfASingleDeckIsTheBitsOfTheGeneralPath) 
         }
       }
     }
+  }
+}
+
+// GapRateScratch::SinCos against std::cos and std::sin, bit for bit, on a sequence that repeats
+// arguments (the case it keeps), alternates +0 and -0 (equal, but sin(-0) = -0), and takes
+// non-finite and large arguments.
+TEST(ContactKinematics, SinCosIsTheBitsOfStdCosAndSin) {
+  std::mt19937_64 rng(6);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<double> thetas = {0.0, -0.0, -0.0, 0.0, nan, 0.0, 1e300, 1e300, -inf, 0.25, 0.25};
+  for (int i = 0; i < 400; ++i) {
+    const double theta = 0.3 * unit(rng);
+    thetas.push_back(theta);
+    if (i % 3 == 0) thetas.push_back(theta);  // the same bits again
+    if (i % 7 == 0) thetas.push_back(std::nextafter(theta, 1.0));
+  }
+  GapRateScratch scratch;
+  const auto bits = [](double x) { return std::bit_cast<std::uint64_t>(x); };
+  for (std::size_t i = 0; i < thetas.size(); ++i) {
+    double c = 0.0, s = 0.0;
+    scratch.SinCos(thetas[i], c, s);
+    EXPECT_EQ(bits(c), bits(std::cos(thetas[i]))) << "argument " << i << " = " << thetas[i];
+    EXPECT_EQ(bits(s), bits(std::sin(thetas[i]))) << "argument " << i << " = " << thetas[i];
   }
 }
 
