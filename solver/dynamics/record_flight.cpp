@@ -2,12 +2,20 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <utility>
+#include <vector>
 
 #include "solver/dynamics/coordinate_maxima.h"
 #include "solver/dynamics/integrator.h"
 #include "solver/dynamics/run_result.h"
 
 namespace skewbridge::dynamics {
+
+namespace {
+// The deferred steps DeckRecordSteps keeps before it resolves them inside the loop (a bound on
+// the storage; where they are resolved does not change the maxima).
+constexpr std::size_t kMaxDeferredSteps = 4096;
+}  // namespace
 
 bool Integrator::RecordFlight(long& steps, double& t_finite) {
   LinearFlow& flow = ws_.flow_;
@@ -247,6 +255,8 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
   RampStepPlanner planner(policy_);
   double nominal_key = std::numeric_limits<double>::quiet_NaN();
   const std::size_t count = samples.count;
+  // The steps whose velocity-root searches wait for the loop's end (empty between loops).
+  std::vector<DeferredPeakStep>& deferred_steps = ws_.run_storage_.deferred_peaks.steps;
   Lanes2 next[3] = {};  // the last step's end (q_i, u_i): zeros until a step
   // NextSampledPiece's tests of the piece's number and end: a ramp this loop reads ends at
   // (k + 1) dt of its own k, the next ramp's start, so they hold for every later ramp.
@@ -327,10 +337,12 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
       exit = Exit::kClosing;
       break;
     }
-    // RecordFlight's tests that need no dense output.
+    // RecordFlight's tests that need no dense output. The coordinates whose velocity root the
+    // in-order scan might search are deferred (ResolveDeferredPeaks), not a reason to leave.
     const double t1 = plan.t_next_s;
-    bool rare = RaiseMaximaAtEnd3(x, next, t1, t1 - t, max_q, time_of_max);
-    rare = rare || (outputs && next_output_t_ <= t1 + policy_.output_time_band * std::max(1.0, t1));
+    double peak_bound[3];
+    const int deferred = RaiseMaximaAtEnd3Each(x, next, t1, t1 - t, max_q, time_of_max, peak_bound);
+    bool rare = outputs && next_output_t_ <= t1 + policy_.output_time_band * std::max(1.0, t1);
     const Lanes2 reach1 = CornerTravelTracker::EndReach(reach_constants, next);
     if (!rare && CornerTravelTracker::MayReach(reach0, reach1, t1 - t, max_travel)) {
       // The corners at the step's end, here when none needs a search (Scan's bits).
@@ -343,7 +355,26 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
     if (rare) {
       step = plan;
       exit = Exit::kRare;
-      break;
+      break;  // the step itself is FinishFreeStep's, after the deferred roots
+    }
+    if (deferred != 0) [[unlikely]] {
+      DeferredPeakStep& d = deferred_steps.emplace_back();
+      d.t0_s = t;
+      d.t1_s = t1;
+      d.h_s = plan.h_s;
+      for (int i = 0; i < 3; ++i) {
+        d.x0[i] = x[i];
+        d.x1[i] = next[i];
+        d.bound[i] = peak_bound[i];
+        d.end_max[i] = max_q[i];
+        d.end_time_s[i] = time_of_max[i];
+      }
+      d.gx = gx;
+      d.gy = gy;
+      d.coordinates = deferred;
+      if (deferred_steps.size() >= kMaxDeferredSteps) {
+        ResolveDeferredPeaks(max_q, time_of_max);
+      }
     }
     for (int i = 0; i < 3; ++i) x[i] = next[i];
     t = t1;
@@ -368,6 +399,9 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
     }
     ++steps;
   }
+  // The deferred roots, folded in before the members take the maxima and before the step that
+  // ended the loop is recorded after them.
+  ResolveDeferredPeaks(max_q, time_of_max);
   write_back();
   switch (exit) {
     case Exit::kOther:
@@ -386,6 +420,64 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
       return true;
   }
   return true;
+}
+
+void Integrator::ResolveDeferredPeaks(double max_q[3], double time_of_max[3]) {
+  DeferredPeaks& deferred = ws_.run_storage_.deferred_peaks;
+  if (deferred.steps.empty()) {
+    return;
+  }
+  const LinearFlow& flow = ws_.flow_;
+  FreeDenseOutput& dense = ws_.free_dense_;
+  // The armed step's modal coordinates (StoreDeckRecord's, the same bits as the step that
+  // recorded it had in the flow), and which step the bound and the dense output are of.
+  double Y[18], z_next[6];
+  int armed = -1, built = -1;
+  const auto arm = [&](int k) {
+    if (armed != k) {
+      const DeferredPeakStep& s = deferred.steps[static_cast<std::size_t>(k)];
+      detail::Lanes2 qu[3], ab[3];
+      detail::DeckModalLanes(flow.deck_lanes(), s.x0, s.gx, s.gy, qu, ab);
+      detail::DeckRecordStore(qu, ab, s.x1, Y, z_next);
+      peaks_.Arm(true, Y, std::max(s.t1_s - s.t0_s, s.h_s), 0.0);
+      armed = k;
+    }
+  };
+  for (int i = 0; i < 3; ++i) {
+    // FinishFreeStep's peak bound and velocity root of coordinate i in step k: the dense output
+    // built from the step's start and generator as state_back leaves them in z_.
+    const auto below = [&](int k, double best) {
+      arm(k);
+      const DeferredPeakStep& s = deferred.steps[static_cast<std::size_t>(k)];
+      return peaks_.PeakBelow(i, s.x0[i][0], s.x0[i][1], s.x1[i][0], s.x1[i][1], s.t1_s - s.t0_s,
+                              best);
+    };
+    const auto search = [&](int k) {
+      const DeferredPeakStep& s = deferred.steps[static_cast<std::size_t>(k)];
+      if (built != k) {
+        for (int j = 0; j < 3; ++j) {
+          z_eval_[j] = s.x0[j][0];
+          z_eval_[3 + j] = s.x0[j][1];
+        }
+        z_eval_[6] = s.gx[0];
+        z_eval_[7] = s.gy[0];
+        z_eval_[8] = s.gx[1];
+        z_eval_[9] = s.gy[1];
+        for (Eigen::Index j = 10; j < z_eval_.size(); ++j) z_eval_[j] = 0.0;
+        dense.Build(flow, 0.0, z_eval_, s.t1_s - s.t0_s);
+        built = k;
+      }
+      const double t0 = s.t0_s;
+      const auto velocity = [&](double t) { return dense.EvaluateComponent(t - t0, 3 + i); };
+      const RootResult peak =
+          FindRootBrent(velocity, t0, s.t1_s, s.x0[i][1], s.x1[i][1], MaximumTimeTolerance(s.t1_s));
+      return std::pair<double, double>(std::abs(dense.EvaluateComponent(peak.x - t0, i)), peak.x);
+    };
+    ResolveDeferredMaxima(i, deferred.steps, deferred.order, max_q[i], time_of_max[i], search,
+                          below);
+  }
+  peaks_.Disarm();
+  deferred.steps.clear();
 }
 
 }  // namespace skewbridge::dynamics

@@ -35,6 +35,7 @@
 #include "solver/contact/kinematics.h"
 #include "solver/dynamics/active_forces.h"
 #include "solver/dynamics/contact_modes.h"
+#include "solver/dynamics/coordinate_maxima.h"
 #include "solver/dynamics/corner_travel.h"
 #include "solver/dynamics/event_policy.h"
 #include "solver/dynamics/gap_bound.h"
@@ -105,6 +106,7 @@ struct RunStorage {
   ContactModes modes{0};
   DecisionMemory memory{0};
   std::vector<EventRecord> events;  // the last run's event log (storage only)
+  DeferredPeaks deferred_peaks;     // the record loop's deferred root searches (storage only)
   // A caller's finished result (SimulationWorkspace::Recycle): the next run's result takes its
   // vectors' storage, which that run's assignments size and overwrite.
   RunResult result;

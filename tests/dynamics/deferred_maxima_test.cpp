@@ -1,0 +1,185 @@
+// The deck's record loop defers the velocity-root searches of the coordinates' maxima and
+// resolves them when it leaves (ResolveDeferredMaxima): its maxima and their times against the
+// general flight loop, which scans every step in order while an observer sees the run (the bits
+// of max_abs_q, time_of_max_s, max_travel_m and the rest of the result), over drawn records,
+// scales, directions, lengths and gaps; and the resolution alone against the in-order fold it
+// stands for on drawn sequences of ends and roots, with ties and with the bounds it rests on
+// broken (the in-order replay).
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "records/excitations.h"
+#include "records/incidence.h"
+#include "solver/dynamics/coordinate_maxima.h"
+#include "solver/dynamics/simulate.h"
+#include "tests/dynamics/benchmark_cases.h"
+#include "tests/dynamics/run_bits.h"
+
+namespace skewbridge::dynamics::deferred_maxima_test {
+namespace {
+
+// Sees every free step up to the first event and lets the run go on: the run then takes the
+// general flight loop, which scans each step's maxima in order.
+class PassThrough final : public FreeStepObserver {
+ public:
+  bool Step(double, const Eigen::Ref<const Eigen::VectorXd>&, double, double,
+            const Eigen::Ref<const Eigen::VectorXd>&, const RunResult&) override {
+    return true;
+  }
+};
+
+TEST(DeferredMaxima, TheDeckLoopsMaximaAreTheInOrderScans) {
+  std::mt19937 rng(33);
+  std::uniform_real_distribution<double> scale(0.2, 3.0), angle(0.0, 90.0), end(4.0, 30.0);
+  const model::Model free_model = bench::PilotBridge(false, 0.0);
+  const model::Model gap_model = bench::PilotBridge(true, bench::kPilotStressGap_m);
+  SimulationWorkspace ws_free(free_model), ws_free_general(free_model);
+  SimulationWorkspace ws_gap(gap_model), ws_gap_general(gap_model);
+  for (int draw = 0; draw < 24; ++draw) {
+    const bool gaps = draw % 4 == 3;
+    const model::Model& model = gaps ? gap_model : free_model;
+    const unsigned seed = rng();
+    const double factor = scale(rng), angle_deg = draw % 2 == 0 ? 0.0 : angle(rng);
+    const double end_s = end(rng), output_s = draw % 6 == 5 ? 0.1 : 0.0;
+    SCOPED_TRACE("draw " + std::to_string(draw) + ", seed " + std::to_string(seed) + ", scale " +
+                 std::to_string(factor) + ", angle " + std::to_string(angle_deg) + " deg, end " +
+                 std::to_string(end_s) + " s");
+    records::GroundMotion motion;
+    motion.dt_s = 0.01;
+    motion.acc_mps2 = bench::RecordLikeSignal(seed);
+    const Eigen::Vector2d direction =
+        angle_deg == 0.0 ? Eigen::Vector2d::UnitX() : records::DirectionAt(angle_deg);
+    const records::SampledExcitation excitation =
+        records::ScaledExcitation(motion, factor, direction);
+    model::RunControl control;
+    control.end_time_s = end_s;
+    control.energy_ledger = false;  // the record flight's condition
+    control.output_interval_s = output_s;
+    const RunResult deck = Simulate(model, excitation, control, gaps ? ws_gap : ws_free);
+    PassThrough seen;
+    const RunResult general = Simulate(model, excitation, control,
+                                       gaps ? ws_gap_general : ws_free_general, {}, {}, &seen);
+    testing::ExpectSameRunBits(deck, general);
+    EXPECT_GT(deck.free_steps, 100);
+  }
+}
+
+// One drawn step of a sequence for the resolution: its end |q_i| and whether its velocity
+// changes sign, the cheap bound, the peak bound and the root's value (|q_i| there).
+struct DrawnStep {
+  double end = 0.0;
+  bool sign_change = false;
+  double bound = 0.0, peak_bound = 0.0, root = 0.0;
+};
+
+// The in-order fold of ScanCoordinateMaxima over the steps (step k from k to k + 1 s, its root at
+// k + 0.5 s): each end, then, where the velocity changes sign, the cheap bound is above the
+// maximum and the peak bound does not stay below it, the root.
+std::pair<double, double> InOrder(const std::vector<DrawnStep>& steps, double max0, double time0) {
+  double m = max0, time = time0;
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    const DrawnStep& s = steps[k];
+    if (s.end > m) {
+      m = s.end;
+      time = static_cast<double>(k + 1);
+    }
+    if (s.sign_change && s.bound > m && !(s.peak_bound < m)) {
+      if (s.root > m) {
+        m = s.root;
+        time = static_cast<double>(k) + 0.5;
+      }
+    }
+  }
+  return {m, time};
+}
+
+// A value from a small pool (ties between ends, roots and bounds) or drawn.
+double Value(std::mt19937_64& rng) {
+  static constexpr double kPool[] = {0.0, 1.0, 2.0, 3.0, 4.0};
+  std::uniform_int_distribution<int> pick(0, 9);
+  const int k = pick(rng);
+  if (k < 5) return kPool[k];
+  return std::uniform_real_distribution<double>(0.0, 5.0)(rng);
+}
+
+TEST(DeferredMaxima, TheResolutionIsTheInOrderFold) {
+  std::mt19937_64 rng(455);
+  std::uniform_int_distribution<int> length(0, 40), coin(0, 3), rare(0, 30);
+  long replays = 0, searches = 0, spared = 0;
+  for (int draw = 0; draw < 200000; ++draw) {
+    // Bounds hold unless drawn broken: the cheap bound (rarely) and, where the root is searched,
+    // the peak bound (rarely); a broken peak bound is drawn only where the root then lies above
+    // the sequence's every other candidate, so that a skip on it never hides a raise.
+    const bool break_cheap = rare(rng) == 0, break_peak = rare(rng) == 0;
+    std::vector<DrawnStep> steps(static_cast<std::size_t>(length(rng)));
+    for (DrawnStep& s : steps) {
+      s.end = Value(rng);
+      s.sign_change = coin(rng) != 0;
+      s.root = Value(rng);
+      s.bound = s.root + (coin(rng) == 0 ? 0.0 : Value(rng));
+      s.peak_bound = s.root + (coin(rng) == 0 ? 0.0 : 0.5 * Value(rng));
+      s.bound = std::max(s.bound, s.peak_bound - Value(rng));  // either bound the larger
+      if (break_cheap && coin(rng) == 0) s.bound = std::max(0.0, s.root - Value(rng));
+    }
+    if (break_peak && !steps.empty()) {
+      DrawnStep& s = steps[static_cast<std::size_t>(rng() % steps.size())];
+      s.sign_change = true;
+      s.root = 10.0;
+      s.bound = 11.0;
+      s.peak_bound = 0.5 * Value(rng) + 5.0;  // below the root, above every other candidate
+    }
+    const double max0 = Value(rng) * 0.5, time0 = -1.0;
+    const auto [want, want_time] = InOrder(steps, max0, time0);
+    // The record loop: each end raised, a sign change whose cheap bound is above the maximum
+    // deferred with the end fold after it.
+    std::vector<DeferredPeakStep> deferred;
+    std::vector<int> source;  // the drawn step of each deferred one
+    double m = max0, time = time0;
+    for (std::size_t k = 0; k < steps.size(); ++k) {
+      const DrawnStep& s = steps[k];
+      if (s.end > m) {
+        m = s.end;
+        time = static_cast<double>(k + 1);
+      }
+      if (s.sign_change && s.bound > m) {
+        DeferredPeakStep d;
+        d.t0_s = static_cast<double>(k);
+        d.t1_s = static_cast<double>(k + 1);
+        d.bound[1] = s.bound;
+        d.end_max[1] = m;
+        d.end_time_s[1] = time;
+        d.coordinates = 1 << 1;
+        deferred.push_back(d);
+        source.push_back(static_cast<int>(k));
+      }
+    }
+    std::vector<int> order;
+    const auto search = [&](int j) {
+      ++searches;
+      const std::size_t k = static_cast<std::size_t>(source[static_cast<std::size_t>(j)]);
+      return std::pair<double, double>(steps[k].root, static_cast<double>(k) + 0.5);
+    };
+    const auto below = [&](int j, double best) {
+      return steps[static_cast<std::size_t>(source[static_cast<std::size_t>(j)])].peak_bound < best;
+    };
+    const long before = searches;
+    const bool replayed = ResolveDeferredMaxima(1, deferred, order, m, time, search, below);
+    replays += replayed ? 1 : 0;
+    if (!replayed) spared += static_cast<long>(deferred.size()) - (searches - before);
+    ASSERT_EQ(m, want) << "draw " << draw;
+    ASSERT_EQ(time, want_time) << "draw " << draw;
+  }
+  // Both ways were taken, and the resolution spared searches.
+  EXPECT_GT(replays, 1000);
+  EXPECT_GT(spared, 100000);
+}
+
+}  // namespace
+}  // namespace skewbridge::dynamics::deferred_maxima_test
