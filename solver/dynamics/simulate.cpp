@@ -81,16 +81,19 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   // A sweep's runs share one policy: its members are checked once per workspace, and again
   // whenever a run brings a member of other bits (the verdict depends on the members alone; the
   // padding between them is not compared).
+  // The workspace's problems and active systems take the policy's thresholds here and nowhere
+  // else: under a policy of the validated members they hold them already.
   if (!ws.policy_validated_ || !SameMembers(ws.validated_policy_, policy)) {
     ws.policy_validated_ = false;
     ValidatePolicy(policy);
+    // The contact layer's thresholds [docs/theory.md §3.15] and the rank threshold.
+    ws.decision_.impact.SetPolicy(policy.contact);
+    ws.decision_.contact_problem.SetPolicy(policy.contact);
+    ws.forces_.sys.SetRankThreshold(policy.rank_threshold);
+    ws.decision_.projection.sys.SetRankThreshold(policy.rank_threshold);
     ws.validated_policy_ = policy;
     ws.policy_validated_ = true;
   }
-  // The contact layer's thresholds of this run [docs/theory.md §3.15]: the workspace's problems
-  // keep those of the last run otherwise.
-  ws.decision_.impact.SetPolicy(policy.contact);
-  ws.decision_.contact_problem.SetPolicy(policy.contact);
   const int naug = ws.flow_.augmented_size();
   z_ = Vec::Zero(naug);
   z_new_ = z_eval_ = z_;
@@ -135,8 +138,6 @@ Integrator::Integrator(const model::Model& model, const Excitation& excitation,
   events_.f0 = events_.f1 = events_.f_eval = Vec::Zero(2 * nc_);
   forced_.reserve(static_cast<std::size_t>(nc_));
   rates_.Resize(model);
-  ws.forces_.sys.SetRankThreshold(policy.rank_threshold);
-  ws.decision_.projection.sys.SetRankThreshold(policy.rank_threshold);
 
   t_end_ = control.EndTime(excitation.Duration());
   // The scales of the response, and the tolerances relative to them [docs/theory.md §3.2].

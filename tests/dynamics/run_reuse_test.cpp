@@ -171,6 +171,33 @@ TEST(RunReuse, AWorkspaceStillRefusesABadPolicyAfterAGoodOne) {
   testing::ExpectSameRunBits(Simulate(model, pulse, control, ws), fresh);
 }
 
+// The contact problems and active systems of a workspace take a policy's thresholds when the run
+// validates it: runs that alternate two valid policies whose contact thresholds and rank
+// threshold differ (and whose runs end differently) give each policy's bits of a new workspace.
+TEST(RunReuse, AWorkspaceTakesEachPolicysThresholdsWhenThePolicyChanges) {
+  const model::Model model = Deck(1, model::AbutmentSet::kBoth, false);
+  const records::PulseExcitation pulse(records::PulseShape::kCosine, 4.0, 2.0 * std::numbers::pi);
+  model::RunControl control;
+  control.end_time_s = 3.0;
+  EventPolicy other;
+  other.contact.tie_tolerance *= 1e4;
+  other.contact.contact_compliance *= 1e4;
+  other.contact.impact_compliance *= 1e4;
+  other.rank_threshold = 1e-3;
+  SimulationWorkspace fresh_ws(model), fresh_other_ws(model);
+  const RunResult fresh = Simulate(model, pulse, control, fresh_ws);
+  const RunResult fresh_other = Simulate(model, pulse, control, fresh_other_ws, {}, other);
+  ASSERT_EQ(fresh.status, RunStatus::kOk) << fresh.message;
+  // Under the coarser thresholds the run ends otherwise (an event cascade at its first strike).
+  ASSERT_NE(fresh_other.status, RunStatus::kOk);
+  SimulationWorkspace ws(model);
+  for (int round = 0; round < 3; ++round) {
+    SCOPED_TRACE(round);
+    testing::ExpectSameRunBits(Simulate(model, pulse, control, ws), fresh);
+    testing::ExpectSameRunBits(Simulate(model, pulse, control, ws, {}, other), fresh_other);
+  }
+}
+
 // A run's energies at its ends are their definitions, 1/2 u^T M u + 1/2 q^T K q, with or without
 // the ledger and in a reused workspace: +0.0 from rest (every form of a zero state), the forms'
 // bits from a state given at the start, and the strain 1/2 q^T K q of the end state.
