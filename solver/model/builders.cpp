@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -186,21 +187,50 @@ Eigen::MatrixXd ClassicalDamping(const Eigen::Ref<const Eigen::MatrixXd>& M, con
   return 0.5 * (C + C.transpose());
 }
 
+namespace {
+
+// The faces and corners of the last deck geometry AbutmentContacts placed on this thread: they
+// are functions of the geometry's and the gaps' bits alone, and a sweep's cells that differ in
+// their frequencies or excitation keep the geometry (the default spec's 81 cells of each skew).
+struct AbutmentGeometryMemo {
+  std::array<std::uint64_t, 5> key{};  // the bits of L, W, skew, gap_plus_m, gap_minus_m
+  int count = 0;                       // corners placed (2 or 4); 0: none yet
+  Face plus, minus;
+  Eigen::Vector2d corners[4];
+};
+
+std::array<std::uint64_t, 5> AbutmentKeyOf(const DeckGeometry& g, double gap_plus_m,
+                                           double gap_minus_m) {
+  return {std::bit_cast<std::uint64_t>(g.length_m), std::bit_cast<std::uint64_t>(g.width_m),
+          std::bit_cast<std::uint64_t>(g.skew_rad), std::bit_cast<std::uint64_t>(gap_plus_m),
+          std::bit_cast<std::uint64_t>(gap_minus_m)};
+}
+
+}  // namespace
+
 std::vector<Contact> AbutmentContacts(const Body& body, int body_index, AbutmentSet set,
                                       double gap_plus_m, double gap_minus_m, double restitution,
                                       double friction) {
   const int count = set == AbutmentSet::kBoth ? 4 : 2;
   std::vector<Contact> contacts(static_cast<std::size_t>(count));
-  const Face plus = PlusXAbutmentFace(body.geometry, gap_plus_m);
-  // The -x face only for the contacts that strike it (a sweep builds a deck per cell).
-  const Face minus = count > 2 ? MinusXAbutmentFace(body.geometry, gap_minus_m) : Face{};
+  thread_local AbutmentGeometryMemo memo;
+  const std::array<std::uint64_t, 5> key = AbutmentKeyOf(body.geometry, gap_plus_m, gap_minus_m);
+  if (memo.count != count || memo.key != key) {
+    memo.count = 0;  // invalid until every entry below is written
+    memo.plus = PlusXAbutmentFace(body.geometry, gap_plus_m);
+    // The -x face only for the contacts that strike it (a sweep builds a deck per cell).
+    memo.minus = count > 2 ? MinusXAbutmentFace(body.geometry, gap_minus_m) : Face{};
+    for (int k = 1; k <= count; ++k) memo.corners[k - 1] = Corner(body.geometry, k);
+    memo.key = key;
+    memo.count = count;
+  }
   constexpr const char* kNames[] = {"P1", "P2", "P3", "P4"};
   for (int k = 1; k <= count; ++k) {
     Contact& c = contacts[static_cast<std::size_t>(k - 1)];
     c.name = kNames[k - 1];
     c.body = body_index;
-    c.point_m = Corner(body.geometry, k);
-    c.face = k <= 2 ? plus : minus;
+    c.point_m = memo.corners[k - 1];
+    c.face = k <= 2 ? memo.plus : memo.minus;
     c.restitution = restitution;
     c.friction = friction;
   }

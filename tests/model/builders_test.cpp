@@ -5,7 +5,10 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+#include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <functional>
 #include <iostream>
@@ -376,6 +379,51 @@ TEST(Builders, ModelRejectsBrokenContactsAndMatrices) {
   ExpectMessage(
       [&] { Model({body}, K, Eigen::Matrix3d::Zero(), GroundInfluence(1), {}, "m.toml"); },
       {"substructure.K", "finite"});
+}
+
+TEST(Builders, AbutmentContactsAreTheFacesAndCornersOfEachCall) {
+  // A sequence of decks whose geometry, gaps and abutment set repeat and change in every
+  // combination (the thread's last geometry is reused): every contact is the faces and corners
+  // computed for that call's deck, bit for bit, and its eps_N, mu and body are the call's.
+  const auto bits = [](const Eigen::Vector2d& v) {
+    return std::array<std::uint64_t, 2>{std::bit_cast<std::uint64_t>(v.x()),
+                                        std::bit_cast<std::uint64_t>(v.y())};
+  };
+  const auto expect_face = [&](const Face& a, const Face& b) {
+    EXPECT_EQ(a.body, b.body);
+    EXPECT_EQ(bits(a.point_m), bits(b.point_m));
+    EXPECT_EQ(bits(a.normal), bits(b.normal));
+    EXPECT_EQ(bits(a.tangent), bits(b.tangent));
+  };
+  std::mt19937 rng(33);
+  std::uniform_int_distribution<int> pick(0, 2);
+  const DeckGeometry geometries[] = {{30.0, 10.0, 0.3}, {30.0, 10.0, 0.6}, {31.0, 10.0, 0.3}};
+  const double gaps[] = {0.01, 0.02, 0.0};
+  for (int call = 0; call < 300; ++call) {
+    SCOPED_TRACE(call);
+    Body body;
+    body.mass_kg = 1.0;
+    body.inertia_kgm2 = 1.0;
+    body.geometry = geometries[pick(rng)];
+    const double gap_plus = gaps[pick(rng)], gap_minus = gaps[pick(rng)];
+    const AbutmentSet set = pick(rng) == 0 ? AbutmentSet::kBoth : AbutmentSet::kPlusX;
+    const double eps = 0.1 * pick(rng), mu = 0.2 * pick(rng);
+    const int index = pick(rng);
+    const std::vector<Contact> contacts =
+        AbutmentContacts(body, index, set, gap_plus, gap_minus, eps, mu);
+    ASSERT_EQ(contacts.size(), set == AbutmentSet::kBoth ? 4u : 2u);
+    for (std::size_t j = 0; j < contacts.size(); ++j) {
+      const Contact& c = contacts[j];
+      const int k = static_cast<int>(j) + 1;
+      EXPECT_EQ(c.name, "P" + std::to_string(k));
+      EXPECT_EQ(c.body, index);
+      EXPECT_EQ(bits(c.point_m), bits(Corner(body.geometry, k)));
+      expect_face(c.face, k <= 2 ? PlusXAbutmentFace(body.geometry, gap_plus)
+                                 : MinusXAbutmentFace(body.geometry, gap_minus));
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(c.restitution), std::bit_cast<std::uint64_t>(eps));
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(c.friction), std::bit_cast<std::uint64_t>(mu));
+    }
+  }
 }
 
 TEST(Builders, ADiagonalMatrixIsCheckedByItsEigenvaluesItsDiagonal) {
