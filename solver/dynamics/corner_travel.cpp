@@ -1,6 +1,9 @@
 #include "solver/dynamics/corner_travel.h"
 
 #include <algorithm>
+#include <array>
+#include <bit>
+#include <cstdint>
 #include <limits>
 
 #include "solver/model/deck.h"
@@ -11,7 +14,23 @@ void CornerTravelTracker::Assign(const model::Model& model) {
   n_ = model.n_dof();
   decks_.clear();
   decks_.reserve(model.bodies().size());
+  // A deck's entry is a function of its geometry's bits alone: the last one this thread formed
+  // is taken again for a deck of those bits (a sweep's cells that keep the geometry and differ
+  // in their frequencies or excitation).
+  struct Last {
+    std::array<std::uint64_t, 3> key{};  // the bits of L, W and the skew
+    bool valid = false;
+    Deck deck;
+  };
+  thread_local Last last;
   for (const model::Body& body : model.bodies()) {
+    const std::array<std::uint64_t, 3> key = {std::bit_cast<std::uint64_t>(body.geometry.length_m),
+                                              std::bit_cast<std::uint64_t>(body.geometry.width_m),
+                                              std::bit_cast<std::uint64_t>(body.geometry.skew_rad)};
+    if (last.valid && last.key == key) {
+      decks_.push_back(last.deck);
+      continue;
+    }
     Deck d;
     const double a = body.geometry.skew_rad;
     d.nx = std::cos(a);
@@ -23,6 +42,9 @@ void CornerTravelTracker::Assign(const model::Model& model) {
       d.radius = std::max(d.radius, P.norm());  // |P_3| = |P_1|, |P_4| = |P_2|
     }
     decks_.push_back(d);
+    last.deck = d;
+    last.key = key;
+    last.valid = true;
   }
   end_.resize(decks_.size());
 }

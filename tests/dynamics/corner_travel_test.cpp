@@ -6,7 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -98,6 +100,60 @@ model::DeckSpec Subsystem(double skew_deg, double gap_m) {
   spec.restitution = 0.5;
   spec.friction = 0.2;
   return spec;
+}
+
+TEST(CornerTravel, AReassignedTrackerGivesTheTravelsOfAFreshOne) {
+  // Trackers assigned in turn to decks whose geometry repeats and changes (and to a three-span
+  // bridge) against a tracker built for each model after one of another geometry: the same
+  // travel maxima, bit for bit, at states of every deck turned both ways.
+  std::vector<model::Model> models;
+  for (const double skew_deg : {20.0, 20.0, 45.0, 20.0}) {
+    for (const double w0 : {4.0, 5.0}) {
+      model::DeckSpec d;
+      d.mass_kg = 1.0e6;
+      d.geometry = {30.0, 12.0, skew_deg * kDeg};
+      d.w0x_radps = d.w0y_radps = d.W0_radps = w0;
+      d.gap_plus_m = d.gap_minus_m = 0.01;
+      models.push_back(model::BuildDeckModel(d, "deck"));
+    }
+  }
+  model::MultiSpanSpec b;
+  b.n_spans = 3;
+  b.span_lengths_m = {30.0};
+  b.width_m = 12.0;
+  b.skew_rad = 20.0 * kDeg;
+  b.mass_per_length_kgpm = 3.0e4;
+  b.w0x_radps = b.w0y_radps = 6.0;
+  b.W0_radps = 8.0;
+  b.abutment_gap_m = 0.01;
+  b.joint_gap_m = 0.005;
+  models.insert(models.begin() + 3, model::BuildMultiSpanBridge(b, "spans"));
+  model::DeckSpec other;
+  other.mass_kg = 1.0e6;
+  other.geometry = {17.0, 5.0, 33.0 * kDeg};
+  other.w0x_radps = other.w0y_radps = other.W0_radps = 3.0;
+  const model::Model evict = model::BuildDeckModel(other, "other");
+  CornerTravelTracker reused;
+  for (std::size_t i = 0; i < models.size(); ++i) {
+    SCOPED_TRACE(i);
+    const model::Model& m = models[i];
+    reused.Assign(m);
+    const CornerTravelTracker away(evict);
+    const CornerTravelTracker fresh(m);
+    ASSERT_EQ(reused.decks(), fresh.decks());
+    for (const double sign : {1.0, -1.0}) {
+      Eigen::VectorXd q(m.n_dof());
+      for (int j = 0; j < m.n_dof(); ++j) q[j] = sign * (0.01 + 0.003 * j);
+      Eigen::VectorXd a = Eigen::VectorXd::Zero(fresh.decks());
+      Eigen::VectorXd e = a;
+      reused.Update(q, a);
+      fresh.Update(q, e);
+      for (int d = 0; d < fresh.decks(); ++d) {
+        EXPECT_EQ(std::bit_cast<std::uint64_t>(a[d]), std::bit_cast<std::uint64_t>(e[d])) << d;
+        EXPECT_GT(a[d], 0.0);
+      }
+    }
+  }
 }
 
 TEST(CornerTravel, SubsystemRunsMatchTheDenseMaximumOfTheirHistories) {
