@@ -22,6 +22,21 @@ using detail::Where;
 
 namespace {
 
+// The checks of BuildDeckModel: each calls the named check, which builds the message, only
+// when the value fails it (a sweep builds a deck per cell).
+void RequirePositive(double value, std::string_view field, const Where& where) {
+  if (!(std::isfinite(value) && value > 0.0)) CheckPositive(value, field, where);
+}
+void RequireNonNegative(double value, std::string_view field, const Where& where) {
+  if (!(std::isfinite(value) && value >= 0.0)) CheckNonNegative(value, field, where);
+}
+void RequireRange(double value, double lo, double hi, bool hi_open, std::string_view field,
+                  const Where& where, std::string_view unit = {}) {
+  if (!(std::isfinite(value) && value >= lo && (hi_open ? value < hi : value <= hi))) {
+    CheckRange(value, lo, hi, hi_open, field, where, unit);
+  }
+}
+
 void CheckSpring(const PlanSpring& k, const std::string& prefix, bool positive,
                  const Where& where) {
   if (positive) {
@@ -369,16 +384,16 @@ void DeckModesMemo::Compute(const Eigen::MatrixXd& M, const Eigen::Matrix3d& K, 
 
 Model BuildDeckModel(const DeckSpec& spec, const std::string& source) {
   const Where where{source, 0};
-  CheckPositive(spec.mass_kg, "deck.m", where);
-  CheckPositive(spec.geometry.length_m, "deck.L", where);
-  CheckPositive(spec.geometry.width_m, "deck.W", where);
-  CheckRange(spec.geometry.skew_rad * 180.0 / std::numbers::pi, 0.0, 90.0, true, "deck.skew_deg",
-             where, "deg");
+  RequirePositive(spec.mass_kg, "deck.m", where);
+  RequirePositive(spec.geometry.length_m, "deck.L", where);
+  RequirePositive(spec.geometry.width_m, "deck.W", where);
+  RequireRange(spec.geometry.skew_rad * 180.0 / std::numbers::pi, 0.0, 90.0, true, "deck.skew_deg",
+               where, "deg");
   Body body;
   body.mass_kg = spec.mass_kg;
   body.geometry = spec.geometry;
   if (spec.inertia_kgm2) {
-    CheckPositive(*spec.inertia_kgm2, "deck.I_m", where);
+    RequirePositive(*spec.inertia_kgm2, "deck.I_m", where);
     body.inertia_kgm2 = *spec.inertia_kgm2;
   } else {
     body.inertia_kgm2 = UniformDeckInertia(spec.mass_kg, spec.geometry);
@@ -387,15 +402,15 @@ Model BuildDeckModel(const DeckSpec& spec, const std::string& source) {
   Eigen::Matrix3d K;
   switch (spec.stiffness) {
     case DeckSpec::StiffnessKind::kUncoupled:
-      CheckNonNegative(spec.w0x_radps, "substructure.w0x", where);
-      CheckNonNegative(spec.w0y_radps, "substructure.w0y", where);
-      CheckNonNegative(spec.W0_radps, "substructure.W0", where);
+      RequireNonNegative(spec.w0x_radps, "substructure.w0x", where);
+      RequireNonNegative(spec.w0y_radps, "substructure.w0y", where);
+      RequireNonNegative(spec.W0_radps, "substructure.W0", where);
       K = UncoupledStiffness(body, spec.w0x_radps, spec.w0y_radps, spec.W0_radps);
       break;
     case DeckSpec::StiffnessKind::kPrincipal:
-      CheckNonNegative(spec.w1_radps, "substructure.w1", where);
-      CheckNonNegative(spec.w2_radps, "substructure.w2", where);
-      CheckNonNegative(spec.w_theta_radps, "substructure.w_theta", where);
+      RequireNonNegative(spec.w1_radps, "substructure.w1", where);
+      RequireNonNegative(spec.w2_radps, "substructure.w2", where);
+      RequireNonNegative(spec.w_theta_radps, "substructure.w_theta", where);
       detail::CheckFinite(spec.axis_rad, "substructure.axis_deg", where);
       detail::CheckFinite(spec.centre_of_rigidity_m.x(), "substructure.e_x", where);
       detail::CheckFinite(spec.centre_of_rigidity_m.y(), "substructure.e_y", where);
@@ -420,14 +435,14 @@ Model BuildDeckModel(const DeckSpec& spec, const std::string& source) {
   if (spec.C) {
     C = *spec.C;
   } else {
-    CheckRange(spec.xi, 0.0, 1.0, true, "substructure.xi", where);
+    RequireRange(spec.xi, 0.0, 1.0, true, "substructure.xi", where);
     if (!K.allFinite()) {
       Fail(where, "substructure.K", "must contain finite numbers only (got NaN or Inf)");
     }
     // Damping needs a valid K: the Model checks it again, but an asymmetric K would make
     // the modes meaningless, so report it here first. The deck's fields are checked above but
     // for a computed I_m, which the Model would name first.
-    detail::CheckPositive(body.inertia_kgm2, "deck.I_m", where);
+    RequirePositive(body.inertia_kgm2, "deck.I_m", where);
     // A diagonal K (a subsystem's) of finite entries >= 0 passes the check, and its modes and
     // damping cost less than a look-up (DiagonalDeckModes). Otherwise a deck of the same
     // (M, K, xi) bits as one built before on this thread (a sweep's cells that differ only in
@@ -441,10 +456,10 @@ Model BuildDeckModel(const DeckSpec& spec, const std::string& source) {
     }
   }
 
-  CheckNonNegative(spec.gap_plus_m, "abutments.gap_m", where);
-  CheckNonNegative(spec.gap_minus_m, "abutments.gap_m", where);
-  CheckRange(spec.restitution, 0.0, 1.0, false, "abutments.eps_N", where);
-  CheckNonNegative(spec.friction, "abutments.mu", where);
+  RequireNonNegative(spec.gap_plus_m, "abutments.gap_m", where);
+  RequireNonNegative(spec.gap_minus_m, "abutments.gap_m", where);
+  RequireRange(spec.restitution, 0.0, 1.0, false, "abutments.eps_N", where);
+  RequireNonNegative(spec.friction, "abutments.mu", where);
   std::vector<Contact> contacts = AbutmentContacts(
       body, 0, spec.abutments, spec.gap_plus_m, spec.gap_minus_m, spec.restitution, spec.friction);
   for (const ContactOverride& o : spec.overrides) {
@@ -461,11 +476,12 @@ Model BuildDeckModel(const DeckSpec& spec, const std::string& source) {
                : "unknown contact (allowed with set = \"+x\": P1, P2)");
     }
     if (o.restitution) {
-      CheckRange(*o.restitution, 0.0, 1.0, false, "abutments.contacts." + o.name + ".eps_N", where);
+      RequireRange(*o.restitution, 0.0, 1.0, false, "abutments.contacts." + o.name + ".eps_N",
+                   where);
       target->restitution = *o.restitution;
     }
     if (o.friction) {
-      CheckNonNegative(*o.friction, "abutments.contacts." + o.name + ".mu", where);
+      RequireNonNegative(*o.friction, "abutments.contacts." + o.name + ".mu", where);
       target->friction = *o.friction;
     }
   }

@@ -20,6 +20,7 @@
 
 #include "solver/common/error.h"
 #include "solver/model/builders.h"
+#include "solver/model/checks.h"
 
 namespace skewbridge::model::builders_test {
 namespace {
@@ -298,6 +299,86 @@ void ExpectMessage(const std::function<void()>& build, const std::vector<std::st
       EXPECT_NE(what.find(w), std::string::npos) << "'" << w << "' not in: " << what;
     }
   }
+}
+
+TEST(Builders, ADeckFieldIsRefusedExactlyWhenItsCheckRefusesIt) {
+  // BuildDeckModel's checks against the named checks of checks.h: over values inside, at and
+  // beyond each field's bounds (zeros of both signs, NaN, infinities), the deck is refused with
+  // the check's own message when the check throws, and not for that field when it passes.
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  const double values[] = {std::numeric_limits<double>::quiet_NaN(),
+                           -inf,
+                           -1.0,
+                           -0.0,
+                           0.0,
+                           1e-300,
+                           0.5,
+                           1.0,
+                           1.5,
+                           89.999,
+                           90.0,
+                           1e300,
+                           inf};
+  const detail::Where where{"deck.toml", 0};
+  struct Field {
+    const char* name;
+    std::function<void(DeckSpec&, double)> set;
+    std::function<void(double)> check;
+  };
+  const std::vector<Field> fields = {
+      {"deck.m", [](DeckSpec& s, double v) { s.mass_kg = v; },
+       [&](double v) { detail::CheckPositive(v, "deck.m", where); }},
+      {"deck.L", [](DeckSpec& s, double v) { s.geometry.length_m = v; },
+       [&](double v) { detail::CheckPositive(v, "deck.L", where); }},
+      {"deck.skew_deg",
+       [](DeckSpec& s, double v) { s.geometry.skew_rad = v * std::numbers::pi / 180.0; },
+       [&](double v) {
+         detail::CheckRange(v * std::numbers::pi / 180.0 * 180.0 / std::numbers::pi, 0.0, 90.0,
+                            true, "deck.skew_deg", where, "deg");
+       }},
+      {"substructure.w0x",
+       [](DeckSpec& s, double v) {
+         s.stiffness = DeckSpec::StiffnessKind::kUncoupled;
+         s.w0x_radps = v;
+         s.w0y_radps = s.W0_radps = 5.0;
+       },
+       [&](double v) { detail::CheckNonNegative(v, "substructure.w0x", where); }},
+      {"substructure.xi", [](DeckSpec& s, double v) { s.xi = v; },
+       [&](double v) { detail::CheckRange(v, 0.0, 1.0, true, "substructure.xi", where); }},
+      {"abutments.eps_N", [](DeckSpec& s, double v) { s.restitution = v; },
+       [&](double v) { detail::CheckRange(v, 0.0, 1.0, false, "abutments.eps_N", where); }},
+      {"abutments.mu", [](DeckSpec& s, double v) { s.friction = v; },
+       [&](double v) { detail::CheckNonNegative(v, "abutments.mu", where); }},
+  };
+  int refused = 0;
+  for (const Field& f : fields) {
+    for (const double v : values) {
+      SCOPED_TRACE(std::string(f.name) + " = " + std::to_string(v));
+      std::string expected;
+      try {
+        f.check(v);
+      } catch (const InputError& e) {
+        expected = e.what();
+      }
+      DeckSpec spec = PilotSpec();
+      f.set(spec, v);
+      std::string got;
+      try {
+        BuildDeckModel(spec, "deck.toml");
+      } catch (const InputError& e) {
+        got = e.what();
+      }
+      if (expected.empty()) {
+        // Accepted by its check: a refusal, if any, names another field (an inertia or a
+        // stiffness that overflows).
+        EXPECT_EQ(got.find(std::string(f.name) + ":"), std::string::npos) << got;
+      } else {
+        EXPECT_EQ(got, expected);
+        ++refused;
+      }
+    }
+  }
+  EXPECT_GT(refused, 20);
 }
 
 TEST(Builders, EveryInvalidSpecFieldIsNamedWithItsAllowedRange) {
