@@ -355,32 +355,36 @@ void FreeDenseOutput::Build(const LinearFlow& flow, double omega_radps,
   omega_radps_ = omega_radps;
   modal_ = false;
   series_tau_s_[0] = series_tau_s_[1] = std::numeric_limits<double>::quiet_NaN();
+  int modal_terms = 0;
   if (flow.modal()) {
+    // Each mode's rho once: the test of the modal path, and the mode's term count (that of its
+    // last rho when it is the same: the steps of one length). A count kept for a rho past the
+    // radius is ModalTermCount's, read only when the same rho comes again.
     const ModalFlow& modal = flow.modal_flow();
     double rho_max = 0.0;
     for (int k = 0; k < n_; ++k) {
-      rho_max = std::max(rho_max, tau_max_s * (std::sqrt(modal.w2()[k]) + std::abs(modal.c()[k]) +
-                                               std::abs(omega_radps)));
+      const double rho =
+          tau_max_s * (std::sqrt(modal.w2()[k]) + std::abs(modal.c()[k]) + std::abs(omega_radps));
+      rho_max = std::max(rho_max, rho);
+      const auto ki = static_cast<std::size_t>(k);
+      if (!(rho == mode_rho_[ki])) {
+        mode_terms_[ki] = ModalTermCount(rho);
+        mode_rho_[ki] = rho;
+      }
+      modal_terms = std::max(modal_terms, mode_terms_[ki]);
     }
     modal_ = rho_max <= kModalSeriesRadius;
   }
   if (modal_) {
     const ModalFlow& modal = flow.modal_flow();
     phi_ = modal.Phi().data();
-    modal.ToModal(z0, Y_);
-    generator_ = z0.tail(kGeneratorSize);
-    terms_ = 0;
-    for (int k = 0; k < n_; ++k) {
-      const double rho =
-          tau_max_s * (std::sqrt(modal.w2()[k]) + std::abs(modal.c()[k]) + std::abs(omega_radps));
-      // The count of the mode's last rho when it is the same (the steps of one length).
-      const auto ki = static_cast<std::size_t>(k);
-      if (!(rho == mode_rho_[ki])) {
-        mode_terms_[ki] = ModalTermCount(rho);
-        mode_rho_[ki] = rho;
-      }
-      terms_ = std::max(terms_, mode_terms_[ki]);
+    if (n_ == 3) {
+      modal.ToModal3(z0.data(), Y_.data(), true);  // ToModal's deck path (Y_ is 3 x 6)
+    } else {
+      modal.ToModal(z0, Y_);
     }
+    generator_ = z0.tail(kGeneratorSize);
+    terms_ = modal_terms;
     modal.AllModeCoefficients(omega_radps, Y_, mode_terms_.data(), modal_coefficients_.data(),
                               modal_coefficients_.col(n_).data(), modal_coefficients_.rows());
     return;
