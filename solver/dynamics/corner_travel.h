@@ -100,13 +100,16 @@ class CornerTravelTracker {
   /// Whether deck d's corner travel may reach `best` (m) over a step of h_s (s) with the
   /// positions x and velocities v (n_dof each) at its ends: false when neither end nor the
   /// interior peak that Scan's root search could find can reach it, so that Scan evaluates no
-  /// corner of the deck. Scan's test; inline.
+  /// corner of the deck. Scan's test; inline. Each end's (reach, speed) in the two lanes of one
+  /// operand (EndReach's lanes, the same bits as its scalar terms), then MayReach's lanes (the
+  /// same answer).
   bool MayReach(int d, const double* x0, const double* v0, const double* x1, const double* v1,
                 double h_s, double best) const {
-    double reach0, speed0, reach1, speed1;
-    EndReach(d, x0, v0, reach0, speed0);
-    EndReach(d, x1, v1, reach1, speed1);
-    return MayReach(reach0, speed0, reach1, speed1, h_s, best);
+    const ReachConstants c = reach_constants(d);
+    const int b = 3 * d;
+    const ReachLanes s0[3] = {{x0[b], v0[b]}, {x0[b + 1], v0[b + 1]}, {x0[b + 2], v0[b + 2]}};
+    const ReachLanes s1[3] = {{x1[b], v1[b]}, {x1[b + 1], v1[b + 1]}, {x1[b + 2], v1[b + 2]}};
+    return MayReach(EndReach(c, s0), EndReach(c, s1), h_s, best);
   }
 
   /// MayReach's terms of one end of a step for deck d: the reach |n_e . (x, y)| + r |theta| (m)

@@ -158,6 +158,8 @@ TEST(RecordFlight, LaneReachIsTheScalarReach) {
     const bool scalar =
         CornerTravelTracker::MayReach(reach[0], speed[0], reach[1], speed[1], h, best);
     ASSERT_EQ(CornerTravelTracker::MayReach(end[0], end[1], h, best), scalar) << "trial " << trial;
+    // The deck's test from the states at the step's ends (Scan's).
+    ASSERT_EQ(travel.MayReach(0, x[0], v[0], x[1], v[1], h, best), scalar) << "trial " << trial;
     may += scalar;
   }
   EXPECT_GT(may, 1000);
