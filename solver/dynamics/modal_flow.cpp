@@ -18,6 +18,9 @@ constexpr double kClassicalTolerance = 1e-12;
 
 using Mat6 = Eigen::Matrix<double, 6, 6>;
 
+// Two doubles side by side: each operation on it is the IEEE operation on each lane.
+using Lanes2 = double __attribute__((vector_size(16)));
+
 // Up to this many columns ModalProduct sums row by row in registers.
 constexpr Eigen::Index kRowWiseColumns = 8;
 
@@ -360,6 +363,49 @@ void ModeGroup(bool harmonic, const Eigen::VectorXd& w2, const Eigen::VectorXd& 
   }
 }
 
+// Transitions' series of one mode without the energy forms, `terms` coefficients summed at tau
+// into row (T_k row-major): the recursion of the six unit inputs with the columns in pairs
+// (0, 1), (2, 3), (4, 5), two lanes per operation, each lane the scalar recursion's operations
+// in its order, so the same bits. The forcing of the columns 0 to 3 is a constant: their
+// harmonic g starts at 0 and stays a zero of either sign (omega finite: omega times a zero),
+// and a zero plus 1.0 is 1.0, a zero plus +0.0 is +0.0, so g + (unit alpha at m = 0) + (unit
+// beta at m = 1) is 1.0 at those terms and +0.0 at every other. @pre omega_radps finite.
+void SeriesRowLanes(double w2, double c, double omega_radps, double tau, int terms,
+                    double row[12]) {
+  Lanes2 e[kModalMaxTerms][3], v[kModalMaxTerms][3];
+  const Lanes2 w2_l = {w2, w2}, c_l = {c, c};
+  const Lanes2 omega = {omega_radps, omega_radps}, minus_omega = {-omega_radps, -omega_radps};
+  const Lanes2 zero = {0.0, 0.0};
+  e[0][0] = Lanes2{1.0, 0.0};
+  v[0][0] = Lanes2{0.0, 1.0};
+  e[0][1] = v[0][1] = e[0][2] = v[0][2] = zero;
+  Lanes2 g = {1.0, 0.0}, gt = {0.0, 1.0};  // the columns 4 and 5 (gamma, delta)
+  for (int m = 0; m + 1 < terms; ++m) {
+    const double s = kInverseOf.value[m];
+    const Lanes2 inv = {s, s};
+    const Lanes2 f[3] = {zero, Lanes2{m == 0 ? 1.0 : 0.0, m == 1 ? 1.0 : 0.0}, g + zero + zero};
+    for (int p = 0; p < 3; ++p) {
+      e[m + 1][p] = v[m][p] * inv;
+      v[m + 1][p] = (f[p] - w2_l * e[m][p] - c_l * v[m][p]) * inv;
+    }
+    const Lanes2 g_next = omega * gt * inv;
+    gt = minus_omega * g * inv;
+    g = g_next;
+  }
+  // Sum the series at tau (Horner).
+  const Lanes2 t = {tau, tau};
+  for (int p = 0; p < 3; ++p) {
+    Lanes2 a = e[terms - 1][p], b = v[terms - 1][p];
+    for (int m = terms - 2; m >= 0; --m) {
+      a = a * t + e[m][p];
+      b = b * t + v[m][p];
+    }
+    row[2 * p] = a[0];
+    row[2 * p + 1] = a[1];
+    row[6 + 2 * p] = b[0];
+    row[6 + 2 * p + 1] = b[1];
+  }
+}
 }  // namespace
 
 void ModalFlow::AllModeCoefficients(double omega_radps, const Eigen::Ref<const Eigen::MatrixXd>& Y,
@@ -477,34 +523,40 @@ void ModalFlow::Transitions(double tau_s, double omega_radps, Eigen::Ref<Eigen::
     }
     tau = std::ldexp(tau_s, -halvings);
     const int terms = ModalTermCount(rho * std::ldexp(1.0, -halvings));
-    // The coefficient recursion of ModeCoefficients for the six unit inputs at once.
-    double g[6] = {0, 0, 0, 0, 1, 0}, gt[6] = {0, 0, 0, 0, 0, 1};
-    for (int j = 0; j < 6; ++j) {
-      e[0][j] = j == 0 ? 1.0 : 0.0;
-      v[0][j] = j == 1 ? 1.0 : 0.0;
-    }
-    for (int m = 0; m < terms; ++m) {
-      const double inv = kInverseOf.value[m];
+    if (!energy && std::isfinite(omega_radps)) {
+      // The series alone, two columns per operation: the same bits.
+      SeriesRowLanes(w2_[k], c_[k], omega_radps, tau, terms, row);
+    } else {
+      // The coefficient recursion of ModeCoefficients for the six unit inputs at once, every
+      // coefficient and forcing kept for the energy forms.
+      double g[6] = {0, 0, 0, 0, 1, 0}, gt[6] = {0, 0, 0, 0, 0, 1};
       for (int j = 0; j < 6; ++j) {
-        f[m][j] = g[j] + (m == 0 && j == 2 ? 1.0 : 0.0) + (m == 1 && j == 3 ? 1.0 : 0.0);
-        if (m + 1 < terms) {
-          e[m + 1][j] = v[m][j] * inv;
-          v[m + 1][j] = (f[m][j] - w2_[k] * e[m][j] - c_[k] * v[m][j]) * inv;
+        e[0][j] = j == 0 ? 1.0 : 0.0;
+        v[0][j] = j == 1 ? 1.0 : 0.0;
+      }
+      for (int m = 0; m < terms; ++m) {
+        const double inv = kInverseOf.value[m];
+        for (int j = 0; j < 6; ++j) {
+          f[m][j] = g[j] + (m == 0 && j == 2 ? 1.0 : 0.0) + (m == 1 && j == 3 ? 1.0 : 0.0);
+          if (m + 1 < terms) {
+            e[m + 1][j] = v[m][j] * inv;
+            v[m + 1][j] = (f[m][j] - w2_[k] * e[m][j] - c_[k] * v[m][j]) * inv;
+          }
+          const double g_next = omega_radps * gt[j] * inv;
+          gt[j] = -omega_radps * g[j] * inv;
+          g[j] = g_next;
         }
-        const double g_next = omega_radps * gt[j] * inv;
-        gt[j] = -omega_radps * g[j] * inv;
-        g[j] = g_next;
       }
-    }
-    // Sum the series at tau (Horner).
-    for (int j = 0; j < 6; ++j) {
-      double a = e[terms - 1][j], b = v[terms - 1][j];
-      for (int m = terms - 2; m >= 0; --m) {
-        a = a * tau + e[m][j];
-        b = b * tau + v[m][j];
+      // Sum the series at tau (Horner).
+      for (int j = 0; j < 6; ++j) {
+        double a = e[terms - 1][j], b = v[terms - 1][j];
+        for (int m = terms - 2; m >= 0; --m) {
+          a = a * tau + e[m][j];
+          b = b * tau + v[m][j];
+        }
+        row[j] = a;
+        row[6 + j] = b;
       }
-      row[j] = a;
-      row[6 + j] = b;
     }
     Mat6 Qin, Qd;
     if (energy) {

@@ -5,6 +5,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -119,6 +120,36 @@ TEST(LinearFlow, DeckHarmonicStepIsTheBitsOfTheGeneralModalStep) {
             EXPECT_EQ(std::signbit(flow.modal_coordinates()(k, j)), std::signbit(Y(k, j)))
                 << "way " << way << ", Y(" << k << ", " << j << "), trial " << trial;
           }
+        }
+      }
+    }
+  }
+}
+
+TEST(ModalFlow, TransitionsWithoutEnergyAreTheBitsOfTheScalarRecursion) {
+  // Without the energy forms the series run two columns per operation; with them one column at
+  // a time (the forms need every coefficient and forcing): the rows must be the same bits, signs
+  // of zeros included, for rigid, undamped and damped modes, rates of either sign and zero, and
+  // steps from far inside the series' radius to beyond it (halved and squared back).
+  std::mt19937 rng(41u);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (int model = 0; model < 6; ++model) {
+    const int n = 1 + model;
+    const RandomModel m = MakeModel(rng, n, model % 3 == 1 ? 1 : 0, model % 3 == 2 ? 0.0 : 0.05);
+    const std::optional<ModalFlow> flow = ModalFlow::Classical(m.M, m.K, m.C, m.r);
+    ASSERT_TRUE(flow);
+    for (int trial = 0; trial < 40; ++trial) {
+      const double tau = std::pow(10.0, -4.0 + 4.0 * (unit(rng) + 1.0) / 2.0);
+      const double rate =
+          trial % 4 == 0 ? 0.0 : std::pow(10.0, 2.0 * unit(rng)) * (trial % 4 == 3 ? -1.0 : 1.0);
+      Eigen::MatrixXd lanes(12, n), scalar(12, n), input, damping;
+      flow->Transitions(tau, rate, lanes, nullptr, nullptr);
+      flow->Transitions(tau, rate, scalar, &input, &damping);
+      for (int k = 0; k < n; ++k) {
+        for (int i = 0; i < 12; ++i) {
+          EXPECT_EQ(lanes(i, k), scalar(i, k)) << "T(" << i << ", " << k << "), trial " << trial;
+          EXPECT_EQ(std::signbit(lanes(i, k)), std::signbit(scalar(i, k)))
+              << "T(" << i << ", " << k << "), trial " << trial;
         }
       }
     }
