@@ -311,28 +311,120 @@ struct ModeRecursion {
   }
 };
 
+// Two modes' ModeRecursion in the two lanes of each operand: each lane runs ModeRecursion's
+// operations in its order, so the same bits; Back hands the lanes' state to the two recursions,
+// which go on alone past the shorter series.
+template <bool kHarmonic>
+struct PairRecursion {
+  Lanes2 w2, c, omega, y2, y3, g, gt, e, d;
+  double* eta[2];
+  double* deta[2];
+  void Start(const ModeRecursion<kHarmonic>& a, const ModeRecursion<kHarmonic>& b) {
+    w2 = Lanes2{a.w2, b.w2};
+    c = Lanes2{a.c, b.c};
+    omega = Lanes2{a.omega, b.omega};
+    y2 = Lanes2{a.y2, b.y2};
+    y3 = Lanes2{a.y3, b.y3};
+    g = Lanes2{a.g, b.g};
+    gt = Lanes2{a.gt, b.gt};
+    e = Lanes2{a.e, b.e};
+    d = Lanes2{a.d, b.d};
+    eta[0] = a.eta;
+    eta[1] = b.eta;
+    deta[0] = a.deta;
+    deta[1] = b.deta;
+  }
+  template <int kPhase>
+  Lanes2 Forcing() const {
+    const Lanes2 zero = {0.0, 0.0};
+    if constexpr (kHarmonic) {
+      if constexpr (kPhase == 0) return g + y2 + zero;
+      if constexpr (kPhase == 1) return g + zero + y3;
+      return g + zero;
+    } else {
+      if constexpr (kPhase == 0) return y2 + zero;
+      if constexpr (kPhase == 1) return zero + y3;
+      return zero;
+    }
+  }
+  template <int kPhase>
+  void Step(int m) {
+    const Lanes2 f = Forcing<kPhase>();
+    const double s = kInverseOf.value[m];
+    const Lanes2 inv = {s, s};
+    const Lanes2 e_next = d * inv;
+    const Lanes2 d_next = (f - w2 * e - c * d) * inv;
+    eta[0][m + 1] = e_next[0];
+    eta[1][m + 1] = e_next[1];
+    deta[0][m + 1] = d_next[0];
+    deta[1][m + 1] = d_next[1];
+    e = e_next;
+    d = d_next;
+    if constexpr (kHarmonic) {
+      const Lanes2 g_next = omega * gt * inv;
+      gt = -omega * g * inv;
+      g = g_next;
+    }
+  }
+  void StepAny(int m) {
+    if (m == 0) {
+      Step<0>(m);
+    } else if (m == 1) {
+      Step<1>(m);
+    } else {
+      Step<2>(m);
+    }
+  }
+  void Back(ModeRecursion<kHarmonic>& a, ModeRecursion<kHarmonic>& b) const {
+    a.e = e[0];
+    b.e = e[1];
+    a.d = d[0];
+    b.d = d[1];
+    a.g = g[0];
+    b.g = g[1];
+    a.gt = gt[0];
+    b.gt = gt[1];
+  }
+};
+
 // kCount modes' recursions (terms t[j] each) in one loop up to the shortest, then each alone.
+// kCount (2 or 3) modes' recursions (terms t[j] each): the last two share the lanes of
+// PairRecursion up to the shorter of their series (the higher modes, ascending in frequency,
+// need the most terms), the first of three runs beside them up to its own end; each goes on
+// alone past that.
 template <int kCount, bool kHarmonic>
 void RunRecursions(ModeRecursion<kHarmonic> (&r)[kCount], const int (&t)[kCount]) {
-  int common = t[0];
-  for (int j = 1; j < kCount; ++j) common = std::min(common, t[j]);
+  static_assert(kCount == 2 || kCount == 3);
+  ModeRecursion<kHarmonic>& a = r[kCount - 2];
+  ModeRecursion<kHarmonic>& b = r[kCount - 1];
+  const int pair_end = std::min(t[kCount - 2], t[kCount - 1]);
+  const int common = kCount == 3 ? std::min(pair_end, t[0]) : pair_end;
+  PairRecursion<kHarmonic> pair;
+  pair.Start(a, b);
   int m = 0;
   if (m + 1 < common) {
-    for (int j = 0; j < kCount; ++j) r[j].template Step<0>(m);
+    pair.template Step<0>(m);
+    if constexpr (kCount == 3) r[0].template Step<0>(m);
     ++m;
   }
   if (m == 1 && m + 1 < common) {
-    for (int j = 0; j < kCount; ++j) r[j].template Step<1>(m);
+    pair.template Step<1>(m);
+    if constexpr (kCount == 3) r[0].template Step<1>(m);
     ++m;
   }
   if (m == 2) {
     for (; m + 1 < common; ++m) {
-      for (int j = 0; j < kCount; ++j) r[j].template Step<2>(m);
+      pair.template Step<2>(m);
+      if constexpr (kCount == 3) r[0].template Step<2>(m);
     }
   }
-  for (int j = 0; j < kCount; ++j) {
-    for (int mj = m; mj + 1 < t[j]; ++mj) r[j].StepAny(mj);
+  if constexpr (kCount == 3) {
+    for (int mj = m; mj + 1 < t[0]; ++mj) r[0].StepAny(mj);
   }
+  for (; m + 1 < pair_end; ++m) pair.StepAny(m);
+  pair.Back(a, b);
+  for (int mj = m; mj + 1 < t[kCount - 2]; ++mj) a.StepAny(mj);
+  for (int mj = m; mj + 1 < t[kCount - 1]; ++mj) b.StepAny(mj);
 }
 
 // AllModeCoefficients' modes k0 .. k0 + kCount - 1.
