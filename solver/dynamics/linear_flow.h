@@ -20,7 +20,11 @@
 /// with the energy forms per mode. The general path stays the oracle of the modal one.
 
 #include <Eigen/Core>
+#include <array>
+#include <bit>
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <optional>
 #include <vector>
@@ -235,6 +239,34 @@ inline void DeckHarmonicStep(const DeckLanes& d, const double* __restrict pairs,
 
 }  // namespace detail
 
+/// cos and sin (the library's bits) of angles already taken, keyed by the angle's bits: a pulse's
+/// steps take the harmonic generator at the angles omega t of one grid, which the cells of a
+/// sweep share while their models leave the step alone. Direct-mapped, 2^kBits slots; a slot
+/// starts as the angle +0 (cos 1, sin +0: the library's values there).
+class AngleMemo {
+ public:
+  /// c = cos(x_rad), s = sin(x_rad), from the memo or computed and kept.
+  void CosSin(double x_rad, double& c, double& s) {
+    const auto key = std::bit_cast<std::uint64_t>(x_rad);
+    Slot& slot = slots_[(key * 0x9E3779B97F4A7C15ULL) >> (64 - kBits)];
+    if (slot.key != key) {
+      slot.key = key;
+      slot.c = std::cos(x_rad);
+      slot.s = std::sin(x_rad);
+    }
+    c = slot.c;
+    s = slot.s;
+  }
+
+ private:
+  static constexpr int kBits = 8;
+  struct Slot {
+    std::uint64_t key = 0;  // the bits of +0.0
+    double c = 1.0, s = 0.0;
+  };
+  std::array<Slot, std::size_t{1} << kBits> slots_{};
+};
+
 /// Which transition a LinearFlow uses.
 enum class FlowPath {
   kAuto,       ///< modal when C is classical, else augmented
@@ -423,6 +455,8 @@ class LinearFlow {
   // The modes' transitions of this flow and of those it was refitted from (Compute's): a
   // sweep's models share modes' frequencies and damping from cell to cell.
   mutable TransitionMemo memo_;
+  // The harmonic generator's cos and sin (SetGenerator's), kept across refits likewise.
+  mutable AngleMemo angles_;
   std::vector<unsigned long> last_use_;  // per cache entry, the clock of its last use (LRU)
   unsigned long clock_ = 0;
 };
@@ -436,7 +470,8 @@ inline void LinearFlow::SetGenerator(const ExcitationPiece& piece, double t_s,
   z.segment<2>(ia + 2) = piece.slope;
   if (piece.omega != 0.0) {
     // Matches ExcitationPiece::At, which ignores the harmonic part when omega = 0.
-    const double c = std::cos(piece.omega * tau), s = std::sin(piece.omega * tau);
+    double c, s;
+    angles_.CosSin(piece.omega * tau, c, s);
     z.segment<2>(ia + 4) = piece.cos_amplitude * c + piece.sin_amplitude * s;
     z.segment<2>(ia + 6) = -piece.cos_amplitude * s + piece.sin_amplitude * c;
   } else {

@@ -1,10 +1,12 @@
-// The modal flow's two-lane paths (a deck's harmonic step, the series of the transitions)
-// against the general loops they stand for, bitwise: random classically damped models, states,
-// rates and steps, zeros of either sign included.
+// The modal flow's two-lane paths (a deck's harmonic step, the series of the transitions) and
+// the harmonic generator's angle memo against what they stand for, bitwise: random classically
+// damped models, states, rates and steps, zeros of either sign included.
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <cstring>
+#include <limits>
 #include <optional>
 #include <random>
 #include <vector>
@@ -154,6 +156,35 @@ TEST(ModalFlow, TransitionsWithoutEnergyAreTheBitsOfTheScalarRecursion) {
       }
     }
   }
+}
+
+TEST(AngleMemo, GivesTheLibrarysBitsOfEveryAngle) {
+  // Angles of a few grids (a pulse's steps, taken again and again as by a sweep's cells), new
+  // angles that take the grid's slots over, zeros of either sign and non-finite angles: every
+  // answer must be the bits of std::cos and std::sin.
+  std::mt19937 rng(43u);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  AngleMemo memo;
+  const auto expect = [&](double x) {
+    double c = 7.0, s = 7.0;
+    memo.CosSin(x, c, s);
+    const double c_ref = std::cos(x), s_ref = std::sin(x);
+    EXPECT_EQ(std::memcmp(&c, &c_ref, sizeof c), 0) << "cos of " << x;
+    EXPECT_EQ(std::memcmp(&s, &s_ref, sizeof s), 0) << "sin of " << x;
+  };
+  for (double x : {0.0, -0.0, 1e-300, -1e-300, 1e300, std::numeric_limits<double>::infinity(),
+                   std::numeric_limits<double>::quiet_NaN()}) {
+    expect(x);
+  }
+  for (int pass = 0; pass < 3; ++pass) {
+    for (const double omega : {3.7, 25.0, -8.5}) {
+      const double h = 0.01 * (1.0 + 0.1 * pass);
+      for (int k = 0; k < 400; ++k) expect(omega * ((k + 1.0) * h));
+      for (int k = 0; k < 50; ++k) expect(1e3 * unit(rng));
+    }
+  }
+  expect(0.0);
+  expect(-0.0);
 }
 
 }  // namespace
