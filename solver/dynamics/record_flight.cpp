@@ -75,11 +75,16 @@ bool Integrator::RecordFlight(long& steps, double& t_finite) {
       // After the step that ended it, while no contact closed, the next step is this loop's:
       // Run would come back.
       if (Failed() || AnyClosed() || !goes_on()) {
+        ResolveDeferredPeaks(result_.max_abs_q.data(), result_.time_of_max_s.data());
         return true;
       }
       travel_.EndReach(0, z_.data(), z_.data() + n_, reach0, speed0);
       outputs = next_output_t_ <= output_reach;
       continue;
+    }
+    if (deck) {
+      // The step below is this loop's: its scan reads the in-order maxima.
+      ResolveDeferredPeaks(result_.max_abs_q.data(), result_.time_of_max_s.data());
     }
     // FreeStep's plan, the same operations.
     const double t0 = t_, h0 = h_free_;
@@ -352,11 +357,6 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
       rare = !travel_.ScanEnd(0, s0, s1, t1 - t, max_travel);
     }
     reach0 = reach1;
-    if (rare) {
-      step = plan;
-      exit = Exit::kRare;
-      break;  // the step itself is FinishFreeStep's, after the deferred roots
-    }
     if (deferred != 0) [[unlikely]] {
       DeferredPeakStep& d = deferred_steps.emplace_back();
       d.t0_s = t;
@@ -375,6 +375,11 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
       if (deferred_steps.size() >= kMaxDeferredSteps) {
         ResolveDeferredPeaks(max_q, time_of_max);
       }
+    }
+    if (rare) {
+      step = plan;
+      exit = Exit::kRare;
+      break;  // the step is FinishFreeStep's, its coordinates' roots deferred above
     }
     for (int i = 0; i < 3; ++i) x[i] = next[i];
     t = t1;
@@ -399,9 +404,13 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
     }
     ++steps;
   }
-  // The deferred roots, folded in before the members take the maxima and before the step that
-  // ended the loop is recorded after them.
-  ResolveDeferredPeaks(max_q, time_of_max);
+  // The deferred roots are folded in before a step whose scan reads the maxima: a partial step
+  // and one whose gaps may close (the run's end and a step on another piece: RecordFlight). A
+  // step that left for its corners or a history sample was scanned here (its end raised, its
+  // roots deferred) and keeps them deferred.
+  if (exit == Exit::kPartial || exit == Exit::kClosing) {
+    ResolveDeferredPeaks(max_q, time_of_max);
+  }
   write_back();
   switch (exit) {
     case Exit::kOther:
@@ -416,7 +425,16 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
       // The flow's modal coordinates (the modal transform of the step's start taken again) and
       // z_new_ as the step's transition would leave them.
       flow.StoreDeckRecord(x, gx, gy, next, z_new_);
-      FinishFreeStep(piece, step, exit == Exit::kRare, false, 0.0, 0.0);
+      if (exit == Exit::kClosing) {
+        FinishFreeStep(piece, step, false, false, 0.0, 0.0);
+      } else {
+        // The coordinates' maxima hold +inf while FinishFreeStep records the step, so that its
+        // coordinates' scan, done above, raises and searches nothing (every comparison with
+        // +inf is false); the ends' fold is theirs again after it.
+        for (int i = 0; i < 3; ++i) result_.max_abs_q[i] = std::numeric_limits<double>::infinity();
+        FinishFreeStep(piece, step, true, false, 0.0, 0.0);
+        for (int i = 0; i < 3; ++i) result_.max_abs_q[i] = max_q[i];
+      }
       return true;
   }
   return true;
