@@ -427,7 +427,13 @@ Model BuildDeckModel(const DeckSpec& spec, const std::string& source) {
       break;
   }
   std::vector<Body> bodies{body};
-  const Eigen::MatrixXd M = MassMatrix(bodies);
+  // The mass matrix of the modes' solve (MassMatrix's entries) in the thread's storage: a sweep
+  // builds a deck per cell, and the model forms its own M.
+  thread_local Eigen::MatrixXd M;
+  M.setZero(3, 3);
+  M(0, 0) = body.mass_kg;
+  M(1, 1) = body.mass_kg;
+  M(2, 2) = body.inertia_kgm2;
   Eigen::MatrixXd C;
   // The modes the damping is built from go with the model: the integrator's modal flow needs
   // the same solve (a sweep builds a model per cell).
