@@ -78,60 +78,14 @@ inline bool RaiseMaximaAtEnd(int n, const double* q0, const double* u0, double t
 using CoordinateLanes = double __attribute__((vector_size(16)));
 
 /// RaiseMaximaAtEnd of three coordinates held as lanes, x0[i] = (q_i, u_i) at the step's start
-/// and x1[i] at its end t1 (h_s the step's length): every coordinate's two tests,
-/// max_abs_q[i] < |q1_i| and u0_i u1_i < +0 (RaiseMaximaAtEnd's comparisons with their operands
-/// swapped, the same outcome), side by side first; when none holds nothing is raised and there
-/// is nothing to search. Else RaiseMaximaAtEnd's operations on the lanes in its order, so the
-/// same maxima and the same answer.
-inline bool RaiseMaximaAtEnd3(const CoordinateLanes x0[3], const CoordinateLanes x1[3], double t1,
-                              double h_s, double max_abs_q[3], double time_of_max_s[3]) {
-  using Bits2 = long long __attribute__((vector_size(16)));
-  const auto magnitude = [](CoordinateLanes v) {
-    return std::bit_cast<CoordinateLanes>(std::bit_cast<Bits2>(v) &
-                                          Bits2{0x7fffffffffffffffLL, 0x7fffffffffffffffLL});
-  };
-  // (max_abs_q[i], u0_i u1_i) < (|q1_i|, +0), lane by lane.
-  const Bits2 q_magnitude = {0x7fffffffffffffffLL, 0};
-  Bits2 any = {0, 0};
-  for (int i = 0; i < 3; ++i) {
-    const CoordinateLanes end =
-        std::bit_cast<CoordinateLanes>(std::bit_cast<Bits2>(x1[i]) & q_magnitude);
-    const CoordinateLanes product = x0[i] * x1[i];
-    const CoordinateLanes reference = {max_abs_q[i], product[1]};
-    any |= reference < end;
-  }
-  // No lane's comparison held: no lane's sign bit is set (one movmskpd where SSE2 has it;
-  // elsewhere the lanes' OR).
-#if defined(__SSE2__)
-  const bool none = __builtin_ia32_movmskpd(std::bit_cast<CoordinateLanes>(any)) == 0;
-#else
-  const bool none = (any[0] | any[1]) == 0;
-#endif
-  if (none) {
-    return false;
-  }
-  bool search = false;
-  for (int i = 0; i < 3; ++i) {
-    const CoordinateLanes a0 = magnitude(x0[i]), a1 = magnitude(x1[i]);
-    if (a1[0] > max_abs_q[i]) {
-      max_abs_q[i] = a1[0];
-      time_of_max_s[i] = t1;
-    }
-    if (x0[i][1] * x1[i][1] < 0.0) {
-      // (max(|q0|, |q1|), max(|u0|, |u1|)) as std::max takes them.
-      const CoordinateLanes larger = a0 < a1 ? a1 : a0;
-      const double bound = larger[0] + 0.5 * h_s * larger[1];
-      search = search || bound > max_abs_q[i];
-    }
-  }
-  return search;
-}
-
-/// RaiseMaximaAtEnd3's raising of the ends, and per coordinate whether it would be searched
-/// against the running maximum at hand: bit i of the result is set when u_i changes sign inside
-/// the step and the cheap hull's peak bound[i] (written then only) is above max_abs_q[i] after
-/// the end's raise, the coordinates for which RaiseMaximaAtEnd3 returns true (bound[i] 0
-/// otherwise; bound is left unwritten when no end rises and no velocity changes sign).
+/// and x1[i] at its end t1 (h_s the step's length), per coordinate: every coordinate's two
+/// tests, max_abs_q[i] < |q1_i| and u0_i u1_i < +0 (RaiseMaximaAtEnd's comparisons with their
+/// operands swapped, the same outcome), side by side first; when none holds nothing is raised
+/// and 0 is returned. Else RaiseMaximaAtEnd's operations on the lanes in its order: the same
+/// maxima, and bit i of the result set when u_i changes sign inside the step and the cheap
+/// hull's peak bound[i] (written then only) is above max_abs_q[i] after the end's raise, the
+/// coordinates for which RaiseMaximaAtEnd would search (bound[i] 0 otherwise; bound is left
+/// unwritten when no end rises and no velocity changes sign).
 inline int RaiseMaximaAtEnd3Each(const CoordinateLanes x0[3], const CoordinateLanes x1[3],
                                  double t1, double h_s, double max_abs_q[3],
                                  double time_of_max_s[3], double bound[3]) {

@@ -116,12 +116,22 @@ TEST(RecordFlight, LaneMaximaAreTheScalarMaxima) {
     std::memcpy(time_lanes, time_scalar, sizeof time_lanes);
     const double t1 = 3.0, h = Draw(rng) == 0.0 ? 0.0 : 0.01;
     const bool scalar = RaiseMaximaAtEnd(3, q0, u0, t1, q1, u1, h, max_scalar, time_scalar);
-    const bool lanes = RaiseMaximaAtEnd3(x0, x1, t1, h, max_lanes, time_lanes);
-    ASSERT_EQ(lanes, scalar) << "trial " << trial;
+    double bound[3] = {-1.0, -1.0, -1.0};
+    const int each = RaiseMaximaAtEnd3Each(x0, x1, t1, h, max_lanes, time_lanes, bound);
+    ASSERT_EQ(each != 0, scalar) << "trial " << trial;
     for (int i = 0; i < 3; ++i) {
       ASSERT_TRUE(SameBits(max_lanes[i], max_scalar[i])) << "trial " << trial << ", q" << i;
       ASSERT_TRUE(SameBits(time_lanes[i], time_scalar[i])) << "trial " << trial << ", q" << i;
       raised += time_scalar[i] == t1;
+      // Coordinate i on its own: RaiseMaximaAtEnd's search test with the raised maximum, and
+      // the cheap hull's peak as it writes it.
+      const double hull = std::max(std::abs(q0[i]), std::abs(q1[i])) +
+                          0.5 * h * std::max(std::abs(u0[i]), std::abs(u1[i]));
+      const bool searches = u0[i] * u1[i] < 0.0 && hull > max_scalar[i];
+      ASSERT_EQ((each >> i) & 1, searches ? 1 : 0) << "trial " << trial << ", q" << i;
+      if (searches) {
+        ASSERT_TRUE(SameBits(bound[i], hull)) << "trial " << trial << ", q" << i;
+      }
     }
     searched += scalar;
   }
