@@ -25,15 +25,7 @@
 namespace skewbridge::dynamics::deferred_maxima_test {
 namespace {
 
-// Sees every free step up to the first event and lets the run go on: the run then takes the
-// general flight loop, which scans each step's maxima in order.
-class PassThrough final : public FreeStepObserver {
- public:
-  bool Step(double, const Eigen::Ref<const Eigen::VectorXd>&, double, double,
-            const Eigen::Ref<const Eigen::VectorXd>&, const RunResult&) override {
-    return true;
-  }
-};
+using testing::PassThrough;
 
 TEST(DeferredMaxima, TheDeckLoopsMaximaAreTheInOrderScans) {
   std::mt19937 rng(33);

@@ -27,17 +27,7 @@
 namespace skewbridge::dynamics::record_flight_test {
 namespace {
 
-// Sees every free step up to the first event and lets the run go on: the run then takes the
-// general flight loop, whose steps are RecordFlight's operations one member at a time.
-class PassThrough final : public FreeStepObserver {
- public:
-  bool Step(double, const Eigen::Ref<const Eigen::VectorXd>&, double, double,
-            const Eigen::Ref<const Eigen::VectorXd>&, const RunResult&) override {
-    ++steps;
-    return true;
-  }
-  long steps = 0;
-};
+using testing::PassThrough;
 
 TEST(RecordFlight, ADecksStepsAreTheBitsOfTheGeneralLoop) {
   for (const double gap_m : {0.0, bench::kPilotStudyGap_m, bench::kPilotStressGap_m}) {

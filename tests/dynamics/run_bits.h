@@ -11,6 +11,19 @@
 
 namespace skewbridge::dynamics::testing {
 
+/// Sees every free step up to the first event and lets the run go on: with an observer the run
+/// takes the general flight loop, which records each step one member at a time and scans its
+/// maxima in order (the reference for the deck's record loop). Counts the steps it saw.
+class PassThrough final : public FreeStepObserver {
+ public:
+  bool Step(double, const Eigen::Ref<const Eigen::VectorXd>&, double, double,
+            const Eigen::Ref<const Eigen::VectorXd>&, const RunResult&) override {
+    ++steps;
+    return true;
+  }
+  long steps = 0;  ///< free steps seen
+};
+
 /// The bits of x, so that two doubles compare equal only when they are the same value.
 inline std::uint64_t Bits(double x) { return std::bit_cast<std::uint64_t>(x); }
 
