@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "solver/dynamics/peak_bound.h"
@@ -131,9 +132,9 @@ inline int RaiseMaximaAtEnd3Each(const CoordinateLanes x0[3], const CoordinateLa
   return search;
 }
 
-/// A full free step of a deck whose velocity-root searches are deferred (DeckRecordSteps): what
-/// rebuilding its dense output and its peak bound needs, and per coordinate what the in-order
-/// scan of its root would compare with.
+/// A full free step of a deck whose root searches are deferred (DeckRecordSteps): what
+/// rebuilding its dense output and its peak bound needs, per coordinate what the in-order scan
+/// of its velocity root would compare with, and the same for the deck's corners.
 struct DeferredPeakStep {
   double t0_s = 0.0, t1_s = 0.0;           ///< the step's ends (s)
   double h_s = 0.0;                        ///< the plan's nominal step (s; the peak bound's length)
@@ -145,94 +146,155 @@ struct DeferredPeakStep {
   /// maximum before the root less the roots deferred before it.
   double end_max[3] = {}, end_time_s[3] = {};
   int coordinates = 0;  ///< bit i: coordinate i's root deferred
+  /// The deck's running maximum of the corners' travel (m) right after the step's end was
+  /// raised, the ends since the last resolution alone raising it (as end_max).
+  double end_travel_m = 0.0;
+  double corner_bound[4] = {};  ///< Scan's cheap peak of each deferred corner (m)
+  int corners = 0;              ///< bit k: corner k's rate root deferred
 };
 
-/// The deferred steps of a run's record loop and the order their roots are visited in (storage
-/// reused from run to run).
-struct DeferredPeaks {
-  std::vector<DeferredPeakStep> steps;
+/// One deferred root search of a running maximum, as ResolveDeferredRoots takes it: its cheap
+/// bound, the running maximum and its time right after its step's end was raised (the ends since
+/// the last resolution alone), its place in the in-order sequence (its step's end time, s: after
+/// that end and after the roots of the same step listed before it) and the caller's key.
+struct DeferredRoot {
+  double bound = 0.0;
+  double end_max = 0.0, end_time_s = 0.0;
+  double place_s = 0.0;
+  int key = 0;
+};
+
+/// Scratch of a resolution: the roots in their in-order sequence, the order they are visited in.
+struct DeferredScratch {
+  std::vector<DeferredRoot> roots;
   std::vector<int> order;
 };
 
-/// Coordinate i's velocity roots of the deferred `steps` folded into its running maximum
-/// (max_abs_q, time_of_max_s, which hold the fold of every step's end), the same bits as
-/// ScanCoordinateMaxima taking the steps in order [docs/theory.md §3.20]. search(k) returns
-/// (|q_i| at the root, the root's time) of steps[k] (FindRootBrent on its dense output, a value
-/// independent of the running maximum); below(k, best) is FreeStepPeaks::PeakBelow of steps[k]
-/// against best. The in-order fold takes each end, then each searched root, a larger value
-/// replacing the maximum: its result is the largest candidate, the first in that sequence among
-/// equals. The roots are visited by their cheap bound from the largest; one whose peak bound
-/// stays below the maximum so far is not searched (it cannot reach the in-order result), the
-/// others are searched and folded by (value, place in the sequence). Where a searched value
-/// exceeds its cheap bound or its peak bound, the steps are taken again in order from each
-/// step's end fold (end_max) and the roots found so far (the in-order scan itself). Returns
-/// whether that replay ran. `order` is scratch.
+/// The deferred steps of a run's record loop and a resolution's scratch (storage reused from
+/// run to run).
+struct DeferredPeaks {
+  std::vector<DeferredPeakStep> steps;
+  DeferredScratch scratch;
+};
+
+/// The deferred roots scratch.roots (in their in-order sequence) folded into a running maximum
+/// (max, time_s, which hold the fold of every step's end), the same bits as the in-order scan
+/// [docs/theory.md §3.20]. search(key) returns (the value at the root, the root's time) (a Brent
+/// search on the step's dense output, a value independent of the running maximum); below(key,
+/// best) is the peak bound of the root's step against best. The in-order fold takes each end,
+/// then each searched root, a larger value replacing the maximum: its result is the largest
+/// candidate, the first in that sequence among equals. The roots are visited by their cheap
+/// bound from the largest; one whose peak bound stays below the maximum so far is not searched
+/// (it cannot reach the in-order result), the others are searched and folded by (value, place in
+/// the sequence). Where a searched value exceeds its cheap bound or its peak bound, the roots are
+/// taken again in order from each one's end fold (end_max) and the roots found so far (the
+/// in-order scan itself). Returns whether that replay ran.
 template <class Search, class Below>
-bool ResolveDeferredMaxima(int i, const std::vector<DeferredPeakStep>& steps,
-                           std::vector<int>& order, double& max_abs_q, double& time_of_max_s,
-                           Search&& search, Below&& below) {
-  const int bit = 1 << i;
-  order.clear();
-  for (int k = 0; k < static_cast<int>(steps.size()); ++k) {
-    if ((steps[static_cast<std::size_t>(k)].coordinates & bit) != 0) order.push_back(k);
-  }
-  if (order.empty()) {
+bool ResolveDeferredRoots(DeferredScratch& scratch, double& max, double& time_s, Search&& search,
+                          Below&& below) {
+  const std::vector<DeferredRoot>& roots = scratch.roots;
+  std::vector<int>& order = scratch.order;
+  if (roots.empty()) {
     return false;
   }
+  order.resize(roots.size());
+  for (std::size_t j = 0; j < roots.size(); ++j) order[j] = static_cast<int>(j);
   std::sort(order.begin(), order.end(), [&](int a, int b) {
-    return steps[static_cast<std::size_t>(a)].bound[i] >
-           steps[static_cast<std::size_t>(b)].bound[i];
+    return roots[static_cast<std::size_t>(a)].bound > roots[static_cast<std::size_t>(b)].bound;
   });
   // The fold so far and its place in the sequence: an end at time T is (T, before the roots of
   // its step); the root of the step ending at t1 is (t1, after its end). Every root deferred
   // comes after any candidate older than the steps (time at most their start).
-  double best = max_abs_q, best_time = time_of_max_s, best_place = time_of_max_s;
+  double best = max, best_time = time_s, best_place = time_s;
   bool exact = true;
-  for (const int k : order) {
-    const DeferredPeakStep& s = steps[static_cast<std::size_t>(k)];
-    if (below(k, best)) {
+  for (const int j : order) {
+    const DeferredRoot& r = roots[static_cast<std::size_t>(j)];
+    if (below(r.key, best)) {
       continue;  // the root's peak stays below a candidate of the in-order set
     }
-    const auto [value, time] = search(k);
-    if (!(value <= s.bound[i]) || below(k, value)) {
+    const auto [value, time] = search(r.key);
+    if (!(value <= r.bound) || below(r.key, value)) {
       exact = false;  // a bound the argument rests on failed by rounding
       break;
     }
-    if (value > best || (value == best && s.t1_s < best_place)) {
+    if (value > best || (value == best && r.place_s < best_place)) {
       best = value;
       best_time = time;
-      best_place = s.t1_s;
+      best_place = r.place_s;
     }
   }
   if (exact) {
-    max_abs_q = best;
-    time_of_max_s = best_time;
+    max = best;
+    time_s = best_time;
     return false;
   }
-  // The in-order scan: before step k's root the maximum is the better of its end fold and the
-  // roots raised so far (found: root_place the place of the last).
+  // The in-order scan: before a root the maximum is the better of its end fold and the roots
+  // raised so far (found: root_place the place of the last).
   bool found = false;
   double root = 0.0, root_time = 0.0, root_place = 0.0;
-  for (int k = 0; k < static_cast<int>(steps.size()); ++k) {
-    const DeferredPeakStep& s = steps[static_cast<std::size_t>(k)];
-    if ((s.coordinates & bit) == 0) continue;
-    double m = s.end_max[i];
-    if (found && (root > m || (root == m && root_place < s.end_time_s[i]))) m = root;
-    if (s.bound[i] > m && !below(k, m)) {
-      const auto [value, time] = search(k);
+  for (const DeferredRoot& r : roots) {
+    double m = r.end_max;
+    if (found && (root > m || (root == m && root_place < r.end_time_s))) m = root;
+    if (r.bound > m && !below(r.key, m)) {
+      const auto [value, time] = search(r.key);
       if (value > m) {
         found = true;
         root = value;
         root_time = time;
-        root_place = s.t1_s;
+        root_place = r.place_s;
       }
     }
   }
-  if (found && (root > max_abs_q || (root == max_abs_q && root_place < time_of_max_s))) {
-    max_abs_q = root;
-    time_of_max_s = root_time;
+  if (found && (root > max || (root == max && root_place < time_s))) {
+    max = root;
+    time_s = root_time;
   }
   return true;
+}
+
+/// Coordinate i's velocity roots of the deferred `steps` folded into its running maximum
+/// (max_abs_q, time_of_max_s, which hold the fold of every step's end): ResolveDeferredRoots
+/// with the key k of steps[k]; search(k) returns (|q_i| at the root, the root's time) of
+/// steps[k], below(k, best) is FreeStepPeaks::PeakBelow of steps[k] against best. Returns
+/// whether the in-order replay ran.
+template <class Search, class Below>
+bool ResolveDeferredMaxima(int i, const std::vector<DeferredPeakStep>& steps,
+                           DeferredScratch& scratch, double& max_abs_q, double& time_of_max_s,
+                           Search&& search, Below&& below) {
+  const int bit = 1 << i;
+  scratch.roots.clear();
+  for (int k = 0; k < static_cast<int>(steps.size()); ++k) {
+    const DeferredPeakStep& s = steps[static_cast<std::size_t>(k)];
+    if ((s.coordinates & bit) != 0) {
+      scratch.roots.push_back({s.bound[i], s.end_max[i], s.end_time_s[i], s.t1_s, k});
+    }
+  }
+  return ResolveDeferredRoots(scratch, max_abs_q, time_of_max_s, search, below);
+}
+
+/// The deck's corner roots of the deferred `steps` folded into its running maximum of the
+/// travel (max_travel_m, the fold of every step's end; the travel has no time, so equal values
+/// are one): ResolveDeferredRoots over the corners of each step in Scan's order (corner 0 to 3
+/// after the step's ends); search(k, c) returns the travel (m) at the root of corner c's rate in
+/// steps[k], below(k, c, best) whether Scan's travel bound of that corner stays below best.
+/// Returns whether the in-order replay ran.
+template <class Search, class Below>
+bool ResolveDeferredTravel(const std::vector<DeferredPeakStep>& steps, DeferredScratch& scratch,
+                           double& max_travel_m, Search&& search, Below&& below) {
+  scratch.roots.clear();
+  for (int k = 0; k < static_cast<int>(steps.size()); ++k) {
+    const DeferredPeakStep& s = steps[static_cast<std::size_t>(k)];
+    for (int c = 0; c < 4; ++c) {
+      if ((s.corners & (1 << c)) != 0) {
+        scratch.roots.push_back({s.corner_bound[c], s.end_travel_m, 0.0, s.t1_s, 4 * k + c});
+      }
+    }
+  }
+  double time_s = 0.0;  // the travel's maximum has none: every place ties with it
+  return ResolveDeferredRoots(
+      scratch, max_travel_m, time_s,
+      [&](int key) { return std::pair<double, double>(search(key / 4, key % 4), 0.0); },
+      [&](int key, double best) { return below(key / 4, key % 4, best); });
 }
 
 }  // namespace skewbridge::dynamics

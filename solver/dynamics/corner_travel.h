@@ -154,15 +154,21 @@ class CornerTravelTracker {
     return magnitude(c.nx * x[0] + c.ny * x[1]) + c.r * magnitude(x[2]);
   }
 
-  /// Scan's work on deck d when it searches no corner, for a caller that steps the deck itself
-  /// and whose reach test (MayReach) passed: s0 and s1 the deck's (x, y, theta, u_x, u_y,
-  /// u_theta) at the ends of a step of h_s (s). Returns false and changes nothing when some
-  /// corner's rate changes sign inside the step with Scan's peak bound above the maximum raised
-  /// by the step's end (Scan would go on to the travel bound and the search); else raises `best`
-  /// (m) to the corners' travels at the step's end and keeps that end as Scan does (the same
-  /// evaluations, the same bits), and returns true.
-  bool ScanEnd(int d, const std::array<double, 6>& s0, const std::array<double, 6>& s1, double h_s,
-               double& best) {
+  /// The four corners' travels f_k (m) and rates df_k/dt (m/s) at one state of a deck.
+  struct CornerState {
+    std::array<double, 4> f{};
+    std::array<double, 4> rate{};
+  };
+
+  /// Scan's work on deck d at a step's end, for a caller that steps the deck itself, whose reach
+  /// test (MayReach) passed and that defers the corners' root searches: s0 and s1 the deck's (x,
+  /// y, theta, u_x, u_y, u_theta) at the ends of a step of h_s (s). Raises `best` (m) to the
+  /// corners' travels at the step's end and keeps that end as Scan does (the same evaluations,
+  /// the same bits). Returns the corners (bit k: corner k) whose rate changes sign inside the
+  /// step with Scan's cheap peak bound, written to bound[k] (m), above the raised maximum: every
+  /// corner Scan could search from a maximum at least that large [docs/theory.md §3.20].
+  int ScanEnd(int d, const std::array<double, 6>& s0, const std::array<double, 6>& s1, double h_s,
+              double& best, double bound[4]) {
     const auto di = static_cast<std::size_t>(d);
     const Deck& deck = decks_[di];
     DeckEnd& end = end_[di];
@@ -178,18 +184,50 @@ class CornerTravelTracker {
     for (int k = 0; k < 4; ++k) {
       raised = std::max(raised, std::abs(c1.f[static_cast<std::size_t>(k)]));
     }
+    int deferred = 0;
     for (int k = 0; k < 4; ++k) {
       const auto ki = static_cast<std::size_t>(k);
       const double r0 = c0->rate[ki], r1 = c1.rate[ki];
       if (!(r0 * r1 < 0.0)) continue;
-      const double bound = std::max(std::abs(c0->f[ki]), std::abs(c1.f[ki])) +
-                           0.5 * h_s * std::min(std::abs(r0), std::abs(r1));
-      if (bound > raised) return false;
+      const double b = std::max(std::abs(c0->f[ki]), std::abs(c1.f[ki])) +
+                       0.5 * h_s * std::min(std::abs(r0), std::abs(r1));
+      if (b > raised) {
+        bound[k] = b;
+        deferred |= 1 << k;
+      }
     }
     best = raised;
     end.corners = c1;
     end.state = s1;
-    return true;
+    return deferred;
+  }
+
+  /// Deck d's corners at the state s (x, y, theta, u_x, u_y, u_theta): Scan's evaluation.
+  CornerState Corners(int d, const std::array<double, 6>& s) const {
+    CornerState c;
+    Evaluate(decks_[static_cast<std::size_t>(d)], s[0], s[1], s[2], s[3], s[4], s[5], c);
+    return c;
+  }
+  /// Whether Scan's travel bound spares corner k of deck d over a step of h_s (s) whose ends
+  /// have the corners c0 and c1: travel_bound (Scan's) below `best` (m).
+  template <class TravelBound>
+  bool TravelBelow(int d, int k, const CornerState& c0, const CornerState& c1, double h_s,
+                   double best, TravelBound& travel_bound) const {
+    const Deck& deck = decks_[static_cast<std::size_t>(d)];
+    const auto ki = static_cast<std::size_t>(k);
+    return travel_bound(3 * d, deck.nx, deck.ny, deck.radius, c0.f[ki], c0.rate[ki], c1.f[ki],
+                        c1.rate[ki], h_s) < best;
+  }
+  /// The travel (m) of corner k of deck d at the root of its rate in [t0, t1] (Scan's search on
+  /// component_at, Scan's arguments), the corners at the ends c0 and c1.
+  template <class ComponentAt>
+  double RootTravel(int d, int k, double t0, double t1, const CornerState& c0,
+                    const CornerState& c1, double time_tolerance_s,
+                    ComponentAt& component_at) const {
+    const auto ki = static_cast<std::size_t>(k);
+    bool turned = false;
+    return PeakTravel(decks_[static_cast<std::size_t>(d)], 3 * d, k, t0, t1, c0.rate[ki],
+                      c1.rate[ki], time_tolerance_s, component_at, turned);
   }
 
   /// MayReach from its ends' terms in lanes (EndReach's (reach, speed)): the larger reach and the
@@ -217,11 +255,6 @@ class CornerTravelTracker {
     double A[2] = {0.0, 0.0};   // n_e . P_k (m), k = 1, 2
     double B[2] = {0.0, 0.0};   // n_e . (-P_k,y, P_k,x) (m), k = 1, 2
     double radius = 0.0;        // max_k |P_k| (m)
-  };
-  // The four corners' travels f_k and rates df_k/dt at one state of a deck.
-  struct CornerState {
-    std::array<double, 4> f{};
-    std::array<double, 4> rate{};
   };
   // The travel of corner k of the deck at DOF b at the root of its rate in [t0, t1] (Brent's
   // method on the dense output); out of line, so the step's common path stays small. `turned`

@@ -133,19 +133,19 @@ class Integrator final : private ConstrainedForces {
   // (`samples`), without an observer: each step's operations in RecordFlight's order, with the
   // state, the piece, the plan's nominal step, the maxima and the counts held in locals and
   // written back before a step leaves the loop; the gap floors' drifts from the modal
-  // coordinates' lanes; a step whose coordinates' velocity roots alone would need a search stays
-  // in the loop, its searches deferred to the loop's end (ResolveDeferredPeaks). reach0 and
+  // coordinates' lanes; a step whose coordinates' velocity roots or corners' rate roots alone
+  // would need a search stays in the loop, its searches deferred (ResolveDeferredPeaks). reach0 and
   // speed0 carry the deck's corner-reach terms at the step's start. Returns true when the flight
   // ends (a step finished by FinishFreeStep or FreeStepOf, the run's end, the step limit or the
   // finite check), false before a step that is not the record's next ramp (RecordFlight takes
   // that one).
   bool DeckRecordSteps(long& steps, double& t_finite, const SampleView& samples,
                        const DeckFlight& flight, double& reach0, double& speed0);
-  // The velocity-root searches DeckRecordSteps deferred (ws_.run_storage_.deferred_peaks)
-  // folded into the deck's running maxima max_q and time_of_max (the fold of every step's end),
-  // the bits of the in-order scan (ResolveDeferredMaxima); the list emptied. Uses the dense
-  // output, the peak bound and z_eval_.
-  void ResolveDeferredPeaks(double max_q[3], double time_of_max[3]);
+  // The root searches DeckRecordSteps deferred (ws_.run_storage_.deferred_peaks) folded into
+  // the deck's running maxima max_q and time_of_max and its corners' max_travel (m) (each the
+  // fold of every step's end), the bits of the in-order scan (ResolveDeferredMaxima,
+  // ResolveDeferredTravel); the list emptied. Uses the dense output, the peak bound and z_eval_.
+  void ResolveDeferredPeaks(double max_q[3], double time_of_max[3], double& max_travel);
   // Whether every gap provably stays above twice the touch band over the full free step of
   // length tau_s just applied (GapFloors, [docs/theory.md §3.18]); `harmonic` false when the
   // step's piece has no harmonic part (omega 0: the modal coordinates' harmonic columns zeros).

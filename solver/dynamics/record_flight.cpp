@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <utility>
 #include <vector>
@@ -75,7 +76,8 @@ bool Integrator::RecordFlight(long& steps, double& t_finite) {
       // After the step that ended it, while no contact closed, the next step is this loop's:
       // Run would come back.
       if (Failed() || AnyClosed() || !goes_on()) {
-        ResolveDeferredPeaks(result_.max_abs_q.data(), result_.time_of_max_s.data());
+        ResolveDeferredPeaks(result_.max_abs_q.data(), result_.time_of_max_s.data(),
+                             result_.max_travel_m[0]);
         return true;
       }
       travel_.EndReach(0, z_.data(), z_.data() + n_, reach0, speed0);
@@ -84,7 +86,8 @@ bool Integrator::RecordFlight(long& steps, double& t_finite) {
     }
     if (deck) {
       // The step below is this loop's: its scan reads the in-order maxima.
-      ResolveDeferredPeaks(result_.max_abs_q.data(), result_.time_of_max_s.data());
+      ResolveDeferredPeaks(result_.max_abs_q.data(), result_.time_of_max_s.data(),
+                           result_.max_travel_m[0]);
     }
     // FreeStep's plan, the same operations.
     const double t0 = t_, h0 = h_free_;
@@ -342,22 +345,26 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
       exit = Exit::kClosing;
       break;
     }
-    // RecordFlight's tests that need no dense output. The coordinates whose velocity root the
-    // in-order scan might search are deferred (ResolveDeferredPeaks), not a reason to leave.
+    // RecordFlight's tests that need no dense output. The coordinates whose velocity root and
+    // the corners whose rate's root the in-order scan might search are deferred
+    // (ResolveDeferredPeaks), not a reason to leave.
     const double t1 = plan.t_next_s;
     double peak_bound[3];
     const int deferred = RaiseMaximaAtEnd3Each(x, next, t1, t1 - t, max_q, time_of_max, peak_bound);
-    bool rare = outputs && next_output_t_ <= t1 + policy_.output_time_band * std::max(1.0, t1);
+    const bool rare =
+        outputs && next_output_t_ <= t1 + policy_.output_time_band * std::max(1.0, t1);
     const Lanes2 reach1 = CornerTravelTracker::EndReach(reach_constants, next);
-    if (!rare && CornerTravelTracker::MayReach(reach0, reach1, t1 - t, max_travel)) {
-      // The corners at the step's end, here when none needs a search (Scan's bits).
+    int corners = 0;
+    double corner_bound[4];
+    if (CornerTravelTracker::MayReach(reach0, reach1, t1 - t, max_travel)) {
+      // The corners at the step's end (Scan's bits), their roots deferred.
       const std::array<double, 6> s0 = {x[0][0], x[1][0], x[2][0], x[0][1], x[1][1], x[2][1]};
       const std::array<double, 6> s1 = {next[0][0], next[1][0], next[2][0],
                                         next[0][1], next[1][1], next[2][1]};
-      rare = !travel_.ScanEnd(0, s0, s1, t1 - t, max_travel);
+      corners = travel_.ScanEnd(0, s0, s1, t1 - t, max_travel, corner_bound);
     }
     reach0 = reach1;
-    if (deferred != 0) [[unlikely]] {
+    if ((deferred | corners) != 0) [[unlikely]] {
       DeferredPeakStep& d = deferred_steps.emplace_back();
       d.t0_s = t;
       d.t1_s = t1;
@@ -365,21 +372,25 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
       for (int i = 0; i < 3; ++i) {
         d.x0[i] = x[i];
         d.x1[i] = next[i];
-        d.bound[i] = peak_bound[i];
         d.end_max[i] = max_q[i];
         d.end_time_s[i] = time_of_max[i];
       }
       d.gx = gx;
       d.gy = gy;
       d.coordinates = deferred;
+      d.end_travel_m = max_travel;
+      d.corners = corners;
+      // The bounds as written (only those of deferred coordinates and corners are, and read).
+      std::memcpy(d.bound, peak_bound, sizeof peak_bound);
+      std::memcpy(d.corner_bound, corner_bound, sizeof corner_bound);
       if (deferred_steps.size() >= kMaxDeferredSteps) {
-        ResolveDeferredPeaks(max_q, time_of_max);
+        ResolveDeferredPeaks(max_q, time_of_max, max_travel);
       }
     }
     if (rare) {
       step = plan;
       exit = Exit::kRare;
-      break;  // the step is FinishFreeStep's, its coordinates' roots deferred above
+      break;  // the step's history samples are FinishFreeStep's, its roots deferred above
     }
     for (int i = 0; i < 3; ++i) x[i] = next[i];
     t = t1;
@@ -406,10 +417,10 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
   }
   // The deferred roots are folded in before a step whose scan reads the maxima: a partial step
   // and one whose gaps may close (the run's end and a step on another piece: RecordFlight). A
-  // step that left for its corners or a history sample was scanned here (its end raised, its
-  // roots deferred) and keeps them deferred.
+  // step that left for a history sample was scanned here (its end raised, its roots deferred)
+  // and keeps them deferred.
   if (exit == Exit::kPartial || exit == Exit::kClosing) {
-    ResolveDeferredPeaks(max_q, time_of_max);
+    ResolveDeferredPeaks(max_q, time_of_max, max_travel);
   }
   write_back();
   switch (exit) {
@@ -428,19 +439,22 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
       if (exit == Exit::kClosing) {
         FinishFreeStep(piece, step, false, false, 0.0, 0.0);
       } else {
-        // The coordinates' maxima hold +inf while FinishFreeStep records the step, so that its
-        // coordinates' scan, done above, raises and searches nothing (every comparison with
-        // +inf is false); the ends' fold is theirs again after it.
-        for (int i = 0; i < 3; ++i) result_.max_abs_q[i] = std::numeric_limits<double>::infinity();
+        // The coordinates' maxima and the travel's hold +inf while FinishFreeStep records the
+        // step, so that its scans, done above, raise and search nothing (every comparison with
+        // +inf is false, the corners' reach test fails); the ends' fold is theirs again after.
+        constexpr double kInf = std::numeric_limits<double>::infinity();
+        for (int i = 0; i < 3; ++i) result_.max_abs_q[i] = kInf;
+        result_.max_travel_m[0] = kInf;
         FinishFreeStep(piece, step, true, false, 0.0, 0.0);
         for (int i = 0; i < 3; ++i) result_.max_abs_q[i] = max_q[i];
+        result_.max_travel_m[0] = max_travel;
       }
       return true;
   }
   return true;
 }
 
-void Integrator::ResolveDeferredPeaks(double max_q[3], double time_of_max[3]) {
+void Integrator::ResolveDeferredPeaks(double max_q[3], double time_of_max[3], double& max_travel) {
   DeferredPeaks& deferred = ws_.run_storage_.deferred_peaks;
   if (deferred.steps.empty()) {
     return;
@@ -448,8 +462,10 @@ void Integrator::ResolveDeferredPeaks(double max_q[3], double time_of_max[3]) {
   const LinearFlow& flow = ws_.flow_;
   FreeDenseOutput& dense = ws_.free_dense_;
   // The armed step's modal coordinates (StoreDeckRecord's, the same bits as the step that
-  // recorded it had in the flow), and which step the bound and the dense output are of.
+  // recorded it had in the flow), which step the bound and the dense output are of, and the
+  // travel the bound's hull is compared with (FinishFreeStep's running maximum).
   double Y[18], z_next[6];
+  double travel_best = max_travel;
   int armed = -1, built = -1;
   const auto arm = [&](int k) {
     if (armed != k) {
@@ -457,13 +473,30 @@ void Integrator::ResolveDeferredPeaks(double max_q[3], double time_of_max[3]) {
       detail::Lanes2 qu[3], ab[3];
       detail::DeckModalLanes(flow.deck_lanes(), s.x0, s.gx, s.gy, qu, ab);
       detail::DeckRecordStore(qu, ab, s.x1, Y, z_next);
-      peaks_.Arm(true, Y, std::max(s.t1_s - s.t0_s, s.h_s), 0.0);
+      peaks_.Arm(true, Y, std::max(s.t1_s - s.t0_s, s.h_s), 0.0, &travel_best);
       armed = k;
     }
   };
+  // FinishFreeStep's dense output of step k, built from the step's start and generator as
+  // state_back leaves them in z_.
+  const auto build = [&](int k) {
+    if (built != k) {
+      const DeferredPeakStep& s = deferred.steps[static_cast<std::size_t>(k)];
+      for (int j = 0; j < 3; ++j) {
+        z_eval_[j] = s.x0[j][0];
+        z_eval_[3 + j] = s.x0[j][1];
+      }
+      z_eval_[6] = s.gx[0];
+      z_eval_[7] = s.gy[0];
+      z_eval_[8] = s.gx[1];
+      z_eval_[9] = s.gy[1];
+      for (Eigen::Index j = 10; j < z_eval_.size(); ++j) z_eval_[j] = 0.0;
+      dense.Build(flow, 0.0, z_eval_, s.t1_s - s.t0_s);
+      built = k;
+    }
+  };
   for (int i = 0; i < 3; ++i) {
-    // FinishFreeStep's peak bound and velocity root of coordinate i in step k: the dense output
-    // built from the step's start and generator as state_back leaves them in z_.
+    // FinishFreeStep's peak bound and velocity root of coordinate i in step k.
     const auto below = [&](int k, double best) {
       arm(k);
       const DeferredPeakStep& s = deferred.steps[static_cast<std::size_t>(k)];
@@ -471,29 +504,53 @@ void Integrator::ResolveDeferredPeaks(double max_q[3], double time_of_max[3]) {
                               best);
     };
     const auto search = [&](int k) {
+      build(k);
       const DeferredPeakStep& s = deferred.steps[static_cast<std::size_t>(k)];
-      if (built != k) {
-        for (int j = 0; j < 3; ++j) {
-          z_eval_[j] = s.x0[j][0];
-          z_eval_[3 + j] = s.x0[j][1];
-        }
-        z_eval_[6] = s.gx[0];
-        z_eval_[7] = s.gy[0];
-        z_eval_[8] = s.gx[1];
-        z_eval_[9] = s.gy[1];
-        for (Eigen::Index j = 10; j < z_eval_.size(); ++j) z_eval_[j] = 0.0;
-        dense.Build(flow, 0.0, z_eval_, s.t1_s - s.t0_s);
-        built = k;
-      }
       const double t0 = s.t0_s;
       const auto velocity = [&](double t) { return dense.EvaluateComponent(t - t0, 3 + i); };
       const RootResult peak =
           FindRootBrent(velocity, t0, s.t1_s, s.x0[i][1], s.x1[i][1], MaximumTimeTolerance(s.t1_s));
       return std::pair<double, double>(std::abs(dense.EvaluateComponent(peak.x - t0, i)), peak.x);
     };
-    ResolveDeferredMaxima(i, deferred.steps, deferred.order, max_q[i], time_of_max[i], search,
+    ResolveDeferredMaxima(i, deferred.steps, deferred.scratch, max_q[i], time_of_max[i], search,
                           below);
   }
+  // The corners: FinishFreeStep's travel bound (its hull against the maximum compared with) and
+  // Scan's search of corner c's rate root in step k, from the corners at the step's ends.
+  int cornered = -1;
+  CornerTravelTracker::CornerState c0, c1;
+  const auto corners_of = [&](int k) {
+    if (cornered != k) {
+      const DeferredPeakStep& s = deferred.steps[static_cast<std::size_t>(k)];
+      c0 = travel_.Corners(
+          0, {s.x0[0][0], s.x0[1][0], s.x0[2][0], s.x0[0][1], s.x0[1][1], s.x0[2][1]});
+      c1 = travel_.Corners(
+          0, {s.x1[0][0], s.x1[1][0], s.x1[2][0], s.x1[0][1], s.x1[1][1], s.x1[2][1]});
+      cornered = k;
+    }
+  };
+  const auto travel_below = [&](int k, int c, double best) {
+    arm(k);
+    corners_of(k);
+    const DeferredPeakStep& s = deferred.steps[static_cast<std::size_t>(k)];
+    travel_best = best;
+    return travel_.TravelBelow(0, c, c0, c1, s.t1_s - s.t0_s, best, peaks_);
+  };
+  const auto travel_search = [&](int k, int c) {
+    build(k);
+    corners_of(k);
+    const DeferredPeakStep& s = deferred.steps[static_cast<std::size_t>(k)];
+    const double t0 = s.t0_s;
+    const auto component_at = [&](double t, const auto& j, auto&... out) {
+      if constexpr (sizeof...(out) == 0) {
+        return dense.EvaluateComponent(t - t0, j);
+      } else {
+        dense.EvaluateComponents(t - t0, j, out...);
+      }
+    };
+    return travel_.RootTravel(0, c, t0, s.t1_s, c0, c1, MaximumTimeTolerance(s.t1_s), component_at);
+  };
+  ResolveDeferredTravel(deferred.steps, deferred.scratch, max_travel, travel_search, travel_below);
   peaks_.Disarm();
   deferred.steps.clear();
 }

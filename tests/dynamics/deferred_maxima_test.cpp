@@ -1,10 +1,11 @@
-// The deck's record loop defers the velocity-root searches of the coordinates' maxima and
-// resolves them when it leaves (ResolveDeferredMaxima): its maxima and their times against the
+// The deck's record loop defers the root searches of the coordinates' maxima and of its corners'
+// travel and resolves them when it leaves (ResolveDeferredMaxima, ResolveDeferredTravel): its
+// maxima and their times against the
 // general flight loop, which scans every step in order while an observer sees the run (the bits
 // of max_abs_q, time_of_max_s, max_travel_m and the rest of the result), over drawn records,
 // scales, directions, lengths and gaps; and the resolution alone against the in-order fold it
-// stands for on drawn sequences of ends and roots, with ties and with the bounds it rests on
-// broken (the in-order replay).
+// stands for on drawn sequences of ends and roots (one per step, or four corners per step), with
+// ties and with the bounds it rests on broken (the in-order replay).
 
 #include <gtest/gtest.h>
 
@@ -152,7 +153,7 @@ TEST(DeferredMaxima, TheResolutionIsTheInOrderFold) {
         source.push_back(static_cast<int>(k));
       }
     }
-    std::vector<int> order;
+    DeferredScratch scratch;
     const auto search = [&](int j) {
       ++searches;
       const std::size_t k = static_cast<std::size_t>(source[static_cast<std::size_t>(j)]);
@@ -162,7 +163,7 @@ TEST(DeferredMaxima, TheResolutionIsTheInOrderFold) {
       return steps[static_cast<std::size_t>(source[static_cast<std::size_t>(j)])].peak_bound < best;
     };
     const long before = searches;
-    const bool replayed = ResolveDeferredMaxima(1, deferred, order, m, time, search, below);
+    const bool replayed = ResolveDeferredMaxima(1, deferred, scratch, m, time, search, below);
     replays += replayed ? 1 : 0;
     if (!replayed) spared += static_cast<long>(deferred.size()) - (searches - before);
     ASSERT_EQ(m, want) << "draw " << draw;
@@ -170,6 +171,102 @@ TEST(DeferredMaxima, TheResolutionIsTheInOrderFold) {
   }
   // Both ways were taken, and the resolution spared searches.
   EXPECT_GT(replays, 1000);
+  EXPECT_GT(spared, 100000);
+}
+
+// One drawn step for the travel's resolution: its end travel, and per corner whether its rate
+// changes sign, the cheap bound, the travel bound and the travel at the root.
+struct DrawnCorners {
+  double end = 0.0;
+  bool sign_change[4] = {};
+  double bound[4] = {}, peak_bound[4] = {}, root[4] = {};
+};
+
+// CornerTravelTracker::Scan's in-order fold over the steps: each step's end, then its corners in
+// order, each searched where its rate changes sign, its cheap bound is above the maximum and its
+// travel bound does not stay below it.
+double InOrderTravel(const std::vector<DrawnCorners>& steps, double max0) {
+  double m = max0;
+  for (const DrawnCorners& s : steps) {
+    m = std::max(m, s.end);
+    for (int c = 0; c < 4; ++c) {
+      if (s.sign_change[c] && s.bound[c] > m && !(s.peak_bound[c] < m)) m = std::max(m, s.root[c]);
+    }
+  }
+  return m;
+}
+
+TEST(DeferredMaxima, TheTravelsResolutionIsTheInOrderFold) {
+  std::mt19937_64 rng(2011);
+  std::uniform_int_distribution<int> length(0, 30), coin(0, 3), rare(0, 30);
+  long replays = 0, searches = 0, spared = 0;
+  for (int draw = 0; draw < 100000; ++draw) {
+    // As for the coordinates: the cheap bound broken now and then, and a travel bound broken
+    // only where its root lies above every other candidate.
+    const bool break_cheap = rare(rng) == 0, break_peak = rare(rng) == 0;
+    std::vector<DrawnCorners> steps(static_cast<std::size_t>(length(rng)));
+    for (DrawnCorners& s : steps) {
+      s.end = Value(rng);
+      for (int c = 0; c < 4; ++c) {
+        s.sign_change[c] = coin(rng) == 0;
+        s.root[c] = Value(rng);
+        s.bound[c] = s.root[c] + (coin(rng) == 0 ? 0.0 : Value(rng));
+        s.peak_bound[c] = s.root[c] + (coin(rng) == 0 ? 0.0 : 0.5 * Value(rng));
+        s.bound[c] = std::max(s.bound[c], s.peak_bound[c] - Value(rng));
+        if (break_cheap && coin(rng) == 0) s.bound[c] = std::max(0.0, s.root[c] - Value(rng));
+      }
+    }
+    if (break_peak && !steps.empty()) {
+      DrawnCorners& s = steps[static_cast<std::size_t>(rng() % steps.size())];
+      const int c = static_cast<int>(rng() % 4);
+      s.sign_change[c] = true;
+      s.root[c] = 10.0;
+      s.bound[c] = 11.0;
+      s.peak_bound[c] = 0.5 * Value(rng) + 5.0;
+    }
+    const double max0 = Value(rng) * 0.5;
+    const double want = InOrderTravel(steps, max0);
+    // The record loop (CornerTravelTracker::ScanEnd): each end raised, the corners whose cheap
+    // bound is above that maximum deferred with it.
+    std::vector<DeferredPeakStep> deferred;
+    std::vector<int> source;
+    double m = max0;
+    long candidates = 0;
+    for (std::size_t k = 0; k < steps.size(); ++k) {
+      const DrawnCorners& s = steps[k];
+      m = std::max(m, s.end);
+      DeferredPeakStep d;
+      d.t0_s = static_cast<double>(k);
+      d.t1_s = static_cast<double>(k + 1);
+      d.end_travel_m = m;
+      for (int c = 0; c < 4; ++c) {
+        if (s.sign_change[c] && s.bound[c] > m) {
+          d.corner_bound[c] = s.bound[c];
+          d.corners |= 1 << c;
+          ++candidates;
+        }
+      }
+      if (d.corners != 0 || coin(rng) == 0) {  // steps kept for their coordinates too
+        deferred.push_back(d);
+        source.push_back(static_cast<int>(k));
+      }
+    }
+    DeferredScratch scratch;
+    const auto of = [&](int j) -> const DrawnCorners& {
+      return steps[static_cast<std::size_t>(source[static_cast<std::size_t>(j)])];
+    };
+    const auto search = [&](int j, int c) {
+      ++searches;
+      return of(j).root[c];
+    };
+    const auto below = [&](int j, int c, double best) { return of(j).peak_bound[c] < best; };
+    const long before = searches;
+    const bool replayed = ResolveDeferredTravel(deferred, scratch, m, search, below);
+    replays += replayed ? 1 : 0;
+    if (!replayed) spared += candidates - (searches - before);
+    ASSERT_EQ(m, want) << "draw " << draw;
+  }
+  EXPECT_GT(replays, 500);
   EXPECT_GT(spared, 100000);
 }
 
