@@ -139,6 +139,9 @@ class Integrator final : private ConstrainedForces {
   // ends (a step finished by FinishFreeStep or FreeStepOf, the run's end, the step limit or the
   // finite check), false before a step that is not the record's next ramp (RecordFlight takes
   // that one).
+  // kHasY: whether the record has y samples (samples.ay_mps2 not null); without, the y
+  // generator is the constant +0 it would compute.
+  template <bool kHasY>
   bool DeckRecordSteps(long& steps, double& t_finite, const SampleView& samples,
                        const DeckFlight& flight, double& reach0, double& speed0);
   // The root searches DeckRecordSteps deferred (ws_.run_storage_.deferred_peaks) folded into

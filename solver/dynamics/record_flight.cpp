@@ -72,7 +72,10 @@ bool Integrator::RecordFlight(long& steps, double& t_finite) {
     return true;
   };
   for (;;) {
-    if (deck && DeckRecordSteps(steps, t_finite, samples, deck_flight, reach0, speed0)) {
+    if (deck &&
+        (samples.ay_mps2 != nullptr
+             ? DeckRecordSteps<true>(steps, t_finite, samples, deck_flight, reach0, speed0)
+             : DeckRecordSteps<false>(steps, t_finite, samples, deck_flight, reach0, speed0))) {
       // After the step that ended it, while no contact closed, the next step is this loop's:
       // Run would come back.
       if (Failed() || AnyClosed() || !goes_on()) {
@@ -168,6 +171,7 @@ bool Integrator::RecordFlight(long& steps, double& t_finite) {
   }
 }
 
+template <bool kHasY>
 bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleView& samples,
                                  const DeckFlight& flight, double& reach0_io, double& speed0_io) {
   using detail::Lanes2;
@@ -282,15 +286,18 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
     if (!(t == te) || k + 1 >= count) {
       break;
     }
-    const double y0 = ay != nullptr ? ay[k] : 0.0;
-    const double y1 = ay != nullptr ? ay[k + 1] : 0.0;
+    double y0 = 0.0, y1 = 0.0;
+    if constexpr (kHasY) {
+      y0 = ay[k];
+      y1 = ay[k + 1];
+    }
     tb = te;
     te = end_samples * dt;
     end_samples += 1.0;
     ax0 = ax[k];
     ay0 = y0;
     sx = (ax[k + 1] - ax[k]) / dt;
-    sy = (y1 - y0) / dt;
+    sy = kHasY ? (y1 - y0) / dt : 0.0;  // without y: (0 - 0) / dt = +0 (dt > 0)
     index = static_cast<long>(k);
     SB_DEMAND(te > t, "Excitation::PieceAt(t) returned a piece that ends at or before t");
     // NominalFreeStep (a finite piece of rate 0) and the plan (PlanFreeStep at the ramp's start,
@@ -323,7 +330,8 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
     // coordinates' zeros of either sign: DeckStepLanes).
     const double tau_start = t - tb;
     gx = Lanes2{ax0 + sx * tau_start, sx};
-    gy = Lanes2{ay0 + sy * tau_start, sy};
+    // Without y: +0 + (+0) tau_start = +0 (tau_start = t - tb = +0), a constant of the loop.
+    gy = kHasY ? Lanes2{ay0 + sy * tau_start, sy} : Lanes2{0.0, 0.0};
     generated = true;
     Lanes2 qu[3], ab[3];
     detail::DeckStepLanes(lanes, p->record_pairs.data(), x, gx, gy, qu, ab, next);
