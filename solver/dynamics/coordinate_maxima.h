@@ -96,6 +96,19 @@ inline int RaiseMaximaAtEnd3Each(const CoordinateLanes x0[3], const CoordinateLa
                                           Bits2{0x7fffffffffffffffLL, 0x7fffffffffffffffLL});
   };
   const Bits2 q_magnitude = {0x7fffffffffffffffLL, 0};
+#if defined(__SSE2__)
+  // The comparisons' masks ORed as doubles (cmpltpd, orpd) and their signs gathered (movmskpd):
+  // the same outcome as the generic form below without turning each mask into a bool lane.
+  CoordinateLanes any = {0.0, 0.0};
+  for (int i = 0; i < 3; ++i) {
+    const CoordinateLanes end =
+        std::bit_cast<CoordinateLanes>(std::bit_cast<Bits2>(x1[i]) & q_magnitude);
+    const CoordinateLanes product = x0[i] * x1[i];
+    const CoordinateLanes reference = {max_abs_q[i], product[1]};
+    any = __builtin_ia32_orpd(any, __builtin_ia32_cmpltpd(reference, end));
+  }
+  const bool none = __builtin_ia32_movmskpd(any) == 0;
+#else
   Bits2 any = {0, 0};
   for (int i = 0; i < 3; ++i) {
     const CoordinateLanes end =
@@ -104,9 +117,6 @@ inline int RaiseMaximaAtEnd3Each(const CoordinateLanes x0[3], const CoordinateLa
     const CoordinateLanes reference = {max_abs_q[i], product[1]};
     any |= reference < end;
   }
-#if defined(__SSE2__)
-  const bool none = __builtin_ia32_movmskpd(std::bit_cast<CoordinateLanes>(any)) == 0;
-#else
   const bool none = (any[0] | any[1]) == 0;
 #endif
   if (none) {
