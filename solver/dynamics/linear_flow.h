@@ -138,13 +138,22 @@ inline void DeckRecordLanes(const DeckLanes& d, const double* __restrict pairs, 
 // has the same value in both. The step's end sums each mode's products from +0, where no partial
 // sum is -0, so a zero term adds the same bits whatever its sign: `next` and ab are
 // DeckRecordLanes' bits, qu its values (a zero's sign aside).
+// The y generator gy's share of each mode's input (a, slope), the products DeckRecordLanes adds
+// to the x generator's: ab_y[i] = negL[3 + i] * gy.
+inline void DeckYForcing(const DeckLanes& d, Lanes2 gy, Lanes2 ab_y[3]) {
+  for (int i = 0; i < 3; ++i) ab_y[i] = d.negL[3 + i] * gy;
+}
+
+// DeckStepLanes takes the y generator as its products ab_y (DeckYForcing): a caller whose y
+// generator does not change over its steps takes them once.
 inline void DeckStepLanes(const DeckLanes& d, const double* __restrict pairs, const Lanes2 zq[3],
-                          Lanes2 gx, Lanes2 gy, Lanes2 qu[3], Lanes2 ab[3], Lanes2 next[3]) {
+                          Lanes2 gx, const Lanes2 ab_y[3], Lanes2 qu[3], Lanes2 ab[3],
+                          Lanes2 next[3]) {
   Lanes2 ed[3];
   const auto* T = static_cast<const double*>(__builtin_assume_aligned(pairs, 16));
   for (int i = 0; i < 3; ++i) {
     qu[i] = d.PhiTM[i] * zq[0] + d.PhiTM[i + 3] * zq[1] + d.PhiTM[i + 6] * zq[2];
-    ab[i] = d.negL[i] * gx + d.negL[3 + i] * gy;
+    ab[i] = d.negL[i] * gx + ab_y[i];
   }
   for (int k = 0; k < 3; ++k) {
     const Lanes2 y[4] = {

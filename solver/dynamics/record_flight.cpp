@@ -270,6 +270,12 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
   // The steps whose velocity-root searches wait for the loop's end (empty between loops).
   std::vector<DeferredPeakStep>& deferred_steps = ws_.run_storage_.deferred_peaks.steps;
   Lanes2 next[3] = {};  // the last step's end (q_i, u_i): zeros until a step
+  // The y generator's products in the modal inputs (DeckYForcing): per step with y samples, once
+  // without (its generator the constant +0).
+  Lanes2 ab_y[3];
+  if constexpr (!kHasY) {
+    detail::DeckYForcing(lanes, Lanes2{0.0, 0.0}, ab_y);
+  }
   // NextSampledPiece's tests of the piece's number and end: a ramp this loop reads ends at
   // (k + 1) dt of its own k, the next ramp's start, so they hold for every later ramp.
   if (index < 0 || te != static_cast<double>(index + 1) * dt) {
@@ -333,8 +339,11 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
     // Without y: +0 + (+0) tau_start = +0 (tau_start = t - tb = +0), a constant of the loop.
     gy = kHasY ? Lanes2{ay0 + sy * tau_start, sy} : Lanes2{0.0, 0.0};
     generated = true;
+    if constexpr (kHasY) {
+      detail::DeckYForcing(lanes, gy, ab_y);
+    }
     Lanes2 qu[3], ab[3];
-    detail::DeckStepLanes(lanes, p->record_pairs.data(), x, gx, gy, qu, ab, next);
+    detail::DeckStepLanes(lanes, p->record_pairs.data(), x, gx, ab_y, qu, ab, next);
     ++free_steps;
     if (gaps_exact_) {
       gap_floors_.Restart(ends_.gap0);

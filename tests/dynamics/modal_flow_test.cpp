@@ -637,7 +637,9 @@ TEST(LinearFlow, DeckStepLanesIsDeckRecordLanesUpToTheSignOfAModalZero) {
       const Lanes2 zq[3] = {{draw(), draw()}, {draw(), draw()}, {draw(), draw()}};
       const Lanes2 gx = {draw(), draw()}, gy = {draw(), draw()};
       Lanes2 qu[3], ab[3], next[3], qu_ref[3], ab_ref[3], next_ref[3];
-      detail::DeckStepLanes(flow.deck_lanes(), p.record_pairs.data(), zq, gx, gy, qu, ab, next);
+      Lanes2 ab_y[3];
+      detail::DeckYForcing(flow.deck_lanes(), gy, ab_y);
+      detail::DeckStepLanes(flow.deck_lanes(), p.record_pairs.data(), zq, gx, ab_y, qu, ab, next);
       detail::DeckRecordLanes(flow.deck_lanes(), p.record_pairs.data(), zq, gx, gy, qu_ref, ab_ref,
                               next_ref);
       for (int i = 0; i < 3; ++i) {
