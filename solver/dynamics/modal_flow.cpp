@@ -523,7 +523,7 @@ void ModalFlow::AllModeCoefficients(double omega_radps, const Eigen::Ref<const E
   }
 }
 
-std::size_t TransitionMemo::SlotOf(const double (&key)[4]) {
+std::size_t TransitionMemo::SetOf(const double (&key)[4]) {
   std::uint64_t h = 0;
   for (const double x : key) {
     std::uint64_t b;
@@ -531,7 +531,7 @@ std::size_t TransitionMemo::SlotOf(const double (&key)[4]) {
     h = (h ^ b) * 0x9E3779B97F4A7C15ULL;
     h ^= h >> 29;
   }
-  return static_cast<std::size_t>(h % kSlots);
+  return static_cast<std::size_t>(h % kSets);
 }
 
 TransitionMemo::TransitionMemo(const TransitionMemo& other) { *this = other; }
@@ -541,6 +541,7 @@ TransitionMemo& TransitionMemo::operator=(const TransitionMemo& other) {
     return *this;
   }
   std::memcpy(used_, other.used_, sizeof used_);
+  std::memcpy(next_, other.next_, sizeof next_);
   if (other.slots_ == nullptr) {
     slots_.reset();
     return *this;
@@ -557,23 +558,30 @@ TransitionMemo& TransitionMemo::operator=(const TransitionMemo& other) {
 }
 
 bool TransitionMemo::Find(const double (&key)[4], double* row) const {
-  const std::size_t s = SlotOf(key);
-  if (!Used(s)) {
-    return false;
+  const std::size_t first = SetOf(key) * kWays;
+  for (std::size_t s = first; s < first + kWays; ++s) {
+    if (!Used(s)) {
+      continue;
+    }
+    const Slot& slot = slots_[s];
+    if (std::memcmp(slot.key, key, sizeof slot.key) == 0) {
+      std::memcpy(row, slot.row, sizeof slot.row);
+      return true;
+    }
   }
-  const Slot& slot = slots_[s];
-  if (std::memcmp(slot.key, key, sizeof slot.key) != 0) {
-    return false;
-  }
-  std::memcpy(row, slot.row, sizeof slot.row);
-  return true;
+  return false;
 }
 
 void TransitionMemo::Store(const double (&key)[4], const double* row) {
   if (slots_ == nullptr) {
     slots_ = std::make_unique_for_overwrite<Slot[]>(kSlots);
   }
-  const std::size_t s = SlotOf(key);
+  // The set's ways in turn: the slot taken is the one stored longest ago.
+  const std::size_t set = SetOf(key);
+  const std::size_t shift = 2 * (set % 32);
+  const std::uint64_t way = (next_[set / 32] >> shift) & 3U;
+  next_[set / 32] = (next_[set / 32] & ~(std::uint64_t{3} << shift)) | (((way + 1) & 3U) << shift);
+  const std::size_t s = set * kWays + way;
   Slot& slot = slots_[s];
   std::memcpy(slot.key, key, sizeof slot.key);
   std::memcpy(slot.row, row, sizeof slot.row);

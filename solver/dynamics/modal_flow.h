@@ -90,9 +90,11 @@ inline void ToModalFixed(const double* __restrict PhiTM, const double* __restric
 /// Per-mode transitions already computed, keyed by the bits of (w_k^2, c_k, tau, omega): T_k is
 /// a function of these alone (ModalFlow::Transitions), so a sweep's next model whose mode has
 /// the same frequency and damping (or another mode of the same model) takes its T_k from here,
-/// the same bits. Direct-mapped: a new key takes its slot from the one before. Its storage
-/// (kSlots slots) is allocated on first use and not cleared: a slot holds a row only once its
-/// bit in `used_` is set, so a new memo costs an allocation and 64 bytes of zeros.
+/// the same bits. Set-associative: a key's set (kSets of them) holds its kWays latest keys, a new
+/// key taking the oldest one's slot, so the models of one sweep axis (a few keys each, a few
+/// hundred models apart) find theirs again. Its storage (kSets kWays slots) is allocated on first
+/// use and not cleared: a slot holds a row only once its bit in `used_` is set, so a new memo
+/// costs an allocation and 384 bytes of zeros.
 class TransitionMemo {
  public:
   TransitionMemo() = default;
@@ -108,6 +110,10 @@ class TransitionMemo {
         used_[w] = other.used_[w];
         other.used_[w] = 0;
       }
+      for (std::size_t w = 0; w < kSets / 32; ++w) {
+        next_[w] = other.next_[w];
+        other.next_[w] = 0;
+      }
     }
     return *this;
   }
@@ -116,18 +122,23 @@ class TransitionMemo {
   /// Copies the 12 entries of T_k held for `key` into `row`; false when none is held.
   bool Find(const double (&key)[4], double* row) const;
   /// Holds `row` (12 entries) for `key`.
+  /// @pre Find(key) is false (a key is held in one slot at most).
   void Store(const double (&key)[4], const double* row);
 
  private:
-  static constexpr std::size_t kSlots = 512;
+  static constexpr std::size_t kSets = 512;
+  static constexpr std::size_t kWays = 4;
+  static constexpr std::size_t kSlots = kSets * kWays;
+  static_assert(kWays == 4 && kSets % 32 == 0, "next_ holds a 2-bit way per set");
   struct Slot {
     std::uint64_t key[4];
     double row[12];
   };
-  static std::size_t SlotOf(const double (&key)[4]);
+  static std::size_t SetOf(const double (&key)[4]);
   bool Used(std::size_t s) const { return ((used_[s / 64] >> (s % 64)) & 1U) != 0; }
-  std::unique_ptr<Slot[]> slots_;         // kSlots slots, their bytes unset until Store
+  std::unique_ptr<Slot[]> slots_;         // kSlots slots, set j in j kWays ..; unset until Store
   std::uint64_t used_[kSlots / 64] = {};  // bit s: slot s holds a row
+  std::uint64_t next_[kSets / 32] = {};   // 2 bits per set: the way its next Store takes
 };
 
 /// The modes of a classically damped model and the per-mode transitions.

@@ -363,10 +363,9 @@ TEST(ModalFlow, AllModeCoefficientsAreEachModesOwnBits) {
 }
 
 TEST(ModalFlow, TransitionsFromTheMemoAreTheBitsOfTheirComputation) {
-  // Models of 3 and 5 modes share one memo over many steps and rates (440 keys in 512 slots,
-  // some of them taken over): each transition, computed with the memo or taken from it,
-  // is the bits of the transition computed without it. A memo keyed on fewer of the mode's
-  // numbers would hand one model's T_k to another.
+  // Models of 3 and 5 modes share one memo over many steps and rates (440 keys): each transition,
+  // computed with the memo or taken from it, is the bits of the transition computed without it. A
+  // memo keyed on fewer of the mode's numbers would hand one model's T_k to another.
   std::mt19937 rng(11);
   const RandomModel a = MakeModel(rng, 3, 0, {0.05});
   const RandomModel b = MakeModel(rng, 5, 1, {0.02, 0.3});
@@ -398,6 +397,45 @@ TEST(ModalFlow, TransitionsFromTheMemoAreTheBitsOfTheirComputation) {
     }
   }
   EXPECT_GT(held, 100);  // the second pass found some in the memo
+}
+
+TEST(TransitionMemo, HoldsMostOfAThousandKeysAndOnlyTheirOwnRows) {
+  // A sweep's models come back a few hundred models (a thousand keys) later: a memo that held
+  // one key per slot of 512 would keep fewer than half of them. Every row found is the one
+  // stored for its key (a row whose entries are the key's own numbers), and a key stored
+  // once more after the others takes a slot without losing the key stored just before it.
+  TransitionMemo memo;
+  constexpr int kKeys = 1000;
+  const auto key_of = [](int i, double(&key)[4]) {
+    key[0] = 1.0 + 0.37 * i;
+    key[1] = 0.01 * (i % 7);
+    key[2] = 0.001 * (1 + i % 5);
+    key[3] = (i % 3) * 6.25;
+  };
+  const auto row_of = [](const double(&key)[4], double* row) {
+    for (int j = 0; j < 12; ++j) row[j] = key[j % 4] * (j + 1);
+  };
+  for (int i = 0; i < kKeys; ++i) {
+    double key[4], row[12];
+    key_of(i, key);
+    ASSERT_FALSE(memo.Find(key, row)) << "key " << i << " before its Store";
+    row_of(key, row);
+    memo.Store(key, row);
+    ASSERT_TRUE(memo.Find(key, row)) << "key " << i << " just stored";
+  }
+  int held = 0;
+  for (int i = 0; i < kKeys; ++i) {
+    double key[4], row[12], expected[12];
+    key_of(i, key);
+    if (!memo.Find(key, row)) continue;
+    ++held;
+    row_of(key, expected);
+    ASSERT_EQ(0, std::memcmp(row, expected, sizeof row)) << "key " << i;
+  }
+  EXPECT_GT(held, 900);
+  const double absent[4] = {0.5, 0.0, 0.001, 0.0};
+  double row[12];
+  EXPECT_FALSE(memo.Find(absent, row));
 }
 
 TEST(TransitionMemo, ACopyHoldsTheRowsAndAMovedFromMemoNone) {
