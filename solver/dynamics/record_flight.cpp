@@ -198,6 +198,7 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
   double tb = piece.t_begin, te = piece.t_end;
   double ax0 = piece.a_begin[0], ay0 = piece.a_begin[1], sx = piece.slope[0], sy = piece.slope[1];
   double t = t_, h_last = h_free_;
+  bool gaps_exact = gaps_exact_;  // the gaps at t are exact (the last step's), not carried
   double nominal_length = nominal_length_s_, nominal_omega = nominal_omega_radps_;
   double nominal_h = nominal_h_s_;
   Lanes2 x[3] = {{z_[0], z_[3]}, {z_[1], z_[4]}, {z_[2], z_[5]}};
@@ -236,6 +237,7 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
   // Everything into the members, as RecordFlight's steps would have left them.
   const auto write_back = [&]() {
     state_back();
+    gaps_exact_ = gaps_exact;
     t_ = t;
     h_free_ = h_last;
     nominal_length_s_ = nominal_length;
@@ -334,9 +336,10 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
     }
     // SetGenerator's generator and ApplyRecordMotion's operations on the registers (the modal
     // coordinates' zeros of either sign: DeckStepLanes).
-    const double tau_start = t - tb;
+    // At the ramp's start t == tb, so tau_start = t - tb = +0 (equal finite doubles).
+    constexpr double tau_start = 0.0;
     gx = Lanes2{ax0 + sx * tau_start, sx};
-    // Without y: +0 + (+0) tau_start = +0 (tau_start = t - tb = +0), a constant of the loop.
+    // Without y: +0 + (+0) tau_start = +0, a constant of the loop.
     gy = kHasY ? Lanes2{ay0 + sy * tau_start, sy} : Lanes2{0.0, 0.0};
     generated = true;
     if constexpr (kHasY) {
@@ -345,7 +348,7 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
     Lanes2 qu[3], ab[3];
     detail::DeckStepLanes(lanes, p->record_pairs.data(), x, gx, ab_y, qu, ab, next);
     ++free_steps;
-    if (gaps_exact_) {
+    if (gaps_exact) {
       gap_floors_.Restart(ends_.gap0);
       floors = gap_floors_.Deck();
     }
@@ -411,7 +414,7 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
     }
     for (int i = 0; i < 3; ++i) x[i] = next[i];
     t = t1;
-    gaps_exact_ = false;
+    gaps_exact = false;
     // Run's work after the step.
     if ((steps & check_mask) == 0) {
       state_back();
