@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <span>
@@ -30,6 +31,11 @@ class PulseExcitation final : public Excitation {
                   Eigen::Vector2d direction = Eigen::Vector2d::UnitX());
 
   ExcitationPiece PieceAt(double t) const override;
+  /// True for both pieces: PieceAt depends on t only through t >= the period.
+  bool PieceHolds(const ExcitationPiece& piece) const override {
+    (void)piece;
+    return true;
+  }
   double Duration() const override { return period_s_; }
 
   PulseShape shape() const { return shape_; }
@@ -83,6 +89,11 @@ class SampledExcitation final : public Excitation {
   /// exactly, the piece's end, is piece k + 1 (or the rest after the last sample), so the same
   /// bits without the division and floor.
   void NextPiece(ExcitationPiece& piece) const override;
+  /// True for the rest after the last sample (PieceAt gives it at every t >= Duration(), its
+  /// start); false for a ramp, whose floor may round a time just below its end to the next.
+  bool PieceHolds(const ExcitationPiece& piece) const override {
+    return piece.t_end == std::numeric_limits<double>::infinity() && piece.t_begin == Duration();
+  }
   /// The samples: ax, ay (null when ay is empty) and dt.
   SampleView Samples() const override {
     return {dt_s_, ax_.data(), ay_.empty() ? nullptr : ay_.data(), ax_.size()};

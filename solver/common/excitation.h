@@ -82,6 +82,14 @@ class Excitation {
   /// @pre piece.t_end finite.
   virtual void NextPiece(ExcitationPiece& piece) const { piece = PieceAt(piece.t_end); }
 
+  /// True when PieceAt(t) gives `piece`'s bits at every t in [piece.t_begin, piece.t_end), for a
+  /// `piece` this excitation gave: a caller whose time moves inside the piece may keep it
+  /// instead of asking again. The default promises nothing (false).
+  virtual bool PieceHolds(const ExcitationPiece& piece) const {
+    (void)piece;
+    return false;
+  }
+
   /// The samples of an excitation whose pieces are ramps between uniform samples (SampleView),
   /// valid while the excitation lives: NextSampledPiece over them gives NextPiece's bits, so a
   /// caller that steps piece by piece reads them without a virtual call per piece. count 0 (the

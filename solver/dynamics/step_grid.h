@@ -133,21 +133,27 @@ class RampStepPlanner {
 };
 
 /// The excitation piece of the free steps: where the last step ended its piece (a record's step
-/// per sample), the next one by its number (Excitation::NextPiece, the bits of PieceAt there),
-/// else Excitation::PieceAt.
+/// per sample), the next one by its number (Excitation::NextPiece, the bits of PieceAt there);
+/// while the time stays inside a piece the excitation promised to hold (Excitation::PieceHolds:
+/// a pulse's pieces, the rest after a record), that piece; else Excitation::PieceAt.
 class PieceCursor {
  public:
   /// The piece at t_s (PieceAt(t_s)'s bits) of `excitation`, the same for every call.
   const ExcitationPiece& At(const Excitation& excitation, double t_s) {
     if (t_s == piece_.t_end) {
       excitation.NextPiece(piece_);
-    } else {
-      piece_ = excitation.PieceAt(t_s);
+      holds_ = false;
+    } else if (!Keeps(t_s)) {
+      Ask(excitation, t_s);
     }
     return piece_;
   }
-  /// The last piece At gave, for a caller that moves it on itself (the same bits as At's).
-  ExcitationPiece& last() { return piece_; }
+  /// The last piece At gave, for a caller that moves it on itself (the same bits as At's); the
+  /// next At asks the excitation again unless the piece ends there.
+  ExcitationPiece& last() {
+    holds_ = false;
+    return piece_;
+  }
   /// At's piece, with the next piece of a sampled excitation read from its samples `view`
   /// (Excitation::Samples) inline: the same bits.
   const ExcitationPiece& At(const Excitation& excitation, const SampleView& view, double t_s) {
@@ -155,14 +161,23 @@ class PieceCursor {
       if (!NextSampledPiece(view, piece_)) {
         excitation.NextPiece(piece_);
       }
-    } else {
-      piece_ = excitation.PieceAt(t_s);
+      holds_ = false;
+    } else if (!Keeps(t_s)) {
+      Ask(excitation, t_s);
     }
     return piece_;
   }
 
  private:
+  // The kept piece is PieceAt(t_s)'s bits: promised, and t_s inside it (false for NaN).
+  bool Keeps(double t_s) const { return holds_ && t_s >= piece_.t_begin && t_s < piece_.t_end; }
+  void Ask(const Excitation& excitation, double t_s) {
+    piece_ = excitation.PieceAt(t_s);
+    holds_ = excitation.PieceHolds(piece_);
+  }
+
   ExcitationPiece piece_;  // the last piece (none yet: its end +inf, which no time equals)
+  bool holds_ = false;     // the excitation's PieceHolds of piece_
 };
 
 /// The length of a constrained phase's Runge-Kutta step from `t_s` (s) [§3.14]: the step the

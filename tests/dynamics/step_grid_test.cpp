@@ -12,6 +12,8 @@
 #include <numbers>
 #include <random>
 #include <set>
+#include <utility>
+#include <vector>
 
 namespace skewbridge::dynamics::step_grid_test {
 namespace {
@@ -173,6 +175,86 @@ TEST(StepGrid, ConstrainedStepIsCutAtTheStopWithoutSliverSteps) {
     EXPECT_EQ(ConstrainedStepLength(t, r.stop, h, policy), r.to_stop ? r.stop - t : h) << r.why;
     EXPECT_EQ(ConstrainedStepLength(t, r.stop, h, no_snap), r.to_stop_off ? r.stop - t : h)
         << r.why << " (band off)";
+  }
+}
+
+// Pieces [k, k + 1) for k = 0, 1, 2 and the rest from 3, each PieceAt counted. A piece whose
+// number is in `promised` (3: the rest) is PieceHolds' and the same at every time inside it; any
+// other carries the time it was asked at in its slope, so a cursor that kept one where it was
+// not promised would hand back another time's bits.
+class CountedPieces final : public Excitation {
+ public:
+  explicit CountedPieces(std::set<long> promised) : promised_(std::move(promised)) {}
+  ExcitationPiece PieceAt(double t) const override {
+    ++calls;
+    const long k = t >= 3.0 ? 3 : static_cast<long>(std::floor(t));
+    ExcitationPiece p;
+    p.t_begin = static_cast<double>(k);
+    p.t_end = k == 3 ? kInf : static_cast<double>(k + 1);
+    p.a_begin = Eigen::Vector2d(1.0 + static_cast<double>(k), 0.0);
+    p.omega = k == 1 ? 2.5 : 0.0;
+    if (promised_.count(k) == 0) p.slope = Eigen::Vector2d(t, -t);
+    return p;
+  }
+  bool PieceHolds(const ExcitationPiece& piece) const override {
+    return promised_.count(static_cast<long>(piece.t_begin)) != 0;
+  }
+  double Duration() const override { return 3.0; }
+  mutable int calls = 0;
+
+ private:
+  std::set<long> promised_;
+};
+
+void ExpectSamePiece(const ExcitationPiece& a, const ExcitationPiece& b, double t) {
+  EXPECT_EQ(Bits(a.t_begin), Bits(b.t_begin)) << t;
+  EXPECT_EQ(Bits(a.t_end), Bits(b.t_end)) << t;
+  EXPECT_EQ(Bits(a.omega), Bits(b.omega)) << t;
+  EXPECT_EQ(a.index, b.index) << t;
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_EQ(Bits(a.a_begin[i]), Bits(b.a_begin[i])) << t;
+    EXPECT_EQ(Bits(a.slope[i]), Bits(b.slope[i])) << t;
+    EXPECT_EQ(Bits(a.cos_amplitude[i]), Bits(b.cos_amplitude[i])) << t;
+    EXPECT_EQ(Bits(a.sin_amplitude[i]), Bits(b.sin_amplitude[i])) << t;
+  }
+}
+
+TEST(PieceCursor, KeepsOnlyAPromisedPieceWhileTheTimeIsInsideIt) {
+  // Steps of 0.1 from 0 past the rest, a step back into piece 0 and one that lands on piece 2's
+  // end: every piece the cursor gives is PieceAt's at that time, and PieceAt is asked once per
+  // promised piece entered, at every step elsewhere.
+  std::vector<double> times;
+  for (int i = 0; i < 60; ++i) times.push_back(0.1 * i);
+  times.push_back(0.5);   // back inside piece 0 (promised or not: asked again)
+  times.push_back(2.95);  // inside piece 2, then its end exactly (NextPiece)
+  times.push_back(3.0);
+  times.push_back(1e300);
+  for (const std::set<long>& promised :
+       {std::set<long>{}, std::set<long>{3}, std::set<long>{0, 2, 3}, std::set<long>{1}}) {
+    const CountedPieces excitation(promised), reference(promised);
+    for (const bool view : {false, true}) {
+      PieceCursor cursor;
+      excitation.calls = 0;
+      int expected_calls = 0;
+      const ExcitationPiece* kept = nullptr;
+      double kept_begin = 0.0, kept_end = kInf;  // the cursor's first piece ends at +inf
+      for (const double t : times) {
+        const ExcitationPiece& piece =
+            view ? cursor.At(excitation, SampleView{}, t) : cursor.At(excitation, t);
+        ExpectSamePiece(piece, reference.PieceAt(t), t);
+        const long k = t >= 3.0 ? 3 : static_cast<long>(std::floor(t));
+        const bool inside = kept != nullptr && t >= kept_begin && t < kept_end;
+        if (!inside) {
+          // A step that starts a piece where the last one ended asks too (NextPiece is
+          // PieceAt here), without the promise.
+          ++expected_calls;
+          kept = promised.count(k) != 0 && !(t == kept_end) ? &piece : nullptr;
+          kept_begin = static_cast<double>(k);
+          kept_end = k == 3 ? kInf : static_cast<double>(k + 1);
+        }
+      }
+      EXPECT_EQ(excitation.calls, expected_calls) << promised.size() << " promised, view " << view;
+    }
   }
 }
 

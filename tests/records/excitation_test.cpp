@@ -128,6 +128,49 @@ TEST(SampledExcitationNextPiece, IsTheBitsOfPieceAtThePiecesEnd) {
   }
 }
 
+TEST(PieceHolds, APromisedPieceIsPieceAtsBitsAtEveryTimeInsideIt) {
+  // A pulse's two pieces and a record's rest are promised: PieceAt at drawn times inside them,
+  // their ends' neighbours and huge times gives the piece's bits; a record's ramps are not.
+  std::mt19937_64 random(2029);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const auto check = [&](const Excitation& ex, const ExcitationPiece& piece,
+                         const std::string& what) {
+    ASSERT_TRUE(ex.PieceHolds(piece)) << what;
+    std::vector<double> times = {
+        piece.t_begin, std::nextafter(piece.t_begin, std::numeric_limits<double>::infinity())};
+    if (std::isfinite(piece.t_end)) {
+      times.push_back(std::nextafter(piece.t_end, 0.0));
+      for (int i = 0; i < 200; ++i) {
+        times.push_back(piece.t_begin + unit(random) * (piece.t_end - piece.t_begin));
+      }
+    } else {
+      for (const double far : {1.0, 1e3, 1e300, std::numeric_limits<double>::max()}) {
+        times.push_back(piece.t_begin + far);
+      }
+      for (int i = 0; i < 200; ++i) times.push_back(piece.t_begin + 100.0 * unit(random));
+    }
+    for (const double t : times) {
+      if (!(t >= piece.t_begin && t < piece.t_end)) continue;
+      ExpectSameBits(ex.PieceAt(t), piece, what + " at t " + std::to_string(t));
+    }
+  };
+  for (const PulseShape shape : {PulseShape::kCosine, PulseShape::kSine}) {
+    for (const double omega : {0.3, 6.283185307179586, 40.0}) {
+      const PulseExcitation pulse(shape, -2.5, omega, Eigen::Vector2d(0.6, 0.8));
+      check(pulse, pulse.PieceAt(0.0), "pulse");
+      check(pulse, pulse.PieceAt(pulse.Duration()), "pulse rest");
+    }
+  }
+  for (const SampledExcitation& ex : SampledCases(2030)) {
+    ExcitationPiece piece = ex.PieceAt(0.0);
+    while (std::isfinite(piece.t_end)) {
+      EXPECT_FALSE(ex.PieceHolds(piece)) << "ramp from " << piece.t_begin;
+      ex.NextPiece(piece);
+    }
+    check(ex, piece, "record rest");
+  }
+}
+
 TEST(SampledExcitationSamples, ReadInlineAreTheBitsOfPieceAtThePiecesEnd) {
   for (const SampledExcitation& ex : SampledCases(2028)) {
     const SampleView view = ex.Samples();
