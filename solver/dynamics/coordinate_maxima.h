@@ -11,6 +11,9 @@
 #include <cmath>
 #include <utility>
 #include <vector>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "solver/dynamics/peak_bound.h"
 #include "solver/dynamics/root_finding.h"
@@ -99,15 +102,15 @@ inline int RaiseMaximaAtEnd3Each(const CoordinateLanes x0[3], const CoordinateLa
 #if defined(__SSE2__)
   // The comparisons' masks ORed as doubles (cmpltpd, orpd) and their signs gathered (movmskpd):
   // the same outcome as the generic form below without turning each mask into a bool lane.
-  CoordinateLanes any = {0.0, 0.0};
+  __m128d any = _mm_setzero_pd();
   for (int i = 0; i < 3; ++i) {
     const CoordinateLanes end =
         std::bit_cast<CoordinateLanes>(std::bit_cast<Bits2>(x1[i]) & q_magnitude);
     const CoordinateLanes product = x0[i] * x1[i];
     const CoordinateLanes reference = {max_abs_q[i], product[1]};
-    any = __builtin_ia32_orpd(any, __builtin_ia32_cmpltpd(reference, end));
+    any = _mm_or_pd(any, _mm_cmplt_pd(reference, end));
   }
-  const bool none = __builtin_ia32_movmskpd(any) == 0;
+  const bool none = _mm_movemask_pd(any) == 0;
 #else
   Bits2 any = {0, 0};
   for (int i = 0; i < 3; ++i) {
