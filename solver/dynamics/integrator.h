@@ -144,6 +144,14 @@ class Integrator final : private ConstrainedForces {
   template <bool kHasY>
   bool DeckRecordSteps(long& steps, double& t_finite, const SampleView& samples,
                        const DeckFlight& flight, double& reach0, double& speed0);
+  // DeckRecordSteps without and with y samples, each compiled twice (the processor's AVX
+  // encoding where it has one, else the baseline) and chosen when the program loads.
+  __attribute__((target_clones("avx", "default"))) bool DeckRecordStepsX(
+      long& steps, double& t_finite, const SampleView& samples, const DeckFlight& flight,
+      double& reach0, double& speed0);
+  __attribute__((target_clones("avx", "default"))) bool DeckRecordStepsXY(
+      long& steps, double& t_finite, const SampleView& samples, const DeckFlight& flight,
+      double& reach0, double& speed0);
   // The root searches DeckRecordSteps deferred (ws_.run_storage_.deferred_peaks) folded into
   // the deck's running maxima max_q and time_of_max and its corners' max_travel (m) (each the
   // fold of every step's end), the bits of the in-order scan (ResolveDeferredMaxima,

@@ -72,10 +72,9 @@ bool Integrator::RecordFlight(long& steps, double& t_finite) {
     return true;
   };
   for (;;) {
-    if (deck &&
-        (samples.ay_mps2 != nullptr
-             ? DeckRecordSteps<true>(steps, t_finite, samples, deck_flight, reach0, speed0)
-             : DeckRecordSteps<false>(steps, t_finite, samples, deck_flight, reach0, speed0))) {
+    if (deck && (samples.ay_mps2 != nullptr
+                     ? DeckRecordStepsXY(steps, t_finite, samples, deck_flight, reach0, speed0)
+                     : DeckRecordStepsX(steps, t_finite, samples, deck_flight, reach0, speed0))) {
       // After the step that ended it, while no contact closed, the next step is this loop's:
       // Run would come back.
       if (Failed() || AnyClosed() || !goes_on()) {
@@ -172,8 +171,11 @@ bool Integrator::RecordFlight(long& steps, double& t_finite) {
 }
 
 template <bool kHasY>
-bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleView& samples,
-                                 const DeckFlight& flight, double& reach0_io, double& speed0_io) {
+[[gnu::always_inline]] inline bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite,
+                                                               const SampleView& samples,
+                                                               const DeckFlight& flight,
+                                                               double& reach0_io,
+                                                               double& speed0_io) {
   using detail::Lanes2;
   ExcitationPiece& piece = pieces_.last();
   if (!(piece.omega == 0.0)) {
@@ -221,7 +223,7 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
   double p_tau =
       p != nullptr && p->omega_radps == 0.0 ? p->tau_s : std::numeric_limits<double>::quiet_NaN();
   // The state and its generator into z_.
-  const auto state_back = [&]() {
+  const auto state_back = [&]() __attribute__((always_inline)) {
     for (int i = 0; i < 3; ++i) {
       z_[i] = x[i][0];
       z_[3 + i] = x[i][1];
@@ -235,7 +237,7 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
     }
   };
   // Everything into the members, as RecordFlight's steps would have left them.
-  const auto write_back = [&]() {
+  const auto write_back = [&]() __attribute__((always_inline)) {
     state_back();
     gaps_exact_ = gaps_exact;
     t_ = t;
@@ -472,6 +474,18 @@ bool Integrator::DeckRecordSteps(long& steps_io, double& t_finite, const SampleV
       return true;
   }
   return true;
+}
+
+__attribute__((target_clones("avx", "default"))) bool Integrator::DeckRecordStepsX(
+    long& steps, double& t_finite, const SampleView& samples, const DeckFlight& flight,
+    double& reach0, double& speed0) {
+  return DeckRecordSteps<false>(steps, t_finite, samples, flight, reach0, speed0);
+}
+
+__attribute__((target_clones("avx", "default"))) bool Integrator::DeckRecordStepsXY(
+    long& steps, double& t_finite, const SampleView& samples, const DeckFlight& flight,
+    double& reach0, double& speed0) {
+  return DeckRecordSteps<true>(steps, t_finite, samples, flight, reach0, speed0);
 }
 
 void Integrator::ResolveDeferredPeaks(double max_q[3], double time_of_max[3], double& max_travel) {
