@@ -156,8 +156,7 @@ void LinearFlow::Compute(double tau_s, double omega_radps, bool energy, FreeProp
         }
       }
     }
-    out.cos_wt = std::cos(omega_radps * tau_s);
-    out.sin_wt = std::sin(omega_radps * tau_s);
+    LibraryCosSin(omega_radps * tau_s, out.cos_wt, out.sin_wt);
     return;
   }
   const int N = augmented_size();
@@ -549,7 +548,8 @@ void FreeDenseOutput::GeneratorAt(double tau_s, Eigen::Ref<Eigen::VectorXd> z) c
   const int ia = 2 * n_;
   z.segment<2>(ia) = generator_.segment<2>(0) + tau_s * generator_.segment<2>(2);
   z.segment<2>(ia + 2) = generator_.segment<2>(2);
-  const double co = std::cos(omega_radps_ * tau_s), si = std::sin(omega_radps_ * tau_s);
+  double co, si;
+  LibraryCosSin(omega_radps_ * tau_s, co, si);
   z.segment<2>(ia + 4) = co * generator_.segment<2>(4) + si * generator_.segment<2>(6);
   z.segment<2>(ia + 6) = -si * generator_.segment<2>(4) + co * generator_.segment<2>(6);
 }
@@ -639,7 +639,8 @@ double FreeDenseOutput::EvaluateComponentAt(double tau_s, int i) const {
       return ModalComponent(i - half * n_, half);
     }
     const int j = i - 2 * n_;
-    const double co = std::cos(omega_radps_ * tau_s), si = std::sin(omega_radps_ * tau_s);
+    double co, si;
+    LibraryCosSin(omega_radps_ * tau_s, co, si);
     switch (j / 2) {
       case 0:
         return generator_[j] + tau_s * generator_[j + 2];

@@ -248,6 +248,19 @@ inline void DeckHarmonicStep(const DeckLanes& d, const double* __restrict pairs,
 
 }  // namespace detail
 
+/// c = std::cos(x_rad) and s = std::sin(x_rad), the same bits: at x = +0 or -0 the library's
+/// values are exactly 1 and x itself (IEEE 754 and C Annex F), taken here without its call (a
+/// step on a piece without harmonic part has omega tau = 0); elsewhere the library's.
+inline void LibraryCosSin(double x_rad, double& c, double& s) {
+  if (x_rad == 0.0) {
+    c = 1.0;
+    s = x_rad;
+    return;
+  }
+  c = std::cos(x_rad);
+  s = std::sin(x_rad);
+}
+
 /// cos and sin (the library's bits) of angles already taken, keyed by the angle's bits: a pulse's
 /// steps take the harmonic generator at the angles omega t of one grid, which the cells of a
 /// sweep share while their models leave the step alone. Direct-mapped, 2^kBits slots; a slot

@@ -6,7 +6,10 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
+#include <limits>
+#include <vector>
 
 namespace skewbridge::dynamics::linear_flow_test {
 namespace {
@@ -167,6 +170,36 @@ INSTANTIATE_TEST_SUITE_P(
     RampAndHarmonic, LinearFlowAgainstModalSuperposition,
     ::testing::Combine(::testing::Values(0.05, 0.0, 0.3), ::testing::Values(0.0, 5.3, 11.0),
                        ::testing::Values(FlowPath::kAuto, FlowPath::kAugmented)));
+
+TEST(LibraryCosSin, IsTheBitsOfStdCosAndSin) {
+  // Both zeros (sin keeps the sign), the smallest subnormals, small, large, huge and NaN angles:
+  // the shortcut at zero must be the library's own values there, and every other angle the
+  // library's.
+  std::vector<double> angles = {0.0,
+                                -0.0,
+                                std::numeric_limits<double>::denorm_min(),
+                                -std::numeric_limits<double>::denorm_min(),
+                                1e-300,
+                                1e-8,
+                                -0.5,
+                                3.141592653589793,
+                                1e22,
+                                -std::numeric_limits<double>::max(),
+                                std::numeric_limits<double>::quiet_NaN()};
+  for (int i = 0; i < 1000; ++i) angles.push_back(std::ldexp(std::sin(1.0 + i), (i % 80) - 60));
+  for (const double x : angles) {
+    double c = 7.0, s = 7.0;
+    LibraryCosSin(x, c, s);
+    const double lc = std::cos(x), ls = std::sin(x);
+    std::uint64_t bc, bs, blc, bls;
+    std::memcpy(&bc, &c, sizeof c);
+    std::memcpy(&bs, &s, sizeof s);
+    std::memcpy(&blc, &lc, sizeof lc);
+    std::memcpy(&bls, &ls, sizeof ls);
+    EXPECT_EQ(bc, blc) << x;
+    EXPECT_EQ(bs, bls) << x;
+  }
+}
 
 TEST(LinearFlow, CachesOnePropagatorPerStepSize) {
   const TestSystem sys(0.05);
