@@ -64,12 +64,18 @@ TEST(DeferredMaxima, TheDeckLoopsMaximaAreTheInOrderScans) {
   }
 }
 
-// One drawn step of a sequence for the resolution: its end |q_i| and whether its velocity
-// changes sign, the cheap bound, the peak bound and the root's value (|q_i| there).
-struct DrawnStep {
-  double end = 0.0;
+// One drawn root of a step: whether the rate changes sign, the cheap bound, the peak bound and
+// the value at the root.
+struct DrawnRoot {
   bool sign_change = false;
   double bound = 0.0, peak_bound = 0.0, root = 0.0;
+};
+
+// One drawn step of a sequence for the resolution: its end |q_i| and its velocity root (|q_i|
+// there).
+struct DrawnStep {
+  double end = 0.0;
+  DrawnRoot r;
 };
 
 // The in-order fold of ScanCoordinateMaxima over the steps (step k from k to k + 1 s, its root at
@@ -83,9 +89,9 @@ std::pair<double, double> InOrder(const std::vector<DrawnStep>& steps, double ma
       m = s.end;
       time = static_cast<double>(k + 1);
     }
-    if (s.sign_change && s.bound > m && !(s.peak_bound < m)) {
-      if (s.root > m) {
-        m = s.root;
+    if (s.r.sign_change && s.r.bound > m && !(s.r.peak_bound < m)) {
+      if (s.r.root > m) {
+        m = s.r.root;
         time = static_cast<double>(k) + 0.5;
       }
     }
@@ -102,6 +108,29 @@ double Value(std::mt19937_64& rng) {
   return std::uniform_real_distribution<double>(0.0, 5.0)(rng);
 }
 
+// A root of the given sign change whose bounds hold, unless break_cheap draws the cheap bound
+// below the root now and then; either bound may be the larger.
+DrawnRoot DrawRoot(std::mt19937_64& rng, bool sign_change, bool break_cheap) {
+  std::uniform_int_distribution<int> coin(0, 3);
+  DrawnRoot r;
+  r.sign_change = sign_change;
+  r.root = Value(rng);
+  r.bound = r.root + (coin(rng) == 0 ? 0.0 : Value(rng));
+  r.peak_bound = r.root + (coin(rng) == 0 ? 0.0 : 0.5 * Value(rng));
+  r.bound = std::max(r.bound, r.peak_bound - Value(rng));
+  if (break_cheap && coin(rng) == 0) r.bound = std::max(0.0, r.root - Value(rng));
+  return r;
+}
+
+// A root whose peak bound is broken, drawn only where the root lies above every other candidate
+// of the sequence (the draws' values are at most 5), so that a skip on it never hides a raise.
+void BreakPeak(std::mt19937_64& rng, DrawnRoot& r) {
+  r.sign_change = true;
+  r.root = 10.0;
+  r.bound = 11.0;
+  r.peak_bound = 0.5 * Value(rng) + 5.0;  // below the root, above every other candidate
+}
+
 TEST(DeferredMaxima, TheResolutionIsTheInOrderFold) {
   std::mt19937_64 rng(455);
   std::uniform_int_distribution<int> length(0, 40), coin(0, 3), rare(0, 30);
@@ -114,19 +143,11 @@ TEST(DeferredMaxima, TheResolutionIsTheInOrderFold) {
     std::vector<DrawnStep> steps(static_cast<std::size_t>(length(rng)));
     for (DrawnStep& s : steps) {
       s.end = Value(rng);
-      s.sign_change = coin(rng) != 0;
-      s.root = Value(rng);
-      s.bound = s.root + (coin(rng) == 0 ? 0.0 : Value(rng));
-      s.peak_bound = s.root + (coin(rng) == 0 ? 0.0 : 0.5 * Value(rng));
-      s.bound = std::max(s.bound, s.peak_bound - Value(rng));  // either bound the larger
-      if (break_cheap && coin(rng) == 0) s.bound = std::max(0.0, s.root - Value(rng));
+      const bool sign_change = coin(rng) != 0;
+      s.r = DrawRoot(rng, sign_change, break_cheap);
     }
     if (break_peak && !steps.empty()) {
-      DrawnStep& s = steps[static_cast<std::size_t>(rng() % steps.size())];
-      s.sign_change = true;
-      s.root = 10.0;
-      s.bound = 11.0;
-      s.peak_bound = 0.5 * Value(rng) + 5.0;  // below the root, above every other candidate
+      BreakPeak(rng, steps[static_cast<std::size_t>(rng() % steps.size())].r);
     }
     const double max0 = Value(rng) * 0.5, time0 = -1.0;
     const auto [want, want_time] = InOrder(steps, max0, time0);
@@ -141,11 +162,11 @@ TEST(DeferredMaxima, TheResolutionIsTheInOrderFold) {
         m = s.end;
         time = static_cast<double>(k + 1);
       }
-      if (s.sign_change && s.bound > m) {
+      if (s.r.sign_change && s.r.bound > m) {
         DeferredPeakStep d;
         d.t0_s = static_cast<double>(k);
         d.t1_s = static_cast<double>(k + 1);
-        d.bound[1] = s.bound;
+        d.bound[1] = s.r.bound;
         d.end_max[1] = m;
         d.end_time_s[1] = time;
         d.coordinates = 1 << 1;
@@ -157,10 +178,11 @@ TEST(DeferredMaxima, TheResolutionIsTheInOrderFold) {
     const auto search = [&](int j) {
       ++searches;
       const std::size_t k = static_cast<std::size_t>(source[static_cast<std::size_t>(j)]);
-      return std::pair<double, double>(steps[k].root, static_cast<double>(k) + 0.5);
+      return std::pair<double, double>(steps[k].r.root, static_cast<double>(k) + 0.5);
     };
     const auto below = [&](int j, double best) {
-      return steps[static_cast<std::size_t>(source[static_cast<std::size_t>(j)])].peak_bound < best;
+      return steps[static_cast<std::size_t>(source[static_cast<std::size_t>(j)])].r.peak_bound <
+             best;
     };
     const long before = searches;
     const bool replayed = ResolveDeferredMaxima(1, deferred, scratch, m, time, search, below);
@@ -174,12 +196,11 @@ TEST(DeferredMaxima, TheResolutionIsTheInOrderFold) {
   EXPECT_GT(spared, 100000);
 }
 
-// One drawn step for the travel's resolution: its end travel, and per corner whether its rate
-// changes sign, the cheap bound, the travel bound and the travel at the root.
+// One drawn step for the travel's resolution: its end travel and each corner's rate root (the
+// travel bound as its peak bound, the travel there).
 struct DrawnCorners {
   double end = 0.0;
-  bool sign_change[4] = {};
-  double bound[4] = {}, peak_bound[4] = {}, root[4] = {};
+  DrawnRoot corner[4];
 };
 
 // CornerTravelTracker::Scan's in-order fold over the steps: each step's end, then its corners in
@@ -190,7 +211,8 @@ double InOrderTravel(const std::vector<DrawnCorners>& steps, double max0) {
   for (const DrawnCorners& s : steps) {
     m = std::max(m, s.end);
     for (int c = 0; c < 4; ++c) {
-      if (s.sign_change[c] && s.bound[c] > m && !(s.peak_bound[c] < m)) m = std::max(m, s.root[c]);
+      const DrawnRoot& r = s.corner[c];
+      if (r.sign_change && r.bound > m && !(r.peak_bound < m)) m = std::max(m, r.root);
     }
   }
   return m;
@@ -207,22 +229,14 @@ TEST(DeferredMaxima, TheTravelsResolutionIsTheInOrderFold) {
     std::vector<DrawnCorners> steps(static_cast<std::size_t>(length(rng)));
     for (DrawnCorners& s : steps) {
       s.end = Value(rng);
-      for (int c = 0; c < 4; ++c) {
-        s.sign_change[c] = coin(rng) == 0;
-        s.root[c] = Value(rng);
-        s.bound[c] = s.root[c] + (coin(rng) == 0 ? 0.0 : Value(rng));
-        s.peak_bound[c] = s.root[c] + (coin(rng) == 0 ? 0.0 : 0.5 * Value(rng));
-        s.bound[c] = std::max(s.bound[c], s.peak_bound[c] - Value(rng));
-        if (break_cheap && coin(rng) == 0) s.bound[c] = std::max(0.0, s.root[c] - Value(rng));
+      for (DrawnRoot& r : s.corner) {
+        const bool sign_change = coin(rng) == 0;
+        r = DrawRoot(rng, sign_change, break_cheap);
       }
     }
     if (break_peak && !steps.empty()) {
       DrawnCorners& s = steps[static_cast<std::size_t>(rng() % steps.size())];
-      const int c = static_cast<int>(rng() % 4);
-      s.sign_change[c] = true;
-      s.root[c] = 10.0;
-      s.bound[c] = 11.0;
-      s.peak_bound[c] = 0.5 * Value(rng) + 5.0;
+      BreakPeak(rng, s.corner[rng() % 4]);
     }
     const double max0 = Value(rng) * 0.5;
     const double want = InOrderTravel(steps, max0);
@@ -240,8 +254,8 @@ TEST(DeferredMaxima, TheTravelsResolutionIsTheInOrderFold) {
       d.t1_s = static_cast<double>(k + 1);
       d.end_travel_m = m;
       for (int c = 0; c < 4; ++c) {
-        if (s.sign_change[c] && s.bound[c] > m) {
-          d.corner_bound[c] = s.bound[c];
+        if (s.corner[c].sign_change && s.corner[c].bound > m) {
+          d.corner_bound[c] = s.corner[c].bound;
           d.corners |= 1 << c;
           ++candidates;
         }
@@ -257,9 +271,9 @@ TEST(DeferredMaxima, TheTravelsResolutionIsTheInOrderFold) {
     };
     const auto search = [&](int j, int c) {
       ++searches;
-      return of(j).root[c];
+      return of(j).corner[c].root;
     };
-    const auto below = [&](int j, int c, double best) { return of(j).peak_bound[c] < best; };
+    const auto below = [&](int j, int c, double best) { return of(j).corner[c].peak_bound < best; };
     const long before = searches;
     const bool replayed = ResolveDeferredTravel(deferred, scratch, m, search, below);
     replays += replayed ? 1 : 0;
