@@ -461,32 +461,37 @@ void ModeGroup(bool harmonic, const Eigen::VectorXd& w2, const Eigen::VectorXd& 
 // in its order, so the same bits. The forcing of the columns 0 to 3 is a constant: their
 // harmonic g starts at 0 and stays a zero of either sign (omega finite: omega times a zero),
 // and a zero plus 1.0 is 1.0, a zero plus +0.0 is +0.0, so g + (unit alpha at m = 0) + (unit
-// beta at m = 1) is 1.0 at those terms and +0.0 at every other. @pre omega_radps finite.
+// beta at m = 1) is 1.0 at those terms and +0.0 at every other. kPairs 2: the pairs (0, 1) and
+// (2, 3) alone (SeriesRow's case omega = 0). @pre omega_radps finite.
+template <int kPairs>
 void SeriesRowLanes(double w2, double c, double omega_radps, double tau, int terms,
                     double row[12]) {
-  Lanes2 e[kModalMaxTerms][3], v[kModalMaxTerms][3];
+  static_assert(kPairs == 2 || kPairs == 3);
+  Lanes2 e[kModalMaxTerms][kPairs], v[kModalMaxTerms][kPairs];
   const Lanes2 w2_l = {w2, w2}, c_l = {c, c};
   const Lanes2 omega = {omega_radps, omega_radps}, minus_omega = {-omega_radps, -omega_radps};
   const Lanes2 zero = {0.0, 0.0};
   e[0][0] = Lanes2{1.0, 0.0};
   v[0][0] = Lanes2{0.0, 1.0};
-  e[0][1] = v[0][1] = e[0][2] = v[0][2] = zero;
+  for (int p = 1; p < kPairs; ++p) e[0][p] = v[0][p] = zero;
   Lanes2 g = {1.0, 0.0}, gt = {0.0, 1.0};  // the columns 4 and 5 (gamma, delta)
   for (int m = 0; m + 1 < terms; ++m) {
     const double s = kInverseOf.value[m];
     const Lanes2 inv = {s, s};
     const Lanes2 f[3] = {zero, Lanes2{m == 0 ? 1.0 : 0.0, m == 1 ? 1.0 : 0.0}, g + zero + zero};
-    for (int p = 0; p < 3; ++p) {
+    for (int p = 0; p < kPairs; ++p) {
       e[m + 1][p] = v[m][p] * inv;
       v[m + 1][p] = (f[p] - w2_l * e[m][p] - c_l * v[m][p]) * inv;
     }
-    const Lanes2 g_next = omega * gt * inv;
-    gt = minus_omega * g * inv;
-    g = g_next;
+    if constexpr (kPairs == 3) {
+      const Lanes2 g_next = omega * gt * inv;
+      gt = minus_omega * g * inv;
+      g = g_next;
+    }
   }
   // Sum the series at tau (Horner).
   const Lanes2 t = {tau, tau};
-  for (int p = 0; p < 3; ++p) {
+  for (int p = 0; p < kPairs; ++p) {
     Lanes2 a = e[terms - 1][p], b = v[terms - 1][p];
     for (int m = terms - 2; m >= 0; --m) {
       a = a * t + e[m][p];
@@ -497,6 +502,23 @@ void SeriesRowLanes(double w2, double c, double omega_radps, double tau, int ter
     row[6 + 2 * p] = b[0];
     row[6 + 2 * p + 1] = b[1];
   }
+}
+
+// SeriesRowLanes<3>'s row. At omega = +-0 (a piece without harmonic part) its pair (4, 5) needs
+// no recursion: column 4's forcing g + 0 + 0 is 1.0 at m = 0 and +0.0 after (g a zero of either
+// sign there: omega times a finite number), column 2's exactly, from the same zero start, so
+// column 4 is column 2's bits; column 5's forcing is +0.0 at every term, and from +0.0 every
+// coefficient is +0.0 (+0 - w2 (+0) - c (+0) is +0 for finite w2 and c, whatever their signs),
+// and so is its sum at a finite tau. @pre omega_radps finite.
+void SeriesRow(double w2, double c, double omega_radps, double tau, int terms, double row[12]) {
+  if (omega_radps == 0.0 && std::isfinite(w2) && std::isfinite(c) && std::isfinite(tau)) {
+    SeriesRowLanes<2>(w2, c, omega_radps, tau, terms, row);
+    row[4] = row[2];
+    row[10] = row[8];
+    row[5] = row[11] = 0.0;
+    return;
+  }
+  SeriesRowLanes<3>(w2, c, omega_radps, tau, terms, row);
 }
 }  // namespace
 
@@ -625,7 +647,7 @@ void ModalFlow::Transitions(double tau_s, double omega_radps, Eigen::Ref<Eigen::
     const int terms = ModalTermCount(rho * std::ldexp(1.0, -halvings));
     if (!energy && std::isfinite(omega_radps)) {
       // The series alone, two columns per operation: the same bits.
-      SeriesRowLanes(w2_[k], c_[k], omega_radps, tau, terms, row);
+      SeriesRow(w2_[k], c_[k], omega_radps, tau, terms, row);
     } else {
       // The coefficient recursion of ModeCoefficients for the six unit inputs at once, every
       // coefficient and forcing kept for the energy forms.

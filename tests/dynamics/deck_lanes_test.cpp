@@ -131,7 +131,8 @@ TEST(LinearFlow, DeckHarmonicStepIsTheBitsOfTheGeneralModalStep) {
 TEST(ModalFlow, TransitionsWithoutEnergyAreTheBitsOfTheScalarRecursion) {
   // Without the energy forms the series run two columns per operation; with them one column at
   // a time (the forms need every coefficient and forcing): the rows must be the same bits, signs
-  // of zeros included, for rigid, undamped and damped modes, rates of either sign and zero, and
+  // of zeros included, for rigid, undamped and damped modes, rates of either sign and zeros of
+  // either sign (whose harmonic pair the lanes take from the ramp's columns), and
   // steps from far inside the series' radius to beyond it (halved and squared back).
   std::mt19937 rng(41u);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
@@ -142,8 +143,10 @@ TEST(ModalFlow, TransitionsWithoutEnergyAreTheBitsOfTheScalarRecursion) {
     ASSERT_TRUE(flow);
     for (int trial = 0; trial < 40; ++trial) {
       const double tau = std::pow(10.0, -4.0 + 4.0 * (unit(rng) + 1.0) / 2.0);
-      const double rate =
-          trial % 4 == 0 ? 0.0 : std::pow(10.0, 2.0 * unit(rng)) * (trial % 4 == 3 ? -1.0 : 1.0);
+      const double rate = trial % 8 == 0 ? 0.0
+                          : trial % 8 == 4
+                              ? -0.0
+                              : std::pow(10.0, 2.0 * unit(rng)) * (trial % 4 == 3 ? -1.0 : 1.0);
       Eigen::MatrixXd lanes(12, n), scalar(12, n), input, damping;
       flow->Transitions(tau, rate, lanes, nullptr, nullptr);
       flow->Transitions(tau, rate, scalar, &input, &damping);
