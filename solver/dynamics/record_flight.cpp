@@ -164,7 +164,17 @@ bool Integrator::RecordFlight(long& steps, double& t_finite) {
         !observer_->Step(t0, observed_z0_, h0, t_, z_.head(2 * n_), result_)) {
       return false;
     }
-    if (!common || !goes_on()) {
+    if (!common) {
+      if (observe || Failed() || AnyClosed()) {
+        return true;  // Run takes the next step
+      }
+      // Run would come back to this loop: the step's start terms, as at the loop's entry.
+      if (decks == 1) {
+        travel_.EndReach(0, z_.data(), z_.data() + n_, reach0, speed0);
+      }
+      outputs = next_output_t_ <= output_reach;
+    }
+    if (!goes_on()) {
       return true;
     }
   }
