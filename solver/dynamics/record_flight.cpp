@@ -101,19 +101,26 @@ bool Integrator::RecordFlight(long& steps, double& t_finite) {
     const FreeStepPlan step = PlanFreeStep(t_, piece.t_begin, std::min(piece.t_end, t_end_),
                                            NominalFreeStep(piece), h_free_, policy_);
     h_free_ = step.h_s;
-    bool common = step.full && piece.omega == 0.0;
+    // A full step is FreeStepOf's (no ledger here), its finish FinishFreeStep's unless the tests
+    // below show that it would only raise the maxima at the step's end.
+    bool common = step.full;
     if (common) {
-      // FreeStepOf's transition without the harmonic generator (SetGenerator writes its zeros)
-      // and the gap floors' check.
+      // FreeStepOf's transition (on a piece without harmonic part without the generator's
+      // columns: SetGenerator writes their zeros) and the gap floors' check.
       const double tau = step.t_next_s - t_;
+      const bool harmonic = piece.omega != 0.0;
       flow.SetGenerator(piece, t_, z_);
-      flow.ApplyRecordMotion(StepPropagator(step.h_s, 0.0, false), z_, z_new_);
+      if (harmonic) {
+        flow.ApplyStepMotion(StepPropagator(step.h_s, piece.omega, false), z_, z_new_);
+      } else {
+        flow.ApplyRecordMotion(StepPropagator(step.h_s, 0.0, false), z_, z_new_);
+      }
       ++result_.free_steps;
       if (gaps_exact_) {
         gap_floors_.Restart(ends_.gap0);
       }
       // GapsStayOpen (the bound applies in this loop) with the flight's margin and coordinates.
-      if (!gap_floors_.StaysOpen(modal_y, std::max(tau, step.h_s), gap_margin, false)) {
+      if (!gap_floors_.StaysOpen(modal_y, std::max(tau, step.h_s), gap_margin, harmonic)) {
         FinishFreeStep(piece, step, false, false, 0.0, 0.0);
         common = false;
       } else {
