@@ -134,12 +134,29 @@ bool Integrator::RecordFlight(long& steps, double& t_finite) {
             n_ == 3
                 ? RaiseMaximaAtEnd(3, x0, x0 + 3, t1, x1, x1 + 3, t1 - t_, max_q, time_of_max)
                 : RaiseMaximaAtEnd(n_, x0, x0 + n_, t1, x1, x1 + n_, t1 - t_, max_q, time_of_max);
+        rare = rare ||
+               (outputs && next_output_t_ <= t1 + policy_.output_time_band * std::max(1.0, t1));
         if (decks == 1) {
           // One deck: the start's terms are the last step's end's.
           double reach1, speed1;
           travel_.EndReach(0, x1, x1 + n_, reach1, speed1);
-          rare = rare || CornerTravelTracker::MayReach(reach0, speed0, reach1, speed1, t1 - t_,
-                                                       max_travel[0]);
+          if (!rare && CornerTravelTracker::MayReach(reach0, speed0, reach1, speed1, t1 - t_,
+                                                     max_travel[0])) {
+            // A deck's corners reach the maximum: Scan's work at the step's end (ScanEnd, the
+            // same evaluations and raise). A step none of whose corners Scan would then search
+            // is done; otherwise the maximum is put back and FinishFreeStep scans the step.
+            rare = true;
+            if (n_ == 3) {
+              const double best = max_travel[0];
+              double bound[4];
+              const std::array<double, 6> s0{x0[0], x0[1], x0[2], x0[3], x0[4], x0[5]};
+              const std::array<double, 6> s1{x1[0], x1[1], x1[2], x1[3], x1[4], x1[5]};
+              rare = travel_.ScanEnd(0, s0, s1, t1 - t_, max_travel[0], bound) != 0;
+              if (rare) {
+                max_travel[0] = best;
+              }
+            }
+          }
           reach0 = reach1;
           speed0 = speed1;
         } else {
@@ -147,8 +164,6 @@ bool Integrator::RecordFlight(long& steps, double& t_finite) {
             rare = travel_.MayReach(d, x0, x0 + n_, x1, x1 + n_, t1 - t_, max_travel[d]);
           }
         }
-        rare = rare ||
-               (outputs && next_output_t_ <= t1 + policy_.output_time_band * std::max(1.0, t1));
         if (rare) {
           FinishFreeStep(piece, step, true, false, 0.0, 0.0);
           common = false;
