@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "solver/dynamics/coordinate_maxima.h"
+#include "solver/dynamics/event_location.h"
 #include "solver/dynamics/integrator.h"
 #include "solver/dynamics/run_result.h"
 
@@ -120,7 +121,24 @@ bool Integrator::RecordFlight(long& steps, double& t_finite) {
         gap_floors_.Restart(ends_.gap0);
       }
       // GapsStayOpen (the bound applies in this loop) with the flight's margin and coordinates.
-      if (!gap_floors_.StaysOpen(modal_y, std::max(tau, step.h_s), gap_margin, harmonic)) {
+      const bool open =
+          gap_floors_.StaysOpen(modal_y, std::max(tau, step.h_s), gap_margin, harmonic);
+      bool suspected = false;
+      if (!open) {
+        // FinishFreeStep's gaps and rates at the step's ends, then FirstImpact's suspicion test
+        // of each open contact: where it holds for none, the step has no event, and what is left
+        // of FinishFreeStep is what a step the bound proved open does, the ends' gaps kept.
+        if (!gaps_exact_) {
+          GapsAndRates(q(), u(), ends_.gap0, ends_.gN0);
+        }
+        GapsAndRates(z_new_.head(n_), z_new_.segment(n_, n_), ends_.gap1, ends_.gN1);
+        for (int c = 0; c < nc_ && !suspected; ++c) {
+          suspected = ImpactSuspected(ends_.gap0[c], ends_.gN0[c], ends_.gap1[c], ends_.gN1[c],
+                                      step.t_next_s - t_, policy_.dip_margin) &&
+                      !modes_.closed(c);
+        }
+      }
+      if (suspected) {
         FinishFreeStep(piece, step, false, false, 0.0, 0.0);
         common = false;
       } else {
@@ -165,7 +183,7 @@ bool Integrator::RecordFlight(long& steps, double& t_finite) {
           }
         }
         if (rare) {
-          FinishFreeStep(piece, step, true, false, 0.0, 0.0);
+          FinishFreeStep(piece, step, open, false, 0.0, 0.0);
           common = false;
         } else {
           double* z = z_.data();
@@ -175,7 +193,13 @@ bool Integrator::RecordFlight(long& steps, double& t_finite) {
             std::copy(x1, x1 + 2 * n_, z);
           }
           t_ = t1;
-          gaps_exact_ = false;
+          if (open) {
+            gaps_exact_ = false;
+          } else {
+            ends_.gap0 = ends_.gap1;
+            ends_.gN0 = ends_.gN1;
+            gaps_exact_ = true;
+          }
         }
       }
     } else {
