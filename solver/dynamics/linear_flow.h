@@ -263,8 +263,10 @@ inline void LibraryCosSin(double x_rad, double& c, double& s) {
 
 /// cos and sin (the library's bits) of angles already taken, keyed by the angle's bits: a pulse's
 /// steps take the harmonic generator at the angles omega t of one grid, which the cells of a
-/// sweep share while their models leave the step alone. Direct-mapped, 2^kBits slots; a slot
-/// starts as the angle +0 (cos 1, sin +0: the library's values there).
+/// sweep share while their models leave the step alone. Direct-mapped, 2^kBits slots (96 KiB):
+/// enough for the grids of a row of cells, which the next row takes again (the default spec's
+/// 81 frequency ratios, about 3 000 angles); a slot starts as the angle +0 (cos 1, sin +0: the
+/// library's values there).
 class AngleMemo {
  public:
   /// c = cos(x_rad), s = sin(x_rad), from the memo or computed and kept.
@@ -281,7 +283,7 @@ class AngleMemo {
   }
 
  private:
-  static constexpr int kBits = 8;
+  static constexpr int kBits = 12;
   struct Slot {
     std::uint64_t key = 0;  // the bits of +0.0
     double c = 1.0, s = 0.0;
