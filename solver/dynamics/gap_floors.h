@@ -100,7 +100,7 @@ class GapFloors {
   }
   /// DeckStaysOpen on the state `d` the caller holds: the same operations, the same outcome;
   /// each contact's check and the fold take the members (written for them and read back).
-  bool DeckStaysOpen(DeckSums& d, const double drift[3], double margin_m) {
+  [[gnu::always_inline]] bool DeckStaysOpen(DeckSums& d, const double drift[3], double margin_m) {
     const double trial[3] = {d.sum[0] + drift[0], d.sum[1] + drift[1], d.sum[2] + drift[2]};
     const double closure_max =
         d.w_max[0] * trial[0] + d.w_max[1] * trial[1] + d.w_max[2] * trial[2];

@@ -146,9 +146,10 @@ inline void DeckYForcing(const DeckLanes& d, Lanes2 gy, Lanes2 ab_y[3]) {
 
 // DeckStepLanes takes the y generator as its products ab_y (DeckYForcing): a caller whose y
 // generator does not change over its steps takes them once.
-inline void DeckStepLanes(const DeckLanes& d, const double* __restrict pairs, const Lanes2 zq[3],
-                          Lanes2 gx, const Lanes2 ab_y[3], Lanes2 qu[3], Lanes2 ab[3],
-                          Lanes2 next[3]) {
+[[gnu::always_inline]] inline void DeckStepLanes(const DeckLanes& d, const double* __restrict pairs,
+                                                 const Lanes2 zq[3], Lanes2 gx,
+                                                 const Lanes2 ab_y[3], Lanes2 qu[3], Lanes2 ab[3],
+                                                 Lanes2 next[3]) {
   Lanes2 ed[3];
   const auto* T = static_cast<const double*>(__builtin_assume_aligned(pairs, 16));
   for (int i = 0; i < 3; ++i) {
@@ -171,8 +172,9 @@ inline void DeckStepLanes(const DeckLanes& d, const double* __restrict pairs, co
 
 // DeckRecordLanes' results stored: the modal coordinates Y (n x 6, the harmonic columns +0)
 // from qu and ab, and the step's end (q, u) into z_next's head from next.
-inline void DeckRecordStore(const Lanes2 qu[3], const Lanes2 ab[3], const Lanes2 next[3],
-                            double* __restrict Y, double* __restrict z_next) {
+[[gnu::always_inline]] inline void DeckRecordStore(const Lanes2 qu[3], const Lanes2 ab[3],
+                                                   const Lanes2 next[3], double* __restrict Y,
+                                                   double* __restrict z_next) {
   for (int i = 0; i < 3; ++i) {
     z_next[i] = next[i][0];
     z_next[3 + i] = next[i][1];
