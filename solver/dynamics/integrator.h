@@ -115,10 +115,12 @@ class Integrator final : private ConstrainedForces {
   void FinishSprings(EnergyLedger& e);
   // A record's free flight [docs/theory.md §3.21]: from the step `steps` on (counted by Run and
   // within the limit), free steps as FreeStep takes them, each in a tight loop while it is a
-  // full step whose gaps the bound keeps open, whose maxima and corner travels need no search
-  // and that holds no history sample; a step that is not is finished by FinishFreeStep (or
-  // taken by FreeStepOf), and the flight ends after it only when Run would not come back to it
-  // (a contact closed, the run failed, or an observer watches).
+  // full step whose gaps the bound keeps open or in which no contact is suspected of an
+  // impact, whose maxima and corner travels need no search and that holds no history sample; a
+  // step that is not is finished by FinishFreeStep (or taken by FreeStepOf), and the flight
+  // returns after it when a contact closed or the run failed (Run's next step is not a free
+  // one) or an observer watches (the observer's use is decided at the flight's entry, and the
+  // step may have logged an event), else goes on.
   // Between steps it does what Run does (the step limit, the finite check every
   // finite_check_steps steps into `t_finite`, the observer); returns false when the observer
   // stops the run.

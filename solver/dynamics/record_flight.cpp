@@ -143,7 +143,8 @@ bool Integrator::RecordFlight(long& steps, double& t_finite) {
         common = false;
       } else {
         // RecordStep's tests that need no dense output: a step that passes them all raises the
-        // maxima at its end only, evaluates no corner and records no history sample.
+        // maxima at its end only (a deck's corners there are ScanEnd's), searches no root and
+        // records no history sample.
         const double t1 = step.t_next_s;
         const double* x0 = z_.data();
         const double* x1 = z_new_.data();
@@ -205,7 +206,7 @@ bool Integrator::RecordFlight(long& steps, double& t_finite) {
     } else {
       FreeStepOf(piece, step);
     }
-    // Run's work after a free step: the observer, then for a step of this loop the rest.
+    // Run's work after a free step: the observer, then the rest (goes_on).
     if (observe && !Failed() && log_.events.empty() && !AnyClosed() &&
         !observer_->Step(t0, observed_z0_, h0, t_, z_.head(2 * n_), result_)) {
       return false;
