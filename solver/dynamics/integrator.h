@@ -14,6 +14,7 @@
 #include "solver/dynamics/active_forces.h"
 #include "solver/dynamics/contact_modes.h"
 #include "solver/dynamics/corner_travel.h"
+#include "solver/dynamics/event_location.h"
 #include "solver/dynamics/gap_floors.h"
 #include "solver/dynamics/mode_decision.h"
 #include "solver/dynamics/peak_bound.h"
@@ -232,9 +233,15 @@ class Integrator final : private ConstrainedForces {
               Eigen::Ref<Vec> lambda_T) override;
   void Project();
 
+  // Whether contact c is open and its gaps and rates at the ends (ends_) of a step of tau_s (s)
+  // make an impact suspected (ImpactSuspected with `dip_margin`) [docs/theory.md §3.12].
+  bool Suspected(int c, double tau_s, double dip_margin) const {
+    return ImpactSuspected(ends_.gap0[c], ends_.gN0[c], ends_.gap1[c], ends_.gN1[c], tau_s,
+                           dip_margin) &&
+           !modes_.closed(c);
+  }
   // The first impact of an open contact in the step [t0, t1] (+inf: none) [docs/theory.md
-  // §3.12]: each contact whose gaps and rates at the step's ends (ends_) make
-  // an impact suspected (ImpactSuspected with `dip_margin`) is searched by FirstGapRoot on the
+  // §3.12]: each contact Suspected of one is searched by FirstGapRoot on the
   // dense output: positions_at(t) gives q at t, state_at(t) a vector whose heads are q and u.
   template <class PositionsAt, class StateAt>
   double FirstImpact(double t0, double t1, double dip_margin, PositionsAt&& positions_at,

@@ -7,7 +7,6 @@
 #include <vector>
 
 #include "solver/dynamics/coordinate_maxima.h"
-#include "solver/dynamics/event_location.h"
 #include "solver/dynamics/integrator.h"
 #include "solver/dynamics/run_result.h"
 
@@ -133,9 +132,7 @@ bool Integrator::RecordFlight(long& steps, double& t_finite) {
         }
         GapsAndRates(z_new_.head(n_), z_new_.segment(n_, n_), ends_.gap1, ends_.gN1);
         for (int c = 0; c < nc_ && !suspected; ++c) {
-          suspected = ImpactSuspected(ends_.gap0[c], ends_.gN0[c], ends_.gap1[c], ends_.gN1[c],
-                                      step.t_next_s - t_, policy_.dip_margin) &&
-                      !modes_.closed(c);
+          suspected = Suspected(c, step.t_next_s - t_, policy_.dip_margin);
         }
       }
       if (suspected) {

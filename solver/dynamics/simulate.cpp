@@ -484,9 +484,7 @@ inline double Integrator::FirstImpact(double t0, double t1, double dip_margin,
   double t_event = kInf;
   for (int c = 0; c < nc_; ++c) {
     // The suspicion first: it is false for most contacts in most steps.
-    if (ImpactSuspected(ends_.gap0[c], ends_.gN0[c], ends_.gap1[c], ends_.gN1[c], t1 - t0,
-                        dip_margin) &&
-        !modes_.closed(c)) {
+    if (Suspected(c, t1 - t0, dip_margin)) {
       t_event = std::min(t_event, GapRoot(c, t0, t1, positions_at, state_at));
     }
   }
