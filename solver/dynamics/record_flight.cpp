@@ -56,6 +56,8 @@ bool Integrator::RecordFlight(long& steps, double& t_finite) {
       deck_flight.one_step_min_s = std::numeric_limits<double>::infinity();  // always divide
     }
   }
+  // The last plan's grid index k (NaN before the first): the next step on the same grid has k + 1.
+  double grid_k = std::numeric_limits<double>::quiet_NaN();
   // Run's work after a step: the finite check, the run's end and the step limit; true when the
   // run goes on (the next step counted), false when Run would stop it.
   const auto goes_on = [&]() {
@@ -98,8 +100,9 @@ bool Integrator::RecordFlight(long& steps, double& t_finite) {
     }
     const ExcitationPiece& piece = pieces_.At(excitation_, samples, t_);
     SB_DEMAND(piece.t_end > t_, "Excitation::PieceAt(t) returned a piece that ends at or before t");
-    const FreeStepPlan step = PlanFreeStep(t_, piece.t_begin, std::min(piece.t_end, t_end_),
-                                           NominalFreeStep(piece), h_free_, policy_);
+    const FreeStepPlan step =
+        PlanFreeStepExpecting(t_, piece.t_begin, std::min(piece.t_end, t_end_),
+                              NominalFreeStep(piece), h_free_, policy_, grid_k + 1.0, grid_k);
     h_free_ = step.h_s;
     // A full step is FreeStepOf's (no ledger here), its finish FinishFreeStep's unless the tests
     // below show that it would only raise the maxima at the step's end.

@@ -82,6 +82,37 @@ inline FreeStepPlan PlanFreeStep(double t_s, double piece_begin_s, double t_stop
   return plan;
 }
 
+/// PlanFreeStep for a caller that expects the grid index k (the last step's k plus one, on the
+/// same grid): the same plan. The step's end is taken from `k_expected` where the quotient's
+/// floor equals it (the same end: (k + 1) h of equal k), so that it does not wait for the
+/// division and the floor; the test is a branch the processor predicts, not an operand. `k_s`
+/// receives the floor's k (the next step's expectation less one).
+inline FreeStepPlan PlanFreeStepExpecting(double t_s, double piece_begin_s, double t_stop_s,
+                                          double h_s, double h_last_s, const EventPolicy& policy,
+                                          double k_expected, double& k_s) {
+  FreeStepPlan plan;
+  plan.h_s = std::abs(h_s - h_last_s) <= policy.step_reuse_band * h_s ? h_last_s : h_s;
+  const double h = plan.h_s;
+  const double k = t_s == piece_begin_s
+                       ? (policy.step_snap_band < 1.0 ? 0.0 * policy.step_snap_band
+                                                      : std::floor(policy.step_snap_band))
+                       : std::floor((t_s - piece_begin_s) / h + policy.step_snap_band);
+  double k_end = k_expected;
+  if (!(k == k_expected)) [[unlikely]] {
+    k_end = k;
+    // An opaque move: the compiler keeps the branch instead of a select, which would make the
+    // step's end an operand of the floor again.
+    asm("" : "+x"(k_end));
+  }
+  k_s = k;
+  plan.t_next_s = piece_begin_s + (k_end + 1.0) * h;
+  if (plan.t_next_s > t_stop_s - policy.step_snap_band * h) {
+    plan.t_next_s = t_stop_s;
+  }
+  plan.full = std::abs((plan.t_next_s - t_s) - h) <= policy.step_snap_band * h;
+  return plan;
+}
+
 /// PlanFreeStep at a piece's start (t_s == piece_begin_s, a record's step per sample) with the
 /// products that depend on the step alone taken once per step length: the same operations on the
 /// same operands, so the same plan. The length Reset gives is a fixed point of the reuse rule:

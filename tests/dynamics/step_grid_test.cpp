@@ -154,6 +154,61 @@ TEST(StepGrid, RampPlannerIsPlanFreeStepAtAPiecesStartOverDrawnSteps) {
   }
 }
 
+// A pulse's and a free vibration's steps: from a time on or off the grid, steps along a piece
+// (its start far from or near 0, so that the quotient's rounding varies), each planned by
+// PlanFreeStepExpecting with the expectation a loop gives it (the last k plus one, or NaN
+// first) and with wrong ones (one off either way, -0, NaN): the plan is PlanFreeStep's, bit for
+// bit, and the k handed back is the floor's.
+TEST(StepGrid, ExpectingPlanIsPlanFreeStepWhateverTheExpectation) {
+  std::mt19937_64 rng(20261201);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double bands[] = {0.0, 1e-12, 1e-9, 1e-6, 0.3, 1.0};
+  long right = 0, steps = 0;
+  for (int draw = 0; draw < 2000; ++draw) {
+    EventPolicy policy;
+    policy.step_snap_band = bands[rng() % 6];
+    policy.step_reuse_band = bands[rng() % 6];
+    const double h = std::ldexp(1.0 + unit(rng), -6 - static_cast<int>(rng() % 8));
+    const double begin = (rng() % 2 == 0) ? unit(rng) * h : unit(rng) * 1e3;
+    const double stop = (rng() % 3 == 0) ? kInf : begin + h * (5.0 + unit(rng) * 200.0);
+    // The first step from a point inside a grid interval (after an impact) or on the start.
+    double t = (rng() % 2 == 0) ? begin : begin + unit(rng) * 3.0 * h;
+    double h_last = h * (1.0 + (unit(rng) - 0.5) * 1e-9);
+    double k_last = std::numeric_limits<double>::quiet_NaN();
+    for (int step = 0; step < 60 && t < stop; ++step) {
+      const FreeStepPlan expected = PlanFreeStep(t, begin, stop, h, h_last, policy);
+      const double guesses[] = {k_last + 1.0, k_last, k_last + 2.0, -0.0,
+                                std::numeric_limits<double>::quiet_NaN()};
+      double k_floor = 0.0;
+      for (const double guess : guesses) {
+        double k = -1.0;
+        const FreeStepPlan plan =
+            PlanFreeStepExpecting(t, begin, stop, h, h_last, policy, guess, k);
+        ASSERT_EQ(Bits(plan.h_s), Bits(expected.h_s)) << draw << " " << step;
+        ASSERT_EQ(Bits(plan.t_next_s), Bits(expected.t_next_s)) << draw << " " << step;
+        ASSERT_EQ(plan.full, expected.full) << draw << " " << step;
+        // The floor of the quotient, as PlanFreeStep takes it (at the piece's start that of the
+        // band alone).
+        const double quotient =
+            t == begin ? policy.step_snap_band : (t - begin) / plan.h_s + policy.step_snap_band;
+        ASSERT_EQ(k, std::floor(quotient)) << draw << " " << step;
+        k_floor = k;
+      }
+      if (policy.step_snap_band == EventPolicy{}.step_snap_band && step > 0) {
+        right += k_floor == k_last + 1.0 ? 1 : 0;
+        ++steps;
+      }
+      k_last = k_floor;
+      h_last = expected.h_s;
+      t = expected.t_next_s;
+    }
+  }
+  // With the default snap band the loop's expectation holds on every step after the first (the
+  // quotient's rounding, a few ulps of (t - begin) / h, stays far inside the band).
+  EXPECT_GT(steps, 10000);
+  EXPECT_EQ(right, steps);
+}
+
 TEST(StepGrid, ConstrainedStepIsCutAtTheStopWithoutSliverSteps) {
   const EventPolicy policy;
   EventPolicy no_snap;
