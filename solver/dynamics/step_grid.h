@@ -52,6 +52,37 @@ struct FreeStepPlan {
   bool full = false;
 };
 
+/// PlanFreeStep's step length: the previous step h_last_s (s) where the nominal h_s is within
+/// step_reuse_band of it, else h_s.
+inline double ReusedStep(double h_s, double h_last_s, const EventPolicy& policy) {
+  return std::abs(h_s - h_last_s) <= policy.step_reuse_band * h_s ? h_last_s : h_s;
+}
+
+/// PlanFreeStep's grid index of the step from `t_s` on the grid piece_begin_s + k h (s): the
+/// floor of the quotient plus step_snap_band. At the piece's start (a record's steps, one per
+/// sample) the quotient is 0 exactly: the same k without the division, and for a band below 1 (as
+/// ValidatePolicy wants it) without floor.
+inline double GridIndex(double t_s, double piece_begin_s, double h, const EventPolicy& policy) {
+  return t_s == piece_begin_s ? (policy.step_snap_band < 1.0 ? 0.0 * policy.step_snap_band
+                                                             : std::floor(policy.step_snap_band))
+                              : std::floor((t_s - piece_begin_s) / h + policy.step_snap_band);
+}
+
+/// PlanFreeStep's plan of length h (s) from `t_s` with grid index k: the end the grid point
+/// piece_begin_s + (k + 1) h, or the stop where that point is within step_snap_band h of it, and
+/// whether the step is full.
+inline FreeStepPlan GridStep(double t_s, double piece_begin_s, double t_stop_s, double h, double k,
+                             const EventPolicy& policy) {
+  FreeStepPlan plan;
+  plan.h_s = h;
+  plan.t_next_s = piece_begin_s + (k + 1.0) * h;
+  if (plan.t_next_s > t_stop_s - policy.step_snap_band * h) {
+    plan.t_next_s = t_stop_s;
+  }
+  plan.full = std::abs((plan.t_next_s - t_s) - h) <= policy.step_snap_band * h;
+  return plan;
+}
+
 /// The free step from `t_s` on the grid piece_begin_s + k h of a piece that stops at `t_stop_s`
 /// (its end or the run's) [§3.14]:
 /// - step reuse: a nominal step `h_s` within step_reuse_band h of the previous one `h_last_s` is
@@ -65,21 +96,9 @@ struct FreeStepPlan {
 /// @pre piece_begin_s <= t_s < t_stop_s, h_s > 0.
 inline FreeStepPlan PlanFreeStep(double t_s, double piece_begin_s, double t_stop_s, double h_s,
                                  double h_last_s, const EventPolicy& policy) {
-  FreeStepPlan plan;
-  plan.h_s = std::abs(h_s - h_last_s) <= policy.step_reuse_band * h_s ? h_last_s : h_s;
-  const double h = plan.h_s;
-  // At the piece's start (a record's steps, one per sample) the quotient is 0 exactly: the same
-  // k without the division, and for a band below 1 (as ValidatePolicy wants it) without floor.
-  const double k = t_s == piece_begin_s
-                       ? (policy.step_snap_band < 1.0 ? 0.0 * policy.step_snap_band
-                                                      : std::floor(policy.step_snap_band))
-                       : std::floor((t_s - piece_begin_s) / h + policy.step_snap_band);
-  plan.t_next_s = piece_begin_s + (k + 1.0) * h;
-  if (plan.t_next_s > t_stop_s - policy.step_snap_band * h) {
-    plan.t_next_s = t_stop_s;
-  }
-  plan.full = std::abs((plan.t_next_s - t_s) - h) <= policy.step_snap_band * h;
-  return plan;
+  const double h = ReusedStep(h_s, h_last_s, policy);
+  return GridStep(t_s, piece_begin_s, t_stop_s, h, GridIndex(t_s, piece_begin_s, h, policy),
+                  policy);
 }
 
 /// PlanFreeStep for a caller that expects the grid index k (the last step's k plus one, on the
@@ -90,13 +109,8 @@ inline FreeStepPlan PlanFreeStep(double t_s, double piece_begin_s, double t_stop
 inline FreeStepPlan PlanFreeStepExpecting(double t_s, double piece_begin_s, double t_stop_s,
                                           double h_s, double h_last_s, const EventPolicy& policy,
                                           double k_expected, double& k_s) {
-  FreeStepPlan plan;
-  plan.h_s = std::abs(h_s - h_last_s) <= policy.step_reuse_band * h_s ? h_last_s : h_s;
-  const double h = plan.h_s;
-  const double k = t_s == piece_begin_s
-                       ? (policy.step_snap_band < 1.0 ? 0.0 * policy.step_snap_band
-                                                      : std::floor(policy.step_snap_band))
-                       : std::floor((t_s - piece_begin_s) / h + policy.step_snap_band);
+  const double h = ReusedStep(h_s, h_last_s, policy);
+  const double k = GridIndex(t_s, piece_begin_s, h, policy);
   double k_end = k_expected;
   if (!(k == k_expected)) [[unlikely]] {
     k_end = k;
@@ -105,12 +119,7 @@ inline FreeStepPlan PlanFreeStepExpecting(double t_s, double piece_begin_s, doub
     asm("" : "+x"(k_end));
   }
   k_s = k;
-  plan.t_next_s = piece_begin_s + (k_end + 1.0) * h;
-  if (plan.t_next_s > t_stop_s - policy.step_snap_band * h) {
-    plan.t_next_s = t_stop_s;
-  }
-  plan.full = std::abs((plan.t_next_s - t_s) - h) <= policy.step_snap_band * h;
-  return plan;
+  return GridStep(t_s, piece_begin_s, t_stop_s, h, k_end, policy);
 }
 
 /// PlanFreeStep at a piece's start (t_s == piece_begin_s, a record's step per sample) with the
