@@ -53,9 +53,9 @@ struct FreeStepPlan {
 };
 
 /// PlanFreeStep's step length: the previous step h_last_s (s) where the nominal h_s is within
-/// step_reuse_band of it, else h_s.
-inline double ReusedStep(double h_s, double h_last_s, const EventPolicy& policy) {
-  return std::abs(h_s - h_last_s) <= policy.step_reuse_band * h_s ? h_last_s : h_s;
+/// reuse_band (the policy's step_reuse_band, relative to h_s) of it, else h_s.
+inline double ReusedStep(double h_s, double h_last_s, double reuse_band) {
+  return std::abs(h_s - h_last_s) <= reuse_band * h_s ? h_last_s : h_s;
 }
 
 /// PlanFreeStep's grid index of the step from `t_s` on the grid piece_begin_s + k h (s): the
@@ -96,7 +96,7 @@ inline FreeStepPlan GridStep(double t_s, double piece_begin_s, double t_stop_s, 
 /// @pre piece_begin_s <= t_s < t_stop_s, h_s > 0.
 inline FreeStepPlan PlanFreeStep(double t_s, double piece_begin_s, double t_stop_s, double h_s,
                                  double h_last_s, const EventPolicy& policy) {
-  const double h = ReusedStep(h_s, h_last_s, policy);
+  const double h = ReusedStep(h_s, h_last_s, policy.step_reuse_band);
   return GridStep(t_s, piece_begin_s, t_stop_s, h, GridIndex(t_s, piece_begin_s, h, policy),
                   policy);
 }
@@ -109,7 +109,7 @@ inline FreeStepPlan PlanFreeStep(double t_s, double piece_begin_s, double t_stop
 inline FreeStepPlan PlanFreeStepExpecting(double t_s, double piece_begin_s, double t_stop_s,
                                           double h_s, double h_last_s, const EventPolicy& policy,
                                           double k_expected, double& k_s) {
-  const double h = ReusedStep(h_s, h_last_s, policy);
+  const double h = ReusedStep(h_s, h_last_s, policy.step_reuse_band);
   const double k = GridIndex(t_s, piece_begin_s, h, policy);
   double k_end = k_expected;
   if (!(k == k_expected)) [[unlikely]] {
@@ -142,7 +142,7 @@ class RampStepPlanner {
   /// reuse), and its products (k + 1) h and step_snap_band h for At (taken again only for a
   /// length of other bits than the last one's).
   double Reset(double h_s, double h_last_s) {
-    const double h = std::abs(h_s - h_last_s) <= reuse_ * h_s ? h_last_s : h_s;
+    const double h = ReusedStep(h_s, h_last_s, reuse_);
     if (std::bit_cast<std::uint64_t>(h) != std::bit_cast<std::uint64_t>(h_)) {
       h_ = h;
       next_h_ = k_next_ * h;
